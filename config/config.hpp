@@ -1,0 +1,79 @@
+#pragma once
+// Typed gnssemu configuration, loaded from TOML with validation. Every bad
+// key, type or value is a gnssemu::Error naming "file:line: reason".
+// Reference: docs/configuration.md.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/common/vec3.hpp"
+#include "core/protocol/nmea/nmea_encoder.hpp"
+#include "core/receiver/receiver_config.hpp"
+#include "core/time/gps_time.hpp"
+
+namespace gnssemu::config {
+
+/// How epochs map to GPS time.
+enum class TimeMode {
+  kRealtime,  ///< epochs follow the wall clock (shifted into the nav file's span, see start)
+  kLockstep,  ///< epochs follow simulation time carried by truth packets
+};
+
+struct TimeConfig {
+  TimeMode mode = TimeMode::kRealtime;
+  /// GPS time of the first epoch; empty: inside the nav file's coverage
+  /// (first toe + 1 h), so shipped historic nav files work at any wall-clock date.
+  std::optional<time::GpsTime> start;
+  bool use_wall_clock_date = false;  ///< true: GPS time = system clock (needs a current nav file)
+};
+
+struct TruthInputConfig {
+  std::string bind_address = "127.0.0.1";
+  uint16_t port = 5500;           ///< 0: pick a free port (logged)
+  double timeout_s = 2.0;         ///< no truth for this long -> no fix
+  double max_extrapolation_s = 0.5;
+};
+
+/// Built-in demo trajectory used while no simulator sends truth.
+struct DemoConfig {
+  bool enabled = true;
+  double radius_m = 50.0;         ///< circle around the origin
+  double speed_m_s = 5.0;
+  double height_m = 0.0;          ///< above the origin
+};
+
+enum class PortType { kPty, kFile };
+
+struct OutputPortConfig {
+  std::string name;               ///< unique, for logs
+  PortType type = PortType::kPty;
+  std::string path;               ///< pty: stable symlink to create; file: file to write
+  uint32_t baud = 9600;           ///< recorded on a pty (not applied)
+  protocol::nmea::NmeaConfig nmea;
+};
+
+struct LogConfig {
+  std::string level = "info";     ///< trace, debug, info, warn, error
+};
+
+struct Config {
+  std::string source;             ///< file the config came from ("" if built in)
+  Lla origin;                     ///< local frame origin (lat/lon rad, height m)
+  std::string nav_file;           ///< absolute, or relative to the config file's folder (resolved)
+  double rate_hz = 1.0;           ///< epoch rate, 1..10 Hz
+  TimeConfig time;
+  receiver::ReceiverConfig receiver;
+  TruthInputConfig truth;
+  DemoConfig demo;
+  std::vector<OutputPortConfig> outputs;
+  LogConfig log;
+};
+
+/// Load and validate a TOML file. Relative paths inside are resolved against
+/// the file's folder. Throws gnssemu::Error("file:line: reason").
+Config load_config(const std::string& path);
+/// Parse TOML text; name is used in messages, base_dir for relative paths.
+Config parse_config(const std::string& toml_text, const std::string& name, const std::string& base_dir);
+
+}  // namespace gnssemu::config

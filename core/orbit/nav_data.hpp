@@ -1,0 +1,39 @@
+#pragma once
+// Contents of a navigation message file: GPS ephemerides plus the header's
+// broadcast ionosphere, UTC and leap-second parameters.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/orbit/ephemeris.hpp"
+
+namespace gnssemu::orbit {
+
+/// Broadcast Klobuchar coefficients (IS-GPS-200 §20.3.3.5.2.5).
+struct KlobucharParams {
+  std::array<double, 4> alpha{};  ///< s, s/semicircle, s/semicircle^2, s/semicircle^3
+  std::array<double, 4> beta{};   ///< s, s/semicircle, s/semicircle^2, s/semicircle^3
+  bool valid = false;             ///< false when the file had none
+};
+
+/// GPS -> UTC polynomial (RINEX 2 DELTA-UTC, RINEX 3 GPUT).
+struct UtcParams {
+  double a0_s = 0.0;
+  double a1_s_s = 0.0;
+  double tot_s = 0.0;   ///< reference time, s of week
+  int wnt = 0;          ///< reference week (continuous)
+  bool valid = false;
+};
+
+struct NavData {
+  std::string source;                ///< file name it was read from
+  double rinex_version = 0.0;
+  std::vector<Ephemeris> ephemerides;  ///< GPS only, in file order
+  KlobucharParams klobuchar;
+  UtcParams utc;
+  std::optional<int> leap_seconds;   ///< GPS - UTC from the header, if present
+  int skipped_records = 0;           ///< non-GPS records skipped (mixed files)
+};
+
+}  // namespace gnssemu::orbit

@@ -1,0 +1,18 @@
+#pragma once
+// RINEX 2.10/2.11 and 3.x navigation file reader (GPS records; other systems
+// in mixed 3.x files are skipped and counted). Layouts: RINEX 2.11 Tables
+// A3/A4, RINEX 3.04 Tables A5/A6 (shared/reference/gps-orbits.md §6-7).
+#include <istream>
+#include <string>
+
+#include "core/orbit/nav_data.hpp"
+
+namespace gnssemu::orbit {
+
+/// Read a navigation file. Throws gnssemu::Error("file:line: reason") on a
+/// missing file, an unsupported version or a malformed header/record.
+NavData read_rinex_nav(const std::string& path);
+/// Same, from a stream; name is used in error messages.
+NavData read_rinex_nav(std::istream& in, const std::string& name);
+
+}  // namespace gnssemu::orbit

@@ -1,0 +1,76 @@
+#pragma once
+// Fix: everything one receiver epoch produces. Every protocol encoder reads
+// only this, so satellites used, DOP, accuracy and C/N0 agree across outputs.
+#include <array>
+#include <cstdint>
+
+#include "core/common/constants.hpp"
+#include "core/common/vec3.hpp"
+#include "core/time/gps_time.hpp"
+
+namespace gnssemu::receiver {
+
+enum class FixType : uint8_t {
+  kNone = 0,  ///< no position (too few satellites, bad geometry, no antenna)
+  k2D = 2,    ///< horizontal only; height held
+  k3D = 3,
+};
+
+/// Dilutions of precision; kNoDop when undefined (NMEA prints 99.99).
+struct Dop {
+  static constexpr double kNoDop = 99.99;
+  double gdop = kNoDop, pdop = kNoDop, hdop = kNoDop, vdop = kNoDop, tdop = kNoDop;
+};
+
+/// Per-satellite state of one epoch (for GSV/GSA, NAV-SAT, NAV-SVINFO).
+struct SatInfo {
+  int prn = 0;                ///< 1..32
+  double az_rad = 0.0;        ///< [0, 2pi), from true north
+  double el_rad = 0.0;        ///< [-pi/2, pi/2]
+  double cn0_dbhz = 0.0;      ///< 0 when not tracked
+  bool healthy = false;       ///< ephemeris healthy and valid
+  bool above_mask = false;    ///< elevation >= mask
+  bool tracked = false;       ///< signal tracked (pseudorange available)
+  bool used = false;          ///< used in the navigation solution
+  double pseudorange_m = 0.0; ///< measured (with all errors), m
+  double doppler_hz = 0.0;    ///< measured L1 Doppler, Hz
+  double residual_m = 0.0;    ///< post-fit pseudorange residual, m (used only)
+};
+
+struct Fix {
+  time::GpsTime t;             ///< epoch, GPS time (receive time)
+  int leap_seconds = 18;       ///< GPS - UTC used for UTC output, s
+  bool time_valid = false;     ///< receiver time known (false before first epoch with truth)
+  FixType type = FixType::kNone;
+
+  Ecef pos_m;                  ///< valid when type != kNone
+  Lla lla;                     ///< same position, geodetic; height above ellipsoid
+  double geoid_sep_m = 0.0;    ///< geoid height N, m (MSL height = lla.height_m - N)
+  Ecef vel_m_s;                ///< ECEF velocity
+  Enu vel_enu_m_s;             ///< same velocity in ENU at the fix position
+  double speed_m_s = 0.0;      ///< horizontal speed over ground
+  double course_rad = 0.0;     ///< course over ground [0, 2pi), from true north
+  double climb_m_s = 0.0;
+
+  double clock_bias_s = 0.0;   ///< estimated receiver clock bias
+  double clock_drift_s_s = 0.0;///< estimated receiver clock drift
+
+  Dop dop;
+  int num_used = 0;            ///< satellites in the solution
+  int num_tracked = 0;         ///< satellites tracked (C/N0 > 0)
+  int num_visible = 0;         ///< satellites above the mask with a valid ephemeris
+
+  // 1-sigma accuracy estimates (sigma_uere * DOP); large values when no fix.
+  double sigma_uere_m = 0.0;   ///< user equivalent range error assumed by the solver
+  double range_rms_m = 0.0;    ///< RMS of post-fit residuals (GST field 2)
+  double sigma_e_m = 0.0, sigma_n_m = 0.0, sigma_u_m = 0.0;
+  double h_acc_m = 0.0;        ///< horizontal accuracy (as u-blox hAcc)
+  double v_acc_m = 0.0;        ///< vertical accuracy (vAcc)
+  double speed_acc_m_s = 0.0;  ///< sAcc
+  double time_acc_s = 0.0;     ///< tAcc
+
+  std::array<SatInfo, kMaxGpsPrn> sats{};  ///< first num_sats entries valid, sorted by PRN
+  int num_sats = 0;
+};
+
+}  // namespace gnssemu::receiver

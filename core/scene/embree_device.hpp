@@ -1,0 +1,11 @@
+#pragma once
+// Embree device lifetime. The scene module (buildings, multipath) builds on
+// this; for now it proves the Embree link and reports the library version.
+#include <string>
+
+namespace gnssemu::scene {
+
+/// Embree library version string, e.g. "3.13.5", from a live RTCDevice.
+std::string embree_version();
+
+}  // namespace gnssemu::scene

@@ -1,0 +1,114 @@
+#include "core/time/gps_time.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <initializer_list>
+
+#include "core/common/constants.hpp"
+
+namespace gnssemu::time {
+
+namespace {
+constexpr int64_t kGpsEpochDays = 3657;  // 1980-01-06 minus 1970-01-01
+}
+
+GpsTime::GpsTime(int32_t week, double tow_s) : week_(week), tow_s_(tow_s) {
+  if (!std::isfinite(tow_s_)) {
+    tow_s_ = 0.0;
+    return;
+  }
+  if (tow_s_ >= kSecondsPerWeek || tow_s_ < 0.0) {
+    const double w = std::floor(tow_s_ / kSecondsPerWeek);
+    week_ += static_cast<int32_t>(w);
+    tow_s_ -= w * kSecondsPerWeek;
+    if (tow_s_ >= kSecondsPerWeek) {  // rounding at the edge
+      tow_s_ -= kSecondsPerWeek;
+      ++week_;
+    }
+    if (tow_s_ < 0.0) tow_s_ = 0.0;
+  }
+}
+
+double GpsTime::total_s() const noexcept { return week_ * kSecondsPerWeek + tow_s_; }
+
+GpsTime GpsTime::operator+(double dt_s) const { return GpsTime(week_, tow_s_ + dt_s); }
+
+double GpsTime::operator-(const GpsTime& o) const noexcept {
+  return (week_ - o.week_) * kSecondsPerWeek + (tow_s_ - o.tow_s_);
+}
+
+std::partial_ordering GpsTime::operator<=>(const GpsTime& o) const noexcept {
+  if (week_ != o.week_) return week_ <=> o.week_;
+  return tow_s_ <=> o.tow_s_;
+}
+
+int64_t days_from_civil(int year, int month, int day) noexcept {
+  const int64_t y = static_cast<int64_t>(year) - (month <= 2 ? 1 : 0);
+  const int64_t era = (y >= 0 ? y : y - 399) / 400;
+  const int64_t yoe = y - era * 400;
+  const int64_t mp = (month + 9) % 12;
+  const int64_t doy = (153 * mp + 2) / 5 + day - 1;
+  const int64_t doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+  return era * 146097 + doe - 719468;
+}
+
+void civil_from_days(int64_t z, int& year, int& month, int& day) noexcept {
+  z += 719468;
+  const int64_t era = (z >= 0 ? z : z - 146096) / 146097;
+  const int64_t doe = z - era * 146097;
+  const int64_t yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
+  const int64_t y = yoe + era * 400;
+  const int64_t doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+  const int64_t mp = (5 * doy + 2) / 153;
+  const int64_t d = doy - (153 * mp + 2) / 5 + 1;
+  const int64_t m = mp < 10 ? mp + 3 : mp - 9;
+  year = static_cast<int>(y + (m <= 2 ? 1 : 0));
+  month = static_cast<int>(m);
+  day = static_cast<int>(d);
+}
+
+GpsTime GpsTime::from_calendar(const CalendarTime& c) {
+  const int64_t days = days_from_civil(c.year, c.month, c.day) - kGpsEpochDays;
+  const int64_t week = days >= 0 ? days / 7 : -((-days + 6) / 7);
+  const int64_t dow = days - week * 7;
+  const double tow = static_cast<double>(dow) * kSecondsPerDay + c.hour * 3600.0 + c.minute * 60.0 + c.second;
+  return GpsTime(static_cast<int32_t>(week), tow);
+}
+
+CalendarTime GpsTime::to_calendar() const {
+  const int64_t dow = static_cast<int64_t>(std::floor(tow_s_ / kSecondsPerDay));
+  double sod = tow_s_ - static_cast<double>(dow) * kSecondsPerDay;
+  CalendarTime c;
+  civil_from_days(kGpsEpochDays + static_cast<int64_t>(week_) * 7 + dow, c.year, c.month, c.day);
+  c.hour = static_cast<int>(sod / 3600.0);
+  sod -= c.hour * 3600.0;
+  c.minute = static_cast<int>(sod / 60.0);
+  c.second = sod - c.minute * 60.0;
+  return c;
+}
+
+int GpsTime::day_of_year() const {
+  const CalendarTime c = to_calendar();
+  return static_cast<int>(days_from_civil(c.year, c.month, c.day) - days_from_civil(c.year, 1, 1) + 1);
+}
+
+int32_t resolve_week_nearest(int32_t truncated_week, int32_t reference_week, int32_t modulus) {
+  const int32_t base = reference_week - (reference_week % modulus);
+  int32_t best = base + (truncated_week % modulus);
+  for (int32_t cand : {best - modulus, best + modulus}) {
+    const int32_t d_best = std::abs(best - reference_week);
+    const int32_t d_cand = std::abs(cand - reference_week);
+    if (d_cand < d_best || (d_cand == d_best && cand > best)) best = cand;
+  }
+  return best;
+}
+
+int32_t resolve_week_at_or_after(int32_t truncated_week, int32_t reference_week, int32_t modulus) {
+  int32_t w = reference_week - (reference_week % modulus) + (truncated_week % modulus);
+  if (w < reference_week) w += modulus;
+  return w;
+}
+
+int year_from_two_digits(int yy) noexcept { return yy >= 80 ? 1900 + yy : 2000 + yy; }
+
+}  // namespace gnssemu::time
