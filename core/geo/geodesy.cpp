@@ -1,5 +1,6 @@
 #include "core/geo/geodesy.hpp"
 
+#include <GeographicLib/Config.h>
 #include <GeographicLib/Geocentric.hpp>
 #include <cmath>
 
@@ -59,6 +60,8 @@ LookAngles look_angles(const Ecef& rx, const Lla& rx_lla, const Ecef& target) no
 LookAngles look_angles(const Ecef& rx, const Ecef& target) noexcept {
   return look_angles(rx, lla_from_ecef(rx), target);
 }
+
+std::string geographiclib_version() { return GEOGRAPHICLIB_VERSION_STRING; }
 
 Vec3 los_unit_ecef(double az_rad, double el_rad, double lat_rad, double lon_rad) noexcept {
   const double ce = std::cos(el_rad);

@@ -1,6 +1,8 @@
 #pragma once
 // WGS-84 geodetic <-> ECEF conversions and satellite look angles, through
 // GeographicLib::Geocentric (the only geodesy implementation in the project).
+#include <string>
+
 #include "core/common/vec3.hpp"
 
 namespace gnssemu::geo {
@@ -27,6 +29,9 @@ struct LookAngles {
 LookAngles look_angles(const Ecef& rx, const Lla& rx_lla, const Ecef& target) noexcept;
 /// Same, computing the receiver's geodetic position itself.
 LookAngles look_angles(const Ecef& rx, const Ecef& target) noexcept;
+
+/// GeographicLib version string, e.g. "2.1.2" (for `gnssemu version`).
+std::string geographiclib_version();
 
 /// Line-of-sight unit vector (ECEF) of an azimuth/elevation at (lat_rad, lon_rad).
 Vec3 los_unit_ecef(double az_rad, double el_rad, double lat_rad, double lon_rad) noexcept;
