@@ -34,7 +34,9 @@ struct Ephemeris {
   double sv_accuracy_m = 0.0;  ///< URA, m
   int health = 0;              ///< SV health word, 0 = healthy
   double fit_interval_h = 0.0; ///< curve-fit interval, h; 0 = unknown (4 h assumed)
-  double transmit_tow_s = 0.0; ///< transmission time of message, s of week
+  double transmit_tow_s = 0.0; ///< transmission time of message, s from the start of toe's week
+                               ///< (negative = previous week); 0 when !transmit_known
+  bool transmit_known = false; ///< false when the file gave 0.9999e9 (unknown) or for almanacs
 };
 
 /// Satellite state at a GPS time.

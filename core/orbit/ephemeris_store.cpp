@@ -1,1 +1,100 @@
-// placeholder: implemented by its module's work
+#include "core/orbit/ephemeris_store.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace gnssemu::orbit {
+
+namespace {
+double transmit_key(const Ephemeris& e) {
+  return e.transmit_known ? e.transmit_tow_s : -std::numeric_limits<double>::infinity();
+}
+}  // namespace
+
+EphemerisStore::EphemerisStore(const std::vector<Ephemeris>& ephemerides) {
+  for (const Ephemeris& e : ephemerides) {
+    if (e.prn >= 1 && e.prn <= kMaxGpsPrn) by_prn_[static_cast<std::size_t>(e.prn)].push_back(e);
+  }
+  for (std::size_t prn = 1; prn <= static_cast<std::size_t>(kMaxGpsPrn); ++prn) {
+    auto& v = by_prn_[prn];
+    // Stable: equal (toe, transmit) keep file order, so the later one is last.
+    std::stable_sort(v.begin(), v.end(), [](const Ephemeris& a, const Ephemeris& b) {
+      if (a.toe != b.toe) return a.toe < b.toe;
+      return transmit_key(a) < transmit_key(b);
+    });
+    auto& u = usable_[prn];
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (v[i].health != 0) continue;
+      if (!u.empty() && v[u.back()].toe == v[i].toe) {
+        u.back() = i;  // later transmitted duplicate replaces the earlier one
+      } else {
+        u.push_back(i);
+      }
+    }
+  }
+}
+
+const Ephemeris* EphemerisStore::select(int prn, const time::GpsTime& t) const noexcept {
+  if (prn < 1 || prn > kMaxGpsPrn) return nullptr;
+  const auto& v = by_prn_[static_cast<std::size_t>(prn)];
+  const auto& u = usable_[static_cast<std::size_t>(prn)];
+  if (u.empty()) return nullptr;
+  // First usable set with toe >= t; its predecessor is the other candidate.
+  const auto it = std::lower_bound(u.begin(), u.end(), t,
+                                   [&v](std::size_t i, const time::GpsTime& tt) { return v[i].toe < tt; });
+  const Ephemeris* after = it != u.end() ? &v[*it] : nullptr;
+  const Ephemeris* before = it != u.begin() ? &v[*(it - 1)] : nullptr;
+  auto valid = [&t](const Ephemeris* e) {
+    return e != nullptr && std::fabs(t - e->toe) <= validity_half_window_s(*e);
+  };
+  const Ephemeris* first = after;
+  const Ephemeris* second = before;
+  if (before != nullptr && (after == nullptr || (t - before->toe) < (after->toe - t))) {
+    first = before;
+    second = after;
+  }
+  if (valid(first)) return first;
+  if (valid(second)) return second;
+  return nullptr;
+}
+
+std::size_t EphemerisStore::count(int prn) const noexcept {
+  if (prn < 1 || prn > kMaxGpsPrn) return 0;
+  return by_prn_[static_cast<std::size_t>(prn)].size();
+}
+
+std::size_t EphemerisStore::size() const noexcept {
+  std::size_t n = 0;
+  for (const auto& v : by_prn_) n += v.size();
+  return n;
+}
+
+time::GpsTime EphemerisStore::first_valid() const noexcept {
+  bool any = false;
+  time::GpsTime best;
+  for (const auto& v : by_prn_) {
+    for (const Ephemeris& e : v) {
+      const time::GpsTime s = e.toe - validity_half_window_s(e);
+      if (!any || s < best) best = s;
+      any = true;
+    }
+  }
+  return best;
+}
+
+time::GpsTime EphemerisStore::last_valid() const noexcept {
+  bool any = false;
+  time::GpsTime best;
+  for (const auto& v : by_prn_) {
+    for (const Ephemeris& e : v) {
+      const time::GpsTime s = e.toe + validity_half_window_s(e);
+      if (!any || s > best) best = s;
+      any = true;
+    }
+  }
+  return best;
+}
+
+}  // namespace gnssemu::orbit

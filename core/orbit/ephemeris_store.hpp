@@ -1,6 +1,16 @@
 #pragma once
 // EphemerisStore: per satellite, the healthy ephemeris whose toe is nearest
 // to the requested time and within its validity window (RTKLIB seleph rule).
+//
+// Rules, in order:
+//  - unhealthy sets (health != 0) are never selected;
+//  - duplicates (same PRN and toe, e.g. an IODE change or a merged file
+//    listing the same set twice): the one transmitted last wins; an unknown
+//    transmission time counts as earliest, equal ones fall back to file order
+//    (later wins);
+//  - among the remaining sets whose validity window covers t
+//    (|t - toe| <= validity_half_window_s()), the nearest toe wins; at equal
+//    distance the later toe wins (the newer upload).
 #include <array>
 #include <vector>
 
@@ -29,6 +39,9 @@ public:
 
 private:
   std::array<std::vector<Ephemeris>, kMaxGpsPrn + 1> by_prn_;  // sorted by toe
+  // Per PRN, indices into by_prn_ of the selectable sets: healthy, one per
+  // toe (the latest transmitted one), ascending toe.
+  std::array<std::vector<std::size_t>, kMaxGpsPrn + 1> usable_;
 };
 
 }  // namespace gnssemu::orbit

@@ -1,1 +1,337 @@
-// placeholder: implemented by its module's work
+#include "core/orbit/rinex_nav.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <string_view>
+#include <vector>
+
+#include "core/common/constants.hpp"
+#include "core/common/error.hpp"
+
+namespace gnssemu::orbit {
+
+namespace {
+
+// RINEX 2.11 §6.7 / 3.04 §8: transmission time 0.9999e9 = not known.
+constexpr double kUnknownTransmitTime_s = 0.9999e9;
+
+struct Line {
+  std::string text;
+  int number = 0;  // 1-based
+};
+
+std::string_view trim(std::string_view s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string_view::npos) return {};
+  const auto e = s.find_last_not_of(" \t");
+  return s.substr(b, e - b + 1);
+}
+
+std::string_view columns(const std::string& line, std::size_t col, std::size_t width) {
+  if (col >= line.size()) return {};
+  return std::string_view(line).substr(col, width);
+}
+
+class Parser {
+public:
+  explicit Parser(const std::string& name) : name_(name) {}
+
+  [[noreturn]] void fail(int line, const std::string& what) const { throw Error(name_, line, what); }
+
+  /// Fixed-column floating field (Fortran D/E exponent); blank = 0.
+  double real(const Line& l, std::size_t col, std::size_t width, const char* what) const {
+    const std::string_view f = trim(columns(l.text, col, width));
+    if (f.empty()) return 0.0;
+    std::string s(f);
+    for (char& c : s) {
+      if (c == 'D' || c == 'd') c = 'E';
+    }
+    double v = 0.0;
+    const char* first = s.data();
+    if (*first == '+') ++first;
+    const auto [ptr, ec] = std::from_chars(first, s.data() + s.size(), v);
+    if (ec != std::errc() || ptr != s.data() + s.size()) {
+      fail(l.number, std::string("unparsable number '") + s + "' for " + what + " at column " +
+                         std::to_string(col + 1));
+    }
+    if (!std::isfinite(v)) fail(l.number, std::string("non-finite value for ") + what);
+    return v;
+  }
+
+  /// Fixed-column integer field; blank = 0.
+  int integer(const Line& l, std::size_t col, std::size_t width, const char* what) const {
+    const std::string_view f = trim(columns(l.text, col, width));
+    if (f.empty()) return 0;
+    int v = 0;
+    const char* first = f.data();
+    if (*first == '+') ++first;
+    const auto [ptr, ec] = std::from_chars(first, f.data() + f.size(), v);
+    if (ec != std::errc() || ptr != f.data() + f.size()) {
+      fail(l.number, std::string("unparsable integer '") + std::string(f) + "' for " + what +
+                         " at column " + std::to_string(col + 1));
+    }
+    return v;
+  }
+
+  const std::string& name() const { return name_; }
+
+private:
+  std::string name_;
+};
+
+std::vector<Line> read_lines(std::istream& in) {
+  std::vector<Line> lines;
+  std::string s;
+  int n = 0;
+  while (std::getline(in, s)) {
+    ++n;
+    if (!s.empty() && s.back() == '\r') s.pop_back();
+    lines.push_back({std::move(s), n});
+  }
+  return lines;
+}
+
+bool blank(const std::string& s) { return trim(s).empty(); }
+
+std::string label_of(const std::string& line) {
+  return std::string(trim(columns(line, 60, 20)));
+}
+
+/// Lines per record for a RINEX 3 system letter (RINEX 3.04 Tables A6-A19), 0 = unknown.
+int record_lines_v3(char sys) {
+  switch (sys) {
+    case 'G': case 'E': case 'C': case 'J': case 'I': return 8;
+    case 'R': case 'S': return 4;
+    default: return 0;
+  }
+}
+
+struct Header {
+  double version = 0.0;
+  int major = 0;
+  std::size_t first_record = 0;  // index into lines
+};
+
+Header parse_header(const Parser& p, const std::vector<Line>& lines, NavData& out) {
+  Header h;
+  if (lines.empty()) p.fail(1, "empty file");
+  const Line& first = lines[0];
+  if (label_of(first.text) != "RINEX VERSION / TYPE") {
+    p.fail(first.number, "first line is not 'RINEX VERSION / TYPE'");
+  }
+  h.version = p.real(first, 0, 9, "RINEX version");
+  const char type = first.text.size() > 20 ? first.text[20] : ' ';
+  const char sys = first.text.size() > 40 ? first.text[40] : ' ';
+  if (h.version >= 2.0 && h.version < 2.12) {
+    h.major = 2;
+    if (type != 'N') {
+      p.fail(first.number, std::string("not a RINEX 2 GPS navigation file (type '") + type + "')");
+    }
+  } else if (h.version >= 3.0 && h.version < 3.06) {
+    h.major = 3;
+    if (type != 'N') p.fail(first.number, std::string("not a navigation file (type '") + type + "')");
+    if (sys != 'G' && sys != 'M') {
+      p.fail(first.number, std::string("navigation file for system '") + sys + "', need GPS (G) or mixed (M)");
+    }
+  } else {
+    p.fail(first.number, "unsupported RINEX version " + std::string(trim(columns(first.text, 0, 9))) +
+                             " (2.00-2.11 and 3.00-3.05 are supported)");
+  }
+  out.rinex_version = h.version;
+
+  bool have_alpha = false, have_beta = false;
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const Line& l = lines[i];
+    const std::string label = label_of(l.text);
+    if (label == "END OF HEADER") {
+      h.first_record = i + 1;
+      out.klobuchar.valid = have_alpha && have_beta;
+      return h;
+    }
+    if (h.major == 2 && (label == "ION ALPHA" || label == "ION BETA")) {
+      auto& dst = label == "ION ALPHA" ? out.klobuchar.alpha : out.klobuchar.beta;
+      for (std::size_t k = 0; k < 4; ++k) dst[k] = p.real(l, 2 + 12 * k, 12, label.c_str());
+      (label == "ION ALPHA" ? have_alpha : have_beta) = true;
+    } else if (h.major == 2 && label == "DELTA-UTC: A0,A1,T,W") {
+      out.utc.a0_s = p.real(l, 3, 19, "A0");
+      out.utc.a1_s_s = p.real(l, 22, 19, "A1");
+      out.utc.tot_s = p.integer(l, 41, 9, "T");
+      out.utc.wnt = p.integer(l, 50, 9, "W");
+      out.utc.valid = true;
+    } else if (h.major == 3 && label == "IONOSPHERIC CORR") {
+      const std::string_view kind = trim(columns(l.text, 0, 4));
+      if (kind == "GPSA" || kind == "GPSB") {
+        auto& dst = kind == "GPSA" ? out.klobuchar.alpha : out.klobuchar.beta;
+        for (std::size_t k = 0; k < 4; ++k) dst[k] = p.real(l, 5 + 12 * k, 12, "IONOSPHERIC CORR");
+        (kind == "GPSA" ? have_alpha : have_beta) = true;
+      }
+    } else if (h.major == 3 && label == "TIME SYSTEM CORR") {
+      if (trim(columns(l.text, 0, 4)) == "GPUT") {
+        out.utc.a0_s = p.real(l, 5, 17, "A0");
+        out.utc.a1_s_s = p.real(l, 22, 16, "A1");
+        out.utc.tot_s = p.integer(l, 38, 7, "T");
+        out.utc.wnt = p.integer(l, 45, 5, "W");
+        out.utc.valid = true;
+      }
+    } else if (label == "LEAP SECONDS") {
+      out.leap_seconds = p.integer(l, 0, 6, "leap seconds");
+    }
+  }
+  p.fail(lines.back().number, "end of file before END OF HEADER");
+}
+
+/// Parse the 8 lines of a GPS record starting at lines[i]; `v3` selects the layout.
+Ephemeris parse_gps_record(const Parser& p, const std::vector<Line>& lines, std::size_t i, bool v3) {
+  const Line& e = lines[i];
+  Ephemeris eph;
+  time::CalendarTime c;
+  std::size_t vcol = 0;  // column of the first value on every line
+  if (v3) {
+    eph.prn = p.integer(e, 1, 2, "PRN");
+    c.year = p.integer(e, 4, 4, "year");
+    c.month = p.integer(e, 9, 2, "month");
+    c.day = p.integer(e, 12, 2, "day");
+    c.hour = p.integer(e, 15, 2, "hour");
+    c.minute = p.integer(e, 18, 2, "minute");
+    c.second = p.integer(e, 21, 2, "second");
+    vcol = 4;
+  } else {
+    eph.prn = p.integer(e, 0, 2, "PRN");
+    const int yy = p.integer(e, 3, 2, "year");
+    if (yy < 0 || yy > 99) p.fail(e.number, "two-digit year out of range");
+    c.year = time::year_from_two_digits(yy);
+    c.month = p.integer(e, 6, 2, "month");
+    c.day = p.integer(e, 9, 2, "day");
+    c.hour = p.integer(e, 12, 2, "hour");
+    c.minute = p.integer(e, 15, 2, "minute");
+    c.second = p.real(e, 17, 5, "second");
+    vcol = 3;
+  }
+  if (eph.prn < 1 || eph.prn > kMaxGpsPrn) p.fail(e.number, "GPS PRN " + std::to_string(eph.prn) + " out of range 1..32");
+  if (c.month < 1 || c.month > 12 || c.day < 1 || c.day > 31 || c.hour < 0 || c.hour > 23 || c.minute < 0 ||
+      c.minute > 59 || c.second < 0.0 || c.second >= 61.0) {
+    p.fail(e.number, "invalid epoch (toc)");
+  }
+  eph.toc = time::GpsTime::from_calendar(c);
+  const std::size_t clk_col = v3 ? 23 : 22;
+  eph.af0_s = p.real(e, clk_col, 19, "af0");
+  eph.af1_s_s = p.real(e, clk_col + 19, 19, "af1");
+  eph.af2_s_s2 = p.real(e, clk_col + 38, 19, "af2");
+
+  double o[7][4];
+  for (std::size_t k = 0; k < 7; ++k) {
+    const Line& l = lines[i + 1 + k];
+    for (std::size_t f = 0; f < 4; ++f) o[k][f] = p.real(l, vcol + 19 * f, 19, "orbit field");
+  }
+  auto line_no = [&](std::size_t bo) { return lines[i + bo].number; };
+
+  eph.iode = static_cast<int>(std::lround(o[0][0]));
+  eph.crs_m = o[0][1];
+  eph.delta_n_rad_s = o[0][2];
+  eph.m0_rad = o[0][3];
+  eph.cuc_rad = o[1][0];
+  eph.e = o[1][1];
+  eph.cus_rad = o[1][2];
+  eph.sqrt_a_sqrtm = o[1][3];
+  const double toe_sow = o[2][0];
+  eph.cic_rad = o[2][1];
+  eph.omega0_rad = o[2][2];
+  eph.cis_rad = o[2][3];
+  eph.i0_rad = o[3][0];
+  eph.crc_m = o[3][1];
+  eph.omega_rad = o[3][2];
+  eph.omega_dot_rad_s = o[3][3];
+  eph.idot_rad_s = o[4][0];
+  const double week = o[4][2];
+  eph.sv_accuracy_m = o[5][0];
+  eph.health = static_cast<int>(std::lround(o[5][1]));
+  eph.tgd_s = o[5][2];
+  eph.iodc = static_cast<int>(std::lround(o[5][3]));
+  const double ttr = o[6][0];
+  eph.fit_interval_h = o[6][1];
+
+  if (eph.sqrt_a_sqrtm <= 0.0) p.fail(line_no(2), "sqrt(A) must be positive");
+  if (eph.e < 0.0 || eph.e >= 1.0) p.fail(line_no(2), "eccentricity must be in [0, 1)");
+  if (toe_sow < 0.0 || toe_sow >= kSecondsPerWeek) p.fail(line_no(3), "toe outside [0, 604800) s");
+  if (week < 0.0 || week > 100000.0 || week != std::floor(week)) p.fail(line_no(5), "invalid GPS week");
+  if (eph.iode < 0 || eph.iodc < 0) p.fail(line_no(1), "negative IODE/IODC");
+
+  // The BO-5 week goes with toe (RINEX 2.11 Table A4). Some writers give the
+  // week of transmission instead; keep toe within half a week of toc.
+  eph.toe = time::GpsTime(static_cast<int32_t>(week), toe_sow);
+  const double toe_minus_toc = eph.toe - eph.toc;
+  if (toe_minus_toc > kHalfWeek_s) eph.toe = time::GpsTime(eph.toe.week() - 1, toe_sow);
+  if (toe_minus_toc < -kHalfWeek_s) eph.toe = time::GpsTime(eph.toe.week() + 1, toe_sow);
+
+  if (std::fabs(ttr - kUnknownTransmitTime_s) < 1.0) {
+    eph.transmit_tow_s = 0.0;
+    eph.transmit_known = false;
+  } else {
+    // Seconds relative to the start of the BO-5 week (negative = previous
+    // week, RINEX 3.04 Table A6 note); re-referenced to toe's week.
+    eph.transmit_tow_s = ttr + (static_cast<double>(week) - eph.toe.week()) * kSecondsPerWeek;
+    eph.transmit_known = true;
+  }
+  return eph;
+}
+
+}  // namespace
+
+NavData read_rinex_nav(std::istream& in, const std::string& name) {
+  const Parser p(name);
+  const std::vector<Line> lines = read_lines(in);
+  if (in.bad()) p.fail(0, "read error");
+  NavData out;
+  out.source = name;
+  const Header h = parse_header(p, lines, out);
+
+  std::size_t i = h.first_record;
+  while (i < lines.size()) {
+    const Line& l = lines[i];
+    if (blank(l.text)) {
+      ++i;
+      continue;
+    }
+    int n_lines = 8;
+    bool gps = true;
+    if (h.major == 3) {
+      const char sys = l.text[0];
+      n_lines = record_lines_v3(sys);
+      if (n_lines == 0) p.fail(l.number, std::string("unknown satellite system '") + sys + "' at record start");
+      gps = sys == 'G';
+    } else if (l.text[0] != ' ' && (l.text[0] < '0' || l.text[0] > '9')) {
+      p.fail(l.number, "record does not start with a PRN");
+    }
+    // Continuation lines start with blanks (RINEX 2: 3X, RINEX 3: 4X).
+    const std::size_t indent = h.major == 3 ? 4 : 3;
+    for (int k = 1; k < n_lines; ++k) {
+      const std::size_t j = i + static_cast<std::size_t>(k);
+      if (j >= lines.size()) {
+        p.fail(l.number, "truncated record: file ends after " + std::to_string(k) + " of " +
+                             std::to_string(n_lines) + " lines");
+      }
+      const std::string_view head = columns(lines[j].text, 0, indent);
+      if (!trim(head).empty()) {
+        p.fail(lines[j].number, "truncated record: expected continuation line " + std::to_string(k + 1) + " of " +
+                                    std::to_string(n_lines) + " for the record at line " +
+                                    std::to_string(l.number));
+      }
+    }
+    if (gps) {
+      out.ephemerides.push_back(parse_gps_record(p, lines, i, h.major == 3));
+    } else {
+      ++out.skipped_records;
+    }
+    i += static_cast<std::size_t>(n_lines);
+  }
+  return out;
+}
+
+NavData read_rinex_nav(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path, 0, "cannot open navigation file");
+  return read_rinex_nav(in, path);
+}
+
+}  // namespace gnssemu::orbit
