@@ -1,0 +1,139 @@
+#include "tools/gnssemu/batch.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/common/error.hpp"
+#include "core/geo/geodesy.hpp"
+#include "core/protocol/nmea/nmea_encoder.hpp"
+#include "core/receiver/receiver.hpp"
+
+namespace gnssemu::cli {
+
+namespace {
+
+constexpr double kGridTolerance_s = 1e-6;
+
+/// Nearest-rank percentile (p in (0, 1]) of unsorted values; NaN when empty.
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(v.size())));
+  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
+}
+
+double rms(const std::vector<double>& v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double s = 0.0;
+  for (double x : v) s += x * x;
+  return std::sqrt(s / static_cast<double>(v.size()));
+}
+
+double max_abs(const std::vector<double>& v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double m = 0.0;
+  for (double x : v) m = std::max(m, std::fabs(x));
+  return m;
+}
+
+protocol::nmea::NmeaConfig nmea_config_of(const config::Config& config) {
+  if (!config.outputs.empty()) return config.outputs.front().nmea;
+  return {};
+}
+
+}  // namespace
+
+BatchSummary run_batch(const config::Config& config, const orbit::EphemerisStore& store, const TruthTrack& track,
+                       std::ostream* nmea, std::ostream* errors) {
+  if (!(config.rate_hz > 0.0) || !std::isfinite(config.rate_hz)) {
+    throw Error(config.source, 0, "rate_hz must be positive");
+  }
+  const double rate_hz = config.rate_hz;
+  const time::GpsTime first = track.first();
+  const int32_t week = first.week();
+  // First grid epoch at or after the first truth sample.
+  const double k0 = std::ceil(first.tow_s() * rate_hz - kGridTolerance_s * rate_hz);
+  if (time::GpsTime(week, k0 / rate_hz) - track.last() > kGridTolerance_s) {
+    throw Error(fmt::format("truth spans no epoch at {} Hz: it runs from week {} tow {:.3f} to week {} tow {:.3f}",
+                            rate_hz, first.week(), first.tow_s(), track.last().week(), track.last().tow_s()));
+  }
+
+  receiver::Receiver rx(store, config.receiver);
+  const protocol::nmea::NmeaEncoder encoder(nmea_config_of(config));
+  std::string sentences;
+  sentences.reserve(4096);
+  fmt::memory_buffer row;
+
+  if (errors) *errors << "gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop\n";
+  BatchSummary sum;
+  std::vector<double> h_err, v_err;
+  double se = 0.0, sn = 0.0, su = 0.0;
+  for (double k = k0;; k += 1.0) {
+    const time::GpsTime t(week, k / rate_hz);
+    if (t - track.last() > kGridTolerance_s) break;
+    const receiver::Truth truth = track.at(t);
+    const receiver::Fix& fix = rx.step(t, truth);
+    ++sum.epochs;
+    if (nmea) {
+      sentences.clear();
+      encoder.encode_epoch(fix, sentences);
+      nmea->write(sentences.data(), static_cast<std::streamsize>(sentences.size()));
+    }
+    const bool has_fix = fix.type != receiver::FixType::kNone;
+    Enu d;
+    if (has_fix) {
+      const Lla truth_lla = geo::lla_from_ecef(truth.pos_m);
+      d = geo::ecef_to_enu_vector(fix.pos_m - truth.pos_m, truth_lla.lat_rad, truth_lla.lon_rad);
+      ++sum.fixes;
+      if (fix.type == receiver::FixType::k3D) ++sum.fixes_3d;
+      h_err.push_back(std::hypot(d.x, d.y));
+      v_err.push_back(d.z);
+      se += d.x;
+      sn += d.y;
+      su += d.z;
+    }
+    if (errors) {
+      row.clear();
+      fmt::format_to(std::back_inserter(row), "{},{:.3f},{},{},", t.week(), t.tow_s(), static_cast<int>(fix.type),
+                     fix.num_used);
+      if (has_fix) {
+        fmt::format_to(std::back_inserter(row), "{:.4f},{:.4f},{:.4f},", d.x, d.y, d.z);
+      } else {
+        fmt::format_to(std::back_inserter(row), ",,,");
+      }
+      fmt::format_to(std::back_inserter(row), "{:.2f},{:.2f},{:.2f}\n", fix.dop.hdop, fix.dop.vdop, fix.dop.pdop);
+      errors->write(row.data(), static_cast<std::streamsize>(row.size()));
+    }
+  }
+  sum.h_rms_m = rms(h_err);
+  sum.h_95_m = percentile(h_err, 0.95);
+  sum.h_max_m = max_abs(h_err);
+  sum.v_rms_m = rms(v_err);
+  for (double& v : v_err) v = std::fabs(v);
+  sum.v_95_m = percentile(v_err, 0.95);
+  sum.v_max_m = max_abs(v_err);
+  const double n = sum.fixes > 0 ? static_cast<double>(sum.fixes) : std::numeric_limits<double>::quiet_NaN();
+  sum.mean_e_m = se / n;
+  sum.mean_n_m = sn / n;
+  sum.mean_u_m = su / n;
+  return sum;
+}
+
+void write_summary(const BatchSummary& s, std::ostream& out) {
+  const double avail = s.epochs > 0 ? 100.0 * s.fixes / s.epochs : 0.0;
+  out << fmt::format("epochs {}  fixes {} ({:.1f}%)  3D {}\n", s.epochs, s.fixes, avail, s.fixes_3d);
+  if (s.fixes == 0) {
+    out << "no fix: no error statistics\n";
+    return;
+  }
+  out << fmt::format("horizontal error  rms {:.3f} m  95% {:.3f} m  max {:.3f} m\n", s.h_rms_m, s.h_95_m, s.h_max_m);
+  out << fmt::format("vertical error    rms {:.3f} m  95% {:.3f} m  max {:.3f} m\n", s.v_rms_m, s.v_95_m, s.v_max_m);
+  out << fmt::format("mean error (e, n, u) {:.3f} {:.3f} {:.3f} m\n", s.mean_e_m, s.mean_n_m, s.mean_u_m);
+}
+
+}  // namespace gnssemu::cli

@@ -1,0 +1,35 @@
+#pragma once
+// `gnssemu batch`: the daemon's code path (config -> ephemeris store ->
+// Receiver -> NmeaEncoder) run over a truth trajectory faster than real time.
+#include <ostream>
+
+#include "config/config.hpp"
+#include "core/orbit/ephemeris_store.hpp"
+#include "tools/gnssemu/truth_track.hpp"
+
+namespace gnssemu::cli {
+
+/// Fix statistics of a batch run. Errors are fix minus truth in local ENU at
+/// the truth position; horizontal = hypot(e, n), vertical = |u|. The error
+/// figures are NaN when no epoch had a fix.
+struct BatchSummary {
+  int epochs = 0;
+  int fixes = 0;     ///< epochs with a 2D or 3D fix
+  int fixes_3d = 0;
+  double h_rms_m = 0.0, h_95_m = 0.0, h_max_m = 0.0;
+  double v_rms_m = 0.0, v_95_m = 0.0, v_max_m = 0.0;
+  double mean_e_m = 0.0, mean_n_m = 0.0, mean_u_m = 0.0;
+};
+
+/// Run the receiver at config.rate_hz on the GPS-time grid (multiples of
+/// 1/rate s of week) from the first to the last truth time. nmea: the NMEA
+/// stream of the first configured output port (u-blox default set when none);
+/// errors: CSV `gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop`.
+/// Either may be null. Throws gnssemu::Error when the truth spans no epoch.
+BatchSummary run_batch(const config::Config& config, const orbit::EphemerisStore& store, const TruthTrack& track,
+                       std::ostream* nmea, std::ostream* errors);
+
+/// Human-readable summary (for stderr).
+void write_summary(const BatchSummary& summary, std::ostream& out);
+
+}  // namespace gnssemu::cli

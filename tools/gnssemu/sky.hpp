@@ -1,0 +1,28 @@
+#pragma once
+// `gnssemu sky` and `gnssemu dop`: what a receiver at a fixed site sees at one
+// instant, through the receiver module's own geometry and DOP code.
+#include <ostream>
+
+#include "core/common/vec3.hpp"
+#include "core/orbit/ephemeris_store.hpp"
+#include "core/time/gps_time.hpp"
+
+namespace gnssemu::cli {
+
+struct SkyRequest {
+  time::GpsTime t;        ///< receive time, GPS
+  Lla rx_lla;             ///< receiver (lat/lon rad, ellipsoidal height m)
+  double mask_rad = 0.0;  ///< elevation mask, rad [0, pi/2)
+};
+
+/// Writes `prn,az_deg,el_deg,range_m` per healthy satellite at or above the
+/// mask: satellite at its transmit time, rotated for Earth rotation during the
+/// signal flight (Sagnac), geometric range. Returns the number of rows.
+int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out);
+
+/// Writes `gdop,pdop,hdop,vdop,tdop,nsat` (one row) for the satellites at or
+/// above the mask; DOP fields are empty when nsat < 4 or the geometry is
+/// singular. Returns nsat.
+int write_dop(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out);
+
+}  // namespace gnssemu::cli

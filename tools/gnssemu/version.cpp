@@ -1,0 +1,14 @@
+#include "tools/gnssemu/version.hpp"
+
+#include "core/geo/geodesy.hpp"
+#include "core/scene/embree_device.hpp"
+
+namespace gnssemu::cli {
+
+void write_version(std::ostream& out) {
+  out << "gnssemu " << GNSSEMU_VERSION << '\n'
+      << "Embree " << scene::embree_version() << '\n'
+      << "GeographicLib " << geo::geographiclib_version() << '\n';
+}
+
+}  // namespace gnssemu::cli

@@ -1,0 +1,10 @@
+#pragma once
+// `gnssemu version`: versions of gnssemu and the libraries its models rest on.
+#include <ostream>
+
+namespace gnssemu::cli {
+
+/// Writes "gnssemu X", "Embree X", "GeographicLib X", one per line.
+void write_version(std::ostream& out);
+
+}  // namespace gnssemu::cli
