@@ -53,11 +53,13 @@ int parse_int(std::string_view tok, const std::string& path, int line, const std
   return static_cast<int>(v);
 }
 
-void check_entry(const AlmanacEntry& a, const std::string& path, int line) {
-  if (a.prn < 1 || a.prn > kMaxGpsPrn) throw Error(path, line, "PRN " + std::to_string(a.prn) + " out of range 1..32");
-  if (a.e < 0.0 || a.e >= 1.0) throw Error(path, line, "eccentricity must be in [0, 1)");
-  if (a.sqrt_a_sqrtm <= 0.0) throw Error(path, line, "sqrt(A) must be positive");
-  if (a.toa.tow_s() < 0.0 || a.toa.tow_s() >= kSecondsPerWeek) throw Error(path, line, "toa outside the week");
+/// Field lines: prn, e, sqrt(A) (1-based).
+void check_entry(const AlmanacEntry& a, const std::string& path, const int (&line)[3]) {
+  if (a.prn < 1 || a.prn > kMaxGpsPrn) {
+    throw Error(path, line[0], "PRN " + std::to_string(a.prn) + " out of range 1..32");
+  }
+  if (a.e < 0.0 || a.e >= 1.0) throw Error(path, line[1], "eccentricity must be in [0, 1)");
+  if (a.sqrt_a_sqrtm <= 0.0) throw Error(path, line[2], "sqrt(A) must be positive");
 }
 
 std::ifstream open(const std::string& path) {
@@ -82,6 +84,7 @@ std::vector<AlmanacEntry> read_yuma(const std::string& path, int reference_week)
   int block_line = 0;  // header line of the block being read, 0 = none
   double v[kFields] = {};
   bool seen[kFields] = {};
+  int at[kFields] = {};
 
   auto finish = [&]() {
     for (int k = 0; k < kFields; ++k) {
@@ -101,7 +104,8 @@ std::vector<AlmanacEntry> read_yuma(const std::string& path, int reference_week)
     a.m0_rad = v[9];
     a.af0_s = v[10];
     a.af1_s_s = v[11];
-    check_entry(a, path, block_line);
+    if (v[3] < 0.0 || v[3] >= kSecondsPerWeek) throw Error(path, at[3], "toa outside the week");
+    check_entry(a, path, {at[0], at[2], at[6]});
     out.push_back(a);
     block_line = 0;
     for (bool& b : seen) b = false;
@@ -129,6 +133,7 @@ std::vector<AlmanacEntry> read_yuma(const std::string& path, int reference_week)
       v[k] = parse_real(t.substr(colon + 1), path, n, std::string(kLabels[k]));
     }
     seen[k] = true;
+    at[k] = n;
   }
   if (block_line != 0) finish();
   if (out.empty()) throw Error(path, n, "no almanac entries");
@@ -161,6 +166,7 @@ std::vector<AlmanacEntry> read_sem(const std::string& path, int reference_week) 
   const int week10 = parse_int(toks[1].text, path, toks[1].line, "week");
   const double toa = parse_real(toks[2].text, path, toks[2].line, "toa");
   if (count < 1 || count > 64) throw Error(path, toks[0].line, "record count out of range 1..64");
+  if (toa < 0.0 || toa >= kSecondsPerWeek) throw Error(path, toks[2].line, "toa outside the week");
   const time::GpsTime t_toa(time::resolve_week_nearest(week10 % 1024, reference_week), toa);
 
   // Per record (ICD-GPS-870 Table 30-III): PRN, SVN, URA, e, di, OMEGADOT,
@@ -189,7 +195,7 @@ std::vector<AlmanacEntry> read_sem(const std::string& path, int reference_week) 
     a.af0_s = real(10, "af0");
     a.af1_s_s = real(11, "af1");
     a.health = parse_int(toks[i + 12].text, path, toks[i + 12].line, "health");
-    check_entry(a, path, toks[i].line);
+    check_entry(a, path, {toks[i].line, toks[i + 3].line, toks[i + 6].line});
     out.push_back(a);
     i += kPerRecord;
   }
