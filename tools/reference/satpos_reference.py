@@ -436,11 +436,19 @@ def generate_file(nav_path, out_dir):
         for r in rows:
             fh.write(r + '\n')
     adjusted = [e for e in ephs if e['week_adjusted']]
+    # Negative cases: one second beyond the first / last healthy toe window.
+    absent = []
+    for prn, lst in sorted(by_prn([e for e in ephs if e['health'] == 0]).items()):
+        lst = sorted(lst, key=lambda e: tdiff(e['toe_week'], e['toe_tow'], 0, 0))
+        for e, off in ((lst[0], -7201), (lst[-1], 7201)):
+            w, t = normalise(e['toe_week'], e['toe_tow'] + off)
+            if select(index, prn, w, t) == (None, None):
+                absent.append((prn, w, t))
     unhealthy = [e for e in ephs if e['health'] != 0]
     return {'nav': base, 'csv': os.path.basename(out), 'version': version,
             'n_eph': len(ephs), 'skipped': skipped, 'rows': len(rows),
             'cases': cases, 'ties': ties, 'adjusted': adjusted,
-            'unhealthy': unhealthy,
+            'unhealthy': unhealthy, 'absent': absent,
             'healthy_prns': {e['prn'] for e in ephs if e['health'] == 0}}
 
 
@@ -514,6 +522,10 @@ def summarise(info):
                 or 'none'))
     else:
         out.append('No unhealthy records.')
+    out.append('Expected NO ephemeris (|t - toe| = 7201 s beyond the first or '
+               'last healthy toe; not rows of the CSV): ' + ', '.join(
+                   'G%02d %d/%s' % (p, w, fmt(t)) for p, w, t in info['absent'])
+               + '.')
     if info['adjusted']:
         out.append('Week field disagreed with toc by more than half a week '
                    '(adjusted): ' + ', '.join('G%02d line %d' % (
