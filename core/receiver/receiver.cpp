@@ -1,1 +1,257 @@
-// placeholder: implemented by its module's work
+#include "core/receiver/receiver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/common/error.hpp"
+#include "core/geo/geodesy.hpp"
+#include "core/time/utc.hpp"
+
+namespace gnssemu::receiver {
+
+namespace {
+
+// Accuracy reported without a fix (u-blox reports huge hAcc; NMEA GST prints it).
+constexpr double kNoFixAccuracy_m = 9999.0;
+constexpr double kNoFixSpeedAccuracy_m_s = 999.0;
+constexpr double kNoFixTimeAccuracy_s = 1.0;
+// Placeholder C/N0 elevation shape until the signal module: nominal at
+// zenith, about -8 dB at 5 degrees.
+constexpr double kCn0ElevationLoss_db = 10.0;
+
+void check(bool ok, const std::string& what) {
+  if (!ok) throw Error("receiver config: " + what);
+}
+
+void validate(const ReceiverConfig& c) {
+  check(c.elevation_mask_rad >= 0.0 && c.elevation_mask_rad < kPi / 2.0,
+        "elevation_mask_rad must be in [0, pi/2)");
+  const ErrorModelConfig& e = c.errors;
+  check(std::isfinite(e.thermal_sigma_m) && e.thermal_sigma_m >= 0.0, "errors.thermal_sigma_m must be >= 0");
+  check(std::isfinite(e.orbit_clock.sigma_m) && e.orbit_clock.sigma_m >= 0.0,
+        "errors.orbit_clock.sigma_m must be >= 0");
+  check(std::isfinite(e.orbit_clock.tau_s) && e.orbit_clock.tau_s > 0.0, "errors.orbit_clock.tau_s must be > 0");
+  check(std::isfinite(e.doppler_sigma_m_s) && e.doppler_sigma_m_s >= 0.0, "errors.doppler_sigma_m_s must be >= 0");
+  const ClockConfig& k = c.clock;
+  check(std::isfinite(k.bias_s) && std::fabs(k.bias_s) < 1.0, "clock.bias_s must be finite and below 1 s");
+  check(std::isfinite(k.drift_s_s) && std::fabs(k.drift_s_s) < 1e-3, "clock.drift_s_s must be below 1e-3");
+  check(std::isfinite(k.drift_noise_s_s_sqrt_s) && k.drift_noise_s_s_sqrt_s >= 0.0,
+        "clock.drift_noise_s_s_sqrt_s must be >= 0");
+  check(std::isfinite(k.jump_threshold_s) && k.jump_threshold_s >= 0.0 && k.jump_threshold_s < 1.0,
+        "clock.jump_threshold_s must be in [0, 1)");
+  check(std::isfinite(c.nominal_cn0_dbhz) && c.nominal_cn0_dbhz > 0.0, "nominal_cn0_dbhz must be > 0");
+  check(std::isfinite(c.max_pdop) && c.max_pdop > 0.0, "max_pdop must be > 0");
+  check(c.max_channels >= 1 && c.max_channels <= kMaxGpsPrn, "max_channels must be in [1, 32]");
+  const SolverConfig& s = c.solver;
+  check(std::isfinite(s.sigma_a_m) && std::isfinite(s.sigma_b_m) && s.sigma_a_m >= 0.0 && s.sigma_b_m >= 0.0 &&
+            s.sigma_a_m + s.sigma_b_m > 0.0,
+        "solver.sigma_a_m / sigma_b_m must be >= 0 and not both 0");
+  check(std::isfinite(s.sigma_range_rate_m_s) && s.sigma_range_rate_m_s > 0.0,
+        "solver.sigma_range_rate_m_s must be > 0");
+  check(std::isfinite(s.height_hold_sigma_m) && s.height_hold_sigma_m > 0.0,
+        "solver.height_hold_sigma_m must be > 0");
+  check(s.residual_test_pfa >= 0.0 && s.residual_test_pfa < 0.5, "solver.residual_test_pfa must be in [0, 0.5)");
+  check(s.max_iterations >= 1 && s.max_iterations <= 100, "solver.max_iterations must be in [1, 100]");
+}
+
+const ReceiverConfig& validated(const ReceiverConfig& c) {
+  validate(c);
+  return c;
+}
+
+}  // namespace
+
+Receiver::Receiver(const orbit::EphemerisStore& store, const ReceiverConfig& config)
+    : store_(store),
+      config_(validated(config)),
+      rng_(config.seed),
+      clock_(config.clock),
+      solver_(config.solver, config.max_pdop) {
+  no_fix_epoch();
+}
+
+void Receiver::advance_world(const time::GpsTime& t) noexcept {
+  const GaussMarkovConfig& gm = config_.errors.orbit_clock;
+  if (!started_) {
+    for (int p = 1; p <= kMaxGpsPrn; ++p)
+      orbit_clock_m_[p - 1] = gauss_markov_init(gm, rng_.normal(p, 0, Purpose::kGaussMarkovInit));
+    started_ = true;
+  } else {
+    double dt_s = t - t_prev_;
+    if (!std::isfinite(dt_s) || dt_s < 0.0) dt_s = 0.0;  // time going back: hold the processes
+    for (int p = 1; p <= kMaxGpsPrn; ++p)
+      orbit_clock_m_[p - 1] =
+          gauss_markov_step(orbit_clock_m_[p - 1], dt_s, gm, rng_.normal(p, epoch_, Purpose::kGaussMarkovStep));
+    clock_.advance(dt_s, rng_.normal(kClockStream, epoch_, Purpose::kClockDrift));
+  }
+  t_prev_ = t;
+  // Atmosphere / scene delays go here (world_delay_m_); none in this model.
+}
+
+void Receiver::no_fix_epoch() noexcept {
+  fix_.type = FixType::kNone;
+  fix_.dop = Dop{};
+  fix_.vel_m_s = Ecef{};
+  fix_.vel_enu_m_s = Enu{};
+  fix_.speed_m_s = fix_.course_rad = fix_.climb_m_s = 0.0;
+  fix_.num_used = 0;
+  fix_.sigma_uere_m = 0.0;
+  fix_.range_rms_m = 0.0;
+  fix_.sigma_e_m = fix_.sigma_n_m = fix_.sigma_u_m = kNoFixAccuracy_m;
+  fix_.h_acc_m = fix_.v_acc_m = kNoFixAccuracy_m;
+  fix_.speed_acc_m_s = kNoFixSpeedAccuracy_m_s;
+  fix_.time_acc_s = kNoFixTimeAccuracy_s;
+  for (int i = 0; i < fix_.num_sats; ++i) {
+    fix_.sats[i].used = false;
+    fix_.sats[i].residual_m = 0.0;
+  }
+}
+
+const Fix& Receiver::step(const time::GpsTime& t, const Truth& truth) noexcept {
+  advance_world(t);
+  const uint64_t epoch = epoch_++;
+
+  fix_.t = t;
+  fix_.leap_seconds = leap_override_ ? leap_s_ : time::leap_seconds_at(t);
+  fix_.num_sats = fix_.num_visible = fix_.num_tracked = 0;
+  in_sky_.fill(false);
+
+  if (!truth.valid || !truth.pos_m.finite() || !truth.vel_m_s.finite()) {
+    fix_.time_valid = time_valid_;
+    no_fix_epoch();
+    return fix_;
+  }
+  time_valid_ = true;
+  fix_.time_valid = true;
+
+  // Sky (world): every satellite with an ephemeris above the horizon.
+  const Lla rx_lla = geo::lla_from_ecef(truth.pos_m);
+  std::array<int, kMaxGpsPrn> above{};  // PRNs above the mask
+  int n_above = 0;
+  for (int p = 1; p <= kMaxGpsPrn; ++p) {
+    const orbit::Ephemeris* eph = store_.select(p, t);
+    if (eph == nullptr) continue;
+    const SkySat s = sky_sat(*eph, t, truth.pos_m, rx_lla, truth.vel_m_s);
+    if (!(s.el_rad > 0.0)) continue;
+    sky_[p - 1] = s;
+    in_sky_[p - 1] = true;
+    if (s.el_rad >= config_.elevation_mask_rad) above[n_above++] = p;
+  }
+  // Channels: highest elevations first; ties by PRN for determinism.
+  std::array<bool, kMaxGpsPrn> tracked{};
+  if (n_above > config_.max_channels) {
+    std::sort(above.begin(), above.begin() + n_above, [this](int a, int b) {
+      const double ea = sky_[a - 1].el_rad, eb = sky_[b - 1].el_rad;
+      return ea != eb ? ea > eb : a < b;
+    });
+  }
+  for (int i = 0; i < std::min(n_above, config_.max_channels); ++i) tracked[above[i] - 1] = true;
+
+  // Observables (world) for the tracked satellites, then the fix (receiver).
+  const double rx_clock_s = clock_.bias_s();
+  const double rx_drift_s_s = clock_.drift_s_s();
+  in_.t_rx_local = t + rx_clock_s;
+  in_.num_meas = 0;
+  for (int p = 1; p <= kMaxGpsPrn; ++p) {
+    if (!in_sky_[p - 1]) continue;
+    const SkySat& s = sky_[p - 1];
+    SatInfo& si = fix_.sats[fix_.num_sats++];
+    si = SatInfo{};
+    si.prn = p;
+    si.az_rad = s.az_rad;
+    si.el_rad = s.el_rad;
+    si.healthy = true;
+    si.above_mask = s.el_rad >= config_.elevation_mask_rad;
+    if (si.above_mask) ++fix_.num_visible;
+    if (!tracked[p - 1]) continue;
+    const orbit::Ephemeris* eph = store_.select(p, t);
+    const double thermal_m = config_.errors.thermal_sigma_m * rng_.normal(p, epoch, Purpose::kThermal);
+    const double rr_noise_m_s = config_.errors.doppler_sigma_m_s * rng_.normal(p, epoch, Purpose::kDoppler);
+    // The satellite's actual L1 clock = broadcast (dt_sv - TGD) + residual.
+    const double pr_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - eph->tgd_s)) +
+                        orbit_clock_m_[p - 1] + world_delay_m_[p - 1] + thermal_m;
+    const double rr_m_s = s.range_rate_m_s + kSpeedOfLight_m_s * (rx_drift_s_s - s.clk_drift_s_s) + rr_noise_m_s;
+    si.tracked = true;
+    const double one_m_sin = 1.0 - std::sin(s.el_rad);
+    si.cn0_dbhz = config_.nominal_cn0_dbhz - kCn0ElevationLoss_db * one_m_sin * one_m_sin;
+    si.pseudorange_m = pr_m;
+    si.doppler_hz = -rr_m_s / kL1Wavelength_m;
+    ++fix_.num_tracked;
+    Measurement& m = in_.meas[in_.num_meas];
+    m.eph = eph;
+    m.pseudorange_m = si.pseudorange_m;
+    m.doppler_hz = si.doppler_hz;
+    meas_prn_[in_.num_meas++] = p;
+  }
+
+  in_.have_prior = have_fix_;
+  if (have_fix_) {
+    double dt_s = t - last_fix_t_;
+    if (!std::isfinite(dt_s) || std::fabs(dt_s) > 600.0) dt_s = 0.0;
+    in_.prior_pos_m = Ecef(last_pos_m_ + last_vel_m_s_ * dt_s);
+    in_.prior_clock_m = last_clock_m_ + last_drift_m_s_ * dt_s;
+  }
+  in_.have_held_height = have_3d_;
+  in_.held_pos_m = held_pos_m_;
+  in_.held_height_m = held_height_m_;
+  solver_.solve(in_, out_);
+  fill_solution();
+  return fix_;
+}
+
+void Receiver::fill_solution() noexcept {
+  if (out_.type == FixType::kNone) {
+    no_fix_epoch();
+    return;
+  }
+  Fix& f = fix_;
+  f.type = out_.type;
+  f.pos_m = out_.pos_m;
+  f.lla = out_.lla;
+  f.vel_m_s = out_.vel_m_s;
+  f.vel_enu_m_s = out_.vel_enu_m_s;
+  f.speed_m_s = std::hypot(out_.vel_enu_m_s.x, out_.vel_enu_m_s.y);
+  double course = std::atan2(out_.vel_enu_m_s.x, out_.vel_enu_m_s.y);
+  if (course < 0.0) course += 2.0 * kPi;
+  if (course >= 2.0 * kPi) course = 0.0;
+  f.course_rad = course;
+  f.climb_m_s = out_.vel_enu_m_s.z;
+  f.clock_bias_s = out_.clock_m / kSpeedOfLight_m_s;
+  f.clock_drift_s_s = out_.drift_m_s / kSpeedOfLight_m_s;
+  f.dop = out_.dop;
+  f.num_used = out_.num_used;
+  f.sigma_uere_m = out_.sigma_uere_m;
+  f.range_rms_m = out_.range_rms_m;
+  const auto& q = out_.cov_pos;
+  const auto& qv = out_.cov_vel;
+  f.sigma_e_m = std::sqrt(q[0][0]);
+  f.sigma_n_m = std::sqrt(q[1][1]);
+  f.sigma_u_m = std::sqrt(q[2][2]);
+  f.h_acc_m = std::sqrt(q[0][0] + q[1][1]);
+  f.v_acc_m = f.sigma_u_m;
+  f.speed_acc_m_s = std::sqrt(qv[0][0] + qv[1][1] + qv[2][2]);
+  f.time_acc_s = std::sqrt(q[3][3]) / kSpeedOfLight_m_s;
+  // Measurements were taken in PRN order, as were fix_.sats.
+  int k = 0;
+  for (int i = 0; i < f.num_sats && k < in_.num_meas; ++i) {
+    SatInfo& si = f.sats[i];
+    if (si.prn != meas_prn_[k]) continue;
+    si.used = true;
+    si.residual_m = out_.residual_m[k++];
+  }
+
+  have_fix_ = true;
+  last_fix_t_ = f.t;
+  last_pos_m_ = f.pos_m;
+  last_vel_m_s_ = f.vel_m_s;
+  last_clock_m_ = out_.clock_m;
+  last_drift_m_s_ = out_.drift_m_s;
+  if (f.type == FixType::k3D) {
+    have_3d_ = true;
+    held_pos_m_ = f.pos_m;
+    held_height_m_ = f.lla.height_m;
+  }
+}
+
+}  // namespace gnssemu::receiver

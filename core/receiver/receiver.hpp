@@ -2,10 +2,17 @@
 // Receiver: one GNSS receiver. step() turns vehicle truth at an epoch into
 // the Fix a real receiver would report. Pure and deterministic for a seed;
 // no exceptions and no allocation on step() after construction.
+#include <array>
+#include <cstdint>
+
 #include "core/common/vec3.hpp"
 #include "core/orbit/ephemeris_store.hpp"
+#include "core/receiver/error_processes.hpp"
 #include "core/receiver/fix.hpp"
+#include "core/receiver/random.hpp"
 #include "core/receiver/receiver_config.hpp"
+#include "core/receiver/sky.hpp"
+#include "core/receiver/solver.hpp"
 
 namespace gnssemu::receiver {
 
@@ -29,12 +36,55 @@ public:
   const Fix& last_fix() const noexcept { return fix_; }
   const ReceiverConfig& config() const noexcept { return config_; }
 
+  /// GPS - UTC to report (e.g. the nav header's LEAP SECONDS); without it
+  /// the built-in table (time::leap_seconds_at) is used.
+  void set_leap_seconds(int leap_s) noexcept {
+    leap_override_ = true;
+    leap_s_ = leap_s;
+  }
+
+  /// World truth of the receiver oscillator at the last epoch (for error
+  /// analysis; the solver never reads it).
+  double true_clock_bias_s() const noexcept { return clock_.bias_s(); }
+  double true_clock_drift_s_s() const noexcept { return clock_.drift_s_s(); }
+
 private:
-  struct Impl;
-  // Implementation detail owned by the receiver module.
+  void advance_world(const time::GpsTime& t) noexcept;
+  void no_fix_epoch() noexcept;
+  void fill_solution() noexcept;
+
   const orbit::EphemerisStore& store_;
   ReceiverConfig config_;
   Fix fix_;
+
+  // World side.
+  CounterRng rng_;
+  ReceiverClock clock_;
+  std::array<double, kMaxGpsPrn> orbit_clock_m_{};  ///< Gauss–Markov state per PRN, m
+  /// Extra propagation delay the world adds per PRN (atmosphere, scene), m.
+  /// Zero until the atmosphere module fills it.
+  std::array<double, kMaxGpsPrn> world_delay_m_{};
+  std::array<SkySat, kMaxGpsPrn> sky_{};
+  std::array<bool, kMaxGpsPrn> in_sky_{};
+  uint64_t epoch_ = 0;          ///< step() calls so far (random-stream counter)
+  bool started_ = false;
+  time::GpsTime t_prev_;
+
+  // Receiver side.
+  Solver solver_;
+  SolverInput in_;
+  SolverOutput out_;
+  std::array<int, kMaxGpsPrn> meas_prn_{};  ///< PRN of each solver measurement
+  bool time_valid_ = false;
+  bool have_fix_ = false;
+  time::GpsTime last_fix_t_;
+  Ecef last_pos_m_, last_vel_m_s_;
+  double last_clock_m_ = 0.0, last_drift_m_s_ = 0.0;
+  bool have_3d_ = false;
+  Ecef held_pos_m_;
+  double held_height_m_ = 0.0;
+  bool leap_override_ = false;
+  int leap_s_ = 18;
 };
 
 }  // namespace gnssemu::receiver

@@ -1,0 +1,54 @@
+#pragma once
+// World-side error processes: first-order Gauss–Markov residuals and the
+// receiver's free-running clock. Pure functions of their inputs and a
+// standard-normal draw supplied by the caller (random.hpp).
+#include <cmath>
+
+#include "core/receiver/receiver_config.hpp"
+
+namespace gnssemu::receiver {
+
+/// Stationary start of a Gauss–Markov process: sigma_m * w, w ~ N(0, 1).
+inline double gauss_markov_init(const GaussMarkovConfig& cfg, double w) noexcept {
+  return cfg.sigma_m > 0.0 ? cfg.sigma_m * w : 0.0;
+}
+
+/// One exact step of dx/dt = -x/tau + noise over dt_s seconds:
+/// x_k = phi x_{k-1} + sigma sqrt(1 - phi^2) w, phi = exp(-dt/tau)
+/// (exact discretisation, e.g. Brown & Hwang, Introduction to Random Signals
+/// and Applied Kalman Filtering, 4th ed., §2.9). dt_s <= 0 holds the value.
+inline double gauss_markov_step(double x, double dt_s, const GaussMarkovConfig& cfg, double w) noexcept {
+  if (!(cfg.sigma_m > 0.0)) return 0.0;
+  if (!(dt_s > 0.0)) return x;
+  const double phi = std::exp(-dt_s / cfg.tau_s);
+  return phi * x + cfg.sigma_m * std::sqrt(1.0 - phi * phi) * w;
+}
+
+/// Free-running receiver oscillator: drift is a random walk, bias its
+/// integral; the receiver steps its clock by whole jump_threshold_s multiples
+/// once |bias| exceeds it (as unsteered receivers do with 1 ms jumps).
+class ReceiverClock {
+public:
+  explicit ReceiverClock(const ClockConfig& cfg) noexcept
+      : cfg_(cfg), bias_s_(cfg.bias_s), drift_s_s_(cfg.drift_s_s) {}
+
+  /// Advance by dt_s seconds (<= 0: no change); w ~ N(0, 1) drives the drift walk.
+  void advance(double dt_s, double w) noexcept {
+    if (!(dt_s > 0.0)) return;
+    const double drift_new = drift_s_s_ + cfg_.drift_noise_s_s_sqrt_s * std::sqrt(dt_s) * w;
+    bias_s_ += 0.5 * (drift_s_s_ + drift_new) * dt_s;  // trapezoid
+    drift_s_s_ = drift_new;
+    const double j = cfg_.jump_threshold_s;
+    if (j > 0.0 && std::fabs(bias_s_) > j) bias_s_ -= j * std::trunc(bias_s_ / j);
+  }
+
+  double bias_s() const noexcept { return bias_s_; }
+  double drift_s_s() const noexcept { return drift_s_s_; }
+
+private:
+  ClockConfig cfg_;
+  double bias_s_;
+  double drift_s_s_;
+};
+
+}  // namespace gnssemu::receiver

@@ -1,0 +1,62 @@
+#pragma once
+// Counter-based random numbers: every draw is a pure function of
+// (seed, stream, epoch index, purpose), so one satellite's noise never
+// depends on which other satellites are visible, and no generator state is
+// carried between epochs. Mixing: splitmix64 finaliser (Steele, Lea, Flood,
+// "Fast splittable pseudorandom number generators", OOPSLA 2014).
+#include <cmath>
+#include <cstdint>
+
+#include "core/common/constants.hpp"
+
+namespace gnssemu::receiver {
+
+/// What a draw is for; part of the key so streams never collide.
+enum class Purpose : uint64_t {
+  kGaussMarkovInit = 1,
+  kGaussMarkovStep = 2,
+  kThermal = 3,
+  kDoppler = 4,
+  kClockDrift = 5,
+};
+
+/// Stream id of the receiver clock (satellites use their PRN 1..32).
+inline constexpr uint64_t kClockStream = 0;
+
+class CounterRng {
+public:
+  explicit constexpr CounterRng(uint64_t seed) noexcept : seed_(seed) {}
+
+  static constexpr uint64_t mix(uint64_t z) noexcept {
+    z += 0x9E3779B97F4A7C15ULL;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+  }
+
+  /// 64 random bits for a key; each component is folded in through a full mix.
+  constexpr uint64_t bits(uint64_t stream, uint64_t epoch, Purpose purpose, uint64_t k) const noexcept {
+    uint64_t h = mix(seed_);
+    h = mix(h ^ stream);
+    h = mix(h ^ epoch);
+    h = mix(h ^ static_cast<uint64_t>(purpose));
+    return mix(h ^ k);
+  }
+
+  /// Uniform in (0, 1]; never 0 so log() is finite.
+  double uniform(uint64_t stream, uint64_t epoch, Purpose purpose, uint64_t k) const noexcept {
+    return (static_cast<double>(bits(stream, epoch, purpose, k) >> 11) + 1.0) * 0x1.0p-53;
+  }
+
+  /// Standard normal (Box–Muller, one of the pair).
+  double normal(uint64_t stream, uint64_t epoch, Purpose purpose) const noexcept {
+    const double u1 = uniform(stream, epoch, purpose, 0);
+    const double u2 = uniform(stream, epoch, purpose, 1);
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
+  }
+
+private:
+  uint64_t seed_;
+};
+
+}  // namespace gnssemu::receiver

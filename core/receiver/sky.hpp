@@ -1,0 +1,35 @@
+#pragma once
+// World-side geometry of one satellite seen from the true antenna position:
+// light-time iteration, Sagnac rotation, look angles and range rate
+// (shared/reference/gps-orbits.md §4).
+#include "core/common/vec3.hpp"
+#include "core/orbit/ephemeris.hpp"
+#include "core/time/gps_time.hpp"
+
+namespace gnssemu::receiver {
+
+/// Rotation of an ECEF vector about Z by angle_rad (Earth rotation during
+/// the signal flight: from the transmit-time frame into the receive-time frame).
+inline Ecef rotate_earth(const Vec3& v, double angle_rad) noexcept {
+  const double c = std::cos(angle_rad), s = std::sin(angle_rad);
+  return Ecef(c * v.x + s * v.y, -s * v.x + c * v.y, v.z);
+}
+
+struct SkySat {
+  time::GpsTime t_tx;       ///< true transmit time (GPS)
+  Ecef pos_m;               ///< satellite at t_tx, in the ECEF frame of the receive time
+  Ecef vel_m_s;             ///< its velocity, same frame
+  double clk_bias_s = 0.0;  ///< broadcast clock at t_tx, relativity included, TGD excluded
+  double clk_drift_s_s = 0.0;
+  double range_m = 0.0;     ///< geometric range, m
+  double range_rate_m_s = 0.0;  ///< d(range)/dt, m/s (LOS projection)
+  double az_rad = 0.0, el_rad = 0.0;
+};
+
+/// Satellite as seen at receive time t_rx from a receiver at rx_pos_m (with
+/// its geodetic rx_lla) moving at rx_vel_m_s (ECEF m/s). Light time starts at
+/// 0.075 s and iterates until it changes by less than 1e-9 s (5 passes at most).
+SkySat sky_sat(const orbit::Ephemeris& eph, const time::GpsTime& t_rx, const Ecef& rx_pos_m,
+               const Lla& rx_lla, const Ecef& rx_vel_m_s) noexcept;
+
+}  // namespace gnssemu::receiver

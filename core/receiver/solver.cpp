@@ -1,0 +1,235 @@
+#include "core/receiver/solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/geo/geodesy.hpp"
+#include "core/receiver/sky.hpp"
+#include "core/receiver/small_matrix.hpp"
+
+namespace gnssemu::receiver {
+
+namespace {
+
+constexpr double kConvergence_m = 1e-4;     // Gauss–Newton step norm (pos + clock), m
+// Plausible receiver heights; a converged solution outside is a false root.
+constexpr double kMinHeight_m = -2000.0;
+constexpr double kMaxHeight_m = 1.0e5;
+// Below this radius (m) elevations are meaningless (cold start from the
+// Earth's centre): unit elevation factor is used for the weights.
+constexpr double kSurfaceRadius_m = 6.0e6;
+constexpr double kMinSinEl = 0.05;          // floor of sin(el) in the weight model
+constexpr double kMaxLightTime_s = 0.2;
+constexpr double kPivotTol = 1e-10;         // relative Cholesky pivot tolerance
+
+double upper_normal_quantile(double p) noexcept {
+  // Solve 0.5 erfc(z / sqrt 2) = p by bisection; p in (0, 0.5).
+  double lo = 0.0, hi = 40.0;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (0.5 * std::erfc(mid / std::sqrt(2.0)) > p) lo = mid; else hi = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+Vec3 up_ecef(const Lla& lla) noexcept {
+  const double cl = std::cos(lla.lat_rad);
+  return {cl * std::cos(lla.lon_rad), cl * std::sin(lla.lon_rad), std::sin(lla.lat_rad)};
+}
+
+void accumulate(Mat4& n, Vec4& g, const Vec4& h, double w, double y) noexcept {
+  for (int i = 0; i < 4; ++i) {
+    g[i] += w * h[i] * y;
+    for (int k = 0; k < 4; ++k) n[i][k] += w * h[i] * h[k];
+  }
+}
+
+bool finite4(const Mat4& m) noexcept {
+  for (const auto& r : m)
+    for (double v : r)
+      if (!std::isfinite(v)) return false;
+  return true;
+}
+
+}  // namespace
+
+Solver::Solver(const SolverConfig& cfg, double max_pdop) noexcept
+    : cfg_(cfg),
+      max_pdop_(max_pdop),
+      z_pfa_(cfg.residual_test_pfa > 0.0 && cfg.residual_test_pfa < 0.5
+                 ? upper_normal_quantile(cfg.residual_test_pfa)
+                 : 0.0) {}
+
+double Solver::chi2_threshold(int dof) const noexcept {
+  // Wilson & Hilferty (1931) cube-root normal approximation of the quantile.
+  const double k = static_cast<double>(std::max(dof, 1));
+  const double h = 2.0 / (9.0 * k);
+  const double c = 1.0 - h + z_pfa_ * std::sqrt(h);
+  return k * c * c * c;
+}
+
+void Solver::linearise(const SolverInput& in, const Ecef& pos, double clock_m, const Lla* lla) noexcept {
+  const Vec3 up = lla ? up_ecef(*lla) : Vec3{};
+  const double a2 = cfg_.sigma_a_m * cfg_.sigma_a_m, b2 = cfg_.sigma_b_m * cfg_.sigma_b_m;
+  for (int i = 0; i < n_; ++i) {
+    Sat& s = sats_[i];
+    // Flight time from the receiver's clock estimate; exact at convergence.
+    const double tau_s = std::clamp(s.since_tx_s - clock_m / kSpeedOfLight_m_s, 0.0, kMaxLightTime_s);
+    const double angle = kOmegaEarth_rad_s * tau_s;
+    const Ecef p = rotate_earth(s.pos_m, angle);
+    s.vel_rx_frame_m_s = rotate_earth(s.vel_m_s, angle);
+    const Vec3 d = p - pos;
+    const double rho = d.norm();
+    s.los = rho > 0.0 ? d / rho : Vec3{0.0, 0.0, 1.0};
+    s.resid_m = in.meas[i].pseudorange_m - (rho + clock_m - s.clk_m);
+    const double sin_el = lla ? std::max(s.los.dot(up), kMinSinEl) : 1.0;
+    s.sigma2 = a2 + b2 / (sin_el * sin_el);
+    s.weight = 1.0 / s.sigma2;
+  }
+}
+
+bool Solver::iterate(const SolverInput& in, Ecef& pos, double& clock_m, bool two_d) noexcept {
+  const double wh = 1.0 / (cfg_.height_hold_sigma_m * cfg_.height_hold_sigma_m);
+  for (int it = 0; it < cfg_.max_iterations; ++it) {
+    Lla lla;
+    const bool near_surface = pos.norm() > kSurfaceRadius_m;
+    if (near_surface) lla = geo::lla_from_ecef(pos);
+    linearise(in, pos, clock_m, near_surface ? &lla : nullptr);
+    Mat4 n{};
+    Vec4 g{};
+    for (int i = 0; i < n_; ++i) {
+      const Sat& s = sats_[i];
+      accumulate(n, g, {-s.los.x, -s.los.y, -s.los.z, 1.0}, s.weight, s.resid_m);
+    }
+    if (two_d) {
+      if (!near_surface) return false;
+      const Vec3 up = up_ecef(lla);
+      accumulate(n, g, {up.x, up.y, up.z, 0.0}, wh, in.held_height_m - lla.height_m);
+    }
+    Mat4 inv;
+    if (!spd_inverse4(n, inv, kPivotTol)) return false;
+    const Vec4 dx = mul4(inv, g);
+    pos += Vec3{dx[0], dx[1], dx[2]};
+    clock_m += dx[3];
+    if (!pos.finite() || !std::isfinite(clock_m)) return false;
+    const double step = std::sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2] + dx[3] * dx[3]);
+    if (step < kConvergence_m) return true;
+  }
+  return false;
+}
+
+bool Solver::finish(const SolverInput& in, const Ecef& pos, double clock_m, bool two_d,
+                    SolverOutput& out) noexcept {
+  const Lla lla = geo::lla_from_ecef(pos);
+  if (!(lla.height_m > kMinHeight_m && lla.height_m < kMaxHeight_m)) return false;
+  linearise(in, pos, clock_m, &lla);
+
+  const double wh = 1.0 / (cfg_.height_hold_sigma_m * cfg_.height_hold_sigma_m);
+  const double wv = 1.0 / (cfg_.sigma_range_rate_m_s * cfg_.sigma_range_rate_m_s);
+  Mat4 nu{}, nw{}, nv{};
+  Vec4 unused{}, gv{};
+  double chi2 = 0.0, sum_v2 = 0.0, sum_s2 = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    const Sat& s = sats_[i];
+    const Enu e = geo::ecef_to_enu_vector(s.los, lla.lat_rad, lla.lon_rad);
+    const Vec4 h{-e.x, -e.y, -e.z, 1.0};
+    accumulate(nu, unused, h, 1.0, 0.0);
+    accumulate(nw, unused, h, s.weight, 0.0);
+    // Measured range rate minus the satellite part: -e.v_rx + c * drift.
+    const double rr = -kL1Wavelength_m * in.meas[i].doppler_hz;
+    accumulate(nv, gv, h, wv, rr - s.los.dot(s.vel_rx_frame_m_s) + s.drift_m_s);
+    chi2 += s.weight * s.resid_m * s.resid_m;
+    sum_v2 += s.resid_m * s.resid_m;
+    sum_s2 += s.sigma2;
+    out.residual_m[i] = s.resid_m;
+  }
+  if (two_d) {
+    const Vec4 h{0.0, 0.0, 1.0, 0.0};
+    accumulate(nu, unused, h, 1.0, 0.0);
+    accumulate(nw, unused, h, wh, 0.0);
+    accumulate(nv, gv, h, wv, 0.0);  // vertical velocity held at zero
+    const double dh = in.held_height_m - lla.height_m;
+    chi2 += wh * dh * dh;
+  }
+  Mat4 qu, qw, qv;
+  if (!spd_inverse4(nu, qu, kPivotTol) || !spd_inverse4(nw, qw, kPivotTol) ||
+      !spd_inverse4(nv, qv, kPivotTol) || !finite4(qu) || !finite4(qw) || !finite4(qv))
+    return false;
+
+  const double pdop = std::sqrt(qu[0][0] + qu[1][1] + qu[2][2]);
+  if (!(pdop <= max_pdop_)) return false;
+  out.dof = n_ + (two_d ? 1 : 0) - 4;
+  out.chi2 = chi2;
+  if (out.dof >= 1 && z_pfa_ > 0.0 && chi2 > chi2_threshold(out.dof)) return false;
+
+  out.dop.gdop = std::sqrt(qu[0][0] + qu[1][1] + qu[2][2] + qu[3][3]);
+  out.dop.pdop = pdop;
+  out.dop.hdop = std::sqrt(qu[0][0] + qu[1][1]);
+  out.dop.vdop = std::sqrt(qu[2][2]);
+  out.dop.tdop = std::sqrt(qu[3][3]);
+
+  const Vec4 xv = mul4(qv, gv);
+  out.vel_enu_m_s = Enu(xv[0], xv[1], xv[2]);
+  out.vel_m_s = Ecef(geo::enu_to_ecef_vector(out.vel_enu_m_s, lla.lat_rad, lla.lon_rad));
+  out.drift_m_s = xv[3];
+  if (!out.vel_m_s.finite() || !std::isfinite(out.drift_m_s)) return false;
+
+  out.type = two_d ? FixType::k2D : FixType::k3D;
+  out.pos_m = pos;
+  out.lla = lla;
+  out.clock_m = clock_m;
+  out.cov_pos = qw;
+  out.cov_vel = qv;
+  out.num_used = n_;
+  out.range_rms_m = std::sqrt(sum_v2 / n_);
+  out.sigma_uere_m = std::sqrt(sum_s2 / n_);
+  return true;
+}
+
+void Solver::solve(const SolverInput& in, SolverOutput& out) noexcept {
+  out = SolverOutput{};
+  n_ = std::clamp(in.num_meas, 0, kMaxGpsPrn);
+  for (int i = 0; i < n_; ++i) {
+    const Measurement& m = in.meas[i];
+    Sat& s = sats_[i];
+    if (m.eph == nullptr || !std::isfinite(m.pseudorange_m) || !std::isfinite(m.doppler_hz)) {
+      n_ = 0;  // malformed input: no fix rather than a guess
+      break;
+    }
+    // Transmit time from the code phase: t = t_sv - (dt_sv - TGD), dt_sv at
+    // t (IS-GPS-200 §20.3.3.3.3.1-2); one refinement pass suffices.
+    const time::GpsTime t_sv = in.t_rx_local - m.pseudorange_m / kSpeedOfLight_m_s;
+    const double dt0_s = orbit::sat_state(*m.eph, t_sv).clk_bias_s - m.eph->tgd_s;
+    const time::GpsTime t_tx = t_sv - dt0_s;
+    const orbit::SatState st = orbit::sat_state(*m.eph, t_tx);
+    s.pos_m = st.pos_m;
+    s.vel_m_s = st.vel_m_s;
+    s.clk_m = kSpeedOfLight_m_s * (st.clk_bias_s - m.eph->tgd_s);
+    s.drift_m_s = kSpeedOfLight_m_s * st.clk_drift_s_s;
+    s.since_tx_s = in.t_rx_local - t_tx;
+  }
+  if (n_ < 3) return;
+  const bool two_d = n_ == 3;
+  if (two_d && !in.have_held_height) return;
+
+  Ecef pos;
+  double clock_m = 0.0;
+  if (two_d) {
+    pos = in.held_pos_m;
+    clock_m = in.have_prior ? in.prior_clock_m : 0.0;
+  } else if (in.have_prior) {
+    pos = in.prior_pos_m;
+    clock_m = in.prior_clock_m;
+  }
+  bool ok = iterate(in, pos, clock_m, two_d);
+  if (!ok && !two_d && in.have_prior) {  // warm start diverged: cold start
+    pos = Ecef{};
+    clock_m = 0.0;
+    ok = iterate(in, pos, clock_m, two_d);
+  }
+  if (!ok || !finish(in, pos, clock_m, two_d, out)) {
+    out = SolverOutput{};
+  }
+}
+
+}  // namespace gnssemu::receiver

@@ -1,0 +1,95 @@
+#pragma once
+// Receiver-side navigation solver: broadcast satellite clock (relativity
+// included) minus TGD, Sagnac, weighted least squares (Gauss–Newton) for
+// position and clock, Doppler least squares for velocity and clock drift,
+// DOP, covariance-based accuracy, chi-square residual test, 2D height hold.
+// Never throws, never allocates.
+#include <array>
+
+#include "core/common/constants.hpp"
+#include "core/common/vec3.hpp"
+#include "core/orbit/ephemeris.hpp"
+#include "core/receiver/fix.hpp"
+#include "core/receiver/receiver_config.hpp"
+#include "core/time/gps_time.hpp"
+
+namespace gnssemu::receiver {
+
+/// One tracked satellite's measurements.
+struct Measurement {
+  const orbit::Ephemeris* eph = nullptr;
+  double pseudorange_m = 0.0;
+  double doppler_hz = 0.0;  ///< L1 carrier Doppler, Hz (positive when approaching)
+};
+
+struct SolverInput {
+  time::GpsTime t_rx_local;  ///< measurement time tag on the receiver's own clock
+  std::array<Measurement, kMaxGpsPrn> meas{};
+  int num_meas = 0;
+  bool have_prior = false;   ///< warm start from prior_pos_m / prior_clock_m
+  Ecef prior_pos_m;
+  double prior_clock_m = 0.0;  ///< c * clock bias, m
+  bool have_held_height = false;  ///< a 3D fix exists: 2D with 3 satellites allowed
+  Ecef held_pos_m;           ///< last 3D position (start point of 2D solutions)
+  double held_height_m = 0.0;///< its ellipsoidal height, m
+};
+
+struct SolverOutput {
+  FixType type = FixType::kNone;
+  Ecef pos_m;
+  Lla lla;
+  double clock_m = 0.0;          ///< c * clock bias, m
+  Enu vel_enu_m_s;
+  Ecef vel_m_s;
+  double drift_m_s = 0.0;        ///< c * clock drift, m/s
+  Dop dop;
+  /// Covariances in local ENU + clock (m^2, clock in m^2): position solve
+  /// and velocity solve (m^2/s^2).
+  std::array<std::array<double, 4>, 4> cov_pos{};
+  std::array<std::array<double, 4>, 4> cov_vel{};
+  std::array<double, kMaxGpsPrn> residual_m{};  ///< post-fit, per measurement index
+  int num_used = 0;
+  double range_rms_m = 0.0;
+  double sigma_uere_m = 0.0;     ///< RMS of the assumed 1-sigma over used satellites
+  double chi2 = 0.0;             ///< weighted sum of squared residuals
+  int dof = 0;
+};
+
+class Solver {
+public:
+  /// cfg and max_pdop as in ReceiverConfig. Does not validate (Receiver does).
+  Solver(const SolverConfig& cfg, double max_pdop) noexcept;
+
+  void solve(const SolverInput& in, SolverOutput& out) noexcept;
+
+  /// Chi-square threshold for dof degrees of freedom at the configured
+  /// false-alarm probability (Wilson–Hilferty; dof >= 1).
+  double chi2_threshold(int dof) const noexcept;
+
+private:
+  struct Sat {
+    Ecef pos_m;            // at transmit time, transmit-time ECEF frame
+    Ecef vel_m_s;
+    double clk_m = 0.0;    // c * (broadcast clock - TGD), m
+    double drift_m_s = 0.0;
+    double since_tx_s = 0.0;  // t_rx_local - t_tx, s
+    // Per-iteration linearisation.
+    Vec3 los;              // unit vector receiver -> satellite, ECEF
+    Ecef vel_rx_frame_m_s; // velocity rotated into the receive-time frame
+    double resid_m = 0.0;
+    double weight = 0.0;   // 1 / sigma^2, 1/m^2
+    double sigma2 = 0.0;
+  };
+
+  bool iterate(const SolverInput& in, Ecef& pos, double& clock_m, bool two_d) noexcept;
+  void linearise(const SolverInput& in, const Ecef& pos, double clock_m, const Lla* lla) noexcept;
+  bool finish(const SolverInput& in, const Ecef& pos, double clock_m, bool two_d, SolverOutput& out) noexcept;
+
+  SolverConfig cfg_;
+  double max_pdop_;
+  double z_pfa_;  // standard-normal upper quantile of residual_test_pfa
+  std::array<Sat, kMaxGpsPrn> sats_{};
+  int n_ = 0;
+};
+
+}  // namespace gnssemu::receiver
