@@ -1,0 +1,157 @@
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <new>
+
+#include "core/orbit/ephemeris_store.hpp"
+#include "core/orbit/rinex_nav.hpp"
+
+using namespace gnssemu;
+using namespace gnssemu::orbit;
+
+// Counts heap allocations in this test binary, to show select() makes none.
+namespace {
+std::atomic<long> g_allocations{0};
+}
+void* operator new(std::size_t n) {
+  ++g_allocations;
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace {
+
+const std::string kNav = std::string(GNSSEMU_TEST_DATA) + "/nav/";
+
+// A real set (brdc0010.22n PRN 1) re-timed for the selection tests.
+Ephemeris base() {
+  static const Ephemeris e = read_rinex_nav(kNav + "brdc0010.22n").ephemerides.front();
+  return e;
+}
+
+Ephemeris at(int prn, int week, double toe_tow, int iode, int health = 0) {
+  Ephemeris e = base();
+  e.prn = prn;
+  e.toe = time::GpsTime(week, toe_tow);
+  e.toc = e.toe;
+  e.iode = iode;
+  e.iodc = iode;
+  e.health = health;
+  e.transmit_known = true;
+  e.transmit_tow_s = toe_tow - 7200.0;
+  return e;
+}
+
+int iode_at(const EphemerisStore& s, int prn, const time::GpsTime& t) {
+  const Ephemeris* e = s.select(prn, t);
+  return e ? e->iode : -1;
+}
+
+}  // namespace
+
+TEST(EphemerisStore, NearestToe) {
+  const EphemerisStore s({at(5, 2000, 14400, 3), at(5, 2000, 0, 1), at(5, 2000, 7200, 2)});
+  EXPECT_EQ(s.count(5), 3u);
+  EXPECT_EQ(s.size(), 3u);
+  EXPECT_EQ(iode_at(s, 5, time::GpsTime(2000, 0)), 1);
+  EXPECT_EQ(iode_at(s, 5, time::GpsTime(2000, 3599.9)), 1);
+  EXPECT_EQ(iode_at(s, 5, time::GpsTime(2000, 3600.1)), 2);
+  EXPECT_EQ(iode_at(s, 5, time::GpsTime(2000, 3600.0)), 2);  // tie: later toe
+  EXPECT_EQ(iode_at(s, 5, time::GpsTime(2000, 11000)), 3);
+  EXPECT_EQ(iode_at(s, 6, time::GpsTime(2000, 0)), -1);      // no sets for PRN 6
+  EXPECT_EQ(s.select(0, time::GpsTime(2000, 0)), nullptr);
+  EXPECT_EQ(s.select(33, time::GpsTime(2000, 0)), nullptr);
+  EXPECT_EQ(s.count(33), 0u);
+}
+
+TEST(EphemerisStore, ValidityEdges) {
+  const EphemerisStore s({at(7, 2000, 100000, 1)});
+  EXPECT_EQ(iode_at(s, 7, time::GpsTime(2000, 100000 + 7200.0)), 1);
+  EXPECT_EQ(iode_at(s, 7, time::GpsTime(2000, 100000 - 7200.0)), 1);
+  EXPECT_EQ(iode_at(s, 7, time::GpsTime(2000, 100000 + 7200.001)), -1);
+  EXPECT_EQ(iode_at(s, 7, time::GpsTime(2000, 100000 - 7200.001)), -1);
+  EXPECT_EQ(s.first_valid(), time::GpsTime(2000, 100000 - 7200.0));
+  EXPECT_EQ(s.last_valid(), time::GpsTime(2000, 100000 + 7200.0));
+
+  // A 6 h fit interval (IS-GPS-200 Table 20-XII) widens the window to +-3 h.
+  Ephemeris six = at(7, 2000, 100000, 2);
+  six.fit_interval_h = 6.0;
+  const EphemerisStore s6({six});
+  EXPECT_EQ(iode_at(s6, 7, time::GpsTime(2000, 100000 + 10800.0)), 2);
+  EXPECT_EQ(iode_at(s6, 7, time::GpsTime(2000, 100000 + 10800.5)), -1);
+}
+
+TEST(EphemerisStore, UnhealthySkipped) {
+  const EphemerisStore s({at(9, 2000, 0, 1), at(9, 2000, 7200, 2, 1), at(9, 2000, 14400, 3)});
+  // Nearest (toe 7200) is unhealthy: the nearest healthy one within 2 h wins.
+  EXPECT_EQ(iode_at(s, 9, time::GpsTime(2000, 7000)), 1);
+  EXPECT_EQ(iode_at(s, 9, time::GpsTime(2000, 7400)), 3);
+  EXPECT_EQ(s.count(9), 3u);
+  const EphemerisStore only_bad({at(9, 2000, 7200, 2, 63)});
+  EXPECT_EQ(iode_at(only_bad, 9, time::GpsTime(2000, 7200)), -1);
+}
+
+TEST(EphemerisStore, DuplicateToePrefersLaterTransmission) {
+  Ephemeris early = at(11, 2000, 7200, 10);
+  Ephemeris late = at(11, 2000, 7200, 11);
+  early.transmit_tow_s = 100.0;
+  late.transmit_tow_s = 200.0;
+  for (const auto& list : {std::vector<Ephemeris>{early, late}, std::vector<Ephemeris>{late, early}}) {
+    const EphemerisStore s(list);
+    EXPECT_EQ(iode_at(s, 11, time::GpsTime(2000, 7200)), 11);
+    EXPECT_EQ(s.count(11), 2u);
+  }
+  // Unknown transmission time counts as earliest.
+  Ephemeris unknown = at(11, 2000, 7200, 12);
+  unknown.transmit_known = false;
+  unknown.transmit_tow_s = 0.0;
+  EXPECT_EQ(iode_at(EphemerisStore({early, unknown}), 11, time::GpsTime(2000, 7200)), 10);
+  // Equal transmission time: file order, the later one wins.
+  Ephemeris twin = early;
+  twin.iode = 13;
+  EXPECT_EQ(iode_at(EphemerisStore({early, twin}), 11, time::GpsTime(2000, 7200)), 13);
+  // An unhealthy later duplicate does not hide the healthy set.
+  Ephemeris bad_late = late;
+  bad_late.health = 1;
+  EXPECT_EQ(iode_at(EphemerisStore({early, bad_late}), 11, time::GpsTime(2000, 7200)), 10);
+}
+
+TEST(EphemerisStore, AcrossWeekBoundary) {
+  // toe 1 h before the end of week 2190 and 1 h into week 2191.
+  const EphemerisStore s({at(3, 2190, 604800 - 3600, 1), at(3, 2191, 3600, 2)});
+  EXPECT_EQ(iode_at(s, 3, time::GpsTime(2190, 604800 - 100)), 1);
+  EXPECT_EQ(iode_at(s, 3, time::GpsTime(2191, 100)), 2);
+  EXPECT_EQ(iode_at(s, 3, time::GpsTime(2191, 0)), 2);  // tie at the week start: later toe
+  // Previous week's toe used early in the new week, next week's toe late in the old one.
+  const EphemerisStore prev({at(4, 2190, 604800 - 3600, 7)});
+  EXPECT_EQ(iode_at(prev, 4, time::GpsTime(2191, 3600)), 7);
+  EXPECT_EQ(iode_at(prev, 4, time::GpsTime(2191, 3601)), -1);
+  const EphemerisStore next({at(4, 2191, 3600, 8)});
+  EXPECT_EQ(iode_at(next, 4, time::GpsTime(2190, 604800 - 3600)), 8);
+  EXPECT_EQ(iode_at(next, 4, time::GpsTime(2190, 604800 - 3601)), -1);
+}
+
+TEST(EphemerisStore, RealFileAndNoAllocation) {
+  const NavData d = read_rinex_nav(kNav + "brdc0010.22n");
+  const EphemerisStore s(d.ephemerides);
+  EXPECT_EQ(s.size(), 422u);
+  const time::GpsTime noon(2190, 518400 + 43200);
+  int selected = 0;
+  const long before = g_allocations.load();
+  for (int prn = 1; prn <= 32; ++prn) {
+    const Ephemeris* e = s.select(prn, noon);
+    if (e == nullptr) continue;
+    ++selected;
+    EXPECT_LE(std::fabs(noon - e->toe), 3600.0) << prn;  // brdc has a set every 2 h
+    EXPECT_EQ(e->health, 0);
+  }
+  EXPECT_EQ(g_allocations.load(), before);
+  EXPECT_GE(selected, 29);
+  // brdc: first toc 00:00 (toe 2190/518400 - 2 h), last set toe 2191/0 (+2 h).
+  EXPECT_EQ(s.first_valid(), time::GpsTime(2190, 518400 - 7200));
+  EXPECT_EQ(s.last_valid(), time::GpsTime(2191, 7184));
+}
