@@ -1,1 +1,324 @@
-// placeholder: implemented by its module's work
+#include "core/protocol/nmea/nmea_encoder.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "core/common/constants.hpp"
+#include "core/common/error.hpp"
+#include "core/protocol/nmea/nmea_format.hpp"
+#include "core/protocol/nmea/nmea_utc.hpp"
+
+namespace gnssemu::protocol::nmea {
+
+namespace {
+
+using receiver::Fix;
+using receiver::FixType;
+using receiver::SatInfo;
+
+constexpr int kMaxGsaSlots = 12;  // GSA has 12 SV fields; u-blox GGA numSV is 0-12 too.
+constexpr int kSatsPerGsv = 4;
+constexpr double kKnotsPerMps = 3600.0 / 1852.0;
+constexpr double kKmhPerMps = 3.6;
+// Field ranges that keep every sentence within 82 characters. u-blox stops
+// navigating far inside them (50 km altitude, 500 m/s).
+constexpr double kMaxAbsAltitude_m = 99999.9;
+constexpr double kMaxAbsGeoidSep_m = 999.9;
+constexpr double kMaxSpeed_m_s = 5000.0;
+constexpr double kMaxSigma_m = 99999.9;
+
+/// Everything the sentences print, derived once from the Fix.
+struct Epoch {
+  bool v4 = false;        // NMEA 4.10 / 4.11 extra fields
+  bool has_time = false;
+  bool has_fix = false;
+  int nav_mode = 1;       // GSA: 1 none, 2 2D, 3 3D
+  UtcStamp utc;
+  double lat_deg = 0.0, lon_deg = 0.0;
+  double alt_msl_m = 0.0, geoid_sep_m = 0.0;
+  double speed_m_s = 0.0;
+  bool course_valid = false;
+  double course_deg = 0.0;
+  double pdop = receiver::Dop::kNoDop, hdop = receiver::Dop::kNoDop, vdop = receiver::Dop::kNoDop;
+  std::array<int, kMaxGsaSlots> used_prn{};
+  int num_used = 0;
+  std::array<const SatInfo*, kMaxGpsPrn> in_view{};
+  int num_in_view = 0;
+};
+
+double clamp_finite(double v, double lo, double hi) {
+  return std::isfinite(v) ? std::clamp(v, lo, hi) : v;
+}
+
+double dop_or_none(double dop, bool has_fix) {
+  if (!has_fix || !std::isfinite(dop) || dop < 0.0) return receiver::Dop::kNoDop;
+  return std::min(dop, receiver::Dop::kNoDop);
+}
+
+int rounded_deg(double rad) {
+  const double deg = rad * kRadToDeg;
+  return std::isfinite(deg) ? static_cast<int>(std::lround(deg)) : 0;
+}
+
+Epoch derive(const Fix& fix, const NmeaConfig& cfg) {
+  Epoch e;
+  e.v4 = cfg.version != NmeaVersion::k23;
+  e.has_time = fix.time_valid;
+  if (e.has_time) e.utc = utc_stamp(fix.t, fix.leap_seconds);
+  // A position needs time (a receiver cannot navigate without it) and finite numbers.
+  e.has_fix = fix.type != FixType::kNone && e.has_time && std::isfinite(fix.lla.lat_rad) &&
+              std::isfinite(fix.lla.lon_rad) && std::isfinite(fix.lla.height_m);
+  if (e.has_fix) {
+    e.nav_mode = fix.type == FixType::k2D ? 2 : 3;
+    e.lat_deg = std::clamp(fix.lla.lat_rad * kRadToDeg, -90.0, 90.0);
+    e.lon_deg = std::remainder(fix.lla.lon_rad * kRadToDeg, 360.0);  // [-180, 180]
+    const double sep = std::isfinite(fix.geoid_sep_m) ? fix.geoid_sep_m : 0.0;
+    e.geoid_sep_m = clamp_finite(fix.geoid_sep_m, -kMaxAbsGeoidSep_m, kMaxAbsGeoidSep_m);
+    e.alt_msl_m = std::clamp(fix.lla.height_m - sep, -kMaxAbsAltitude_m, kMaxAbsAltitude_m);
+    e.speed_m_s = clamp_finite(std::fabs(fix.speed_m_s), 0.0, kMaxSpeed_m_s);
+    if (std::isfinite(e.speed_m_s) && e.speed_m_s >= cfg.course_min_speed_m_s &&
+        std::isfinite(fix.course_rad)) {
+      double deg = std::fmod(fix.course_rad * kRadToDeg, 360.0);
+      if (deg < 0.0) deg += 360.0;
+      if (std::llround(deg * 100.0) >= 36000) deg = 0.0;  // 359.996 prints as 0.00
+      e.course_valid = true;
+      e.course_deg = deg;
+    }
+    e.pdop = dop_or_none(fix.dop.pdop, true);
+    e.hdop = dop_or_none(fix.dop.hdop, true);
+    e.vdop = dop_or_none(fix.dop.vdop, true);
+  }
+  const int n = std::clamp(fix.num_sats, 0, static_cast<int>(fix.sats.size()));
+  for (int i = 0; i < n; ++i) {
+    const SatInfo& s = fix.sats[static_cast<std::size_t>(i)];
+    if (s.prn < 1 || s.prn > 99) continue;  // two-digit svid field
+    if (e.has_fix && s.used && e.num_used < kMaxGsaSlots) e.used_prn[static_cast<std::size_t>(e.num_used++)] = s.prn;
+    if (s.healthy && std::isfinite(s.el_rad) && s.el_rad >= 0.0 && std::isfinite(s.az_rad)) {
+      e.in_view[static_cast<std::size_t>(e.num_in_view++)] = &s;
+    }
+  }
+  return e;
+}
+
+void put_time(SentenceWriter& w, const Epoch& e) {
+  if (e.has_time) {
+    w.time_of_day(e.utc.hour, e.utc.minute, e.utc.second, e.utc.centisecond);
+  } else {
+    w.empty();
+  }
+}
+
+void put_position(SentenceWriter& w, const Epoch& e) {
+  if (e.has_fix) {
+    w.latitude(e.lat_deg);
+    w.longitude(e.lon_deg);
+  } else {
+    for (int i = 0; i < 4; ++i) w.empty();
+  }
+}
+
+char pos_mode(const Epoch& e) { return e.has_fix ? 'A' : 'N'; }
+char status(const Epoch& e) { return e.has_fix ? 'A' : 'V'; }
+
+void append(std::string& out, SentenceWriter& w) {
+  const std::string_view s = w.finish();
+  out.append(s.data(), s.size());
+}
+
+// RMC time,status,lat,NS,lon,EW,spd,cog,date,mv,mvEW,posMode[,navStatus] (ref §3).
+void write_rmc(const Epoch& e, std::string& out) {
+  SentenceWriter w("GPRMC");
+  put_time(w, e);
+  w.character(status(e));
+  put_position(w, e);
+  if (e.has_fix) {
+    w.fixed(e.speed_m_s * kKnotsPerMps, 3);
+  } else {
+    w.empty();
+  }
+  if (e.course_valid) {
+    w.fixed(e.course_deg, 2);
+  } else {
+    w.empty();
+  }
+  if (e.has_time) {
+    w.date_ddmmyy(e.utc.day, e.utc.month, e.utc.year);
+  } else {
+    w.empty();
+  }
+  w.empty();  // magnetic variation: u-blox leaves it empty
+  w.empty();
+  w.character(pos_mode(e));
+  if (e.v4) w.character('V');  // navStatus: u-blox always sends V
+  append(out, w);
+}
+
+// VTG cogt,T,cogm,M,sogn,N,sogk,K,posMode; all units empty without a fix (ref §6).
+void write_vtg(const Epoch& e, std::string& out) {
+  SentenceWriter w("GPVTG");
+  if (e.has_fix) {
+    if (e.course_valid) {
+      w.fixed(e.course_deg, 2);
+    } else {
+      w.empty();
+    }
+    w.character('T');
+    w.empty();
+    w.character('M');
+    w.fixed(e.speed_m_s * kKnotsPerMps, 3);
+    w.character('N');
+    w.fixed(e.speed_m_s * kKmhPerMps, 3);
+    w.character('K');
+  } else {
+    for (int i = 0; i < 8; ++i) w.empty();
+  }
+  w.character(pos_mode(e));
+  append(out, w);
+}
+
+// GGA time,lat,NS,lon,EW,quality,numSV,HDOP,alt,M,sep,M,diffAge,diffStation.
+// u-blox reports quality 1 for both 2D and 3D fixes (ref §4).
+void write_gga(const Epoch& e, std::string& out) {
+  SentenceWriter w("GPGGA");
+  put_time(w, e);
+  put_position(w, e);
+  w.integer(e.has_fix ? 1 : 0, 1);
+  w.integer(e.num_used, 2);
+  w.fixed(e.hdop, 2);
+  if (e.has_fix) {
+    w.fixed(e.alt_msl_m, 1);
+    w.character('M');
+    w.fixed(e.geoid_sep_m, 1);
+    w.character('M');
+  } else {
+    for (int i = 0; i < 4; ++i) w.empty();
+  }
+  w.empty();  // no DGPS
+  w.empty();
+  append(out, w);
+}
+
+// GSA opMode,navMode,sv1..sv12,PDOP,HDOP,VDOP[,systemId].
+void write_gsa(const Epoch& e, std::string& out) {
+  SentenceWriter w("GPGSA");
+  w.character('A');
+  w.integer(e.nav_mode, 1);
+  for (int i = 0; i < kMaxGsaSlots; ++i) {
+    if (i < e.num_used) {
+      w.integer(e.used_prn[static_cast<std::size_t>(i)], 2);
+    } else {
+      w.empty();
+    }
+  }
+  w.fixed(e.pdop, 2);
+  w.fixed(e.hdop, 2);
+  w.fixed(e.vdop, 2);
+  if (e.v4) w.integer(1, 1);  // systemId 1 = GPS
+  append(out, w);
+}
+
+// GSV numMsg,msgNum,numSV,{svid,elv,az,cno}x1..4[,signalId]; cno empty when not tracked.
+void write_gsv(const Epoch& e, std::string& out) {
+  const int num_msg = std::max(1, (e.num_in_view + kSatsPerGsv - 1) / kSatsPerGsv);
+  for (int m = 0; m < num_msg; ++m) {
+    SentenceWriter w("GPGSV");
+    w.integer(num_msg, 1);
+    w.integer(m + 1, 1);
+    w.integer(e.num_in_view, 2);
+    const int first = m * kSatsPerGsv;
+    const int last = std::min(first + kSatsPerGsv, e.num_in_view);
+    for (int i = first; i < last; ++i) {
+      const SatInfo& s = *e.in_view[static_cast<std::size_t>(i)];
+      w.integer(s.prn, 2);
+      w.integer(std::clamp(rounded_deg(s.el_rad), 0, 90), 2);
+      int az = rounded_deg(s.az_rad) % 360;
+      if (az < 0) az += 360;
+      w.integer(az, 3);
+      if (s.tracked && std::isfinite(s.cn0_dbhz)) {
+        w.integer(std::clamp(static_cast<int>(std::lround(s.cn0_dbhz)), 0, 99), 2);
+      } else {
+        w.empty();
+      }
+    }
+    if (e.v4) w.integer(1, 1);  // signalId 1 = GPS L1 C/A
+    append(out, w);
+  }
+}
+
+// GLL lat,NS,lon,EW,time,status,posMode.
+void write_gll(const Epoch& e, std::string& out) {
+  SentenceWriter w("GPGLL");
+  put_position(w, e);
+  put_time(w, e);
+  w.character(status(e));
+  w.character(pos_mode(e));
+  append(out, w);
+}
+
+// GST time,rangeRms,stdMajor,stdMinor,orient,stdLat,stdLong,stdAlt. The
+// ellipse fields stay empty as on the M8 (ref §3): the Fix carries no
+// east-north covariance, and an ellipse from sigma_e / sigma_n alone would
+// claim an orientation the solver never computed. Empty values without a fix.
+void write_gst(const Epoch& e, const Fix& fix, std::string& out) {
+  SentenceWriter w("GPGST");
+  put_time(w, e);
+  if (e.has_fix) {
+    w.fixed(clamp_finite(fix.range_rms_m, 0.0, kMaxSigma_m), 1);
+    w.empty();
+    w.empty();
+    w.empty();
+    w.fixed(clamp_finite(fix.sigma_n_m, 0.0, kMaxSigma_m), 1);
+    w.fixed(clamp_finite(fix.sigma_e_m, 0.0, kMaxSigma_m), 1);
+    w.fixed(clamp_finite(fix.sigma_u_m, 0.0, kMaxSigma_m), 1);
+  } else {
+    for (int i = 0; i < 7; ++i) w.empty();
+  }
+  append(out, w);
+}
+
+// ZDA time,day,month,year,ltzh,ltzn (local zone always 00,00).
+void write_zda(const Epoch& e, std::string& out) {
+  SentenceWriter w("GPZDA");
+  put_time(w, e);
+  if (e.has_time) {
+    w.integer(e.utc.day, 2);
+    w.integer(e.utc.month, 2);
+    w.integer(e.utc.year, 4);
+  } else {
+    for (int i = 0; i < 3; ++i) w.empty();
+  }
+  w.integer(0, 2);
+  w.integer(0, 2);
+  append(out, w);
+}
+
+}  // namespace
+
+NmeaEncoder::NmeaEncoder(const NmeaConfig& config) : config_(config) {
+  if (!std::isfinite(config_.course_min_speed_m_s) || config_.course_min_speed_m_s < 0.0) {
+    throw Error("NMEA course_min_speed_m_s must be a finite value >= 0");
+  }
+}
+
+}  // namespace gnssemu::protocol::nmea
+
+namespace gnssemu::protocol::nmea {
+
+std::size_t NmeaEncoder::encode_epoch(const receiver::Fix& fix, std::string& out) const {
+  const std::size_t before = out.size();
+  const Epoch e = derive(fix, config_);
+  const SentenceSet& set = config_.sentences;
+  // u-blox epoch order (ref §6).
+  if (set.rmc) write_rmc(e, out);
+  if (set.vtg) write_vtg(e, out);
+  if (set.gga) write_gga(e, out);
+  if (set.gsa) write_gsa(e, out);
+  if (set.gsv) write_gsv(e, out);
+  if (set.gll) write_gll(e, out);
+  if (set.gst) write_gst(e, fix, out);
+  if (set.zda) write_zda(e, out);
+  return out.size() - before;
+}
+
+}  // namespace gnssemu::protocol::nmea

@@ -1,12 +1,18 @@
 #pragma once
 // NMEA 0183 encoder formatted like a u-blox M8 (shared/reference/nmea0183.md).
 // One Fix in, one epoch of sentences out; checksums, <= 82 characters.
+// GPS only, so the talker is GP everywhere. Choices where u-blox is not
+// documented are listed in docs/nmea.md.
+#include <cstddef>
 #include <string>
 
 #include "core/receiver/fix.hpp"
 
 namespace gnssemu::protocol::nmea {
 
+/// NMEA standard version (u-blox CFG-NMEA nmeaVersion). 4.10 and 4.11 add
+/// RMC navStatus, GSA systemId and GSV signalId; for a GPS-only receiver the
+/// two print the same sentences (4.11 only changes QZSS/NavIC talkers and ids).
 enum class NmeaVersion { k23, k410, k411 };
 
 /// Which sentences an epoch carries (u-blox default set: GGA GLL GSA GSV RMC VTG).
@@ -18,7 +24,15 @@ struct SentenceSet {
 struct NmeaConfig {
   NmeaVersion version = NmeaVersion::k411;
   SentenceSet sentences;
+  /// Below this horizontal speed (m/s) the course fields of RMC and VTG are
+  /// left empty, as u-blox does when its heading is not valid. Static u-blox
+  /// logs show an empty course at up to 0.30 m/s; 0 always prints it.
+  double course_min_speed_m_s = 0.5;
 };
+
+/// Largest epoch encode_epoch can produce: 7 sentences plus 8 GSV
+/// (32 satellites), each at most 82 bytes. Reserve this much to never allocate.
+inline constexpr std::size_t kMaxEpochBytes = 15 * 82;
 
 class NmeaEncoder {
 public:
@@ -26,7 +40,9 @@ public:
 
   /// Append one epoch of sentences (CR LF terminated) to out, in u-blox order
   /// (RMC, VTG, GGA, GSA, GSV, GLL, GST, ZDA). Returns bytes appended.
-  /// No allocation once out has capacity.
+  /// No allocation once out has capacity (out.size() + kMaxEpochBytes).
+  /// Never throws; non-finite inputs give empty fields, a fix with a
+  /// non-finite position or without valid time is sent as no fix.
   std::size_t encode_epoch(const receiver::Fix& fix, std::string& out) const;
 
   const NmeaConfig& config() const noexcept { return config_; }

@@ -1,0 +1,24 @@
+#pragma once
+// UTC of an epoch as NMEA prints it: hhmmss.ss and the date, rounded to
+// 0.01 s with the carry taken through seconds, minutes, hours and the date.
+#include <cstdint>
+
+#include "core/time/gps_time.hpp"
+
+namespace gnssemu::protocol::nmea {
+
+struct UtcStamp {
+  int year = 1980;
+  int month = 1;       ///< 1..12
+  int day = 6;         ///< 1..31
+  int hour = 0;        ///< 0..23
+  int minute = 0;      ///< 0..59
+  int second = 0;      ///< 0..59
+  int centisecond = 0; ///< 0..99
+};
+
+/// UTC of GPS instant t rounded to the nearest 0.01 s (half up), using
+/// leap_seconds = GPS - UTC, s. 23:59:59.996 becomes 00:00:00.00 of the next day.
+UtcStamp utc_stamp(const time::GpsTime& t, int leap_seconds) noexcept;
+
+}  // namespace gnssemu::protocol::nmea
