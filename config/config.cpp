@@ -1,1 +1,398 @@
-// placeholder: implemented by its module's work
+// TOML -> Config with validation. Schema and ranges: docs/configuration.md.
+#include "config/config.hpp"
+
+#include <arpa/inet.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "config/toml_reader.hpp"
+#include "core/common/error.hpp"
+
+namespace gnssemu::config {
+
+namespace {
+
+namespace fs = std::filesystem;
+using detail::Range;
+using detail::TableReader;
+
+// u-blox M8 UART rates (u-blox M8 protocol spec, CFG-PRT baudRate).
+constexpr std::array<uint32_t, 9> kStandardBauds{4800, 9600, 19200, 38400, 57600, 115200, 230400, 460800, 921600};
+constexpr std::array<std::string_view, 7> kLogLevels{"trace", "debug", "info", "warn", "error", "critical", "off"};
+
+fs::path resolve(const std::string& path, const std::string& base_dir) {
+  fs::path p(path);
+  if (p.is_relative()) p = fs::path(base_dir.empty() ? "." : base_dir) / p;
+  return fs::absolute(p).lexically_normal();
+}
+
+bool is_leap(int y) { return (y % 4 == 0 && y % 100 != 0) || y % 400 == 0; }
+
+int days_in_month(int y, int m) {
+  static constexpr std::array<int, 12> kDays{31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+  return m == 2 && is_leap(y) ? 29 : kDays[static_cast<std::size_t>(m - 1)];
+}
+
+// Checks a calendar time; returns "" or the reason it is invalid.
+std::string calendar_problem(const time::CalendarTime& c) {
+  if (c.month < 1 || c.month > 12) return "month " + std::to_string(c.month) + " is not 1..12";
+  if (c.day < 1 || c.day > days_in_month(c.year, c.month)) {
+    return "day " + std::to_string(c.day) + " does not exist in " + std::to_string(c.year) + "-" +
+           (c.month < 10 ? "0" : "") + std::to_string(c.month);
+  }
+  if (c.hour > 23) return "hour " + std::to_string(c.hour) + " is not 0..23";
+  if (c.minute > 59) return "minute " + std::to_string(c.minute) + " is not 0..59";
+  if (!(c.second >= 0.0 && c.second < 60.0)) return "second " + detail::format_number(c.second) + " is not in [0, 60)";
+  if (c.year < 1980 || (c.year == 1980 && c.month == 1 && c.day < 6)) return "before the GPS epoch 1980-01-06";
+  if (c.year > 2200) return "year " + std::to_string(c.year) + " is after 2200";
+  return {};
+}
+
+bool parse_int(std::string_view s, int& out) {
+  if (s.empty()) return false;
+  for (const char ch : s) {
+    if (ch < '0' || ch > '9') return false;
+  }
+  return std::from_chars(s.data(), s.data() + s.size(), out).ec == std::errc{};
+}
+
+// "YYYY-MM-DDTHH:MM:SS[.fff]" (T, t or space). Returns false on bad syntax.
+bool parse_datetime(std::string_view s, time::CalendarTime& c) {
+  if (s.size() < 19 || s[4] != '-' || s[7] != '-' || (s[10] != 'T' && s[10] != 't' && s[10] != ' ') ||
+      s[13] != ':' || s[16] != ':') {
+    return false;
+  }
+  if (!parse_int(s.substr(0, 4), c.year) || !parse_int(s.substr(5, 2), c.month) ||
+      !parse_int(s.substr(8, 2), c.day) || !parse_int(s.substr(11, 2), c.hour) ||
+      !parse_int(s.substr(14, 2), c.minute)) {
+    return false;
+  }
+  const std::string_view sec = s.substr(17);
+  if (sec.size() < 2 || sec[0] < '0' || sec[0] > '9' || sec[1] < '0' || sec[1] > '9') return false;
+  if (sec.size() > 2 && (sec[2] != '.' || sec.size() == 3)) return false;
+  for (std::size_t i = 3; i < sec.size(); ++i) {
+    if (sec[i] < '0' || sec[i] > '9') return false;
+  }
+  return std::from_chars(sec.data(), sec.data() + sec.size(), c.second).ec == std::errc{};
+}
+
+std::optional<time::GpsTime> read_start(TableReader& t) {
+  const toml::node* n = t.find("start");
+  if (n == nullptr) return std::nullopt;
+  const std::string name = t.full_name("start");
+  time::CalendarTime c;
+  if (const auto* s = n->as_string()) {
+    if (!parse_datetime(s->get(), c)) {
+      t.fail(*n, name + ": '" + s->get() + "' is not a GPS date-time YYYY-MM-DDTHH:MM:SS[.fff] (no time zone)");
+    }
+  } else if (const auto* dt = n->as_date_time()) {
+    const toml::date_time& v = dt->get();
+    if (v.offset) t.fail(*n, name + ": GPS time has no time zone; drop the offset");
+    c = {v.date.year, v.date.month, v.date.day, v.time.hour, v.time.minute,
+         v.time.second + static_cast<double>(v.time.nanosecond) * 1e-9};
+  } else {
+    t.fail(*n, name + ": expected a date-time string \"YYYY-MM-DDTHH:MM:SS\", got " +
+                   std::string(detail::type_name(*n)));
+  }
+  if (const std::string why = calendar_problem(c); !why.empty()) t.fail(*n, name + ": bad date-time: " + why);
+  return time::GpsTime::from_calendar(c);
+}
+
+TimeConfig read_time(TableReader& t) {
+  TimeConfig out;
+  if (const toml::node* n = t.find("mode")) {
+    const std::string mode = t.string("mode", std::nullopt);
+    if (mode == "realtime") {
+      out.mode = TimeMode::kRealtime;
+    } else if (mode == "lockstep") {
+      out.mode = TimeMode::kLockstep;
+    } else {
+      t.fail(*n, t.full_name("mode") + ": '" + mode + "' is not \"realtime\" or \"lockstep\"");
+    }
+  }
+  out.start = read_start(t);
+  out.use_wall_clock_date = t.boolean("use_wall_clock_date", out.use_wall_clock_date);
+  if (out.use_wall_clock_date && out.start) {
+    t.fail(*t.find("use_wall_clock_date"),
+           t.full_name("use_wall_clock_date") + ": cannot be true together with time.start");
+  }
+  t.finish();
+  return out;
+}
+
+void read_gauss_markov(TableReader& t, receiver::GaussMarkovConfig& gm) {
+  gm.sigma_m = t.number("sigma_m", gm.sigma_m, Range{0.0, 100.0, "m"});
+  gm.tau_s = t.number("tau_s", gm.tau_s, Range{0.0, 1.0e6, "s", true});
+  t.finish();
+}
+
+void read_solver(TableReader& t, receiver::SolverConfig& s) {
+  s.sigma_a_m = t.number("sigma_a_m", s.sigma_a_m, Range{0.0, 100.0, "m"});
+  s.sigma_b_m = t.number("sigma_b_m", s.sigma_b_m, Range{0.0, 100.0, "m"});
+  if (s.sigma_a_m == 0.0 && s.sigma_b_m == 0.0) {
+    const toml::node* n = t.find("sigma_a_m");
+    if (n == nullptr) n = t.find("sigma_b_m");
+    t.fail(*n, t.path() + ": sigma_a_m and sigma_b_m are both 0 (the solver's weights would be infinite)");
+  }
+  s.sigma_range_rate_m_s =
+      t.number("sigma_range_rate_m_s", s.sigma_range_rate_m_s, Range{0.0, 10.0, "m/s", true});
+  s.height_hold_sigma_m = t.number("height_hold_sigma_m", s.height_hold_sigma_m, Range{0.0, 1000.0, "m", true});
+  s.residual_test_pfa = t.number("residual_test_pfa", s.residual_test_pfa, Range{0.0, 1.0, "", false, true});
+  s.max_iterations = static_cast<int>(t.integer("max_iterations", s.max_iterations, 1, 100));
+  t.finish();
+}
+
+void read_receiver(TableReader& t, Config& c) {
+  receiver::ReceiverConfig& r = c.receiver;
+  c.rate_hz = t.number("rate_hz", c.rate_hz, Range{1.0, 10.0, "Hz"});
+  r.elevation_mask_rad =
+      t.number("elevation_mask_deg", r.elevation_mask_rad * kRadToDeg, Range{0.0, 90.0, "deg", false, true}) *
+      kDegToRad;
+  r.seed = static_cast<uint64_t>(
+      t.integer("seed", static_cast<int64_t>(r.seed), 0, std::numeric_limits<int64_t>::max()));
+  r.nominal_cn0_dbhz = t.number("nominal_cn0_dbhz", r.nominal_cn0_dbhz, Range{10.0, 60.0, "dB-Hz"});
+  r.max_pdop = t.number("max_pdop", r.max_pdop, Range{1.0, 1000.0, ""});
+  r.max_channels = static_cast<int>(t.integer("max_channels", r.max_channels, 4, 64));
+  if (auto e = t.table("errors", false)) {
+    receiver::ErrorModelConfig& em = r.errors;
+    em.thermal_sigma_m = e->number("thermal_sigma_m", em.thermal_sigma_m, Range{0.0, 100.0, "m"});
+    em.doppler_sigma_m_s = e->number("doppler_sigma_m_s", em.doppler_sigma_m_s, Range{0.0, 10.0, "m/s"});
+    if (auto oc = e->table("orbit_clock", false)) read_gauss_markov(*oc, em.orbit_clock);
+    e->finish();
+  }
+  if (auto k = t.table("clock", false)) {
+    receiver::ClockConfig& ck = r.clock;
+    // u-blox receivers steer their clock to within 1 ms; TCXO drift within 10 ppm.
+    ck.bias_s = k->number("bias_s", ck.bias_s, Range{-1.0e-2, 1.0e-2, "s"});
+    ck.drift_s_s = k->number("drift_s_s", ck.drift_s_s, Range{-1.0e-5, 1.0e-5, "s/s"});
+    ck.drift_noise_s_s_sqrt_s =
+        k->number("drift_noise_s_s_sqrt_s", ck.drift_noise_s_s_sqrt_s, Range{0.0, 1.0e-6, "s/s/sqrt(s)"});
+    ck.jump_threshold_s = k->number("jump_threshold_s", ck.jump_threshold_s, Range{0.0, 1.0e-2, "s"});
+    k->finish();
+  }
+  if (auto s = t.table("solver", false)) read_solver(*s, r.solver);
+  t.finish();
+}
+
+TruthInputConfig read_truth(TableReader& t) {
+  TruthInputConfig out;
+  if (const toml::node* n = t.find("bind")) {
+    out.bind_address = t.string("bind", std::nullopt);
+    in6_addr buf{};
+    if (inet_pton(AF_INET, out.bind_address.c_str(), &buf) != 1 &&
+        inet_pton(AF_INET6, out.bind_address.c_str(), &buf) != 1) {
+      t.fail(*n, t.full_name("bind") + ": '" + out.bind_address + "' is not an IPv4 or IPv6 address");
+    }
+  }
+  out.port = static_cast<uint16_t>(t.integer("port", out.port, 0, 65535));
+  out.timeout_s = t.number("timeout_s", out.timeout_s, Range{0.0, 60.0, "s", true});
+  out.max_extrapolation_s = t.number("max_extrapolation_s", out.max_extrapolation_s, Range{0.0, 10.0, "s"});
+  if (out.max_extrapolation_s > out.timeout_s) {
+    t.fail(*t.find("max_extrapolation_s"), t.full_name("max_extrapolation_s") + ": " +
+                                               detail::format_number(out.max_extrapolation_s) +
+                                               " s exceeds truth.timeout_s (" +
+                                               detail::format_number(out.timeout_s) + " s)");
+  }
+  t.finish();
+  return out;
+}
+
+DemoConfig read_demo(TableReader& t) {
+  DemoConfig out;
+  out.enabled = t.boolean("enabled", out.enabled);
+  out.radius_m = t.number("radius_m", out.radius_m, Range{0.0, 100000.0, "m", true});
+  // u-blox airborne limit 500 m/s.
+  out.speed_m_s = t.number("speed_m_s", out.speed_m_s, Range{0.0, 500.0, "m/s"});
+  out.height_m = t.number("height_m", out.height_m, Range{-1000.0, 50000.0, "m"});
+  t.finish();
+  return out;
+}
+
+protocol::nmea::NmeaVersion read_nmea_version(TableReader& t, protocol::nmea::NmeaVersion def) {
+  using protocol::nmea::NmeaVersion;
+  const toml::node* n = t.find("nmea_version");
+  if (n == nullptr) return def;
+  const std::string v = t.string("nmea_version", std::nullopt);
+  if (v == "2.3") return NmeaVersion::k23;
+  if (v == "4.10") return NmeaVersion::k410;
+  if (v == "4.11") return NmeaVersion::k411;
+  t.fail(*n, t.full_name("nmea_version") + ": '" + v + "' is not one of \"2.3\", \"4.10\", \"4.11\"");
+}
+
+bool* sentence_flag(protocol::nmea::SentenceSet& s, std::string_view name) {
+  if (name == "GGA") return &s.gga;
+  if (name == "RMC") return &s.rmc;
+  if (name == "GSA") return &s.gsa;
+  if (name == "GSV") return &s.gsv;
+  if (name == "VTG") return &s.vtg;
+  if (name == "GLL") return &s.gll;
+  if (name == "GST") return &s.gst;
+  if (name == "ZDA") return &s.zda;
+  return nullptr;
+}
+
+protocol::nmea::SentenceSet read_sentences(TableReader& t, const protocol::nmea::SentenceSet& def) {
+  const toml::node* n = t.find("sentences");
+  if (n == nullptr) return def;
+  const std::string name = t.full_name("sentences");
+  const auto* a = n->as_array();
+  if (a == nullptr) t.fail(*n, name + ": expected an array of strings, got " + std::string(detail::type_name(*n)));
+  if (a->empty()) t.fail(*n, name + ": must name at least one sentence");
+  protocol::nmea::SentenceSet out;
+  out.gga = out.rmc = out.gsa = out.gsv = out.vtg = out.gll = out.gst = out.zda = false;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::node& e = *a->get(i);
+    const auto* s = e.as_string();
+    if (s == nullptr) t.fail(e, name + ": expected sentence names (strings), got " + std::string(detail::type_name(e)));
+    bool* flag = sentence_flag(out, s->get());
+    if (flag == nullptr) {
+      t.fail(e, name + ": unknown sentence '" + s->get() + "' (known: GGA RMC GSA GSV VTG GLL GST ZDA)");
+    }
+    if (*flag) t.fail(e, name + ": '" + s->get() + "' listed twice");
+    *flag = true;
+  }
+  return out;
+}
+
+OutputPortConfig read_output(TableReader& t, const std::string& base_dir) {
+  OutputPortConfig out;
+  out.name = t.string("name", std::nullopt);
+  if (out.name.empty()) t.fail(*t.find("name"), t.full_name("name") + ": must not be empty");
+  for (const char ch : out.name) {
+    if (static_cast<unsigned char>(ch) <= ' ') {
+      t.fail(*t.find("name"), t.full_name("name") + ": '" + out.name + "' contains a space or control character");
+    }
+  }
+  if (const toml::node* n = t.find("type")) {
+    const std::string type = t.string("type", std::nullopt);
+    if (type == "pty") {
+      out.type = PortType::kPty;
+    } else if (type == "file") {
+      out.type = PortType::kFile;
+    } else {
+      t.fail(*n, t.full_name("type") + ": '" + type + "' is not \"pty\" or \"file\"");
+    }
+  }
+  out.path = t.string("path", std::nullopt);
+  const toml::node* path_node = t.find("path");
+  if (out.path.empty()) t.fail(*path_node, t.full_name("path") + ": must not be empty");
+  if (out.type == PortType::kFile) {
+    out.path = resolve(out.path, base_dir).string();
+  } else if (fs::path(out.path).is_relative()) {
+    t.fail(*path_node, t.full_name("path") + ": pty path '" + out.path + "' must be absolute");
+  }
+  const int64_t baud = t.integer("baud", out.baud, 1, std::numeric_limits<uint32_t>::max());
+  if (std::find(kStandardBauds.begin(), kStandardBauds.end(), baud) == kStandardBauds.end()) {
+    t.fail(*t.find("baud"), t.full_name("baud") + ": " + std::to_string(baud) +
+                                " is not a standard rate (4800 9600 19200 38400 57600 115200 230400 460800 921600)");
+  }
+  out.baud = static_cast<uint32_t>(baud);
+  out.nmea.version = read_nmea_version(t, out.nmea.version);
+  out.nmea.sentences = read_sentences(t, out.nmea.sentences);
+  out.nmea.course_min_speed_m_s =
+      t.number("course_min_speed_m_s", out.nmea.course_min_speed_m_s, Range{0.0, 10.0, "m/s"});
+  t.finish();
+  return out;
+}
+
+std::vector<OutputPortConfig> read_outputs(TableReader& root, const std::string& base_dir) {
+  std::vector<OutputPortConfig> out;
+  for (TableReader& t : root.table_array("output")) {
+    OutputPortConfig port = read_output(t, base_dir);
+    for (const OutputPortConfig& prev : out) {
+      if (prev.name == port.name) t.fail(*t.find("name"), t.full_name("name") + ": '" + port.name + "' is used twice");
+      if (prev.path == port.path) {
+        t.fail(*t.find("path"), t.full_name("path") + ": '" + port.path + "' is already used by output '" +
+                                    prev.name + "'");
+      }
+    }
+    out.push_back(std::move(port));
+  }
+  return out;
+}
+
+Config read_config(const toml::table& doc, const std::string& name, const std::string& base_dir) {
+  Config c;
+  TableReader root(doc, "", name);
+
+  TableReader origin = *root.table("origin", true);
+  const double lat_deg = origin.number("lat_deg", std::nullopt, Range{-90.0, 90.0, "deg"});
+  double lon_deg = origin.number("lon_deg", std::nullopt, Range{-180.0, 180.0, "deg"});
+  if (lon_deg == -180.0) lon_deg = 180.0;  // Lla keeps lon in (-pi, pi]
+  c.origin.lat_rad = lat_deg * kDegToRad;
+  c.origin.lon_rad = lon_deg * kDegToRad;
+  c.origin.height_m = origin.number("height_m", std::nullopt, Range{-1000.0, 50000.0, "m"});
+  origin.finish();
+
+  TableReader nav = *root.table("nav", true);
+  const std::string nav_file = nav.string("file", std::nullopt);
+  const toml::node* nav_node = nav.find("file");
+  if (nav_file.empty()) nav.fail(*nav_node, "nav.file: must not be empty");
+  const fs::path nav_path = resolve(nav_file, base_dir);
+  std::error_code ec;
+  if (!fs::is_regular_file(nav_path, ec)) {
+    nav.fail(*nav_node, "nav.file: '" + nav_file + "' not found (tried " + nav_path.string() + ")");
+  }
+  c.nav_file = nav_path.string();
+  nav.finish();
+
+  if (auto t = root.table("time", false)) c.time = read_time(*t);
+  if (auto t = root.table("receiver", false)) read_receiver(*t, c);
+  if (auto t = root.table("truth", false)) c.truth = read_truth(*t);
+  if (auto t = root.table("demo", false)) c.demo = read_demo(*t);
+  c.outputs = read_outputs(root, base_dir);
+  if (auto t = root.table("log", false)) {
+    if (const toml::node* n = t->find("level")) {
+      c.log.level = t->string("level", std::nullopt);
+      if (std::find(kLogLevels.begin(), kLogLevels.end(), c.log.level) == kLogLevels.end()) {
+        t->fail(*n, "log.level: '" + c.log.level + "' is not one of trace, debug, info, warn, error, critical, off");
+      }
+    }
+    t->finish();
+  }
+  root.finish();
+  return c;
+}
+
+}  // namespace
+
+Config parse_config(const std::string& toml_text, const std::string& name, const std::string& base_dir) {
+  toml::table doc;
+  try {
+    doc = toml::parse(toml_text, name);
+  } catch (const toml::parse_error& e) {
+    throw Error(name, static_cast<int>(e.source().begin.line), "TOML syntax error: " + std::string(e.description()));
+  }
+  Config c = read_config(doc, name, base_dir);
+  c.source = name;
+  return c;
+}
+
+Config load_config(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path, 0, "cannot open config file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw Error(path, 0, "cannot read config file");
+  const fs::path parent = fs::path(path).parent_path();
+  return parse_config(text.str(), path, parent.empty() ? std::string(".") : parent.string());
+}
+
+std::string default_config_dir() { return GNSSEMU_CONFIG_DIR; }
+
+Config default_config(const std::string& base_dir) {
+  Config c = parse_config(std::string(default_config_text()), "default.toml (built in)",
+                          base_dir.empty() ? default_config_dir() : base_dir);
+  c.source.clear();
+  return c;
+}
+
+}  // namespace gnssemu::config

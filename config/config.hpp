@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/common/vec3.hpp"
@@ -75,5 +76,21 @@ struct Config {
 Config load_config(const std::string& path);
 /// Parse TOML text; name is used in messages, base_dir for relative paths.
 Config parse_config(const std::string& toml_text, const std::string& name, const std::string& base_dir);
+
+/// Text of config/default.toml, embedded at build time.
+std::string_view default_config_text();
+/// Folder the embedded default's relative paths resolve against (the
+/// config/ folder of the source tree, fixed at build time).
+std::string default_config_dir();
+/// The embedded default parsed against base_dir (empty: default_config_dir()).
+/// source is "" (built in). Throws gnssemu::Error if e.g. its nav file is missing.
+Config default_config(const std::string& base_dir = {});
+
+/// A loadable TOML text for c (every key written, comments name the units).
+/// Paths under relative_to (a folder; empty: none) are written relative to it,
+/// others absolute. parse_config(to_toml(c, d), name, d) reproduces a valid c
+/// (angles to within 1e-15 rad). Throws gnssemu::Error if c holds a value TOML
+/// cannot carry (seed > 2^63 - 1).
+std::string to_toml(const Config& c, const std::string& relative_to = {});
 
 }  // namespace gnssemu::config

@@ -1,0 +1,186 @@
+// Config -> TOML text that load_config reads back to the same Config.
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+
+#include "config/config.hpp"
+#include "config/toml_reader.hpp"
+#include "core/common/error.hpp"
+
+namespace gnssemu::config {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// TOML float text; always has a '.' or exponent so it reads back as a float.
+std::string number(double v) {
+  std::string s = detail::format_number(v);
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+
+// Degrees text whose reading times kDegToRad gives back rad exactly when a
+// nearby double allows it (deg -> rad is not exactly invertible).
+std::string degrees(double rad) {
+  const double deg = rad * kRadToDeg;
+  double candidate = deg;
+  for (int i = 0; i < 16; ++i) {
+    const double up = std::nextafter(deg, deg + 1.0) - deg;  // one ulp
+    for (const double d : {deg + i * up, deg - i * up}) {
+      if (d * kDegToRad == rad) return number(d);
+    }
+  }
+  return number(candidate);
+}
+
+// TOML basic string with escapes (TOML 1.0 section "String").
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (const char ch : s) {
+    const auto u = static_cast<unsigned char>(ch);
+    switch (ch) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
+      default:
+        if (u < 0x20 || u == 0x7f) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", u);
+          out += buf;
+        } else {
+          out += ch;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+std::string path_text(const std::string& path, const std::string& relative_to) {
+  if (relative_to.empty()) return path;
+  const fs::path base = fs::absolute(relative_to).lexically_normal();
+  const fs::path rel = fs::path(path).lexically_relative(base);
+  if (rel.empty() || *rel.begin() == "..") return path;
+  return rel.string();
+}
+
+std::string datetime(const time::GpsTime& t) {
+  const time::CalendarTime c = t.to_calendar();
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%04d-%02d-%02dT%02d:%02d:", c.year, c.month, c.day, c.hour, c.minute);
+  std::string s = buf;
+  char sbuf[48];
+  const auto res = std::to_chars(sbuf, sbuf + sizeof sbuf, c.second, std::chars_format::fixed);
+  std::string sec(sbuf, res.ptr);
+  if (c.second < 10.0) sec = "0" + sec;
+  return s + sec;
+}
+
+std::string nmea_version(protocol::nmea::NmeaVersion v) {
+  switch (v) {
+    case protocol::nmea::NmeaVersion::k23: return "2.3";
+    case protocol::nmea::NmeaVersion::k410: return "4.10";
+    case protocol::nmea::NmeaVersion::k411: return "4.11";
+  }
+  return "4.11";
+}
+
+std::string sentences(const protocol::nmea::SentenceSet& s) {
+  std::string out = "[";
+  const auto add = [&out](bool on, const char* name) {
+    if (!on) return;
+    if (out.size() > 1) out += ", ";
+    out += quoted(name);
+  };
+  add(s.rmc, "RMC");
+  add(s.vtg, "VTG");
+  add(s.gga, "GGA");
+  add(s.gsa, "GSA");
+  add(s.gsv, "GSV");
+  add(s.gll, "GLL");
+  add(s.gst, "GST");
+  add(s.zda, "ZDA");
+  return out + "]";
+}
+
+}  // namespace
+
+std::string to_toml(const Config& c, const std::string& relative_to) {
+  const receiver::ReceiverConfig& r = c.receiver;
+  if (r.seed > static_cast<uint64_t>(std::numeric_limits<int64_t>::max())) {
+    throw Error("receiver.seed " + std::to_string(r.seed) + " does not fit a TOML integer (max 2^63 - 1)");
+  }
+  std::string o;
+  o += "# gnssemu configuration. Keys, units and ranges: docs/configuration.md\n";
+  o += "\n[origin]  # local frame origin, WGS-84\n";
+  o += "lat_deg = " + degrees(c.origin.lat_rad) + "\n";
+  o += "lon_deg = " + degrees(c.origin.lon_rad) + "\n";
+  o += "height_m = " + number(c.origin.height_m) + "  # above the ellipsoid\n";
+
+  o += "\n[nav]\n";
+  o += "file = " + quoted(path_text(c.nav_file, relative_to)) + "\n";
+
+  o += "\n[time]\n";
+  o += "mode = " + quoted(c.time.mode == TimeMode::kLockstep ? "lockstep" : "realtime") + "\n";
+  if (c.time.start) o += "start = " + quoted(datetime(*c.time.start)) + "  # GPS time scale\n";
+  o += std::string("use_wall_clock_date = ") + (c.time.use_wall_clock_date ? "true" : "false") + "\n";
+
+  o += "\n[receiver]\n";
+  o += "rate_hz = " + number(c.rate_hz) + "\n";
+  o += "elevation_mask_deg = " + degrees(r.elevation_mask_rad) + "\n";
+  o += "seed = " + std::to_string(r.seed) + "\n";
+  o += "nominal_cn0_dbhz = " + number(r.nominal_cn0_dbhz) + "\n";
+  o += "max_pdop = " + number(r.max_pdop) + "\n";
+  o += "max_channels = " + std::to_string(r.max_channels) + "\n";
+  o += "\n[receiver.errors]\n";
+  o += "thermal_sigma_m = " + number(r.errors.thermal_sigma_m) + "\n";
+  o += "doppler_sigma_m_s = " + number(r.errors.doppler_sigma_m_s) + "\n";
+  o += "\n[receiver.errors.orbit_clock]  # first-order Gauss-Markov\n";
+  o += "sigma_m = " + number(r.errors.orbit_clock.sigma_m) + "\n";
+  o += "tau_s = " + number(r.errors.orbit_clock.tau_s) + "\n";
+  o += "\n[receiver.clock]\n";
+  o += "bias_s = " + number(r.clock.bias_s) + "\n";
+  o += "drift_s_s = " + number(r.clock.drift_s_s) + "\n";
+  o += "drift_noise_s_s_sqrt_s = " + number(r.clock.drift_noise_s_s_sqrt_s) + "\n";
+  o += "jump_threshold_s = " + number(r.clock.jump_threshold_s) + "\n";
+  o += "\n[receiver.solver]  # what the receiver's own solver assumes\n";
+  o += "sigma_a_m = " + number(r.solver.sigma_a_m) + "\n";
+  o += "sigma_b_m = " + number(r.solver.sigma_b_m) + "\n";
+  o += "sigma_range_rate_m_s = " + number(r.solver.sigma_range_rate_m_s) + "\n";
+  o += "height_hold_sigma_m = " + number(r.solver.height_hold_sigma_m) + "\n";
+  o += "residual_test_pfa = " + number(r.solver.residual_test_pfa) + "\n";
+  o += "max_iterations = " + std::to_string(r.solver.max_iterations) + "\n";
+
+  o += "\n[truth]  # UDP truth input\n";
+  o += "bind = " + quoted(c.truth.bind_address) + "\n";
+  o += "port = " + std::to_string(c.truth.port) + "\n";
+  o += "timeout_s = " + number(c.truth.timeout_s) + "\n";
+  o += "max_extrapolation_s = " + number(c.truth.max_extrapolation_s) + "\n";
+
+  o += "\n[demo]  # circle around the origin while no truth arrives\n";
+  o += std::string("enabled = ") + (c.demo.enabled ? "true" : "false") + "\n";
+  o += "radius_m = " + number(c.demo.radius_m) + "\n";
+  o += "speed_m_s = " + number(c.demo.speed_m_s) + "\n";
+  o += "height_m = " + number(c.demo.height_m) + "\n";
+
+  for (const OutputPortConfig& p : c.outputs) {
+    o += "\n[[output]]\n";
+    o += "name = " + quoted(p.name) + "\n";
+    o += "type = " + quoted(p.type == PortType::kFile ? "file" : "pty") + "\n";
+    o += "path = " + quoted(p.type == PortType::kFile ? path_text(p.path, relative_to) : p.path) + "\n";
+    o += "baud = " + std::to_string(p.baud) + "\n";
+    o += "nmea_version = " + quoted(nmea_version(p.nmea.version)) + "\n";
+    o += "sentences = " + sentences(p.nmea.sentences) + "\n";
+    o += "course_min_speed_m_s = " + number(p.nmea.course_min_speed_m_s) + "\n";
+  }
+
+  o += "\n[log]\n";
+  o += "level = " + quoted(c.log.level) + "\n";
+  return o;
+}
+
+}  // namespace gnssemu::config

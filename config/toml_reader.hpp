@@ -1,0 +1,73 @@
+#pragma once
+// Checked access to one TOML table: typed getters with ranges, and a final
+// check that every key in the table was asked for (catches typos). Every
+// failure is a gnssemu::Error "file:line: reason" with the offending line.
+// Internal to the config module.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <toml++/toml.h>
+
+namespace gnssemu::config::detail {
+
+/// Closed or open interval for a number, with the unit shown in messages.
+struct Range {
+  double min;
+  double max;
+  std::string_view unit;
+  bool min_open = false;  ///< true: min itself is rejected
+  bool max_open = false;  ///< true: max itself is rejected
+};
+
+/// Shortest text that reads back as v ("1e-10", "45").
+std::string format_number(double v);
+/// "a string", "an integer", ...
+std::string_view type_name(const toml::node& n);
+/// 1-based line of a node, 0 if toml++ has none.
+int line_of(const toml::node& n);
+
+class TableReader {
+public:
+  /// table: the table; path: its dotted name ("" for the root, "receiver.errors",
+  /// "output[0]"); file: name used in messages.
+  TableReader(const toml::table& table, std::string path, const std::string& file);
+
+  /// The node under key or nullptr; marks key as known.
+  const toml::node* find(std::string_view key);
+
+  /// A number (integer or float), finite and inside range. Absent: def, or a
+  /// "missing" error when def is empty.
+  double number(std::string_view key, std::optional<double> def, const Range& range);
+  /// An integer in [min, max] (floats rejected).
+  int64_t integer(std::string_view key, std::optional<int64_t> def, int64_t min, int64_t max);
+  bool boolean(std::string_view key, std::optional<bool> def);
+  std::string string(std::string_view key, std::optional<std::string> def);
+  /// A sub-table; nullopt if absent and not required.
+  std::optional<TableReader> table(std::string_view key, bool required);
+  /// An array of tables ([[key]]); empty if absent.
+  std::vector<TableReader> table_array(std::string_view key);
+
+  /// Throws for the first (in file order) key that was never asked for.
+  void finish() const;
+
+  /// Dotted name of key in this table ("receiver.rate_hz").
+  std::string full_name(std::string_view key) const;
+  /// Line of this table's header (0 if unknown, e.g. the root).
+  int line() const;
+  const std::string& file() const noexcept { return *file_; }
+  const std::string& path() const noexcept { return path_; }
+
+  [[noreturn]] void fail(const toml::node& at, const std::string& reason) const;
+  [[noreturn]] void fail_missing(std::string_view key, std::string_view what) const;
+
+private:
+  const toml::table* table_;
+  std::string path_;
+  const std::string* file_;
+  std::vector<std::string> known_;
+};
+
+}  // namespace gnssemu::config::detail

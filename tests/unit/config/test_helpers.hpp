@@ -1,0 +1,37 @@
+#pragma once
+// Shared helpers for the config tests.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "config/config.hpp"
+#include "core/common/error.hpp"
+
+namespace gnssemu::config::test {
+
+inline const std::string kData = GNSSEMU_TEST_DATA;
+inline const std::string kSource = GNSSEMU_SOURCE_DIR;
+
+/// Six lines: [origin] and [nav]; appended text starts on line 7.
+inline const std::string kBase =
+    "[origin]\n"
+    "lat_deg = 48.8738\n"
+    "lon_deg = 2.2950\n"
+    "height_m = 100.0\n"
+    "[nav]\n"
+    "file = \"nav/brdc0010.22n\"\n";
+
+/// Parses text as "t.toml" with tests/data as its folder.
+inline Config parse(const std::string& text) { return parse_config(text, "t.toml", kData); }
+
+/// The message of the gnssemu::Error parse(text) throws, or "no error".
+inline std::string error_of(const std::string& text) {
+  try {
+    parse(text);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace gnssemu::config::test

@@ -1,0 +1,347 @@
+// Shipped configs load; defaults; every field round-trips through TOML.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "test_helpers.hpp"
+
+namespace gnssemu::config::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Exact comparison of every field; angles to 1e-15 rad (deg <-> rad).
+void expect_same(const Config& a, const Config& b) {
+  EXPECT_NEAR(a.origin.lat_rad, b.origin.lat_rad, 1e-15);
+  EXPECT_NEAR(a.origin.lon_rad, b.origin.lon_rad, 1e-15);
+  EXPECT_EQ(a.origin.height_m, b.origin.height_m);
+  EXPECT_EQ(a.nav_file, b.nav_file);
+  EXPECT_EQ(a.rate_hz, b.rate_hz);
+  EXPECT_EQ(a.time.mode, b.time.mode);
+  EXPECT_EQ(a.time.start, b.time.start);
+  EXPECT_EQ(a.time.use_wall_clock_date, b.time.use_wall_clock_date);
+  const receiver::ReceiverConfig& ra = a.receiver;
+  const receiver::ReceiverConfig& rb = b.receiver;
+  EXPECT_NEAR(ra.elevation_mask_rad, rb.elevation_mask_rad, 1e-15);
+  EXPECT_EQ(ra.seed, rb.seed);
+  EXPECT_EQ(ra.errors.thermal_sigma_m, rb.errors.thermal_sigma_m);
+  EXPECT_EQ(ra.errors.orbit_clock.sigma_m, rb.errors.orbit_clock.sigma_m);
+  EXPECT_EQ(ra.errors.orbit_clock.tau_s, rb.errors.orbit_clock.tau_s);
+  EXPECT_EQ(ra.errors.doppler_sigma_m_s, rb.errors.doppler_sigma_m_s);
+  EXPECT_EQ(ra.clock.bias_s, rb.clock.bias_s);
+  EXPECT_EQ(ra.clock.drift_s_s, rb.clock.drift_s_s);
+  EXPECT_EQ(ra.clock.drift_noise_s_s_sqrt_s, rb.clock.drift_noise_s_s_sqrt_s);
+  EXPECT_EQ(ra.clock.jump_threshold_s, rb.clock.jump_threshold_s);
+  EXPECT_EQ(ra.solver.sigma_a_m, rb.solver.sigma_a_m);
+  EXPECT_EQ(ra.solver.sigma_b_m, rb.solver.sigma_b_m);
+  EXPECT_EQ(ra.solver.sigma_range_rate_m_s, rb.solver.sigma_range_rate_m_s);
+  EXPECT_EQ(ra.solver.height_hold_sigma_m, rb.solver.height_hold_sigma_m);
+  EXPECT_EQ(ra.solver.residual_test_pfa, rb.solver.residual_test_pfa);
+  EXPECT_EQ(ra.solver.max_iterations, rb.solver.max_iterations);
+  EXPECT_EQ(ra.nominal_cn0_dbhz, rb.nominal_cn0_dbhz);
+  EXPECT_EQ(ra.max_pdop, rb.max_pdop);
+  EXPECT_EQ(ra.max_channels, rb.max_channels);
+  EXPECT_EQ(a.truth.bind_address, b.truth.bind_address);
+  EXPECT_EQ(a.truth.port, b.truth.port);
+  EXPECT_EQ(a.truth.timeout_s, b.truth.timeout_s);
+  EXPECT_EQ(a.truth.max_extrapolation_s, b.truth.max_extrapolation_s);
+  EXPECT_EQ(a.demo.enabled, b.demo.enabled);
+  EXPECT_EQ(a.demo.radius_m, b.demo.radius_m);
+  EXPECT_EQ(a.demo.speed_m_s, b.demo.speed_m_s);
+  EXPECT_EQ(a.demo.height_m, b.demo.height_m);
+  ASSERT_EQ(a.outputs.size(), b.outputs.size());
+  for (std::size_t i = 0; i < a.outputs.size(); ++i) {
+    const OutputPortConfig& pa = a.outputs[i];
+    const OutputPortConfig& pb = b.outputs[i];
+    EXPECT_EQ(pa.name, pb.name);
+    EXPECT_EQ(pa.type, pb.type);
+    EXPECT_EQ(pa.path, pb.path);
+    EXPECT_EQ(pa.baud, pb.baud);
+    EXPECT_EQ(pa.nmea.version, pb.nmea.version);
+    EXPECT_EQ(pa.nmea.course_min_speed_m_s, pb.nmea.course_min_speed_m_s);
+    const protocol::nmea::SentenceSet& sa = pa.nmea.sentences;
+    const protocol::nmea::SentenceSet& sb = pb.nmea.sentences;
+    EXPECT_EQ(sa.gga, sb.gga);
+    EXPECT_EQ(sa.rmc, sb.rmc);
+    EXPECT_EQ(sa.gsa, sb.gsa);
+    EXPECT_EQ(sa.gsv, sb.gsv);
+    EXPECT_EQ(sa.vtg, sb.vtg);
+    EXPECT_EQ(sa.gll, sb.gll);
+    EXPECT_EQ(sa.gst, sb.gst);
+    EXPECT_EQ(sa.zda, sb.zda);
+  }
+  EXPECT_EQ(a.log.level, b.log.level);
+}
+
+// Every key set to a value different from its default.
+const std::string kEverything = R"(
+[origin]
+lat_deg = -33.8568
+lon_deg = 151.2153
+height_m = 39.5
+
+[nav]
+file = "nav/ab422100.18n"
+
+[time]
+mode = "lockstep"
+start = "2018-07-29T06:30:15.5"
+use_wall_clock_date = false
+
+[receiver]
+rate_hz = 4
+elevation_mask_deg = 12.5
+seed = 424242
+nominal_cn0_dbhz = 41.5
+max_pdop = 8.0
+max_channels = 12
+
+[receiver.errors]
+thermal_sigma_m = 0.45
+doppler_sigma_m_s = 0.07
+
+[receiver.errors.orbit_clock]
+sigma_m = 0.8
+tau_s = 900
+
+[receiver.clock]
+bias_s = -2.5e-4
+drift_s_s = -1.5e-7
+drift_noise_s_s_sqrt_s = 3e-11
+jump_threshold_s = 5e-4
+
+[receiver.solver]
+sigma_a_m = 0.9
+sigma_b_m = 0.45
+sigma_range_rate_m_s = 0.08
+height_hold_sigma_m = 2.5
+residual_test_pfa = 0
+max_iterations = 8
+
+[truth]
+bind = "0.0.0.0"
+port = 6001
+timeout_s = 1.5
+max_extrapolation_s = 0.25
+
+[demo]
+enabled = false
+radius_m = 120.0
+speed_m_s = 13.9
+height_m = 2.5
+
+[[output]]
+name = "ecu"
+type = "pty"
+path = "/tmp/gnssemu/ecu"
+baud = 115200
+nmea_version = "2.3"
+sentences = ["GGA", "RMC", "GST", "ZDA"]
+course_min_speed_m_s = 0.0
+
+[[output]]
+name = "log"
+type = "file"
+path = "out/run.nmea"
+baud = 38400
+nmea_version = "4.10"
+sentences = ["GSA", "GSV", "VTG", "GLL"]
+course_min_speed_m_s = 1.25
+
+[log]
+level = "debug"
+)";
+
+TEST(ConfigLoad, EveryFieldParsed) {
+  const Config c = parse(kEverything);
+  EXPECT_NEAR(c.origin.lat_rad, -33.8568 * kDegToRad, 1e-15);
+  EXPECT_NEAR(c.origin.lon_rad, 151.2153 * kDegToRad, 1e-15);
+  EXPECT_EQ(c.origin.height_m, 39.5);
+  EXPECT_EQ(c.nav_file, kData + "/nav/ab422100.18n");
+  EXPECT_EQ(c.time.mode, TimeMode::kLockstep);
+  ASSERT_TRUE(c.time.start.has_value());
+  EXPECT_EQ(*c.time.start, time::GpsTime::from_calendar({2018, 7, 29, 6, 30, 15.5}));
+  EXPECT_FALSE(c.time.use_wall_clock_date);
+  EXPECT_EQ(c.rate_hz, 4.0);
+  const receiver::ReceiverConfig& r = c.receiver;
+  EXPECT_NEAR(r.elevation_mask_rad, 12.5 * kDegToRad, 1e-15);
+  EXPECT_EQ(r.seed, 424242u);
+  EXPECT_EQ(r.nominal_cn0_dbhz, 41.5);
+  EXPECT_EQ(r.max_pdop, 8.0);
+  EXPECT_EQ(r.max_channels, 12);
+  EXPECT_EQ(r.errors.thermal_sigma_m, 0.45);
+  EXPECT_EQ(r.errors.doppler_sigma_m_s, 0.07);
+  EXPECT_EQ(r.errors.orbit_clock.sigma_m, 0.8);
+  EXPECT_EQ(r.errors.orbit_clock.tau_s, 900.0);
+  EXPECT_EQ(r.clock.bias_s, -2.5e-4);
+  EXPECT_EQ(r.clock.drift_s_s, -1.5e-7);
+  EXPECT_EQ(r.clock.drift_noise_s_s_sqrt_s, 3e-11);
+  EXPECT_EQ(r.clock.jump_threshold_s, 5e-4);
+  EXPECT_EQ(r.solver.sigma_a_m, 0.9);
+  EXPECT_EQ(r.solver.sigma_b_m, 0.45);
+  EXPECT_EQ(r.solver.sigma_range_rate_m_s, 0.08);
+  EXPECT_EQ(r.solver.height_hold_sigma_m, 2.5);
+  EXPECT_EQ(r.solver.residual_test_pfa, 0.0);
+  EXPECT_EQ(r.solver.max_iterations, 8);
+  EXPECT_EQ(c.truth.bind_address, "0.0.0.0");
+  EXPECT_EQ(c.truth.port, 6001);
+  EXPECT_EQ(c.truth.timeout_s, 1.5);
+  EXPECT_EQ(c.truth.max_extrapolation_s, 0.25);
+  EXPECT_FALSE(c.demo.enabled);
+  EXPECT_EQ(c.demo.radius_m, 120.0);
+  EXPECT_EQ(c.demo.speed_m_s, 13.9);
+  EXPECT_EQ(c.demo.height_m, 2.5);
+  ASSERT_EQ(c.outputs.size(), 2u);
+  const OutputPortConfig& a = c.outputs[0];
+  EXPECT_EQ(a.name, "ecu");
+  EXPECT_EQ(a.type, PortType::kPty);
+  EXPECT_EQ(a.path, "/tmp/gnssemu/ecu");
+  EXPECT_EQ(a.baud, 115200u);
+  EXPECT_EQ(a.nmea.version, protocol::nmea::NmeaVersion::k23);
+  EXPECT_EQ(a.nmea.course_min_speed_m_s, 0.0);
+  EXPECT_TRUE(a.nmea.sentences.gga && a.nmea.sentences.rmc && a.nmea.sentences.gst && a.nmea.sentences.zda);
+  EXPECT_FALSE(a.nmea.sentences.gsa || a.nmea.sentences.gsv || a.nmea.sentences.vtg || a.nmea.sentences.gll);
+  const OutputPortConfig& b = c.outputs[1];
+  EXPECT_EQ(b.name, "log");
+  EXPECT_EQ(b.type, PortType::kFile);
+  EXPECT_EQ(b.path, kData + "/out/run.nmea");  // resolved against the config's folder
+  EXPECT_EQ(b.baud, 38400u);
+  EXPECT_EQ(b.nmea.version, protocol::nmea::NmeaVersion::k410);
+  EXPECT_EQ(b.nmea.course_min_speed_m_s, 1.25);
+  EXPECT_TRUE(b.nmea.sentences.gsa && b.nmea.sentences.gsv && b.nmea.sentences.vtg && b.nmea.sentences.gll);
+  EXPECT_FALSE(b.nmea.sentences.gga || b.nmea.sentences.rmc || b.nmea.sentences.gst || b.nmea.sentences.zda);
+  EXPECT_EQ(c.log.level, "debug");
+}
+
+TEST(ConfigLoad, MinimalConfigTakesStructDefaults) {
+  const Config c = parse(kBase);
+  Config d;
+  d.origin = c.origin;
+  d.nav_file = c.nav_file;
+  expect_same(c, d);
+  EXPECT_FALSE(c.time.start.has_value());
+  EXPECT_TRUE(c.outputs.empty());
+}
+
+TEST(ConfigLoad, RoundTripEveryField) {
+  const Config c = parse(kEverything);
+  const std::string text = to_toml(c, kData);
+  // Paths under the folder are written relative to it.
+  EXPECT_NE(text.find("file = \"nav/ab422100.18n\""), std::string::npos) << text;
+  EXPECT_NE(text.find("path = \"out/run.nmea\""), std::string::npos) << text;
+  const Config back = parse_config(text, "written.toml", kData);
+  expect_same(c, back);
+  // Written without a folder: absolute paths, still the same config.
+  expect_same(c, parse_config(to_toml(c), "abs.toml", "/"));
+  // A second pass is a fixed point of the text.
+  EXPECT_EQ(to_toml(back, kData), text);
+}
+
+TEST(ConfigLoad, RoundTripAnglesExact) {
+  const Config c = parse(kEverything);
+  const Config back = parse(to_toml(c, kData));
+  EXPECT_EQ(back.origin.lat_rad, c.origin.lat_rad);
+  EXPECT_EQ(back.origin.lon_rad, c.origin.lon_rad);
+  EXPECT_EQ(back.receiver.elevation_mask_rad, c.receiver.elevation_mask_rad);
+}
+
+TEST(ConfigLoad, RoundTripOddValues) {
+  Config c = parse(kBase);
+  c.time.start = time::GpsTime(2190, 561600.000001);
+  c.time.use_wall_clock_date = false;
+  c.receiver.seed = 9223372036854775807ull;
+  c.rate_hz = 1.0 / 0.3;
+  c.origin.lat_rad = 0.1;
+  c.truth.bind_address = "::";
+  c.outputs.push_back({});
+  c.outputs[0].name = "q\"uote";
+  c.outputs[0].path = "/tmp/dir with space/\\back";
+  const Config back = parse(to_toml(c));
+  expect_same(c, back);
+  EXPECT_EQ(back.time.start->tow_s(), 561600.000001);
+}
+
+TEST(ConfigLoad, SeedBeyondTomlIntegersThrows) {
+  Config c = parse(kBase);
+  c.receiver.seed = 9223372036854775808ull;
+  EXPECT_THROW(to_toml(c), Error);
+}
+
+TEST(ConfigLoad, DefaultTomlLoads) {
+  const std::string path = kSource + "/config/default.toml";
+  const Config c = load_config(path);
+  EXPECT_EQ(c.source, path);
+  EXPECT_EQ(c.nav_file, kSource + "/config/nav/brdc0010.22n");
+  EXPECT_NEAR(c.origin.lat_rad * kRadToDeg, 48.8738, 1e-12);
+  EXPECT_NEAR(c.origin.lon_rad * kRadToDeg, 2.2950, 1e-12);
+  EXPECT_EQ(c.rate_hz, 1.0);
+  EXPECT_EQ(c.time.mode, TimeMode::kRealtime);
+  EXPECT_FALSE(c.time.start.has_value());
+  EXPECT_TRUE(c.demo.enabled);
+  ASSERT_EQ(c.outputs.size(), 1u);
+  EXPECT_EQ(c.outputs[0].type, PortType::kPty);
+  EXPECT_EQ(c.outputs[0].path.rfind("/tmp/gnssemu/", 0), 0u);
+  // The shipped defaults are the struct defaults (one source of truth).
+  Config d;
+  d.origin = c.origin;
+  d.nav_file = c.nav_file;
+  d.outputs = c.outputs;
+  expect_same(c, d);
+}
+
+TEST(ConfigLoad, EmbeddedDefaultIsTheShippedFile) {
+  EXPECT_EQ(std::string(default_config_text()), read_file(kSource + "/config/default.toml"));
+  EXPECT_EQ(fs::path(default_config_dir()), fs::path(kSource + "/config"));
+  const Config c = default_config();
+  EXPECT_EQ(c.source, "");
+  expect_same(c, load_config(kSource + "/config/default.toml"));
+}
+
+TEST(ConfigLoad, EmbeddedDefaultWithOtherFolder) {
+  // The nav path is relative, so the folder decides which file is used.
+  const Config c = default_config(kData);
+  EXPECT_EQ(c.nav_file, kData + "/nav/brdc0010.22n");
+  try {
+    default_config("/nonexistent");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "default.toml (built in):11: nav.file: 'nav/brdc0010.22n' not found (tried "
+              "/nonexistent/nav/brdc0010.22n)");
+  }
+}
+
+TEST(ConfigLoad, EveryExampleLoadsAndRoundTrips) {
+  int n = 0;
+  for (const auto& entry : fs::directory_iterator(kSource + "/config/examples")) {
+    if (entry.path().extension() != ".toml") continue;
+    SCOPED_TRACE(entry.path().string());
+    const Config c = load_config(entry.path().string());
+    EXPECT_EQ(c.source, entry.path().string());
+    EXPECT_FALSE(c.outputs.empty());
+    const std::string dir = entry.path().parent_path().string();
+    expect_same(c, parse_config(to_toml(c, dir), "rt.toml", dir));
+    ++n;
+  }
+  EXPECT_GE(n, 2);
+}
+
+TEST(ConfigLoad, RelativePathFromWorkingDirectory) {
+  // load_config("x.toml") resolves against "." -> the current directory.
+  const fs::path old = fs::current_path();
+  fs::current_path(kSource + "/config");
+  Config c;
+  EXPECT_NO_THROW(c = load_config("default.toml"));
+  fs::current_path(old);
+  EXPECT_EQ(c.nav_file, kSource + "/config/nav/brdc0010.22n");
+}
+
+}  // namespace
+}  // namespace gnssemu::config::test
