@@ -1,0 +1,225 @@
+// Receiver: exactness with the error model off (synthetic and real
+// ephemerides), determinism, no-truth epochs, config validation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "core/common/error.hpp"
+#include "core/geo/geodesy.hpp"
+#include "core/orbit/ephemeris_store.hpp"
+#include "core/orbit/rinex_nav.hpp"
+#include "core/receiver/receiver.hpp"
+#include "synthetic_sky.hpp"
+
+namespace gnssemu::receiver {
+namespace {
+
+using test::errors_off_config;
+using test::expect_consistent;
+
+const time::GpsTime kToe(2190, 100800.0);
+
+Truth static_truth(const Lla& lla, const time::GpsTime& t) {
+  Truth tr;
+  tr.t = t;
+  tr.pos_m = geo::ecef_from_lla(lla);
+  tr.valid = true;
+  return tr;
+}
+
+TEST(ReceiverBasic, ErrorsOffRecoversTruthAndClock) {
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  const ReceiverConfig cfg = errors_off_config();
+  Receiver rx(store, cfg);
+  const Lla lla{48.15 * kDegToRad, 11.58 * kDegToRad, 520.0};
+  for (int k = 0; k < 20; ++k) {
+    const time::GpsTime t = kToe + 60.0 * k;
+    const Truth tr = static_truth(lla, t);
+    const Fix& f = rx.step(t, tr);
+    ASSERT_EQ(f.type, FixType::k3D) << k;
+    expect_consistent(f);
+    EXPECT_GE(f.num_used, 6);
+    EXPECT_LT((f.pos_m - tr.pos_m).norm(), 1e-3) << k;
+    // Clock bias: 1 mm of range is 3.3e-12 s.
+    EXPECT_NEAR(f.clock_bias_s, rx.true_clock_bias_s(), 3.4e-12) << k;
+    EXPECT_NEAR(f.clock_drift_s_s, rx.true_clock_drift_s_s(), 1e-13) << k;
+    EXPECT_LT(f.vel_m_s.norm(), 1e-3);
+    EXPECT_NEAR(f.lla.height_m, 520.0, 1e-3);
+    EXPECT_LT(f.range_rms_m, 1e-3);
+    // Without noise the clock is bias + drift * elapsed (ReceiverClockConfig defaults).
+    EXPECT_NEAR(rx.true_clock_bias_s(), cfg.clock.bias_s + cfg.clock.drift_s_s * 60.0 * k, 1e-15);
+  }
+}
+
+TEST(ReceiverBasic, RealBroadcastEphemerisErrorsOffWithin1mm) {
+  const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
+  const orbit::EphemerisStore store(nav.ephemerides);
+  Receiver rx(store, errors_off_config());
+  rx.set_leap_seconds(nav.leap_seconds.value_or(18));
+  // Station LARM (obs/LARM0010.22O header), 2022-01-01 over two hours.
+  const Ecef larm(4549397.1706, 1874003.1392, 4045167.6109);
+  const time::GpsTime t0 = time::GpsTime::from_calendar({2022, 1, 1, 0, 0, 0.0});
+  for (int k = 0; k < 24; ++k) {
+    const time::GpsTime t = t0 + 300.0 * k + 3600.0;
+    Truth tr;
+    tr.pos_m = larm;
+    tr.valid = true;
+    const Fix& f = rx.step(t, tr);
+    ASSERT_EQ(f.type, FixType::k3D);
+    expect_consistent(f);
+    EXPECT_LT((f.pos_m - larm).norm(), 1e-3) << k;
+    EXPECT_NEAR(f.clock_bias_s, rx.true_clock_bias_s(), 3.4e-12);
+    EXPECT_GE(f.num_visible, 6);
+    EXPECT_LE(f.num_visible, 14);
+    EXPECT_GT(f.dop.pdop, 1.0);
+    EXPECT_LT(f.dop.pdop, 4.0);
+    EXPECT_EQ(f.leap_seconds, 18);
+  }
+}
+
+TEST(ReceiverBasic, DefaultErrorsGiveMetreLevelFixWithRealData) {
+  const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
+  const orbit::EphemerisStore store(nav.ephemerides);
+  Receiver rx(store, ReceiverConfig{});
+  const Ecef larm(4549397.1706, 1874003.1392, 4045167.6109);
+  const time::GpsTime t0 = time::GpsTime::from_calendar({2022, 1, 1, 6, 0, 0.0});
+  double worst_m = 0.0;
+  for (int k = 0; k < 120; ++k) {
+    Truth tr;
+    tr.pos_m = larm;
+    tr.valid = true;
+    const Fix& f = rx.step(t0 + static_cast<double>(k), tr);
+    ASSERT_EQ(f.type, FixType::k3D);
+    expect_consistent(f);
+    worst_m = std::max(worst_m, (f.pos_m - larm).norm());
+    // Default sigma_uere ~1.24 m with PDOP < 4: beyond 20 m would be a bug.
+    EXPECT_GT(f.sigma_uere_m, 1.2);
+    EXPECT_NEAR(f.clock_bias_s, rx.true_clock_bias_s(), 30.0 / kSpeedOfLight_m_s);
+  }
+  EXPECT_LT(worst_m, 20.0);
+  EXPECT_GT(worst_m, 0.05);  // the error model is on
+}
+
+TEST(ReceiverBasic, SameSeedIdenticalDifferentSeedDiffers) {
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  ReceiverConfig cfg;
+  cfg.seed = 42;
+  Receiver a(store, cfg), b(store, cfg);
+  cfg.seed = 43;
+  Receiver c(store, cfg);
+  const Lla lla{-33.9 * kDegToRad, 151.2 * kDegToRad, 40.0};
+  int differing = 0;
+  for (int k = 0; k < 50; ++k) {
+    const time::GpsTime t = kToe + 0.2 * k;
+    const Truth tr = static_truth(lla, t);
+    const Fix fa = a.step(t, tr);
+    const Fix fb = b.step(t, tr);
+    const Fix fc = c.step(t, tr);
+    ASSERT_EQ(fa.type, FixType::k3D);
+    EXPECT_EQ(std::memcmp(&fa.pos_m, &fb.pos_m, sizeof(Ecef)), 0);
+    EXPECT_EQ(fa.clock_bias_s, fb.clock_bias_s);
+    EXPECT_EQ(fa.vel_m_s, fb.vel_m_s);
+    for (int i = 0; i < fa.num_sats; ++i) {
+      EXPECT_EQ(fa.sats[i].pseudorange_m, fb.sats[i].pseudorange_m);
+      EXPECT_EQ(fa.sats[i].doppler_hz, fb.sats[i].doppler_hz);
+    }
+    differing += (fa.pos_m - fc.pos_m).norm() > 1e-3;
+  }
+  EXPECT_EQ(differing, 50);
+}
+
+TEST(ReceiverBasic, NoiseOfOneSatelliteDoesNotDependOnOthersVisible) {
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  ReceiverConfig low, high;
+  low.seed = high.seed = 7;
+  high.elevation_mask_rad = 35.0 * kDegToRad;
+  Receiver a(store, low), b(store, high);
+  const Lla lla{10.0 * kDegToRad, -70.0 * kDegToRad, 0.0};
+  int compared = 0;
+  for (int k = 0; k < 5; ++k) {
+    const time::GpsTime t = kToe + 1.0 * k;
+    const Truth tr = static_truth(lla, t);
+    const Fix fa = a.step(t, tr);
+    const Fix fb = b.step(t, tr);
+    ASSERT_LT(fb.num_tracked, fa.num_tracked);
+    for (int i = 0; i < fa.num_sats; ++i) {
+      for (int j = 0; j < fb.num_sats; ++j) {
+        if (fa.sats[i].prn != fb.sats[j].prn || !fb.sats[j].tracked) continue;
+        EXPECT_EQ(fa.sats[i].pseudorange_m, fb.sats[j].pseudorange_m);
+        EXPECT_EQ(fa.sats[i].doppler_hz, fb.sats[j].doppler_hz);
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GE(compared, 10);
+}
+
+TEST(ReceiverBasic, NoTruthGivesNoFixAndKeepsTime) {
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  Receiver rx(store, ReceiverConfig{});
+  const Lla lla{0.5, 0.3, 100.0};
+  Truth lost;  // valid == false
+  const Fix& f0 = rx.step(kToe, lost);
+  EXPECT_EQ(f0.type, FixType::kNone);
+  EXPECT_FALSE(f0.time_valid);
+  EXPECT_EQ(f0.num_sats, 0);
+  expect_consistent(f0);
+  EXPECT_EQ(rx.step(kToe + 1.0, static_truth(lla, kToe + 1.0)).type, FixType::k3D);
+  const Fix& f2 = rx.step(kToe + 2.0, lost);
+  EXPECT_EQ(f2.type, FixType::kNone);
+  EXPECT_TRUE(f2.time_valid);
+  EXPECT_EQ(f2.num_sats, 0);
+  EXPECT_EQ(f2.num_tracked, 0);
+  EXPECT_EQ(f2.h_acc_m, 9999.0);
+  EXPECT_EQ(f2.t, kToe + 2.0);
+  expect_consistent(f2);
+  // NaN truth is treated like no truth.
+  Truth nan_truth = static_truth(lla, kToe + 3.0);
+  nan_truth.pos_m.x = std::nan("");
+  EXPECT_EQ(rx.step(kToe + 3.0, nan_truth).type, FixType::kNone);
+  EXPECT_TRUE(test::all_finite(rx.last_fix()));
+  // And the antenna comes back: fix again.
+  EXPECT_EQ(rx.step(kToe + 4.0, static_truth(lla, kToe + 4.0)).type, FixType::k3D);
+}
+
+TEST(ReceiverBasic, LeapSecondsFromTableOrOverride) {
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  Receiver rx(store, ReceiverConfig{});
+  Truth lost;
+  EXPECT_EQ(rx.step(kToe, lost).leap_seconds, 18);
+  const time::GpsTime t2010 = time::GpsTime::from_calendar({2010, 6, 1, 0, 0, 0.0});
+  EXPECT_EQ(rx.step(t2010, lost).leap_seconds, 15);
+  rx.set_leap_seconds(17);
+  EXPECT_EQ(rx.step(kToe, lost).leap_seconds, 17);
+}
+
+TEST(ReceiverBasic, InvalidConfigThrows) {
+  const orbit::EphemerisStore store;
+  auto bad = [&](auto mutate) {
+    ReceiverConfig c;
+    mutate(c);
+    EXPECT_THROW(Receiver(store, c), Error);
+  };
+  bad([](ReceiverConfig& c) { c.elevation_mask_rad = kPi / 2.0; });
+  bad([](ReceiverConfig& c) { c.elevation_mask_rad = -0.1; });
+  bad([](ReceiverConfig& c) { c.errors.thermal_sigma_m = -1.0; });
+  bad([](ReceiverConfig& c) { c.errors.orbit_clock.tau_s = 0.0; });
+  bad([](ReceiverConfig& c) { c.errors.orbit_clock.sigma_m = std::nan(""); });
+  bad([](ReceiverConfig& c) { c.max_channels = 0; });
+  bad([](ReceiverConfig& c) { c.max_channels = 33; });
+  bad([](ReceiverConfig& c) { c.max_pdop = 0.0; });
+  bad([](ReceiverConfig& c) { c.solver.sigma_a_m = 0.0, c.solver.sigma_b_m = 0.0; });
+  bad([](ReceiverConfig& c) { c.solver.residual_test_pfa = 0.7; });
+  bad([](ReceiverConfig& c) { c.clock.bias_s = 2.0; });
+  EXPECT_NO_THROW(Receiver(store, ReceiverConfig{}));
+  // An empty store is not an error: no satellites, no fix.
+  Receiver rx(store, ReceiverConfig{});
+  const Fix& f = rx.step(kToe, static_truth({0.1, 0.2, 0.0}, kToe));
+  EXPECT_EQ(f.type, FixType::kNone);
+  EXPECT_TRUE(f.time_valid);
+  EXPECT_EQ(f.num_sats, 0);
+}
+
+}  // namespace
+}  // namespace gnssemu::receiver
