@@ -377,6 +377,8 @@ Config parse_config(const std::string& toml_text, const std::string& name, const
 }
 
 Config load_config(const std::string& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw Error(path, 0, "is a folder, not a config file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, 0, "cannot open config file");
   std::ostringstream text;

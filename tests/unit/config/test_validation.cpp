@@ -430,5 +430,27 @@ TEST(ConfigValidation, LoadMissingFile) {
   }
 }
 
+TEST(ConfigValidation, LoadFolder) {
+  try {
+    load_config(kData);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), kData + ": is a folder, not a config file");
+  }
+}
+
+TEST(ConfigValidation, EmptyText) {
+  EXPECT_EQ(error_of(""), "t.toml: missing required table 'origin' at top level");
+}
+
+TEST(ConfigValidation, ByteOrderMarkAccepted) {
+  EXPECT_NO_THROW(parse("\xEF\xBB\xBF" + kBase));
+}
+
+TEST(ConfigValidation, BadUtf8IsSyntaxError) {
+  const std::string msg = error_of(kBase + "[log]\nlevel = \"\xFF\"\n");
+  EXPECT_TRUE(starts_with(msg, "t.toml:8: TOML syntax error: ")) << msg;
+}
+
 }  // namespace
 }  // namespace gnssemu::config::test
