@@ -1,0 +1,58 @@
+// encode_epoch must not allocate once the output string has capacity. The
+// global operator new of this test executable counts calls.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+#include <string>
+
+#include "core/protocol/nmea/nmea_encoder.hpp"
+#include "nmea_test_util.hpp"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}
+
+void* operator new(std::size_t n) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace gnssemu::protocol::nmea {
+namespace {
+
+TEST(NmeaAlloc, CounterSeesAllocations) {
+  const long before = g_allocations.load();
+  std::string s(1000, 'x');  // beyond the small-string buffer
+  EXPECT_GT(g_allocations.load(), before);
+}
+
+TEST(NmeaAlloc, EncodeEpochDoesNotAllocateWithCapacity) {
+  NmeaConfig c;
+  c.sentences.gst = c.sentences.zda = true;
+  for (NmeaVersion v : {NmeaVersion::k23, NmeaVersion::k410, NmeaVersion::k411}) {
+    c.version = v;
+    const NmeaEncoder enc(c);
+    receiver::Fix fix = test::sample_fix_3d();
+    receiver::Fix none;  // no time, no fix
+    std::string out;
+    out.reserve(kMaxEpochBytes);
+    enc.encode_epoch(fix, out);  // warm-up
+    const long before = g_allocations.load();
+    for (int i = 0; i < 100; ++i) {
+      out.clear();
+      fix.t += 0.1;
+      EXPECT_GT(enc.encode_epoch(fix, out), 500u);
+      out.clear();
+      EXPECT_GT(enc.encode_epoch(none, out), 200u);
+    }
+    EXPECT_EQ(g_allocations.load(), before);
+  }
+}
+
+}  // namespace
+}  // namespace gnssemu::protocol::nmea
