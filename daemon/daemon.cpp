@@ -1,0 +1,274 @@
+#include "daemon/daemon.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+
+#include <spdlog/spdlog.h>
+
+#include "core/common/error.hpp"
+#include "core/time/utc.hpp"
+#include "daemon/epoch_schedule.hpp"
+#include "daemon/truth_packet.hpp"
+
+namespace gnssemu::daemon {
+namespace {
+
+time::GpsTime system_clock_gps() {
+  const auto now = std::chrono::system_clock::now();
+  const double unix_s = std::chrono::duration<double>(now.time_since_epoch()).count();
+  const double day_s = std::floor(unix_s / 86400.0);
+  time::CalendarTime c;
+  time::civil_from_days(static_cast<int64_t>(day_s), c.year, c.month, c.day);
+  double sod = unix_s - day_s * 86400.0;
+  c.hour = static_cast<int>(sod / 3600.0);
+  sod -= c.hour * 3600.0;
+  c.minute = static_cast<int>(sod / 60.0);
+  c.second = sod - c.minute * 60.0;
+  return time::utc_to_gps(c);
+}
+
+std::string gps_text(const time::GpsTime& t) {
+  const time::CalendarTime c = t.to_calendar();
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%04d-%02d-%02d %02d:%02d:%02.0f GPST (week %d, tow %.1f)", c.year,
+                c.month, c.day, c.hour, c.minute, std::floor(c.second), t.week(), t.tow_s());
+  return buf;
+}
+
+}  // namespace
+
+Coverage coverage_for(const config::Config& cfg, const orbit::NavData& nav) {
+  if (cfg.time.use_wall_clock_date) return Coverage{system_clock_gps(), 0.0};
+  if (cfg.time.start) return coverage_from(*cfg.time.start, nav.ephemerides);
+  return default_coverage(nav.ephemerides);
+}
+
+Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::NavData& nav)
+    : io_(io),
+      cfg_(cfg),
+      nav_leap_s_(nav.leap_seconds),
+      store_(nav.ephemerides),
+      frame_(cfg.origin),
+      receiver_(std::make_unique<receiver::Receiver>(store_, cfg.receiver)),
+      demo_(frame_, cfg.demo.radius_m, cfg.demo.speed_m_s, cfg.demo.height_m),
+      router_(TrackParams{cfg.truth.timeout_s, cfg.truth.max_extrapolation_s}, cfg.time.mode),
+      coverage_(coverage_for(cfg, nav)),
+      period_s_(1.0 / cfg.rate_hz),
+      timer_(io),
+      socket_(io),
+      signals_(io, SIGINT, SIGTERM) {
+  if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
+  if (nav_leap_s_) receiver_->set_leap_seconds(*nav_leap_s_);
+  for (const auto& p : cfg_.outputs) encoders_.emplace_back(p.nmea);
+  out_buf_.reserve(2 * protocol::nmea::kMaxEpochBytes);
+  lock_next_ = coverage_.start;
+}
+
+Daemon::~Daemon() { shutdown(); }
+
+double Daemon::now_s() const noexcept {
+  return std::chrono::duration<double>(Clock::now() - t0_).count();
+}
+
+void Daemon::start() {
+  for (const auto& p : cfg_.outputs) ports_.push_back(open_port(p));
+
+  boost::system::error_code ec;
+  const auto addr = asio::ip::make_address(cfg_.truth.bind_address, ec);
+  if (ec) throw Error("truth input: bad bind_address '" + cfg_.truth.bind_address + "'");
+  const asio::ip::udp::endpoint ep(addr, cfg_.truth.port);
+  socket_.open(ep.protocol(), ec);
+  if (!ec) socket_.bind(ep, ec);
+  if (ec) {
+    throw Error("truth input: cannot bind udp " + cfg_.truth.bind_address + ":" +
+                std::to_string(cfg_.truth.port) + ": " + ec.message());
+  }
+  const auto local = socket_.local_endpoint(ec);
+
+  for (const auto& p : ports_) std::printf("gnssemud: NMEA on %s\n", p->describe().c_str());
+  std::printf("gnssemud: truth input udp %s:%u\n", local.address().to_string().c_str(),
+              static_cast<unsigned>(local.port()));
+  std::fflush(stdout);
+
+  spdlog::info("config {}; nav {} ({} ephemerides); leap seconds {}", cfg_.source.empty() ? "(built in)" : cfg_.source,
+               cfg_.nav_file, store_.size(),
+               nav_leap_s_ ? std::to_string(*nav_leap_s_) + " (nav header)" : std::string("from the built-in table"));
+  spdlog::info("epochs at {} Hz, {} mode, starting {}{}", cfg_.rate_hz,
+               cfg_.time.mode == config::TimeMode::kRealtime ? "realtime" : "lockstep", gps_text(coverage_.start),
+               coverage_.span_s > 0 ? fmt::format(", wrapping after {:.0f} s", coverage_.span_s) : std::string());
+  if (cfg_.demo.enabled) {
+    spdlog::info("demo circle r={} m at {} m/s drives the receiver until a simulator sends truth", cfg_.demo.radius_m,
+                 cfg_.demo.speed_m_s);
+  }
+
+  signals_.async_wait([this](const boost::system::error_code& sec, int sig) {
+    if (sec) return;
+    spdlog::info("signal {}: shutting down", sig);
+    shutdown();
+  });
+
+  t0_ = Clock::now();
+  index_ = 0;
+  receive();
+  arm_timer();
+}
+
+void Daemon::shutdown() {
+  boost::system::error_code ec;
+  timer_.cancel();
+  socket_.close(ec);
+  signals_.cancel(ec);
+  if (!ports_.empty()) {
+    for (const auto& p : ports_) {
+      spdlog::info("output {}: {} epochs written, {} dropped", p->config().name, p->stats().epochs_written,
+                   p->stats().epochs_dropped);
+    }
+    spdlog::info("truth: {} packets accepted, {} dropped; {} epochs, {} skipped", packets_ok_, drops_.total(),
+                 epochs_, epochs_skipped_);
+  }
+  ports_.clear();  // closes ptys, removes symlinks
+}
+
+time::GpsTime Daemon::realtime_clock_gps() noexcept {
+  const EpochTime e = realtime_gps_time(coverage_, now_s());
+  return e.t;
+}
+
+void Daemon::arm_timer() {
+  timer_.expires_at(t0_ + std::chrono::nanoseconds(epoch_deadline_ns(index_, cfg_.rate_hz)));
+  timer_.async_wait([this](const boost::system::error_code& ec) { on_timer(ec); });
+}
+
+void Daemon::note_clock_wrap(int64_t wraps) {
+  if (wraps == wraps_) return;
+  wraps_ = wraps;
+  spdlog::warn("epoch clock reached the end of the nav file's coverage: back to {} (wrap {})",
+               gps_text(coverage_.start), wraps);
+  router_.on_clock_jump();
+  receiver_ = std::make_unique<receiver::Receiver>(store_, cfg_.receiver);
+  if (nav_leap_s_) receiver_->set_leap_seconds(*nav_leap_s_);
+}
+
+receiver::Truth Daemon::fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept {
+  if (!router_.has_driver() && cfg_.demo.enabled) return demo_.truth(t, demo_elapsed_s);
+  receiver::Truth none;
+  none.t = t;
+  return none;
+}
+
+void Daemon::on_timer(const boost::system::error_code& ec) {
+  if (ec) return;  // cancelled
+  const double now = now_s();
+  if (cfg_.time.mode == config::TimeMode::kRealtime) {
+    const double offset_s = epoch_offset_s(index_, cfg_.rate_hz);
+    const EpochTime e = realtime_gps_time(coverage_, offset_s);
+    note_clock_wrap(e.wraps);
+    const receiver::Truth truth =
+        router_.has_driver() ? router_.truth_at(e.t, now) : fallback_truth(e.t, offset_s);
+    emit_epoch(e.t, truth);
+  } else if (!router_.driver_fresh(now)) {
+    // Lockstep without a live simulator: keep the receiver talking at the
+    // configured rate (demo before any simulator, no fix after one stopped).
+    emit_epoch(lock_next_, fallback_truth(lock_next_, lock_next_ - coverage_.start));
+    lock_next_ += period_s_;
+  }
+  const auto now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0_).count();
+  const ScheduleStep step = next_epoch(index_, cfg_.rate_hz, now_ns);
+  if (step.skipped > 0) {
+    epochs_skipped_ += static_cast<uint64_t>(step.skipped);
+    spdlog::warn("epoch loop late: skipped {} epoch(s) ({} in total)", step.skipped, epochs_skipped_);
+  }
+  index_ = step.next_index;
+  arm_timer();
+}
+
+void Daemon::lockstep_advance(const time::GpsTime& stamp) {
+  // Far behind (simulator jumped ahead): move to the newest due epoch.
+  const double behind_s = stamp - lock_next_;
+  if (behind_s > 10.0 * period_s_) {
+    const double n = std::floor(behind_s / period_s_);
+    epochs_skipped_ += static_cast<uint64_t>(n);
+    lock_next_ += n * period_s_;
+    spdlog::warn("lockstep: simulator jumped {:.1f} s ahead; skipped {:.0f} epochs", behind_s, n);
+  }
+  const double now = now_s();
+  while (!(stamp < lock_next_)) {
+    emit_epoch(lock_next_, router_.truth_at(lock_next_, now));
+    lock_next_ += period_s_;
+  }
+}
+
+void Daemon::emit_epoch(const time::GpsTime& t, const receiver::Truth& truth) {
+  const receiver::Fix& fix = receiver_->step(t, truth);
+  ++epochs_;
+  for (std::size_t i = 0; i < ports_.size(); ++i) {
+    out_buf_.clear();
+    encoders_[i].encode_epoch(fix, out_buf_);
+    ports_[i]->write_epoch(out_buf_);
+  }
+  const int type = static_cast<int>(fix.type);
+  if (type != last_fix_type_ || truth.valid != last_truth_valid_) {
+    spdlog::info("epoch {}: truth {}, fix {} with {} satellites (PDOP {:.1f})", gps_text(t),
+                 truth.valid ? "valid" : "none", type == 3 ? "3D" : type == 2 ? "2D" : "none", fix.num_used,
+                 fix.dop.pdop);
+    last_fix_type_ = type;
+    last_truth_valid_ = truth.valid;
+  }
+  spdlog::debug("epoch tow {:.2f}: fix {} nsat {} lat {:.7f} lon {:.7f} h {:.1f}", t.tow_s(), type, fix.num_used,
+                fix.lla.lat_rad * kRadToDeg, fix.lla.lon_rad * kRadToDeg, fix.lla.height_m);
+}
+
+void Daemon::receive() {
+  socket_.async_receive_from(asio::buffer(rx_buf_), peer_,
+                             [this](const boost::system::error_code& ec, std::size_t n) {
+                               if (ec == asio::error::operation_aborted || !socket_.is_open()) return;
+                               if (ec) {
+                                 spdlog::warn("truth input: receive error: {}", ec.message());
+                               } else {
+                                 on_datagram(n);
+                               }
+                               receive();
+                             });
+}
+
+void Daemon::on_datagram(std::size_t n) {
+  const double now = now_s();
+  const std::string_view data(rx_buf_.data(), n);
+  auto report = [&](DropReason reason, const std::string& detail) {
+    const uint64_t count = drops_.record(reason, now);
+    if (count > 0) {
+      spdlog::warn("truth: dropped {} packet(s) from {}:{}: {} ({}); {} dropped in total", count,
+                   peer_.address().to_string(), peer_.port(), drop_reason_name(reason), detail, drops_.total());
+    }
+  };
+  const ParseResult parsed = parse_truth_packet(data, frame_);
+  if (!parsed.ok) {
+    report(parsed.reason, parsed.detail);
+    return;
+  }
+  const bool had_driver = router_.has_driver();
+  const bool was_fresh = router_.driver_fresh(now);
+  const time::GpsTime clock =
+      cfg_.time.mode == config::TimeMode::kRealtime ? realtime_clock_gps() : lock_next_;
+  const TruthRouter::Ingest in = router_.ingest(parsed.sample, clock, now);
+  if (!in.accepted) {
+    report(in.reason, "vehicle '" + parsed.sample.vehicle + "'");
+    return;
+  }
+  ++packets_ok_;
+  if (in.new_vehicle) {
+    spdlog::info("truth: vehicle '{}' from {}:{}", parsed.sample.vehicle, peer_.address().to_string(), peer_.port());
+  }
+  if (in.driving && !had_driver) {
+    spdlog::info("truth: vehicle '{}' drives the receiver{}", router_.driver_id(),
+                 cfg_.demo.enabled ? " (demo off for good)" : "");
+  } else if (in.driving && !was_fresh) {
+    spdlog::info("truth: vehicle '{}' is back", router_.driver_id());
+  } else if (in.driving && in.reanchored) {
+    spdlog::debug("truth: sim clock of '{}' re-anchored", router_.driver_id());
+  }
+  if (in.driving && cfg_.time.mode == config::TimeMode::kLockstep) lockstep_advance(in.stamp);
+}
+
+}  // namespace gnssemu::daemon

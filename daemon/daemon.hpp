@@ -1,0 +1,92 @@
+#pragma once
+// Daemon: the event loop of gnssemud — truth datagrams in, epochs on the
+// schedule, sentences out to every port (docs/daemon.md). One thread.
+#include <array>
+#include <chrono>
+#include <utility>  // before Asio: Boost 1.74 awaitable.hpp needs std::exchange
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <boost/asio.hpp>
+
+#include "config/config.hpp"
+#include "core/geo/local_frame.hpp"
+#include "core/orbit/ephemeris_store.hpp"
+#include "core/orbit/nav_data.hpp"
+#include "core/protocol/nmea/nmea_encoder.hpp"
+#include "core/receiver/receiver.hpp"
+#include "daemon/demo_trajectory.hpp"
+#include "daemon/drop_stats.hpp"
+#include "daemon/output_port.hpp"
+#include "daemon/time_mapping.hpp"
+#include "daemon/truth_router.hpp"
+
+namespace gnssemu::daemon {
+
+namespace asio = boost::asio;
+
+/// GPS-time span of the epoch clock for a config and nav file (time.start,
+/// use_wall_clock_date, or the nav file's default coverage).
+Coverage coverage_for(const config::Config& cfg, const orbit::NavData& nav);
+
+class Daemon {
+public:
+  /// Builds receiver and encoders; throws gnssemu::Error on a bad config.
+  Daemon(asio::io_context& io, const config::Config& cfg, const orbit::NavData& nav);
+  ~Daemon();
+
+  /// Open ports and the truth socket, print where NMEA goes, start the
+  /// schedule and signal handling. Throws gnssemu::Error.
+  void start();
+
+private:
+  using Clock = std::chrono::steady_clock;
+
+  double now_s() const noexcept;
+  time::GpsTime realtime_clock_gps() noexcept;
+  void arm_timer();
+  void on_timer(const boost::system::error_code& ec);
+  void receive();
+  void on_datagram(std::size_t n);
+  void lockstep_advance(const time::GpsTime& stamp);
+  void emit_epoch(const time::GpsTime& t, const receiver::Truth& truth);
+  receiver::Truth fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept;
+  void note_clock_wrap(int64_t wraps);
+  void shutdown();
+
+  asio::io_context& io_;
+  config::Config cfg_;
+  std::optional<int> nav_leap_s_;
+  orbit::EphemerisStore store_;
+  geo::LocalFrame frame_;
+  std::unique_ptr<receiver::Receiver> receiver_;
+  DemoTrajectory demo_;
+  TruthRouter router_;
+  DropStats drops_;
+  Coverage coverage_;
+  double period_s_;
+
+  std::vector<std::unique_ptr<OutputPort>> ports_;
+  std::vector<protocol::nmea::NmeaEncoder> encoders_;
+  std::string out_buf_;
+
+  asio::steady_timer timer_;
+  asio::ip::udp::socket socket_;
+  asio::ip::udp::endpoint peer_;
+  asio::signal_set signals_;
+  std::array<char, 65536> rx_buf_{};
+
+  Clock::time_point t0_;
+  int64_t index_ = 0;           // realtime: epoch index since t0
+  int64_t wraps_ = 0;
+  time::GpsTime lock_next_;     // lockstep: GPS time of the next epoch
+  uint64_t epochs_ = 0;
+  uint64_t epochs_skipped_ = 0;
+  uint64_t packets_ok_ = 0;
+  int last_fix_type_ = -1;
+  bool last_truth_valid_ = false;
+};
+
+}  // namespace gnssemu::daemon

@@ -1,0 +1,112 @@
+// gnssemud: GNSS receiver emulator daemon. Usage: docs/daemon.md.
+#include <unistd.h>
+
+#include <array>
+#include <utility>  // before Asio: Boost 1.74 awaitable.hpp needs std::exchange
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include "config/config.hpp"
+#include "core/common/constants.hpp"
+#include "core/common/error.hpp"
+#include "core/orbit/ephemeris_store.hpp"
+#include "core/orbit/rinex_nav.hpp"
+#include "daemon/config_locator.hpp"
+#include "daemon/daemon.hpp"
+
+namespace {
+
+using namespace gnssemu;
+
+std::string self_exe() {
+  std::array<char, 4096> buf{};
+  const ssize_t n = ::readlink("/proc/self/exe", buf.data(), buf.size() - 1);
+  return n > 0 ? std::string(buf.data(), static_cast<std::size_t>(n)) : std::string();
+}
+
+void print_summary(const config::Config& cfg, const orbit::NavData& nav) {
+  const orbit::EphemerisStore store(nav.ephemerides);
+  const daemon::Coverage cov = daemon::coverage_for(cfg, nav);
+  std::printf("config:  %s\n", cfg.source.empty() ? "(built-in default.toml)" : cfg.source.c_str());
+  std::printf("origin:  lat %.7f deg, lon %.7f deg, height %.2f m\n", cfg.origin.lat_rad * kRadToDeg,
+              cfg.origin.lon_rad * kRadToDeg, cfg.origin.height_m);
+  std::printf("nav:     %s (RINEX %.2f, %zu GPS ephemerides, leap seconds %s)\n", cfg.nav_file.c_str(),
+              nav.rinex_version, store.size(),
+              nav.leap_seconds ? std::to_string(*nav.leap_seconds).c_str() : "from table");
+  std::printf("epochs:  %.3g Hz, %s, start week %d tow %.1f s, wrap after %.0f s\n", cfg.rate_hz,
+              cfg.time.mode == config::TimeMode::kRealtime ? "realtime" : "lockstep", cov.start.week(),
+              cov.start.tow_s(), cov.span_s);
+  std::printf("truth:   udp %s:%u, timeout %.2f s, max extrapolation %.2f s\n", cfg.truth.bind_address.c_str(),
+              static_cast<unsigned>(cfg.truth.port), cfg.truth.timeout_s, cfg.truth.max_extrapolation_s);
+  std::printf("demo:    %s (circle r=%.1f m, %.1f m/s)\n", cfg.demo.enabled ? "on" : "off", cfg.demo.radius_m,
+              cfg.demo.speed_m_s);
+  for (const auto& p : cfg.outputs) {
+    std::printf("output:  %s: %s %s, %u baud\n", p.name.c_str(), p.type == config::PortType::kPty ? "pty" : "file",
+                p.path.c_str(), static_cast<unsigned>(p.baud));
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"gnssemud: GNSS receiver emulator daemon (NMEA on a pty from UDP vehicle truth)"};
+  std::string config_path;
+  std::string pty_path;
+  bool verbose = false;
+  bool check_only = false;
+  app.add_option("-c,--config", config_path, "TOML configuration (default: the shipped default.toml)");
+  app.add_option("--pty", pty_path, "path of the pty symlink of the first output (overrides the config)");
+  app.add_flag("-v,--verbose", verbose, "debug logging");
+  app.add_flag("--check-config", check_only, "load and validate the configuration, print a summary, exit");
+  CLI11_PARSE(app, argc, argv);
+
+  auto logger = spdlog::stderr_color_mt("gnssemud");
+  spdlog::set_default_logger(logger);
+  spdlog::set_pattern("%Y-%m-%d %H:%M:%S.%e %^%l%$ %v");
+
+  try {
+    if (config_path.empty()) config_path = daemon::find_default_config(self_exe());
+    // No file anywhere: the copy of default.toml compiled into the binary.
+    config::Config cfg = config_path.empty() ? config::default_config() : config::load_config(config_path);
+    if (!pty_path.empty()) {
+      if (cfg.outputs.empty()) {
+        config::OutputPortConfig p;
+        p.name = "pty";
+        cfg.outputs.push_back(p);
+      }
+      cfg.outputs.front().type = config::PortType::kPty;
+      cfg.outputs.front().path = pty_path;
+    }
+    for (const auto& p : cfg.outputs) daemon::validate_port(p);
+    const orbit::NavData nav = orbit::read_rinex_nav(cfg.nav_file);
+
+    if (check_only) {
+      boost::asio::io_context check_io;
+      const daemon::Daemon check(check_io, cfg, nav);  // builds the receiver: validates its config
+      print_summary(cfg, nav);
+      std::printf("configuration OK\n");
+      return 0;
+    }
+
+    auto level = spdlog::level::from_str(cfg.log.level);
+    spdlog::set_level(verbose ? spdlog::level::debug : level);
+    if (cfg.outputs.empty()) spdlog::warn("no outputs configured: epochs are computed but go nowhere");
+
+    boost::asio::io_context io;
+    daemon::Daemon d(io, cfg, nav);
+    d.start();
+    io.run();
+    return 0;
+  } catch (const gnssemu::Error& e) {
+    std::fprintf(stderr, "gnssemud: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "gnssemud: error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,132 @@
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/common/error.hpp"
+#include "daemon/config_locator.hpp"
+#include "daemon/output_port.hpp"
+
+using namespace gnssemu;
+using namespace gnssemu::daemon;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    char tmpl[] = "/tmp/gnssemu-test-XXXXXX";
+    path = ::mkdtemp(tmpl);
+  }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+config::OutputPortConfig pty_config(const fs::path& p) {
+  config::OutputPortConfig c;
+  c.name = "gps0";
+  c.type = config::PortType::kPty;
+  c.path = p.string();
+  return c;
+}
+
+}  // namespace
+
+TEST(OutputPort, RefusesToReplaceRegularFile) {
+  TempDir dir;
+  const fs::path p = dir.path / "gps0";
+  std::ofstream(p) << "precious";
+  EXPECT_THROW(validate_port(pty_config(p)), Error);
+  EXPECT_THROW(open_port(pty_config(p)), Error);
+  std::ifstream in(p);
+  std::string s;
+  in >> s;
+  EXPECT_EQ(s, "precious");
+  config::OutputPortConfig empty = pty_config(p);
+  empty.path.clear();
+  EXPECT_THROW(validate_port(empty), Error);
+}
+
+TEST(OutputPort, PtySymlinkReplacesStaleLinkAndIsRemoved) {
+  TempDir dir;
+  const fs::path p = dir.path / "sub" / "gps0";
+  fs::create_directories(p.parent_path());
+  fs::create_symlink("/dev/pts/does-not-exist", p);
+  {
+    auto port = open_port(pty_config(p));
+    ASSERT_TRUE(fs::is_symlink(p));
+    const std::string target = fs::read_symlink(p).string();
+    EXPECT_EQ(target.rfind("/dev/pts/", 0), 0u);
+    EXPECT_NE(target, "/dev/pts/does-not-exist");
+    EXPECT_NE(port->describe().find(target), std::string::npos);
+
+    // A reader on the symlink sees exactly what was written.
+    const int fd = ::open(p.c_str(), O_RDONLY | O_NOCTTY | O_NONBLOCK);
+    ASSERT_GE(fd, 0);
+    const std::string epoch = "$GPGGA,test*00\r\n";
+    port->write_epoch(epoch);
+    char buf[64] = {};
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    EXPECT_EQ(std::string(buf, n > 0 ? static_cast<std::size_t>(n) : 0u), epoch);
+    ::close(fd);
+    EXPECT_EQ(port->stats().epochs_written, 1u);
+  }
+  EXPECT_FALSE(fs::exists(fs::symlink_status(p)));
+}
+
+TEST(OutputPort, UndrainedPtyDropsWholeEpochsAndNeverBlocks) {
+  TempDir dir;
+  auto port = open_port(pty_config(dir.path / "gps0"));
+  const std::string epoch(500, 'x');
+  // 500 kB with nobody reading: far beyond the kernel's pty buffers (about
+  // 64 kB + 4 kB), so without dropping this loop would block or fail.
+  // (Exact drop counts need epochs spaced in time: the kernel moves pty data
+  // to the reader's queue asynchronously, so a tight loop undercounts.)
+  for (int i = 0; i < 1000; ++i) port->write_epoch(epoch);
+  const PortStats& s = port->stats();
+  EXPECT_GT(s.epochs_dropped, 0u);
+  EXPECT_EQ(s.bytes_written, s.epochs_written * epoch.size());
+  // A late reader finds whole epochs only, and not the whole history.
+  const int fd = ::open((dir.path / "gps0").c_str(), O_RDONLY | O_NOCTTY | O_NONBLOCK);
+  ASSERT_GE(fd, 0);
+  std::string got;
+  char buf[4096];
+  for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) > 0;) got.append(buf, static_cast<std::size_t>(n));
+  ::close(fd);
+  EXPECT_GT(got.size(), 0u);
+  EXPECT_LE(got.size(), 68u * 1024u);
+  EXPECT_EQ(got.size() % epoch.size(), 0u);
+}
+
+TEST(OutputPort, FilePortWrites) {
+  TempDir dir;
+  config::OutputPortConfig c;
+  c.name = "log";
+  c.type = config::PortType::kFile;
+  c.path = (dir.path / "out.nmea").string();
+  {
+    auto port = open_port(c);
+    port->write_epoch("A\r\n");
+    port->write_epoch("B\r\n");
+    EXPECT_EQ(port->stats().epochs_written, 2u);
+  }
+  std::ifstream in(c.path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  EXPECT_EQ(ss.str(), "A\r\nB\r\n");
+}
+
+TEST(ConfigLocator, SearchOrder) {
+  const auto c = default_config_candidates("/opt/gnssemu/bin/gnssemud");
+  ASSERT_GE(c.size(), 5u);
+  EXPECT_EQ(c[0], "/opt/gnssemu/bin/default.toml");
+  EXPECT_EQ(c[1], "/opt/gnssemu/bin/config/default.toml");
+  EXPECT_EQ(c[2], "/opt/gnssemu/share/gnssemu/default.toml");
+  EXPECT_EQ(c.back(), std::string(GNSSEMU_SOURCE_DIR) + "/config/default.toml");
+  // The source tree's default is found from anywhere.
+  EXPECT_EQ(find_default_config("/nonexistent/bin/gnssemud"), std::string(GNSSEMU_SOURCE_DIR) + "/config/default.toml");
+}

@@ -1,0 +1,117 @@
+#include <gtest/gtest.h>
+
+#include "core/orbit/rinex_nav.hpp"
+#include "daemon/epoch_schedule.hpp"
+#include "daemon/time_mapping.hpp"
+
+using namespace gnssemu;
+using namespace gnssemu::daemon;
+
+TEST(TimeMapping, DefaultCoverageOfBrdc) {
+  const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
+  const Coverage c = default_coverage(nav.ephemerides);
+  // First toe 2022-01-01 00:00 GPST = week 2190, tow 518400 (Saturday); +1 h.
+  EXPECT_EQ(c.start.week(), 2190);
+  EXPECT_DOUBLE_EQ(c.start.tow_s(), 518400.0 + 3600.0);
+  // Last toe is 2022-01-02 00:00 (toe of the 23:59:44 records) at the latest.
+  EXPECT_GT(c.span_s, 20.0 * 3600.0);
+  EXPECT_LE(c.span_s, 23.0 * 3600.0);
+}
+
+TEST(TimeMapping, CoverageFromConfiguredStart) {
+  std::vector<orbit::Ephemeris> ephs(2);
+  ephs[0].toe = time::GpsTime(2190, 0.0);
+  ephs[1].toe = time::GpsTime(2190, 86400.0);
+  Coverage c = coverage_from(time::GpsTime(2190, 7200.0), ephs);
+  EXPECT_DOUBLE_EQ(c.span_s, 86400.0 - 7200.0);
+  c = coverage_from(time::GpsTime(2190, 86000.0), ephs);  // too close to the end: no wrap
+  EXPECT_DOUBLE_EQ(c.span_s, 0.0);
+  EXPECT_DOUBLE_EQ(default_coverage({}).span_s, 0.0);
+}
+
+TEST(TimeMapping, RealtimeClockWraps) {
+  const Coverage c{time::GpsTime(2190, 604000.0), 1000.0};
+  EpochTime e = realtime_gps_time(c, 0.0);
+  EXPECT_EQ(e.t, c.start);
+  EXPECT_EQ(e.wraps, 0);
+  e = realtime_gps_time(c, 999.5);  // crosses the week boundary
+  EXPECT_EQ(e.t.week(), 2191);
+  EXPECT_NEAR(e.t.tow_s(), 199.5, 1e-9);
+  e = realtime_gps_time(c, 1000.0);
+  EXPECT_EQ(e.wraps, 1);
+  EXPECT_EQ(e.t, c.start);
+  e = realtime_gps_time(c, 2503.25);
+  EXPECT_EQ(e.wraps, 2);
+  EXPECT_NEAR(e.t - c.start, 503.25, 1e-9);
+  const Coverage no_wrap{time::GpsTime(2190, 0.0), 0.0};
+  e = realtime_gps_time(no_wrap, 1e6);
+  EXPECT_EQ(e.wraps, 0);
+  EXPECT_NEAR(e.t - no_wrap.start, 1e6, 1e-6);
+}
+
+TEST(TimeMapping, SimClockAnchorsAndFollows) {
+  SimClockMap m(0.2);
+  const time::GpsTime a(2190, 522000.0);
+  SimClockMap::Mapped r = m.map(100.0, a);
+  EXPECT_TRUE(r.reanchored);
+  EXPECT_EQ(r.t, a);
+  // Network jitter within 0.2 s: sim spacing is kept exactly.
+  r = m.map(100.1, a + 0.25);
+  EXPECT_FALSE(r.reanchored);
+  EXPECT_NEAR(r.t - a, 0.1, 1e-9);
+  r = m.map(101.0, a + 0.85);
+  EXPECT_FALSE(r.reanchored);
+  EXPECT_NEAR(r.t - a, 1.0, 1e-9);
+}
+
+TEST(TimeMapping, SimClockReanchorsOnDrift) {
+  SimClockMap m(0.2);
+  const time::GpsTime a(2190, 522000.0);
+  m.map(0.0, a);
+  // Simulator at half speed: after 0.5 s of sim time 1 s of wall time passed.
+  SimClockMap::Mapped r = m.map(0.35, a + 0.5);
+  EXPECT_FALSE(r.reanchored);  // drift 0.15: still within
+  r = m.map(0.5, a + 1.0);
+  EXPECT_TRUE(r.reanchored);  // drift 0.5 > 0.2
+  EXPECT_EQ(r.t, a + 1.0);
+  r = m.map(0.6, a + 1.15);
+  EXPECT_FALSE(r.reanchored);
+  EXPECT_NEAR(r.t - a, 1.1, 1e-9);
+  m.reset();
+  EXPECT_FALSE(m.anchored());
+}
+
+TEST(EpochSchedule, AbsoluteDeadlinesDoNotDrift) {
+  EXPECT_EQ(epoch_deadline_ns(0, 1.0), 0);
+  EXPECT_EQ(epoch_deadline_ns(7, 1.0), 7'000'000'000);
+  EXPECT_EQ(epoch_deadline_ns(3, 10.0), 300'000'000);
+  // 3 Hz: each deadline rounds on its own, so after a day the error is < 1 ns.
+  EXPECT_EQ(epoch_deadline_ns(3 * 86400, 3.0), 86400'000'000'000);
+  EXPECT_EQ(epoch_deadline_ns(1, 3.0), 333'333'333);
+  EXPECT_EQ(epoch_deadline_ns(2, 3.0), 666'666'667);
+  EXPECT_DOUBLE_EQ(epoch_offset_s(25, 5.0), 5.0);
+}
+
+TEST(EpochSchedule, OnTimeAndSlightlyLate) {
+  ScheduleStep s = next_epoch(0, 1.0, 2'000'000);  // served epoch 0, 2 ms after
+  EXPECT_EQ(s.next_index, 1);
+  EXPECT_EQ(s.skipped, 0);
+  // Late by almost a whole period for epoch 1's successor: still no skip.
+  s = next_epoch(4, 10.0, 600'000'000);
+  EXPECT_EQ(s.next_index, 5);
+  EXPECT_EQ(s.skipped, 0);
+}
+
+TEST(EpochSchedule, LateByMoreThanAPeriodSkips) {
+  // Served epoch 4 at 10 Hz, but it is already 0.93 s: epochs 5..9 are due.
+  ScheduleStep s = next_epoch(4, 10.0, 930'000'000);
+  EXPECT_EQ(s.next_index, 9);
+  EXPECT_EQ(s.skipped, 4);
+  // Exactly on a deadline boundary.
+  s = next_epoch(0, 1.0, 5'000'000'000);
+  EXPECT_EQ(s.next_index, 5);
+  EXPECT_EQ(s.skipped, 4);
+  s = next_epoch(0, 1.0, 2'000'000'001);
+  EXPECT_EQ(s.next_index, 2);
+  EXPECT_EQ(s.skipped, 1);
+}
