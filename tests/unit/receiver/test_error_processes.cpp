@@ -1,0 +1,73 @@
+// Error-process building blocks: counter-based RNG, Gauss–Markov exact
+// discretisation, receiver clock.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/receiver/error_processes.hpp"
+#include "core/receiver/random.hpp"
+
+namespace gnssemu::receiver {
+namespace {
+
+TEST(CounterRng, StandardNormalMomentsAndKeyIndependence) {
+  const CounterRng rng(99);
+  double sum = 0.0, sum2 = 0.0, cross = 0.0;
+  const int n = 200000;
+  for (int i = 0; i < n; ++i) {
+    const double a = rng.normal(3, static_cast<uint64_t>(i), Purpose::kThermal);
+    const double b = rng.normal(4, static_cast<uint64_t>(i), Purpose::kThermal);
+    sum += a;
+    sum2 += a * a;
+    cross += a * b;
+  }
+  // Standard errors: mean 1/sqrt(n) = 0.0022, variance sqrt(2/n) = 0.0032.
+  EXPECT_NEAR(sum / n, 0.0, 0.01);
+  EXPECT_NEAR(sum2 / n, 1.0, 0.015);
+  EXPECT_NEAR(cross / n, 0.0, 0.01);
+  EXPECT_EQ(rng.normal(3, 17, Purpose::kThermal), CounterRng(99).normal(3, 17, Purpose::kThermal));
+  EXPECT_NE(rng.normal(3, 17, Purpose::kThermal), rng.normal(3, 17, Purpose::kDoppler));
+  EXPECT_NE(rng.normal(3, 17, Purpose::kThermal), CounterRng(100).normal(3, 17, Purpose::kThermal));
+}
+
+TEST(GaussMarkov, StationaryVarianceAndCorrelationTime) {
+  const CounterRng rng(5);
+  const GaussMarkovConfig cfg{2.0, 100.0};
+  const double dt = 10.0;
+  double x = gauss_markov_init(cfg, rng.normal(1, 0, Purpose::kGaussMarkovInit));
+  double sum2 = 0.0, lag = 0.0;
+  const int n = 200000;
+  for (int k = 1; k <= n; ++k) {
+    const double next = gauss_markov_step(x, dt, cfg, rng.normal(1, static_cast<uint64_t>(k), Purpose::kGaussMarkovStep));
+    sum2 += next * next;
+    lag += next * x;
+    x = next;
+  }
+  EXPECT_NEAR(std::sqrt(sum2 / n), 2.0, 0.06);
+  EXPECT_NEAR(lag / sum2, std::exp(-dt / cfg.tau_s), 0.01);  // 0.905
+  EXPECT_EQ(gauss_markov_step(1.5, 0.0, cfg, 3.0), 1.5);     // no time, no change
+  EXPECT_EQ(gauss_markov_step(1.5, 5.0, GaussMarkovConfig{0.0, 10.0}, 3.0), 0.0);
+  // Large steps decorrelate completely: x_k = sigma * w.
+  EXPECT_NEAR(gauss_markov_step(1.5, 1e6, cfg, 0.5), 1.0, 1e-12);
+}
+
+TEST(ReceiverClock, IntegratesDriftAndJumpsByMilliseconds) {
+  ClockConfig c;
+  c.bias_s = 9.0e-4;
+  c.drift_s_s = 1.0e-6;
+  c.drift_noise_s_s_sqrt_s = 0.0;
+  ReceiverClock clk(c);
+  clk.advance(50.0, 0.0);
+  EXPECT_NEAR(clk.bias_s(), 9.5e-4, 1e-15);
+  clk.advance(100.0, 0.0);  // 1.05 ms -> jumps to 0.05 ms
+  EXPECT_NEAR(clk.bias_s(), 5.0e-5, 1e-15);
+  EXPECT_EQ(clk.drift_s_s(), 1.0e-6);
+  // Random walk of the drift: variance q^2 dt.
+  c.drift_noise_s_s_sqrt_s = 1e-9;
+  ReceiverClock walk(c);
+  walk.advance(4.0, 1.0);
+  EXPECT_NEAR(walk.drift_s_s(), 1.0e-6 + 2.0e-9, 1e-18);
+}
+
+}  // namespace
+}  // namespace gnssemu::receiver

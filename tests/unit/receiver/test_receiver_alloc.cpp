@@ -1,0 +1,70 @@
+// step() must not allocate after warm-up: count every global operator new
+// (replaced below for this test executable) across many epochs, including
+// no-truth epochs, 2D-capable states and a teleport (cold start).
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "core/geo/geodesy.hpp"
+#include "core/orbit/ephemeris_store.hpp"
+#include "core/orbit/rinex_nav.hpp"
+#include "core/receiver/receiver.hpp"
+#include "synthetic_sky.hpp"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}
+
+void* operator new(std::size_t n) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t n) { return operator new(n); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace gnssemu::receiver {
+namespace {
+
+TEST(ReceiverAlloc, StepDoesNotAllocateAfterWarmUp) {
+  const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
+  const orbit::EphemerisStore store(nav.ephemerides);
+  Receiver rx(store, ReceiverConfig{});
+  const Lla site{39.6 * kDegToRad, 22.4 * kDegToRad, 100.0};
+  const Ecef p0 = geo::ecef_from_lla(site);
+  const Vec3 v = geo::enu_to_ecef_vector(Enu(20.0, 15.0, 0.0), site.lat_rad, site.lon_rad);
+  const time::GpsTime t0 = time::GpsTime::from_calendar({2022, 1, 1, 3, 0, 0.0});
+  auto truth = [&](double dt) {
+    Truth tr;
+    tr.t = t0 + dt;
+    tr.pos_m = Ecef(p0 + v * dt);
+    tr.vel_m_s = Ecef(v);
+    tr.valid = true;
+    return tr;
+  };
+  rx.step(t0, truth(0.0));  // warm-up (first use of GeographicLib statics)
+  const long before = g_allocations.load();
+  int fixes = 0;
+  for (int k = 1; k <= 2000; ++k) {
+    const double dt = 0.5 * k;
+    Truth tr = truth(dt);
+    if (k % 97 == 0) tr.valid = false;
+    if (k == 1500) tr.pos_m = geo::ecef_from_lla({-10.0 * kDegToRad, 60.0 * kDegToRad, 0.0});
+    fixes += rx.step(t0 + dt, tr).type == FixType::k3D;
+  }
+  const long after = g_allocations.load();
+  EXPECT_EQ(after - before, 0);
+  EXPECT_GT(fixes, 1900);
+  // The counter works: a vector allocates.
+  std::vector<int>* probe = new std::vector<int>(10);
+  delete probe;
+  EXPECT_GE(g_allocations.load() - after, 2);
+}
+
+}  // namespace
+}  // namespace gnssemu::receiver
