@@ -170,6 +170,17 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   batch_cmd->add_option("--errors", batch.errors_path, "write per-epoch fix errors CSV here ('-' = stdout)");
   CLI::App* version = app.add_subcommand("version", "versions of gnssemu, Embree and GeographicLib");
 
+  // CLI11 reports a mistyped subcommand only as "A subcommand is required".
+  const auto known = [&](const std::string& name) {
+    for (const CLI::App* sub : {satpos, sky, dop, batch_cmd, version}) {
+      if (sub->get_name() == name) return true;
+    }
+    return false;
+  };
+  if (argc > 1 && argv[1][0] != '-' && !known(argv[1])) {
+    err << "gnssemu: unknown subcommand '" << argv[1] << "' (satpos, sky, dop, batch, version; see --help)\n";
+    return kExitUsage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -188,8 +199,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       const orbit::EphemerisStore store = load_store(nav_path, t);
       if (*sky) {
         write_sky(store, req, out);
-      } else if (write_dop(store, req, out) < 4) {
-        err << "gnssemu dop: fewer than 4 satellites above the mask: DOP undefined\n";
+      } else if (const DopResult d = write_dop(store, req, out); !d.defined) {
+        err << "gnssemu dop: DOP undefined: " << d.nsat << " satellites above the mask"
+            << (d.nsat < 4 ? " (4 needed)\n" : " in a singular geometry\n");
       }
     } else if (*batch_cmd) {
       return run_batch_command(batch, out, err);

@@ -1,15 +1,70 @@
 #include "tools/gnssemu/sky.hpp"
 
+#include <fmt/format.h>
+
+#include <iterator>
+
+#include "core/common/constants.hpp"
+#include "core/geo/geodesy.hpp"
+#include "core/receiver/receiver.hpp"
+#include "core/receiver/sky.hpp"
+
 namespace gnssemu::cli {
 
-int write_sky(const orbit::EphemerisStore&, const SkyRequest&, std::ostream& out) {
-  out << "prn,az_deg,el_deg,range_m\n";
-  return 0;
+namespace {
+
+/// An error-free receiver that tracks every satellite above the mask, so its
+/// fix sits on the site and its DOP is the geometry's.
+receiver::ReceiverConfig geometry_receiver_config(double mask_rad) {
+  receiver::ReceiverConfig c;
+  c.elevation_mask_rad = mask_rad;
+  c.errors.thermal_sigma_m = 0.0;
+  c.errors.orbit_clock.sigma_m = 0.0;
+  c.errors.doppler_sigma_m_s = 0.0;
+  c.clock.drift_noise_s_s_sqrt_s = 0.0;
+  c.max_channels = kMaxGpsPrn;
+  c.max_pdop = 1.0e6;               // report poor geometry instead of dropping the fix
+  c.solver.residual_test_pfa = 0.0;  // nothing to detect without errors
+  return c;
 }
 
-int write_dop(const orbit::EphemerisStore&, const SkyRequest&, std::ostream& out) {
+}  // namespace
+
+int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out) {
+  out << "prn,az_deg,el_deg,range_m\n";
+  const Ecef rx = geo::ecef_from_lla(req.rx_lla);
+  int rows = 0;
+  fmt::memory_buffer buf;
+  for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
+    const orbit::Ephemeris* eph = store.select(prn, req.t);
+    if (eph == nullptr) continue;
+    const receiver::SkySat s = receiver::sky_sat(*eph, req.t, rx, req.rx_lla, Ecef());
+    if (!(s.el_rad >= req.mask_rad)) continue;
+    buf.clear();
+    fmt::format_to(std::back_inserter(buf), "{},{:.6f},{:.6f},{:.4f}\n", prn, s.az_rad * kRadToDeg,
+                   s.el_rad * kRadToDeg, s.range_m);
+    out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
+    ++rows;
+  }
+  return rows;
+}
+
+DopResult write_dop(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out) {
   out << "gdop,pdop,hdop,vdop,tdop,nsat\n";
-  return 0;
+  receiver::Receiver rx(store, geometry_receiver_config(req.mask_rad));
+  receiver::Truth truth;
+  truth.t = req.t;
+  truth.pos_m = geo::ecef_from_lla(req.rx_lla);
+  truth.valid = true;
+  const receiver::Fix& fix = rx.step(req.t, truth);
+  if (fix.type == receiver::FixType::k3D) {
+    const receiver::Dop& d = fix.dop;
+    out << fmt::format("{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{}\n", d.gdop, d.pdop, d.hdop, d.vdop, d.tdop,
+                       fix.num_used);
+    return {fix.num_used, true};
+  }
+  out << fmt::format(",,,,,{}\n", fix.num_visible);
+  return {fix.num_visible, false};
 }
 
 }  // namespace gnssemu::cli

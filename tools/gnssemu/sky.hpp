@@ -20,9 +20,14 @@ struct SkyRequest {
 /// signal flight (Sagnac), geometric range. Returns the number of rows.
 int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out);
 
+struct DopResult {
+  int nsat = 0;          ///< satellites at or above the mask
+  bool defined = false;  ///< false: fewer than 4 or singular geometry (DOP fields empty)
+};
+
 /// Writes `gdop,pdop,hdop,vdop,tdop,nsat` (one row) for the satellites at or
-/// above the mask; DOP fields are empty when nsat < 4 or the geometry is
-/// singular. Returns nsat.
-int write_dop(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out);
+/// above the mask, from the receiver's own solution (errors off, every
+/// satellite tracked) at the site.
+DopResult write_dop(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out);
 
 }  // namespace gnssemu::cli
