@@ -1,0 +1,303 @@
+#!/usr/bin/env python3
+"""gnssemud + gpsd end-to-end test (docs/daemon.md §Integration test).
+
+Starts gnssemud on a temporary config (pty symlink in a temp dir, free UDP
+port, 2 Hz), a private gpsd on that pty (own control socket, free TCP port,
+loopback only, read-only -b), and reads gpspipe -w. Cases:
+  demo   - no simulator: TPV mode 3 on the demo circle (radius +- 20 m)
+  static - the Python sender sends a static point: TPV mode 3 within 20 m of it
+  loss   - static, then the sender stops: within timeout + 2 s gpsd reports
+           mode <= 1 (the receiver lost its antenna; no frozen fix)
+Every process is killed and the temp dir removed on exit, also on failure.
+
+usage: gpsd_integration.py --gnssemud PATH --nav FILE --sender PATH CASE
+"""
+import argparse
+import json
+import math
+import os
+import queue
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+ORIGIN = (48.8738, 2.2950, 100.0)  # lat deg, lon deg, height m
+RADIUS_M = 50.0
+TIMEOUT_S = 2.0
+RATE_HZ = 2.0
+TOLERANCE_M = 20.0
+CASE_LIMIT_S = 60.0
+STATIC_ENU = (120.0, -80.0, 0.0)  # metres from the origin; far from the demo circle
+
+
+def free_port(kind):
+    s = socket.socket(socket.AF_INET, kind)
+    s.bind(("127.0.0.1", 0))
+    port = s.getsockname()[1]
+    s.close()
+    return port
+
+
+def enu_to_latlon(e, n):
+    """Small-offset ENU -> lat/lon (deg) at ORIGIN; < 1 mm error at 150 m."""
+    lat0 = math.radians(ORIGIN[0])
+    a, f = 6378137.0, 1 / 298.257223563
+    e2 = f * (2 - f)
+    w = math.sqrt(1 - e2 * math.sin(lat0) ** 2)
+    r_n = a / w
+    r_m = a * (1 - e2) / w ** 3
+    return (ORIGIN[0] + math.degrees(n / (r_m + ORIGIN[2])),
+            ORIGIN[1] + math.degrees(e / ((r_n + ORIGIN[2]) * math.cos(lat0))))
+
+
+def horizontal_m(lat_a, lon_a, lat_b, lon_b):
+    lat0 = math.radians(ORIGIN[0])
+    dn = math.radians(lat_a - lat_b) * 6371000.0
+    de = math.radians(lon_a - lon_b) * 6371000.0 * math.cos(lat0)
+    return math.hypot(de, dn)
+
+
+class Rig:
+    """gnssemud + gpsd + gpspipe in a temp dir; everything torn down by close()."""
+
+    def __init__(self, args):
+        self.args = args
+        self.tmp = tempfile.mkdtemp(prefix="gnssemu-it-")
+        self.procs = []
+        self.lines = queue.Queue()
+        self.udp_port = free_port(socket.SOCK_DGRAM)
+        self.gpsd_port = free_port(socket.SOCK_STREAM)
+        self.pty = os.path.join(self.tmp, "gps0")
+
+    def spawn(self, argv, **kw):
+        p = subprocess.Popen(argv, start_new_session=True, **kw)
+        self.procs.append(p)
+        return p
+
+    def start(self):
+        cfg = os.path.join(self.tmp, "it.toml")
+        with open(cfg, "w") as f:
+            f.write(f"""
+[origin]
+lat_deg = {ORIGIN[0]}
+lon_deg = {ORIGIN[1]}
+height_m = {ORIGIN[2]}
+[nav]
+file = "{os.path.abspath(self.args.nav)}"
+[receiver]
+rate_hz = {RATE_HZ}
+[truth]
+bind = "127.0.0.1"
+port = {self.udp_port}
+timeout_s = {TIMEOUT_S}
+max_extrapolation_s = 0.5
+[demo]
+enabled = true
+radius_m = {RADIUS_M}
+speed_m_s = 5.0
+[[output]]
+name = "gps0"
+type = "pty"
+path = "{self.pty}"
+[log]
+level = "info"
+""")
+        self.daemon_log = open(os.path.join(self.tmp, "gnssemud.log"), "w")
+        self.daemon = self.spawn([self.args.gnssemud, "--config", cfg], stdout=subprocess.PIPE,
+                                 stderr=self.daemon_log, text=True)
+        banner = self.daemon.stdout.readline()
+        if "NMEA on " + self.pty not in banner:
+            raise AssertionError(f"unexpected gnssemud banner: {banner!r}")
+        print("  " + banner.strip())
+        # -N foreground, -n poll without clients, -b read-only (never write
+        # probes to our pty), -F private control socket, -S private port.
+        # gpsd binds only the loopback unless -G is given.
+        self.gpsd_log = open(os.path.join(self.tmp, "gpsd.log"), "w")
+        self.spawn(["gpsd", "-N", "-n", "-b", "-F", os.path.join(self.tmp, "gpsd.sock"),
+                    "-S", str(self.gpsd_port), "-P", os.path.join(self.tmp, "gpsd.pid"), self.pty],
+                   stdout=self.gpsd_log, stderr=subprocess.STDOUT)
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline:
+            try:
+                socket.create_connection(("127.0.0.1", self.gpsd_port), timeout=0.5).close()
+                break
+            except OSError:
+                time.sleep(0.1)
+        else:
+            raise AssertionError("gpsd did not open its port")
+        pipe = self.spawn(["gpspipe", "-w", f"localhost:{self.gpsd_port}"], stdout=subprocess.PIPE,
+                          stderr=subprocess.DEVNULL, text=True)
+        threading.Thread(target=self._reader, args=(pipe.stdout,), daemon=True).start()
+
+    def _reader(self, stream):
+        for line in stream:
+            try:
+                msg = json.loads(line)
+            except ValueError:
+                continue
+            if msg.get("class") == "TPV":
+                self.lines.put((time.monotonic(), msg))
+
+    def tpv(self, deadline):
+        """Next TPV, or None at the deadline (monotonic s)."""
+        try:
+            return self.lines.get(timeout=max(0.0, deadline - time.monotonic()))
+        except queue.Empty:
+            return None
+
+    def sender(self, *extra):
+        return self.spawn([sys.executable, self.args.sender, "--port", str(self.udp_port),
+                           "--rate", "10", "--vehicle", "it", *extra])
+
+    def stop(self, p):
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGTERM)
+            try:
+                p.wait(5)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait()
+
+    def close(self, failed):
+        daemon_rc = None
+        for p in reversed(self.procs):
+            try:
+                self.stop(p)
+            except ProcessLookupError:
+                pass
+            if p is getattr(self, "daemon", None):
+                daemon_rc = p.returncode
+        for f in ("daemon_log", "gpsd_log"):
+            if hasattr(self, f):
+                getattr(self, f).close()
+        if failed:
+            for name in ("gnssemud.log", "gpsd.log"):
+                path = os.path.join(self.tmp, name)
+                if os.path.exists(path):
+                    print(f"--- {name} ---")
+                    print(open(path).read()[-3000:])
+        link_left = os.path.lexists(self.pty)
+        shutil.rmtree(self.tmp, ignore_errors=True)
+        return daemon_rc, link_left
+
+
+def wait_for(rig, limit_s, predicate, what):
+    """First TPV within limit_s for which predicate holds; fails otherwise."""
+    deadline = time.monotonic() + limit_s
+    seen = 0
+    last = None
+    while True:
+        item = rig.tpv(deadline)
+        if item is None:
+            raise AssertionError(f"no {what} within {limit_s:.0f} s ({seen} TPVs seen, last {last})")
+        seen += 1
+        last = item[1]
+        if predicate(item[1]):
+            return item
+
+
+def case_demo(rig):
+    def on_circle(m):
+        if m.get("mode") != 3:
+            return False
+        d = horizontal_m(m["lat"], m["lon"], ORIGIN[0], ORIGIN[1])
+        return d <= RADIUS_M + TOLERANCE_M
+    _, m = wait_for(rig, 20, on_circle, "mode-3 TPV on the demo circle")
+    d = horizontal_m(m["lat"], m["lon"], ORIGIN[0], ORIGIN[1])
+    assert abs(d - RADIUS_M) <= TOLERANCE_M, f"demo fix {d:.1f} m from origin, circle radius {RADIUS_M}"
+    assert m["time"].startswith("2022-01-01T"), f"gpsd time {m['time']} (nav file is 2022-01-01)"
+    print(f"  demo: mode 3 at {d:.1f} m from the origin (circle r={RADIUS_M}), gpsd time {m['time']}")
+    # The vehicle moves: a few seconds later the fix is elsewhere on the circle.
+    _, m2 = wait_for(rig, 10, lambda x: x.get("mode") == 3 and x["time"] > m["time"], "later TPV")
+    assert m2.get("speed", 0) > 3.0, f"demo speed {m2.get('speed')} m/s, expected ~5"
+
+
+def start_static(rig):
+    lat, lon = enu_to_latlon(STATIC_ENU[0], STATIC_ENU[1])
+    p = rig.sender("static", "--lat", f"{lat:.9f}", "--lon", f"{lon:.9f}", "--height", f"{ORIGIN[2]}")
+    near = lambda m: m.get("mode") == 3 and horizontal_m(m["lat"], m["lon"], lat, lon) <= TOLERANCE_M
+    _, m = wait_for(rig, 20, near, "mode-3 TPV within 20 m of the static point")
+    # Not a lucky one: the next 4 fixes stay there too.
+    for _ in range(4):
+        _, m = wait_for(rig, 5, lambda x: True, "TPV")
+        assert m.get("mode") == 3, f"lost the fix while truth is sent: {m}"
+        d = horizontal_m(m["lat"], m["lon"], lat, lon)
+        assert d <= TOLERANCE_M, f"fix {d:.1f} m from the static truth"
+        assert abs(m["altHAE"] - ORIGIN[2]) < 3 * TOLERANCE_M, f"height {m['altHAE']} vs {ORIGIN[2]}"
+    print(f"  static: mode 3 at {d:.1f} m from the truth point")
+    return p
+
+
+def case_static(rig):
+    start_static(rig)
+
+
+def case_loss(rig):
+    p = start_static(rig)
+    rig.stop(p)
+    t_stop = time.monotonic()
+    limit = TIMEOUT_S + 2.0
+    # Drain what gpsd reported before the stop took effect, then demand no fix.
+    t, m = wait_for(rig, limit + 5, lambda x: x.get("mode", 0) <= 1, "TPV with mode <= 1 after truth stopped")
+    # gpsd reports what the pty carried; allow one epoch of gpsd/pty latency.
+    latency = t - t_stop
+    assert latency <= limit + 1.0 / RATE_HZ, f"no fix only after {latency:.1f} s (limit {limit} s)"
+    print(f"  loss: mode {m.get('mode')} {latency:.1f} s after the sender stopped (timeout {TIMEOUT_S} s)")
+    # And it stays lost: no frozen fix.
+    deadline = time.monotonic() + 3
+    while (item := rig.tpv(deadline)) is not None:
+        assert item[1].get("mode", 0) <= 1, f"fix came back without truth: {item[1]}"
+
+
+def on_alarm(*_):
+    raise AssertionError(f"case exceeded {CASE_LIMIT_S:.0f} s")
+
+
+CASES = {"demo": case_demo, "static": case_static, "loss": case_loss}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--gnssemud", required=True)
+    ap.add_argument("--nav", required=True)
+    ap.add_argument("--sender", required=True)
+    ap.add_argument("case", choices=sorted(CASES) + ["all"])
+    args = ap.parse_args()
+    for tool in ("gpsd", "gpspipe"):
+        if shutil.which(tool) is None:
+            print(f"SKIP: {tool} not installed")
+            return 77
+    failed = False
+    for name in (sorted(CASES) if args.case == "all" else [args.case]):
+        rig = Rig(args)
+        signal.signal(signal.SIGALRM, on_alarm)
+        signal.alarm(int(CASE_LIMIT_S))
+        ok = False
+        try:
+            print(f"case {name}:")
+            rig.start()
+            CASES[name](rig)
+            ok = True
+        except AssertionError as e:
+            print(f"FAIL {name}: {e}")
+        finally:
+            signal.alarm(0)
+            daemon_rc, link_left = rig.close(failed=not ok)
+        if ok and daemon_rc != 0:
+            print(f"FAIL {name}: gnssemud exited {daemon_rc} on SIGTERM (want 0)")
+            ok = False
+        if ok and link_left:
+            print(f"FAIL {name}: gnssemud left its pty symlink behind")
+            ok = False
+        print(f"{'PASS' if ok else 'FAIL'} {name}")
+        failed |= not ok
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
