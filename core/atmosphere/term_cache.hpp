@@ -1,0 +1,83 @@
+#pragma once
+// Per-satellite cache of slowly varying terms (iono and tropo delay,
+// attenuation): recomputed every refresh_s seconds, in between either held or
+// extrapolated linearly from the last two refreshes. Fixed storage, no
+// allocation; the caching error is measured in tests/unit/atmosphere.
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <string>
+
+#include "core/common/constants.hpp"
+#include "core/common/error.hpp"
+#include "core/time/gps_time.hpp"
+
+namespace gnssemu::atmosphere {
+
+enum class CacheMode {
+  kHold,    ///< value of the last refresh
+  kLinear,  ///< last value plus the slope between the last two refreshes
+};
+
+/// N doubles per satellite, PRN 1..kMaxGpsPrn (other PRNs bypass the cache).
+template <std::size_t N>
+class SlowTermCache {
+public:
+  using Values = std::array<double, N>;
+
+  /// refresh_s: refresh interval, s (>= 0; 0 computes on every call).
+  explicit SlowTermCache(double refresh_s, CacheMode mode = CacheMode::kHold) : refresh_s_(refresh_s), mode_(mode) {
+    if (!std::isfinite(refresh_s) || refresh_s < 0.0)
+      throw Error("atmosphere cache", 0, "refresh interval must be >= 0 s, got " + std::to_string(refresh_s));
+  }
+
+  double refresh_s() const noexcept { return refresh_s_; }
+  CacheMode mode() const noexcept { return mode_; }
+
+  /// Terms for prn at t; compute() -> Values is called when a refresh is due
+  /// (first use, interval elapsed, time went backwards, or after invalidate).
+  template <class Compute>
+  Values get(int prn, const time::GpsTime& t, Compute&& compute) noexcept {
+    if (prn < 1 || prn > kMaxGpsPrn || refresh_s_ <= 0.0) return compute();
+    Slot& s = slots_[static_cast<std::size_t>(prn)];
+    const double age_s = s.valid ? t - s.t1 : 0.0;
+    if (!s.valid || age_s >= refresh_s_ || age_s < 0.0) {
+      const Values v = compute();
+      // A slope needs two refreshes one interval apart; after a gap start over.
+      s.has_slope = s.valid && age_s > 0.0 && age_s <= 2.0 * refresh_s_;
+      if (s.has_slope)
+        for (std::size_t i = 0; i < N; ++i) s.slope[i] = (v[i] - s.v1[i]) / age_s;
+      s.v1 = v;
+      s.t1 = t;
+      s.valid = true;
+      ++refreshes_;
+      return v;
+    }
+    if (mode_ == CacheMode::kHold || !s.has_slope) return s.v1;
+    Values out;
+    for (std::size_t i = 0; i < N; ++i) out[i] = s.v1[i] + s.slope[i] * age_s;
+    return out;
+  }
+
+  void invalidate(int prn) noexcept {
+    if (prn >= 1 && prn <= kMaxGpsPrn) slots_[static_cast<std::size_t>(prn)] = Slot{};
+  }
+  void clear() noexcept { slots_.fill(Slot{}); }
+  /// Number of compute() calls made through the cache (for benchmarks).
+  long refreshes() const noexcept { return refreshes_; }
+
+private:
+  struct Slot {
+    Values v1{};
+    Values slope{};
+    time::GpsTime t1;
+    bool valid = false;
+    bool has_slope = false;
+  };
+  double refresh_s_;
+  CacheMode mode_;
+  std::array<Slot, kMaxGpsPrn + 1> slots_{};
+  long refreshes_ = 0;
+};
+
+}  // namespace gnssemu::atmosphere
