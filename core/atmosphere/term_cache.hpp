@@ -1,7 +1,8 @@
 #pragma once
 // Per-satellite cache of slowly varying terms (iono and tropo delay,
 // attenuation): recomputed every refresh_s seconds, in between either held or
-// extrapolated linearly from the last two refreshes. Fixed storage, no
+// extrapolated linearly from the last two refreshes (the first slope after a
+// start comes from the next call, one epoch later). Fixed storage, no
 // allocation; the caching error is measured in tests/unit/atmosphere.
 #include <array>
 #include <cmath>
@@ -41,7 +42,9 @@ public:
     if (prn < 1 || prn > kMaxGpsPrn || refresh_s_ <= 0.0) return compute();
     Slot& s = slots_[static_cast<std::size_t>(prn)];
     const double age_s = s.valid ? t - s.t1 : 0.0;
-    if (!s.valid || age_s >= refresh_s_ || age_s < 0.0) {
+    // Linear mode bootstraps its slope from the next call after a (re)start.
+    const bool need_slope = mode_ == CacheMode::kLinear && s.valid && !s.has_slope && age_s > 0.0;
+    if (!s.valid || age_s >= refresh_s_ || age_s < 0.0 || need_slope) {
       const Values v = compute();
       // A slope needs two refreshes one interval apart; after a gap start over.
       s.has_slope = s.valid && age_s > 0.0 && age_s <= 2.0 * refresh_s_;
