@@ -58,7 +58,8 @@ struct ShellsConfig {
 /// Closed form on a sphere of radius earth_radius_m; robust at 0 and 90 deg,
 /// inside the shell, and above it (0). Negative elevations are followed down
 /// to the tangent point and back up; a ray that would meet the surface is
-/// treated as grazing it. Never NaN for finite inputs; NaN inputs give 0.
+/// treated as grazing it. A shell with bottom <= 0 also contains a receiver
+/// below the surface (e.g. -400 m). Never NaN for finite inputs; NaN inputs give 0.
 double slant_path_in_shell_m(double rx_height_m, double el_rad, double bottom_m, double top_m,
                              double earth_radius_m = kMeanEarthRadius_m) noexcept;
 
