@@ -10,6 +10,7 @@
 
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
+#include "core/orbit/ephemeris_store.hpp"
 #include "core/protocol/nmea/nmea_encoder.hpp"
 #include "core/receiver/receiver.hpp"
 
@@ -48,7 +49,7 @@ protocol::nmea::NmeaConfig nmea_config_of(const config::Config& config) {
 
 }  // namespace
 
-BatchSummary run_batch(const config::Config& config, const orbit::EphemerisStore& store, const TruthTrack& track,
+BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const TruthTrack& track,
                        std::ostream* nmea, std::ostream* errors) {
   if (!(config.rate_hz > 0.0) || !std::isfinite(config.rate_hz)) {
     throw Error(config.source, 0, "rate_hz must be positive");
@@ -63,7 +64,9 @@ BatchSummary run_batch(const config::Config& config, const orbit::EphemerisStore
                             rate_hz, first.week(), first.tow_s(), track.last().week(), track.last().tow_s()));
   }
 
+  const orbit::EphemerisStore store(nav.ephemerides);
   receiver::Receiver rx(store, config.receiver);
+  if (nav.leap_seconds) rx.set_leap_seconds(*nav.leap_seconds);
   const protocol::nmea::NmeaEncoder encoder(nmea_config_of(config));
   std::string sentences;
   sentences.reserve(4096);

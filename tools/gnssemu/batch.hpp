@@ -4,7 +4,7 @@
 #include <ostream>
 
 #include "config/config.hpp"
-#include "core/orbit/ephemeris_store.hpp"
+#include "core/orbit/nav_data.hpp"
 #include "tools/gnssemu/truth_track.hpp"
 
 namespace gnssemu::cli {
@@ -21,12 +21,13 @@ struct BatchSummary {
   double mean_e_m = 0.0, mean_n_m = 0.0, mean_u_m = 0.0;
 };
 
-/// Run the receiver at config.rate_hz on the GPS-time grid (multiples of
+/// Run the receiver, set up as the daemon sets it up from the nav file (its
+/// ephemerides, its header's leap seconds), at config.rate_hz on the GPS-time grid (multiples of
 /// 1/rate s of week) from the first to the last truth time. nmea: the NMEA
 /// stream of the first configured output port (u-blox default set when none);
 /// errors: CSV `gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop`.
 /// Either may be null. Throws gnssemu::Error when the truth spans no epoch.
-BatchSummary run_batch(const config::Config& config, const orbit::EphemerisStore& store, const TruthTrack& track,
+BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const TruthTrack& track,
                        std::ostream* nmea, std::ostream* errors);
 
 /// Human-readable summary (for stderr).

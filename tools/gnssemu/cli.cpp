@@ -125,7 +125,7 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
   }
   OutputFile nmea(a.nmea_path, out);
   OutputFile errors(a.errors_path, out);
-  const BatchSummary sum = run_batch(cfg, store, track, nmea.get(), errors.get());
+  const BatchSummary sum = run_batch(cfg, nav, track, nmea.get(), errors.get());
   nmea.close(a.nmea_path);
   errors.close(a.errors_path);
   write_summary(sum, err);

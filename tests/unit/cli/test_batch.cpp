@@ -159,9 +159,8 @@ TEST(Batch, SummaryMatchesTheErrorsFile) {
   config::Config cfg = config::parse_config(config_text(nav), "c.toml", dir.file(""));
   std::istringstream truth_in(static_truth(300.0));
   const cli::TruthTrack track(cli::read_truth_csv(truth_in, "truth.csv"));
-  const orbit::EphemerisStore store(orbit::read_rinex_nav(nav).ephemerides);
   std::ostringstream errors;
-  const cli::BatchSummary sum = cli::run_batch(cfg, store, track, nullptr, &errors);
+  const cli::BatchSummary sum = cli::run_batch(cfg, orbit::read_rinex_nav(nav), track, nullptr, &errors);
   const ErrorStats s = error_stats(parse_csv(errors.str()));
   EXPECT_EQ(sum.epochs, 301);
   EXPECT_EQ(sum.fixes, s.fixes);

@@ -2,6 +2,7 @@
 // tools/reference/satpos_reference.py) and physical consistency checks.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -84,7 +85,14 @@ TEST_P(SatposReference, MatchesIndependentImplementation) {
 
 INSTANTIATE_TEST_SUITE_P(AllNavFiles, SatposReference,
                          ::testing::Values("brdc0010.22n", "ab422100.18n", "NYA100NOR_S_20241240000_01D_GN.rnx",
-                                           "ELKO00USA_R_20182100000_01D_MN.rnx"));
+                                           "ELKO00USA_R_20182100000_01D_MN.rnx"),
+                         [](const ::testing::TestParamInfo<const char*>& param_info) {
+                           std::string name = param_info.param;
+                           for (char& c : name) {
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           }
+                           return name;
+                         });
 
 TEST(Satpos, CommandLineEndToEnd) {
   const CliResult r = run({"satpos", "--nav", nav_path("brdc0010.22n"), "--week", "2190", "--tow", "521233.25"});
