@@ -56,6 +56,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       coverage_(coverage_for(cfg, nav)),
       period_s_(1.0 / cfg.rate_hz),
       timer_(io),
+      retry_timer_(io),
       socket_(io),
       signals_(io, SIGINT, SIGTERM) {
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
@@ -117,6 +118,7 @@ void Daemon::start() {
 void Daemon::shutdown() {
   boost::system::error_code ec;
   timer_.cancel();
+  retry_timer_.cancel();
   socket_.close(ec);
   signals_.cancel(ec);
   if (!ports_.empty()) {
@@ -224,10 +226,15 @@ void Daemon::receive() {
                              [this](const boost::system::error_code& ec, std::size_t n) {
                                if (ec == asio::error::operation_aborted || !socket_.is_open()) return;
                                if (ec) {
-                                 spdlog::warn("truth input: receive error: {}", ec.message());
-                               } else {
-                                 on_datagram(n);
+                                 // Back off rather than spin on a persistent error.
+                                 spdlog::warn("truth input: receive error: {}; retrying in 0.5 s", ec.message());
+                                 retry_timer_.expires_after(std::chrono::milliseconds(500));
+                                 retry_timer_.async_wait([this](const boost::system::error_code& tec) {
+                                   if (!tec && socket_.is_open()) receive();
+                                 });
+                                 return;
                                }
+                               on_datagram(n);
                                receive();
                              });
 }

@@ -73,6 +73,7 @@ private:
   std::string out_buf_;
 
   asio::steady_timer timer_;
+  asio::steady_timer retry_timer_;  // back-off after a socket error
   asio::ip::udp::socket socket_;
   asio::ip::udp::endpoint peer_;
   asio::signal_set signals_;

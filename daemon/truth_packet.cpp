@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -13,13 +14,14 @@ namespace {
 
 using nlohmann::json;
 
-constexpr std::array<const char*, kDropReasonCount> kReasonNames = {
+constexpr std::array kReasonNames = {
     "too_large",          "malformed_json",     "not_an_object",   "missing_version",
     "unknown_version",    "missing_field",      "bad_type",        "non_finite",
-    "missing_position",   "duplicate_position", "duplicate_velocity", "latitude_range",
+    "missing_position",   "duplicate_position", "duplicate_velocity", "duplicate_key",      "latitude_range",
     "longitude_range",    "height_range",       "speed_range",     "bad_gps_time",
     "bad_vehicle_id",     "sim_time_backwards", "too_many_vehicles",
 };
+static_assert(kReasonNames.size() == kDropReasonCount, "one name per DropReason");
 
 ParseResult drop(DropReason reason, std::string detail) {
   ParseResult r;
@@ -78,9 +80,28 @@ ParseResult parse_truth_packet(std::string_view datagram, const geo::LocalFrame&
   if (datagram.size() > kMaxTruthDatagramBytes) {
     return drop(DropReason::kTooLarge, std::to_string(datagram.size()) + " bytes");
   }
+  // JSON allows repeated keys and nlohmann keeps the last; a sender that
+  // repeats one is confused, so the packet is dropped instead.
+  std::vector<std::vector<std::string>> open_objects;
+  std::string repeated;
+  const json::parser_callback_t watch = [&](int, json::parse_event_t ev, json& parsed) {
+    if (ev == json::parse_event_t::object_start) {
+      open_objects.emplace_back();
+    } else if (ev == json::parse_event_t::object_end) {
+      if (!open_objects.empty()) open_objects.pop_back();
+    } else if (ev == json::parse_event_t::key && !open_objects.empty() && repeated.empty()) {
+      auto& keys = open_objects.back();
+      const std::string& k = parsed.get_ref<const std::string&>();
+      for (const auto& seen : keys) {
+        if (seen == k) repeated = k;
+      }
+      keys.push_back(k);
+    }
+    return true;
+  };
   json doc;
   try {
-    doc = json::parse(datagram.begin(), datagram.end());
+    doc = json::parse(datagram.begin(), datagram.end(), watch);
   } catch (const json::exception& e) {
     // Python's json.dumps writes NaN/Infinity literals, which are not JSON;
     // 1e999 overflows a double ("number overflow").
@@ -89,6 +110,10 @@ ParseResult parse_truth_packet(std::string_view datagram, const geo::LocalFrame&
                             datagram.find("Infinity") != std::string_view::npos ||
                             what.find("overflow") != std::string::npos;
     return drop(non_finite ? DropReason::kNonFinite : DropReason::kMalformedJson, what);
+  }
+  if (!repeated.empty()) {
+    const bool pos = repeated == "lla" || repeated == "ecef" || repeated == "enu";
+    return drop(pos ? DropReason::kDuplicatePosition : DropReason::kDuplicateKey, "key \"" + repeated + "\" repeated");
   }
   if (!doc.is_object()) return drop(DropReason::kNotObject, "top level is not an object");
 

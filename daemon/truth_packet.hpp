@@ -36,6 +36,7 @@ enum class DropReason : uint8_t {
   kMissingPosition,
   kDuplicatePosition,
   kDuplicateVelocity,
+  kDuplicateKey,
   kLatitudeRange,
   kLongitudeRange,
   kHeightRange,

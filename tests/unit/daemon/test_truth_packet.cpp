@@ -138,6 +138,13 @@ TEST(TruthPacket, PositionCount) {
               DropReason::kDuplicatePosition);
   expect_drop(with(R"("lla":{"lat_deg":0,"lon_deg":0,"height_m":0},"ecef":{"x_m":0,"y_m":0,"z_m":0},"enu":{})"),
               DropReason::kDuplicatePosition);
+  expect_drop(with(R"("lla":{"lat_deg":0,"lon_deg":0,"height_m":0},"lla":{"lat_deg":1,"lon_deg":0,"height_m":0})"),
+              DropReason::kDuplicatePosition);
+  expect_drop(with(R"("lla":{"lat_deg":0,"lat_deg":1,"lon_deg":0,"height_m":0})"), DropReason::kDuplicateKey);
+  expect_drop(R"({"version":1,"version":1,"vehicle":"a","sim_time_s":1,"lla":{"lat_deg":0,"lon_deg":0,"height_m":0}})",
+              DropReason::kDuplicateKey);
+  // The same key in different objects is fine.
+  EXPECT_TRUE(parse(with(R"("enu":{"e_m":0,"n_m":0,"u_m":0},"x":{"e_m":1},"y":[{"e_m":2},{"e_m":3}])")).ok);
   expect_drop(with(R"("enu":{"e_m":0,"n_m":0,"u_m":0},"vel_enu":{"e_m_s":0,"n_m_s":0,"u_m_s":0},)"
                    R"("vel_ecef":{"x_m_s":0,"y_m_s":0,"z_m_s":0})"),
               DropReason::kDuplicateVelocity);
