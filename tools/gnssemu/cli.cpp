@@ -108,6 +108,7 @@ private:
 };
 
 int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) {
+  if (a.nmea_path == "-" && a.errors_path == "-") throw Error("--nmea and --errors cannot both be '-' (stdout)");
   const config::Config cfg = config::load_config(a.config_path);
   const TruthTrack track(read_truth_csv(a.truth_path));
   std::error_code ec;

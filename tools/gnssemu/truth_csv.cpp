@@ -169,8 +169,10 @@ std::vector<TruthSample> read_truth_csv(std::istream& in, const std::string& nam
     ++line_no;
     if (skip_line(line)) continue;
     if (!cols) {
-      cols = parse_header(line, name, line_no);
-      for (std::string_view f : split(line)) header.emplace_back(f);
+      std::string_view h = line;
+      if (h.substr(0, 3) == "\xEF\xBB\xBF") h.remove_prefix(3);  // UTF-8 byte-order mark (spreadsheet exports)
+      cols = parse_header(h, name, line_no);
+      for (std::string_view f : split(h)) header.emplace_back(f);
       continue;
     }
     const auto fields = split(line);

@@ -130,3 +130,18 @@ TEST(CliErrors, BatchUnwritableOutput) {
   expect_fails(run({"batch", "--config", cfg, "--truth", truth, "--errors", "/nonexistent/dir/e.csv"}),
                kExitBadInput, "/nonexistent/dir/e.csv");
 }
+
+TEST(CliErrors, BatchBothOutputsOnStdout) {
+  TempDir dir;
+  const std::string cfg = dir.write("c.toml", config_text(nav_path("brdc0010.22n")));
+  const std::string truth = dir.write("t.csv", "gps_week,tow_s,lat_deg,lon_deg,height_m\n2190,520000,48,2,100\n");
+  expect_fails(run({"batch", "--config", cfg, "--truth", truth, "--nmea", "-", "--errors", "-"}), kExitBadInput,
+               "cannot both be '-'");
+}
+
+TEST(CliErrors, NegativeNumbersAreValuesNotOptions) {
+  const CliResult r = run({"sky", "--nav", nav_path("brdc0010.22n"), "--week", "2190", "--tow", "521233.25", "--lat",
+                           "-33.9", "--lon", "-70.5", "--height", "-20.5"});
+  EXPECT_EQ(r.status, kExitOk) << r.err;
+  EXPECT_GT(parse_csv(r.out).rows.size(), 4u);
+}

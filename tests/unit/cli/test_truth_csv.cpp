@@ -47,6 +47,12 @@ TEST(TruthCsv, LlaColumnsInAnyOrderWithExtrasAndComments) {
   EXPECT_FALSE(s[0].has_vel);
 }
 
+TEST(TruthCsv, ByteOrderMarkBeforeTheHeader) {
+  const auto s = read("\xEF\xBB\xBFgps_week,tow_s,lat_deg,lon_deg,height_m\n2190,1,0,0,0\n");
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_NEAR(s[0].pos_m.x, kWgs84A_m, 1e-6);
+}
+
 TEST(TruthCsv, EcefAndEnuVelocity) {
   const auto s = read(
       "gps_week,tow_s,x_m,y_m,z_m,ve_m_s,vn_m_s,vu_m_s\n"
