@@ -97,7 +97,9 @@ void Daemon::start() {
                nav_leap_s_ ? std::to_string(*nav_leap_s_) + " (nav header)" : std::string("from the built-in table"));
   spdlog::info("epochs at {} Hz, {} mode, starting {}{}", cfg_.rate_hz,
                cfg_.time.mode == config::TimeMode::kRealtime ? "realtime" : "lockstep", gps_text(coverage_.start),
-               coverage_.span_s > 0 ? fmt::format(", wrapping after {:.0f} s", coverage_.span_s) : std::string());
+               coverage_.span_s > 0 && cfg_.time.mode == config::TimeMode::kRealtime
+                   ? fmt::format(", wrapping after {:.0f} s", coverage_.span_s)
+                   : std::string());
   if (cfg_.demo.enabled) {
     spdlog::info("demo circle r={} m at {} m/s drives the receiver until a simulator sends truth", cfg_.demo.radius_m,
                  cfg_.demo.speed_m_s);
@@ -275,7 +277,33 @@ void Daemon::on_datagram(std::size_t n) {
   } else if (in.driving && in.reanchored) {
     spdlog::debug("truth: sim clock of '{}' re-anchored", router_.driver_id());
   }
+  if (in.driving && parsed.sample.gps_time) align_to_packet_time(in.stamp);
   if (in.driving && cfg_.time.mode == config::TimeMode::kLockstep) lockstep_advance(in.stamp);
+}
+
+void Daemon::align_to_packet_time(const time::GpsTime& stamp) {
+  if (cfg_.time.mode == config::TimeMode::kRealtime) {
+    // The epoch clock is not moved in realtime mode; say why there is no fix.
+    const double off_s = stamp - realtime_clock_gps();
+    if (std::abs(off_s) > 10.0 && !warned_gps_offset_) {
+      warned_gps_offset_ = true;
+      spdlog::warn("truth carries GPS time {} but the epoch clock is {} s away: truth cannot be used; "
+                   "set [time] start or use_wall_clock_date to match the simulator",
+                   gps_text(stamp), off_s);
+    }
+    return;
+  }
+  // Lockstep: the first packet with GPS time puts the epoch clock on it.
+  if (gps_aligned_) return;
+  gps_aligned_ = true;
+  const double tow_epochs = std::ceil(stamp.tow_s() * cfg_.rate_hz - 1e-9);
+  const time::GpsTime first(stamp.week(), tow_epochs / cfg_.rate_hz);
+  if (first < lock_next_) {
+    receiver_ = std::make_unique<receiver::Receiver>(store_, cfg_.receiver);  // time goes back
+    if (nav_leap_s_) receiver_->set_leap_seconds(*nav_leap_s_);
+  }
+  lock_next_ = first;
+  spdlog::info("lockstep: epochs follow the packets' GPS time from {}", gps_text(first));
 }
 
 }  // namespace gnssemu::daemon

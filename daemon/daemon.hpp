@@ -51,6 +51,7 @@ private:
   void receive();
   void on_datagram(std::size_t n);
   void lockstep_advance(const time::GpsTime& stamp);
+  void align_to_packet_time(const time::GpsTime& stamp);
   void emit_epoch(const time::GpsTime& t, const receiver::Truth& truth);
   receiver::Truth fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept;
   void note_clock_wrap(int64_t wraps);
@@ -88,6 +89,8 @@ private:
   uint64_t packets_ok_ = 0;
   int last_fix_type_ = -1;
   bool last_truth_valid_ = false;
+  bool warned_gps_offset_ = false;
+  bool gps_aligned_ = false;
 };
 
 }  // namespace gnssemu::daemon
