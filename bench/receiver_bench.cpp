@@ -3,12 +3,9 @@
 // per epoch after warm-up. Prints figures; not a test.
 //   receiver_bench [nav_file] [epochs]
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <exception>
-#include <new>
 #include <string>
 #include <vector>
 
@@ -17,21 +14,8 @@
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
 #include "core/receiver/receiver.hpp"
+#include "tests/support/alloc_counter.hpp"
 
-namespace {
-std::atomic<long> g_allocations{0};
-}
-
-void* operator new(std::size_t n) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 
@@ -59,11 +43,11 @@ Result run(const orbit::EphemerisStore& store, const time::GpsTime& t0, double s
     tr.pos_m = Ecef(p0 + v * dt);
     tr.vel_m_s = Ecef(v);
     tr.valid = true;
-    const long a0 = g_allocations.load(std::memory_order_relaxed);
+    const long a0 = gnssemu::support::allocation_count();
     const auto c0 = std::chrono::steady_clock::now();
     const receiver::Fix& f = rx.step(tr.t, tr);
     const auto c1 = std::chrono::steady_clock::now();
-    const long a1 = g_allocations.load(std::memory_order_relaxed);
+    const long a1 = gnssemu::support::allocation_count();
     if (k < 0) continue;
     allocs += a1 - a0;
     us[static_cast<std::size_t>(k)] = std::chrono::duration<double, std::micro>(c1 - c0).count();

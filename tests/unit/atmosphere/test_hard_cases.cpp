@@ -2,10 +2,7 @@
 // heap allocation while evaluating.
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
-#include <cstdlib>
-#include <new>
 
 #include "core/atmosphere/clouds_rain.hpp"
 #include "core/atmosphere/ionosphere.hpp"
@@ -13,17 +10,7 @@
 #include "core/atmosphere/shells.hpp"
 #include "core/atmosphere/troposphere.hpp"
 #include "core/common/constants.hpp"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "tests/support/alloc_counter.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::atmosphere;
@@ -72,7 +59,7 @@ TEST(HardCases, NoNanAnywhere) {
   const orbit::KlobucharParams klob = rtklib_default_klobuchar();
   const World worlds[] = {make_world(0.0, false), make_world(1000.0, false), make_world(50.0, true)};
 
-  const long before = g_allocations.load();
+  const long before = gnssemu::support::allocation_count();
   int n = 0;
   for (const World& w : worlds)
     for (double e : els)
@@ -97,7 +84,7 @@ TEST(HardCases, NoNanAnywhere) {
               const CloudsRainAttenuation c = w.clouds.attenuation(h, el);
               ASSERT_TRUE(ok(c.clouds_db) && ok(c.rain_db)) << e << " " << h;
             }
-  EXPECT_EQ(g_allocations.load() - before, 0) << "evaluation allocated";
+  EXPECT_EQ(gnssemu::support::allocation_count() - before, 0) << "evaluation allocated";
   EXPECT_EQ(n, 3 * 11 * 4 * 5 * 3 * 3);
 }
 

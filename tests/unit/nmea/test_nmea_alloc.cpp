@@ -2,33 +2,20 @@
 // global operator new of this test executable counts calls.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
 #include <string>
 
 #include "core/protocol/nmea/nmea_encoder.hpp"
+#include "tests/support/alloc_counter.hpp"
 #include "nmea_test_util.hpp"
 
-namespace {
-std::atomic<long> g_allocations{0};
-}
-
-void* operator new(std::size_t n) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace gnssemu::protocol::nmea {
 namespace {
 
 TEST(NmeaAlloc, CounterSeesAllocations) {
-  const long before = g_allocations.load();
+  const long before = gnssemu::support::allocation_count();
   std::string s(1000, 'x');  // beyond the small-string buffer
-  EXPECT_GT(g_allocations.load(), before);
+  EXPECT_GT(gnssemu::support::allocation_count(), before);
 }
 
 TEST(NmeaAlloc, EncodeEpochDoesNotAllocateWithCapacity) {
@@ -42,7 +29,7 @@ TEST(NmeaAlloc, EncodeEpochDoesNotAllocateWithCapacity) {
     std::string out;
     out.reserve(kMaxEpochBytes);
     enc.encode_epoch(fix, out);  // warm-up
-    const long before = g_allocations.load();
+    const long before = gnssemu::support::allocation_count();
     for (int i = 0; i < 100; ++i) {
       out.clear();
       fix.t += 0.1;
@@ -50,7 +37,7 @@ TEST(NmeaAlloc, EncodeEpochDoesNotAllocateWithCapacity) {
       out.clear();
       EXPECT_GT(enc.encode_epoch(none, out), 200u);
     }
-    EXPECT_EQ(g_allocations.load(), before);
+    EXPECT_EQ(gnssemu::support::allocation_count(), before);
   }
 }
 

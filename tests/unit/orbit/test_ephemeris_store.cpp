@@ -1,27 +1,13 @@
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
-#include <cstdlib>
-#include <new>
 
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
+#include "tests/support/alloc_counter.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::orbit;
-
-// Counts heap allocations in this test binary, to show select() makes none.
-namespace {
-std::atomic<long> g_allocations{0};
-}
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 
@@ -141,7 +127,7 @@ TEST(EphemerisStore, RealFileAndNoAllocation) {
   EXPECT_EQ(s.size(), 422u);
   const time::GpsTime noon(2190, 518400 + 43200);
   int selected = 0;
-  const long before = g_allocations.load();
+  const long before = gnssemu::support::allocation_count();
   for (int prn = 1; prn <= 32; ++prn) {
     const Ephemeris* e = s.select(prn, noon);
     if (e == nullptr) continue;
@@ -149,7 +135,7 @@ TEST(EphemerisStore, RealFileAndNoAllocation) {
     EXPECT_LE(std::fabs(noon - e->toe), 3600.0) << prn;  // brdc has a set every 2 h
     EXPECT_EQ(e->health, 0);
   }
-  EXPECT_EQ(g_allocations.load(), before);
+  EXPECT_EQ(gnssemu::support::allocation_count(), before);
   EXPECT_GE(selected, 29);
   // brdc: first toc 00:00 (toe 2190/518400 - 2 h), last set toe 2191/0 (+2 h).
   EXPECT_EQ(s.first_valid(), time::GpsTime(2190, 518400 - 7200));

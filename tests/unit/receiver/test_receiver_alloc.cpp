@@ -3,30 +3,14 @@
 // no-truth epochs, 2D-capable states and a teleport (cold start).
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
 
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
 #include "core/receiver/receiver.hpp"
+#include "tests/support/alloc_counter.hpp"
 #include "synthetic_sky.hpp"
 
-namespace {
-std::atomic<long> g_allocations{0};
-}
-
-void* operator new(std::size_t n) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace gnssemu::receiver {
 namespace {
@@ -48,7 +32,7 @@ TEST(ReceiverAlloc, StepDoesNotAllocateAfterWarmUp) {
     return tr;
   };
   rx.step(t0, truth(0.0));  // warm-up (first use of GeographicLib statics)
-  const long before = g_allocations.load();
+  const long before = gnssemu::support::allocation_count();
   int fixes = 0;
   for (int k = 1; k <= 2000; ++k) {
     const double dt = 0.5 * k;
@@ -57,13 +41,13 @@ TEST(ReceiverAlloc, StepDoesNotAllocateAfterWarmUp) {
     if (k == 1500) tr.pos_m = geo::ecef_from_lla({-10.0 * kDegToRad, 60.0 * kDegToRad, 0.0});
     fixes += rx.step(t0 + dt, tr).type == FixType::k3D;
   }
-  const long after = g_allocations.load();
+  const long after = gnssemu::support::allocation_count();
   EXPECT_EQ(after - before, 0);
   EXPECT_GT(fixes, 1900);
   // The counter works: a vector allocates.
   std::vector<int>* probe = new std::vector<int>(10);
   delete probe;
-  EXPECT_GE(g_allocations.load() - after, 2);
+  EXPECT_GE(gnssemu::support::allocation_count() - after, 2);
 }
 
 }  // namespace
