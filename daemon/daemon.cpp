@@ -6,6 +6,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "config/scene_loader.hpp"
 #include "core/common/error.hpp"
 #include "core/time/utc.hpp"
 #include "daemon/epoch_schedule.hpp"
@@ -50,6 +51,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       nav_leap_s_(nav.leap_seconds),
       store_(nav.ephemerides),
       frame_(cfg.origin),
+      scene_(config::load_scene(cfg)),
       receiver_(std::make_unique<receiver::Receiver>(store_, cfg.receiver)),
       demo_(frame_, cfg.demo.radius_m, cfg.demo.speed_m_s, cfg.demo.height_m),
       router_(TrackParams{cfg.truth.timeout_s, cfg.truth.max_extrapolation_s}, cfg.time.mode),
@@ -61,6 +63,10 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       signals_(io, SIGINT, SIGTERM) {
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
   if (nav_leap_s_) receiver_->set_leap_seconds(*nav_leap_s_);
+  config::attach_scene(*receiver_, cfg_, scene_.get());
+  if (scene_) {
+    spdlog::info("scene {}: {} triangles", cfg_.scene->mesh_file, scene_->triangle_count());
+  }
   for (const auto& p : cfg_.outputs) encoders_.emplace_back(p.nmea);
   out_buf_.reserve(2 * protocol::nmea::kMaxEpochBytes);
   lock_next_ = coverage_.start;
@@ -152,6 +158,7 @@ void Daemon::note_clock_wrap(int64_t wraps) {
   router_.on_clock_jump();
   receiver_ = std::make_unique<receiver::Receiver>(store_, cfg_.receiver);
   if (nav_leap_s_) receiver_->set_leap_seconds(*nav_leap_s_);
+  config::attach_scene(*receiver_, cfg_, scene_.get());
 }
 
 receiver::Truth Daemon::fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept {

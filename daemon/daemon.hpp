@@ -17,6 +17,7 @@
 #include "core/orbit/nav_data.hpp"
 #include "core/protocol/nmea/nmea_encoder.hpp"
 #include "core/receiver/receiver.hpp"
+#include "core/scene/scene.hpp"
 #include "daemon/demo_trajectory.hpp"
 #include "daemon/drop_stats.hpp"
 #include "daemon/output_port.hpp"
@@ -62,6 +63,7 @@ private:
   std::optional<int> nav_leap_s_;
   orbit::EphemerisStore store_;
   geo::LocalFrame frame_;
+  std::unique_ptr<scene::Scene> scene_;  ///< buildings ([scene]); outlives receiver_
   std::unique_ptr<receiver::Receiver> receiver_;
   DemoTrajectory demo_;
   TruthRouter router_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <string>
 
 #include "core/common/error.hpp"
@@ -72,6 +73,12 @@ Receiver::Receiver(const orbit::EphemerisStore& store, const ReceiverConfig& con
   no_fix_epoch();
 }
 
+void Receiver::attach_scene(const scene::Scene& scene, const Lla& origin, const scene::SearchConfig& search) {
+  propagator_ = std::make_unique<scene::Propagator>(scene, search);
+  scene_frame_ = std::make_unique<geo::LocalFrame>(origin);
+  scene_path_.fill(scene::SatPath{});
+}
+
 void Receiver::advance_world(const time::GpsTime& t) noexcept {
   const GaussMarkovConfig& gm = config_.errors.orbit_clock;
   if (!started_) {
@@ -139,6 +146,27 @@ const Fix& Receiver::step(const time::GpsTime& t, const Truth& truth) noexcept {
     in_sky_[p - 1] = true;
     if (s.el_rad >= config_.elevation_mask_rad) above[n_above++] = p;
   }
+  // Propagation (world): buildings decide per satellite direct, reflected
+  // only, or not received at all (then it takes no channel).
+  scene_path_.fill(scene::SatPath{});
+  if (propagator_) {
+    const Enu rx_enu = scene_frame_->to_enu(truth.pos_m);
+    for (int i = 0; i < n_above; ++i) {
+      const SkySat& s = sky_[above[i] - 1];
+      const Vec3 los = (s.pos_m - truth.pos_m) / s.range_m;
+      scene_query_[i] = scene::SatQuery{above[i], scene_frame_->vector_to_enu(los)};
+    }
+    const auto n = static_cast<std::size_t>(n_above);
+    propagator_->compute(rx_enu, std::span<const scene::SatQuery>(scene_query_.data(), n),
+                         std::span<scene::SatPath>(scene_out_.data(), n));
+    int kept = 0;
+    for (int i = 0; i < n_above; ++i) {
+      scene_path_[above[i] - 1] = scene_out_[i];
+      if (scene_out_[i].kind != scene::PathKind::kNone) above[kept++] = above[i];
+    }
+    n_above = kept;
+  }
+
   // Channels: highest elevations first; ties by PRN for determinism.
   std::array<bool, kMaxGpsPrn> tracked{};
   if (n_above > config_.max_channels) {
@@ -165,17 +193,22 @@ const Fix& Receiver::step(const time::GpsTime& t, const Truth& truth) noexcept {
     si.healthy = true;
     si.above_mask = s.el_rad >= config_.elevation_mask_rad;
     if (si.above_mask) ++fix_.num_visible;
+    const scene::SatPath& path = scene_path_[p - 1];
+    si.blocked = path.kind == scene::PathKind::kNone;
+    si.nlos = path.kind == scene::PathKind::kNlos;
+    si.bounces = path.bounces;
+    si.nlos_delay_m = si.nlos ? path.extra_delay_m : 0.0;
     if (!tracked[p - 1]) continue;
     const orbit::Ephemeris* eph = store_.select(p, t);
     const double thermal_m = config_.errors.thermal_sigma_m * rng_.normal(p, epoch, Purpose::kThermal);
     const double rr_noise_m_s = config_.errors.doppler_sigma_m_s * rng_.normal(p, epoch, Purpose::kDoppler);
     // The satellite's actual L1 clock = broadcast (dt_sv - TGD) + residual.
     const double pr_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - eph->tgd_s)) +
-                        orbit_clock_m_[p - 1] + world_delay_m_[p - 1] + thermal_m;
+                        orbit_clock_m_[p - 1] + world_delay_m_[p - 1] + si.nlos_delay_m + thermal_m;
     const double rr_m_s = s.range_rate_m_s + kSpeedOfLight_m_s * (rx_drift_s_s - s.clk_drift_s_s) + rr_noise_m_s;
     si.tracked = true;
     const double one_m_sin = 1.0 - std::sin(s.el_rad);
-    si.cn0_dbhz = config_.nominal_cn0_dbhz - kCn0ElevationLoss_db * one_m_sin * one_m_sin;
+    si.cn0_dbhz = config_.nominal_cn0_dbhz - kCn0ElevationLoss_db * one_m_sin * one_m_sin - path.loss_db;
     si.pseudorange_m = pr_m;
     si.doppler_hz = -rr_m_s / kL1Wavelength_m;
     ++fix_.num_tracked;

@@ -5,7 +5,10 @@
 #include <array>
 #include <cstdint>
 
+#include <memory>
+
 #include "core/common/vec3.hpp"
+#include "core/geo/local_frame.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/receiver/error_processes.hpp"
 #include "core/receiver/fix.hpp"
@@ -13,6 +16,7 @@
 #include "core/receiver/receiver_config.hpp"
 #include "core/receiver/sky.hpp"
 #include "core/receiver/solver.hpp"
+#include "core/scene/propagator.hpp"
 
 namespace gnssemu::receiver {
 
@@ -43,6 +47,14 @@ public:
     leap_s_ = leap_s;
   }
 
+  /// Buildings: the scene (built in the ENU frame of origin) decides per
+  /// satellite direct / reflected (extra delay in the pseudorange, loss in
+  /// C/N0) / not received. scene must outlive the receiver. Setup only
+  /// (allocates); throws gnssemu::Error on a bad search config.
+  void attach_scene(const scene::Scene& scene, const Lla& origin, const scene::SearchConfig& search);
+  /// The scene stage of the last epoch (null without a scene).
+  const scene::Propagator* propagator() const noexcept { return propagator_.get(); }
+
   /// World truth of the receiver oscillator at the last epoch (for error
   /// analysis; the solver never reads it).
   double true_clock_bias_s() const noexcept { return clock_.bias_s(); }
@@ -69,6 +81,13 @@ private:
   uint64_t epoch_ = 0;          ///< step() calls so far (random-stream counter)
   bool started_ = false;
   time::GpsTime t_prev_;
+
+  // Scene stage (optional).
+  std::unique_ptr<scene::Propagator> propagator_;
+  std::unique_ptr<geo::LocalFrame> scene_frame_;
+  std::array<scene::SatQuery, kMaxGpsPrn> scene_query_{};
+  std::array<scene::SatPath, kMaxGpsPrn> scene_out_{};
+  std::array<scene::SatPath, kMaxGpsPrn> scene_path_{};  ///< per PRN, this epoch
 
   // Receiver side.
   Solver solver_;

@@ -32,6 +32,23 @@ bool inside(const P2& p, const P2& a, const P2& b, const P2& c) {
   return cross(a, b, p) >= 0.0 && cross(b, c, p) >= 0.0 && cross(c, a, p) >= 0.0;
 }
 
+bool segments_cross(const P2& a, const P2& b, const P2& c, const P2& d) {
+  const double d1 = cross(a, b, c), d2 = cross(a, b, d), d3 = cross(c, d, a), d4 = cross(c, d, b);
+  return ((d1 > 0.0) != (d2 > 0.0)) && ((d3 > 0.0) != (d4 > 0.0)) && d1 != 0.0 && d2 != 0.0 && d3 != 0.0 &&
+         d4 != 0.0;
+}
+
+bool simple(const std::vector<P2>& p) {
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1) continue;  // adjacent through the closing edge
+      if (segments_cross(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n])) return false;
+    }
+  }
+  return true;
+}
+
 // Ear clipping of a counter-clockwise simple polygon; indices into poly.
 // Returns false if the polygon is not simple enough to clip.
 bool triangulate(const std::vector<P2>& poly, std::vector<std::array<uint32_t, 3>>& out) {
@@ -109,6 +126,7 @@ void add_building(MeshBuilder& b, const toml::table& t, const std::string& path,
   if (poly.size() > 1 && poly.front().e == poly.back().e && poly.front().n == poly.back().n) poly.pop_back();
   if (poly.size() < 3) throw Error(path, line_of(*fp), where + ".footprint: needs at least 3 distinct points");
   const double area = signed_area(poly);
+  if (!simple(poly)) throw Error(path, line_of(*fp), where + ".footprint: self-intersecting polygon");
   if (!(std::fabs(area) > 1e-6)) throw Error(path, line_of(*fp), where + ".footprint: zero area");
   if (area < 0.0) std::reverse(poly.begin(), poly.end());
   const double base = number(t, "base_m", 0.0, path, where, false);
