@@ -357,6 +357,7 @@ SceneConfig read_scene(TableReader& t, const std::string& base_dir) {
   }
   scene::SearchConfig& q = s.search;
   q.rays = static_cast<int>(t.integer("rays", q.rays, 16, 4'000'000));
+  q.azimuth_rays = static_cast<int>(t.integer("azimuth_rays", q.azimuth_rays, 0, 100000));
   q.max_bounces = static_cast<int>(t.integer("max_bounces", q.max_bounces, 1, scene::Propagator::kMaxBounces));
   q.match_factor = t.number("match_factor", q.match_factor, Range{0.0, 20.0, "", true});
   q.reuse_distance_m = t.number("reuse_distance_m", q.reuse_distance_m, Range{0.0, 1000.0, "m"});

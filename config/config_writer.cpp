@@ -188,6 +188,7 @@ std::string to_toml(const Config& c, const std::string& relative_to) {
     o += "scale = " + number(s.placement.scale) + "\n";
     o += "up_axis = " + quoted(s.placement.y_up ? "y" : "z") + "\n";
     o += "rays = " + std::to_string(s.search.rays) + "\n";
+    o += "azimuth_rays = " + std::to_string(s.search.azimuth_rays) + "  # per blocked satellite, vertical/horizontal scenes\n";
     o += "max_bounces = " + std::to_string(s.search.max_bounces) + "\n";
     o += "match_factor = " + number(s.search.match_factor) + "\n";
     o += "reuse_distance_m = " + number(s.search.reuse_distance_m) + "\n";

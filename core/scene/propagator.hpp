@@ -45,11 +45,20 @@ struct SatQuery {
 
 /// Search effort. Defaults: measured by `gnssemu bench multipath` (docs/benchmarks.md).
 struct SearchConfig {
-  int rays = 2048;                  ///< launch directions over the arrival hemisphere (>= 16)
+  int rays = 1024;                  ///< launch directions over the arrival hemisphere (>= 16)
+  /// Scenes of vertical and horizontal faces only: per blocked satellite,
+  /// rays on the cone of its elevation (the only launch directions that can
+  /// reach it), this many in azimuth; 0: always the hemisphere.
+  int azimuth_rays = 128;
   int max_bounces = 16;             ///< reflections per path at most [1, 32]
   double match_factor = 1.5;        ///< candidate tolerance in units of the mean ray spacing (> 0)
-  double reuse_distance_m = 0.0;    ///< reuse a satellite's last path while the antenna moved less than this, m (0: off)
-  double reuse_angle_rad = 0.0;     ///< ... and its direction turned less than this, rad
+  /// Path reuse: within reuse_distance_m of the antenna position and
+  /// reuse_angle_rad of the satellite direction at a satellite's last full
+  /// search, the search is skipped: its LOS ray is still cast, a reflected
+  /// path is re-solved on the same planes (exact delay at the new position),
+  /// and only if that fails is the satellite searched again. 0 and 0: off.
+  double reuse_distance_m = 0.0;    ///< m
+  double reuse_angle_rad = 0.0;     ///< rad
   double min_arrival_el_rad = 0.0;  ///< arrivals from below this elevation are rejected (antenna gain), rad
   double max_loss_db = 1.0e9;       ///< paths weaker than this are not received, dB
 };
@@ -61,7 +70,8 @@ void validate(const SearchConfig& c);
 struct PropagatorStats {
   uint64_t rays = 0;       ///< Embree rays cast (LOS, launch, bounces, refinement)
   int los_checked = 0;     ///< satellites given an LOS ray
-  int searched = 0;        ///< satellites given a reflection search
+  int searched = 0;        ///< satellites given a full reflection search
+  int retraced = 0;        ///< reflected paths re-solved on their last planes (reuse)
   int reused = 0;          ///< satellites whose last path was reused
   int candidates = 0;      ///< exact-path refinements tried
 };
@@ -70,6 +80,7 @@ class Propagator {
 public:
   static constexpr int kMaxIds = 64;
   static constexpr int kMaxBounces = 32;
+  static constexpr int kMaxConeSats = 32;  ///< blocked satellites given cone rays per epoch at most
 
   /// scene must outlive the propagator. Allocates every buffer. Throws on a bad config.
   Propagator(const Scene& scene, const SearchConfig& config);
@@ -88,19 +99,24 @@ public:
 private:
   struct Cached {
     bool valid = false;
-    Vec3 rx_m, dir;
+    Vec3 rx_m, dir;                 ///< at the last full search
     SatPath path;
+    std::array<int32_t, kMaxBounces> prims{};  ///< planes of path (NLOS)
   };
   struct Blocked {
     int slot;          ///< index into sats/out
     Vec3 dir;          ///< unit
     SatPath best;
+    double cos_match = 1.0;        ///< candidate tolerance (cos of the angle)
+    std::array<int32_t, kMaxBounces> best_prims{};
     int n_seen = 0;    ///< plane sequences already refined
     std::array<uint64_t, 32> seen{};
   };
 
   void search(const Vec3& rx_m, int n_blocked) noexcept;
-  void refine(const Vec3& rx_m, const int32_t* prims, int k, Blocked& b) noexcept;
+  /// Solves and verifies the exact path on planes prims[0..k); true if it
+  /// is viable (then b.best is updated if it is better).
+  bool refine(const Vec3& rx_m, const int32_t* prims, int k, Blocked& b) noexcept;
   bool settled(const Blocked& b, int k) const noexcept;
 
   const Scene& scene_;
@@ -113,6 +129,8 @@ private:
   std::vector<Ray> rays_;
   std::vector<Hit> hits_;
   std::vector<int32_t> ray_id_;      ///< launch index of each active ray
+  std::vector<int16_t> ray_sat_;     ///< blocked index a cone ray serves, -1: all (hemisphere)
+  std::vector<int16_t> next_sat_;
   std::vector<int32_t> prims_;       ///< [launch index * max_bounces + bounce] plane sequence
   std::vector<Ray> next_rays_;
   std::vector<int32_t> next_id_;

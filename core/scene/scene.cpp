@@ -92,6 +92,8 @@ Scene::Scene(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
       const double len = n.norm();
       n = len > 0.0 ? n / len : Vec3(0.0, 0.0, 1.0);
       normals_.push_back(n);
+      // Tolerance ~1e-5 rad: below any path's float32 resolution at street scale.
+      if (std::fabs(n.z) > 1e-5 && std::fabs(n.z) < 1.0 - 1e-10) vertical_horizontal_ = false;
       offsets_.push_back(n.dot(a));
       for (const Vec3& p : {a, b, c}) {
         lo_ = Vec3(std::min(lo_.x, p.x), std::min(lo_.y, p.y), std::min(lo_.z, p.z));

@@ -38,6 +38,10 @@ public:
   Scene& operator=(const Scene&) = delete;
 
   std::size_t triangle_count() const noexcept { return normals_.size(); }
+  /// True if every triangle is vertical or horizontal (extruded footprints,
+  /// OSM cities): reflections then keep |sin(elevation)| of a ray, which
+  /// the propagator exploits (docs/scene.md).
+  bool vertical_horizontal() const noexcept { return vertical_horizontal_; }
   bool empty() const noexcept { return normals_.empty(); }
 
   /// True if anything lies on the ray within [tnear, tfar].
@@ -76,6 +80,7 @@ private:
   std::vector<std::string> material_names_;
   std::vector<double> loss_db_;
   Vec3 lo_, hi_;
+  bool vertical_horizontal_ = true;
 };
 
 }  // namespace gnssemu::scene

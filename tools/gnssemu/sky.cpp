@@ -3,9 +3,12 @@
 #include <fmt/format.h>
 
 #include <iterator>
+#include <optional>
+#include <span>
 
 #include "core/common/constants.hpp"
 #include "core/geo/geodesy.hpp"
+#include "core/geo/local_frame.hpp"
 #include "core/receiver/receiver.hpp"
 #include "core/receiver/sky.hpp"
 
@@ -31,8 +34,11 @@ receiver::ReceiverConfig geometry_receiver_config(double mask_rad) {
 }  // namespace
 
 int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out) {
-  out << "prn,az_deg,el_deg,range_m\n";
+  out << "prn,az_deg,el_deg,range_m" << (req.scene ? ",los,bounces,nlos_delay_m,path_loss_db\n" : "\n");
   const Ecef rx = geo::ecef_from_lla(req.rx_lla);
+  const geo::LocalFrame frame(req.scene_origin);
+  std::optional<scene::Propagator> prop;
+  if (req.scene) prop.emplace(*req.scene, req.search);
   int rows = 0;
   fmt::memory_buffer buf;
   for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
@@ -41,8 +47,20 @@ int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::os
     const receiver::SkySat s = receiver::sky_sat(*eph, req.t, rx, req.rx_lla, Ecef());
     if (!(s.el_rad >= req.mask_rad)) continue;
     buf.clear();
-    fmt::format_to(std::back_inserter(buf), "{},{:.6f},{:.6f},{:.4f}\n", prn, s.az_rad * kRadToDeg,
+    fmt::format_to(std::back_inserter(buf), "{},{:.6f},{:.6f},{:.4f}", prn, s.az_rad * kRadToDeg,
                    s.el_rad * kRadToDeg, s.range_m);
+    if (prop) {
+      const scene::SatQuery q{prn, frame.vector_to_enu((s.pos_m - rx) / s.range_m)};
+      scene::SatPath p;
+      prop->compute(frame.to_enu(rx), std::span<const scene::SatQuery>(&q, 1), std::span<scene::SatPath>(&p, 1));
+      if (p.kind == scene::PathKind::kNone) {
+        fmt::format_to(std::back_inserter(buf), ",0,0,,");
+      } else {
+        fmt::format_to(std::back_inserter(buf), ",{},{},{:.4f},{:.2f}", p.kind == scene::PathKind::kLos ? 1 : 0,
+                       p.bounces, p.extra_delay_m, p.loss_db);
+      }
+    }
+    buf.push_back('\n');
     out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
     ++rows;
   }

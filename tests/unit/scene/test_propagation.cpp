@@ -37,7 +37,11 @@ TEST(Propagation, OneInfiniteWallMatchesClosedForm) {
   add_wall_y(b, -5.0, -kFar, kFar, -1.0, 10.0);
   const Mesh mesh = std::move(b).finish();
   const Scene scene(mesh);
-  Propagator prop(scene, SearchConfig{});
+  ASSERT_TRUE(scene.vertical_horizontal());
+  for (const int azimuth_rays : {360, 0}) {  // elevation cone, then the whole hemisphere
+  SearchConfig cfg;
+  cfg.azimuth_rays = azimuth_rays;
+  Propagator prop(scene, cfg);
   const Enu rx(0.0, 0.0, h_m);
   for (const double el : {25.0, 30.0, 40.0}) {
     for (const double daz : {0.0, 20.0, -35.0, 50.0}) {
@@ -59,6 +63,7 @@ TEST(Propagation, OneInfiniteWallMatchesClosedForm) {
   EXPECT_EQ(los.kind, PathKind::kLos);
   EXPECT_EQ(los.extra_delay_m, 0.0);
   EXPECT_EQ(los.loss_db, 0.0);
+  }
 }
 
 // Street canyon: walls y = +-W/2 of height H. The south wall blocks the
@@ -71,7 +76,10 @@ TEST(Propagation, TwoWallCanyonTwoBouncePaths) {
   add_wall_y(b, w_m / 2.0, -kFar, kFar, 0.0, wall_m);
   add_wall_y(b, -w_m / 2.0, -kFar, kFar, 0.0, wall_m);
   const Scene scene(std::move(b).finish());
-  Propagator prop(scene, SearchConfig{});
+  for (const int azimuth_rays : {360, 0}) {
+  SearchConfig cfg;
+  cfg.azimuth_rays = azimuth_rays;
+  Propagator prop(scene, cfg);
   for (const double y0 : {0.0, -3.0}) {
     for (const double daz : {0.0, 15.0}) {
       const Enu dir = direction(180.0 + daz, el);
@@ -95,6 +103,7 @@ TEST(Propagation, TwoWallCanyonTwoBouncePaths) {
   ASSERT_EQ(p1.kind, PathKind::kNlos);
   EXPECT_EQ(p1.bounces, 1);
   EXPECT_NEAR(p1.extra_delay_m, 2.0 * (w_m / 2.0) * std::cos(el1 * kDegToRad), 1e-4);
+  }
 }
 
 TEST(Propagation, PerMaterialLossEntersThePath) {
@@ -209,10 +218,14 @@ TEST(Propagation, ReuseKeepsThePathWithinThresholds) {
   const Enu dir = direction(180.0, 30.0);
   const SatPath p0 = one(prop, Enu(0.0, 0.0, 1.5), dir);
   EXPECT_EQ(prop.stats().searched, 1);
-  const SatPath p1 = one(prop, Enu(0.0, 0.5, 1.5), dir);  // moved 0.5 m: reused
+  EXPECT_NEAR(p0.extra_delay_m, 2.0 * 20.0 * std::cos(30.0 * kDegToRad), 1e-4);
+  // Moved 0.5 m: no search; the path is re-solved on the same wall (LOS
+  // ray, one bounce, exit ray) and its delay follows the receiver exactly.
+  const SatPath p1 = one(prop, Enu(0.0, 0.5, 1.5), dir);
   EXPECT_EQ(prop.stats().reused, 1);
-  EXPECT_EQ(prop.stats().rays, 0u);
-  EXPECT_EQ(p1.extra_delay_m, p0.extra_delay_m);
+  EXPECT_EQ(prop.stats().searched, 0);
+  EXPECT_EQ(prop.stats().rays, 3u);
+  EXPECT_NEAR(p1.extra_delay_m, 2.0 * 19.5 * std::cos(30.0 * kDegToRad), 1e-4);
   const SatPath p2 = one(prop, Enu(0.0, 2.0, 1.5), dir);  // moved 2 m: searched again
   EXPECT_EQ(prop.stats().searched, 1);
   EXPECT_NEAR(p2.extra_delay_m, 2.0 * 18.0 * std::cos(30.0 * kDegToRad), 1e-4);
