@@ -187,7 +187,10 @@ void Receiver::propagation_stage(const time::GpsTime& t, const Lla& rx_lla, cons
     const int p = above_[i];
     const SkySat& s = sky_[p - 1];
     const SlowTerms v =
-        cache_.get(p, t, [&] { return atmosphere_.slow_terms(rx_lla, s.az_rad, s.el_rad, tow_s, doy); });
+        cache_.get(p, t, [&] {
+          ++atmosphere_evaluations_;
+          return atmosphere_.slow_terms(rx_lla, s.az_rad, s.el_rad, tow_s, doy);
+        });
     PathEffects& e = path_[p - 1];
     if (atmosphere_.iono_on()) e.iono_m = std::max(v[kIonoM] + iono_tecu_[p - 1] * v[kIonoMPerTecu], 0.0);
     if (atmosphere_.tropo_on()) e.tropo_m = std::max(v[kTropoM] + zwd_pert_m_ * v[kNmfWet], 0.0);

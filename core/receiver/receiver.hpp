@@ -61,8 +61,9 @@ public:
   /// The world's propagation effects on prn (1..32) at the last epoch with
   /// truth (zero when the satellite was not above the mask).
   const PathEffects& path_effects(int prn) const noexcept { return path_[static_cast<std::size_t>(prn - 1)]; }
-  /// Slow-term cache refreshes so far (benchmarks).
-  long atmosphere_refreshes() const noexcept { return cache_.refreshes(); }
+  /// Evaluations of the slow atmospheric terms so far (one per satellite and
+  /// refresh; every satellite every epoch without a cache). For benchmarks.
+  long atmosphere_refreshes() const noexcept { return atmosphere_evaluations_; }
 
   /// World truth of the receiver oscillator at the last epoch (for error
   /// analysis; the solver never reads it).
@@ -99,6 +100,7 @@ private:
   Ecef cache_pos_m_;                                ///< receiver position the cache belongs to
   double cache_height_m_ = 0.0;
   bool cache_pos_valid_ = false;
+  long atmosphere_evaluations_ = 0;
   std::array<PathEffects, kMaxGpsPrn> path_{};
   // Signal stage.
   signal::LinkBudgetModel link_;
