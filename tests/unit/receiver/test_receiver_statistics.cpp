@@ -88,8 +88,9 @@ TEST(ReceiverStatistics, DefaultSolverAccuracyIsConservativeButTight) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
   const Ensemble e = run_ensemble(store, ReceiverConfig{}, 400);
   ASSERT_GE(e.fixes, 396);
-  // The default solver assumes sigma^2 = 1.2^2 + 0.3^2 / sin^2(el) >= the
-  // world's 1.24^2 at every elevation, so its covariance bounds the true one:
+  // The default solver assumes sigma^2 = 1.2^2 + 0.3^2 / sin^2(el) + 150^2 10^(-C/N0/10),
+  // at least the default world's variance (GM 1.2 m, DLL noise, atmosphere
+  // residuals) at every elevation, so its covariance bounds the true one:
   // ratio <= 1 up to sampling (~4 %); it over-weights low satellites only
   // mildly, so the bound is not loose (ratio > 0.6).
   const double ratio = e.rms_h_m / e.mean_h_acc_m;
