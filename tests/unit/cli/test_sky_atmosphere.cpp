@@ -48,7 +48,9 @@ TEST(SkyAtmosphere, ColumnsFollowTheModels) {
     EXPECT_GE(nw, 0.999);
     // Niell stays below the flat-Earth 1/sin(el) and within 4 % of it above 10 deg.
     EXPECT_LE(nh, 1.0 / std::sin(std::max(el, kDegToRad)) + 1e-3);
-    if (el > 10.0 * kDegToRad) EXPECT_NEAR(nh * std::sin(el), 1.0, 0.04);
+    if (el > 10.0 * kDegToRad) {
+      EXPECT_NEAR(nh * std::sin(el), 1.0, 0.04);
+    }
     const double atten = sky.num(i, "atten_db"), cn0 = sky.num(i, "cn0_dbhz");
     EXPECT_GT(atten, 0.03);
     EXPECT_LT(atten, 2.0);

@@ -157,7 +157,9 @@ TEST(ReceiverAtmosphere, TrackingThresholdsAndHysteresis) {
         continue;
       }
       now[s.prn] = true;
-      if (!was_tracked[s.prn]) EXPECT_GE(s.cn0_dbhz, 44.0) << "acquired below the threshold";
+      if (!was_tracked[s.prn]) {
+        EXPECT_GE(s.cn0_dbhz, 44.0) << "acquired below the threshold";
+      }
       EXPECT_GE(s.cn0_dbhz, 20.0);
       if (s.cn0_dbhz < 44.0) ++kept_below_acquire;
     }

@@ -144,7 +144,9 @@ TEST(AtmosphereHardCases, SatellitesAtTheMaskAndAtZenith) {
     EXPECT_GT(e.tropo_m, 2.2);
     EXPECT_LT(e.tropo_m, 14.0);
   }
-  if (f.type != FixType::kNone) EXPECT_LT((f.pos_m - rx_pos).norm(), 5.0 * std::hypot(f.h_acc_m, f.v_acc_m));
+  if (f.type != FixType::kNone) {
+    EXPECT_LT((f.pos_m - rx_pos).norm(), 5.0 * std::hypot(f.h_acc_m, f.v_acc_m));
+  }
 }
 
 }  // namespace
