@@ -13,6 +13,7 @@
 
 #include <toml++/toml.h>
 
+#include "config/config_atmosphere.hpp"
 #include "config/toml_reader.hpp"
 #include "core/common/error.hpp"
 
@@ -142,6 +143,7 @@ void read_solver(TableReader& t, receiver::SolverConfig& s) {
     if (n == nullptr) n = t.find("sigma_b_m");
     t.fail(*n, t.path() + ": sigma_a_m and sigma_b_m are both 0 (the solver's weights would be infinite)");
   }
+  s.sigma_c_m_sqrt_hz = t.number("sigma_c_m_sqrt_hz", s.sigma_c_m_sqrt_hz, Range{0.0, 10000.0, "m sqrt(Hz)"});
   s.sigma_range_rate_m_s =
       t.number("sigma_range_rate_m_s", s.sigma_range_rate_m_s, Range{0.0, 10.0, "m/s", true});
   s.height_hold_sigma_m = t.number("height_hold_sigma_m", s.height_hold_sigma_m, Range{0.0, 1000.0, "m", true});
@@ -163,6 +165,7 @@ void read_receiver(TableReader& t, Config& c) {
   r.max_channels = static_cast<int>(t.integer("max_channels", r.max_channels, 4, 64));
   if (auto e = t.table("errors", false)) {
     receiver::ErrorModelConfig& em = r.errors;
+    detail::read_thermal_model(*e, em);
     em.thermal_sigma_m = e->number("thermal_sigma_m", em.thermal_sigma_m, Range{0.0, 100.0, "m"});
     em.doppler_sigma_m_s = e->number("doppler_sigma_m_s", em.doppler_sigma_m_s, Range{0.0, 10.0, "m/s"});
     if (auto oc = e->table("orbit_clock", false)) read_gauss_markov(*oc, em.orbit_clock);
@@ -179,6 +182,7 @@ void read_receiver(TableReader& t, Config& c) {
     k->finish();
   }
   if (auto s = t.table("solver", false)) read_solver(*s, r.solver);
+  if (auto s = t.table("corrections", false)) detail::read_corrections(*s, r.solver);
   t.finish();
 }
 
@@ -346,6 +350,13 @@ Config read_config(const toml::table& doc, const std::string& name, const std::s
 
   if (auto t = root.table("time", false)) c.time = read_time(*t);
   if (auto t = root.table("receiver", false)) read_receiver(*t, c);
+  {
+    std::optional<TableReader> atm = root.table("atmosphere", false);
+    if (atm) detail::read_atmosphere(*atm, c.receiver);
+    std::optional<TableReader> sig = root.table("signal", false);
+    if (sig) detail::read_signal(*sig, c.receiver);
+    detail::check_models(atm ? *atm : sig ? *sig : root, c.receiver);
+  }
   if (auto t = root.table("truth", false)) c.truth = read_truth(*t);
   if (auto t = root.table("demo", false)) c.demo = read_demo(*t);
   c.outputs = read_outputs(root, base_dir);

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "config/config.hpp"
+#include "config/config_atmosphere.hpp"
 #include "config/toml_reader.hpp"
 #include "core/common/error.hpp"
 
@@ -137,6 +138,7 @@ std::string to_toml(const Config& c, const std::string& relative_to) {
   o += "max_pdop = " + number(r.max_pdop) + "\n";
   o += "max_channels = " + std::to_string(r.max_channels) + "\n";
   o += "\n[receiver.errors]\n";
+  o += "thermal_model = \"" + detail::thermal_model_name(r.errors.thermal_model) + "\"\n";
   o += "thermal_sigma_m = " + number(r.errors.thermal_sigma_m) + "\n";
   o += "doppler_sigma_m_s = " + number(r.errors.doppler_sigma_m_s) + "\n";
   o += "\n[receiver.errors.orbit_clock]  # first-order Gauss-Markov\n";
@@ -150,10 +152,14 @@ std::string to_toml(const Config& c, const std::string& relative_to) {
   o += "\n[receiver.solver]  # what the receiver's own solver assumes\n";
   o += "sigma_a_m = " + number(r.solver.sigma_a_m) + "\n";
   o += "sigma_b_m = " + number(r.solver.sigma_b_m) + "\n";
+  o += "sigma_c_m_sqrt_hz = " + number(r.solver.sigma_c_m_sqrt_hz) + "\n";
   o += "sigma_range_rate_m_s = " + number(r.solver.sigma_range_rate_m_s) + "\n";
   o += "height_hold_sigma_m = " + number(r.solver.height_hold_sigma_m) + "\n";
   o += "residual_test_pfa = " + number(r.solver.residual_test_pfa) + "\n";
   o += "max_iterations = " + std::to_string(r.solver.max_iterations) + "\n";
+  o += detail::corrections_toml(r.solver, number);
+  o += detail::atmosphere_toml(r, number);
+  o += detail::signal_toml(r, number);
 
   o += "\n[truth]  # UDP truth input\n";
   o += "bind = " + quoted(c.truth.bind_address) + "\n";

@@ -48,6 +48,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
     : io_(io),
       cfg_(cfg),
       nav_leap_s_(nav.leap_seconds),
+      nav_klobuchar_(nav.klobuchar),
       store_(nav.ephemerides),
       frame_(cfg.origin),
       receiver_(std::make_unique<receiver::Receiver>(store_, cfg.receiver)),
@@ -61,6 +62,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       signals_(io, SIGINT, SIGTERM) {
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
   if (nav_leap_s_) receiver_->set_leap_seconds(*nav_leap_s_);
+  receiver_->set_klobuchar(nav_klobuchar_);
   for (const auto& p : cfg_.outputs) encoders_.emplace_back(p.nmea);
   out_buf_.reserve(2 * protocol::nmea::kMaxEpochBytes);
   lock_next_ = coverage_.start;
@@ -152,6 +154,7 @@ void Daemon::note_clock_wrap(int64_t wraps) {
   router_.on_clock_jump();
   receiver_ = std::make_unique<receiver::Receiver>(store_, cfg_.receiver);
   if (nav_leap_s_) receiver_->set_leap_seconds(*nav_leap_s_);
+  receiver_->set_klobuchar(nav_klobuchar_);
 }
 
 receiver::Truth Daemon::fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept {
@@ -301,6 +304,7 @@ void Daemon::align_to_packet_time(const time::GpsTime& stamp) {
   if (first < lock_next_) {
     receiver_ = std::make_unique<receiver::Receiver>(store_, cfg_.receiver);  // time goes back
     if (nav_leap_s_) receiver_->set_leap_seconds(*nav_leap_s_);
+    receiver_->set_klobuchar(nav_klobuchar_);
   }
   lock_next_ = first;
   spdlog::info("lockstep: epochs follow the packets' GPS time from {}", gps_text(first));

@@ -60,6 +60,7 @@ private:
   asio::io_context& io_;
   config::Config cfg_;
   std::optional<int> nav_leap_s_;
+  orbit::KlobucharParams nav_klobuchar_;  ///< broadcast iono of the nav header (invalid: RTKLIB defaults)
   orbit::EphemerisStore store_;
   geo::LocalFrame frame_;
   std::unique_ptr<receiver::Receiver> receiver_;

@@ -67,6 +67,7 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
   const orbit::EphemerisStore store(nav.ephemerides);
   receiver::Receiver rx(store, config.receiver);
   if (nav.leap_seconds) rx.set_leap_seconds(*nav.leap_seconds);
+  rx.set_klobuchar(nav.klobuchar);
   const protocol::nmea::NmeaEncoder encoder(nmea_config_of(config));
   std::string sentences;
   sentences.reserve(4096);

@@ -332,6 +332,13 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
   c.receiver.errors.orbit_clock.tau_s = r.range_noise.gm_tau_s;
   c.receiver.errors.thermal_sigma_m = r.range_noise.white_sigma_m;
   if (cn0.n >= 10) c.receiver.nominal_cn0_dbhz = cn0.zenith_dbhz;
+  // The fitted GM + white process already holds all the receiver's broadcast
+  // corrections miss: the world's random atmosphere is off, the white part is
+  // used as fitted (not from C/N0), and the link budget takes the fitted antenna.
+  c.receiver.errors.thermal_model = receiver::ThermalModel::kFixed;
+  c.receiver.atmosphere.ionosphere.perturbation.sigma = 0.0;
+  c.receiver.atmosphere.zwd_perturbation.sigma_m = 0.0;
+  if (cn0.n >= 10) c.receiver.signal.link.antenna = cn0.antenna;
   r.config = c;
   return r;
 }

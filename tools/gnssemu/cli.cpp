@@ -77,11 +77,14 @@ SkyRequest checked_site(const SiteArgs& s, const time::GpsTime& t) {
 
 std::string describe(const time::GpsTime& t) { return fmt::format("week {} tow {:.3f}", t.week(), t.tow_s()); }
 
-/// Ephemeris store of a nav file that has at least one healthy set valid at t.
-orbit::EphemerisStore load_store(const std::string& nav_path, const time::GpsTime& t) {
+/// Ephemeris store of a nav file that has at least one healthy set valid at t
+/// (and, if klobuchar is given, the header's broadcast ionosphere).
+orbit::EphemerisStore load_store(const std::string& nav_path, const time::GpsTime& t,
+                                 orbit::KlobucharParams* klobuchar = nullptr) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(nav_path, ec)) throw Error(nav_path, 0, "nav file not found");
   const orbit::NavData nav = orbit::read_rinex_nav(nav_path);
+  if (klobuchar) *klobuchar = nav.klobuchar;
   orbit::EphemerisStore store(nav.ephemerides);
   if (store.size() == 0) throw Error(nav_path, 0, "no GPS ephemerides in the file");
   for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
@@ -303,8 +306,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       write_satpos(load_store(nav_path, t), t, out);
     } else if (*sky || *dop) {
       const time::GpsTime t = checked_time(time_args);
-      const SkyRequest req = checked_site(site, t);
-      const orbit::EphemerisStore store = load_store(nav_path, t);
+      SkyRequest req = checked_site(site, t);
+      const orbit::EphemerisStore store = load_store(nav_path, t, &req.klobuchar);
       if (*sky) {
         write_sky(store, req, out);
       } else if (const DopResult d = write_dop(store, req, out); !d.defined) {

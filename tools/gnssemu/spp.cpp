@@ -21,9 +21,19 @@ double receiver_correction_m(const orbit::KlobucharParams& k, const Lla& rx, dou
          atmosphere::standard_troposphere_correction_m(rx.lat_rad, rx.height_m, el_rad, doy);
 }
 
+namespace {
+// The pseudoranges reach the solver already corrected (receiver_correction_m
+// at the mask position), so its own iono / tropo corrections stay off.
+receiver::SolverConfig precorrected(receiver::SolverConfig s) {
+  s.iono = atmosphere::IonoCorrection::kNone;
+  s.tropo = atmosphere::TropoCorrection::kNone;
+  return s;
+}
+}  // namespace
+
 SppEngine::SppEngine(const orbit::NavData& nav, const orbit::EphemerisStore& store,
                      const observation::ObsHeader& header, const SppOptions& options)
-    : store_(store), klobuchar_(nav.klobuchar), opt_(options), solver_(options.solver, options.max_pdop) {
+    : store_(store), klobuchar_(nav.klobuchar), opt_(options), solver_(precorrected(options.solver), options.max_pdop) {
   c1c_ = header.type_index("C1C");
   s1c_ = header.type_index("S1C");
   if (c1c_ < 0) throw Error("observation file has no GPS C1C (RINEX 2: C1) pseudoranges");
