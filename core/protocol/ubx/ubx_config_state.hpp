@@ -81,7 +81,7 @@ public:
   /// All six rates of id (zeros when absent).
   std::array<std::uint8_t, kNumPorts> message_rates(MsgId id) const noexcept;
   /// Set one port's rate; false when the table is full.
-  bool set_message_rate(std::uint8_t port_id, MsgId id, std::uint8_t rate) noexcept;
+  bool set_message_rate(std::uint8_t port_id, MsgId id, std::uint8_t value) noexcept;
   /// Set all six rates; false when the table is full.
   bool set_message_rates(MsgId id, const std::array<std::uint8_t, kNumPorts>& rates) noexcept;
   std::span<const MessageRate> rate_table() const noexcept { return {rates_.data(), num_rates_}; }

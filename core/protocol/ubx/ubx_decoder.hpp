@@ -29,6 +29,7 @@ struct DecoderStats {
   std::uint64_t nmea_no_checksum = 0;   ///< no '*hh' before CR LF (rejected)
   std::uint64_t nmea_too_long = 0;      ///< no line end within kMaxNmeaBytes
   std::uint64_t nmea_bad_char = 0;      ///< non-printable byte inside a sentence
+  std::uint64_t idle_resyncs = 0;       ///< partial frames abandoned by on_idle
   std::uint64_t garbage_bytes = 0;      ///< bytes discarded outside good frames
 };
 
@@ -48,6 +49,12 @@ public:
   void feed(std::string_view bytes, DecoderSink& sink) noexcept {
     feed({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()}, sink);
   }
+  /// The line has been idle (say 100 ms) with a partial frame pending: give up
+  /// on it and rescan what is held from its second byte. A garbage header
+  /// announcing a long payload would otherwise swallow the host's next
+  /// commands until that many bytes arrived; hosts wait for a reply before
+  /// sending more, so without this the handshake would stall.
+  void on_idle(DecoderSink& sink) noexcept;
   /// Drop any partial frame (e.g. after a baud change garbles the line).
   void reset() noexcept { size_ = 0; }
 

@@ -34,6 +34,7 @@ void validate(const MonVerConfig& config);
 struct EpochInfo {
   std::uint32_t msss_ms = 0;  ///< ms since start-up or reset (NAV-STATUS msss)
   std::uint32_t ttff_ms = 0;  ///< time to first fix, ms; 0 = no fix yet
+  bool itfm_enabled = false;  ///< CFG-ITFM enable: MON-HW jammingState reported (else 0 = unknown)
 };
 
 /// Largest output of one epoch with every message enabled and 32 satellites
@@ -63,7 +64,7 @@ public:
   std::size_t nav_svinfo(const receiver::Fix& fix, std::string& out) const;
   std::size_t nav_eoe(const receiver::Fix& fix, std::string& out) const;
   /// Noise level, AGC and jamming indicator from fix.noise_rise_db.
-  std::size_t mon_hw(const receiver::Fix& fix, std::string& out) const;
+  std::size_t mon_hw(const receiver::Fix& fix, const EpochInfo& info, std::string& out) const;
   std::size_t mon_ver(std::string& out) const;
   /// ACK-ACK (ack = true) or ACK-NAK for the input message acked.
   static std::size_t ack(MsgId acked, bool ack, std::string& out);
