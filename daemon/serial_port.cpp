@@ -2,6 +2,8 @@
 // back-off when the device goes away (USB adapter unplugged). Baud changes
 // wait until the bytes already queued have left the line (docs/ports.md).
 #include <fcntl.h>
+#include <sys/ioctl.h>
+#include <termios.h>
 #include <unistd.h>
 
 #include <libserialport.h>
@@ -44,6 +46,99 @@ std::string sp_text(sp_return r) {
   }
 }
 
+// The device: libserialport for UARTs it knows. libserialport 0.1 refuses
+// devices whose real name does not start with "tty" (ptys such as socat's
+// /dev/pts/N, some virtual UARTs): those are driven through termios
+// directly, with the same 8N1 raw settings.
+class Line {
+public:
+  ~Line() { close(); }
+  /// Returns "" or what failed.
+  std::string open(const std::string& path, uint32_t baud) {
+    sp_return r = sp_get_port_by_name(path.c_str(), &sp_);
+    if (r == SP_ERR_ARG) {
+      sp_ = nullptr;
+      return open_termios(path, baud);
+    }
+    if (r == SP_OK) r = sp_open(sp_, SP_MODE_READ_WRITE);
+    if (r == SP_OK) r = sp_set_baudrate(sp_, static_cast<int>(baud));
+    if (r == SP_OK) r = sp_set_bits(sp_, 8);
+    if (r == SP_OK) r = sp_set_parity(sp_, SP_PARITY_NONE);
+    if (r == SP_OK) r = sp_set_stopbits(sp_, 1);
+    if (r == SP_OK) r = sp_set_flowcontrol(sp_, SP_FLOWCONTROL_NONE);
+    if (r == SP_OK) r = sp_get_port_handle(sp_, &fd_);
+    if (r != SP_OK) {
+      const std::string why = sp_text(r);
+      close();
+      return why;
+    }
+    ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) | O_NONBLOCK);
+    return {};
+  }
+  void close() noexcept {
+    if (sp_ != nullptr) {
+      sp_close(sp_);
+      sp_free_port(sp_);
+      sp_ = nullptr;
+    } else if (fd_ >= 0) {
+      ::close(fd_);
+    }
+    fd_ = -1;
+  }
+  bool set_baud(uint32_t baud) noexcept {
+    if (sp_ != nullptr) return sp_set_baudrate(sp_, static_cast<int>(baud)) == SP_OK;
+    termios tio{};
+    if (::tcgetattr(fd_, &tio) != 0) return false;
+    ::cfsetispeed(&tio, baud_constant(baud));
+    ::cfsetospeed(&tio, baud_constant(baud));
+    return ::tcsetattr(fd_, TCSANOW, &tio) == 0;
+  }
+  /// Bytes in the driver's output queue (TIOCOUTQ).
+  int output_waiting() const noexcept {
+    if (sp_ != nullptr) return sp_output_waiting(sp_);
+    int n = 0;
+    return ::ioctl(fd_, TIOCOUTQ, &n) == 0 ? n : 0;
+  }
+  /// Wait for the last bytes to leave the UART (tcdrain).
+  void drain() noexcept {
+    if (sp_ != nullptr) {
+      sp_drain(sp_);
+    } else {
+      ::tcdrain(fd_);
+    }
+  }
+  int fd() const noexcept { return fd_; }
+  bool is_open() const noexcept { return fd_ >= 0; }
+  bool via_libserialport() const noexcept { return sp_ != nullptr; }
+
+private:
+  std::string open_termios(const std::string& path, uint32_t baud) {
+    fd_ = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+    if (fd_ < 0) return errno_text();
+    termios tio{};
+    if (::tcgetattr(fd_, &tio) != 0) {
+      const std::string why = "not a terminal: " + errno_text();
+      close();
+      return why;
+    }
+    ::cfmakeraw(&tio);
+    tio.c_cflag &= ~static_cast<tcflag_t>(CSTOPB | PARENB | CRTSCTS | CSIZE);
+    tio.c_cflag |= CS8 | CLOCAL | CREAD;
+    tio.c_iflag &= ~static_cast<tcflag_t>(IXON | IXOFF | IXANY);
+    ::cfsetispeed(&tio, baud_constant(baud));
+    ::cfsetospeed(&tio, baud_constant(baud));
+    if (::tcsetattr(fd_, TCSANOW, &tio) != 0) {
+      const std::string why = "tcsetattr: " + errno_text();
+      close();
+      return why;
+    }
+    return {};
+  }
+
+  sp_port* sp_ = nullptr;
+  int fd_ = -1;
+};
+
 class SerialPort final : public OutputPort {
 public:
   SerialPort(const config::OutputPortConfig& cfg, asio::io_context& io)
@@ -66,7 +161,7 @@ public:
     if (baud_bps == 0) return;
     pending_baud_ = baud_bps;
     drain_started_ = std::chrono::steady_clock::now();
-    if (port_ == nullptr) {
+    if (!line_.is_open()) {
       apply_pending_baud();  // nothing on the line: the next open uses it
       return;
     }
@@ -75,12 +170,12 @@ public:
   uint32_t baud() const noexcept override { return baud_; }
 
   std::string describe() const override {
-    return config_.path + " (serial " + std::to_string(baud_) + " 8N1" + (port_ == nullptr ? ", not open yet)" : ")");
+    return config_.path + " (serial " + std::to_string(baud_) + " 8N1" + (!line_.is_open() ? ", not open yet)" : ")");
   }
 
 protected:
   void deliver(int /*source*/, std::string_view data, bool epoch) noexcept override {
-    if (port_ == nullptr) {
+    if (!line_.is_open()) {
       if (epoch) ++stats_.epochs_dropped;
       return;
     }
@@ -99,40 +194,23 @@ protected:
 private:
   void try_open() {
     if (stopped_) return;
-    sp_port* p = nullptr;
-    sp_return r = sp_get_port_by_name(config_.path.c_str(), &p);
-    if (r == SP_OK) r = sp_open(p, SP_MODE_READ_WRITE);
-    if (r == SP_OK) r = configure(p, baud_);
-    int fd = -1;
-    if (r == SP_OK) r = sp_get_port_handle(p, &fd);
-    if (r != SP_OK) {
-      if (p != nullptr) {
-        sp_close(p);
-        sp_free_port(p);
-      }
-      fail("cannot open: " + sp_text(r));
+    const std::string why = line_.open(config_.path, baud_);
+    if (!why.empty()) {
+      fail("cannot open: " + why);
       return;
     }
-    ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
-    port_ = p;
     boost::system::error_code ec;
-    sd_.assign(fd, ec);
+    sd_.assign(line_.fd(), ec);
     if (failures_ > 0) {
       ++stats_.reopens;
       spdlog::info("output {}: {} open again after {} failed attempt(s)", config_.name, config_.path, failures_);
+    } else {
+      spdlog::debug("output {}: {} open via {}", config_.name, config_.path,
+                    line_.via_libserialport() ? "libserialport" : "termios (not a UART libserialport knows)");
     }
     failures_ = 0;
     retry_delay_ = kFirstRetry;
     read();
-  }
-
-  static sp_return configure(sp_port* p, uint32_t baud) {
-    sp_return r = sp_set_baudrate(p, static_cast<int>(baud));
-    if (r == SP_OK) r = sp_set_bits(p, 8);
-    if (r == SP_OK) r = sp_set_parity(p, SP_PARITY_NONE);
-    if (r == SP_OK) r = sp_set_stopbits(p, 1);
-    if (r == SP_OK) r = sp_set_flowcontrol(p, SP_FLOWCONTROL_NONE);
-    return r;
   }
 
   // Logged at a limited rate: the first failure, then once a minute.
@@ -156,12 +234,8 @@ private:
   void close_device() noexcept {
     boost::system::error_code ec;
     sd_.cancel(ec);
-    if (sd_.is_open()) sd_.release();  // libserialport owns the fd
-    if (port_ != nullptr) {
-      sp_close(port_);
-      sp_free_port(port_);
-      port_ = nullptr;
-    }
+    if (sd_.is_open()) sd_.release();  // Line owns the fd
+    line_.close();
     queue_.clear();
     writing_ = false;
     ++generation_;
@@ -182,7 +256,7 @@ private:
   }
 
   void flush() noexcept {
-    if (writing_ || queue_.empty() || port_ == nullptr) return;
+    if (writing_ || queue_.empty() || !line_.is_open()) return;
     const ssize_t n = ::write(sd_.native_handle(), queue_.data(), queue_.size());
     if (n > 0) {
       stats_.bytes_written += static_cast<uint64_t>(n);
@@ -206,8 +280,8 @@ private:
   void poll_drain() noexcept {
     if (pending_baud_ == 0) return;
     const bool timed_out = std::chrono::steady_clock::now() - drain_started_ > kDrainGiveUp;
-    if (port_ == nullptr || (queue_.empty() && sp_output_waiting(port_) == 0) || timed_out) {
-      if (port_ != nullptr && !timed_out) sp_drain(port_);
+    if (!line_.is_open() || (queue_.empty() && line_.output_waiting() == 0) || timed_out) {
+      if (line_.is_open() && !timed_out) line_.drain();
       apply_pending_baud();
       return;
     }
@@ -220,12 +294,9 @@ private:
   void apply_pending_baud() noexcept {
     const uint32_t b = pending_baud_;
     pending_baud_ = 0;
-    if (port_ != nullptr) {
-      const sp_return r = sp_set_baudrate(port_, static_cast<int>(b));
-      if (r != SP_OK) {
-        spdlog::warn("output {}: cannot set {} baud: {}", config_.name, b, sp_text(r));
-        return;
-      }
+    if (line_.is_open() && !line_.set_baud(b)) {
+      spdlog::warn("output {}: cannot set {} baud", config_.name, b);
+      return;
     }
     spdlog::info("output {}: line now {} baud (was {})", config_.name, b, baud_);
     baud_ = b;
@@ -238,7 +309,7 @@ private:
   asio::posix::stream_descriptor sd_;
   asio::steady_timer retry_timer_;
   asio::steady_timer drain_timer_;
-  sp_port* port_ = nullptr;
+  Line line_;
   uint32_t baud_;
   uint32_t pending_baud_ = 0;
   std::chrono::steady_clock::time_point drain_started_;
