@@ -196,12 +196,17 @@ void PortChannel::on_epoch(const receiver::Fix& fix, double uptime_s) noexcept {
   epoch_bytes_ = 0;
   epoch_dropped_.clear();
   // UBX position/velocity, then NMEA, then the rest of UBX (NAV-EOE last).
-  std::string_view ubx(ubx_buf_);
-  std::size_t split = 0;
-  while (split < ubx.size() && before_nmea(ubx.substr(split))) split += message_length(ubx.substr(split));
-  admit_all(ubx.substr(0, split), now);
+  const auto admit_ubx = [&](bool first_group) {
+    std::string_view ubx(ubx_buf_);
+    while (!ubx.empty()) {
+      const std::size_t n = message_length(ubx);
+      if (before_nmea(ubx.substr(0, n)) == first_group) admit_all(ubx.substr(0, n), now);
+      ubx.remove_prefix(n);
+    }
+  };
+  admit_ubx(true);
   admit_all(nmea_buf_, now);
-  admit_all(ubx.substr(split), now);
+  admit_ubx(false);
   if (!out_.empty()) port_->write_epoch(out_);
   if (!epoch_dropped_.empty() && !warned_) warn_drops(now);
 }
