@@ -6,6 +6,7 @@
 
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
+#include "core/geo/geoid.hpp"
 #include "core/time/utc.hpp"
 
 namespace gnssemu::receiver {
@@ -209,6 +210,7 @@ void Receiver::fill_solution() noexcept {
   f.type = out_.type;
   f.pos_m = out_.pos_m;
   f.lla = out_.lla;
+  f.geoid_sep_m = geo::geoid_separation_m(f.lla.lat_rad, f.lla.lon_rad);
   f.vel_m_s = out_.vel_m_s;
   f.vel_enu_m_s = out_.vel_enu_m_s;
   f.speed_m_s = std::hypot(out_.vel_enu_m_s.x, out_.vel_enu_m_s.y);
