@@ -441,7 +441,7 @@ ResponderResult ConfigResponder::handle_nmea(std::uint8_t port_id, std::string_v
     std::array<std::uint8_t, kNumPorts> rates{};
     std::copy(p40->rates.begin(), p40->rates.end(), rates.begin());
     current_.set_message_rates(MsgId{cls::kNmeaStd, p40->nmea_id}, rates);
-  } else if (sentence.size() >= 11 && sentence[0] == '$' && sentence.substr(4, 2) == "Q," &&
+  } else if (sentence.size() >= 11 && sentence[0] == '$' && sentence.substr(5, 2) == "Q," &&
              current_.ports[port_id].outputs_nmea()) {
     // Standard poll $ttxxQ,sss*hh, e.g. $EIGPQ,RMC*3A.
     const std::string_view f = sentence.substr(7, sentence.size() - 10);
