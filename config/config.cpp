@@ -13,6 +13,8 @@
 
 #include <toml++/toml.h>
 
+#include "config/config_atmosphere.hpp"
+#include "config/message_names.hpp"
 #include "config/toml_reader.hpp"
 #include "core/common/error.hpp"
 
@@ -142,6 +144,7 @@ void read_solver(TableReader& t, receiver::SolverConfig& s) {
     if (n == nullptr) n = t.find("sigma_b_m");
     t.fail(*n, t.path() + ": sigma_a_m and sigma_b_m are both 0 (the solver's weights would be infinite)");
   }
+  s.sigma_c_m_sqrt_hz = t.number("sigma_c_m_sqrt_hz", s.sigma_c_m_sqrt_hz, Range{0.0, 10000.0, "m sqrt(Hz)"});
   s.sigma_range_rate_m_s =
       t.number("sigma_range_rate_m_s", s.sigma_range_rate_m_s, Range{0.0, 10.0, "m/s", true});
   s.height_hold_sigma_m = t.number("height_hold_sigma_m", s.height_hold_sigma_m, Range{0.0, 1000.0, "m", true});
@@ -163,6 +166,7 @@ void read_receiver(TableReader& t, Config& c) {
   r.max_channels = static_cast<int>(t.integer("max_channels", r.max_channels, 4, 64));
   if (auto e = t.table("errors", false)) {
     receiver::ErrorModelConfig& em = r.errors;
+    detail::read_thermal_model(*e, em);
     em.thermal_sigma_m = e->number("thermal_sigma_m", em.thermal_sigma_m, Range{0.0, 100.0, "m"});
     em.doppler_sigma_m_s = e->number("doppler_sigma_m_s", em.doppler_sigma_m_s, Range{0.0, 10.0, "m/s"});
     if (auto oc = e->table("orbit_clock", false)) read_gauss_markov(*oc, em.orbit_clock);
@@ -179,6 +183,7 @@ void read_receiver(TableReader& t, Config& c) {
     k->finish();
   }
   if (auto s = t.table("solver", false)) read_solver(*s, r.solver);
+  if (auto s = t.table("corrections", false)) detail::read_corrections(*s, r.solver);
   t.finish();
 }
 
@@ -262,6 +267,150 @@ protocol::nmea::SentenceSet read_sentences(TableReader& t, const protocol::nmea:
   return out;
 }
 
+bool is_line(PortType type) { return type == PortType::kPty || type == PortType::kSerial; }
+
+std::string_view type_text(PortType type) {
+  switch (type) {
+    case PortType::kPty: return "pty";
+    case PortType::kFile: return "file";
+    case PortType::kSerial: return "serial";
+    case PortType::kTcp: return "tcp";
+    case PortType::kUdp: return "udp";
+  }
+  return "pty";
+}
+
+// Keys that belong to one port type only.
+struct TypedKey {
+  std::string_view key;
+  std::initializer_list<PortType> types;
+};
+
+void reject_foreign_keys(TableReader& t, PortType type) {
+  static const std::array<TypedKey, 5> kKeys{{
+      {"path", {PortType::kPty, PortType::kFile}},
+      {"device", {PortType::kSerial}},
+      {"bind", {PortType::kTcp}},
+      {"address", {PortType::kUdp}},
+      {"port", {PortType::kTcp, PortType::kUdp}},
+  }};
+  for (const TypedKey& k : kKeys) {
+    const toml::node* n = t.find(k.key);
+    if (n == nullptr || std::find(k.types.begin(), k.types.end(), type) != k.types.end()) continue;
+    std::string owners;
+    for (const PortType o : k.types) {
+      owners += owners.empty() ? "\"" : " or \"";
+      owners += type_text(o);
+      owners += '"';
+    }
+    t.fail(*n, t.full_name(k.key) + ": not used by a port of type \"" + std::string(type_text(type)) +
+                   "\" (only " + owners + ")");
+  }
+}
+
+uint16_t read_protocols(TableReader& t, std::string_view key, uint16_t def) {
+  const toml::node* n = t.find(key);
+  if (n == nullptr) return def;
+  const std::string name = t.full_name(key);
+  const auto* a = n->as_array();
+  if (a == nullptr) t.fail(*n, name + ": expected an array of strings, got " + std::string(detail::type_name(*n)));
+  uint16_t mask = 0;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::node& e = *a->get(i);
+    const auto* s = e.as_string();
+    if (s == nullptr) t.fail(e, name + ": expected protocol names (strings), got " + std::string(detail::type_name(e)));
+    const uint16_t bit = s->get() == "ubx" ? kProtoUbx : s->get() == "nmea" ? kProtoNmea : 0;
+    if (bit == 0) t.fail(e, name + ": unknown protocol '" + s->get() + "' (known: \"ubx\", \"nmea\")");
+    if ((mask & bit) != 0) t.fail(e, name + ": '" + s->get() + "' listed twice");
+    mask |= bit;
+  }
+  return mask;
+}
+
+std::vector<MessageRate> read_ubx_messages(TableReader& t) {
+  std::vector<MessageRate> out;
+  const toml::node* n = t.find("ubx_messages");
+  if (n == nullptr) return out;
+  const std::string name = t.full_name("ubx_messages");
+  const auto* a = n->as_array();
+  if (a == nullptr) t.fail(*n, name + ": expected an array of strings, got " + std::string(detail::type_name(*n)));
+  std::string known;
+  for (const MessageName& m : ubx_periodic_messages()) {
+    if (!known.empty()) known += ' ';
+    known += m.name;
+  }
+  std::vector<bool> seen(ubx_periodic_messages().size(), false);
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::node& e = *a->get(i);
+    const auto* s = e.as_string();
+    if (s == nullptr) t.fail(e, name + ": expected message names (strings), got " + std::string(detail::type_name(e)));
+    const auto table = ubx_periodic_messages();
+    const auto it = std::find_if(table.begin(), table.end(), [&](const MessageName& m) { return m.name == s->get(); });
+    if (it == table.end()) t.fail(e, name + ": unknown UBX message '" + s->get() + "' (known: " + known + ")");
+    const auto k = static_cast<std::size_t>(it - table.begin());
+    if (seen[k]) t.fail(e, name + ": '" + s->get() + "' listed twice");
+    seen[k] = true;
+  }
+  // Stored in epoch order, whatever the order in the file.
+  for (std::size_t k = 0; k < seen.size(); ++k) {
+    if (seen[k]) out.push_back({ubx_periodic_messages()[k].msg_class, ubx_periodic_messages()[k].msg_id, 1});
+  }
+  return out;
+}
+
+bool sentence_on(const protocol::nmea::SentenceSet& s, uint8_t id) {
+  for (const MessageName& m : nmea_sentences()) {
+    if (m.msg_id != id) continue;
+    protocol::nmea::SentenceSet copy = s;
+    return *sentence_flag(copy, m.name);
+  }
+  return false;
+}
+
+// rates = { NAV-SAT = 5, GSV = 2 }: rates other than 1 for listed messages.
+void read_rates(TableReader& t, OutputPortConfig& out) {
+  const toml::node* n = t.find("rates");
+  if (n == nullptr) return;
+  const std::string name = t.full_name("rates");
+  const auto* tbl = n->as_table();
+  if (tbl == nullptr) {
+    t.fail(*n, name + ": expected a table of message = rate (e.g. { NAV-SAT = 5 }), got " +
+                   std::string(detail::type_name(*n)));
+  }
+  for (const auto& [key, value] : *tbl) {
+    const std::string msg(key.str());
+    const std::string what = name + "." + msg;
+    const std::optional<MessageName> m = message_by_name(msg);
+    if (!m) t.fail(value, what + ": unknown message '" + msg + "'");
+    const auto* v = value.as_integer();
+    if (v == nullptr) t.fail(value, what + ": expected an integer, got " + std::string(detail::type_name(value)));
+    const int64_t rate = v->get();
+    if (rate < 1 || rate > 255) {
+      t.fail(value, what + ": " + std::to_string(rate) +
+                        " is out of range [1, 255] (epochs per message; leave a message out to turn it off)");
+    }
+    const auto r = static_cast<uint8_t>(rate);
+    if (m->msg_class == kNmeaClass) {
+      if (!sentence_on(out.nmea.sentences, m->msg_id)) t.fail(value, what + ": '" + msg + "' is not in sentences");
+      if (r != 1) out.nmea_rates.push_back({m->msg_class, m->msg_id, r});
+    } else {
+      auto it = std::find_if(out.ubx_messages.begin(), out.ubx_messages.end(), [&](const MessageRate& x) {
+        return x.msg_class == m->msg_class && x.msg_id == m->msg_id;
+      });
+      if (it == out.ubx_messages.end()) t.fail(value, what + ": '" + msg + "' is not in ubx_messages");
+      it->rate = r;
+    }
+  }
+  // u-blox order, whatever the order in the file.
+  std::vector<MessageRate> sorted;
+  for (const MessageName& s : nmea_sentences()) {
+    for (const MessageRate& r : out.nmea_rates) {
+      if (r.msg_id == s.msg_id) sorted.push_back(r);
+    }
+  }
+  out.nmea_rates = std::move(sorted);
+}
+
 OutputPortConfig read_output(TableReader& t, const std::string& base_dir) {
   OutputPortConfig out;
   out.name = t.string("name", std::nullopt);
@@ -273,32 +422,78 @@ OutputPortConfig read_output(TableReader& t, const std::string& base_dir) {
   }
   if (const toml::node* n = t.find("type")) {
     const std::string type = t.string("type", std::nullopt);
-    if (type == "pty") {
-      out.type = PortType::kPty;
-    } else if (type == "file") {
-      out.type = PortType::kFile;
-    } else {
-      t.fail(*n, t.full_name("type") + ": '" + type + "' is not \"pty\" or \"file\"");
+    bool known = false;
+    for (const PortType p : {PortType::kPty, PortType::kFile, PortType::kSerial, PortType::kTcp, PortType::kUdp}) {
+      if (type == type_text(p)) {
+        out.type = p;
+        known = true;
+      }
+    }
+    if (!known) t.fail(*n, t.full_name("type") + ": '" + type + "' is not one of \"pty\", \"serial\", \"tcp\", \"udp\", \"file\"");
+  }
+  reject_foreign_keys(t, out.type);
+  switch (out.type) {
+    case PortType::kPty:
+    case PortType::kFile: {
+      out.path = t.string("path", std::nullopt);
+      const toml::node* path_node = t.find("path");
+      if (out.path.empty()) t.fail(*path_node, t.full_name("path") + ": must not be empty");
+      if (out.type == PortType::kFile) {
+        out.path = resolve(out.path, base_dir).string();
+      } else if (fs::path(out.path).is_relative()) {
+        t.fail(*path_node, t.full_name("path") + ": pty path '" + out.path + "' must be absolute");
+      }
+      break;
+    }
+    case PortType::kSerial: {
+      out.path = t.string("device", std::nullopt);
+      const toml::node* node = t.find("device");
+      if (out.path.empty() || fs::path(out.path).is_relative()) {
+        t.fail(*node, t.full_name("device") + ": serial device '" + out.path + "' must be an absolute path (e.g. /dev/ttyUSB0)");
+      }
+      break;
+    }
+    case PortType::kTcp:
+    case PortType::kUdp: {
+      const std::string_view key = out.type == PortType::kTcp ? "bind" : "address";
+      if (out.type == PortType::kTcp) out.address = "127.0.0.1";
+      if (const toml::node* n = t.find(key)) {
+        out.address = t.string(key, std::nullopt);
+        in6_addr buf{};
+        if (inet_pton(AF_INET, out.address.c_str(), &buf) != 1 && inet_pton(AF_INET6, out.address.c_str(), &buf) != 1) {
+          t.fail(*n, t.full_name(key) + ": '" + out.address + "' is not an IPv4 or IPv6 address");
+        }
+      } else if (out.type == PortType::kUdp) {
+        t.fail_missing("address", "key");
+      }
+      out.port = static_cast<uint16_t>(out.type == PortType::kTcp ? t.integer("port", 0, 0, 65535)
+                                                                   : t.integer("port", std::nullopt, 1, 65535));
+      break;
     }
   }
-  out.path = t.string("path", std::nullopt);
-  const toml::node* path_node = t.find("path");
-  if (out.path.empty()) t.fail(*path_node, t.full_name("path") + ": must not be empty");
-  if (out.type == PortType::kFile) {
-    out.path = resolve(out.path, base_dir).string();
-  } else if (fs::path(out.path).is_relative()) {
-    t.fail(*path_node, t.full_name("path") + ": pty path '" + out.path + "' must be absolute");
-  }
-  const int64_t baud = t.integer("baud", out.baud, 1, std::numeric_limits<uint32_t>::max());
-  if (std::find(kStandardBauds.begin(), kStandardBauds.end(), baud) == kStandardBauds.end()) {
+  const bool line = is_line(out.type);
+  out.baud = line ? 9600 : 0;
+  const int64_t baud = t.integer("baud", out.baud, line ? 1 : 0, std::numeric_limits<uint32_t>::max());
+  if (baud != 0 && std::find(kStandardBauds.begin(), kStandardBauds.end(), baud) == kStandardBauds.end()) {
     t.fail(*t.find("baud"), t.full_name("baud") + ": " + std::to_string(baud) +
-                                " is not a standard rate (4800 9600 19200 38400 57600 115200 230400 460800 921600)");
+                                " is not a standard rate (4800 9600 19200 38400 57600 115200 230400 460800 921600)" +
+                                (line ? "" : " or 0 (no line budget)"));
   }
   out.baud = static_cast<uint32_t>(baud);
+
+  const bool has_input = out.type != PortType::kFile && out.type != PortType::kUdp;
+  out.protocols_in = read_protocols(t, "protocols_in", has_input ? kProtoUbx | kProtoNmea : 0);
+  if (!has_input && out.protocols_in != 0) {
+    t.fail(*t.find("protocols_in"), t.full_name("protocols_in") + ": a port of type \"" +
+                                        std::string(type_text(out.type)) + "\" has no input; use []");
+  }
+  out.protocols_out = read_protocols(t, "protocols_out", kProtoUbx | kProtoNmea);
+  out.ubx_messages = read_ubx_messages(t);
   out.nmea.version = read_nmea_version(t, out.nmea.version);
   out.nmea.sentences = read_sentences(t, out.nmea.sentences);
   out.nmea.course_min_speed_m_s =
       t.number("course_min_speed_m_s", out.nmea.course_min_speed_m_s, Range{0.0, 10.0, "m/s"});
+  read_rates(t, out);
   t.finish();
   return out;
 }
@@ -309,9 +504,13 @@ std::vector<OutputPortConfig> read_outputs(TableReader& root, const std::string&
     OutputPortConfig port = read_output(t, base_dir);
     for (const OutputPortConfig& prev : out) {
       if (prev.name == port.name) t.fail(*t.find("name"), t.full_name("name") + ": '" + port.name + "' is used twice");
-      if (prev.path == port.path) {
-        t.fail(*t.find("path"), t.full_name("path") + ": '" + port.path + "' is already used by output '" +
-                                    prev.name + "'");
+      if (!port.path.empty() && prev.path == port.path) {
+        const std::string_view key = port.type == PortType::kSerial ? "device" : "path";
+        t.fail(*t.find(key), t.full_name(key) + ": '" + port.path + "' is already used by output '" + prev.name + "'");
+      }
+      if (port.type == PortType::kTcp && prev.type == PortType::kTcp && port.port != 0 && prev.port == port.port) {
+        t.fail(*t.find("port"), t.full_name("port") + ": tcp port " + std::to_string(port.port) +
+                                    " is already used by output '" + prev.name + "'");
       }
     }
     out.push_back(std::move(port));
@@ -405,6 +604,13 @@ Config read_config(const toml::table& doc, const std::string& name, const std::s
 
   if (auto t = root.table("time", false)) c.time = read_time(*t);
   if (auto t = root.table("receiver", false)) read_receiver(*t, c);
+  {
+    std::optional<TableReader> atm = root.table("atmosphere", false);
+    if (atm) detail::read_atmosphere(*atm, c.receiver);
+    std::optional<TableReader> sig = root.table("signal", false);
+    if (sig) detail::read_signal(*sig, c.receiver);
+    detail::check_models(atm ? *atm : sig ? *sig : root, c.receiver);
+  }
   if (auto t = root.table("truth", false)) c.truth = read_truth(*t);
   if (auto t = root.table("demo", false)) c.demo = read_demo(*t);
   c.outputs = read_outputs(root, base_dir);
@@ -423,6 +629,19 @@ Config read_config(const toml::table& doc, const std::string& name, const std::s
 }
 
 }  // namespace
+
+std::vector<MessageRate> message_rates(const OutputPortConfig& port) {
+  std::vector<MessageRate> out = port.ubx_messages;
+  for (const MessageName& m : nmea_sentences()) {
+    if (!sentence_on(port.nmea.sentences, m.msg_id)) continue;
+    uint8_t rate = 1;
+    for (const MessageRate& r : port.nmea_rates) {
+      if (r.msg_id == m.msg_id) rate = r.rate;
+    }
+    out.push_back({m.msg_class, m.msg_id, rate});
+  }
+  return out;
+}
 
 Config parse_config(const std::string& toml_text, const std::string& name, const std::string& base_dir) {
   toml::table doc;

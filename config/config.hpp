@@ -46,15 +46,54 @@ struct DemoConfig {
   double height_m = 0.0;          ///< above the origin
 };
 
-enum class PortType { kPty, kFile };
+/// Port kinds (docs/ports.md).
+enum class PortType {
+  kPty,     ///< pseudo-terminal with a stable symlink (gpsd, SITL)
+  kFile,    ///< log of everything sent (truncated at start)
+  kSerial,  ///< real UART through libserialport, 8N1
+  kTcp,     ///< TCP server; every client gets the stream, input from all clients
+  kUdp,     ///< datagrams to one destination, output only
+};
+
+/// Protocol bits as in u-blox CFG-PRT inProtoMask / outProtoMask.
+inline constexpr uint16_t kProtoUbx = 0x0001;
+inline constexpr uint16_t kProtoNmea = 0x0002;
+
+/// A periodic message and its rate (u-blox CFG-MSG): sent every `rate`
+/// navigation epochs, 0 = off. Standard NMEA sentences are class 0xF0.
+struct MessageRate {
+  uint8_t msg_class = 0;
+  uint8_t msg_id = 0;
+  uint8_t rate = 1;
+  bool operator==(const MessageRate&) const = default;
+};
 
 struct OutputPortConfig {
   std::string name;               ///< unique, for logs
   PortType type = PortType::kPty;
-  std::string path;               ///< pty: stable symlink to create; file: file to write
-  uint32_t baud = 9600;           ///< recorded on a pty (not applied)
-  protocol::nmea::NmeaConfig nmea;
+  /// pty: stable symlink to create; file: file to write; serial: device
+  /// (key "device"); unused for tcp/udp.
+  std::string path;
+  /// tcp: listen address (key "bind"); udp: destination address (key "address").
+  std::string address;
+  uint16_t port = 0;              ///< tcp: listen port (0: any free, printed); udp: destination port
+  /// Line rate, bit/s (8N1: 10 bits per byte). Applied on a serial port,
+  /// recorded on a pty; sets the per-epoch byte budget. 0: no line (no
+  /// budget), allowed for file/tcp/udp only.
+  uint32_t baud = 9600;
+  uint16_t protocols_in = kProtoUbx | kProtoNmea;   ///< what the port's input accepts
+  uint16_t protocols_out = kProtoUbx | kProtoNmea;  ///< what the port sends
+  /// Periodic UBX messages with their rates (u-blox factory default: none),
+  /// in config/message_names.hpp order.
+  std::vector<MessageRate> ubx_messages;
+  protocol::nmea::NmeaConfig nmea;  ///< sentences: the NMEA set
+  /// Rates other than 1 for sentences of the set (class 0xF0), in u-blox order.
+  std::vector<MessageRate> nmea_rates;
 };
+
+/// The port's full periodic-message table: every UBX message and every
+/// NMEA sentence of the set, with its rate (CFG-MSG view).
+std::vector<MessageRate> message_rates(const OutputPortConfig& port);
 
 struct LogConfig {
   std::string level = "info";     ///< trace, debug, info, warn, error

@@ -6,6 +6,8 @@
 #include <limits>
 
 #include "config/config.hpp"
+#include "config/config_atmosphere.hpp"
+#include "config/message_names.hpp"
 #include "config/toml_reader.hpp"
 #include "core/common/error.hpp"
 
@@ -107,6 +109,46 @@ std::string sentences(const protocol::nmea::SentenceSet& s) {
   return out + "]";
 }
 
+std::string type_text(PortType t) {
+  switch (t) {
+    case PortType::kPty: return "pty";
+    case PortType::kFile: return "file";
+    case PortType::kSerial: return "serial";
+    case PortType::kTcp: return "tcp";
+    case PortType::kUdp: return "udp";
+  }
+  return "pty";
+}
+
+std::string protocols(uint16_t mask) {
+  std::string out = "[";
+  if ((mask & kProtoUbx) != 0) out += "\"ubx\"";
+  if ((mask & kProtoNmea) != 0) out += std::string(out.size() > 1 ? ", " : "") + "\"nmea\"";
+  return out + "]";
+}
+
+std::string ubx_messages(const std::vector<MessageRate>& list) {
+  std::string out = "[";
+  for (const MessageRate& m : list) {
+    if (out.size() > 1) out += ", ";
+    out += quoted(std::string(message_name(m.msg_class, m.msg_id)));
+  }
+  return out + "]";
+}
+
+// Inline table of the rates other than 1 ("" when there are none).
+std::string rates(const OutputPortConfig& p) {
+  std::string out;
+  const auto add = [&out](const MessageRate& m) {
+    if (m.rate == 1) return;
+    out += out.empty() ? "{ " : ", ";
+    out += std::string(message_name(m.msg_class, m.msg_id)) + " = " + std::to_string(m.rate);
+  };
+  for (const MessageRate& m : p.ubx_messages) add(m);
+  for (const MessageRate& m : p.nmea_rates) add(m);
+  return out.empty() ? out : out + " }";
+}
+
 }  // namespace
 
 std::string to_toml(const Config& c, const std::string& relative_to) {
@@ -137,6 +179,7 @@ std::string to_toml(const Config& c, const std::string& relative_to) {
   o += "max_pdop = " + number(r.max_pdop) + "\n";
   o += "max_channels = " + std::to_string(r.max_channels) + "\n";
   o += "\n[receiver.errors]\n";
+  o += "thermal_model = \"" + detail::thermal_model_name(r.errors.thermal_model) + "\"\n";
   o += "thermal_sigma_m = " + number(r.errors.thermal_sigma_m) + "\n";
   o += "doppler_sigma_m_s = " + number(r.errors.doppler_sigma_m_s) + "\n";
   o += "\n[receiver.errors.orbit_clock]  # first-order Gauss-Markov\n";
@@ -150,10 +193,14 @@ std::string to_toml(const Config& c, const std::string& relative_to) {
   o += "\n[receiver.solver]  # what the receiver's own solver assumes\n";
   o += "sigma_a_m = " + number(r.solver.sigma_a_m) + "\n";
   o += "sigma_b_m = " + number(r.solver.sigma_b_m) + "\n";
+  o += "sigma_c_m_sqrt_hz = " + number(r.solver.sigma_c_m_sqrt_hz) + "\n";
   o += "sigma_range_rate_m_s = " + number(r.solver.sigma_range_rate_m_s) + "\n";
   o += "height_hold_sigma_m = " + number(r.solver.height_hold_sigma_m) + "\n";
   o += "residual_test_pfa = " + number(r.solver.residual_test_pfa) + "\n";
   o += "max_iterations = " + std::to_string(r.solver.max_iterations) + "\n";
+  o += detail::corrections_toml(r.solver, number);
+  o += detail::atmosphere_toml(r, number);
+  o += detail::signal_toml(r, number);
 
   o += "\n[truth]  # UDP truth input\n";
   o += "bind = " + quoted(c.truth.bind_address) + "\n";
@@ -170,12 +217,22 @@ std::string to_toml(const Config& c, const std::string& relative_to) {
   for (const OutputPortConfig& p : c.outputs) {
     o += "\n[[output]]\n";
     o += "name = " + quoted(p.name) + "\n";
-    o += "type = " + quoted(p.type == PortType::kFile ? "file" : "pty") + "\n";
-    o += "path = " + quoted(p.type == PortType::kFile ? path_text(p.path, relative_to) : p.path) + "\n";
+    o += "type = " + quoted(type_text(p.type)) + "\n";
+    switch (p.type) {
+      case PortType::kPty: o += "path = " + quoted(p.path) + "\n"; break;
+      case PortType::kFile: o += "path = " + quoted(path_text(p.path, relative_to)) + "\n"; break;
+      case PortType::kSerial: o += "device = " + quoted(p.path) + "\n"; break;
+      case PortType::kTcp: o += "bind = " + quoted(p.address) + "\nport = " + std::to_string(p.port) + "\n"; break;
+      case PortType::kUdp: o += "address = " + quoted(p.address) + "\nport = " + std::to_string(p.port) + "\n"; break;
+    }
     o += "baud = " + std::to_string(p.baud) + "\n";
+    o += "protocols_in = " + protocols(p.protocols_in) + "\n";
+    o += "protocols_out = " + protocols(p.protocols_out) + "\n";
+    o += "ubx_messages = " + ubx_messages(p.ubx_messages) + "\n";
     o += "nmea_version = " + quoted(nmea_version(p.nmea.version)) + "\n";
     o += "sentences = " + sentences(p.nmea.sentences) + "\n";
     o += "course_min_speed_m_s = " + number(p.nmea.course_min_speed_m_s) + "\n";
+    if (const std::string rt = rates(p); !rt.empty()) o += "rates = " + rt + "  # epochs per message\n";
   }
 
   if (c.scene) {

@@ -49,6 +49,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
     : io_(io),
       cfg_(cfg),
       nav_leap_s_(nav.leap_seconds),
+      nav_klobuchar_(nav.klobuchar),
       store_(nav.ephemerides),
       frame_(cfg.origin),
       scene_(config::load_scene(cfg)),
@@ -57,18 +58,18 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       router_(TrackParams{cfg.truth.timeout_s, cfg.truth.max_extrapolation_s}, cfg.time.mode),
       coverage_(coverage_for(cfg, nav)),
       period_s_(1.0 / cfg.rate_hz),
+      rate_hz_(cfg.rate_hz),
       timer_(io),
       retry_timer_(io),
       socket_(io),
       signals_(io, SIGINT, SIGTERM) {
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
   if (nav_leap_s_) receiver_->set_leap_seconds(*nav_leap_s_);
+  receiver_->set_klobuchar(nav_klobuchar_);
   config::attach_scene(*receiver_, cfg_, scene_.get());
   if (scene_) {
     spdlog::info("scene {}: {} triangles", cfg_.scene->mesh_file, scene_->triangle_count());
   }
-  for (const auto& p : cfg_.outputs) encoders_.emplace_back(p.nmea);
-  out_buf_.reserve(2 * protocol::nmea::kMaxEpochBytes);
   lock_next_ = coverage_.start;
 }
 
@@ -79,7 +80,14 @@ double Daemon::now_s() const noexcept {
 }
 
 void Daemon::start() {
-  for (const auto& p : cfg_.outputs) ports_.push_back(open_port(p));
+  const auto clock = [this] { return now_s(); };
+  t0_ = Clock::now();
+  for (const auto& p : cfg_.outputs) {
+    channels_.push_back(std::make_unique<PortChannel>(p, open_port(p, io_), period_s_, clock));
+    const std::size_t i = channels_.size() - 1;
+    channels_.back()->on_nav_period_change([this, i](double period_s) { on_nav_period(i, period_s); });
+  }
+  for (const auto& c : channels_) c->start();
 
   boost::system::error_code ec;
   const auto addr = asio::ip::make_address(cfg_.truth.bind_address, ec);
@@ -93,7 +101,9 @@ void Daemon::start() {
   }
   const auto local = socket_.local_endpoint(ec);
 
-  for (const auto& p : ports_) std::printf("gnssemud: NMEA on %s\n", p->describe().c_str());
+  for (const auto& c : channels_) {
+    std::printf("gnssemud: %s on %s\n", c->output_summary().c_str(), c->port().describe().c_str());
+  }
   std::printf("gnssemud: truth input udp %s:%u\n", local.address().to_string().c_str(),
               static_cast<unsigned>(local.port()));
   std::fflush(stdout);
@@ -117,7 +127,6 @@ void Daemon::start() {
     shutdown();
   });
 
-  t0_ = Clock::now();
   index_ = 0;
   receive();
   arm_timer();
@@ -129,15 +138,20 @@ void Daemon::shutdown() {
   retry_timer_.cancel();
   socket_.close(ec);
   signals_.cancel(ec);
-  if (!ports_.empty()) {
-    for (const auto& p : ports_) {
-      spdlog::info("output {}: {} epochs written, {} dropped", p->config().name, p->stats().epochs_written,
-                   p->stats().epochs_dropped);
+  if (!channels_.empty()) {
+    for (const auto& c : channels_) {
+      const PortStats& ps = c->port().stats();
+      std::string drops;
+      for (const auto& [name, n] : c->drops()) drops += fmt::format("{}{} {}", drops.empty() ? "" : ", ", name, n);
+      spdlog::info("output {}: {} epochs written, {} dropped; {} replies; {} bytes in; {} messages over the line "
+                   "budget{}{}",
+                   c->port().config().name, ps.epochs_written, ps.epochs_dropped, ps.replies_written,
+                   ps.bytes_from_reader, c->stats().messages_dropped, drops.empty() ? "" : ": ", drops);
     }
     spdlog::info("truth: {} packets accepted, {} dropped; {} epochs, {} skipped", packets_ok_, drops_.total(),
                  epochs_, epochs_skipped_);
   }
-  ports_.clear();  // closes ptys, removes symlinks
+  channels_.clear();  // closes ports, removes pty symlinks
 }
 
 time::GpsTime Daemon::realtime_clock_gps() noexcept {
@@ -146,7 +160,8 @@ time::GpsTime Daemon::realtime_clock_gps() noexcept {
 }
 
 void Daemon::arm_timer() {
-  timer_.expires_at(t0_ + std::chrono::nanoseconds(epoch_deadline_ns(index_, cfg_.rate_hz)));
+  const auto base = std::chrono::nanoseconds(std::llround(sched_base_s_ * 1e9));
+  timer_.expires_at(t0_ + base + std::chrono::nanoseconds(epoch_deadline_ns(index_, rate_hz_)));
   timer_.async_wait([this](const boost::system::error_code& ec) { on_timer(ec); });
 }
 
@@ -158,6 +173,7 @@ void Daemon::note_clock_wrap(int64_t wraps) {
   router_.on_clock_jump();
   receiver_ = std::make_unique<receiver::Receiver>(store_, cfg_.receiver);
   if (nav_leap_s_) receiver_->set_leap_seconds(*nav_leap_s_);
+  receiver_->set_klobuchar(nav_klobuchar_);
   config::attach_scene(*receiver_, cfg_, scene_.get());
 }
 
@@ -172,7 +188,7 @@ void Daemon::on_timer(const boost::system::error_code& ec) {
   if (ec) return;  // cancelled
   const double now = now_s();
   if (cfg_.time.mode == config::TimeMode::kRealtime) {
-    const double offset_s = epoch_offset_s(index_, cfg_.rate_hz);
+    const double offset_s = sched_base_s_ + epoch_offset_s(index_, rate_hz_);
     const EpochTime e = realtime_gps_time(coverage_, offset_s);
     note_clock_wrap(e.wraps);
     const receiver::Truth truth =
@@ -184,8 +200,9 @@ void Daemon::on_timer(const boost::system::error_code& ec) {
     emit_epoch(lock_next_, fallback_truth(lock_next_, lock_next_ - coverage_.start));
     lock_next_ += period_s_;
   }
-  const auto now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0_).count();
-  const ScheduleStep step = next_epoch(index_, cfg_.rate_hz, now_ns);
+  const auto now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0_).count() -
+                      std::llround(sched_base_s_ * 1e9);
+  const ScheduleStep step = next_epoch(index_, rate_hz_, now_ns);
   if (step.skipped > 0) {
     epochs_skipped_ += static_cast<uint64_t>(step.skipped);
     spdlog::warn("epoch loop late: skipped {} epoch(s) ({} in total)", step.skipped, epochs_skipped_);
@@ -213,11 +230,8 @@ void Daemon::lockstep_advance(const time::GpsTime& stamp) {
 void Daemon::emit_epoch(const time::GpsTime& t, const receiver::Truth& truth) {
   const receiver::Fix& fix = receiver_->step(t, truth);
   ++epochs_;
-  for (std::size_t i = 0; i < ports_.size(); ++i) {
-    out_buf_.clear();
-    encoders_[i].encode_epoch(fix, out_buf_);
-    ports_[i]->write_epoch(out_buf_);
-  }
+  const double uptime_s = now_s();
+  for (const auto& c : channels_) c->on_epoch(fix, uptime_s);
   const int type = static_cast<int>(fix.type);
   if (type != last_fix_type_ || truth.valid != last_truth_valid_) {
     spdlog::info("epoch {}: truth {}, fix {} with {} satellites (PDOP {:.1f})", gps_text(t),
@@ -228,6 +242,36 @@ void Daemon::emit_epoch(const time::GpsTime& t, const receiver::Truth& truth) {
   }
   spdlog::debug("epoch tow {:.2f}: fix {} nsat {} lat {:.7f} lon {:.7f} h {:.1f}", t.tow_s(), type, fix.num_used,
                 fix.lla.lat_rad * kRadToDeg, fix.lla.lon_rad * kRadToDeg, fix.lla.height_m);
+}
+
+void Daemon::on_nav_period(std::size_t src, double period_s) {
+  // The M8 runs 1..10 Hz GPS-only (docs/configuration.md rate_hz); a host
+  // asking for more or less gets the nearest rate the emulator runs.
+  double p = period_s;
+  if (!(p >= 0.1)) p = 0.1;
+  if (p > 1.0) p = 1.0;
+  const protocol::ubx::wire::CfgRate rate = channels_[src]->responder().current().rate;
+  for (std::size_t i = 0; i < channels_.size(); ++i) {
+    if (i != src) channels_[i]->set_nav_rate(rate);
+  }
+  if (p != period_s) {
+    spdlog::warn("output {}: host asked for a {:.3f} s navigation period (CFG-RATE measRate {} ms, navRate {}); "
+                 "running at {:.3g} Hz, the nearest rate within 1..10 Hz",
+                 cfg_.outputs[src].name, period_s, rate.measRate, rate.navRate, 1.0 / p);
+  }
+  if (std::abs(p - period_s_) < 1e-9) return;
+  spdlog::info("output {}: host set the navigation rate to {:.3g} Hz (CFG-RATE measRate {} ms)", cfg_.outputs[src].name,
+               1.0 / p, rate.measRate);
+  period_s_ = p;
+  rate_hz_ = 1.0 / p;
+  if (cfg_.time.mode == config::TimeMode::kRealtime) {
+    // Next epoch on a whole multiple of the new period (u-blox aligns
+    // measurements to GPS time; elapsed 0 is on a whole GPS second).
+    const double elapsed = now_s();
+    sched_base_s_ = std::ceil(elapsed / p - 1e-9) * p;
+    index_ = 0;
+  }
+  arm_timer();  // replaces the pending wait
 }
 
 void Daemon::receive() {
@@ -303,11 +347,12 @@ void Daemon::align_to_packet_time(const time::GpsTime& stamp) {
   // Lockstep: the first packet with GPS time puts the epoch clock on it.
   if (gps_aligned_) return;
   gps_aligned_ = true;
-  const double tow_epochs = std::ceil(stamp.tow_s() * cfg_.rate_hz - 1e-9);
-  const time::GpsTime first(stamp.week(), tow_epochs / cfg_.rate_hz);
+  const double tow_epochs = std::ceil(stamp.tow_s() * rate_hz_ - 1e-9);
+  const time::GpsTime first(stamp.week(), tow_epochs / rate_hz_);
   if (first < lock_next_) {
     receiver_ = std::make_unique<receiver::Receiver>(store_, cfg_.receiver);  // time goes back
     if (nav_leap_s_) receiver_->set_leap_seconds(*nav_leap_s_);
+    receiver_->set_klobuchar(nav_klobuchar_);
   }
   lock_next_ = first;
   spdlog::info("lockstep: epochs follow the packets' GPS time from {}", gps_text(first));

@@ -15,12 +15,12 @@
 #include "core/geo/local_frame.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/nav_data.hpp"
-#include "core/protocol/nmea/nmea_encoder.hpp"
 #include "core/receiver/receiver.hpp"
 #include "core/scene/scene.hpp"
 #include "daemon/demo_trajectory.hpp"
 #include "daemon/drop_stats.hpp"
 #include "daemon/output_port.hpp"
+#include "daemon/port_channel.hpp"
 #include "daemon/time_mapping.hpp"
 #include "daemon/truth_router.hpp"
 
@@ -56,11 +56,14 @@ private:
   void emit_epoch(const time::GpsTime& t, const receiver::Truth& truth);
   receiver::Truth fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept;
   void note_clock_wrap(int64_t wraps);
+  /// A host on channel src set the navigation period (CFG-RATE), s.
+  void on_nav_period(std::size_t src, double period_s);
   void shutdown();
 
   asio::io_context& io_;
   config::Config cfg_;
   std::optional<int> nav_leap_s_;
+  orbit::KlobucharParams nav_klobuchar_;  ///< broadcast iono of the nav header (invalid: RTKLIB defaults)
   orbit::EphemerisStore store_;
   geo::LocalFrame frame_;
   std::unique_ptr<scene::Scene> scene_;  ///< buildings ([scene]); outlives receiver_
@@ -71,9 +74,9 @@ private:
   Coverage coverage_;
   double period_s_;
 
-  std::vector<std::unique_ptr<OutputPort>> ports_;
-  std::vector<protocol::nmea::NmeaEncoder> encoders_;
-  std::string out_buf_;
+  std::vector<std::unique_ptr<PortChannel>> channels_;
+  double rate_hz_;              // epoch rate now (CFG-RATE may change it)
+  double sched_base_s_ = 0.0;   // realtime: elapsed time of index 0 of the current rate
 
   asio::steady_timer timer_;
   asio::steady_timer retry_timer_;  // back-off after a socket error

@@ -1,11 +1,17 @@
 #pragma once
-// Output ports: where an epoch of sentences goes. Each port owns its encoder
-// configuration. Writes never block the epoch loop: a pty nobody drains drops
-// whole epochs (counted); the data a late reader sees is at most a few epochs old.
+// Output ports: the transports an emulated receiver talks on (docs/ports.md).
+// A port moves bytes only; what to send is decided by its PortChannel. Every
+// port type has a plain config (config::OutputPortConfig), a static
+// validator testable without hardware (validate_port) and a setup
+// (open_port). Writes never block the event loop and never throw.
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
+#include <utility>  // before Asio: Boost 1.74 awaitable.hpp needs std::exchange
+
+#include <boost/asio/io_context.hpp>
 
 #include "config/config.hpp"
 
@@ -13,37 +19,73 @@ namespace gnssemu::daemon {
 
 struct PortStats {
   uint64_t epochs_written = 0;
-  uint64_t epochs_dropped = 0;  ///< not delivered: pty not drained, or write failed
+  uint64_t epochs_dropped = 0;     ///< not delivered: pty not drained, queue full, port closed, write failed
   uint64_t bytes_written = 0;
-  uint64_t bytes_from_reader = 0;  ///< bytes the reader wrote to us (discarded)
+  uint64_t bytes_from_reader = 0;  ///< bytes received on the port's input
+  uint64_t replies_written = 0;    ///< out-of-epoch writes (ACK/NAK, poll answers)
+  uint64_t reopens = 0;            ///< serial: successful reopens after a failure
+  uint64_t baud_changes = 0;       ///< line rate switches applied
+};
+
+/// Receives a port's input. source: 0, or a TCP client's id (> 0).
+class PortListener {
+public:
+  virtual ~PortListener() = default;
+  virtual void on_port_input(int source, std::span<const uint8_t> bytes) = 0;
+  /// A TCP client went away (its partial input can be discarded).
+  virtual void on_source_closed(int /*source*/) {}
 };
 
 class OutputPort {
 public:
   virtual ~OutputPort() = default;
-  /// Deliver one epoch (complete sentences). Never blocks, never throws.
-  virtual void write_epoch(std::string_view data) noexcept = 0;
+  /// Begin reading input (pty, serial, tcp clients) and, for serial,
+  /// reopening after failures. listener may be null: input is discarded.
+  virtual void start(PortListener* listener) { (void)listener; }
+  /// Deliver one epoch (complete messages) to every reader.
+  void write_epoch(std::string_view data) noexcept { deliver(kAllSources, data, true); }
+  /// Deliver bytes outside the epoch schedule (a reply) to source (a tcp
+  /// client) or, for other ports, the port.
+  void write_reply(int source, std::string_view data) noexcept { deliver(source, data, false); }
+  /// Switch the line rate once everything queued so far has been
+  /// transmitted (tcdrain), as a u-blox does after CFG-PRT / $PUBX,41.
+  /// Serial: applied; pty: recorded in the termios only; others: ignored.
+  virtual void set_baud_after_drain(uint32_t baud_bps) noexcept { (void)baud_bps; }
+  /// Current line rate (bit/s) as the port knows it; 0 without a line.
+  virtual uint32_t baud() const noexcept { return 0; }
   /// One line for the startup message, e.g. "/tmp/gnssemu/gps0 (pty /dev/pts/5)".
   virtual std::string describe() const = 0;
   const config::OutputPortConfig& config() const noexcept { return config_; }
   const PortStats& stats() const noexcept { return stats_; }
 
 protected:
+  static constexpr int kAllSources = -1;
   explicit OutputPort(config::OutputPortConfig config) : config_(std::move(config)) {}
+  /// Write data to source (kAllSources: everyone); epoch: count as an epoch,
+  /// else as a reply. Never blocks or throws.
+  virtual void deliver(int source, std::string_view data, bool epoch) noexcept = 0;
   config::OutputPortConfig config_;
   PortStats stats_;
 };
 
 /// Static checks of a port config, without touching the system beyond
 /// lstat(): a pty path must be free or a symlink (a regular file is never
-/// overwritten). Throws gnssemu::Error naming the port.
+/// overwritten); a serial device must be an absolute path that is not a
+/// regular file or folder; tcp/udp addresses must parse. Throws
+/// gnssemu::Error naming the port.
 void validate_port(const config::OutputPortConfig& config);
 
-/// Create the port (pty + symlink, or file). Throws gnssemu::Error.
-std::unique_ptr<OutputPort> open_port(const config::OutputPortConfig& config);
+/// Create the port (pty + symlink, serial device, listening socket, udp
+/// socket, file). A serial device that is absent is not an error: the port
+/// keeps retrying (logged). Throws gnssemu::Error.
+std::unique_ptr<OutputPort> open_port(const config::OutputPortConfig& config, boost::asio::io_context& io);
 
 /// Pty backlog (bytes unread by the reader) above which the queued epochs are
 /// discarded before writing the next: keeps what a late reader sees fresh.
 inline constexpr int kPtyMaxBacklogBytes = 2048;
+/// Userspace queue per serial port / tcp client beyond which epochs are dropped.
+inline constexpr std::size_t kMaxQueuedBytes = 64 * 1024;
+/// Largest UDP datagram sent; an epoch is split at message boundaries.
+inline constexpr std::size_t kMaxDatagramBytes = 1400;
 
 }  // namespace gnssemu::daemon

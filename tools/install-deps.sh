@@ -7,7 +7,7 @@ PKGS=(
   build-essential cmake pkg-config
   libgeographiclib-dev libembree-dev libboost-dev libserialport-dev
   libspdlog-dev libfmt-dev libgtest-dev libgmock-dev libtomlplusplus-dev libcli11-dev
-  nlohmann-json3-dev
+  nlohmann-json3-dev zlib1g-dev
   gpsd gpsd-clients rtklib socat python3
 )
 

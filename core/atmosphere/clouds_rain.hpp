@@ -22,7 +22,7 @@ struct CloudLayer {
   double temperature_k = 273.15;       ///< droplet temperature, K (> 0)
 };
 
-/// Named presets (order-of-magnitude climatology, see docs/models-atmosphere.md):
+/// Named presets (order-of-magnitude climatology, see docs/models.md):
 /// "fog" (0-100 m, 0.05 g/m^3), "thick_fog" (0-100 m, 0.5), "stratus"
 /// (500 m + 500 m, 0.3), "cumulus" (1000 m + 1500 m, 1.0), "cumulonimbus" and
 /// its alias "thunderstorm" (1000 m + 10000 m, 2.5). Throws gnssemu::Error

@@ -74,6 +74,11 @@ struct Fix {
   double speed_acc_m_s = 0.0;  ///< sAcc
   double time_acc_s = 0.0;     ///< tAcc
 
+  /// Environment noise-floor rise above thermal at the antenna, dB (>= 0);
+  /// the signal module's environment_noise_rise_db. Drives MON-HW noisePerMS,
+  /// AGC and jamInd. 1 dB = quiet countryside.
+  double noise_rise_db = 1.0;
+
   std::array<SatInfo, kMaxGpsPrn> sats{};  ///< first num_sats entries valid, sorted by PRN
   int num_sats = 0;
 };

@@ -18,6 +18,10 @@ enum class Purpose : uint64_t {
   kThermal = 3,
   kDoppler = 4,
   kClockDrift = 5,
+  kIonoInit = 6,   ///< vertical TEC perturbation per line of sight
+  kIonoStep = 7,
+  kTropoInit = 8,  ///< zenith wet delay perturbation (stream kClockStream)
+  kTropoStep = 9,
 };
 
 /// Stream id of the receiver clock (satellites use their PRN 1..32).

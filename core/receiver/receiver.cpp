@@ -18,9 +18,16 @@ namespace {
 constexpr double kNoFixAccuracy_m = 9999.0;
 constexpr double kNoFixSpeedAccuracy_m_s = 999.0;
 constexpr double kNoFixTimeAccuracy_s = 1.0;
-// Placeholder C/N0 elevation shape until the signal module: nominal at
-// zenith, about -8 dB at 5 degrees.
+// C/N0 shape when the signal stage is off: nominal at zenith, about -8 dB at 5 degrees.
 constexpr double kCn0ElevationLoss_db = 10.0;
+// A tracked satellite always reports a positive C/N0 (0 means "not tracked"
+// in GSV / NAV-SAT), dB-Hz.
+constexpr double kMinReportedCn0_dbhz = 1.0;
+// Cached atmospheric terms are dropped when the receiver moves this much
+// vertically or in total (m): a 5 m height change moves the 5-degree tropo
+// delay by ~1.5 cm; 5 km moves a pierce point by < 1 % of its scale.
+constexpr double kCacheMaxHeightChange_m = 5.0;
+constexpr double kCacheMaxMove_m = 5000.0;
 
 void check(bool ok, const std::string& what) {
   if (!ok) throw Error("receiver config: " + what);
@@ -55,6 +62,14 @@ void validate(const ReceiverConfig& c) {
         "solver.height_hold_sigma_m must be > 0");
   check(s.residual_test_pfa >= 0.0 && s.residual_test_pfa < 0.5, "solver.residual_test_pfa must be in [0, 0.5)");
   check(s.max_iterations >= 1 && s.max_iterations <= 100, "solver.max_iterations must be in [1, 100]");
+  check(std::isfinite(s.sigma_c_m_sqrt_hz) && s.sigma_c_m_sqrt_hz >= 0.0, "solver.sigma_c_m_sqrt_hz must be >= 0");
+  const AtmosphereConfig& a = c.atmosphere;
+  check(std::isfinite(a.zwd_perturbation.sigma_m) && a.zwd_perturbation.sigma_m >= 0.0,
+        "atmosphere.zwd_perturbation.sigma_m must be >= 0");
+  check(std::isfinite(a.zwd_perturbation.tau_s) && a.zwd_perturbation.tau_s > 0.0,
+        "atmosphere.zwd_perturbation.tau_s must be > 0");
+  signal::validate(c.signal.tracking);
+  signal::validate(c.signal.dll);
 }
 
 const ReceiverConfig& validated(const ReceiverConfig& c) {
@@ -69,6 +84,9 @@ Receiver::Receiver(const orbit::EphemerisStore& store, const ReceiverConfig& con
       config_(validated(config)),
       rng_(config.seed),
       clock_(config.clock),
+      atmosphere_(config.atmosphere),
+      cache_(config.atmosphere.cache_refresh_s, config.atmosphere.cache_mode),
+      link_(config.signal.link),
       solver_(config.solver, config.max_pdop) {
   no_fix_epoch();
 }
@@ -79,22 +97,46 @@ void Receiver::attach_scene(const scene::Scene& scene, const Lla& origin, const 
   scene_path_.fill(scene::SatPath{});
 }
 
+void Receiver::set_klobuchar(const orbit::KlobucharParams& p) {
+  for (double v : p.alpha) check(std::isfinite(v), "Klobuchar alpha must be finite");
+  for (double v : p.beta) check(std::isfinite(v), "Klobuchar beta must be finite");
+  solver_.set_klobuchar(p);
+  atmosphere_.set_klobuchar_shape(p);
+  cache_.clear();
+}
+
 void Receiver::advance_world(const time::GpsTime& t) noexcept {
   const GaussMarkovConfig& gm = config_.errors.orbit_clock;
+  const bool iono_gm = atmosphere_.iono_on() && config_.atmosphere.ionosphere.perturbation.sigma > 0.0;
+  const GaussMarkovConfig iono_cfg{config_.atmosphere.ionosphere.perturbation.sigma,
+                                   config_.atmosphere.ionosphere.perturbation.tau_s};
+  const bool zwd_gm = atmosphere_.tropo_on() && config_.atmosphere.zwd_perturbation.sigma_m > 0.0;
+  const GaussMarkovConfig& zwd_cfg = config_.atmosphere.zwd_perturbation;
   if (!started_) {
     for (int p = 1; p <= kMaxGpsPrn; ++p)
       orbit_clock_m_[p - 1] = gauss_markov_init(gm, rng_.normal(p, 0, Purpose::kGaussMarkovInit));
+    if (iono_gm)
+      for (int p = 1; p <= kMaxGpsPrn; ++p)
+        iono_tecu_[p - 1] = gauss_markov_init(iono_cfg, rng_.normal(p, 0, Purpose::kIonoInit));
+    if (zwd_gm) zwd_pert_m_ = gauss_markov_init(zwd_cfg, rng_.normal(kClockStream, 0, Purpose::kTropoInit));
     started_ = true;
+    dt_s_ = 0.0;
   } else {
     double dt_s = t - t_prev_;
     if (!std::isfinite(dt_s) || dt_s < 0.0) dt_s = 0.0;  // time going back: hold the processes
+    dt_s_ = dt_s;
     for (int p = 1; p <= kMaxGpsPrn; ++p)
       orbit_clock_m_[p - 1] =
           gauss_markov_step(orbit_clock_m_[p - 1], dt_s, gm, rng_.normal(p, epoch_, Purpose::kGaussMarkovStep));
+    if (iono_gm && dt_s > 0.0)
+      for (int p = 1; p <= kMaxGpsPrn; ++p)
+        iono_tecu_[p - 1] =
+            gauss_markov_step(iono_tecu_[p - 1], dt_s, iono_cfg, rng_.normal(p, epoch_, Purpose::kIonoStep));
+    if (zwd_gm && dt_s > 0.0)
+      zwd_pert_m_ = gauss_markov_step(zwd_pert_m_, dt_s, zwd_cfg, rng_.normal(kClockStream, epoch_, Purpose::kTropoStep));
     clock_.advance(dt_s, rng_.normal(kClockStream, epoch_, Purpose::kClockDrift));
   }
   t_prev_ = t;
-  // Atmosphere / scene delays go here (world_delay_m_); none in this model.
 }
 
 void Receiver::no_fix_epoch() noexcept {
@@ -116,27 +158,10 @@ void Receiver::no_fix_epoch() noexcept {
   }
 }
 
-const Fix& Receiver::step(const time::GpsTime& t, const Truth& truth) noexcept {
-  advance_world(t);
-  const uint64_t epoch = epoch_++;
-
-  fix_.t = t;
-  fix_.leap_seconds = leap_override_ ? leap_s_ : time::leap_seconds_at(t);
-  fix_.num_sats = fix_.num_visible = fix_.num_tracked = 0;
-  in_sky_.fill(false);
-
-  if (!truth.valid || !truth.pos_m.finite() || !truth.vel_m_s.finite()) {
-    fix_.time_valid = time_valid_;
-    no_fix_epoch();
-    return fix_;
-  }
-  time_valid_ = true;
-  fix_.time_valid = true;
-
-  // Sky (world): every satellite with an ephemeris above the horizon.
-  const Lla rx_lla = geo::lla_from_ecef(truth.pos_m);
-  std::array<int, kMaxGpsPrn> above{};  // PRNs above the mask
-  int n_above = 0;
+// Stage 1 (sky): every satellite with an ephemeris above the horizon; returns
+// the number above the mask (listed in above_).
+int Receiver::sky_stage(const time::GpsTime& t, const Truth& truth, const Lla& rx_lla) noexcept {
+  n_above_ = 0;
   for (int p = 1; p <= kMaxGpsPrn; ++p) {
     const orbit::Ephemeris* eph = store_.select(p, t);
     if (eph == nullptr) continue;
@@ -144,43 +169,121 @@ const Fix& Receiver::step(const time::GpsTime& t, const Truth& truth) noexcept {
     if (!(s.el_rad > 0.0)) continue;
     sky_[p - 1] = s;
     in_sky_[p - 1] = true;
-    if (s.el_rad >= config_.elevation_mask_rad) above[n_above++] = p;
+    if (s.el_rad >= config_.elevation_mask_rad) above_[n_above_++] = p;
   }
-  // Propagation (world): buildings decide per satellite direct, reflected
-  // only, or not received at all (then it takes no channel).
-  scene_path_.fill(scene::SatPath{});
-  if (propagator_) {
-    const Enu rx_enu = scene_frame_->to_enu(truth.pos_m);
-    for (int i = 0; i < n_above; ++i) {
-      const SkySat& s = sky_[above[i] - 1];
-      const Vec3 los = (s.pos_m - truth.pos_m) / s.range_m;
-      scene_query_[i] = scene::SatQuery{above[i], scene_frame_->vector_to_enu(los)};
-    }
-    const auto n = static_cast<std::size_t>(n_above);
-    propagator_->compute(rx_enu, std::span<const scene::SatQuery>(scene_query_.data(), n),
-                         std::span<scene::SatPath>(scene_out_.data(), n));
-    int kept = 0;
-    for (int i = 0; i < n_above; ++i) {
-      scene_path_[above[i] - 1] = scene_out_[i];
-      if (scene_out_[i].kind != scene::PathKind::kNone) above[kept++] = above[i];
-    }
-    n_above = kept;
-  }
+  return n_above_;
+}
 
-  // Channels: highest elevations first; ties by PRN for determinism.
-  std::array<bool, kMaxGpsPrn> tracked{};
-  if (n_above > config_.max_channels) {
-    std::sort(above.begin(), above.begin() + n_above, [this](int a, int b) {
+// Stage 3 (propagation): the configured atmosphere along each line of sight
+// above the mask. Slow terms come through the per-satellite cache; the
+// Gauss–Markov perturbations are added every epoch.
+void Receiver::propagation_stage(const time::GpsTime& t, const Lla& rx_lla, const Ecef& rx_pos_m) noexcept {
+  for (int i = 0; i < n_above_; ++i) path_[above_[i] - 1] = PathEffects{};
+  if (!atmosphere_.any_on()) return;
+  // Cached terms belong to a place: moving far enough (height matters most,
+  // the 5-degree tropo delay changes ~3 mm per metre) starts the cache over.
+  if (!cache_pos_valid_ || std::fabs(rx_lla.height_m - cache_height_m_) > kCacheMaxHeightChange_m ||
+      (rx_pos_m - cache_pos_m_).norm() > kCacheMaxMove_m) {
+    cache_.clear();
+    cache_pos_valid_ = true;
+    cache_pos_m_ = rx_pos_m;
+    cache_height_m_ = rx_lla.height_m;
+  }
+  const double tow_s = t.tow_s();
+  const double doy = atmosphere_.tropo_on() ? t.day_of_year() + std::fmod(tow_s, kSecondsPerDay) / kSecondsPerDay : 1.0;
+  for (int i = 0; i < n_above_; ++i) {
+    const int p = above_[i];
+    const SkySat& s = sky_[p - 1];
+    const SlowTerms v =
+        cache_.get(p, t, [&] {
+          ++atmosphere_evaluations_;
+          return atmosphere_.slow_terms(rx_lla, s.az_rad, s.el_rad, tow_s, doy);
+        });
+    PathEffects& e = path_[p - 1];
+    if (atmosphere_.iono_on()) e.iono_m = std::max(v[kIonoM] + iono_tecu_[p - 1] * v[kIonoMPerTecu], 0.0);
+    if (atmosphere_.tropo_on()) e.tropo_m = std::max(v[kTropoM] + zwd_pert_m_ * v[kNmfWet], 0.0);
+    e.delay_m = e.iono_m + e.tropo_m;
+    e.loss_db = v[kAttenDb];
+  }
+}
+
+// Stage 3b (propagation, buildings): direct, reflected only (extra path
+// length and reflection loss join the atmosphere's), or not received.
+void Receiver::scene_stage(const Ecef& rx_pos_m) noexcept {
+  scene_path_.fill(scene::SatPath{});
+  if (!propagator_) return;
+  for (int i = 0; i < n_above_; ++i) {
+    const SkySat& s = sky_[above_[i] - 1];
+    scene_query_[i] = scene::SatQuery{above_[i], scene_frame_->vector_to_enu((s.pos_m - rx_pos_m) / s.range_m)};
+  }
+  const auto n = static_cast<std::size_t>(n_above_);
+  propagator_->compute(scene_frame_->to_enu(rx_pos_m), std::span<const scene::SatQuery>(scene_query_.data(), n),
+                       std::span<scene::SatPath>(scene_out_.data(), n));
+  for (int i = 0; i < n_above_; ++i) {
+    const scene::SatPath& sp = scene_out_[i];
+    scene_path_[above_[i] - 1] = sp;
+    PathEffects& e = path_[above_[i] - 1];
+    if (sp.kind == scene::PathKind::kNone) {
+      e.received = false;
+    } else if (sp.kind == scene::PathKind::kNlos) {
+      e.delay_m += sp.extra_delay_m;
+      e.loss_db += sp.loss_db;
+    }
+  }
+}
+
+// Stage 4 (signal): C/N0 from the link budget, acquisition / loss with
+// hysteresis, then the channel limit (highest elevations first).
+void Receiver::signal_stage() noexcept {
+  tracked_.fill(false);
+  std::array<bool, kMaxGpsPrn> above{};
+  for (int i = 0; i < n_above_; ++i) above[above_[i] - 1] = true;
+  for (int p = 1; p <= kMaxGpsPrn; ++p) {
+    if (!above[p - 1]) {
+      tracking_[p - 1].reset();
+      cn0_dbhz_[p - 1] = 0.0;
+    }
+  }
+  int n_tracked = 0;
+  std::array<int, kMaxGpsPrn> tracked_prn{};
+  for (int i = 0; i < n_above_; ++i) {
+    const int p = above_[i];
+    const SkySat& s = sky_[p - 1];
+    const PathEffects& e = path_[p - 1];
+    bool ok = false;
+    double cn0 = 0.0;
+    if (!config_.signal.enabled) {
+      const double one_m_sin = 1.0 - std::sin(s.el_rad);
+      cn0 = config_.nominal_cn0_dbhz - kCn0ElevationLoss_db * one_m_sin * one_m_sin - scene_path_[p - 1].loss_db;
+      ok = e.received;
+    } else if (e.received) {
+      cn0 = link_.cn0_dbhz(s.range_m, s.el_rad, e.loss_db);
+      ok = tracking_[p - 1].update(cn0, dt_s_, config_.signal.tracking);
+    } else {
+      tracking_[p - 1].reset();
+    }
+    cn0_dbhz_[p - 1] = cn0;
+    if (ok) tracked_prn[n_tracked++] = p;
+  }
+  if (n_tracked > config_.max_channels) {
+    std::sort(tracked_prn.begin(), tracked_prn.begin() + n_tracked, [this](int a, int b) {
       const double ea = sky_[a - 1].el_rad, eb = sky_[b - 1].el_rad;
       return ea != eb ? ea > eb : a < b;
     });
+    for (int i = config_.max_channels; i < n_tracked; ++i) tracking_[tracked_prn[i] - 1].reset();
+    n_tracked = config_.max_channels;
   }
-  for (int i = 0; i < std::min(n_above, config_.max_channels); ++i) tracked[above[i] - 1] = true;
+  for (int i = 0; i < n_tracked; ++i) tracked_[tracked_prn[i] - 1] = true;
+}
 
-  // Observables (world) for the tracked satellites, then the fix (receiver).
+// Stage 5 (observables): pseudorange and Doppler of the tracked satellites,
+// listed with every satellite in view in fix_.sats (PRN order).
+void Receiver::observables_stage(const time::GpsTime& t, uint64_t epoch) noexcept {
   const double rx_clock_s = clock_.bias_s();
   const double rx_drift_s_s = clock_.drift_s_s();
+  const bool dll = config_.errors.thermal_model == ThermalModel::kDll;
   in_.t_rx_local = t + rx_clock_s;
+  in_.doy = in_.t_rx_local.day_of_year() + std::fmod(in_.t_rx_local.tow_s(), kSecondsPerDay) / kSecondsPerDay;
   in_.num_meas = 0;
   for (int p = 1; p <= kMaxGpsPrn; ++p) {
     if (!in_sky_[p - 1]) continue;
@@ -193,22 +296,23 @@ const Fix& Receiver::step(const time::GpsTime& t, const Truth& truth) noexcept {
     si.healthy = true;
     si.above_mask = s.el_rad >= config_.elevation_mask_rad;
     if (si.above_mask) ++fix_.num_visible;
-    const scene::SatPath& path = scene_path_[p - 1];
-    si.blocked = path.kind == scene::PathKind::kNone;
-    si.nlos = path.kind == scene::PathKind::kNlos;
-    si.bounces = path.bounces;
-    si.nlos_delay_m = si.nlos ? path.extra_delay_m : 0.0;
-    if (!tracked[p - 1]) continue;
+    const scene::SatPath& sp = scene_path_[p - 1];
+    si.blocked = si.above_mask && sp.kind == scene::PathKind::kNone;
+    si.nlos = si.above_mask && sp.kind == scene::PathKind::kNlos;
+    si.bounces = si.nlos ? sp.bounces : 0;
+    si.nlos_delay_m = si.nlos ? sp.extra_delay_m : 0.0;
+    if (!tracked_[p - 1]) continue;
     const orbit::Ephemeris* eph = store_.select(p, t);
-    const double thermal_m = config_.errors.thermal_sigma_m * rng_.normal(p, epoch, Purpose::kThermal);
+    const double cn0 = cn0_dbhz_[p - 1];
+    const double sigma_m = dll ? signal::dll_thermal_sigma_m(cn0, config_.signal.dll) : config_.errors.thermal_sigma_m;
+    const double thermal_m = sigma_m * rng_.normal(p, epoch, Purpose::kThermal);
     const double rr_noise_m_s = config_.errors.doppler_sigma_m_s * rng_.normal(p, epoch, Purpose::kDoppler);
     // The satellite's actual L1 clock = broadcast (dt_sv - TGD) + residual.
     const double pr_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - eph->tgd_s)) +
-                        orbit_clock_m_[p - 1] + world_delay_m_[p - 1] + si.nlos_delay_m + thermal_m;
+                        orbit_clock_m_[p - 1] + path_[p - 1].delay_m + thermal_m;
     const double rr_m_s = s.range_rate_m_s + kSpeedOfLight_m_s * (rx_drift_s_s - s.clk_drift_s_s) + rr_noise_m_s;
     si.tracked = true;
-    const double one_m_sin = 1.0 - std::sin(s.el_rad);
-    si.cn0_dbhz = config_.nominal_cn0_dbhz - kCn0ElevationLoss_db * one_m_sin * one_m_sin - path.loss_db;
+    si.cn0_dbhz = std::max(cn0, kMinReportedCn0_dbhz);
     si.pseudorange_m = pr_m;
     si.doppler_hz = -rr_m_s / kL1Wavelength_m;
     ++fix_.num_tracked;
@@ -216,9 +320,37 @@ const Fix& Receiver::step(const time::GpsTime& t, const Truth& truth) noexcept {
     m.eph = eph;
     m.pseudorange_m = si.pseudorange_m;
     m.doppler_hz = si.doppler_hz;
+    m.cn0_dbhz = si.cn0_dbhz;
     meas_prn_[in_.num_meas++] = p;
   }
+}
 
+const Fix& Receiver::step(const time::GpsTime& t, const Truth& truth) noexcept {
+  advance_world(t);
+  const uint64_t epoch = epoch_++;
+
+  fix_.t = t;
+  fix_.leap_seconds = leap_override_ ? leap_s_ : time::leap_seconds_at(t);
+  fix_.num_sats = fix_.num_visible = fix_.num_tracked = 0;
+  in_sky_.fill(false);
+
+  if (!truth.valid || !truth.pos_m.finite() || !truth.vel_m_s.finite()) {
+    fix_.time_valid = time_valid_;
+    for (signal::TrackingState& s : tracking_) s.reset();  // antenna lost: lock lost
+    no_fix_epoch();
+    return fix_;
+  }
+  time_valid_ = true;
+  fix_.time_valid = true;
+
+  const Lla rx_lla = geo::lla_from_ecef(truth.pos_m);
+  sky_stage(t, truth, rx_lla);
+  propagation_stage(t, rx_lla, truth.pos_m);
+  scene_stage(truth.pos_m);
+  signal_stage();
+  observables_stage(t, epoch);
+
+  // Stage 7 (receiver): its own corrections and solution.
   in_.have_prior = have_fix_;
   if (have_fix_) {
     double dt_s = t - last_fix_t_;

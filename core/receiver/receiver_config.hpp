@@ -2,7 +2,16 @@
 // ReceiverConfig: error model and solver settings. All values SI.
 #include <cstdint>
 
+#include "core/atmosphere/clouds_rain.hpp"
+#include "core/atmosphere/ionosphere.hpp"
+#include "core/atmosphere/receiver_corrections.hpp"
+#include "core/atmosphere/shells.hpp"
+#include "core/atmosphere/term_cache.hpp"
+#include "core/atmosphere/troposphere.hpp"
 #include "core/common/constants.hpp"
+#include "core/signal/dll_jitter.hpp"
+#include "core/signal/link_budget.hpp"
+#include "core/signal/tracking.hpp"
 
 namespace gnssemu::receiver {
 
@@ -12,8 +21,15 @@ struct GaussMarkovConfig {
   double tau_s = 1800.0;    ///< correlation time, s (> 0)
 };
 
+/// Where the white pseudorange noise sigma comes from.
+enum class ThermalModel {
+  kFixed,  ///< errors.thermal_sigma_m for every satellite
+  kDll,    ///< DLL thermal jitter at the satellite's C/N0 (signal.dll)
+};
+
 struct ErrorModelConfig {
-  double thermal_sigma_m = 0.3;                  ///< white pseudorange noise, m
+  ThermalModel thermal_model = ThermalModel::kDll;
+  double thermal_sigma_m = 0.3;                  ///< kFixed: white pseudorange noise, m
   GaussMarkovConfig orbit_clock{1.2, 1800.0};    ///< broadcast orbit/clock residual per satellite
   double doppler_sigma_m_s = 0.03;               ///< white range-rate noise, m/s
 };
@@ -32,6 +48,12 @@ struct SolverConfig {
   /// Pseudorange 1-sigma model sigma^2 = a^2 + b^2 / sin^2(el), m (RTKLIB-style).
   double sigma_a_m = 1.2;
   double sigma_b_m = 0.3;
+  /// C/N0 term: sigma^2 += c^2 10^(-C/N0 / 10), m sqrt(Hz) (Kuusniemi et al.
+  /// 2004); 0 = elevation-only weights.
+  double sigma_c_m_sqrt_hz = 150.0;
+  /// The receiver's own propagation corrections (DESIGN.md §1, step 7).
+  atmosphere::IonoCorrection iono = atmosphere::IonoCorrection::kKlobuchar;
+  atmosphere::TropoCorrection tropo = atmosphere::TropoCorrection::kSaastamoinenNiell;
   double sigma_range_rate_m_s = 0.05;  ///< Doppler range-rate 1-sigma, m/s
   double height_hold_sigma_m = 1.0;    ///< 1-sigma of the held height in 2D fixes, m
   /// False-alarm probability of the chi-square test on post-fit residuals
@@ -40,15 +62,44 @@ struct SolverConfig {
   int max_iterations = 15;             ///< Gauss–Newton iterations at most
 };
 
+/// The atmosphere the WORLD applies to the signal (the receiver does not know
+/// it). A stage whose switch is off costs nothing per epoch.
+struct AtmosphereConfig {
+  atmosphere::IonosphereConfig ionosphere;    ///< enabled; Klobuchar shape x 1 + GM 1 TECU / 1800 s
+  atmosphere::TroposphereConfig troposphere;  ///< enabled; 2.31 exp(-1.2e-4 h) + 0.10 m wet, Niell
+  /// Slow Gauss–Markov variation of the zenith wet delay (one process for the
+  /// site, mapped with the Niell wet function), m; sigma 0 disables.
+  GaussMarkovConfig zwd_perturbation{0.02, 3600.0};
+  bool gases = true;                          ///< oxygen + water vapour over the shells
+  atmosphere::ShellsConfig shells;
+  atmosphere::CloudsRainConfig clouds_rain;   ///< no clouds, no rain
+  /// Per-satellite refresh interval of the slow terms (iono and tropo delay
+  /// without their perturbations, attenuation), s; 0 = every epoch.
+  double cache_refresh_s = 5.0;
+  atmosphere::CacheMode cache_mode = atmosphere::CacheMode::kLinear;
+};
+
+/// Signal stage: link budget -> C/N0, tracking, code noise.
+struct SignalConfig {
+  /// false: no link budget; C/N0 = nominal_cn0_dbhz - 10 (1 - sin el)^2
+  /// (the pre-issue-3 placeholder) and every satellite above the mask is tracked.
+  bool enabled = true;
+  signal::LinkBudgetConfig link;         ///< EIRP, antenna, noise figure, environment noise rise
+  signal::TrackingThresholds tracking;   ///< acquire 30 / lose 25 dB-Hz
+  signal::DllParams dll;                 ///< thermal jitter when errors.thermal_model = kDll
+};
+
 struct ReceiverConfig {
   double elevation_mask_rad = 5.0 * kDegToRad;  ///< [0, pi/2)
   uint64_t seed = 1;                            ///< error-process seed (deterministic)
   ErrorModelConfig errors;
   ClockConfig clock;
-  double nominal_cn0_dbhz = 45.0;  ///< placeholder C/N0 until the signal module (issue 3)
+  double nominal_cn0_dbhz = 45.0;  ///< zenith C/N0 when signal.enabled is false, dB-Hz
   double max_pdop = 20.0;          ///< above this the fix is reported as none
   int max_channels = 16;           ///< satellites tracked at most (highest first)
   SolverConfig solver;
+  AtmosphereConfig atmosphere;
+  SignalConfig signal;
 };
 
 }  // namespace gnssemu::receiver

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/atmosphere/receiver_corrections.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/receiver/sky.hpp"
 #include "core/receiver/small_matrix.hpp"
@@ -21,6 +22,12 @@ constexpr double kSurfaceRadius_m = 6.0e6;
 constexpr double kMinSinEl = 0.05;          // floor of sin(el) in the weight model
 constexpr double kMaxLightTime_s = 0.2;
 constexpr double kPivotTol = 1e-10;         // relative Cholesky pivot tolerance
+// Corrections are recomputed only once the estimate has moved this far (m),
+// as receivers evaluate them at the prior position: a 5 m height change
+// alters the 5-degree tropo correction by < 1.5 cm, and holding them keeps
+// Gauss–Newton convergent where the Klobuchar pierce point is discontinuous
+// in longitude (the poles).
+constexpr double kCorrectionRefresh_m = 5.0;
 
 double upper_normal_quantile(double p) noexcept {
   // Solve 0.5 erfc(z / sqrt 2) = p by bisection; p in (0, 0.5).
@@ -68,8 +75,38 @@ double Solver::chi2_threshold(int dof) const noexcept {
   return k * c * c * c;
 }
 
+void Solver::update_corrections(const SolverInput& in, const Ecef& pos, const Lla& lla) noexcept {
+  const bool iono = cfg_.iono != atmosphere::IonoCorrection::kNone;
+  const bool tropo = cfg_.tropo != atmosphere::TropoCorrection::kNone;
+  if (!iono && !tropo) return;
+  if (corr_valid_ && (pos - corr_pos_).norm() < kCorrectionRefresh_m) return;
+  corr_valid_ = true;
+  corr_pos_ = pos;
+  const double tow_s = in.t_rx_local.tow_s();
+  const Vec3 up = up_ecef(lla);
+  const Vec3 east{-std::sin(lla.lon_rad), std::cos(lla.lon_rad), 0.0};
+  const Vec3 north = up.cross(east);
+  for (int i = 0; i < n_; ++i) {
+    Sat& s = sats_[i];
+    const Vec3 d = rotate_earth(s.pos_m, kOmegaEarth_rad_s * s.since_tx_s) - pos;
+    const double e = d.dot(east), n = d.dot(north), u = d.dot(up);
+    const double el = std::atan2(u, std::hypot(e, n));
+    double az = std::atan2(e, n);
+    if (az < 0.0) az += 2.0 * kPi;
+    s.corr_m = 0.0;
+    if (iono) s.corr_m += atmosphere::receiver_iono_delay_m(klobuchar_, lla.lat_rad, lla.lon_rad, az, el, tow_s);
+    if (tropo) s.corr_m += atmosphere::receiver_tropo_delay_m(lla.lat_rad, lla.height_m, el, in.doy, cfg_.tropo);
+  }
+}
+
 void Solver::linearise(const SolverInput& in, const Ecef& pos, double clock_m, const Lla* lla) noexcept {
   const Vec3 up = lla ? up_ecef(*lla) : Vec3{};
+  if (lla) {
+    update_corrections(in, pos, *lla);
+  } else if (corr_valid_) {
+    corr_valid_ = false;
+    for (int i = 0; i < n_; ++i) sats_[i].corr_m = 0.0;
+  }
   const double a2 = cfg_.sigma_a_m * cfg_.sigma_a_m, b2 = cfg_.sigma_b_m * cfg_.sigma_b_m;
   for (int i = 0; i < n_; ++i) {
     Sat& s = sats_[i];
@@ -81,9 +118,9 @@ void Solver::linearise(const SolverInput& in, const Ecef& pos, double clock_m, c
     const Vec3 d = p - pos;
     const double rho = d.norm();
     s.los = rho > 0.0 ? d / rho : Vec3{0.0, 0.0, 1.0};
-    s.resid_m = in.meas[i].pseudorange_m - (rho + clock_m - s.clk_m);
+    s.resid_m = in.meas[i].pseudorange_m - (rho + clock_m - s.clk_m + s.corr_m);
     const double sin_el = lla ? std::max(s.los.dot(up), kMinSinEl) : 1.0;
-    s.sigma2 = a2 + b2 / (sin_el * sin_el);
+    s.sigma2 = a2 + b2 / (sin_el * sin_el) + s.cn0_var_m2;
     s.weight = 1.0 / s.sigma2;
   }
 }
@@ -189,6 +226,8 @@ bool Solver::finish(const SolverInput& in, const Ecef& pos, double clock_m, bool
 void Solver::solve(const SolverInput& in, SolverOutput& out) noexcept {
   out = SolverOutput{};
   n_ = std::clamp(in.num_meas, 0, kMaxGpsPrn);
+  corr_valid_ = false;
+  const double c2 = cfg_.sigma_c_m_sqrt_hz * cfg_.sigma_c_m_sqrt_hz;
   for (int i = 0; i < n_; ++i) {
     const Measurement& m = in.meas[i];
     Sat& s = sats_[i];
@@ -207,6 +246,9 @@ void Solver::solve(const SolverInput& in, SolverOutput& out) noexcept {
     s.clk_m = kSpeedOfLight_m_s * (st.clk_bias_s - m.eph->tgd_s);
     s.drift_m_s = kSpeedOfLight_m_s * st.clk_drift_s_s;
     s.since_tx_s = in.t_rx_local - t_tx;
+    s.corr_m = 0.0;
+    // C/N0 weight term (Kuusniemi et al., GPS Solutions 8(2), 2004).
+    s.cn0_var_m2 = c2 > 0.0 && m.cn0_dbhz > 0.0 ? c2 * std::pow(10.0, -std::min(m.cn0_dbhz, 70.0) / 10.0) : 0.0;
   }
   if (n_ < 3) return;
   const bool two_d = n_ == 3;

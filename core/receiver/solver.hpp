@@ -9,6 +9,7 @@
 #include "core/common/constants.hpp"
 #include "core/common/vec3.hpp"
 #include "core/orbit/ephemeris.hpp"
+#include "core/orbit/nav_data.hpp"
 #include "core/receiver/fix.hpp"
 #include "core/receiver/receiver_config.hpp"
 #include "core/time/gps_time.hpp"
@@ -20,10 +21,12 @@ struct Measurement {
   const orbit::Ephemeris* eph = nullptr;
   double pseudorange_m = 0.0;
   double doppler_hz = 0.0;  ///< L1 carrier Doppler, Hz (positive when approaching)
+  double cn0_dbhz = 0.0;    ///< receiver's C/N0 estimate, dB-Hz; <= 0: unknown (no C/N0 weight term)
 };
 
 struct SolverInput {
   time::GpsTime t_rx_local;  ///< measurement time tag on the receiver's own clock
+  double doy = 1.0;          ///< day of year of t_rx_local (fractional), for the Niell mapping
   std::array<Measurement, kMaxGpsPrn> meas{};
   int num_meas = 0;
   bool have_prior = false;   ///< warm start from prior_pos_m / prior_clock_m
@@ -62,6 +65,11 @@ public:
 
   void solve(const SolverInput& in, SolverOutput& out) noexcept;
 
+  /// Broadcast Klobuchar coefficients for the ionospheric correction (the
+  /// nav header's); invalid -> RTKLIB defaults (the state after construction).
+  void set_klobuchar(const orbit::KlobucharParams& p) noexcept { klobuchar_ = p; }
+  const orbit::KlobucharParams& klobuchar() const noexcept { return klobuchar_; }
+
   /// Chi-square threshold for dof degrees of freedom at the configured
   /// false-alarm probability (Wilson–Hilferty; dof >= 1).
   double chi2_threshold(int dof) const noexcept;
@@ -73,6 +81,8 @@ private:
     double clk_m = 0.0;    // c * (broadcast clock - TGD), m
     double drift_m_s = 0.0;
     double since_tx_s = 0.0;  // t_rx_local - t_tx, s
+    double cn0_var_m2 = 0.0;  // C/N0 term of the assumed variance, m^2
+    double corr_m = 0.0;      // receiver's iono + tropo correction, m
     // Per-iteration linearisation.
     Vec3 los;              // unit vector receiver -> satellite, ECEF
     Ecef vel_rx_frame_m_s; // velocity rotated into the receive-time frame
@@ -83,6 +93,7 @@ private:
 
   bool iterate(const SolverInput& in, Ecef& pos, double& clock_m, bool two_d) noexcept;
   void linearise(const SolverInput& in, const Ecef& pos, double clock_m, const Lla* lla) noexcept;
+  void update_corrections(const SolverInput& in, const Ecef& pos, const Lla& lla) noexcept;
   bool finish(const SolverInput& in, const Ecef& pos, double clock_m, bool two_d, SolverOutput& out) noexcept;
 
   SolverConfig cfg_;
@@ -90,6 +101,9 @@ private:
   double z_pfa_;  // standard-normal upper quantile of residual_test_pfa
   std::array<Sat, kMaxGpsPrn> sats_{};
   int n_ = 0;
+  orbit::KlobucharParams klobuchar_;  // invalid: RTKLIB defaults
+  bool corr_valid_ = false;           // corr_m computed at corr_pos_
+  Ecef corr_pos_;
 };
 
 }  // namespace gnssemu::receiver

@@ -29,7 +29,7 @@ struct AntennaPattern {
 /// Antenna gain at elevation el_rad (clamped to [-pi/2, pi/2]), dBic.
 double antenna_gain_dbi(const AntennaPattern& p, double el_rad) noexcept;
 
-/// Environment noise-floor rise presets, dB (see docs/models-atmosphere.md for
+/// Environment noise-floor rise presets, dB (see docs/models.md for
 /// the mapping from the "countryside 1 dB ... industrial 40 dB").
 /// "countryside" 1, "suburban" 3, "urban" 6, "industrial" 20, "jamming" 40.
 /// Throws gnssemu::Error naming the known presets for an unknown name.

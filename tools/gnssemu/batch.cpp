@@ -70,6 +70,7 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
   const std::unique_ptr<scene::Scene> buildings = config::load_scene(config, &mesh_stats);
   receiver::Receiver rx(store, config.receiver);
   if (nav.leap_seconds) rx.set_leap_seconds(*nav.leap_seconds);
+  rx.set_klobuchar(nav.klobuchar);
   config::attach_scene(rx, config, buildings.get());
   const protocol::nmea::NmeaEncoder encoder(nmea_config_of(config));
   std::string sentences;

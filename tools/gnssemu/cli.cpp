@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -14,12 +16,15 @@
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
 #include "core/orbit/ephemeris_store.hpp"
+#include "core/observation/rinex_obs.hpp"
 #include "core/orbit/rinex_nav.hpp"
 #include "core/scene/scene.hpp"
 #include "tools/gnssemu/batch.hpp"
+#include "tools/gnssemu/calibrate.hpp"
 #include "tools/gnssemu/bench_multipath.hpp"
 #include "tools/gnssemu/satpos.hpp"
 #include "tools/gnssemu/sky.hpp"
+#include "tools/gnssemu/spp.hpp"
 #include "tools/gnssemu/truth_csv.hpp"
 #include "tools/gnssemu/version.hpp"
 
@@ -50,6 +55,11 @@ struct BatchArgs {
   std::string config_path, truth_path, nmea_path, errors_path;
 };
 
+struct ObsArgs {
+  std::string obs_path, nav_path, station, out_path, config_path;
+  double mask_deg = 5.0;
+};
+
 void check_range(const char* option, double v, double lo, double hi, bool hi_open = false) {
   if (!std::isfinite(v)) throw Error(fmt::format("{}: {} is not a finite number", option, v));
   if (v < lo || v > hi || (hi_open && v == hi)) {
@@ -77,11 +87,14 @@ SkyRequest checked_site(const SiteArgs& s, const time::GpsTime& t) {
 
 std::string describe(const time::GpsTime& t) { return fmt::format("week {} tow {:.3f}", t.week(), t.tow_s()); }
 
-/// Ephemeris store of a nav file that has at least one healthy set valid at t.
-orbit::EphemerisStore load_store(const std::string& nav_path, const time::GpsTime& t) {
+/// Ephemeris store of a nav file that has at least one healthy set valid at t
+/// (and, if klobuchar is given, the header's broadcast ionosphere).
+orbit::EphemerisStore load_store(const std::string& nav_path, const time::GpsTime& t,
+                                 orbit::KlobucharParams* klobuchar = nullptr) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(nav_path, ec)) throw Error(nav_path, 0, "nav file not found");
   const orbit::NavData nav = orbit::read_rinex_nav(nav_path);
+  if (klobuchar) *klobuchar = nav.klobuchar;
   orbit::EphemerisStore store(nav.ephemerides);
   if (store.size() == 0) throw Error(nav_path, 0, "no GPS ephemerides in the file");
   for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
@@ -143,6 +156,88 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
   return kExitOk;
 }
 
+/// "X,Y,Z" in metres (ECEF), e.g. a station's known coordinates.
+Ecef parse_station(const std::string& text) {
+  double v[3] = {0.0, 0.0, 0.0};
+  std::size_t pos = 0;
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t end = text.find(',', pos);
+    const std::string cell = text.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
+    try {
+      std::size_t used = 0;
+      v[k] = std::stod(cell, &used);
+      if (used != cell.size()) throw std::invalid_argument(cell);
+    } catch (const std::exception&) {
+      throw Error("--station: '" + text + "' is not X,Y,Z in metres");
+    }
+    if (!std::isfinite(v[k])) throw Error("--station: '" + text + "' is not finite");
+    if ((end == std::string::npos) != (k == 2)) throw Error("--station: '" + text + "' needs exactly X,Y,Z");
+    pos = end + 1;
+  }
+  const Ecef p(v[0], v[1], v[2]);
+  if (p.norm() < 6.0e6 || p.norm() > 7.0e6) {
+    throw Error(fmt::format("--station: {} is {:.0f} m from the Earth's centre, not near the surface", text, p.norm()));
+  }
+  return p;
+}
+
+/// Observation and navigation files, both checked.
+std::pair<observation::ObsData, orbit::NavData> load_obs_nav(const ObsArgs& a) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(a.obs_path, ec)) throw Error(a.obs_path, 0, "observation file not found");
+  if (!std::filesystem::is_regular_file(a.nav_path, ec)) throw Error(a.nav_path, 0, "nav file not found");
+  observation::ObsData obs = observation::read_rinex_obs(a.obs_path);
+  orbit::NavData nav = orbit::read_rinex_nav(a.nav_path);
+  if (obs.epochs.empty()) throw Error(a.obs_path, 0, "no GPS observation epochs");
+  const orbit::EphemerisStore store(nav.ephemerides);
+  if (store.size() == 0) throw Error(a.nav_path, 0, "no GPS ephemerides in the file");
+  const time::GpsTime t0 = obs.epochs.front().t, t1 = obs.epochs.back().t;
+  if (t0 - store.last_valid() > 0.0 || store.first_valid() - t1 > 0.0) {
+    throw Error(a.obs_path, 0,
+                fmt::format("observations run from {} to {}, outside the nav file {} ({} to {})", describe(t0),
+                            describe(t1), a.nav_path, describe(store.first_valid()), describe(store.last_valid())));
+  }
+  return {std::move(obs), std::move(nav)};
+}
+
+int run_spp_command(const ObsArgs& a, std::ostream& out, std::ostream& err) {
+  check_range("--mask", a.mask_deg, 0.0, 90.0, true);
+  std::optional<Ecef> station;
+  if (!a.station.empty()) station = parse_station(a.station);
+  const auto [obs, nav] = load_obs_nav(a);
+  SppOptions opt;
+  const config::Config base = a.config_path.empty() ? config::Config{} : config::load_config(a.config_path);
+  opt.solver = base.receiver.solver;
+  opt.max_pdop = base.receiver.max_pdop;
+  opt.mask_rad = a.mask_deg * kDegToRad;
+  const SppSummary sum = write_spp(obs, nav, opt, station, out);
+  err << fmt::format("gnssemu spp: {} epochs, {} with a fix\n", sum.epochs, sum.fixes);
+  return kExitOk;
+}
+
+int run_calibrate_command(const ObsArgs& a, std::ostream& out, std::ostream& err) {
+  check_range("--mask", a.mask_deg, 0.0, 90.0, true);
+  const Ecef station = parse_station(a.station);
+  const auto [obs, nav] = load_obs_nav(a);
+  config::Config base = a.config_path.empty() ? config::default_config() : config::load_config(a.config_path);
+  CalibrationInput in;
+  in.obs = &obs;
+  in.nav = &nav;
+  in.nav_path = a.nav_path;
+  in.station_m = station;
+  in.mask_rad = a.mask_deg * kDegToRad;
+  const CalibrationResult r = calibrate(in, base);
+  const std::string out_dir = std::filesystem::absolute(a.out_path).parent_path().string();
+  std::ofstream f(a.out_path, std::ios::binary | std::ios::trunc);
+  if (!f) throw Error(a.out_path, 0, "cannot open for writing");
+  f << calibration_toml(r, out_dir);
+  f.close();
+  if (!f) throw Error(a.out_path, 0, "write failed");
+  write_calibration_report(r, out);
+  err << "gnssemu calibrate: wrote " << a.out_path << '\n';
+  return kExitOk;
+}
+
 }  // namespace
 
 int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
@@ -186,6 +281,21 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   batch_cmd->add_option("--truth", batch.truth_path, "truth trajectory CSV")->required();
   batch_cmd->add_option("--nmea", batch.nmea_path, "write the NMEA stream here ('-' = stdout)");
   batch_cmd->add_option("--errors", batch.errors_path, "write per-epoch fix errors CSV here ('-' = stdout)");
+  ObsArgs obs_args;
+  CLI::App* spp = app.add_subcommand("spp", "single-point positions from a real RINEX observation file (C1C)");
+  spp->add_option("--obs", obs_args.obs_path, "RINEX 2.11/3.x observation file (.gz read too)")->required();
+  spp->add_option("--nav", obs_args.nav_path, "RINEX 2.x/3.x navigation file")->required();
+  spp->add_option("--mask", obs_args.mask_deg, "elevation mask, deg [0, 90)")->capture_default_str();
+  spp->add_option("--station", obs_args.station, "known position X,Y,Z (ECEF m): adds e_m,n_m,u_m columns");
+  spp->add_option("--config", obs_args.config_path, "take the solver settings (weights, corrections) from this config");
+  CLI::App* calib =
+      app.add_subcommand("calibrate", "fit the receiver error model to a real receiver at a known position");
+  calib->add_option("--obs", obs_args.obs_path, "RINEX 2.11/3.x observation file (.gz read too)")->required();
+  calib->add_option("--nav", obs_args.nav_path, "RINEX 2.x/3.x navigation file")->required();
+  calib->add_option("--station", obs_args.station, "known antenna position X,Y,Z (ECEF m)")->required();
+  calib->add_option("--out", obs_args.out_path, "write the fitted TOML configuration here")->required();
+  calib->add_option("--mask", obs_args.mask_deg, "elevation mask, deg [0, 90)")->capture_default_str();
+  calib->add_option("--config", obs_args.config_path, "start from this config (default: the built-in one)");
   CLI::App* bench = app.add_subcommand("bench", "benchmarks that print time next to the error it costs");
   bench->require_subcommand(1);
   CLI::App* bench_mp = bench->add_subcommand("multipath", "scene stage: time per epoch vs error against a dense reference");
@@ -211,13 +321,13 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
 
   // CLI11 reports a mistyped subcommand only as "A subcommand is required".
   const auto known = [&](const std::string& name) {
-    for (const CLI::App* sub : {satpos, sky, dop, batch_cmd, bench, version}) {
+    for (const CLI::App* sub : {satpos, sky, dop, batch_cmd, spp, calib, bench, version}) {
       if (sub->get_name() == name) return true;
     }
     return false;
   };
   if (argc > 1 && argv[1][0] != '-' && !known(argv[1])) {
-    err << "gnssemu: unknown subcommand '" << argv[1] << "' (satpos, sky, dop, batch, bench, version; see --help)\n";
+    err << "gnssemu: unknown subcommand '" << argv[1] << "' (satpos, sky, dop, batch, spp, calibrate, bench, version; see --help)\n";
     return kExitUsage;
   }
   try {
@@ -234,8 +344,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       write_satpos(load_store(nav_path, t), t, out);
     } else if (*sky || *dop) {
       const time::GpsTime t = checked_time(time_args);
-      const SkyRequest req = checked_site(site, t);
-      const orbit::EphemerisStore store = load_store(nav_path, t);
+      SkyRequest req = checked_site(site, t);
+      const orbit::EphemerisStore store = load_store(nav_path, t, &req.klobuchar);
       if (*sky) {
         SkyRequest sreq = req;
         std::unique_ptr<scene::Scene> buildings;
@@ -260,6 +370,10 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       }
     } else if (*batch_cmd) {
       return run_batch_command(batch, out, err);
+    } else if (*spp) {
+      return run_spp_command(obs_args, out, err);
+    } else if (*calib) {
+      return run_calibrate_command(obs_args, out, err);
     } else if (*bench_mp) {
       if (bmp.scene_path.empty() == (bmp.city_blocks <= 0)) throw Error("bench multipath: give either --scene or --city");
       if (bench_week >= 0 || bench_tow_s >= 0.0) bmp.start = checked_time(TimeArgs{bench_week, bench_tow_s});

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <iterator>
 #include <optional>
 #include <span>
@@ -10,7 +11,11 @@
 #include "core/geo/geodesy.hpp"
 #include "core/geo/local_frame.hpp"
 #include "core/receiver/receiver.hpp"
+#include "core/receiver/propagation.hpp"
 #include "core/receiver/sky.hpp"
+#include "core/atmosphere/receiver_corrections.hpp"
+#include "core/atmosphere/troposphere.hpp"
+#include "core/signal/link_budget.hpp"
 
 namespace gnssemu::cli {
 
@@ -34,8 +39,14 @@ receiver::ReceiverConfig geometry_receiver_config(double mask_rad) {
 }  // namespace
 
 int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out) {
-  out << "prn,az_deg,el_deg,range_m" << (req.scene ? ",los,bounces,nlos_delay_m,path_loss_db\n" : "\n");
+  out << "prn,az_deg,el_deg,range_m,iono_klobuchar_m,tropo_zhd_m,nmf_hydro,nmf_wet,atten_db,cn0_dbhz"
+      << (req.scene ? ",los,bounces,nlos_delay_m,path_loss_db\n" : "\n");
   const Ecef rx = geo::ecef_from_lla(req.rx_lla);
+  const receiver::ReceiverConfig defaults;
+  const receiver::AtmospherePropagation world(defaults.atmosphere);
+  const signal::LinkBudgetModel link(defaults.signal.link);
+  const double doy = req.t.day_of_year() + std::fmod(req.t.tow_s(), kSecondsPerDay) / kSecondsPerDay;
+  const double zhd_m = atmosphere::receiver_zhd_m(req.rx_lla.lat_rad, req.rx_lla.height_m);
   const geo::LocalFrame frame(req.scene_origin);
   std::optional<scene::Propagator> prop;
   if (req.scene) prop.emplace(*req.scene, req.search);
@@ -46,9 +57,16 @@ int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::os
     if (eph == nullptr) continue;
     const receiver::SkySat s = receiver::sky_sat(*eph, req.t, rx, req.rx_lla, Ecef());
     if (!(s.el_rad >= req.mask_rad)) continue;
+    const double iono_m = atmosphere::receiver_iono_delay_m(req.klobuchar, req.rx_lla.lat_rad, req.rx_lla.lon_rad,
+                                                            s.az_rad, s.el_rad, req.t.tow_s());
+    const atmosphere::NiellMapping nmf =
+        atmosphere::niell_mapping(s.el_rad, req.rx_lla.lat_rad, req.rx_lla.height_m, doy);
+    const double atten_db =
+        world.slow_terms(req.rx_lla, s.az_rad, s.el_rad, req.t.tow_s(), doy)[receiver::kAttenDb];
     buf.clear();
-    fmt::format_to(std::back_inserter(buf), "{},{:.6f},{:.6f},{:.4f}", prn, s.az_rad * kRadToDeg,
-                   s.el_rad * kRadToDeg, s.range_m);
+    fmt::format_to(std::back_inserter(buf), "{},{:.6f},{:.6f},{:.4f},{:.4f},{:.4f},{:.5f},{:.5f},{:.4f},{:.2f}", prn,
+                   s.az_rad * kRadToDeg, s.el_rad * kRadToDeg, s.range_m, iono_m, zhd_m, nmf.hydro, nmf.wet, atten_db,
+                   link.cn0_dbhz(s.range_m, s.el_rad, atten_db));
     if (prop) {
       const scene::SatQuery q{prn, frame.vector_to_enu((s.pos_m - rx) / s.range_m)};
       scene::SatPath p;

@@ -5,6 +5,7 @@
 
 #include "core/common/vec3.hpp"
 #include "core/orbit/ephemeris_store.hpp"
+#include "core/orbit/nav_data.hpp"
 #include "core/scene/propagator.hpp"
 #include "core/time/gps_time.hpp"
 
@@ -14,16 +15,23 @@ struct SkyRequest {
   time::GpsTime t;        ///< receive time, GPS
   Lla rx_lla;             ///< receiver (lat/lon rad, ellipsoidal height m)
   double mask_rad = 0.0;  ///< elevation mask, rad [0, pi/2)
+  orbit::KlobucharParams klobuchar;  ///< nav header's broadcast iono (invalid: RTKLIB defaults)
   const scene::Scene* scene = nullptr;  ///< buildings (built in the ENU frame of scene_origin), optional
   Lla scene_origin;                     ///< origin of the scene's local frame
   scene::SearchConfig search;           ///< reflection search effort
 };
 
-/// Writes `prn,az_deg,el_deg,range_m` per healthy satellite at or above the
-/// mask: satellite at its transmit time, rotated for Earth rotation during the
-/// signal flight (Sagnac), geometric range. With req.scene, also
-/// `los,bounces,nlos_delay_m,path_loss_db` (los 1 direct, 0 blocked; a blocked
-/// satellite without a reflection path has empty delay and loss: not received).
+/// Writes `prn,az_deg,el_deg,range_m,iono_klobuchar_m,tropo_zhd_m,nmf_hydro,
+/// nmf_wet,atten_db,cn0_dbhz` per healthy satellite at or above the mask:
+/// satellite at its transmit time, rotated for Earth rotation during the
+/// signal flight (Sagnac), geometric range; then the broadcast Klobuchar delay
+/// at L1 (req.klobuchar), the receiver's standard-atmosphere zenith
+/// hydrostatic delay (Saastamoinen), the Niell mapping functions at that
+/// elevation and day of year, and the default world's attenuation (gases over
+/// the shells; no clouds or rain) and C/N0 (default link budget, countryside).
+/// With req.scene, also `los,bounces,nlos_delay_m,path_loss_db` (los 1 direct,
+/// 0 blocked; a blocked satellite without a reflection path has empty delay
+/// and loss: not received).
 /// Returns the number of rows.
 int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out);
 

@@ -37,7 +37,9 @@ TEST(SkyScene, ColumnsAndCanyonPaths) {
   const test::CliResult plain = run(sky_args(at, ""));
   const test::CliResult r = run(sky_args(at, kScenes + "street_canyon.toml"));
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(r.out.substr(0, r.out.find('\n')), "prn,az_deg,el_deg,range_m,los,bounces,nlos_delay_m,path_loss_db");
+  const std::string header = r.out.substr(0, r.out.find('\n'));
+  EXPECT_EQ(header.substr(header.size() - 38), ",los,bounces,nlos_delay_m,path_loss_db") << header;
+  EXPECT_EQ(header.substr(0, header.size() - 38), plain.out.substr(0, plain.out.find('\n')));
   const Csv sky = parse_csv(r.out), ref = parse_csv(plain.out);
   ASSERT_EQ(sky.rows.size(), ref.rows.size());
   int los = 0, nlos = 0, none = 0;
@@ -114,7 +116,8 @@ TEST(BatchScene, ConfigSceneAddsColumnsAndChangesTheFix) {
   ASSERT_EQ(e.rows.size(), 100u);
   int nlos = 0, blocked = 0;
   for (std::size_t i = 0; i < e.rows.size(); ++i) {
-    EXPECT_EQ(e.num(i, "nvisible"), e.num(i, "ntracked") + e.num(i, "nblocked"));
+    // Not tracked: blocked, or a reflection too weak for the tracking loops.
+    EXPECT_GE(e.num(i, "nvisible"), e.num(i, "ntracked") + e.num(i, "nblocked"));
     nlos += static_cast<int>(e.num(i, "nlos"));
     blocked += static_cast<int>(e.num(i, "nblocked"));
     if (e.num(i, "nlos") > 0) {

@@ -64,7 +64,8 @@ std::array<std::array<double, 4>, 4> inverse4(std::array<std::array<double, 4>, 
 TEST(Sky, SolvesTheLightTimeEquationWithSagnac) {
   const CliResult r = run(site_args("sky", "5"));
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(r.out.substr(0, r.out.find('\n')), "prn,az_deg,el_deg,range_m");
+  EXPECT_EQ(r.out.substr(0, r.out.find('\n')),
+            "prn,az_deg,el_deg,range_m,iono_klobuchar_m,tropo_zhd_m,nmf_hydro,nmf_wet,atten_db,cn0_dbhz");
   const Csv sky = parse_csv(r.out);
   ASSERT_GE(sky.rows.size(), 6u);
   const Ecef rx = geo::ecef_from_lla(kParis);

@@ -64,6 +64,12 @@ void expect_same(const Config& a, const Config& b) {
     EXPECT_EQ(pa.type, pb.type);
     EXPECT_EQ(pa.path, pb.path);
     EXPECT_EQ(pa.baud, pb.baud);
+    EXPECT_EQ(pa.address, pb.address);
+    EXPECT_EQ(pa.port, pb.port);
+    EXPECT_EQ(pa.protocols_in, pb.protocols_in);
+    EXPECT_EQ(pa.protocols_out, pb.protocols_out);
+    EXPECT_EQ(pa.ubx_messages, pb.ubx_messages);
+    EXPECT_EQ(pa.nmea_rates, pb.nmea_rates);
     EXPECT_EQ(pa.nmea.version, pb.nmea.version);
     EXPECT_EQ(pa.nmea.course_min_speed_m_s, pb.nmea.course_min_speed_m_s);
     const protocol::nmea::SentenceSet& sa = pa.nmea.sentences;

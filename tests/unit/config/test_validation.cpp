@@ -297,8 +297,8 @@ TEST(ConfigValidation, UnknownNmeaVersion) {
 }
 
 TEST(ConfigValidation, UnknownPortType) {
-  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"a\"\ntype = \"serial\"\npath = \"/tmp/a\"\n"),
-            "t.toml:9: output[0].type: 'serial' is not \"pty\" or \"file\"");
+  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"a\"\ntype = \"usb\"\npath = \"/tmp/a\"\n"),
+            "t.toml:9: output[0].type: 'usb' is not one of \"pty\", \"serial\", \"tcp\", \"udp\", \"file\"");
 }
 
 TEST(ConfigValidation, DuplicateOutputName) {

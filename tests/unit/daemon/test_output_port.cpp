@@ -17,6 +17,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+boost::asio::io_context io;
+
 struct TempDir {
   fs::path path;
   TempDir() {
@@ -41,7 +43,7 @@ TEST(OutputPort, RefusesToReplaceRegularFile) {
   const fs::path p = dir.path / "gps0";
   std::ofstream(p) << "precious";
   EXPECT_THROW(validate_port(pty_config(p)), Error);
-  EXPECT_THROW(open_port(pty_config(p)), Error);
+  EXPECT_THROW(open_port(pty_config(p), io), Error);
   std::ifstream in(p);
   std::string s;
   in >> s;
@@ -57,7 +59,7 @@ TEST(OutputPort, PtySymlinkReplacesStaleLinkAndIsRemoved) {
   fs::create_directories(p.parent_path());
   fs::create_symlink("/dev/pts/does-not-exist", p);
   {
-    auto port = open_port(pty_config(p));
+    auto port = open_port(pty_config(p), io);
     ASSERT_TRUE(fs::is_symlink(p));
     const std::string target = fs::read_symlink(p).string();
     EXPECT_EQ(target.rfind("/dev/pts/", 0), 0u);
@@ -80,7 +82,7 @@ TEST(OutputPort, PtySymlinkReplacesStaleLinkAndIsRemoved) {
 
 TEST(OutputPort, UndrainedPtyDropsWholeEpochsAndNeverBlocks) {
   TempDir dir;
-  auto port = open_port(pty_config(dir.path / "gps0"));
+  auto port = open_port(pty_config(dir.path / "gps0"), io);
   const std::string epoch(500, 'x');
   // 500 kB with nobody reading: far beyond the kernel's pty buffers (about
   // 64 kB + 4 kB), so without dropping this loop would block or fail.
@@ -109,7 +111,7 @@ TEST(OutputPort, FilePortWrites) {
   c.type = config::PortType::kFile;
   c.path = (dir.path / "out.nmea").string();
   {
-    auto port = open_port(c);
+    auto port = open_port(c, io);
     port->write_epoch("A\r\n");
     port->write_epoch("B\r\n");
     EXPECT_EQ(port->stats().epochs_written, 2u);

@@ -83,9 +83,23 @@ inline Ecef sat_position_at(const Ecef& rx, const Lla& rx_lla, double az_rad, do
   return Ecef(rx + los * rho);
 }
 
+/// The pre-atmosphere world: no atmosphere, no receiver corrections, white
+/// code noise of a fixed sigma (errors.thermal_sigma_m) and elevation-only
+/// solver weights. The error is then exactly GM orbit/clock + white noise.
+inline ReceiverConfig gm_white_world(ReceiverConfig c = {}) {
+  c.atmosphere.ionosphere.enabled = false;
+  c.atmosphere.troposphere.enabled = false;
+  c.atmosphere.gases = false;
+  c.solver.iono = atmosphere::IonoCorrection::kNone;
+  c.solver.tropo = atmosphere::TropoCorrection::kNone;
+  c.solver.sigma_c_m_sqrt_hz = 0.0;
+  c.errors.thermal_model = ThermalModel::kFixed;
+  return c;
+}
+
 /// Error model off, clock without noise: the fix must equal the truth.
 inline ReceiverConfig errors_off_config() {
-  ReceiverConfig c;
+  ReceiverConfig c = gm_white_world();
   c.errors.thermal_sigma_m = 0.0;
   c.errors.orbit_clock.sigma_m = 0.0;
   c.errors.doppler_sigma_m_s = 0.0;

@@ -242,7 +242,7 @@ TEST(ReceiverHardCases, ChannelLimitKeepsHighestSatellites) {
 TEST(ReceiverHardCases, EpochsStraddlingTheGpsWeekBoundary) {
   const time::GpsTime toe(2190, kSecondsPerWeek - 300.0);
   const orbit::EphemerisStore store(test::nominal_constellation(toe, 5));
-  ReceiverConfig gm_only;  // GM residuals only: steps across the boundary must be tiny
+  ReceiverConfig gm_only = test::gm_white_world();  // GM residuals only: steps across the boundary must be tiny
   gm_only.errors.thermal_sigma_m = 0.0;
   gm_only.errors.doppler_sigma_m_s = 0.0;
   Receiver exact(store, errors_off_config()), gm(store, gm_only);

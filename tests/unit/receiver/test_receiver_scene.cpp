@@ -54,10 +54,14 @@ TEST_F(ReceiverScene, EmptySceneIsIdenticalToNoScene) {
 
 TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
   const scene::Scene canyon(scene::load_mesh(kData + "/scenes/street_canyon.toml"));
-  Receiver plain(store, ReceiverConfig{});
-  Receiver with(store, ReceiverConfig{});
+  // Fixed code noise, so the only pseudorange difference is the path (the
+  // DLL model's noise follows C/N0, which the reflection loss lowers).
+  ReceiverConfig cfg;
+  cfg.errors.thermal_model = ThermalModel::kFixed;
+  Receiver plain(store, cfg);
+  Receiver with(store, cfg);
   with.attach_scene(canyon, kOrigin, scene::SearchConfig{});
-  int nlos = 0, blocked = 0;
+  int nlos = 0, blocked = 0, weak = 0;
   for (int k = 0; k < 60; ++k) {
     const Truth tr = truth_at(Enu(3.0, -100.0 + 3.0 * k, 1.5), 30.0 * k);
     const Fix a = plain.step(tr.t, tr);
@@ -72,10 +76,13 @@ TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
         EXPECT_FALSE(sb.tracked);
         EXPECT_FALSE(sb.used);
         ++blocked;
+      } else if (sb.nlos && !sb.tracked) {
+        ++weak;  // reflection loss took C/N0 below the tracking threshold
+        EXPECT_GT(sb.bounces, 0);
       } else if (sb.nlos) {
-        ASSERT_TRUE(sb.tracked);
         EXPECT_GT(sb.nlos_delay_m, 0.0);
         EXPECT_NEAR(sb.pseudorange_m - sa.pseudorange_m, sb.nlos_delay_m, 1e-6);
+        // Link budget: the loss comes off C/N0 dB for dB (glass and concrete 3 dB each).
         EXPECT_NEAR(sa.cn0_dbhz - sb.cn0_dbhz, 3.0 * sb.bounces, 1e-9);
         ++nlos;
       } else {
@@ -85,6 +92,7 @@ TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
   }
   EXPECT_GT(nlos, 10);
   EXPECT_GT(blocked, 10);
+  EXPECT_GE(weak, 0);
 }
 
 TEST_F(ReceiverScene, InsideClosedBuildingNoSatelliteNoFix) {

@@ -29,7 +29,7 @@ Enu error_enu(const Fix& f, const Ecef& truth) {
   return geo::ecef_to_enu_vector(f.pos_m - truth, kSite.lat_rad, kSite.lon_rad);
 }
 
-// Default world errors: orbit/clock 1.2 m + thermal 0.3 m, elevation
+// test::gm_white_world errors: orbit/clock 1.2 m + thermal 0.3 m, elevation
 // independent, so sigma_UERE = sqrt(1.2^2 + 0.3^2).
 const double kSigmaUere_m = std::hypot(1.2, 0.3);
 
@@ -70,7 +70,7 @@ Ensemble run_ensemble(const orbit::EphemerisStore& store, ReceiverConfig cfg, in
 
 TEST(ReceiverStatistics, EnsembleErrorMatchesSigmaUereTimesDop) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig cfg;
+  ReceiverConfig cfg = test::gm_white_world();
   // Solver weights equal to the world's sigma: WLS is then the BLUE and its
   // covariance sigma^2 (H'H)^-1 is exact, so rms error = sigma_UERE * DOP.
   cfg.solver.sigma_a_m = kSigmaUere_m;
@@ -88,8 +88,9 @@ TEST(ReceiverStatistics, DefaultSolverAccuracyIsConservativeButTight) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
   const Ensemble e = run_ensemble(store, ReceiverConfig{}, 400);
   ASSERT_GE(e.fixes, 396);
-  // The default solver assumes sigma^2 = 1.2^2 + 0.3^2 / sin^2(el) >= the
-  // world's 1.24^2 at every elevation, so its covariance bounds the true one:
+  // The default solver assumes sigma^2 = 1.2^2 + 0.3^2 / sin^2(el) + 150^2 10^(-C/N0/10),
+  // at least the default world's variance (GM 1.2 m, DLL noise, atmosphere
+  // residuals) at every elevation, so its covariance bounds the true one:
   // ratio <= 1 up to sampling (~4 %); it over-weights low satellites only
   // mildly, so the bound is not loose (ratio > 0.6).
   const double ratio = e.rms_h_m / e.mean_h_acc_m;
@@ -100,7 +101,7 @@ TEST(ReceiverStatistics, DefaultSolverAccuracyIsConservativeButTight) {
 
 TEST(ReceiverStatistics, ErrorIsTimeCorrelatedNotWhite) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig cfg;
+  ReceiverConfig cfg = test::gm_white_world();
   cfg.solver.sigma_a_m = kSigmaUere_m;
   cfg.solver.sigma_b_m = 0.0;
   const Ecef truth = geo::ecef_from_lla(kSite);
@@ -169,7 +170,7 @@ TEST(ReceiverStatistics, MovingReceiverVelocityWithinSigma) {
 
 TEST(ReceiverStatistics, ResidualTestRejectsInconsistentMeasurements) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig cfg;
+  ReceiverConfig cfg = test::gm_white_world();
   cfg.errors.thermal_sigma_m = 30.0;  // far beyond what the solver assumes
   Receiver rx(store, cfg);
   cfg.solver.residual_test_pfa = 0.0;  // test disabled

@@ -1,0 +1,32 @@
+#pragma once
+// Names of the periodic messages a port can be configured to send, with their
+// u-blox class and id (CFG-MSG addresses). UBX ids: shared/reference/ubx.md §2;
+// standard NMEA sentences are class 0xF0 with ids from the u-blox M8 protocol
+// specification (UBX-13003221, "NMEA Protocol" message overview).
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+namespace gnssemu::config {
+
+struct MessageName {
+  std::string_view name;  ///< "NAV-PVT", "GGA"
+  uint8_t msg_class;      ///< UBX class; 0xF0 for standard NMEA sentences
+  uint8_t msg_id;
+};
+
+inline constexpr uint8_t kNmeaClass = 0xF0;
+
+/// Periodic UBX messages the daemon can send (NAV-*, MON-HW), in the order an
+/// epoch carries them.
+std::span<const MessageName> ubx_periodic_messages();
+/// NMEA sentences the encoder writes, in u-blox output order (RMC VTG GGA GSA GSV GLL GST ZDA).
+std::span<const MessageName> nmea_sentences();
+
+/// Entry by name (exact, case-sensitive) among both tables.
+std::optional<MessageName> message_by_name(std::string_view name);
+/// Name of (class, id), or "" when it is not one of the tables' messages.
+std::string_view message_name(uint8_t msg_class, uint8_t msg_id);
+
+}  // namespace gnssemu::config

@@ -1,0 +1,31 @@
+#include "core/atmosphere/receiver_corrections.hpp"
+
+#include "core/atmosphere/klobuchar.hpp"
+#include "core/atmosphere/troposphere.hpp"
+
+namespace gnssemu::atmosphere {
+
+double receiver_iono_delay_m(const orbit::KlobucharParams& params, double lat_rad, double lon_rad, double az_rad,
+                             double el_rad, double tow_s) noexcept {
+  if (params.valid) return klobuchar_delay_l1_m(params, lat_rad, lon_rad, az_rad, el_rad, tow_s);
+  return klobuchar_delay_l1_m(rtklib_default_klobuchar(), lat_rad, lon_rad, az_rad, el_rad, tow_s);
+}
+
+double receiver_tropo_delay_m(double lat_rad, double height_m, double el_rad, double doy,
+                              TropoCorrection model) noexcept {
+  switch (model) {
+    case TropoCorrection::kNone:
+      return 0.0;
+    case TropoCorrection::kSaastamoinenNiell:
+      return standard_troposphere_correction_m(lat_rad, height_m, el_rad, doy);
+    case TropoCorrection::kZhdNiell:
+      return exponential_zhd_m(height_m) * niell_mapping(el_rad, lat_rad, height_m, doy).hydro;
+  }
+  return 0.0;
+}
+
+double receiver_zhd_m(double lat_rad, double height_m) noexcept {
+  return saastamoinen_zhd_m(standard_atmosphere(height_m).pressure_hpa, lat_rad, height_m);
+}
+
+}  // namespace gnssemu::atmosphere

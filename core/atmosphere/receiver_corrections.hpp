@@ -1,0 +1,41 @@
+#pragma once
+// What a receiver subtracts from its pseudoranges: the broadcast Klobuchar
+// ionosphere and a standard-atmosphere troposphere. Plain functions so that
+// the emulated receiver (core/receiver), `gnssemu spp` and `calibrate` share
+// one implementation. Never throw, never NaN for finite inputs.
+#include "core/orbit/nav_data.hpp"
+
+namespace gnssemu::atmosphere {
+
+enum class IonoCorrection {
+  kNone,
+  kKlobuchar,  ///< broadcast Klobuchar at L1 (IS-GPS-200 §20.3.3.5.2.5)
+};
+
+enum class TropoCorrection {
+  kNone,
+  /// Saastamoinen ZHD + ZWD from the standard atmosphere (RH 0.7, as RTKLIB's
+  /// tropmodel) mapped with Niell hydrostatic / wet.
+  kSaastamoinenNiell,
+  /// Zenith hydrostatic delay a exp(-b h) (a = 2.31 m, b = 1.2e-4 1/m) times
+  /// the Niell hydrostatic mapping; no wet part.
+  kZhdNiell,
+};
+
+/// Broadcast ionospheric code delay at L1, m (>= 0). params invalid (the
+/// nav file had none) -> RTKLIB's default coefficients (rtklib_default_klobuchar).
+/// lat_rad, lon_rad: receiver; az_rad, el_rad: look angles; tow_s: GPS time of week, s.
+double receiver_iono_delay_m(const orbit::KlobucharParams& params, double lat_rad, double lon_rad, double az_rad,
+                             double el_rad, double tow_s) noexcept;
+
+/// Receiver's tropospheric correction, m (>= 0). lat_rad; height_m:
+/// ellipsoidal (clamped to [-1 km, 100 km]); el_rad (held at >= 1 deg);
+/// doy: day of year, fractional allowed.
+double receiver_tropo_delay_m(double lat_rad, double height_m, double el_rad, double doy,
+                              TropoCorrection model = TropoCorrection::kSaastamoinenNiell) noexcept;
+
+/// Zenith hydrostatic delay of the receiver's standard atmosphere
+/// (Saastamoinen with the standard pressure at height_m), m.
+double receiver_zhd_m(double lat_rad, double height_m) noexcept;
+
+}  // namespace gnssemu::atmosphere

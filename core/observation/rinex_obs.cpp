@@ -1,0 +1,457 @@
+#include "core/observation/rinex_obs.hpp"
+
+#include <zlib.h>
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string_view>
+
+#include "core/common/error.hpp"
+
+namespace gnssemu::observation {
+
+namespace {
+
+constexpr int kMaxGpsPrn = 32;
+constexpr std::size_t kFieldWidth = 16;  // F14.3 + LLI + SSI (RINEX 2.11 Table A2, 3.05 Table A3)
+constexpr int kV2SatsPerLine = 12;
+constexpr int kV2ValuesPerLine = 5;
+
+struct Line {
+  std::string text;
+  int number = 0;  // 1-based
+};
+
+std::string_view trim(std::string_view s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string_view::npos) return {};
+  const auto e = s.find_last_not_of(" \t");
+  return s.substr(b, e - b + 1);
+}
+
+std::string_view columns(const std::string& line, std::size_t col, std::size_t width) {
+  if (col >= line.size()) return {};
+  return std::string_view(line).substr(col, width);
+}
+
+std::string label_of(const std::string& line) { return std::string(trim(columns(line, 60, 20))); }
+
+/// RINEX 2 two-character GPS type -> RINEX 3 code (RINEX 3.05 §5.1 / Table A2 mapping).
+std::string v3_code_from_v2(std::string_view t) {
+  if (t.size() != 2) return std::string(t);
+  const char kind = t[0], band = t[1];
+  if (kind == 'P') return band == '1' ? "C1W" : band == '2' ? "C2W" : std::string(t);
+  if (band == '1') return std::string{kind, '1', 'C'};
+  if (band == '2') return std::string{kind, '2', kind == 'C' ? 'X' : 'W'};
+  if (band == '5') return std::string{kind, '5', 'X'};
+  return std::string(t);
+}
+
+class Parser {
+public:
+  Parser(std::vector<Line> lines, const std::string& name) : lines_(std::move(lines)), name_(name) {}
+
+  ObsData parse() {
+    ObsData out;
+    out.source = name_;
+    parse_header(out);
+    while (i_ < lines_.size()) {
+      if (trim(lines_[i_].text).empty()) {
+        ++i_;
+        continue;
+      }
+      if (major_ == 3) {
+        epoch_v3(out);
+      } else {
+        epoch_v2(out);
+      }
+    }
+    return out;
+  }
+
+private:
+  [[noreturn]] void fail(int line, const std::string& what) const { throw Error(name_, line, what); }
+
+  double real(const Line& l, std::size_t col, std::size_t width, const char* what) const {
+    const std::string_view f = trim(columns(l.text, col, width));
+    if (f.empty()) return 0.0;
+    std::string s(f);
+    for (char& c : s) {
+      if (c == 'D' || c == 'd') c = 'E';
+    }
+    double v = 0.0;
+    const char* first = s.data();
+    if (*first == '+') ++first;
+    const auto [ptr, ec] = std::from_chars(first, s.data() + s.size(), v);
+    if (ec != std::errc() || ptr != s.data() + s.size()) {
+      fail(l.number, "unparsable number '" + s + "' for " + what + " at column " + std::to_string(col + 1));
+    }
+    if (!std::isfinite(v)) fail(l.number, std::string("non-finite value for ") + what);
+    return v;
+  }
+
+  int integer(const Line& l, std::size_t col, std::size_t width, const char* what) const {
+    const std::string_view f = trim(columns(l.text, col, width));
+    if (f.empty()) return 0;
+    int v = 0;
+    const char* first = f.data();
+    if (*first == '+') ++first;
+    const auto [ptr, ec] = std::from_chars(first, f.data() + f.size(), v);
+    if (ec != std::errc() || ptr != f.data() + f.size()) {
+      fail(l.number, "unparsable integer '" + std::string(f) + "' for " + what + " at column " +
+                         std::to_string(col + 1));
+    }
+    return v;
+  }
+
+  /// The next line of a record announced at record_line, or a clear error.
+  const Line& need(const char* what, int record_line) {
+    if (i_ >= lines_.size()) {
+      fail(lines_.empty() ? 0 : lines_.back().number,
+           std::string("end of file inside ") + what + " started at line " + std::to_string(record_line));
+    }
+    return lines_[i_++];
+  }
+
+  // ---- header ----
+
+  void parse_header(ObsData& out) {
+    if (lines_.empty()) fail(1, "empty file");
+    const Line& first = lines_[0];
+    if (label_of(first.text) != "RINEX VERSION / TYPE") fail(first.number, "first line is not 'RINEX VERSION / TYPE'");
+    ObsHeader& h = out.header;
+    h.rinex_version = real(first, 0, 9, "RINEX version");
+    const char type = first.text.size() > 20 ? first.text[20] : ' ';
+    h.file_system = first.text.size() > 40 ? first.text[40] : ' ';
+    if (h.rinex_version >= 2.0 && h.rinex_version < 2.12) {
+      major_ = 2;
+      if (h.file_system == ' ') h.file_system = 'G';  // RINEX 2.11 §5.1: blank = GPS
+    } else if (h.rinex_version >= 3.0 && h.rinex_version < 3.06) {
+      major_ = 3;
+    } else {
+      fail(first.number, "unsupported RINEX version " + std::string(trim(columns(first.text, 0, 9))) +
+                             " (2.00-2.11 and 3.00-3.05 are supported)");
+    }
+    if (type != 'O') fail(first.number, std::string("not an observation file (type '") + type + "')");
+    if (h.file_system != 'G' && h.file_system != 'M') {
+      fail(first.number, std::string("observation file for system '") + h.file_system +
+                             "', need GPS (G) or mixed (M)");
+    }
+    i_ = 1;
+    while (i_ < lines_.size()) {
+      const Line& l = lines_[i_++];
+      const std::string label = label_of(l.text);
+      if (label == "END OF HEADER") {
+        if (!have_types_) fail(l.number, "no GPS observation types in the header (SYS / # / OBS TYPES or # / TYPES OF OBSERV)");
+        return;
+      }
+      header_line(l, label, h);
+    }
+    fail(lines_.back().number, "end of file before END OF HEADER");
+  }
+
+  /// One header line; also used for header records inside flag-4 events.
+  void header_line(const Line& l, const std::string& label, ObsHeader& h) {
+    if (label == "MARKER NAME") {
+      h.marker_name = std::string(trim(columns(l.text, 0, 60)));
+    } else if (label == "REC # / TYPE / VERS") {
+      h.receiver_type = std::string(trim(columns(l.text, 20, 20)));
+    } else if (label == "APPROX POSITION XYZ") {
+      h.approx_pos_m = Ecef(real(l, 0, 14, "X"), real(l, 14, 14, "Y"), real(l, 28, 14, "Z"));
+    } else if (label == "ANTENNA: DELTA H/E/N") {
+      h.antenna_delta_hen_m = Enu(real(l, 0, 14, "H"), real(l, 14, 14, "E"), real(l, 28, 14, "N"));
+    } else if (label == "INTERVAL") {
+      h.interval_s = real(l, 0, 10, "interval");
+      if (h.interval_s < 0.0) fail(l.number, "negative INTERVAL");
+    } else if (label == "LEAP SECONDS") {
+      h.leap_seconds = integer(l, 0, 6, "leap seconds");
+    } else if (label == "RCV CLOCK OFFS APPL") {
+      h.rcv_clock_offset_applied = integer(l, 0, 6, "RCV CLOCK OFFS APPL") != 0;
+    } else if (label == "TIME OF FIRST OBS") {
+      const std::string_view sys = trim(columns(l.text, 48, 3));
+      if (!sys.empty() && sys != "GPS") {
+        fail(l.number, "time system '" + std::string(sys) + "' not supported (GPS time only)");
+      }
+      time::CalendarTime c;
+      c.year = integer(l, 0, 6, "year");
+      c.month = integer(l, 6, 6, "month");
+      c.day = integer(l, 12, 6, "day");
+      c.hour = integer(l, 18, 6, "hour");
+      c.minute = integer(l, 24, 6, "minute");
+      c.second = real(l, 30, 13, "second");
+      h.first_obs = calendar_time(l, c);
+    } else if (major_ == 3 && label == "SYS / # / OBS TYPES") {
+      types_v3(l, h);
+    } else if (major_ == 2 && label == "# / TYPES OF OBSERV") {
+      types_v2(l, h);
+    }
+  }
+
+  time::GpsTime calendar_time(const Line& l, const time::CalendarTime& c) const {
+    if (c.year < 1980 || c.year > 2200 || c.month < 1 || c.month > 12 || c.day < 1 || c.day > 31 || c.hour < 0 ||
+        c.hour > 23 || c.minute < 0 || c.minute > 59 || !(c.second >= 0.0 && c.second < 61.0)) {
+      fail(l.number, "date/time out of range");
+    }
+    return time::GpsTime::from_calendar(c);
+  }
+
+  void types_v3(const Line& l, ObsHeader& h) {
+    const char sys = l.text[0];
+    const int n = integer(l, 3, 3, "number of observation types");
+    if (n < 1 || n > 99) fail(l.number, "number of observation types " + std::to_string(n) + " outside 1..99");
+    std::vector<std::string> codes;
+    const Line* cur = &l;
+    for (int k = 0; k < n; ++k) {
+      const int slot = k % 13;
+      if (k > 0 && slot == 0) {
+        cur = &need("SYS / # / OBS TYPES", l.number);
+        if (label_of(cur->text) != "SYS / # / OBS TYPES") fail(cur->number, "missing continuation of SYS / # / OBS TYPES");
+      }
+      const std::string code(trim(columns(cur->text, 7 + 4 * static_cast<std::size_t>(slot), 3)));
+      if (code.size() != 3) fail(cur->number, "observation type " + std::to_string(k + 1) + " is not a 3-character code");
+      codes.push_back(code);
+    }
+    if (sys == 'G') {
+      h.gps_types = std::move(codes);
+      have_types_ = true;
+    }
+  }
+
+  void types_v2(const Line& l, ObsHeader& h) {
+    const int n = integer(l, 0, 6, "number of observation types");
+    if (n < 1 || n > 99) fail(l.number, "number of observation types " + std::to_string(n) + " outside 1..99");
+    h.gps_types.clear();
+    const Line* cur = &l;
+    for (int k = 0; k < n; ++k) {
+      const int slot = k % 9;
+      if (k > 0 && slot == 0) {
+        cur = &need("# / TYPES OF OBSERV", l.number);
+        if (label_of(cur->text) != "# / TYPES OF OBSERV") fail(cur->number, "missing continuation of # / TYPES OF OBSERV");
+      }
+      const std::string_view code = trim(columns(cur->text, 10 + 6 * static_cast<std::size_t>(slot), 2));
+      if (code.size() != 2) fail(cur->number, "observation type " + std::to_string(k + 1) + " is not a 2-character code");
+      h.gps_types.push_back(v3_code_from_v2(code));
+    }
+    have_types_ = true;
+  }
+
+  // ---- records ----
+
+  /// Skip or apply the n special records of an event epoch (flags 2..5).
+  void event_records(ObsData& out, int n, int flag, int record_line) {
+    ++out.event_records;
+    for (int k = 0; k < n; ++k) {
+      const Line& l = need("event record", record_line);
+      if (flag == 4) {  // header information follows (RINEX 3.05 §5.3.2): keep types current
+        const std::string label = label_of(l.text);
+        if (label.empty()) fail(l.number, "event flag 4: header record without a label");
+        const std::size_t before = i_;
+        header_line(l, label, out.header);
+        k += static_cast<int>(i_ - before);  // continuation lines consumed
+      }
+    }
+  }
+
+  ObsValue value(const Line& l, std::size_t col) const {
+    ObsValue v;
+    v.value = real(l, col, 14, "observation");
+    v.valid = v.value != 0.0;
+    v.lli = indicator(l, col + 14, "LLI");
+    v.ssi = indicator(l, col + 15, "signal strength");
+    if (!v.valid) v.lli = v.ssi = 0;
+    return v;
+  }
+
+  int indicator(const Line& l, std::size_t col, const char* what) const {
+    if (col >= l.text.size()) return 0;
+    const char c = l.text[col];
+    if (c == ' ') return 0;
+    if (c < '0' || c > '9') fail(l.number, std::string("bad ") + what + " '" + c + "' at column " + std::to_string(col + 1));
+    return c - '0';
+  }
+
+  int prn_of(const Line& l, std::size_t col) const {
+    const int prn = integer(l, col + 1, 2, "satellite number");
+    if (prn < 1 || prn > 99) fail(l.number, "satellite number " + std::to_string(prn) + " out of range");
+    return prn;
+  }
+
+  void epoch_v3(ObsData& out) {
+    const Line& e = lines_[i_++];
+    if (e.text[0] != '>') fail(e.number, "expected an epoch record starting with '>'");
+    const int flag = integer(e, 31, 1, "epoch flag");
+    const int n = integer(e, 32, 3, "number of satellites");
+    if (flag < 0 || flag > 6) fail(e.number, "epoch flag " + std::to_string(flag) + " outside 0..6");
+    if (n < 0) fail(e.number, "negative number of satellites");
+    if (flag >= 2 && flag <= 5) {
+      event_records(out, n, flag, e.number);
+      return;
+    }
+    if (flag == 6) {  // cycle-slip records: same layout as observations, not observations
+      ++out.cycle_slip_records;
+      for (int k = 0; k < n; ++k) need("cycle-slip record", e.number);
+      return;
+    }
+    ObsEpoch ep = epoch_head(e, 2, 4, 7, 10, 13, 16, 18);
+    ep.flag = flag;
+    ep.rcv_clock_offset_s = real(e, 41, 15, "receiver clock offset");
+    const std::size_t ntypes = out.header.gps_types.size();
+    for (int k = 0; k < n; ++k) {
+      const Line& l = need("epoch record", e.number);
+      const char sys = l.text.empty() ? ' ' : l.text[0];
+      if (sys == '>') fail(l.number, "epoch record at line " + std::to_string(e.number) + " announced " +
+                                         std::to_string(n) + " satellites, found " + std::to_string(k));
+      const int prn = prn_of(l, 0);
+      if (sys != 'G') {
+        if (sys != 'R' && sys != 'E' && sys != 'C' && sys != 'J' && sys != 'S' && sys != 'I') {
+          fail(l.number, std::string("unknown satellite system '") + sys + "'");
+        }
+        ++out.skipped_records;
+        continue;
+      }
+      if (prn > kMaxGpsPrn) fail(l.number, "GPS PRN " + std::to_string(prn) + " out of range 1..32");
+      SatObs s;
+      s.prn = prn;
+      s.values.reserve(ntypes);
+      for (std::size_t t = 0; t < ntypes; ++t) s.values.push_back(value(l, 3 + kFieldWidth * t));
+      ep.sats.push_back(std::move(s));
+    }
+    out.epochs.push_back(std::move(ep));
+  }
+
+  /// Epoch time from fixed columns (year width 4 at year_col; v2 passes a 2-digit year).
+  ObsEpoch epoch_head(const Line& e, std::size_t year_col, std::size_t year_w, std::size_t month_col,
+                      std::size_t day_col, std::size_t hour_col, std::size_t minute_col, std::size_t second_col) const {
+    time::CalendarTime c;
+    c.year = integer(e, year_col, year_w, "year");
+    if (year_w == 2) c.year = time::year_from_two_digits(c.year);
+    c.month = integer(e, month_col, 2, "month");
+    c.day = integer(e, day_col, 2, "day");
+    c.hour = integer(e, hour_col, 2, "hour");
+    c.minute = integer(e, minute_col, 2, "minute");
+    c.second = real(e, second_col, 11, "second");
+    ObsEpoch ep;
+    ep.t = calendar_time(e, c);
+    ep.line = e.number;
+    return ep;
+  }
+
+  void epoch_v2(ObsData& out) {
+    const Line& e = lines_[i_++];
+    const int flag = integer(e, 28, 1, "epoch flag");
+    const int n = integer(e, 29, 3, "number of satellites");
+    if (flag < 0 || flag > 6) fail(e.number, "epoch flag " + std::to_string(flag) + " outside 0..6");
+    if (n < 0) fail(e.number, "negative number of satellites");
+    if (flag >= 2 && flag <= 5) {
+      event_records(out, n, flag, e.number);
+      return;
+    }
+    // Satellite list: 12 per line, continuation lines from column 33.
+    std::vector<std::pair<char, int>> sats;
+    const Line* cur = &e;
+    for (int k = 0; k < n; ++k) {
+      if (k > 0 && k % kV2SatsPerLine == 0) cur = &need("satellite list", e.number);
+      const std::size_t col = 32 + 3 * static_cast<std::size_t>(k % kV2SatsPerLine);
+      if (col >= cur->text.size()) {
+        fail(cur->number, "satellite list shorter than the " + std::to_string(n) + " announced");
+      }
+      const char sys = cur->text[col];
+      sats.emplace_back(sys == ' ' ? out.header.file_system : sys, prn_of(*cur, col));
+    }
+    const std::size_t ntypes = out.header.gps_types.size();
+    const std::size_t lines_per_sat = (ntypes + kV2ValuesPerLine - 1) / kV2ValuesPerLine;
+    if (flag == 6) {
+      ++out.cycle_slip_records;
+      for (std::size_t k = 0; k < sats.size() * lines_per_sat; ++k) need("cycle-slip record", e.number);
+      return;
+    }
+    ObsEpoch ep = epoch_head(e, 1, 2, 4, 7, 10, 13, 15);
+    ep.flag = flag;
+    ep.rcv_clock_offset_s = real(e, 68, 12, "receiver clock offset");
+    for (const auto& [sys, prn] : sats) {
+      SatObs s;
+      s.prn = prn;
+      s.values.reserve(ntypes);
+      for (std::size_t t = 0; t < ntypes; ++t) {
+        if (t % kV2ValuesPerLine == 0) cur = &need("observation record", e.number);
+        if (cur->text.size() > 0 && cur->text[0] != ' ' && !std::isdigit(static_cast<unsigned char>(cur->text[0])) &&
+            cur->text[0] != '-') {
+          fail(cur->number, "expected observation values, found '" + cur->text.substr(0, 20) + "'");
+        }
+        s.values.push_back(value(*cur, kFieldWidth * (t % kV2ValuesPerLine)));
+      }
+      if (sys != 'G') {
+        if (sys != 'R' && sys != 'E' && sys != 'S' && sys != 'T' && sys != 'M') {
+          fail(e.number, std::string("unknown satellite system '") + sys + "'");
+        }
+        ++out.skipped_records;
+        continue;
+      }
+      if (prn > kMaxGpsPrn) fail(e.number, "GPS PRN " + std::to_string(prn) + " out of range 1..32");
+      ep.sats.push_back(std::move(s));
+    }
+    out.epochs.push_back(std::move(ep));
+  }
+
+  std::vector<Line> lines_;
+  std::string name_;
+  std::size_t i_ = 0;
+  int major_ = 0;
+  bool have_types_ = false;
+};
+
+std::vector<Line> read_lines(std::istream& in) {
+  std::vector<Line> lines;
+  std::string s;
+  int n = 0;
+  while (std::getline(in, s)) {
+    ++n;
+    if (!s.empty() && s.back() == '\r') s.pop_back();
+    lines.push_back({std::move(s), n});
+  }
+  return lines;
+}
+
+/// Whole gzip file as text (zlib; also reads a plain file unchanged).
+std::string read_gzip(const std::string& path) {
+  gzFile f = gzopen(path.c_str(), "rb");
+  if (f == nullptr) throw Error(path, 0, "cannot open");
+  std::unique_ptr<gzFile_s, int (*)(gzFile)> guard(f, gzclose);
+  std::string text;
+  char buf[1 << 16];
+  for (;;) {
+    const int got = gzread(f, buf, sizeof buf);
+    if (got < 0) {
+      int code = 0;
+      throw Error(path, 0, std::string("gzip read error: ") + gzerror(f, &code));
+    }
+    if (got == 0) break;
+    text.append(buf, static_cast<std::size_t>(got));
+  }
+  return text;
+}
+
+}  // namespace
+
+ObsData read_rinex_obs(std::istream& in, const std::string& name) {
+  return Parser(read_lines(in), name).parse();
+}
+
+ObsData read_rinex_obs(const std::string& path) {
+  std::ifstream probe(path, std::ios::binary);
+  if (!probe) throw Error(path, 0, "cannot open");
+  unsigned char magic[2] = {0, 0};
+  probe.read(reinterpret_cast<char*>(magic), 2);
+  if (probe.gcount() == 2 && magic[0] == 0x1f && magic[1] == 0x8b) {
+    std::istringstream text(read_gzip(path));
+    return read_rinex_obs(text, path);
+  }
+  probe.clear();
+  probe.seekg(0);
+  return read_rinex_obs(probe, path);
+}
+
+}  // namespace gnssemu::observation

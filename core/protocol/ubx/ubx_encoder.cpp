@@ -1,0 +1,498 @@
+#include "core/protocol/ubx/ubx_encoder.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+
+#include "core/common/constants.hpp"
+#include "core/common/error.hpp"
+#include "core/protocol/ubx/ubx_messages.hpp"
+#include "core/time/gps_time.hpp"
+
+namespace gnssemu::protocol::ubx {
+
+namespace {
+
+using receiver::Fix;
+using receiver::FixType;
+using receiver::SatInfo;
+
+constexpr std::int64_t kMsPerWeek = 604800000;
+constexpr std::int64_t kMsPerDay = 86400000;
+constexpr std::uint8_t kChipGenM8 = 4;       // NAV-SVINFO globalFlags chipGen (ubx.md §3)
+constexpr std::uint8_t kUtcStandardUsno = 3;  // NAV-TIMEUTC: UTC from GPS (USNO)
+constexpr std::size_t kMaxExtensions = 10;
+constexpr std::size_t kMaxStringChars = 29;   // CH[30] with NUL
+
+// Rounded, clamped conversions: out-of-range and NaN never reach the wire.
+template <class Int>
+Int to_int(double v) noexcept {
+  if (!std::isfinite(v)) return 0;
+  const double lo = static_cast<double>(std::numeric_limits<Int>::min());
+  const double hi = static_cast<double>(std::numeric_limits<Int>::max());
+  return static_cast<Int>(std::llround(std::clamp(v, lo, hi)));
+}
+/// Unsigned accuracy field: NaN or negative -> max (unknown = huge).
+template <class UInt>
+UInt to_acc(double v) noexcept {
+  const double hi = static_cast<double>(std::numeric_limits<UInt>::max());
+  if (!std::isfinite(v) || v < 0.0 || v >= hi) return std::numeric_limits<UInt>::max();
+  return static_cast<UInt>(std::llround(v));
+}
+std::uint16_t dop_u2(double dop, bool has_fix) noexcept {
+  if (!has_fix || !std::isfinite(dop) || dop < 0.0) return 9999;
+  return to_int<std::uint16_t>(std::min(dop, 99.99) * 100.0);
+}
+double deg0_360(double rad) noexcept {
+  if (!std::isfinite(rad)) return 0.0;
+  double deg = std::fmod(rad * kRadToDeg, 360.0);
+  if (deg < 0.0) deg += 360.0;
+  return deg;
+}
+
+/// What every message derives from the Fix, computed once per message.
+struct Common {
+  bool has_time = false;
+  bool has_fix = false;
+  std::uint8_t fix_type = 0;
+  std::uint32_t itow = 0;    // ms
+  std::int32_t ftow_ns = 0;  // tow - iTOW, ns
+  std::int16_t week = 0;
+  // UTC
+  int year = 1980, month = 1, day = 6, hour = 0, minute = 0, second = 0;
+  std::int32_t nano = 0;
+  double lat_deg = 0.0, lon_deg = 0.0, height_m = 0.0, hmsl_m = 0.0;
+  double vel_n = 0.0, vel_e = 0.0, vel_d = 0.0, speed_2d = 0.0, speed_3d = 0.0;
+  double course_deg = 0.0, course_acc_deg = 180.0;
+  std::uint8_t num_sv = 0;
+};
+
+Common derive(const Fix& fix) noexcept {
+  Common c;
+  c.has_time = fix.time_valid && std::isfinite(fix.t.tow_s());
+  c.has_fix = fix.type != FixType::kNone && c.has_time && std::isfinite(fix.lla.lat_rad) &&
+              std::isfinite(fix.lla.lon_rad) && std::isfinite(fix.lla.height_m);
+  // iTOW is the epoch rounded to the ms; carry into the week.
+  std::int64_t week = fix.t.week();
+  std::int64_t ms = std::llround(fix.t.tow_s() * 1000.0);
+  c.ftow_ns = to_int<std::int32_t>((fix.t.tow_s() - static_cast<double>(ms) * 1e-3) * 1e9);
+  if (ms >= kMsPerWeek) {
+    ms -= kMsPerWeek;
+    ++week;
+  }
+  c.itow = static_cast<std::uint32_t>(std::max<std::int64_t>(ms, 0));
+  c.week = static_cast<std::int16_t>(std::clamp<std::int64_t>(week, 0, 32767));
+  if (c.has_time) {
+    // UTC = GPS - leap seconds, split at the ms: sec is floored, nano carries the rest.
+    const std::int64_t gps_ms = week * kMsPerWeek + ms - static_cast<std::int64_t>(fix.leap_seconds) * 1000;
+    const std::int64_t day0 = time::days_from_civil(1980, 1, 6);
+    std::int64_t days = gps_ms / kMsPerDay;
+    std::int64_t ms_of_day = gps_ms % kMsPerDay;
+    if (ms_of_day < 0) {
+      ms_of_day += kMsPerDay;
+      --days;
+    }
+    time::civil_from_days(day0 + days, c.year, c.month, c.day);
+    c.hour = static_cast<int>(ms_of_day / 3600000);
+    c.minute = static_cast<int>(ms_of_day / 60000 % 60);
+    c.second = static_cast<int>(ms_of_day / 1000 % 60);
+    c.nano = static_cast<std::int32_t>(ms_of_day % 1000) * 1000000 + c.ftow_ns;
+  }
+  if (c.has_fix) {
+    c.fix_type = fix.type == FixType::k2D ? 2 : 3;
+    c.lat_deg = std::clamp(fix.lla.lat_rad * kRadToDeg, -90.0, 90.0);
+    c.lon_deg = std::remainder(fix.lla.lon_rad * kRadToDeg, 360.0);
+    c.height_m = fix.lla.height_m;
+    c.hmsl_m = fix.lla.height_m - (std::isfinite(fix.geoid_sep_m) ? fix.geoid_sep_m : 0.0);
+    if (fix.vel_enu_m_s.finite()) {
+      c.vel_e = fix.vel_enu_m_s.x;
+      c.vel_n = fix.vel_enu_m_s.y;
+      c.vel_d = -fix.vel_enu_m_s.z;
+    }
+    c.speed_2d = std::isfinite(fix.speed_m_s) ? std::fabs(fix.speed_m_s) : std::hypot(c.vel_n, c.vel_e);
+    c.speed_3d = std::sqrt(c.speed_2d * c.speed_2d + c.vel_d * c.vel_d);
+    c.course_deg = deg0_360(fix.course_rad);
+    // Heading accuracy from the speed accuracy: the angle one sigma of speed
+    // error subtends at the current ground speed (180 deg when standing).
+    const double sacc = std::isfinite(fix.speed_acc_m_s) ? std::max(fix.speed_acc_m_s, 0.0) : 1e9;
+    c.course_acc_deg = std::min(180.0, std::atan2(sacc, c.speed_2d) * kRadToDeg);
+    c.num_sv = static_cast<std::uint8_t>(std::clamp(fix.num_used, 0, 255));
+  }
+  return c;
+}
+
+std::uint8_t nav_flags(const Common& c) noexcept {
+  // b0 gpsFixOk, b2 wknSet, b3 towSet (NAV-STATUS and NAV-SOL share these).
+  return static_cast<std::uint8_t>((c.has_fix ? 0x01 : 0) | (c.has_time ? 0x0C : 0));
+}
+
+/// NAV-SAT qualityInd: 7 code+carrier locked, 4 code locked, 1 searching, 0 idle.
+/// A tracked satellite at >= 30 dB-Hz is reported carrier-locked, as real M8
+/// logs show for strong signals (docs/ubx.md).
+std::uint8_t quality_ind(const SatInfo& s) noexcept {
+  if (s.tracked && s.cn0_dbhz > 0.0) return s.cn0_dbhz >= 30.0 ? 7 : 4;
+  if (s.above_mask && s.healthy) return 1;
+  return 0;
+}
+
+std::uint8_t cno_u1(const SatInfo& s) noexcept {
+  if (!s.tracked || !std::isfinite(s.cn0_dbhz)) return 0;
+  return to_int<std::uint8_t>(std::clamp(s.cn0_dbhz, 0.0, 99.0));
+}
+
+std::int8_t elev_i1(const SatInfo& s) noexcept {
+  return to_int<std::int8_t>(std::clamp(s.el_rad * kRadToDeg, -90.0, 90.0));
+}
+std::int16_t azim_i2(const SatInfo& s) noexcept {
+  const int a = to_int<std::int16_t>(deg0_360(s.az_rad));
+  return static_cast<std::int16_t>(a >= 360 ? 0 : a);
+}
+
+int num_sats(const Fix& fix) noexcept {
+  return std::clamp(fix.num_sats, 0, static_cast<int>(fix.sats.size()));
+}
+
+void put_string(char* dst, std::size_t size, const std::string& s) noexcept {
+  std::memset(dst, 0, size);
+  std::memcpy(dst, s.data(), std::min(s.size(), size - 1));
+}
+
+}  // namespace
+
+std::uint32_t itow_ms(const Fix& fix) noexcept { return derive(fix).itow; }
+
+void validate(const MonVerConfig& config) {
+  const auto bad = [](const std::string& what) { throw Error("ubx", 0, "MON-VER: " + what); };
+  if (config.sw_version.empty() || config.sw_version.size() > kMaxStringChars) {
+    bad("sw_version must have 1.." + std::to_string(kMaxStringChars) + " characters");
+  }
+  if (config.hw_version.size() != 8 ||
+      !std::all_of(config.hw_version.begin(), config.hw_version.end(), [](char ch) { return std::isxdigit(static_cast<unsigned char>(ch)); })) {
+    bad("hw_version must be 8 hex digits (00080000 = M8), got '" + config.hw_version + "'");
+  }
+  if (config.fw_version.size() + 6 > kMaxStringChars) bad("fw_version too long");
+  if (!std::isfinite(config.protocol_version) || config.protocol_version < 18.0 || config.protocol_version >= 24.0) {
+    bad("protocol_version must be in [18, 24) for an M8 (PX4 uses CFG-VALSET from 27)");
+  }
+  if (config.extensions.size() + 2 > kMaxExtensions) bad("too many extension strings");
+  for (const auto& e : config.extensions) {
+    if (e.empty() || e.size() > kMaxStringChars) bad("extension '" + e + "' must have 1..29 characters");
+  }
+}
+
+UbxEncoder::UbxEncoder(const MonVerConfig& config) : config_(config) {
+  validate(config_);
+  wire::MonVerHead head{};
+  put_string(head.swVersion, sizeof head.swVersion, config_.sw_version);
+  put_string(head.hwVersion, sizeof head.hwVersion, config_.hw_version);
+  mon_ver_payload_.assign(reinterpret_cast<const char*>(&head), sizeof head);
+  const auto add_ext = [&](const std::string& s) {
+    char ext[wire::kMonVerExtensionBytes];
+    put_string(ext, sizeof ext, s);
+    mon_ver_payload_.append(ext, sizeof ext);
+  };
+  add_ext("FWVER=" + config_.fw_version);
+  char protver[32];
+  std::snprintf(protver, sizeof protver, "PROTVER=%05.2f", config_.protocol_version);
+  add_ext(protver);
+  for (const auto& e : config_.extensions) add_ext(e);
+}
+
+std::size_t UbxEncoder::nav_pvt(const Fix& fix, std::string& out) const {
+  const Common c = derive(fix);
+  wire::NavPvt m{};
+  m.iTOW = c.itow;
+  if (c.has_time) {
+    m.year = static_cast<std::uint16_t>(c.year);
+    m.month = static_cast<std::uint8_t>(c.month);
+    m.day = static_cast<std::uint8_t>(c.day);
+    m.hour = static_cast<std::uint8_t>(c.hour);
+    m.min = static_cast<std::uint8_t>(c.minute);
+    m.sec = static_cast<std::uint8_t>(c.second);
+    m.valid = 0x07;  // validDate, validTime, fullyResolved
+    m.nano = c.nano;
+  }
+  m.tAcc = c.has_time ? to_acc<std::uint32_t>(fix.time_acc_s * 1e9) : 0xFFFFFFFF;
+  m.fixType = c.fix_type;
+  m.flags = c.has_fix ? 0x01 : 0x00;  // gnssFixOK; no DGNSS, no carrier solution
+  m.numSV = c.num_sv;
+  if (c.has_fix) {
+    m.lon = to_int<std::int32_t>(c.lon_deg * 1e7);
+    m.lat = to_int<std::int32_t>(c.lat_deg * 1e7);
+    m.height = to_int<std::int32_t>(c.height_m * 1e3);
+    m.hMSL = to_int<std::int32_t>(c.hmsl_m * 1e3);
+    m.hAcc = to_acc<std::uint32_t>(fix.h_acc_m * 1e3);
+    m.vAcc = to_acc<std::uint32_t>(fix.v_acc_m * 1e3);
+    m.velN = to_int<std::int32_t>(c.vel_n * 1e3);
+    m.velE = to_int<std::int32_t>(c.vel_e * 1e3);
+    m.velD = to_int<std::int32_t>(c.vel_d * 1e3);
+    m.gSpeed = to_int<std::int32_t>(c.speed_2d * 1e3);
+    m.headMot = to_int<std::int32_t>(c.course_deg * 1e5);
+    m.sAcc = to_acc<std::uint32_t>(fix.speed_acc_m_s * 1e3);
+    m.headAcc = to_acc<std::uint32_t>(c.course_acc_deg * 1e5);
+    m.headVeh = m.headMot;  // no vehicle heading without sensors (headVehValid clear)
+  } else {
+    m.hAcc = m.vAcc = m.sAcc = 0xFFFFFFFF;
+    m.headAcc = to_acc<std::uint32_t>(180.0 * 1e5);
+    m.flags3 = 0x01;  // invalidLlh
+  }
+  m.pDOP = dop_u2(fix.dop.pdop, c.has_fix);
+  return append_message(out, msg::kNavPvt, m);
+}
+
+std::size_t UbxEncoder::nav_posllh(const Fix& fix, std::string& out) const {
+  const Common c = derive(fix);
+  wire::NavPosllh m{};
+  m.iTOW = c.itow;
+  if (c.has_fix) {
+    m.lon = to_int<std::int32_t>(c.lon_deg * 1e7);
+    m.lat = to_int<std::int32_t>(c.lat_deg * 1e7);
+    m.height = to_int<std::int32_t>(c.height_m * 1e3);
+    m.hMSL = to_int<std::int32_t>(c.hmsl_m * 1e3);
+    m.hAcc = to_acc<std::uint32_t>(fix.h_acc_m * 1e3);
+    m.vAcc = to_acc<std::uint32_t>(fix.v_acc_m * 1e3);
+  } else {
+    m.hAcc = m.vAcc = 0xFFFFFFFF;
+  }
+  return append_message(out, msg::kNavPosllh, m);
+}
+
+std::size_t UbxEncoder::nav_status(const Fix& fix, const EpochInfo& info, std::string& out) const {
+  const Common c = derive(fix);
+  wire::NavStatus m{};
+  m.iTOW = c.itow;
+  m.gpsFix = c.fix_type;
+  m.flags = nav_flags(c);
+  m.flags2 = 0x08;  // spoofDetState 1: no spoofing indicated (real M8 logs)
+  m.ttff = info.ttff_ms;
+  m.msss = info.msss_ms;
+  return append_message(out, msg::kNavStatus, m);
+}
+
+std::size_t UbxEncoder::nav_dop(const Fix& fix, std::string& out) const {
+  const Common c = derive(fix);
+  wire::NavDop m{};
+  m.iTOW = c.itow;
+  m.gDOP = dop_u2(fix.dop.gdop, c.has_fix);
+  m.pDOP = dop_u2(fix.dop.pdop, c.has_fix);
+  m.tDOP = dop_u2(fix.dop.tdop, c.has_fix);
+  m.vDOP = dop_u2(fix.dop.vdop, c.has_fix);
+  m.hDOP = dop_u2(fix.dop.hdop, c.has_fix);
+  // North/east DOP from the solver's sigma_n/sigma_e = sigma_uere * nDOP/eDOP;
+  // split HDOP evenly when the solver gave no sigma.
+  double ndop = fix.dop.hdop / std::sqrt(2.0), edop = ndop;
+  if (std::isfinite(fix.sigma_uere_m) && fix.sigma_uere_m > 0.0 && std::isfinite(fix.sigma_n_m) &&
+      std::isfinite(fix.sigma_e_m) && fix.sigma_n_m > 0.0 && fix.sigma_e_m > 0.0) {
+    ndop = fix.sigma_n_m / fix.sigma_uere_m;
+    edop = fix.sigma_e_m / fix.sigma_uere_m;
+  }
+  m.nDOP = dop_u2(ndop, c.has_fix);
+  m.eDOP = dop_u2(edop, c.has_fix);
+  return append_message(out, msg::kNavDop, m);
+}
+
+std::size_t UbxEncoder::nav_sol(const Fix& fix, std::string& out) const {
+  const Common c = derive(fix);
+  wire::NavSol m{};
+  m.iTOW = c.itow;
+  m.fTOW = c.ftow_ns;
+  m.week = c.has_time ? c.week : 0;
+  m.gpsFix = c.fix_type;
+  m.flags = nav_flags(c);
+  m.numSV = c.num_sv;
+  m.pDOP = dop_u2(fix.dop.pdop, c.has_fix);
+  if (c.has_fix && fix.pos_m.finite()) {
+    m.ecefX = to_int<std::int32_t>(fix.pos_m.x * 100.0);
+    m.ecefY = to_int<std::int32_t>(fix.pos_m.y * 100.0);
+    m.ecefZ = to_int<std::int32_t>(fix.pos_m.z * 100.0);
+    m.pAcc = to_acc<std::uint32_t>(std::hypot(fix.h_acc_m, fix.v_acc_m) * 100.0);
+    if (fix.vel_m_s.finite()) {
+      m.ecefVX = to_int<std::int32_t>(fix.vel_m_s.x * 100.0);
+      m.ecefVY = to_int<std::int32_t>(fix.vel_m_s.y * 100.0);
+      m.ecefVZ = to_int<std::int32_t>(fix.vel_m_s.z * 100.0);
+    }
+    m.sAcc = to_acc<std::uint32_t>(fix.speed_acc_m_s * 100.0);
+  } else {
+    m.pAcc = m.sAcc = 0xFFFFFFFF;
+  }
+  return append_message(out, msg::kNavSol, m);
+}
+
+std::size_t UbxEncoder::nav_velned(const Fix& fix, std::string& out) const {
+  const Common c = derive(fix);
+  wire::NavVelned m{};
+  m.iTOW = c.itow;
+  if (c.has_fix) {
+    m.velN = to_int<std::int32_t>(c.vel_n * 100.0);
+    m.velE = to_int<std::int32_t>(c.vel_e * 100.0);
+    m.velD = to_int<std::int32_t>(c.vel_d * 100.0);
+    m.speed = to_acc<std::uint32_t>(c.speed_3d * 100.0);
+    m.gSpeed = to_acc<std::uint32_t>(c.speed_2d * 100.0);
+    m.heading = to_int<std::int32_t>(c.course_deg * 1e5);
+    m.sAcc = to_acc<std::uint32_t>(fix.speed_acc_m_s * 100.0);
+    m.cAcc = to_acc<std::uint32_t>(c.course_acc_deg * 1e5);
+  } else {
+    m.sAcc = 0xFFFFFFFF;
+    m.cAcc = to_acc<std::uint32_t>(180.0 * 1e5);
+  }
+  return append_message(out, msg::kNavVelned, m);
+}
+
+std::size_t UbxEncoder::nav_timegps(const Fix& fix, std::string& out) const {
+  const Common c = derive(fix);
+  wire::NavTimegps m{};
+  m.iTOW = c.itow;
+  m.fTOW = c.ftow_ns;
+  m.week = c.has_time ? c.week : 0;
+  m.leapS = static_cast<std::int8_t>(std::clamp(fix.leap_seconds, -128, 127));
+  m.valid = c.has_time ? 0x07 : 0x00;  // towValid, weekValid, leapSValid
+  m.tAcc = c.has_time ? to_acc<std::uint32_t>(fix.time_acc_s * 1e9) : 0xFFFFFFFF;
+  return append_message(out, msg::kNavTimegps, m);
+}
+
+std::size_t UbxEncoder::nav_timeutc(const Fix& fix, std::string& out) const {
+  const Common c = derive(fix);
+  wire::NavTimeutc m{};
+  m.iTOW = c.itow;
+  m.tAcc = c.has_time ? to_acc<std::uint32_t>(fix.time_acc_s * 1e9) : 0xFFFFFFFF;
+  if (c.has_time) {
+    m.nano = c.nano;
+    m.year = static_cast<std::uint16_t>(c.year);
+    m.month = static_cast<std::uint8_t>(c.month);
+    m.day = static_cast<std::uint8_t>(c.day);
+    m.hour = static_cast<std::uint8_t>(c.hour);
+    m.min = static_cast<std::uint8_t>(c.minute);
+    m.sec = static_cast<std::uint8_t>(c.second);
+    m.valid = static_cast<std::uint8_t>(0x07 | kUtcStandardUsno << 4);
+  }
+  return append_message(out, msg::kNavTimeutc, m);
+}
+
+std::size_t UbxEncoder::nav_sat(const Fix& fix, std::string& out) const {
+  const Common c = derive(fix);
+  const int n = num_sats(fix);
+  std::uint8_t buf[sizeof(wire::NavSatHeader) + kMaxGpsPrn * sizeof(wire::NavSatSv)];
+  wire::NavSatHeader h{};
+  h.iTOW = c.itow;
+  h.version = 1;
+  std::size_t len = sizeof h;
+  for (int i = 0; i < n; ++i) {
+    const SatInfo& s = fix.sats[static_cast<std::size_t>(i)];
+    if (s.prn < 1 || s.prn > kMaxGpsPrn) continue;
+    wire::NavSatSv sv{};
+    sv.gnssId = 0;
+    sv.svId = static_cast<std::uint8_t>(s.prn);
+    sv.cno = cno_u1(s);
+    sv.elev = elev_i1(s);
+    sv.azim = azim_i2(s);
+    const bool used = s.used && c.has_fix;
+    sv.prRes = used ? to_int<std::int16_t>(s.residual_m * 10.0) : 0;
+    std::uint32_t flags = quality_ind(s);
+    if (used) flags |= 1u << 3;
+    flags |= (s.healthy ? 1u : 2u) << 4;  // health: 1 healthy, 2 unhealthy
+    if (s.healthy) flags |= 1u << 8 | 1u << 11 | 1u << 12;  // orbitSource ephemeris, ephAvail, almAvail
+    sv.flags = flags;
+    std::memcpy(buf + len, &sv, sizeof sv);
+    len += sizeof sv;
+    ++h.numSvs;
+  }
+  std::memcpy(buf, &h, sizeof h);
+  return append_frame(out, msg::kNavSat, {buf, len});
+}
+
+std::size_t UbxEncoder::nav_svinfo(const Fix& fix, std::string& out) const {
+  const Common c = derive(fix);
+  const int n = num_sats(fix);
+  std::uint8_t buf[sizeof(wire::NavSvinfoHeader) + kMaxGpsPrn * sizeof(wire::NavSvinfoCh)];
+  wire::NavSvinfoHeader h{};
+  h.iTOW = c.itow;
+  h.globalFlags = kChipGenM8;
+  std::size_t len = sizeof h;
+  std::uint8_t channel = 0;
+  for (int i = 0; i < n; ++i) {
+    const SatInfo& s = fix.sats[static_cast<std::size_t>(i)];
+    if (s.prn < 1 || s.prn > kMaxGpsPrn) continue;
+    wire::NavSvinfoCh ch{};
+    const bool tracked = s.tracked && s.cn0_dbhz > 0.0;
+    ch.chn = tracked ? channel++ : 255;  // 255: not assigned to a channel (real M8 logs)
+    ch.svid = static_cast<std::uint8_t>(s.prn);
+    const bool used = s.used && c.has_fix;
+    std::uint8_t flags = used ? 0x01 : 0x00;
+    flags |= s.healthy ? 0x0C : 0x10;  // orbitAvail + orbitEph, or unhealthy
+    ch.flags = flags;
+    ch.quality = quality_ind(s);
+    ch.cno = cno_u1(s);
+    ch.elev = elev_i1(s);
+    ch.azim = azim_i2(s);
+    ch.prRes = used ? to_int<std::int32_t>(s.residual_m * 100.0) : 0;
+    std::memcpy(buf + len, &ch, sizeof ch);
+    len += sizeof ch;
+    ++h.numCh;
+  }
+  std::memcpy(buf, &h, sizeof h);
+  return append_frame(out, msg::kNavSvinfo, {buf, len});
+}
+
+std::size_t UbxEncoder::nav_eoe(const Fix& fix, std::string& out) const {
+  wire::NavEoe m{};
+  m.iTOW = derive(fix).itow;
+  return append_message(out, msg::kNavEoe, m);
+}
+
+std::size_t UbxEncoder::mon_hw(const Fix& fix, const EpochInfo& info, std::string& out) const {
+  // Heuristic front-end model (docs/ubx.md): the AGC takes gain out as the
+  // noise floor rises, the noise level after the AGC creeps up, and the CW
+  // jamming indicator scales with the rise. Quiet sky: noise ~ 85, AGC ~ 60 %,
+  // jamInd ~ 10 (typical M8 readings in public logs).
+  const double rise = std::isfinite(fix.noise_rise_db) ? std::clamp(fix.noise_rise_db, 0.0, 60.0) : 0.0;
+  wire::MonHw m{};
+  m.noisePerMS = to_int<std::uint16_t>(82.0 + 3.0 * rise);
+  m.agcCnt = to_int<std::uint16_t>(std::clamp(5000.0 - 110.0 * rise, 0.0, 8191.0));
+  m.aStatus = 2;  // antenna OK
+  m.aPower = 1;   // antenna power ON
+  m.jamInd = to_int<std::uint8_t>(std::clamp(7.0 + 5.0 * rise, 0.0, 255.0));
+  std::uint8_t jam_state = 0;  // unknown: interference monitor disabled (M8 default)
+  if (info.itfm_enabled) jam_state = m.jamInd >= 200 ? 3 : m.jamInd >= 80 ? 2 : 1;
+  m.flags = static_cast<std::uint8_t>(0x01 | jam_state << 2);  // rtcCalib
+  m.usedMask = 0x0001FFFF;
+  return append_message(out, msg::kMonHw, m);
+}
+
+std::size_t UbxEncoder::mon_ver(std::string& out) const {
+  return append_frame(out, msg::kMonVer,
+                      {reinterpret_cast<const std::uint8_t*>(mon_ver_payload_.data()), mon_ver_payload_.size()});
+}
+
+std::size_t UbxEncoder::ack(MsgId acked, bool is_ack, std::string& out) {
+  const wire::Ack m{acked.cls, acked.id};
+  return append_message(out, is_ack ? msg::kAckAck : msg::kAckNak, m);
+}
+
+bool UbxEncoder::can_encode(MsgId id) noexcept {
+  return id == msg::kNavPvt || id == msg::kNavPosllh || id == msg::kNavStatus || id == msg::kNavDop ||
+         id == msg::kNavSol || id == msg::kNavVelned || id == msg::kNavTimegps || id == msg::kNavTimeutc ||
+         id == msg::kNavSat || id == msg::kNavSvinfo || id == msg::kNavEoe || id == msg::kMonHw ||
+         id == msg::kMonVer;
+}
+
+std::size_t UbxEncoder::encode(MsgId id, const Fix& fix, const EpochInfo& info, std::string& out) const {
+  if (id == msg::kNavPvt) return nav_pvt(fix, out);
+  if (id == msg::kNavPosllh) return nav_posllh(fix, out);
+  if (id == msg::kNavStatus) return nav_status(fix, info, out);
+  if (id == msg::kNavDop) return nav_dop(fix, out);
+  if (id == msg::kNavSol) return nav_sol(fix, out);
+  if (id == msg::kNavVelned) return nav_velned(fix, out);
+  if (id == msg::kNavTimegps) return nav_timegps(fix, out);
+  if (id == msg::kNavTimeutc) return nav_timeutc(fix, out);
+  if (id == msg::kNavSat) return nav_sat(fix, out);
+  if (id == msg::kNavSvinfo) return nav_svinfo(fix, out);
+  if (id == msg::kNavEoe) return nav_eoe(fix, out);
+  if (id == msg::kMonHw) return mon_hw(fix, info, out);
+  if (id == msg::kMonVer) return mon_ver(out);
+  return 0;
+}
+
+}  // namespace gnssemu::protocol::ubx

@@ -1,0 +1,88 @@
+#pragma once
+// UBX output encoders of a u-blox M8 (protocol 18-23). Every message reads
+// the same receiver::Fix (and its per-satellite state) as the NMEA encoder,
+// so numSV, DOP, hAcc/vAcc and C/N0 agree across protocols. Conventions
+// where u-blox leaves a choice are listed in docs/ubx.md.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/protocol/ubx/ubx_frame.hpp"
+#include "core/receiver/fix.hpp"
+
+namespace gnssemu::protocol::ubx {
+
+/// What MON-VER reports. Defaults: a NEO-M8N with firmware SPG 3.01
+/// (protocol 18.00), as seen in public MON-VER dumps (docs/ubx.md).
+struct MonVerConfig {
+  std::string sw_version = "ROM CORE 3.01 (107888)";  ///< <= 29 characters
+  std::string hw_version = "00080000";                ///< <= 9 characters; 00080000 = M8
+  std::string fw_version = "SPG 3.01";                ///< sent as "FWVER=<fw_version>"
+  /// Sent as "PROTVER=%05.2f". An M8 speaks 18.00 .. 23.01; PX4 switches to
+  /// CFG-VALSET from 27, so values >= 24 are refused.
+  double protocol_version = 18.00;
+  /// Further extension strings after FWVER and PROTVER (each <= 29 chars, <= 8 of them).
+  std::vector<std::string> extensions = {"GPS;GLO;GAL;BDS", "SBAS;IMES;QZSS"};
+};
+
+/// Throws gnssemu::Error("ubx", 0, reason) on a string too long, a hwVersion
+/// that is not 8 hex digits, or a protocol version outside [18, 23.99].
+void validate(const MonVerConfig& config);
+
+/// Receiver state that is not part of a Fix (kept by the responder).
+struct EpochInfo {
+  std::uint32_t msss_ms = 0;  ///< ms since start-up or reset (NAV-STATUS msss)
+  std::uint32_t ttff_ms = 0;  ///< time to first fix, ms; 0 = no fix yet
+  bool itfm_enabled = false;  ///< CFG-ITFM enable: MON-HW jammingState reported (else 0 = unknown)
+};
+
+/// Largest output of one epoch with every message enabled and 32 satellites
+/// (about 1.4 KB). Reserve out.size() + this to never allocate.
+inline constexpr std::size_t kMaxEpochBytes = 2048;
+
+/// Encoders append one complete frame to out and return the bytes appended.
+/// They never throw; they allocate only when out lacks capacity. A Fix
+/// without valid time or with a non-finite position is sent as no fix
+/// (fixType 0, gnssFixOK clear, zero position, large accuracies).
+class UbxEncoder {
+public:
+  /// Validates config (throws gnssemu::Error) and preformats MON-VER.
+  explicit UbxEncoder(const MonVerConfig& config = {});
+
+  std::size_t nav_pvt(const receiver::Fix& fix, std::string& out) const;
+  std::size_t nav_posllh(const receiver::Fix& fix, std::string& out) const;
+  std::size_t nav_status(const receiver::Fix& fix, const EpochInfo& info, std::string& out) const;
+  std::size_t nav_dop(const receiver::Fix& fix, std::string& out) const;
+  std::size_t nav_sol(const receiver::Fix& fix, std::string& out) const;
+  std::size_t nav_velned(const receiver::Fix& fix, std::string& out) const;
+  std::size_t nav_timegps(const receiver::Fix& fix, std::string& out) const;
+  std::size_t nav_timeutc(const receiver::Fix& fix, std::string& out) const;
+  /// One entry per satellite in fix.sats[0..num_sats) (GPS, gnssId 0).
+  std::size_t nav_sat(const receiver::Fix& fix, std::string& out) const;
+  /// One channel per satellite in fix.sats[0..num_sats); chipGen 4 (M8).
+  std::size_t nav_svinfo(const receiver::Fix& fix, std::string& out) const;
+  std::size_t nav_eoe(const receiver::Fix& fix, std::string& out) const;
+  /// Noise level, AGC and jamming indicator from fix.noise_rise_db.
+  std::size_t mon_hw(const receiver::Fix& fix, const EpochInfo& info, std::string& out) const;
+  std::size_t mon_ver(std::string& out) const;
+  /// ACK-ACK (ack = true) or ACK-NAK for the input message acked.
+  static std::size_t ack(MsgId acked, bool ack, std::string& out);
+
+  /// Encode message id from fix (the NAV/MON ids above). Returns 0 for ids
+  /// this encoder does not produce.
+  std::size_t encode(MsgId id, const receiver::Fix& fix, const EpochInfo& info, std::string& out) const;
+  /// True when encode() produces id.
+  static bool can_encode(MsgId id) noexcept;
+
+  const MonVerConfig& mon_ver_config() const noexcept { return config_; }
+
+private:
+  MonVerConfig config_;
+  std::string mon_ver_payload_;
+};
+
+/// iTOW (ms) of fix.t, rounded to the nearest ms.
+std::uint32_t itow_ms(const receiver::Fix& fix) noexcept;
+
+}  // namespace gnssemu::protocol::ubx

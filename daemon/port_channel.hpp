@@ -1,0 +1,107 @@
+#pragma once
+// PortChannel: the protocol side of one output port — an emulated u-blox M8
+// whose UART1 is wired to the port (docs/ports.md). Input bytes go through
+// the UBX/NMEA stream decoder into the configuration responder and replies
+// go back at once on the same port; each epoch it sends the messages due
+// under the port's CFG-MSG rates (UBX and NMEA, from the same Fix), through
+// a model of the M8's transmit buffer drained at the line rate.
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "config/config.hpp"
+#include "core/protocol/nmea/nmea_encoder.hpp"
+#include "core/protocol/ubx/ubx_decoder.hpp"
+#include "core/protocol/ubx/ubx_responder.hpp"
+#include "core/receiver/fix.hpp"
+#include "daemon/output_port.hpp"
+#include "daemon/tx_budget.hpp"
+
+namespace gnssemu::daemon {
+
+/// u-blox port the daemon's port is wired to.
+inline constexpr uint8_t kWiredPort = protocol::ubx::kPortUart1;
+
+struct ChannelStats {
+  uint64_t messages_sent = 0;
+  uint64_t messages_dropped = 0;  ///< TX buffer full (line too slow for the message set)
+  uint64_t bytes_offered = 0;     ///< bytes of every message due, sent or not
+};
+
+class PortChannel final : public PortListener {
+public:
+  /// Monotonic clock, s (steady_clock in the daemon; a fake in tests).
+  using Clock = std::function<double()>;
+  /// Called when a host changed the navigation period (CFG-RATE), s.
+  using NavPeriodHandler = std::function<void(double period_s)>;
+
+  /// Port settings (baud, protocol masks, message rates) from cfg become the
+  /// responder's saved configuration; nav_period_s: the daemon's epoch period.
+  PortChannel(const config::OutputPortConfig& cfg, std::unique_ptr<OutputPort> port, double nav_period_s,
+              Clock clock, const protocol::ubx::ResponderConfig& responder_cfg = {});
+  ~PortChannel() override;
+  PortChannel(const PortChannel&) = delete;
+  PortChannel& operator=(const PortChannel&) = delete;
+
+  /// Start the port's input (replies need the event loop running).
+  void start();
+  void on_nav_period_change(NavPeriodHandler h) { on_nav_period_ = std::move(h); }
+
+  /// One navigation epoch: messages due on this port, through the TX budget,
+  /// written as one block. uptime_s: since start-up (NAV-STATUS msss). No
+  /// allocation after the first epochs.
+  void on_epoch(const receiver::Fix& fix, double uptime_s) noexcept;
+
+  /// Another port changed CFG-RATE: keep this receiver's stored rate equal.
+  void set_nav_rate(const protocol::ubx::wire::CfgRate& rate) noexcept;
+
+  void on_port_input(int source, std::span<const uint8_t> bytes) override;
+  void on_source_closed(int source) override;
+
+  OutputPort& port() noexcept { return *port_; }
+  const OutputPort& port() const noexcept { return *port_; }
+  protocol::ubx::ConfigResponder& responder() noexcept { return responder_; }
+  const ChannelStats& stats() const noexcept { return stats_; }
+  const TxBudget& budget() const noexcept { return budget_; }
+  /// Per message label ("NAV-SAT", "GSV") the count dropped so far.
+  const std::map<std::string, uint64_t, std::less<>>& drops() const noexcept { return drops_by_name_; }
+  /// "NMEA", "UBX" or "NMEA+UBX": what the port sends each epoch now.
+  std::string output_summary() const;
+
+private:
+  class Sink;
+  void handle_result(int source, const protocol::ubx::ResponderResult& r);
+  void send_reply(int source) noexcept;
+  /// Admit the messages in data through the budget; append the admitted to
+  /// out_. now_s: clock.
+  void admit_all(std::string_view data, double now_s) noexcept;
+  void warn_drops(double now_s);
+
+  config::OutputPortConfig cfg_;
+  std::unique_ptr<OutputPort> port_;
+  Clock clock_;
+  protocol::ubx::ConfigResponder responder_;
+  protocol::nmea::NmeaConfig nmea_cfg_;
+  TxBudget budget_;
+  bool line_;  ///< the port has a line rate that baud changes act on
+  std::map<int, std::unique_ptr<protocol::ubx::StreamDecoder>> decoders_;
+  std::unique_ptr<Sink> sink_;
+  NavPeriodHandler on_nav_period_;
+  receiver::Fix last_fix_{};
+  bool have_fix_ = false;
+
+  std::string ubx_buf_, nmea_buf_, out_, reply_;
+  ChannelStats stats_;
+  std::map<std::string, uint64_t, std::less<>> drops_by_name_;
+  // This epoch, for the one-time warning.
+  std::size_t epoch_bytes_ = 0;
+  std::string epoch_dropped_;
+  bool warned_ = false;
+};
+
+}  // namespace gnssemu::daemon

@@ -1,0 +1,162 @@
+// TCP server port: every client gets the stream; input from any client goes
+// to the port's responder and replies go back to that client only.
+#include <array>
+#include <list>
+#include <memory>
+
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/write.hpp>
+#include <spdlog/spdlog.h>
+
+#include "core/common/error.hpp"
+#include "daemon/port_impl.hpp"
+
+namespace gnssemu::daemon::detail {
+namespace {
+
+namespace asio = boost::asio;
+using asio::ip::tcp;
+
+constexpr std::size_t kMaxClients = 16;
+
+class TcpPort final : public OutputPort {
+public:
+  TcpPort(const config::OutputPortConfig& cfg, asio::io_context& io) : OutputPort(cfg), io_(io), acceptor_(io) {
+    boost::system::error_code ec;
+    const tcp::endpoint ep(asio::ip::make_address(cfg.address, ec), cfg.port);
+    if (!ec) acceptor_.open(ep.protocol(), ec);
+    if (!ec) acceptor_.set_option(tcp::acceptor::reuse_address(true), ec);
+    if (!ec) acceptor_.bind(ep, ec);
+    if (!ec) acceptor_.listen(asio::socket_base::max_listen_connections, ec);
+    if (ec) {
+      throw Error("output '" + cfg.name + "': cannot listen on tcp " + cfg.address + ":" + std::to_string(cfg.port) +
+                  ": " + ec.message());
+    }
+    local_port_ = acceptor_.local_endpoint(ec).port();
+  }
+
+  ~TcpPort() override {
+    boost::system::error_code ec;
+    acceptor_.close(ec);
+    for (auto& c : clients_) c->socket.close(ec);
+  }
+
+  void start(PortListener* listener) override {
+    listener_ = listener;
+    accept();
+  }
+
+  std::string describe() const override {
+    return "tcp " + config_.address + ":" + std::to_string(local_port_) + " (server)";
+  }
+
+protected:
+  void deliver(int source, std::string_view data, bool epoch) noexcept override {
+    bool any = false;
+    for (auto& c : clients_) {
+      if (source != kAllSources && c->id != source) continue;
+      if (c->queue.size() + data.size() > kMaxQueuedBytes) {
+        ++c->dropped;  // a client that does not read loses epochs, not the others
+        continue;
+      }
+      c->queue.append(data);
+      any = true;
+      flush(c);
+    }
+    if (epoch) {
+      any || clients_.empty() ? ++stats_.epochs_written : ++stats_.epochs_dropped;
+    } else if (any) {
+      ++stats_.replies_written;
+    }
+  }
+
+private:
+  struct Client {
+    explicit Client(asio::io_context& io) : socket(io) {}
+    tcp::socket socket;
+    int id = 0;
+    std::string queue;
+    bool writing = false;
+    uint64_t dropped = 0;
+    std::array<uint8_t, 1024> rx{};
+  };
+  using ClientPtr = std::shared_ptr<Client>;
+
+  void accept() {
+    auto c = std::make_shared<Client>(io_);
+    acceptor_.async_accept(c->socket, [this, c](const boost::system::error_code& ec) {
+      if (ec == asio::error::operation_aborted || !acceptor_.is_open()) return;
+      if (!ec) {
+        if (clients_.size() >= kMaxClients) {
+          spdlog::warn("output {}: refusing a client beyond {}", config_.name, kMaxClients);
+          boost::system::error_code cec;
+          c->socket.close(cec);
+        } else {
+          c->id = next_id_++;
+          c->queue.reserve(kMaxQueuedBytes);
+          boost::system::error_code oec;
+          c->socket.set_option(tcp::no_delay(true), oec);
+          const auto peer = c->socket.remote_endpoint(oec);
+          spdlog::info("output {}: client {} connected from {}:{}", config_.name, c->id, peer.address().to_string(),
+                       peer.port());
+          clients_.push_back(c);
+          read(c);
+        }
+      }
+      accept();
+    });
+  }
+
+  void read(const ClientPtr& c) {
+    c->socket.async_read_some(asio::buffer(c->rx), [this, c](const boost::system::error_code& ec, std::size_t n) {
+      if (ec == asio::error::operation_aborted) return;
+      if (ec) {
+        drop(c);
+        return;
+      }
+      stats_.bytes_from_reader += n;
+      if (listener_ != nullptr) listener_->on_port_input(c->id, {c->rx.data(), n});
+      read(c);
+    });
+  }
+
+  void flush(const ClientPtr& c) {
+    if (c->writing || c->queue.empty()) return;
+    c->writing = true;
+    c->socket.async_write_some(asio::buffer(c->queue), [this, c](const boost::system::error_code& ec, std::size_t n) {
+      c->writing = false;
+      if (ec) {
+        if (ec != asio::error::operation_aborted) drop(c);
+        return;
+      }
+      stats_.bytes_written += n;
+      c->queue.erase(0, n);
+      flush(c);
+    });
+  }
+
+  void drop(const ClientPtr& c) {
+    const auto it = std::find(clients_.begin(), clients_.end(), c);
+    if (it == clients_.end()) return;
+    spdlog::info("output {}: client {} gone ({} epochs dropped for it)", config_.name, c->id, c->dropped);
+    boost::system::error_code ec;
+    c->socket.close(ec);
+    clients_.erase(it);
+    if (listener_ != nullptr) listener_->on_source_closed(c->id);
+  }
+
+  asio::io_context& io_;
+  tcp::acceptor acceptor_;
+  uint16_t local_port_ = 0;
+  std::list<ClientPtr> clients_;
+  int next_id_ = 1;
+  PortListener* listener_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<OutputPort> make_tcp_port(const config::OutputPortConfig& cfg, asio::io_context& io) {
+  return std::make_unique<TcpPort>(cfg, io);
+}
+
+}  // namespace gnssemu::daemon::detail

@@ -1,0 +1,68 @@
+// UDP output port: each epoch in datagrams of at most kMaxDatagramBytes,
+// split at message boundaries (a datagram never holds half a message).
+#include <boost/asio/ip/udp.hpp>
+
+#include "core/common/error.hpp"
+#include "daemon/message_split.hpp"
+#include "daemon/port_impl.hpp"
+
+namespace gnssemu::daemon::detail {
+namespace {
+
+namespace asio = boost::asio;
+using asio::ip::udp;
+
+class UdpPort final : public OutputPort {
+public:
+  UdpPort(const config::OutputPortConfig& cfg, asio::io_context& io) : OutputPort(cfg), socket_(io) {
+    boost::system::error_code ec;
+    dest_ = udp::endpoint(asio::ip::make_address(cfg.address, ec), cfg.port);
+    if (!ec) socket_.open(dest_.protocol(), ec);
+    if (!ec) socket_.non_blocking(true, ec);
+    if (ec) throw Error("output '" + cfg.name + "': cannot open udp socket: " + ec.message());
+  }
+
+  std::string describe() const override {
+    return "udp to " + config_.address + ":" + std::to_string(config_.port);
+  }
+
+protected:
+  void deliver(int /*source*/, std::string_view data, bool epoch) noexcept override {
+    bool ok = true;
+    std::size_t start = 0;
+    while (start < data.size()) {
+      // Whole messages up to the datagram size (a longer message goes alone).
+      std::size_t end = start + message_length(data.substr(start));
+      while (end < data.size()) {
+        const std::size_t next = end + message_length(data.substr(end));
+        if (next - start > kMaxDatagramBytes) break;
+        end = next;
+      }
+      boost::system::error_code ec;
+      const std::size_t n = socket_.send_to(asio::buffer(data.data() + start, end - start), dest_, 0, ec);
+      if (ec) {
+        ok = false;  // e.g. ICMP port unreachable from an earlier datagram: nobody listens yet
+      } else {
+        stats_.bytes_written += n;
+      }
+      start = end;
+    }
+    if (epoch) {
+      ok ? ++stats_.epochs_written : ++stats_.epochs_dropped;
+    } else if (ok) {
+      ++stats_.replies_written;
+    }
+  }
+
+private:
+  udp::socket socket_;
+  udp::endpoint dest_;
+};
+
+}  // namespace
+
+std::unique_ptr<OutputPort> make_udp_port(const config::OutputPortConfig& cfg, asio::io_context& io) {
+  return std::make_unique<UdpPort>(cfg, io);
+}
+
+}  // namespace gnssemu::daemon::detail

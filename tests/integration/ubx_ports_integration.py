@@ -1,0 +1,663 @@
+#!/usr/bin/env python3
+"""gnssemud as a u-blox M8 on real ports, end to end (docs/ports.md §Tests).
+
+Cases (each bounded, every process killed and the temp dir removed on exit):
+  px4        PX4's UBX start-up sequence over a pty, byte for byte, then
+             NAV-PVT with gnssFixOK at the rate PX4 set (CFG-RATE 200 ms)
+  ardupilot  ArduPilot's poll / set / poll-compare sequence over a pty
+  gpsd_ubx   gpsd (not read-only) probes and configures the receiver itself:
+             DEVICE driver "u-blox" in native mode, then TPV mode 3
+  gpsd_nmea  an NMEA-only port: gpsd reports driver NMEA0183 and TPV mode 3
+  gpsdecode  a file port's UBX log decoded by gpsdecode equals the fixes the
+             daemon logged (debug log) and the NMEA log of the same epochs
+  serial     libserialport on one end of a socat pty pair: baud switch by
+             $PUBX,41 and by CFG-PRT after the drain (termios speed checked),
+             and reopen after the device disappears
+  net        TCP server (two clients, replies to the asking client only) and
+             UDP output on loopback
+  budget     9600 baud with NAV-SAT + NAV-SVINFO + NMEA at 5 Hz: the line
+             carries at most baud/10 bytes/s, messages dropped, one warning
+usage: ubx_ports_integration.py --gnssemud PATH --nav FILE CASE
+"""
+import argparse
+import json
+import os
+import re
+import select
+import shutil
+import signal
+import socket
+import struct
+import subprocess
+import sys
+import tempfile
+import termios
+import time
+import tty
+
+ORIGIN = (48.8738, 2.2950, 100.0)
+CASE_LIMIT_S = 60
+
+
+# --- UBX helpers -------------------------------------------------------------
+
+def frame(cls, mid, payload=b""):
+    body = bytes([cls, mid]) + struct.pack("<H", len(payload)) + payload
+    a = b = 0
+    for x in body:
+        a = (a + x) & 0xFF
+        b = (b + a) & 0xFF
+    return b"\xb5\x62" + body + bytes([a, b])
+
+
+def ack(cls, mid, ok=True):
+    return frame(0x05, 0x01 if ok else 0x00, bytes([cls, mid]))
+
+
+def nmea(body):
+    cs = 0
+    for ch in body.encode():
+        cs ^= ch
+    return f"${body}*{cs:02X}\r\n".encode()
+
+
+def split_stream(data):
+    """(kind, bytes) for every complete UBX frame / NMEA line; rest returned."""
+    out = []
+    i = 0
+    while i < len(data):
+        if data[i:i + 2] == b"\xb5\x62":
+            if i + 6 > len(data):
+                break
+            n = 8 + struct.unpack_from("<H", data, i + 4)[0]
+            if i + n > len(data):
+                break
+            out.append(("ubx", data[i:i + n]))
+            i += n
+        elif data[i:i + 1] == b"$":
+            j = data.find(b"\n", i)
+            if j < 0:
+                break
+            out.append(("nmea", data[i:j + 1]))
+            i = j + 1
+        else:
+            i += 1
+    return out, data[i:]
+
+
+class Stream:
+    """Reads a fd, splits messages, keeps arrival times."""
+
+    def __init__(self, fd):
+        self.fd = fd
+        self.buf = b""
+        self.msgs = []  # (t, kind, bytes)
+
+    def pump(self, timeout):
+        r, _, _ = select.select([self.fd], [], [], max(0.0, timeout))
+        if not r:
+            return
+        try:
+            chunk = os.read(self.fd, 65536)
+        except BlockingIOError:
+            return
+        t = time.monotonic()
+        msgs, self.buf = split_stream(self.buf + chunk)
+        self.msgs += [(t, k, m) for k, m in msgs]
+
+    def wait_for(self, pred, limit_s, what):
+        deadline = time.monotonic() + limit_s
+        while True:
+            for idx, (t, k, m) in enumerate(self.msgs):
+                if pred(k, m):
+                    del self.msgs[:idx + 1]
+                    return t, m
+            self.msgs.clear()
+            if time.monotonic() > deadline:
+                raise AssertionError(f"no {what} within {limit_s} s")
+            self.pump(deadline - time.monotonic())
+
+    def frame_of(self, cls, mid, limit_s=2.0):
+        return self.wait_for(lambda k, m: k == "ubx" and m[2] == cls and m[3] == mid, limit_s,
+                             f"UBX {cls:02X}-{mid:02X}")[1]
+
+
+def is_ack_for(cls, mid):
+    return lambda k, m: k == "ubx" and m[2] == 0x05 and m[6:8] == bytes([cls, mid])
+
+
+def free_port(kind):
+    s = socket.socket(socket.AF_INET, kind)
+    s.bind(("127.0.0.1", 0))
+    p = s.getsockname()[1]
+    s.close()
+    return p
+
+
+# --- rig ---------------------------------------------------------------------
+
+class Rig:
+    def __init__(self, args):
+        self.args = args
+        self.tmp = tempfile.mkdtemp(prefix="gnssemu-ubx-it-")
+        self.procs = []
+        self.fds = []
+        self.banner = []
+
+    def spawn(self, argv, **kw):
+        p = subprocess.Popen(argv, start_new_session=True, **kw)
+        self.procs.append(p)
+        return p
+
+    def start_daemon(self, outputs, rate_hz=1.0, verbose=False, n_outputs=None):
+        cfg = os.path.join(self.tmp, "it.toml")
+        with open(cfg, "w") as f:
+            f.write(f"""
+[origin]
+lat_deg = {ORIGIN[0]}
+lon_deg = {ORIGIN[1]}
+height_m = {ORIGIN[2]}
+[nav]
+file = "{os.path.abspath(self.args.nav)}"
+[receiver]
+rate_hz = {rate_hz}
+[truth]
+port = {free_port(socket.SOCK_DGRAM)}
+[demo]
+enabled = true
+{outputs}
+""")
+        self.daemon_log_path = os.path.join(self.tmp, "gnssemud.log")
+        self.daemon_log = open(self.daemon_log_path, "w")
+        argv = [self.args.gnssemud, "--config", cfg] + (["-v"] if verbose else [])
+        self.daemon = self.spawn(argv, stdout=subprocess.PIPE, stderr=self.daemon_log, text=True)
+        n = outputs.count("[[output]]") if n_outputs is None else n_outputs
+        for _ in range(n + 1):
+            line = self.daemon.stdout.readline()
+            if not line:
+                raise AssertionError("gnssemud exited: " + open(self.daemon_log_path).read()[-2000:])
+            self.banner.append(line.strip())
+            print("  " + line.strip())
+
+    def open_tty(self, path):
+        fd = os.open(path, os.O_RDWR | os.O_NOCTTY | os.O_NONBLOCK)
+        tty.setraw(fd)
+        self.fds.append(fd)
+        return fd
+
+    def daemon_log_text(self):
+        self.daemon_log.flush()
+        return open(self.daemon_log_path).read()
+
+    def stop(self, p):
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGTERM)
+            try:
+                p.wait(5)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait()
+
+    def close(self, failed):
+        for fd in self.fds:
+            try:
+                os.close(fd)
+            except OSError:
+                pass
+        rc = None
+        for p in reversed(self.procs):
+            try:
+                self.stop(p)
+            except ProcessLookupError:
+                pass
+            if p is getattr(self, "daemon", None):
+                rc = p.returncode
+        if failed:
+            for name in sorted(os.listdir(self.tmp)):
+                if name.endswith(".log"):
+                    print(f"--- {name} ---")
+                    print(open(os.path.join(self.tmp, name), errors="replace").read()[-3000:])
+        shutil.rmtree(self.tmp, ignore_errors=True)
+        return rc
+
+
+def pty_output(rig, name="gps0", extra=""):
+    path = os.path.join(rig.tmp, name)
+    return path, f'[[output]]\nname = "{name}"\ntype = "pty"\npath = "{path}"\n{extra}\n'
+
+
+def send(fd, data):
+    os.write(fd, data)
+
+
+# --- cases -------------------------------------------------------------------
+
+def case_px4(rig):
+    path, out = pty_output(rig)
+    rig.start_daemon(out)
+    fd = rig.open_tty(path)
+    s = Stream(fd)
+    # 1. CFG-VALSET (RAM, UART1_BAUDRATE = 115200): an M8 does not know it.
+    send(fd, frame(0x06, 0x8A, bytes([0, 1, 0, 0]) + struct.pack("<II", 0x40520001, 115200)))
+    _, m = s.wait_for(is_ack_for(0x06, 0x8A), 1.0, "reply to CFG-VALSET")
+    assert m == ack(0x06, 0x8A, False), f"VALSET: want NAK, got {m.hex()}"
+    # 2. CFG-PRT UART1 at the current baud, UBX in/out only (PX4 turns NMEA off).
+    prt = struct.pack("<BBHIIHHHH", 1, 0, 0, 0x08D0, 9600, 0x0001, 0x0001, 0, 0)
+    t0 = time.monotonic()
+    send(fd, frame(0x06, 0x00, prt))
+    t, m = s.wait_for(is_ack_for(0x06, 0x00), 1.0, "reply to CFG-PRT")
+    assert m == ack(0x06, 0x00), f"CFG-PRT: got {m.hex()}"
+    assert t - t0 < 0.25, f"ACK after {t - t0:.3f} s; PX4 waits 250 ms"
+    # 3. MON-VER poll: the M8 answer, byte for byte.
+    send(fd, frame(0x0A, 0x04))
+    m = s.frame_of(0x0A, 0x04)
+    pad = lambda txt, n: txt.encode().ljust(n, b"\0")
+    want = frame(0x0A, 0x04, pad("ROM CORE 3.01 (107888)", 30) + pad("00080000", 10) + pad("FWVER=SPG 3.01", 30) +
+                 pad("PROTVER=18.00", 30) + pad("GPS;GLO;GAL;BDS", 30) + pad("SBAS;IMES;QZSS", 30))
+    assert m == want, f"MON-VER: {m!r}"
+    # 4. CFG-RATE 200 ms, CFG-NAV5 airborne <2g, CFG-MSG NAV-PVT/STATUS/DOP/SVINFO, MON-HW.
+    steps = [(0x06, 0x08, struct.pack("<HHH", 200, 1, 0))]
+    nav5 = bytearray(36)
+    struct.pack_into("<HBB", nav5, 0, 0x0005, 7, 3)
+    steps.append((0x06, 0x24, bytes(nav5)))
+    for cls, mid, rate in ((0x01, 0x07, 1), (0x01, 0x03, 1), (0x01, 0x04, 1), (0x01, 0x30, 5), (0x0A, 0x09, 5)):
+        steps.append((0x06, 0x01, bytes([cls, mid, rate])))
+    for cls, mid, payload in steps:
+        t0 = time.monotonic()
+        send(fd, frame(cls, mid, payload))
+        t, m = s.wait_for(is_ack_for(cls, mid), 1.0, f"reply to {cls:02X}-{mid:02X} {payload.hex()}")
+        assert m == ack(cls, mid), f"{cls:02X}-{mid:02X} {payload.hex()}: got {m.hex()}"
+        assert t - t0 < 0.25, f"ACK after {t - t0:.3f} s"
+    # 5. NAV-PVT at 5 Hz with gnssFixOK; NMEA is off (PX4's CFG-PRT).
+    s.msgs.clear()
+    end = time.monotonic() + 3.0
+    while time.monotonic() < end:
+        s.pump(end - time.monotonic())
+    pvts = [m for _, k, m in s.msgs if k == "ubx" and m[2:4] == b"\x01\x07"]
+    nmeas = [m for _, k, m in s.msgs if k == "nmea"]
+    assert not nmeas, f"NMEA still sent after CFG-PRT out=UBX: {nmeas[:2]}"
+    assert len(pvts) >= 12, f"{len(pvts)} NAV-PVT in 3 s, want ~15 at 5 Hz"
+    itows = [struct.unpack_from("<I", m, 6)[0] for m in pvts]
+    steps_ms = {b - a for a, b in zip(itows, itows[1:])}
+    assert steps_ms == {200}, f"iTOW steps {sorted(steps_ms)} ms, want 200"
+    assert all(itow % 200 == 0 for itow in itows), "epochs not on 200 ms boundaries"
+    flags = [m[6 + 21] for m in pvts]
+    fix_types = [m[6 + 20] for m in pvts]
+    assert all(f & 1 for f in flags) and all(ft == 3 for ft in fix_types), f"flags {flags} fixType {fix_types}"
+    svinfo = sum(1 for _, k, m in s.msgs if k == "ubx" and m[2:4] == b"\x01\x30")
+    assert 2 <= svinfo <= 4, f"{svinfo} NAV-SVINFO in 3 s at rate 5 of 5 Hz (want 3)"
+    print(f"  px4: every step answered byte for byte; {len(pvts)} NAV-PVT in 3 s, iTOW step 200 ms, gnssFixOK")
+
+
+def poll_cfg(s, fd, mid, payload=b""):
+    """CFG poll: the data frame, then ACK-ACK (data first)."""
+    send(fd, frame(0x06, mid, payload))
+    data = s.wait_for(lambda k, m: k == "ubx" and m[2] == 0x06 and m[3] == mid, 1.0, f"CFG {mid:02X} poll answer")[1]
+    a = s.wait_for(is_ack_for(0x06, mid), 1.0, f"ACK after CFG {mid:02X} poll")[1]
+    assert a == ack(0x06, mid), a.hex()
+    return data[6:-2]
+
+
+def set_cfg(s, fd, mid, payload):
+    send(fd, frame(0x06, mid, payload))
+    a = s.wait_for(is_ack_for(0x06, mid), 1.0, f"ACK of CFG {mid:02X} set")[1]
+    assert a == ack(0x06, mid), f"CFG {mid:02X} set: {a.hex()}"
+
+
+def case_ardupilot(rig):
+    path, out = pty_output(rig)
+    rig.start_daemon(out)
+    fd = rig.open_tty(path)
+    s = Stream(fd)
+    # ArduPilot's probe: UART1 in UBX+NMEA+RTCM3, out UBX only, 230400 baud.
+    # On a pty the rate is recorded (stty shows it) and sets the line budget.
+    send(fd, nmea("PUBX,41,1,0023,0001,230400,0"))
+    deadline = time.monotonic() + 3
+    while stty_speed(path) != 230400:
+        assert time.monotonic() < deadline, f"pty termios {stty_speed(path)} after $PUBX,41"
+        time.sleep(0.05)
+    # CFG-MSG: poll, set the rates ArduPilot wants, poll again and compare.
+    wanted = {(0x01, 0x07): 1, (0x01, 0x03): 1, (0x01, 0x06): 1, (0x01, 0x12): 1, (0x01, 0x04): 2, (0x0A, 0x09): 2}
+    for (cls, mid), rate in wanted.items():
+        before = poll_cfg(s, fd, 0x01, bytes([cls, mid]))
+        assert len(before) == 8 and before[:2] == bytes([cls, mid]) and before[3] == 0, before.hex()
+        set_cfg(s, fd, 0x01, bytes([cls, mid, rate]))
+        after = poll_cfg(s, fd, 0x01, bytes([cls, mid]))
+        assert after[3] == rate, f"CFG-MSG {cls:02X}-{mid:02X} read back UART1 rate {after[3]}, set {rate}"
+    # CFG-RATE
+    rate = poll_cfg(s, fd, 0x08)
+    assert len(rate) == 6 and struct.unpack("<HHH", rate) == (1000, 1, 1), rate.hex()
+    new_rate = struct.pack("<HHH", 200, 1, 0)
+    set_cfg(s, fd, 0x08, new_rate)
+    assert poll_cfg(s, fd, 0x08) == new_rate
+    # CFG-PRT (poll by port id): 20 bytes describing UART1 as set.
+    prt = poll_cfg(s, fd, 0x00, bytes([1]))
+    assert len(prt) == 20 and prt[0] == 1, prt.hex()
+    assert struct.unpack_from("<IHH", prt, 8) == (230400, 0x0023, 0x0001), prt.hex()
+    # CFG-NAV5: airborne <4g, 3D only.
+    nav5 = poll_cfg(s, fd, 0x24)
+    assert len(nav5) == 36, len(nav5)
+    new_nav5 = bytearray(nav5)
+    struct.pack_into("<HBB", new_nav5, 0, 0x0005, 8, 2)
+    set_cfg(s, fd, 0x24, bytes(new_nav5))
+    back = poll_cfg(s, fd, 0x24)
+    assert back[2:4] == bytes([8, 2]), f"NAV5 read back dyn {back[2]} fix {back[3]}"
+    # CFG-GNSS and CFG-SBAS: polls at the right length, SBAS set read back.
+    gnss = poll_cfg(s, fd, 0x3E)
+    assert len(gnss) == 4 + 8 * gnss[3] and gnss[3] >= 1, gnss.hex()
+    sbas = poll_cfg(s, fd, 0x16)
+    assert len(sbas) == 8, sbas.hex()
+    new_sbas = bytes([0, 3, 3, 0]) + struct.pack("<I", 0)  # SBAS disabled
+    set_cfg(s, fd, 0x16, new_sbas)
+    assert poll_cfg(s, fd, 0x16) == new_sbas
+    # MON-VER, then the rates are live: NAV-PVT at 5 Hz, NAV-DOP every 2nd epoch.
+    send(fd, frame(0x0A, 0x04))
+    mv = s.frame_of(0x0A, 0x04)
+    assert mv[6 + 30:6 + 38] == b"00080000", mv[36:46]
+    s.msgs.clear()
+    end = time.monotonic() + 2.0
+    while time.monotonic() < end:
+        s.pump(end - time.monotonic())
+    count = lambda c, i: sum(1 for _, k, m in s.msgs if k == "ubx" and m[2] == c and m[3] == i)
+    pvt, dop = count(0x01, 0x07), count(0x01, 0x04)
+    assert 8 <= pvt <= 11, f"{pvt} NAV-PVT in 2 s at 5 Hz"
+    assert not any(k == "nmea" for _, k, _ in s.msgs), "NMEA sent after $PUBX,41 out=UBX"
+    assert abs(dop - pvt / 2) <= 1.5, f"NAV-DOP {dop} vs NAV-PVT {pvt} (rate 2)"
+    print(f"  ardupilot: every poll answered and read back as set; {pvt} NAV-PVT and {dop} NAV-DOP in 2 s")
+
+
+def gpsd_rig(rig, path, readonly):
+    gport = free_port(socket.SOCK_STREAM)
+    log = open(os.path.join(rig.tmp, "gpsd.log"), "w")
+    rig.spawn(["gpsd", "-N", "-n"] + (["-b"] if readonly else []) +
+              ["-F", os.path.join(rig.tmp, "gpsd.sock"), "-S", str(gport), "-P", os.path.join(rig.tmp, "gpsd.pid"),
+               path], stdout=log, stderr=subprocess.STDOUT)
+    deadline = time.monotonic() + 10
+    while time.monotonic() < deadline:
+        try:
+            socket.create_connection(("127.0.0.1", gport), timeout=0.5).close()
+            break
+        except OSError:
+            time.sleep(0.1)
+    return rig.spawn(["gpspipe", "-w", f"localhost:{gport}"], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                     text=True)
+
+
+def read_json(pipe, limit_s, pred, what):
+    deadline = time.monotonic() + limit_s
+    fd = pipe.stdout.fileno()
+    while time.monotonic() < deadline:
+        r, _, _ = select.select([fd], [], [], deadline - time.monotonic())
+        if not r:
+            break
+        line = pipe.stdout.readline()
+        if not line:
+            break
+        try:
+            m = json.loads(line)
+        except ValueError:
+            continue
+        if pred(m):
+            return m
+    raise AssertionError(f"no {what} within {limit_s} s")
+
+
+def case_gpsd_ubx(rig):
+    path, out = pty_output(rig)  # factory M8 port: NMEA out, UBX+NMEA in
+    rig.start_daemon(out)
+    pipe = gpsd_rig(rig, path, readonly=False)
+    dev = read_json(pipe, 20, lambda m: m.get("class") == "DEVICE" and m.get("driver") == "u-blox",
+                    "DEVICE with driver u-blox")
+    assert "00080000" in dev.get("subtype", ""), dev
+    tpv = read_json(pipe, 15, lambda m: m.get("class") == "TPV" and m.get("mode") == 3, "TPV mode 3")
+    log = rig.daemon_log_text()
+    replies = re.search(r"output gps0: .*", log)
+    print(f"  gpsd_ubx: driver {dev['driver']} ({dev['subtype']}), native {dev.get('native')}; TPV mode 3 "
+          f"at {tpv['lat']:.6f} {tpv['lon']:.6f}")
+    # gpsd switched the port to binary: UBX NAV-PVT carries the fix now.
+    dev2 = read_json(pipe, 10, lambda m: m.get("class") == "DEVICE" and m.get("native") == 1, "native-mode DEVICE") \
+        if dev.get("native") != 1 else dev
+    assert dev2.get("native") == 1
+    del replies
+
+
+def case_gpsd_nmea(rig):
+    path, out = pty_output(rig, extra='protocols_in = ["nmea"]\nprotocols_out = ["nmea"]')
+    rig.start_daemon(out)
+    pipe = gpsd_rig(rig, path, readonly=False)
+    dev = read_json(pipe, 20, lambda m: m.get("class") == "DEVICE" and "driver" in m, "DEVICE with a driver")
+    assert dev["driver"] == "NMEA0183", dev
+    tpv = read_json(pipe, 15, lambda m: m.get("class") == "TPV" and m.get("mode") == 3, "TPV mode 3")
+    # Probes (UBX polls gpsd writes) were ignored: the port takes NMEA only.
+    time.sleep(2)
+    print(f"  gpsd_nmea: driver {dev['driver']}; TPV mode 3 at {tpv['lat']:.6f} {tpv['lon']:.6f}")
+
+
+def case_gpsdecode(rig):
+    ubx_log = os.path.join(rig.tmp, "out.ubx")
+    nmea_log = os.path.join(rig.tmp, "out.nmea")
+    outs = (f'[[output]]\nname = "ubxlog"\ntype = "file"\npath = "{ubx_log}"\nprotocols_out = ["ubx"]\n'
+            'ubx_messages = ["NAV-PVT", "NAV-DOP", "NAV-SAT", "NAV-TIMEUTC", "NAV-EOE"]\n'
+            f'[[output]]\nname = "nmealog"\ntype = "file"\npath = "{nmea_log}"\nprotocols_out = ["nmea"]\n'
+            'sentences = ["RMC", "GGA"]\n')
+    rig.start_daemon(outs, rate_hz=2.0, verbose=True)
+    time.sleep(6)
+    rig.stop(rig.daemon)
+    dec = subprocess.run(["gpsdecode", "-j"], stdin=open(ubx_log, "rb"), capture_output=True, text=True, timeout=30)
+    tpvs = [json.loads(l) for l in dec.stdout.splitlines() if '"class":"TPV"' in l]
+    fixes = {}
+    # The daemon's own record of each fix (-v): tow, lat, lon, h.
+    for m in re.finditer(r"epoch tow ([\d.]+): fix (\d) nsat (\d+) lat (-?[\d.]+) lon (-?[\d.]+) h (-?[\d.]+)",
+                         rig.daemon_log_text()):
+        fixes[round(float(m.group(1)), 2)] = tuple(float(x) for x in m.groups()[1:])
+    assert len(tpvs) >= 8, f"gpsdecode gave {len(tpvs)} TPVs: {dec.stdout[:500]} {dec.stderr[:500]}"
+    matched = 0
+    worst = 0.0
+    for t in tpvs:
+        if t.get("mode") != 3 or "lat" not in t:
+            continue
+        tow = None
+        # gpsdecode time is UTC; match by lat/lon to the nearest logged epoch instead of leap arithmetic.
+        best = min(fixes.values(), key=lambda f: abs(f[2] - t["lat"]) + abs(f[3] - t["lon"]))
+        dlat = abs(best[2] - t["lat"]) * 111e3
+        dlon = abs(best[3] - t["lon"]) * 73e3
+        dh = abs(best[4] - t["altHAE"])
+        worst = max(worst, dlat, dlon)
+        assert dlat < 0.02 and dlon < 0.02 and dh < 0.1, f"UBX decode {t} vs fix {best}"
+        del tow
+        matched += 1
+    assert matched >= 8, f"only {matched} mode-3 TPVs matched the daemon's fixes"
+    # NMEA of the same epochs decodes to the same places (5 decimals of minutes ~ 2 cm).
+    nd = subprocess.run(["gpsdecode", "-j"], stdin=open(nmea_log, "rb"), capture_output=True, text=True, timeout=30)
+    ntpv = {json.loads(l)["time"]: json.loads(l) for l in nd.stdout.splitlines()
+            if '"class":"TPV"' in l and '"mode":3' in l}
+    common = [t for t in tpvs if t.get("time") in ntpv and "lat" in t]
+    assert len(common) >= 5, f"{len(common)} epochs in both logs"
+    for t in common:
+        n = ntpv[t["time"]]
+        assert abs(n["lat"] - t["lat"]) * 111e3 < 0.05 and abs(n["lon"] - t["lon"]) * 73e3 < 0.05, (t, n)
+    sats = [json.loads(l) for l in dec.stdout.splitlines() if '"class":"SKY"' in l]
+    assert sats and any(s.get("uSat", 0) >= 4 or len(s.get("satellites", [])) >= 4 for s in sats), "no SKY"
+    print(f"  gpsdecode: {matched} UBX fixes equal the daemon's (worst {worst * 100:.1f} cm), "
+          f"{len(common)} epochs agree with the NMEA log")
+
+
+def stty_speed(path):
+    out = subprocess.run(["stty", "-F", path, "speed"], capture_output=True, text=True).stdout.strip()
+    return int(out) if out.isdigit() else -1
+
+
+def case_serial(rig):
+    a = os.path.join(rig.tmp, "ttyA")
+    b = os.path.join(rig.tmp, "ttyB")
+    socat_argv = ["socat", "-d", "-d", f"pty,raw,echo=0,link={a}", f"pty,raw,echo=0,link={b}"]
+    socat_log = open(os.path.join(rig.tmp, "socat.log"), "w")
+    socat = rig.spawn(socat_argv, stdout=socat_log, stderr=subprocess.STDOUT)
+    deadline = time.monotonic() + 5
+    while not (os.path.exists(a) and os.path.exists(b)):
+        assert time.monotonic() < deadline, "socat did not create the pty pair"
+        time.sleep(0.05)
+    rig.start_daemon(f'[[output]]\nname = "uart"\ntype = "serial"\ndevice = "{a}"\nbaud = 9600\n', rate_hz=2.0)
+    fd = rig.open_tty(b)
+    s = Stream(fd)
+    s.wait_for(lambda k, m: k == "nmea" and m.startswith(b"$GPGGA"), 5, "GGA on the serial port")
+    assert stty_speed(a) == 9600, stty_speed(a)
+    # $PUBX,41 (ArduPilot's probe): UART1, in UBX+NMEA+RTCM, out UBX+NMEA, 38400.
+    send(fd, nmea("PUBX,41,1,0007,0003,38400,0"))
+    deadline = time.monotonic() + 3
+    while stty_speed(a) != 38400:
+        assert time.monotonic() < deadline, f"termios still {stty_speed(a)} after $PUBX,41"
+        time.sleep(0.05)
+    s.wait_for(lambda k, m: k == "nmea" and m.startswith(b"$GPGGA"), 5, "GGA after the switch")
+    # CFG-PRT: ACK first (at the old rate), then the line switches to 115200.
+    prt = struct.pack("<BBHIIHHHH", 1, 0, 0, 0x08D0, 115200, 0x0003, 0x0003, 0, 0)
+    send(fd, frame(0x06, 0x00, prt))
+    _, m = s.wait_for(is_ack_for(0x06, 0x00), 1.0, "ACK of CFG-PRT")
+    assert m == ack(0x06, 0x00)
+    deadline = time.monotonic() + 3
+    while stty_speed(a) != 115200:
+        assert time.monotonic() < deadline, f"termios still {stty_speed(a)} after CFG-PRT"
+        time.sleep(0.05)
+    prt_back = poll_cfg(s, fd, 0x00, bytes([1]))
+    assert struct.unpack_from("<I", prt_back, 8)[0] == 115200
+    # Unplug: socat goes away with both ptys; the daemon retries and reopens.
+    rig.stop(socat)
+    rig.fds.remove(fd)
+    os.close(fd)
+    time.sleep(1.5)
+    assert rig.daemon.poll() is None, "gnssemud died when the device vanished"
+    socat = rig.spawn(socat_argv, stdout=socat_log, stderr=subprocess.STDOUT)
+    deadline = time.monotonic() + 5
+    while not (os.path.exists(a) and os.path.exists(b)):
+        assert time.monotonic() < deadline, "socat did not come back"
+        time.sleep(0.05)
+    fd = rig.open_tty(b)
+    s = Stream(fd)
+    s.wait_for(lambda k, m: k == "nmea" and m.startswith(b"$GPGGA"), 10, "GGA after the device came back")
+    log = rig.daemon_log_text()
+    assert "open again" in log, "no reopen logged"
+    warnings = log.count("retrying every")
+    assert 1 <= warnings <= 2, f"{warnings} failure warnings for one unplug: want 1 (rate limited)"
+    print(f"  serial: 9600 -> 38400 ($PUBX,41) -> 115200 (CFG-PRT) seen in termios; reopened after unplug "
+          f"({warnings} warning(s))")
+
+
+def case_net(rig):
+    uport = free_port(socket.SOCK_DGRAM)
+    usock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    usock.bind(("127.0.0.1", uport))
+    usock.settimeout(5)
+    outs = ('[[output]]\nname = "net"\ntype = "tcp"\nport = 0\nubx_messages = ["NAV-PVT"]\n'
+            f'[[output]]\nname = "udp"\ntype = "udp"\naddress = "127.0.0.1"\nport = {uport}\n'
+            'ubx_messages = ["NAV-PVT", "NAV-SAT"]\n')
+    rig.start_daemon(outs, rate_hz=2.0)
+    m = re.search(r"on tcp 127\.0\.0\.1:(\d+)", "\n".join(rig.banner))
+    assert m, rig.banner
+    c1 = socket.create_connection(("127.0.0.1", int(m.group(1))), timeout=5)
+    c2 = socket.create_connection(("127.0.0.1", int(m.group(1))), timeout=5)
+    s1, s2 = Stream(c1.fileno()), Stream(c2.fileno())
+    for st in (s1, s2):
+        st.frame_of(0x01, 0x07, 5)
+        st.wait_for(lambda k, mm: k == "nmea" and mm.startswith(b"$GPGGA"), 5, "GGA over tcp")
+    c1.sendall(frame(0x0A, 0x04))
+    s1.frame_of(0x0A, 0x04, 2)
+    s2.msgs.clear()
+    end = time.monotonic() + 1.5
+    while time.monotonic() < end:
+        s2.pump(end - time.monotonic())
+    assert not any(k == "ubx" and mm[2:4] == b"\x0a\x04" for _, k, mm in s2.msgs), "MON-VER reply went to client 2"
+    got = b""
+    kinds = set()
+    end = time.monotonic() + 3
+    while time.monotonic() < end:
+        try:
+            d = usock.recv(65536)
+        except socket.timeout:
+            break
+        assert len(d) <= 1400, f"datagram of {len(d)} bytes"
+        msgs, rest = split_stream(d)
+        assert rest == b"", f"datagram ends inside a message: {rest[:40]!r}"
+        kinds |= {(k, mm[2:4] if k == "ubx" else mm[3:6]) for k, mm in msgs}
+        got += d
+    assert ("ubx", b"\x01\x07") in kinds and ("ubx", b"\x01\x35") in kinds and ("nmea", b"GGA") in kinds, kinds
+    c1.close()
+    c2.close()
+    usock.close()
+    print(f"  net: two tcp clients get the stream, MON-VER answered to the asking client only; "
+          f"udp datagrams of whole messages ({len(got)} bytes in 3 s)")
+
+
+def case_budget(rig):
+    path, out = pty_output(rig, extra='baud = 9600\nubx_messages = ["NAV-PVT", "NAV-SAT", "NAV-SVINFO", "NAV-SOL"]\n'
+                                      'sentences = ["RMC", "VTG", "GGA", "GSA", "GSV", "GLL", "GST", "ZDA"]')
+    rig.start_daemon(out, rate_hz=5.0)
+    fd = rig.open_tty(path)
+    s = Stream(fd)
+    t0 = time.monotonic()
+    total = 0
+    end = t0 + 8
+    while time.monotonic() < end:
+        s.pump(end - time.monotonic())
+    # Everything after the first second (the 4 KiB buffer filling) is bounded by the line.
+    first = s.msgs[0][0] if s.msgs else t0
+    late = [m for t, _, m in s.msgs if t >= first + 2.0]
+    span = max(t for t, _, _ in s.msgs) - (first + 2.0)
+    total = sum(len(m) for m in late)
+    rate = total / span
+    assert rate <= 960 * 1.15, f"{rate:.0f} B/s over a 9600 baud line (max 960)"
+    assert rate >= 960 * 0.6, f"only {rate:.0f} B/s: the line is not used"
+    log = rig.daemon_log_text()
+    assert log.count("the configured messages need") == 1, "drop warning missing or repeated"
+    w = re.search(r"need (\d+) bytes per epoch at 5 Hz but 9600 baud carries (\d+)", log)
+    assert w and int(w.group(1)) > int(w.group(2)) == 192, w and w.group(0)
+    print(f"  budget: {w.group(1)} B/epoch wanted, 192 B/epoch carried; measured {rate:.0f} B/s (line 960 B/s); "
+          f"warned once")
+
+
+CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx, "gpsd_nmea": case_gpsd_nmea,
+         "gpsdecode": case_gpsdecode, "serial": case_serial, "net": case_net, "budget": case_budget}
+NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_nmea": ["gpsd", "gpspipe"], "gpsdecode": ["gpsdecode"],
+         "serial": ["socat", "stty"]}
+
+
+def on_alarm(*_):
+    raise AssertionError(f"case exceeded {CASE_LIMIT_S} s")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--gnssemud", required=True)
+    ap.add_argument("--nav", required=True)
+    ap.add_argument("case", choices=sorted(CASES) + ["all"])
+    args = ap.parse_args()
+    failed = False
+    for name in (sorted(CASES) if args.case == "all" else [args.case]):
+        missing = [t for t in NEEDS.get(name, []) if shutil.which(t) is None]
+        if missing:
+            print(f"SKIP {name}: {', '.join(missing)} not installed")
+            if args.case != "all":
+                return 77
+            continue
+        rig = Rig(args)
+        signal.signal(signal.SIGALRM, on_alarm)
+        signal.alarm(CASE_LIMIT_S)
+        ok = False
+        try:
+            print(f"case {name}:")
+            CASES[name](rig)
+            ok = True
+        except AssertionError as e:
+            print(f"FAIL {name}: {e}")
+        finally:
+            signal.alarm(0)
+            rc = rig.close(failed=not ok)
+        if ok and rc not in (0, None):
+            print(f"FAIL {name}: gnssemud exited {rc} on SIGTERM (want 0)")
+            ok = False
+        print(f"{'PASS' if ok else 'FAIL'} {name}")
+        failed |= not ok
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

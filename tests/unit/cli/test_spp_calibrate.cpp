@@ -1,0 +1,201 @@
+// gnssemu spp and calibrate on real observations: NYA1 (RINEX 3.05, IGS
+// station with known coordinates) and LARM (3.02, with brdc0010.22n).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cli_test_util.hpp"
+#include "config/config.hpp"
+#include "tools/gnssemu/calibrate.hpp"
+
+using namespace gnssemu;
+using namespace gnssemu::cli::test;
+
+namespace {
+
+std::string obs_path(const std::string& name) { return std::string(GNSSEMU_TEST_DATA) + "/obs/" + name; }
+
+const std::string kNyaObs = obs_path("NYA100NOR_S_20241240000_90M_30S_MO.rnx");
+const std::string kNyaDay = obs_path("NYA100NOR_S_20241240000_01D_30S_GO_L1.rnx.gz");
+const std::string kNyaNav = nav_path("NYA100NOR_S_20241240000_01D_GN.rnx");
+const std::string kNyaStation = "1202434.1303,252632.2212,6237772.4351";
+
+}  // namespace
+
+TEST(Spp, Nya1AllEpochsNearTheStation) {
+  const CliResult r = run({"spp", "--obs", kNyaObs, "--nav", kNyaNav, "--mask", "10", "--station", kNyaStation});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Csv csv = parse_csv(r.out);
+  ASSERT_EQ(csv.rows.size(), 180u);
+  EXPECT_EQ(csv.header, (std::vector<std::string>{"gps_week", "tow_s", "x_m", "y_m", "z_m", "nsat", "pdop", "e_m",
+                                                  "n_m", "u_m"}));
+  double se = 0, sn = 0, su = 0, me = 0, mn = 0, mu = 0;
+  for (std::size_t i = 0; i < csv.rows.size(); ++i) {
+    EXPECT_EQ(csv.cell(i, "gps_week"), "2312");
+    EXPECT_DOUBLE_EQ(csv.num(i, "tow_s"), 432000.0 + 30.0 * static_cast<double>(i));
+    EXPECT_GE(csv.num(i, "nsat"), 8);
+    EXPECT_LT(csv.num(i, "pdop"), 3.0);
+    const double e = csv.num(i, "e_m"), n = csv.num(i, "n_m"), u = csv.num(i, "u_m");
+    EXPECT_LT(std::hypot(e, n), 2.0) << i;
+    EXPECT_LT(std::fabs(u), 5.0) << i;
+    me += e, mn += n, mu += u;
+    se += e * e, sn += n * n, su += u * u;
+  }
+  const double k = static_cast<double>(csv.rows.size());
+  // Independent check in shared/data/README.md: mean E -0.05 N +0.02 U -0.43,
+  // RMS E 0.21 N 0.28 U 1.05 m (10 deg mask, Klobuchar, Saastamoinen).
+  EXPECT_NEAR(me / k, -0.05, 0.1);
+  EXPECT_NEAR(mn / k, 0.02, 0.1);
+  EXPECT_NEAR(mu / k, -0.43, 0.3);
+  EXPECT_LT(std::sqrt(se / k), 0.35);
+  EXPECT_LT(std::sqrt(sn / k), 0.40);
+  EXPECT_LT(std::sqrt(su / k), 1.3);
+  EXPECT_NE(r.err.find("180 epochs, 180 with a fix"), std::string::npos) << r.err;
+}
+
+TEST(Spp, LarmWithBrdcSmokeTest) {
+  // With the default sigma model (a = 1.2 m) the chi-square test rejects
+  // these epochs (brdc residuals of 2-3 m); without the test they solve.
+  const CliResult strict = run({"spp", "--obs", obs_path("LARM0010.22O"), "--nav", nav_path("brdc0010.22n")});
+  ASSERT_EQ(strict.status, 0) << strict.err;
+  EXPECT_NE(strict.err.find("4 epochs, 0 with a fix"), std::string::npos) << strict.err;
+  TempDir dir;
+  const std::string cfg =
+      dir.write("no_test.toml", config_text(nav_path("brdc0010.22n"), "[receiver.solver]\nresidual_test_pfa = 0.0\n"));
+  const CliResult r = run({"spp", "--obs", obs_path("LARM0010.22O"), "--nav", nav_path("brdc0010.22n"), "--station",
+                           "4549397.1706,1874003.1392,4045167.6109", "--config", cfg});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Csv csv = parse_csv(r.out);
+  ASSERT_EQ(csv.rows.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_LT(std::hypot(csv.num(i, "e_m"), csv.num(i, "n_m")), 3.0);
+    EXPECT_LT(std::fabs(csv.num(i, "u_m")), 5.0);
+  }
+}
+
+TEST(Spp, MaskRemovesLowSatellites) {
+  const CliResult lo = run({"spp", "--obs", kNyaObs, "--nav", kNyaNav, "--mask", "5"});
+  const CliResult hi = run({"spp", "--obs", kNyaObs, "--nav", kNyaNav, "--mask", "30"});
+  ASSERT_EQ(lo.status, 0);
+  ASSERT_EQ(hi.status, 0);
+  const Csv a = parse_csv(lo.out), b = parse_csv(hi.out);
+  ASSERT_FALSE(a.rows.empty());
+  double na = 0, nb = 0;
+  for (std::size_t i = 0; i < a.rows.size(); ++i) na += a.num(i, "nsat");
+  for (std::size_t i = 0; i < b.rows.size(); ++i) nb += b.num(i, "nsat");
+  EXPECT_GT(na / static_cast<double>(a.rows.size()),
+            nb / static_cast<double>(std::max<std::size_t>(b.rows.size(), 1)) + 2.0);
+}
+
+TEST(Spp, BadInputsGiveClearMessages) {
+  CliResult r = run({"spp", "--obs", obs_path("missing.rnx"), "--nav", kNyaNav});
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("missing.rnx: observation file not found"), std::string::npos) << r.err;
+  r = run({"spp", "--obs", kNyaObs, "--nav", nav_path("brdc0010.22n")});  // 2022 nav for 2024 data
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("outside the nav file"), std::string::npos) << r.err;
+  r = run({"spp", "--obs", kNyaObs, "--nav", kNyaNav, "--mask", "95"});
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("--mask"), std::string::npos) << r.err;
+  r = run({"spp", "--obs", kNyaObs, "--nav", kNyaNav, "--station", "1,2"});
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("--station"), std::string::npos) << r.err;
+  r = run({"spp", "--obs", std::string(GNSSEMU_TEST_DATA) + "/bad/obs_v3_bad_flag.rnx", "--nav", kNyaNav});
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("obs_v3_bad_flag.rnx:43: epoch flag 7"), std::string::npos) << r.err;
+}
+
+TEST(Calibrate, FitsNya1DayAndWritesALoadableConfig) {
+  TempDir dir;
+  const std::string out = dir.file("nya1.toml");
+  const CliResult r = run({"calibrate", "--obs", kNyaDay, "--nav", kNyaNav, "--station", kNyaStation, "--mask", "10",
+                           "--out", out});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Csv csv = parse_csv(r.out);
+  std::map<std::string, double> v;
+  for (std::size_t i = 0; i < csv.rows.size(); ++i) v[csv.cell(i, "parameter")] = csv.num(i, "value");
+  EXPECT_EQ(v["epochs"], 2880);
+  EXPECT_GT(v["residuals"], 25000);
+  // Residuals after broadcast orbits/clocks, Klobuchar and the standard
+  // troposphere at an IGS station: decimetres to a metre.
+  EXPECT_GT(v["residual_rms"], 0.3);
+  EXPECT_LT(v["residual_rms"], 1.5);
+  EXPECT_GT(v["gm_tau"], 600.0);  // single-point errors decorrelate over tens of minutes
+  EXPECT_LT(v["white_sigma"], v["residual_rms"]);
+  EXPECT_NEAR(v["gm_sigma"] * v["gm_sigma"] + v["white_sigma"] * v["white_sigma"],
+              v["residual_rms"] * v["residual_rms"], 0.15);
+  EXPECT_GT(v["cn0_zenith"], 45.0);
+  EXPECT_LT(v["cn0_zenith"], 58.0);
+  EXPECT_LT(v["cn0_rms"], 3.0);
+  EXPECT_EQ(v["spp_fixes"], 2880);
+
+  // The config loads as is, and batch runs it at the station.
+  const config::Config c = config::load_config(out);
+  EXPECT_NEAR(c.receiver.errors.orbit_clock.sigma_m, v["gm_sigma"], 1e-4);
+  EXPECT_NEAR(c.receiver.errors.orbit_clock.tau_s, v["gm_tau"], 1e-2 * v["gm_tau"]);
+  EXPECT_NEAR(c.receiver.elevation_mask_rad * 180.0 / 3.14159265358979, 10.0, 1e-9);
+  EXPECT_NEAR(c.origin.lat_rad * 180.0 / 3.14159265358979, 78.93, 0.01);
+  const std::string truth = dir.write("truth.csv",
+                                      "gps_week,tow_s,x_m,y_m,z_m\n"
+                                      "2312,432000,1202434.1303,252632.2212,6237772.4351\n"
+                                      "2312,432600,1202434.1303,252632.2212,6237772.4351\n");
+  const CliResult b = run({"batch", "--config", out, "--truth", truth, "--errors", "-"});
+  ASSERT_EQ(b.status, 0) << b.err;
+  const Csv e = parse_csv(b.out);
+  ASSERT_EQ(e.rows.size(), 601u);
+  int fixes = 0;
+  for (std::size_t i = 0; i < e.rows.size(); ++i) fixes += e.cell(i, "fix_type") == "3";
+  EXPECT_GT(fixes, 590);
+}
+
+TEST(Calibrate, ErrorStatsAndGaussMarkovFit) {
+  // Exponential autocovariance 0.5^2 exp(-lag / 900 s) + white 0.2^2 at lag 0.
+  std::vector<double> acov;
+  for (int k = 0; k <= 120; ++k) acov.push_back(0.25 * std::exp(-30.0 * k / 900.0) + (k == 0 ? 0.04 : 0.0));
+  const cli::NoiseFit f = cli::fit_gauss_markov(acov, 30.0);
+  EXPECT_NEAR(f.gm_sigma_m, 0.5, 0.005);
+  EXPECT_NEAR(f.gm_tau_s, 900.0, 20.0);
+  EXPECT_NEAR(f.white_sigma_m, 0.2, 0.01);
+
+  // AR(1) series with phi = exp(-1/10): correlation time 10 steps.
+  std::vector<Enu> s;
+  double x = 0.0, y = 0.0, z = 0.0;
+  uint64_t state = 12345;
+  auto gauss = [&]() {
+    double u = 0.0;
+    for (int i = 0; i < 12; ++i) {
+      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+      u += static_cast<double>(state >> 11) / 9007199254740992.0;
+    }
+    return u - 6.0;
+  };
+  const double phi = std::exp(-0.1), q = std::sqrt(1 - phi * phi);
+  for (int i = 0; i < 20000; ++i) {
+    x = phi * x + q * gauss();
+    y = phi * y + q * gauss();
+    z = phi * z + 2.0 * q * gauss();
+    s.emplace_back(x, y, z);
+  }
+  const cli::ErrorStats st = cli::error_stats(s, 1.0);
+  EXPECT_EQ(st.n, 20000);
+  EXPECT_NEAR(st.sigma_e_m, 1.0, 0.1);
+  EXPECT_NEAR(st.sigma_u_m, 2.0, 0.2);
+  EXPECT_NEAR(st.corr_time_s, 10.0, 1.5);
+  // Rayleigh with sigma ~1: median 1.177, 95 % 2.448.
+  EXPECT_NEAR(st.cep50_m, 1.177, 0.12);
+  EXPECT_NEAR(st.cep95_m, 2.448, 0.25);
+}
+
+TEST(Calibrate, NeedsStationAndEnoughData) {
+  TempDir dir;
+  CliResult r = run({"calibrate", "--obs", obs_path("LARM0010.22O"), "--nav", nav_path("brdc0010.22n"), "--station",
+                     "4549397.1706,1874003.1392,4045167.6109", "--out", dir.file("x.toml")});
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("only 4 epochs"), std::string::npos) << r.err;
+  r = run({"calibrate", "--obs", kNyaObs, "--nav", kNyaNav, "--station", "0,0,0", "--out", dir.file("x.toml")});
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("not near the surface"), std::string::npos) << r.err;
+}

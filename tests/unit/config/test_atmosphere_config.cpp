@@ -1,0 +1,260 @@
+// [atmosphere], [signal], [receiver.corrections]: every key parsed, exact
+// round trip through to_toml, default.toml equal to the struct defaults, and
+// every bad value an error naming file:line.
+#include <string>
+
+#include "test_helpers.hpp"
+
+namespace gnssemu::config::test {
+namespace {
+
+// Every new key, each different from its default; kBase is lines 1-6.
+const std::string kAll = kBase + R"(
+[receiver.errors]
+thermal_model = "fixed"
+[receiver.solver]
+sigma_c_m_sqrt_hz = 95.5
+[receiver.corrections]
+ionosphere = "none"
+troposphere = "zhd_niell"
+
+[atmosphere]
+cache_refresh_s = 30
+cache_mode = "hold"
+gases = false
+water_vapour_density_g_m3 = 12.5
+water_vapour_scale_height_m = 1800
+
+[atmosphere.ionosphere]
+enabled = false
+vtec_source = "fixed"
+vtec_tecu = 42.5
+klobuchar_scale = 1.7
+mapping = "thin_shell"
+obliquity_pivot_deg = 96
+shell_height_m = 450000
+[atmosphere.ionosphere.perturbation]
+sigma_tecu = 2.5
+tau_s = 900
+
+[atmosphere.troposphere]
+enabled = false
+zhd_model = "saastamoinen"
+zhd_a_m = 2.25
+zhd_b_per_m = 1.3e-4
+zwd_model = "saastamoinen"
+zwd_m = 0.21
+zwd_scale_height_m = 1500
+rel_humidity = 0.55
+[atmosphere.troposphere.zwd_perturbation]
+sigma_m = 0.035
+tau_s = 7200
+
+[atmosphere.shells.stratosphere]
+enabled = false
+bottom_m = 11000
+top_m = 48000
+temperature_k = 230.5
+gas_absorption = false
+
+[[atmosphere.clouds]]
+preset = "cumulus"
+temperature_k = 270.5
+
+[[atmosphere.clouds]]
+base_m = 200
+thickness_m = 350.5
+liquid_water_g_m3 = 0.42
+temperature_k = 280
+
+[atmosphere.rain]
+rate_mm_h = 100
+rain_height_m = 4200
+k = 6.0e-5
+alpha = 0.95
+
+[signal]
+enabled = false
+environment = "urban"
+eirp_dbw = 27.5
+noise_figure_db = 1.5
+noise_temperature_k = 300
+implementation_loss_db = 1.25
+acquire_dbhz = 33
+lose_dbhz = 28.5
+
+[signal.antenna]
+zenith_gain_dbi = 5.5
+horizon_gain_dbi = -8.5
+below_horizon_slope_db_per_deg = 0.5
+
+[signal.dll]
+loop_bandwidth_hz = 1.0
+integration_s = 0.005
+spacing_chips = 0.1
+discriminator = "dot_product"
+)";
+
+void expect_same_models(const receiver::ReceiverConfig& a, const receiver::ReceiverConfig& b) {
+  EXPECT_EQ(a.errors.thermal_model, b.errors.thermal_model);
+  EXPECT_EQ(a.solver.sigma_c_m_sqrt_hz, b.solver.sigma_c_m_sqrt_hz);
+  EXPECT_EQ(a.solver.iono, b.solver.iono);
+  EXPECT_EQ(a.solver.tropo, b.solver.tropo);
+  const receiver::AtmosphereConfig &x = a.atmosphere, &y = b.atmosphere;
+  EXPECT_EQ(x.cache_refresh_s, y.cache_refresh_s);
+  EXPECT_EQ(x.cache_mode, y.cache_mode);
+  EXPECT_EQ(x.gases, y.gases);
+  EXPECT_EQ(x.shells.gas.water_vapour_density_g_m3, y.shells.gas.water_vapour_density_g_m3);
+  EXPECT_EQ(x.shells.gas.water_vapour_scale_height_m, y.shells.gas.water_vapour_scale_height_m);
+  EXPECT_EQ(x.ionosphere.enabled, y.ionosphere.enabled);
+  EXPECT_EQ(x.ionosphere.source, y.ionosphere.source);
+  EXPECT_EQ(x.ionosphere.vtec_tecu, y.ionosphere.vtec_tecu);
+  EXPECT_EQ(x.ionosphere.klobuchar_scale, y.ionosphere.klobuchar_scale);
+  EXPECT_EQ(x.ionosphere.mapping, y.ionosphere.mapping);
+  EXPECT_EQ(x.ionosphere.obliquity_pivot_deg, y.ionosphere.obliquity_pivot_deg);
+  EXPECT_EQ(x.ionosphere.shell_height_m, y.ionosphere.shell_height_m);
+  EXPECT_EQ(x.ionosphere.perturbation.sigma, y.ionosphere.perturbation.sigma);
+  EXPECT_EQ(x.ionosphere.perturbation.tau_s, y.ionosphere.perturbation.tau_s);
+  EXPECT_EQ(x.troposphere.enabled, y.troposphere.enabled);
+  EXPECT_EQ(x.troposphere.zhd_model, y.troposphere.zhd_model);
+  EXPECT_EQ(x.troposphere.zhd_a_m, y.troposphere.zhd_a_m);
+  EXPECT_EQ(x.troposphere.zhd_b_per_m, y.troposphere.zhd_b_per_m);
+  EXPECT_EQ(x.troposphere.zwd_model, y.troposphere.zwd_model);
+  EXPECT_EQ(x.troposphere.zwd_m, y.troposphere.zwd_m);
+  EXPECT_EQ(x.troposphere.zwd_scale_height_m, y.troposphere.zwd_scale_height_m);
+  EXPECT_EQ(x.troposphere.rel_humidity, y.troposphere.rel_humidity);
+  EXPECT_EQ(x.zwd_perturbation.sigma_m, y.zwd_perturbation.sigma_m);
+  EXPECT_EQ(x.zwd_perturbation.tau_s, y.zwd_perturbation.tau_s);
+  for (std::size_t i = 0; i < atmosphere::kShellCount; ++i) {
+    const atmosphere::Shell &s = x.shells.shells[i], &t = y.shells.shells[i];
+    EXPECT_EQ(s.enabled, t.enabled) << i;
+    EXPECT_EQ(s.bottom_m, t.bottom_m) << i;
+    EXPECT_EQ(s.top_m, t.top_m) << i;
+    EXPECT_EQ(s.temperature_k, t.temperature_k) << i;
+    EXPECT_EQ(s.gas_absorption, t.gas_absorption) << i;
+  }
+  ASSERT_EQ(x.clouds_rain.layer_count, y.clouds_rain.layer_count);
+  for (std::size_t i = 0; i < x.clouds_rain.layer_count; ++i) {
+    const atmosphere::CloudLayer &l = x.clouds_rain.layers[i], &m = y.clouds_rain.layers[i];
+    EXPECT_EQ(l.base_m, m.base_m);
+    EXPECT_EQ(l.thickness_m, m.thickness_m);
+    EXPECT_EQ(l.liquid_water_g_m3, m.liquid_water_g_m3);
+    EXPECT_EQ(l.temperature_k, m.temperature_k);
+  }
+  EXPECT_EQ(x.clouds_rain.rain.rate_mm_h, y.clouds_rain.rain.rate_mm_h);
+  EXPECT_EQ(x.clouds_rain.rain.rain_height_m, y.clouds_rain.rain.rain_height_m);
+  EXPECT_EQ(x.clouds_rain.rain.k, y.clouds_rain.rain.k);
+  EXPECT_EQ(x.clouds_rain.rain.alpha, y.clouds_rain.rain.alpha);
+  const receiver::SignalConfig &s = a.signal, &t = b.signal;
+  EXPECT_EQ(s.enabled, t.enabled);
+  EXPECT_EQ(s.link.environment_noise_rise_db, t.link.environment_noise_rise_db);
+  EXPECT_EQ(s.link.eirp_dbw, t.link.eirp_dbw);
+  EXPECT_EQ(s.link.noise_figure_db, t.link.noise_figure_db);
+  EXPECT_EQ(s.link.noise_temperature_k, t.link.noise_temperature_k);
+  EXPECT_EQ(s.link.implementation_loss_db, t.link.implementation_loss_db);
+  EXPECT_EQ(s.tracking.acquire_dbhz, t.tracking.acquire_dbhz);
+  EXPECT_EQ(s.tracking.lose_dbhz, t.tracking.lose_dbhz);
+  EXPECT_EQ(s.link.antenna.zenith_gain_dbi, t.link.antenna.zenith_gain_dbi);
+  EXPECT_EQ(s.link.antenna.horizon_gain_dbi, t.link.antenna.horizon_gain_dbi);
+  EXPECT_EQ(s.link.antenna.below_horizon_slope_db_per_deg, t.link.antenna.below_horizon_slope_db_per_deg);
+  EXPECT_EQ(s.dll.loop_bandwidth_hz, t.dll.loop_bandwidth_hz);
+  EXPECT_EQ(s.dll.integration_s, t.dll.integration_s);
+  EXPECT_EQ(s.dll.spacing_chips, t.dll.spacing_chips);
+  EXPECT_EQ(s.dll.discriminator, t.dll.discriminator);
+}
+
+TEST(AtmosphereConfig, EveryKeyParsed) {
+  const receiver::ReceiverConfig r = parse(kAll).receiver;
+  EXPECT_EQ(r.errors.thermal_model, receiver::ThermalModel::kFixed);
+  EXPECT_EQ(r.solver.tropo, atmosphere::TropoCorrection::kZhdNiell);
+  EXPECT_EQ(r.atmosphere.cache_mode, atmosphere::CacheMode::kHold);
+  EXPECT_EQ(r.atmosphere.ionosphere.mapping, atmosphere::IonoMapping::kThinShell);
+  EXPECT_EQ(r.atmosphere.ionosphere.perturbation.sigma, 2.5);
+  EXPECT_EQ(r.atmosphere.zwd_perturbation.tau_s, 7200.0);
+  EXPECT_EQ(r.atmosphere.shells.shells[1].top_m, 48000.0);
+  EXPECT_EQ(r.atmosphere.shells.shells[0].top_m, 12000.0);  // untouched shell keeps its default
+  ASSERT_EQ(r.atmosphere.clouds_rain.layer_count, 2u);
+  // The cumulus preset (1 km + 1.5 km, 1 g/m^3) with its temperature overridden.
+  EXPECT_EQ(r.atmosphere.clouds_rain.layers[0].base_m, 1000.0);
+  EXPECT_EQ(r.atmosphere.clouds_rain.layers[0].thickness_m, 1500.0);
+  EXPECT_EQ(r.atmosphere.clouds_rain.layers[0].liquid_water_g_m3, 1.0);
+  EXPECT_EQ(r.atmosphere.clouds_rain.layers[0].temperature_k, 270.5);
+  EXPECT_EQ(r.atmosphere.clouds_rain.layers[1].thickness_m, 350.5);
+  EXPECT_EQ(r.atmosphere.clouds_rain.rain.rate_mm_h, 100.0);
+  EXPECT_EQ(r.signal.link.environment_noise_rise_db, 6.0);  // "urban"
+  EXPECT_EQ(r.signal.tracking.lose_dbhz, 28.5);
+  EXPECT_EQ(r.signal.link.antenna.horizon_gain_dbi, -8.5);
+  EXPECT_EQ(r.signal.dll.discriminator, signal::DllDiscriminator::kDotProduct);
+  EXPECT_FALSE(r.signal.enabled);
+}
+
+TEST(AtmosphereConfig, RoundTripIsExact) {
+  const Config c = parse(kAll);
+  const std::string text = to_toml(c, kData);
+  const Config back = parse_config(text, "written.toml", kData);
+  expect_same_models(c.receiver, back.receiver);
+  EXPECT_EQ(to_toml(back, kData), text);
+  // The struct defaults too.
+  const Config d = parse(kBase);
+  expect_same_models(d.receiver, parse(to_toml(d, kData)).receiver);
+}
+
+TEST(AtmosphereConfig, DefaultTomlIsTheStructDefaults) {
+  const Config shipped = load_config(kSource + "/config/default.toml");
+  expect_same_models(shipped.receiver, receiver::ReceiverConfig{});
+}
+
+struct Bad {
+  std::string text;
+  std::string message;  // expected substring, starting with "t.toml:LINE:"
+};
+
+TEST(AtmosphereConfig, BadValuesNameFileAndLine) {
+  const Bad cases[] = {
+      {"[[atmosphere.clouds]]\nbase_m = 100\nthickness_m = -5\nliquid_water_g_m3 = 0.3\n",
+       "t.toml:9: atmosphere.clouds[0].thickness_m: negative thickness -5 m"},
+      {"[atmosphere.shells.mesosphere]\nbottom_m = 50000\ntop_m = 40000\n",
+       "t.toml:9: atmosphere.shells.mesosphere: negative thickness (top_m 40000 m < bottom_m 50000 m)"},
+      {"[atmosphere.shells.troposphere]\ntemperature_k = 0\n",
+       "t.toml:8: atmosphere.shells.troposphere.temperature_k: 0 is out of range (0, 5000] K"},
+      {"[[atmosphere.clouds]]\npreset = \"fog\"\ntemperature_k = -3\n",
+       "t.toml:9: atmosphere.clouds[0].temperature_k: -3 is out of range (0, 5000] K"},
+      {"[signal]\nnoise_temperature_k = 0.0\n", "t.toml:8: signal.noise_temperature_k: 0 is out of range (0, 5000] K"},
+      {"[[atmosphere.clouds]]\npreset = \"nimbus\"\n",
+       "t.toml:8: atmosphere.clouds[0].preset: unknown cloud preset 'nimbus' (known: fog, thick_fog, stratus, "
+       "cumulus, cumulonimbus, thunderstorm)"},
+      {"[signal]\nenvironment = \"desert\"\n",
+       "t.toml:8: signal.environment: unknown environment noise preset 'desert' (known: countryside, suburban, "
+       "urban, industrial, jamming)"},
+      {"[signal]\nenvironment = \"urban\"\nnoise_rise_db = 3\n",
+       "t.toml:9: signal.noise_rise_db: give either environment or noise_rise_db, not both"},
+      {"[signal]\nacquire_dbhz = 28\nlose_dbhz = 30\n",
+       "t.toml:9: signal: lose_dbhz 30 exceeds acquire_dbhz 28 (hysteresis needs lose <= acquire)"},
+      {"[signal.antenna]\nzenith_gain_dbi = -2\nhorizon_gain_dbi = 1\n",
+       "t.toml:9: signal.antenna: horizon_gain_dbi 1 exceeds zenith_gain_dbi -2"},
+      {"[atmosphere.ionosphere]\nmapping = \"flat\"\n",
+       "t.toml:8: atmosphere.ionosphere.mapping: 'flat' is not one of \"obliquity\", \"thin_shell\""},
+      {"[receiver.corrections]\ntroposphere = \"hopfield\"\n",
+       "t.toml:8: receiver.corrections.troposphere: 'hopfield' is not one of \"saastamoinen\", \"zhd_niell\", \"none\""},
+      {"[atmosphere.ionosphere]\nvtec_tecu = -1\n", "t.toml:8: atmosphere.ionosphere.vtec_tecu: -1 is out of range"},
+      {"[atmosphere.rain]\nrate_mm_h = 600\n", "t.toml:8: atmosphere.rain.rate_mm_h: 600 is out of range [0, 500] mm/h"},
+      {"[atmosphere]\ncache_refresh_s = -1\n", "t.toml:8: atmosphere.cache_refresh_s: -1 is out of range"},
+      {"[atmosphere.troposphere.zwd_perturbation]\ntau_s = 0\n",
+       "t.toml:8: atmosphere.troposphere.zwd_perturbation.tau_s: 0 is out of range"},
+      {"[signal.dll]\nspacing_chips = 1.5\n", "t.toml:8: signal.dll.spacing_chips: 1.5 is out of range (0, 1] chips"},
+      {"[[atmosphere.clouds]]\nbase_m = 100\n",
+       "t.toml:7: missing required key (or a preset) 'atmosphere.clouds[0].thickness_m'"},
+      {"[atmosphere.ionosphere]\nenabeld = true\n",
+       "t.toml:8: unknown key 'atmosphere.ionosphere.enabeld' (did you mean 'enabled'?)"},
+  };
+  for (const Bad& b : cases) {
+    const std::string err = error_of(kBase + b.text);
+    EXPECT_NE(err.find(b.message), std::string::npos) << b.text << "\n got: " << err;
+  }
+  std::string nine;
+  for (int i = 0; i < 9; ++i) nine += "[[atmosphere.clouds]]\npreset = \"fog\"\n";
+  EXPECT_NE(error_of(kBase + "\n" + nine).find("at most 8 layers, got 9"), std::string::npos) << error_of(kBase + nine);
+}
+
+}  // namespace
+}  // namespace gnssemu::config::test

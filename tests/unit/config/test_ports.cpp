@@ -1,0 +1,185 @@
+// [[output]] port types, protocols, message sets and rates: parsing, exact
+// file:line errors and the to_toml round trip.
+#include "config/message_names.hpp"
+#include "test_helpers.hpp"
+
+namespace gnssemu::config::test {
+namespace {
+
+const std::string kAllTypes = kBase +
+                              "[[output]]\n"                          // 7
+                              "name = \"fc\"\n"                       // 8
+                              "type = \"serial\"\n"                   // 9
+                              "device = \"/dev/ttyUSB0\"\n"           // 10
+                              "baud = 38400\n"                        // 11
+                              "protocols_in = [\"ubx\"]\n"            // 12
+                              "protocols_out = [\"ubx\"]\n"           // 13
+                              "ubx_messages = [\"NAV-SAT\", \"NAV-PVT\", \"MON-HW\"]\n"
+                              "rates = { NAV-SAT = 5, MON-HW = 10 }\n"
+                              "[[output]]\n"
+                              "name = \"net\"\n"
+                              "type = \"tcp\"\n"
+                              "port = 2947\n"
+                              "sentences = [\"GGA\", \"GSV\"]\n"
+                              "rates = { GSV = 4 }\n"
+                              "[[output]]\n"
+                              "name = \"bcast\"\n"
+                              "type = \"udp\"\n"
+                              "address = \"127.0.0.1\"\n"
+                              "port = 10110\n"
+                              "[[output]]\n"
+                              "name = \"log\"\n"
+                              "type = \"file\"\n"
+                              "path = \"out/x.ubx\"\n"
+                              "protocols_out = [\"ubx\"]\n"
+                              "ubx_messages = [\"NAV-PVT\"]\n";
+
+TEST(ConfigPorts, EveryTypeParses) {
+  const Config c = parse(kAllTypes);
+  ASSERT_EQ(c.outputs.size(), 4u);
+  const OutputPortConfig& s = c.outputs[0];
+  EXPECT_EQ(s.type, PortType::kSerial);
+  EXPECT_EQ(s.path, "/dev/ttyUSB0");
+  EXPECT_EQ(s.baud, 38400u);
+  EXPECT_EQ(s.protocols_in, kProtoUbx);
+  EXPECT_EQ(s.protocols_out, kProtoUbx);
+  // Stored in epoch order (NAV-PVT first), whatever the order in the file.
+  ASSERT_EQ(s.ubx_messages.size(), 3u);
+  EXPECT_EQ(s.ubx_messages[0], (MessageRate{0x01, 0x07, 1}));
+  EXPECT_EQ(s.ubx_messages[1], (MessageRate{0x01, 0x35, 5}));
+  EXPECT_EQ(s.ubx_messages[2], (MessageRate{0x0A, 0x09, 10}));
+
+  const OutputPortConfig& t = c.outputs[1];
+  EXPECT_EQ(t.type, PortType::kTcp);
+  EXPECT_EQ(t.address, "127.0.0.1");  // default bind: loopback only
+  EXPECT_EQ(t.port, 2947);
+  EXPECT_EQ(t.baud, 0u);  // no line budget by default
+  EXPECT_EQ(t.protocols_in, kProtoUbx | kProtoNmea);
+  ASSERT_EQ(t.nmea_rates.size(), 1u);
+  EXPECT_EQ(t.nmea_rates[0], (MessageRate{kNmeaClass, 0x03, 4}));
+  const std::vector<MessageRate> all = message_rates(t);
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all[0], (MessageRate{kNmeaClass, 0x00, 1}));  // GGA
+  EXPECT_EQ(all[1], (MessageRate{kNmeaClass, 0x03, 4}));  // GSV every 4th epoch
+
+  const OutputPortConfig& u = c.outputs[2];
+  EXPECT_EQ(u.type, PortType::kUdp);
+  EXPECT_EQ(u.address, "127.0.0.1");
+  EXPECT_EQ(u.port, 10110);
+  EXPECT_EQ(u.protocols_in, 0);  // output only
+
+  const OutputPortConfig& f = c.outputs[3];
+  EXPECT_EQ(f.path, kData + "/out/x.ubx");
+  EXPECT_EQ(f.protocols_in, 0);
+  EXPECT_EQ(message_rates(f).size(), 1u + 6u);  // NAV-PVT + default sentences
+}
+
+TEST(ConfigPorts, DefaultsAreAFactoryM8) {
+  const Config c = parse(kBase + "[[output]]\nname = \"a\"\npath = \"/tmp/a\"\n");
+  const OutputPortConfig& p = c.outputs.at(0);
+  EXPECT_EQ(p.type, PortType::kPty);
+  EXPECT_EQ(p.baud, 9600u);
+  EXPECT_EQ(p.protocols_in, kProtoUbx | kProtoNmea);
+  EXPECT_EQ(p.protocols_out, kProtoUbx | kProtoNmea);
+  EXPECT_TRUE(p.ubx_messages.empty());
+  EXPECT_TRUE(p.nmea_rates.empty());
+}
+
+TEST(ConfigPorts, RoundTrip) {
+  const Config c = parse(kAllTypes);
+  const Config back = parse(to_toml(c, kData));
+  ASSERT_EQ(back.outputs.size(), c.outputs.size());
+  for (std::size_t i = 0; i < c.outputs.size(); ++i) {
+    SCOPED_TRACE(i);
+    const OutputPortConfig& a = c.outputs[i];
+    const OutputPortConfig& b = back.outputs[i];
+    EXPECT_EQ(a.type, b.type);
+    EXPECT_EQ(a.path, b.path);
+    EXPECT_EQ(a.address, b.address);
+    EXPECT_EQ(a.port, b.port);
+    EXPECT_EQ(a.baud, b.baud);
+    EXPECT_EQ(a.protocols_in, b.protocols_in);
+    EXPECT_EQ(a.protocols_out, b.protocols_out);
+    EXPECT_EQ(a.ubx_messages, b.ubx_messages);
+    EXPECT_EQ(a.nmea_rates, b.nmea_rates);
+  }
+  // Written once more, the text is the same (a fixed point).
+  EXPECT_EQ(to_toml(back, kData), to_toml(c, kData));
+}
+
+TEST(ConfigPorts, MessageNames) {
+  EXPECT_EQ(message_name(0x01, 0x07), "NAV-PVT");
+  EXPECT_EQ(message_name(kNmeaClass, 0x03), "GSV");
+  EXPECT_EQ(message_name(0x7F, 0x7F), "");
+  ASSERT_TRUE(message_by_name("MON-HW").has_value());
+  EXPECT_EQ(message_by_name("MON-HW")->msg_id, 0x09);
+  EXPECT_FALSE(message_by_name("nav-pvt").has_value());
+}
+
+std::string port(const std::string& body) { return kBase + "[[output]]\nname = \"a\"\n" + body; }
+
+TEST(ConfigPorts, Errors) {
+  // Line numbers: [[output]] is line 7, name line 8, body from line 9.
+  EXPECT_EQ(error_of(port("type = \"serial\"\npath = \"/dev/ttyS0\"\n")),
+            "t.toml:10: output[0].path: not used by a port of type \"serial\" (only \"pty\" or \"file\")");
+  EXPECT_EQ(error_of(port("type = \"serial\"\ndevice = \"ttyS0\"\n")),
+            "t.toml:10: output[0].device: serial device 'ttyS0' must be an absolute path (e.g. /dev/ttyUSB0)");
+  EXPECT_EQ(error_of(port("type = \"serial\"\n")), "t.toml:7: missing required key 'output[0].device' in [output[0]]");
+  EXPECT_EQ(error_of(port("type = \"udp\"\nport = 5\n")),
+            "t.toml:7: missing required key 'output[0].address' in [output[0]]");
+  EXPECT_EQ(error_of(port("type = \"udp\"\naddress = \"localhost\"\nport = 5\n")),
+            "t.toml:10: output[0].address: 'localhost' is not an IPv4 or IPv6 address");
+  EXPECT_EQ(error_of(port("type = \"udp\"\naddress = \"127.0.0.1\"\nport = 0\n")),
+            "t.toml:11: output[0].port: 0 is out of range [1, 65535]");
+  EXPECT_EQ(error_of(port("type = \"udp\"\naddress = \"127.0.0.1\"\nport = 9\nprotocols_in = [\"ubx\"]\n")),
+            "t.toml:12: output[0].protocols_in: a port of type \"udp\" has no input; use []");
+  EXPECT_EQ(error_of(port("type = \"tcp\"\ndevice = \"/dev/x\"\n")),
+            "t.toml:10: output[0].device: not used by a port of type \"tcp\" (only \"serial\")");
+  EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nport = 4\n")),
+            "t.toml:10: output[0].port: not used by a port of type \"pty\" (only \"tcp\" or \"udp\")");
+  EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nprotocols_out = [\"ubx\", \"rtcm\"]\n")),
+            "t.toml:10: output[0].protocols_out: unknown protocol 'rtcm' (known: \"ubx\", \"nmea\")");
+  EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nprotocols_out = [\"ubx\", \"ubx\"]\n")),
+            "t.toml:10: output[0].protocols_out: 'ubx' listed twice");
+  EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nubx_messages = [\"NAV-PVT\", \"NAV-XYZ\"]\n")),
+            "t.toml:10: output[0].ubx_messages: unknown UBX message 'NAV-XYZ' (known: NAV-PVT NAV-POSLLH "
+            "NAV-VELNED NAV-STATUS NAV-DOP NAV-SOL NAV-TIMEUTC NAV-SAT NAV-SVINFO MON-HW NAV-EOE)");
+  EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nubx_messages = [\"NAV-PVT\", \"NAV-PVT\"]\n")),
+            "t.toml:10: output[0].ubx_messages: 'NAV-PVT' listed twice");
+  // A set whose protocol is off is kept: a host may turn the protocol on (CFG-PRT, $PUBX,41).
+  EXPECT_EQ(parse(port("path = \"/tmp/a\"\nprotocols_out = [\"nmea\"]\nubx_messages = [\"NAV-PVT\"]\n"))
+                .outputs.at(0).ubx_messages.size(), 1u);
+  EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nrates = { NAV-PVT = 2 }\n")),
+            "t.toml:10: output[0].rates.NAV-PVT: 'NAV-PVT' is not in ubx_messages");
+  EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nrates = { GST = 2 }\n")),
+            "t.toml:10: output[0].rates.GST: 'GST' is not in sentences");
+  EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nrates = { GSV = 0 }\n")),
+            "t.toml:10: output[0].rates.GSV: 0 is out of range [1, 255] (epochs per message; leave a message "
+            "out to turn it off)");
+  EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nrates = { GSV = 2.5 }\n")),
+            "t.toml:10: output[0].rates.GSV: expected an integer, got a float");
+  EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nrates = { XYZ = 2 }\n")),
+            "t.toml:10: output[0].rates.XYZ: unknown message 'XYZ'");
+  EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nrates = 2\n")),
+            "t.toml:10: output[0].rates: expected a table of message = rate (e.g. { NAV-SAT = 5 }), got an integer");
+  EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nbaud = 0\n")),
+            "t.toml:10: output[0].baud: 0 is out of range [1, 4294967295]");
+  EXPECT_EQ(error_of(port("type = \"tcp\"\nbaud = 1000\n")),
+            "t.toml:10: output[0].baud: 1000 is not a standard rate (4800 9600 19200 38400 57600 115200 230400 "
+            "460800 921600) or 0 (no line budget)");
+  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"a\"\ntype = \"tcp\"\nport = 7000\n"
+                             "[[output]]\nname = \"b\"\ntype = \"tcp\"\nport = 7000\n"),
+            "t.toml:14: output[1].port: tcp port 7000 is already used by output 'a'");
+  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"a\"\ntype = \"serial\"\ndevice = \"/dev/ttyS0\"\n"
+                             "[[output]]\nname = \"b\"\ntype = \"serial\"\ndevice = \"/dev/ttyS0\"\n"),
+            "t.toml:14: output[1].device: '/dev/ttyS0' is already used by output 'a'");
+}
+
+TEST(ConfigPorts, TwoTcpPortsOnAnyPortAreFine) {
+  const Config c = parse(kBase + "[[output]]\nname = \"a\"\ntype = \"tcp\"\n[[output]]\nname = \"b\"\ntype = \"tcp\"\n");
+  EXPECT_EQ(c.outputs.at(0).port, 0);
+  EXPECT_EQ(c.outputs.at(1).port, 0);
+}
+
+}  // namespace
+}  // namespace gnssemu::config::test

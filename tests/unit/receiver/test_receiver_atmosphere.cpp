@@ -1,0 +1,321 @@
+// The world's atmosphere and signal inside the receiver: delays and C/N0 as
+// the models say, the receiver's broadcast corrections, tracking thresholds,
+// stages off costing nothing, caching, determinism, no allocation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/atmosphere/ionosphere.hpp"
+#include "core/atmosphere/klobuchar.hpp"
+#include "core/atmosphere/troposphere.hpp"
+#include "core/geo/geodesy.hpp"
+#include "core/orbit/ephemeris_store.hpp"
+#include "core/orbit/rinex_nav.hpp"
+#include "core/receiver/receiver.hpp"
+#include "core/signal/link_budget.hpp"
+#include "synthetic_sky.hpp"
+#include "tests/support/alloc_counter.hpp"
+
+namespace gnssemu::receiver {
+namespace {
+
+using test::expect_consistent;
+
+const time::GpsTime kToe(2190, 200000.0);
+const Lla kSite{45.0 * kDegToRad, 7.0 * kDegToRad, 300.0};
+
+Truth truth_at(const Ecef& pos, const time::GpsTime& t) {
+  Truth tr;
+  tr.t = t;
+  tr.pos_m = pos;
+  tr.valid = true;
+  return tr;
+}
+
+/// Deterministic world (no random processes) with the given atmosphere.
+ReceiverConfig noiseless(ReceiverConfig c = {}) {
+  c.errors.orbit_clock.sigma_m = 0.0;
+  c.errors.thermal_model = ThermalModel::kFixed;
+  c.errors.thermal_sigma_m = 0.0;
+  c.errors.doppler_sigma_m_s = 0.0;
+  c.clock.drift_noise_s_s_sqrt_s = 0.0;
+  c.atmosphere.ionosphere.perturbation.sigma = 0.0;
+  c.atmosphere.zwd_perturbation.sigma_m = 0.0;
+  c.atmosphere.cache_refresh_s = 0.0;
+  return c;
+}
+
+/// A world whose atmosphere is exactly what the receiver models: Klobuchar
+/// shape x 1 with Klobuchar's own slant factor, Saastamoinen ZHD + ZWD.
+ReceiverConfig world_equals_receiver_models() {
+  ReceiverConfig c = noiseless();
+  c.atmosphere.troposphere.zhd_model = atmosphere::ZhdModel::kSaastamoinen;
+  c.atmosphere.troposphere.zwd_model = atmosphere::ZwdModel::kSaastamoinen;
+  c.atmosphere.troposphere.rel_humidity = 0.7;
+  return c;
+}
+
+double doy_of(const time::GpsTime& t) { return t.day_of_year() + std::fmod(t.tow_s(), 86400.0) / 86400.0; }
+
+TEST(ReceiverAtmosphere, WorldDelaysAreTheConfiguredModels) {
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  ReceiverConfig cfg = noiseless();
+  cfg.atmosphere.ionosphere.source = atmosphere::VtecSource::kFixed;
+  cfg.atmosphere.ionosphere.vtec_tecu = 25.0;
+  Receiver rx(store, cfg);
+  const Ecef pos = geo::ecef_from_lla(kSite);
+  const Fix& f = rx.step(kToe, truth_at(pos, kToe));
+  ASSERT_EQ(f.type, FixType::k3D);
+  const atmosphere::Troposphere tropo(cfg.atmosphere.troposphere);
+  const signal::LinkBudgetModel link(cfg.signal.link);
+  int checked = 0;
+  for (int i = 0; i < f.num_sats; ++i) {
+    const SatInfo& s = f.sats[i];
+    if (!s.tracked) continue;
+    const PathEffects& e = rx.path_effects(s.prn);
+    // 25 TECU x 0.16237 m/TECU x (1 + 16 (0.53 - E)^3).
+    EXPECT_NEAR(e.iono_m, 25.0 * 0.1623718 * atmosphere::klobuchar_slant_factor(s.el_rad), 1e-4);
+    EXPECT_NEAR(e.tropo_m, tropo.slant_delay_m(kSite.lat_rad, kSite.height_m, s.el_rad, doy_of(kToe)), 1e-9);
+    EXPECT_NEAR(e.delay_m, e.iono_m + e.tropo_m, 1e-12);
+    EXPECT_GT(e.loss_db, 0.04);  // gases: 0.046 dB at the zenith, more lower down
+    EXPECT_LT(e.loss_db, 0.6);
+    EXPECT_GT(e.tropo_m, 2.2);
+    EXPECT_NEAR(s.cn0_dbhz, link.cn0_dbhz((s.pseudorange_m - e.delay_m - kSpeedOfLight_m_s * rx.true_clock_bias_s()), s.el_rad, e.loss_db), 0.01);
+    ++checked;
+  }
+  EXPECT_GE(checked, 6);
+}
+
+TEST(ReceiverAtmosphere, ExactWhenTheWorldIsTheReceiversModel) {
+  const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
+  const orbit::EphemerisStore store(nav.ephemerides);
+  Receiver rx(store, world_equals_receiver_models());
+  rx.set_klobuchar(nav.klobuchar);
+  const Ecef larm(4549397.1706, 1874003.1392, 4045167.6109);
+  const time::GpsTime t0 = time::GpsTime::from_calendar({2022, 1, 1, 10, 0, 0.0});
+  for (int k = 0; k < 12; ++k) {
+    const time::GpsTime t = t0 + 300.0 * k;
+    const Fix& f = rx.step(t, truth_at(larm, t));
+    ASSERT_EQ(f.type, FixType::k3D);
+    expect_consistent(f);
+    // Iono several metres and tropo 2.3-25 m are removed to a few mm (the
+    // receiver evaluates them at its estimate, within 5 m of the truth).
+    EXPECT_LT((f.pos_m - larm).norm(), 0.02) << k;
+    double max_delay = 0.0;
+    for (int i = 0; i < f.num_sats; ++i)
+      if (f.sats[i].used) max_delay = std::max(max_delay, rx.path_effects(f.sats[i].prn).delay_m);
+    EXPECT_GT(max_delay, 10.0);
+  }
+}
+
+TEST(ReceiverAtmosphere, CorrectionsRemoveMostOfTheDelay) {
+  const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
+  const orbit::EphemerisStore store(nav.ephemerides);
+  ReceiverConfig with = noiseless();
+  ReceiverConfig without = with;
+  without.solver.iono = atmosphere::IonoCorrection::kNone;
+  without.solver.tropo = atmosphere::TropoCorrection::kNone;
+  Receiver a(store, with), b(store, without);
+  a.set_klobuchar(nav.klobuchar);
+  b.set_klobuchar(nav.klobuchar);
+  const Ecef larm(4549397.1706, 1874003.1392, 4045167.6109);
+  const time::GpsTime t0 = time::GpsTime::from_calendar({2022, 1, 1, 12, 0, 0.0});
+  double sum_a = 0.0, sum_b = 0.0;
+  for (int k = 0; k < 12; ++k) {
+    const time::GpsTime t = t0 + 300.0 * k;
+    const Fix& fa = a.step(t, truth_at(larm, t));
+    ASSERT_EQ(fa.type, FixType::k3D);
+    sum_a += (fa.pos_m - larm).norm();
+    const Fix& fb = b.step(t, truth_at(larm, t));
+    if (fb.type == FixType::k3D) sum_b += (fb.pos_m - larm).norm();
+  }
+  // World: Klobuchar shape x 1 (removed exactly), exponential ZHD + 0.1 m ZWD
+  // versus Saastamoinen: a few cm remain. Uncorrected: metres (mostly height).
+  EXPECT_LT(sum_a / 12.0, 0.15);
+  EXPECT_GT(sum_b / 12.0, 3.0);
+}
+
+TEST(ReceiverAtmosphere, TrackingThresholdsAndHysteresis) {
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  ReceiverConfig cfg;
+  cfg.signal.tracking.acquire_dbhz = 44.0;
+  cfg.signal.tracking.lose_dbhz = 20.0;
+  cfg.elevation_mask_rad = 0.0;
+  Receiver rx(store, cfg);
+  const Ecef pos = geo::ecef_from_lla(kSite);
+  std::array<bool, kMaxGpsPrn + 1> was_tracked{};
+  int kept_below_acquire = 0;
+  for (int k = 0; k < 120; ++k) {
+    const time::GpsTime t = kToe + 30.0 * k;
+    const Fix& f = rx.step(t, truth_at(pos, t));
+    expect_consistent(f);
+    std::array<bool, kMaxGpsPrn + 1> now{};
+    for (int i = 0; i < f.num_sats; ++i) {
+      const SatInfo& s = f.sats[i];
+      if (!s.tracked) {
+        EXPECT_EQ(s.cn0_dbhz, 0.0);  // GSV shows it without C/N0
+        continue;
+      }
+      now[s.prn] = true;
+      if (!was_tracked[s.prn]) {
+        EXPECT_GE(s.cn0_dbhz, 44.0) << "acquired below the threshold";
+      }
+      EXPECT_GE(s.cn0_dbhz, 20.0);
+      if (s.cn0_dbhz < 44.0) ++kept_below_acquire;
+    }
+    was_tracked = now;
+  }
+  EXPECT_GT(kept_below_acquire, 10);
+}
+
+TEST(ReceiverAtmosphere, NoiseRiseDropsLowSatellitesThenEverything) {
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  const Ecef pos = geo::ecef_from_lla(kSite);
+  ReceiverConfig suburban_low;
+  suburban_low.signal.link.environment_noise_rise_db = 15.0;
+  ReceiverConfig industrial;
+  industrial.signal.link.environment_noise_rise_db = signal::environment_noise_rise_db("industrial");
+  Receiver a(store, ReceiverConfig{}), b(store, suburban_low), c(store, industrial);
+  for (int k = 0; k < 10; ++k) {
+    const time::GpsTime t = kToe + 60.0 * k;
+    const Fix& fa = a.step(t, truth_at(pos, t));
+    const Fix& fb = b.step(t, truth_at(pos, t));
+    const Fix& fc = c.step(t, truth_at(pos, t));
+    expect_consistent(fa);
+    expect_consistent(fb);
+    expect_consistent(fc);
+    EXPECT_EQ(fa.type, FixType::k3D);
+    // 15 dB more noise: satellites below ~35 deg fall under 30 dB-Hz.
+    EXPECT_LT(fb.num_tracked, fa.num_tracked);
+    EXPECT_GT(fb.num_visible, fb.num_tracked);
+    // Industrial (20 dB): the zenith gives ~28 dB-Hz, below acquisition:
+    // nothing tracked, a clean no-fix, satellites still listed for GSV.
+    EXPECT_EQ(fc.type, FixType::kNone);
+    EXPECT_EQ(fc.num_tracked, 0);
+    EXPECT_EQ(fc.num_visible, fa.num_visible);
+    EXPECT_EQ(fc.dop.pdop, Dop::kNoDop);
+  }
+}
+
+TEST(ReceiverAtmosphere, AllStagesOffIsExactAndCostsNothing) {
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  ReceiverConfig cfg = test::errors_off_config();
+  EXPECT_FALSE(cfg.atmosphere.ionosphere.enabled || cfg.atmosphere.troposphere.enabled || cfg.atmosphere.gases);
+  Receiver rx(store, cfg);
+  const Ecef pos = geo::ecef_from_lla(kSite);
+  for (int k = 0; k < 30; ++k) {
+    const time::GpsTime t = kToe + 10.0 * k;
+    const Fix& f = rx.step(t, truth_at(pos, t));
+    ASSERT_EQ(f.type, FixType::k3D);
+    EXPECT_LT((f.pos_m - pos).norm(), 1e-3);
+    for (int i = 0; i < f.num_sats; ++i) EXPECT_EQ(rx.path_effects(f.sats[i].prn).delay_m, 0.0);
+  }
+  EXPECT_EQ(rx.atmosphere_refreshes(), 0);
+}
+
+TEST(ReceiverAtmosphere, CacheRefreshesOnScheduleWithSmallError) {
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  const Ecef pos = geo::ecef_from_lla(kSite);
+  ReceiverConfig ref = noiseless();
+  ReceiverConfig cached = ref;
+  cached.atmosphere.cache_refresh_s = 30.0;
+  cached.atmosphere.cache_mode = atmosphere::CacheMode::kLinear;
+  Receiver a(store, ref), b(store, cached);
+  double max_diff = 0.0;
+  long sat_epochs = 0;
+  for (int k = 0; k < 600; ++k) {
+    const time::GpsTime t = kToe + 1.0 * k;
+    const Fix& fa = a.step(t, truth_at(pos, t));
+    const Fix& fb = b.step(t, truth_at(pos, t));
+    ASSERT_EQ(fa.type, FixType::k3D);
+    ASSERT_EQ(fb.type, FixType::k3D);
+    max_diff = std::max(max_diff, (fa.pos_m - fb.pos_m).norm());
+    sat_epochs += fa.num_visible;
+  }
+  EXPECT_EQ(a.atmosphere_refreshes(), sat_epochs);  // no cache: every satellite, every epoch
+  // 30 s refresh plus one bootstrap refresh per satellite for the slope.
+  EXPECT_LT(b.atmosphere_refreshes(), sat_epochs / 10);
+  EXPECT_GT(b.atmosphere_refreshes(), sat_epochs / 31);
+  EXPECT_LT(max_diff, 0.05);
+}
+
+TEST(ReceiverAtmosphere, DeterministicWithEveryStageOn) {
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  ReceiverConfig cfg;
+  cfg.atmosphere.clouds_rain.layers[0] = atmosphere::cloud_preset("thunderstorm");
+  cfg.atmosphere.clouds_rain.layers[1] = atmosphere::cloud_preset("fog");
+  cfg.atmosphere.clouds_rain.layer_count = 2;
+  cfg.atmosphere.clouds_rain.rain.rate_mm_h = 100.0;
+  cfg.seed = 99;
+  Receiver a(store, cfg), b(store, cfg);
+  cfg.seed = 100;
+  Receiver c(store, cfg);
+  const Ecef pos = geo::ecef_from_lla(kSite);
+  int differ = 0;
+  for (int k = 0; k < 50; ++k) {
+    const time::GpsTime t = kToe + 1.0 * k;
+    const Fix fa = a.step(t, truth_at(pos, t));
+    const Fix& fb = b.step(t, truth_at(pos, t));
+    const Fix& fc = c.step(t, truth_at(pos, t));
+    ASSERT_EQ(fa.type, FixType::k3D);
+    EXPECT_EQ(fa.pos_m.x, fb.pos_m.x);
+    EXPECT_EQ(fa.pos_m.z, fb.pos_m.z);
+    for (int i = 0; i < fa.num_sats; ++i) EXPECT_EQ(fa.sats[i].pseudorange_m, fb.sats[i].pseudorange_m);
+    differ += fa.pos_m.x != fc.pos_m.x;
+  }
+  EXPECT_EQ(differ, 50);
+}
+
+TEST(ReceiverAtmosphere, RainAndThunderstormCostDecibelsNotTracking) {
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  ReceiverConfig wet = noiseless();
+  wet.atmosphere.clouds_rain.layers[0] = atmosphere::cloud_preset("thunderstorm");
+  wet.atmosphere.clouds_rain.layer_count = 1;
+  wet.atmosphere.clouds_rain.rain.rate_mm_h = 100.0;
+  Receiver dry_rx(store, noiseless()), wet_rx(store, wet);
+  const Ecef pos = geo::ecef_from_lla(kSite);
+  const Fix dry = dry_rx.step(kToe, truth_at(pos, kToe));
+  const Fix& f = wet_rx.step(kToe, truth_at(pos, kToe));
+  ASSERT_EQ(f.type, FixType::k3D);
+  EXPECT_EQ(f.num_tracked, dry.num_tracked);
+  for (int i = 0; i < f.num_sats; ++i) {
+    if (!f.sats[i].tracked) continue;
+    const double drop = dry.sats[i].cn0_dbhz - f.sats[i].cn0_dbhz;
+    // Honest L1 magnitudes: hundredths of a dB at the zenith, < 1 dB at 5 deg.
+    EXPECT_GT(drop, 0.01);
+    EXPECT_LT(drop, 1.0);
+  }
+}
+
+TEST(ReceiverAtmosphere, NoAllocationWithEveryStageAndTheCache) {
+  const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
+  const orbit::EphemerisStore store(nav.ephemerides);
+  ReceiverConfig cfg;
+  cfg.atmosphere.clouds_rain.layers[0] = atmosphere::cloud_preset("cumulus");
+  cfg.atmosphere.clouds_rain.layer_count = 1;
+  cfg.atmosphere.clouds_rain.rain.rate_mm_h = 20.0;
+  cfg.atmosphere.cache_refresh_s = 5.0;
+  cfg.signal.link.environment_noise_rise_db = 6.0;
+  Receiver rx(store, cfg);
+  rx.set_klobuchar(nav.klobuchar);
+  const Lla site{39.6 * kDegToRad, 22.4 * kDegToRad, 100.0};
+  const Ecef p0 = geo::ecef_from_lla(site);
+  const Vec3 v = geo::enu_to_ecef_vector(Enu(20.0, 15.0, 3.0), site.lat_rad, site.lon_rad);
+  const time::GpsTime t0 = time::GpsTime::from_calendar({2022, 1, 1, 3, 0, 0.0});
+  rx.step(t0, truth_at(p0, t0));
+  const long before = support::allocation_count();
+  int fixes = 0;
+  for (int k = 1; k <= 1500; ++k) {
+    const double dt = 0.5 * k;
+    Truth tr = truth_at(Ecef(p0 + v * dt), t0 + dt);
+    tr.vel_m_s = Ecef(v);
+    if (k % 97 == 0) tr.valid = false;                                                  // antenna lost
+    if (k == 1000) tr.pos_m = geo::ecef_from_lla({-10.0 * kDegToRad, 60.0 * kDegToRad, 0.0});  // cache reset
+    fixes += rx.step(t0 + dt, tr).type == FixType::k3D;
+  }
+  EXPECT_EQ(support::allocation_count() - before, 0);
+  EXPECT_GT(fixes, 1400);
+}
+
+}  // namespace
+}  // namespace gnssemu::receiver

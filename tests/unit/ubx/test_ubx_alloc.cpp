@@ -1,0 +1,79 @@
+// The per-epoch path never allocates once buffers have capacity: encoding an
+// epoch, answering configuration input, decoding input. This executable's
+// global operator new counts calls (tests/support/alloc_counter).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "core/protocol/ubx/ubx_decoder.hpp"
+#include "core/protocol/ubx/ubx_responder.hpp"
+#include "tests/support/alloc_counter.hpp"
+#include "ubx_test_util.hpp"
+
+namespace gnssemu::protocol::ubx {
+namespace {
+
+struct NullSink : DecoderSink {
+  ConfigResponder* r = nullptr;
+  std::string* out = nullptr;
+  std::size_t frames = 0;
+  void on_ubx(const FrameView& f) override {
+    ++frames;
+    r->handle_ubx(kPortUart1, f, *out);
+  }
+  void on_nmea(std::string_view s) override {
+    ++frames;
+    r->handle_nmea(kPortUart1, s, *out);
+  }
+};
+
+TEST(UbxAlloc, EpochEncodeConfigAndDecodeDoNotAllocate) {
+  ConfigResponder r({});
+  // Every output message on, at rate 1, on UART1.
+  for (MsgId id : {msg::kNavPvt, msg::kNavPosllh, msg::kNavStatus, msg::kNavDop, msg::kNavSol, msg::kNavVelned,
+                   msg::kNavTimegps, msg::kNavTimeutc, msg::kNavSat, msg::kNavSvinfo, msg::kNavEoe, msg::kMonHw}) {
+    r.current().set_message_rate(kPortUart1, id, 1);
+  }
+  receiver::Fix fix = test::sample_fix();
+  fix.num_sats = kMaxGpsPrn;  // worst case: 32 satellites
+  for (int i = 0; i < kMaxGpsPrn; ++i) {
+    fix.sats[static_cast<std::size_t>(i)] = fix.sats[static_cast<std::size_t>(i % 10)];
+    fix.sats[static_cast<std::size_t>(i)].prn = i + 1;
+  }
+  // Host input: a CFG-PRT, a CFG-MSG poll, a CFG-RATE, MON-VER poll, PUBX,41, some garbage.
+  std::string input = "\x01\x02\x03";
+  input += test::frame_bytes(msg::kCfgMsg, {0x01, 0x07});
+  input += test::frame_bytes(msg::kCfgRate, {0xC8, 0, 1, 0, 0, 0});
+  input += test::frame_bytes(msg::kMonVer, {});
+  input += test::frame_bytes(msg::kCfgNav5, {});
+  input += "$PUBX,41,1,0007,0003,9600,0*10\r\n";
+  input += test::frame_bytes(msg::kCfgValset, {0, 1, 0, 0});
+
+  std::string out;
+  out.reserve(16 * kMaxEpochBytes);
+  StreamDecoder decoder;
+  NullSink sink;
+  sink.r = &r;
+  sink.out = &out;
+  r.on_epoch(fix, 0.0);  // warm-up
+  r.encode_epoch(kPortUart1, out);
+  decoder.feed(input, sink);
+  out.clear();
+
+  const long before = support::allocation_count();
+  std::size_t bytes = 0;
+  for (int e = 1; e <= 50; ++e) {
+    out.clear();
+    fix.t += 0.2;
+    r.on_epoch(fix, 0.2 * e);
+    bytes += r.encode_epoch(kPortUart1, out);
+    (void)r.nmea_sentences(kPortUart1);
+    decoder.feed(input, sink);
+  }
+  EXPECT_EQ(support::allocation_count(), before);
+  EXPECT_GT(bytes, 50u * 1200u);  // every message with 32 satellites was really encoded
+  EXPECT_EQ(sink.frames, 51u * 6u);
+}
+
+}  // namespace
+}  // namespace gnssemu::protocol::ubx

@@ -1,0 +1,39 @@
+#pragma once
+// Test helpers for UBX: a complete sample Fix, frame splitting, hex.
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/protocol/ubx/ubx_frame.hpp"
+#include "core/receiver/fix.hpp"
+
+namespace gnssemu::protocol::ubx::test {
+
+/// nmea::test::sample_fix_3d() (Zurich, 10 satellites, 9 used, 13.4 m/s on
+/// 87.3 deg) completed with what UBX also reads: ENU/ECEF velocity, ECEF
+/// position, accuracies, residuals, clock.
+receiver::Fix sample_fix();
+/// Fill vel_enu_m_s from speed/course/climb and pos_m/vel_m_s from lla
+/// (closed-form WGS-84) when a JSON-made Fix lacks them.
+void complete_fix(receiver::Fix& f);
+
+struct Frame {
+  MsgId id;
+  std::vector<std::uint8_t> payload;
+};
+/// Every UBX frame of a byte stream (via StreamDecoder); NMEA lines into nmea if given.
+std::vector<Frame> split_frames(std::string_view stream, std::vector<std::string>* nmea = nullptr);
+
+/// "B5 62 0A 04" -> bytes (spaces optional).
+std::string from_hex(std::string_view hex);
+std::string to_hex(std::string_view bytes);
+/// Complete frame bytes.
+std::string frame_bytes(MsgId id, const std::vector<std::uint8_t>& payload);
+
+/// Little-endian readers for asserting payload fields by offset.
+std::uint16_t u2(const std::vector<std::uint8_t>& p, std::size_t off);
+std::uint32_t u4(const std::vector<std::uint8_t>& p, std::size_t off);
+std::int32_t i4(const std::vector<std::uint8_t>& p, std::size_t off);
+
+}  // namespace gnssemu::protocol::ubx::test

@@ -1,0 +1,137 @@
+#include "tools/gnssemu/spp.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "core/atmosphere/klobuchar.hpp"
+#include "core/atmosphere/troposphere.hpp"
+#include "core/common/error.hpp"
+#include "core/geo/geodesy.hpp"
+#include "core/geo/local_frame.hpp"
+#include "core/receiver/sky.hpp"
+
+namespace gnssemu::cli {
+
+double receiver_correction_m(const orbit::KlobucharParams& k, const Lla& rx, double az_rad, double el_rad,
+                             const time::GpsTime& t) {
+  const orbit::KlobucharParams p = k.valid ? k : atmosphere::rtklib_default_klobuchar();
+  const double doy = t.day_of_year() + std::fmod(t.tow_s(), kSecondsPerDay) / kSecondsPerDay;
+  return atmosphere::klobuchar_delay_l1_m(p, rx.lat_rad, rx.lon_rad, az_rad, el_rad, t.tow_s()) +
+         atmosphere::standard_troposphere_correction_m(rx.lat_rad, rx.height_m, el_rad, doy);
+}
+
+namespace {
+// The pseudoranges reach the solver already corrected (receiver_correction_m
+// at the mask position), so its own iono / tropo corrections stay off.
+receiver::SolverConfig precorrected(receiver::SolverConfig s) {
+  s.iono = atmosphere::IonoCorrection::kNone;
+  s.tropo = atmosphere::TropoCorrection::kNone;
+  return s;
+}
+}  // namespace
+
+SppEngine::SppEngine(const orbit::NavData& nav, const orbit::EphemerisStore& store,
+                     const observation::ObsHeader& header, const SppOptions& options)
+    : store_(store), klobuchar_(nav.klobuchar), opt_(options), solver_(precorrected(options.solver), options.max_pdop) {
+  c1c_ = header.type_index("C1C");
+  s1c_ = header.type_index("S1C");
+  if (c1c_ < 0) throw Error("observation file has no GPS C1C (RINEX 2: C1) pseudoranges");
+}
+
+bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
+  in_ = receiver::SolverInput{};
+  in_.t_rx_local = epoch.t;
+  in_.num_meas = 0;
+  Lla site_lla;
+  if (site != nullptr) site_lla = geo::lla_from_ecef(*site);
+  for (const observation::SatObs& s : epoch.sats) {
+    const observation::ObsValue* pr = s.get(c1c_);
+    if (pr == nullptr) continue;
+    const orbit::Ephemeris* eph = store_.select(s.prn, epoch.t);
+    if (eph == nullptr) continue;
+    double corr_m = 0.0;
+    if (site != nullptr) {
+      const receiver::SkySat sky = receiver::sky_sat(*eph, epoch.t, *site, site_lla, Ecef{});
+      if (!(sky.el_rad >= opt_.mask_rad)) continue;
+      corr_m = receiver_correction_m(klobuchar_, site_lla, sky.az_rad, sky.el_rad, epoch.t);
+    }
+    receiver::Measurement& m = in_.meas[static_cast<std::size_t>(in_.num_meas)];
+    m.eph = eph;
+    // Corrections at the mask position (previous fix): the final pass is
+    // within 100 m of the result, where they change by < 1 mm.
+    m.pseudorange_m = pr->value - corr_m;
+    m.doppler_hz = 0.0;  // velocity is not reported by spp
+    meas_prn_[static_cast<std::size_t>(in_.num_meas++)] = s.prn;
+  }
+  if (last_pos_m_) {
+    in_.have_prior = true;
+    in_.prior_pos_m = *last_pos_m_;
+    in_.prior_clock_m = last_clock_m_;
+  }
+  solver_.solve(in_, out_);
+  return out_.type == receiver::FixType::k3D;
+}
+
+const SppEpoch& SppEngine::solve(const observation::ObsEpoch& epoch) {
+  result_ = SppEpoch{};
+  result_.t = epoch.t;
+  // Mask at the previous fix, or at an unmasked first solution; repeat once
+  // at the new fix if that changes which satellites are above the mask.
+  std::optional<Ecef> at = last_pos_m_;
+  if (!at) {
+    if (!run(epoch, nullptr)) return result_;
+    at = out_.pos_m;
+  }
+  bool ok = false;
+  for (int pass = 0; pass < 3; ++pass) {
+    ok = run(epoch, &*at);
+    if (!ok) break;
+    const Ecef moved = Ecef(out_.pos_m - *at);
+    at = out_.pos_m;
+    if (moved.norm() < 100.0) break;  // elevations change < 0.001 deg
+  }
+  if (!ok) return result_;
+  result_.fix = true;
+  result_.pos_m = out_.pos_m;
+  result_.clock_m = out_.clock_m;
+  result_.pdop = out_.dop.pdop;
+  result_.nsat = out_.num_used;
+  const Lla lla = out_.lla;
+  for (int i = 0; i < out_.num_used; ++i) {
+    const std::size_t k = static_cast<std::size_t>(i);
+    result_.prn[k] = meas_prn_[k];
+    result_.residual_m[k] = out_.residual_m[k];
+    result_.el_rad[k] = receiver::sky_sat(*in_.meas[k].eph, epoch.t, out_.pos_m, lla, Ecef{}).el_rad;
+  }
+  last_pos_m_ = out_.pos_m;
+  last_clock_m_ = out_.clock_m;
+  return result_;
+}
+
+SppSummary write_spp(const observation::ObsData& obs, const orbit::NavData& nav, const SppOptions& options,
+                     const std::optional<Ecef>& station, std::ostream& out) {
+  const orbit::EphemerisStore store(nav.ephemerides);
+  if (store.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the file");
+  SppEngine engine(nav, store, obs.header, options);
+  std::optional<geo::LocalFrame> frame;
+  if (station) frame.emplace(geo::lla_from_ecef(*station));
+  out << "gps_week,tow_s,x_m,y_m,z_m,nsat,pdop" << (station ? ",e_m,n_m,u_m" : "") << '\n';
+  SppSummary sum;
+  for (const observation::ObsEpoch& e : obs.epochs) {
+    ++sum.epochs;
+    const SppEpoch& r = engine.solve(e);
+    if (!r.fix) continue;
+    ++sum.fixes;
+    out << fmt::format("{},{:.3f},{:.4f},{:.4f},{:.4f},{},{:.3f}", r.t.week(), r.t.tow_s(), r.pos_m.x, r.pos_m.y,
+                       r.pos_m.z, r.nsat, r.pdop);
+    if (frame) {
+      const Enu d = frame->to_enu(r.pos_m);
+      out << fmt::format(",{:.4f},{:.4f},{:.4f}", d.x, d.y, d.z);
+    }
+    out << '\n';
+  }
+  return sum;
+}
+
+}  // namespace gnssemu::cli

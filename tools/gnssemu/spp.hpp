@@ -1,0 +1,84 @@
+#pragma once
+// `gnssemu spp`: single-point positioning from real RINEX observations (C1C)
+// through the emulated receiver's own solver and corrections
+// (receiver::Solver: satellite at transmit time from the pseudorange,
+// Sagnac, broadcast clock + relativity - TGD, and the solver's ionosphere
+// and troposphere corrections).
+#include <array>
+#include <optional>
+#include <ostream>
+
+#include "core/common/constants.hpp"
+#include "core/common/vec3.hpp"
+#include "core/observation/obs_data.hpp"
+#include "core/orbit/ephemeris_store.hpp"
+#include "core/orbit/nav_data.hpp"
+#include "core/receiver/receiver_config.hpp"
+#include "core/receiver/solver.hpp"
+
+namespace gnssemu::cli {
+
+/// The receiver's own ionosphere (broadcast Klobuchar; RTKLIB defaults when
+/// k is invalid) plus standard troposphere correction for a satellite at
+/// (az_rad, el_rad) seen from rx at GPS time t, m.
+double receiver_correction_m(const orbit::KlobucharParams& k, const Lla& rx, double az_rad, double el_rad,
+                             const time::GpsTime& t);
+
+struct SppOptions {
+  double mask_rad = 5.0 * kDegToRad;  ///< elevation mask, rad [0, pi/2)
+  receiver::SolverConfig solver;      ///< weights, corrections, residual test
+  double max_pdop = 20.0;
+};
+
+/// One epoch's solution.
+struct SppEpoch {
+  time::GpsTime t;
+  bool fix = false;            ///< 3D fix (4+ satellites above the mask, test passed)
+  Ecef pos_m;
+  double clock_m = 0.0;        ///< c * receiver clock bias, m
+  double pdop = 0.0;
+  int nsat = 0;                ///< satellites used
+  std::array<int, kMaxGpsPrn> prn{};          ///< used satellites, first nsat entries
+  std::array<double, kMaxGpsPrn> el_rad{};    ///< their elevation at the fix
+  std::array<double, kMaxGpsPrn> residual_m{};///< their post-fit residuals
+};
+
+/// Single-point solutions epoch by epoch (warm start from the previous fix).
+class SppEngine {
+public:
+  /// nav and store must outlive the engine; header gives the C1C/S1C columns.
+  /// Throws gnssemu::Error when the file has no C1C (or RINEX 2 C1) type.
+  SppEngine(const orbit::NavData& nav, const orbit::EphemerisStore& store, const observation::ObsHeader& header,
+            const SppOptions& options);
+
+  /// Solve one epoch. The mask is applied at the previous fix (or, without
+  /// one, after a first unmasked solution) and re-checked at the result.
+  const SppEpoch& solve(const observation::ObsEpoch& epoch);
+
+private:
+  bool run(const observation::ObsEpoch& epoch, const Ecef* site);
+
+  const orbit::EphemerisStore& store_;
+  orbit::KlobucharParams klobuchar_;
+  SppOptions opt_;
+  int c1c_ = -1, s1c_ = -1;
+  receiver::Solver solver_;
+  receiver::SolverInput in_;
+  receiver::SolverOutput out_;
+  std::array<int, kMaxGpsPrn> meas_prn_{};
+  SppEpoch result_;
+  std::optional<Ecef> last_pos_m_;
+  double last_clock_m_ = 0.0;
+};
+
+struct SppSummary {
+  int epochs = 0;
+  int fixes = 0;
+};
+
+/// Writes `gps_week,tow_s,x_m,y_m,z_m,nsat,pdop` per epoch with a fix, plus
+/// `e_m,n_m,u_m` (fix minus station in local ENU) when station is given.
+SppSummary write_spp(const observation::ObsData& obs, const orbit::NavData& nav, const SppOptions& options,
+                     const std::optional<Ecef>& station, std::ostream& out);
+
+}  // namespace gnssemu::cli
