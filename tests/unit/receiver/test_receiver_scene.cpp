@@ -10,6 +10,7 @@
 #include "core/receiver/receiver.hpp"
 #include "core/scene/mesh.hpp"
 #include "core/scene/scene.hpp"
+#include "tests/support/alloc_counter.hpp"
 
 namespace gnssemu::receiver {
 namespace {
@@ -114,6 +115,26 @@ TEST_F(ReceiverScene, InsideClosedBuildingNoSatelliteNoFix) {
   // Walking out of the door: satellites come back.
   const Truth out = truth_at(Enu(40.0, 0.0, 1.5), 10.0);
   EXPECT_EQ(rx.step(out.t, out).type, FixType::k3D);
+}
+
+TEST_F(ReceiverScene, StepWithSceneDoesNotAllocate) {
+  const scene::Scene canyon(scene::load_mesh(kData + "/scenes/street_canyon.toml"));
+  scene::SearchConfig search;
+  search.reuse_distance_m = 1.0;
+  Receiver rx(store, ReceiverConfig{});
+  rx.attach_scene(canyon, kOrigin, search);
+  rx.step(t0, truth_at(Enu(3.0, -100.0, 1.5), 0.0));
+  const long before = support::allocation_count();
+  int tracked = 0, nlos = 0;
+  for (int k = 1; k <= 200; ++k) {
+    const Truth tr = truth_at(Enu(3.0, -100.0 + 0.7 * k, 1.5), 0.5 * k);
+    const Fix& f = rx.step(tr.t, tr);
+    tracked += f.num_tracked;
+    for (int i = 0; i < f.num_sats; ++i) nlos += f.sats[i].nlos;
+  }
+  EXPECT_EQ(support::allocation_count() - before, 0);
+  EXPECT_GT(tracked, 0);
+  EXPECT_GT(nlos, 0);
 }
 
 }  // namespace
