@@ -53,7 +53,6 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       store_(nav.ephemerides),
       frame_(cfg.origin),
       scene_(config::load_scene(cfg)),
-      receiver_(std::make_unique<receiver::Receiver>(store_, cfg.receiver)),
       demo_(frame_, cfg.demo.radius_m, cfg.demo.speed_m_s, cfg.demo.height_m),
       router_(TrackParams{cfg.truth.timeout_s, cfg.truth.max_extrapolation_s}, cfg.time.mode),
       coverage_(coverage_for(cfg, nav)),
@@ -64,13 +63,18 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       socket_(io),
       signals_(io, SIGINT, SIGTERM) {
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
+  restart_receiver();
+  if (scene_) spdlog::info("scene {}: {} triangles", cfg_.scene->mesh_file, scene_->triangle_count());
+  lock_next_ = coverage_.start;
+}
+
+void Daemon::restart_receiver() {
+  // A fresh receiver (start-up, or GPS time going back) with the nav header's
+  // leap seconds and Klobuchar coefficients.
+  receiver_ = std::make_unique<receiver::Receiver>(store_, cfg_.receiver);
   if (nav_leap_s_) receiver_->set_leap_seconds(*nav_leap_s_);
   receiver_->set_klobuchar(nav_klobuchar_);
   config::attach_scene(*receiver_, cfg_, scene_.get());
-  if (scene_) {
-    spdlog::info("scene {}: {} triangles", cfg_.scene->mesh_file, scene_->triangle_count());
-  }
-  lock_next_ = coverage_.start;
 }
 
 Daemon::~Daemon() { shutdown(); }
@@ -171,10 +175,7 @@ void Daemon::note_clock_wrap(int64_t wraps) {
   spdlog::warn("epoch clock reached the end of the nav file's coverage: back to {} (wrap {})",
                gps_text(coverage_.start), wraps);
   router_.on_clock_jump();
-  receiver_ = std::make_unique<receiver::Receiver>(store_, cfg_.receiver);
-  if (nav_leap_s_) receiver_->set_leap_seconds(*nav_leap_s_);
-  receiver_->set_klobuchar(nav_klobuchar_);
-  config::attach_scene(*receiver_, cfg_, scene_.get());
+  restart_receiver();
 }
 
 receiver::Truth Daemon::fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept {
@@ -349,11 +350,7 @@ void Daemon::align_to_packet_time(const time::GpsTime& stamp) {
   gps_aligned_ = true;
   const double tow_epochs = std::ceil(stamp.tow_s() * rate_hz_ - 1e-9);
   const time::GpsTime first(stamp.week(), tow_epochs / rate_hz_);
-  if (first < lock_next_) {
-    receiver_ = std::make_unique<receiver::Receiver>(store_, cfg_.receiver);  // time goes back
-    if (nav_leap_s_) receiver_->set_leap_seconds(*nav_leap_s_);
-    receiver_->set_klobuchar(nav_klobuchar_);
-  }
+  if (first < lock_next_) restart_receiver();  // time goes back
   lock_next_ = first;
   spdlog::info("lockstep: epochs follow the packets' GPS time from {}", gps_text(first));
 }

@@ -47,6 +47,7 @@ private:
 
   double now_s() const noexcept;
   time::GpsTime realtime_clock_gps() noexcept;
+  void restart_receiver();
   void arm_timer();
   void on_timer(const boost::system::error_code& ec);
   void receive();
