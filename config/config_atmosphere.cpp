@@ -30,9 +30,10 @@ struct Choice {
 
 constexpr std::array<Choice<IonoCorrection>, 2> kIonoCorrections{{{"klobuchar", IonoCorrection::kKlobuchar},
                                                                    {"none", IonoCorrection::kNone}}};
-constexpr std::array<Choice<TropoCorrection>, 3> kTropoCorrections{
+constexpr std::array<Choice<TropoCorrection>, 4> kTropoCorrections{
     {{"saastamoinen", TropoCorrection::kSaastamoinenNiell},
      {"zhd_niell", TropoCorrection::kZhdNiell},
+     {"saastamoinen_cosz", TropoCorrection::kSaastamoinenCosZ},
      {"none", TropoCorrection::kNone}}};
 constexpr std::array<Choice<CacheMode>, 2> kCacheModes{{{"hold", CacheMode::kHold}, {"linear", CacheMode::kLinear}}};
 constexpr std::array<Choice<VtecSource>, 2> kVtecSources{

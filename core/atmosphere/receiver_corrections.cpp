@@ -20,6 +20,8 @@ double receiver_tropo_delay_m(double lat_rad, double height_m, double el_rad, do
       return standard_troposphere_correction_m(lat_rad, height_m, el_rad, doy);
     case TropoCorrection::kZhdNiell:
       return exponential_zhd_m(height_m) * niell_mapping(el_rad, lat_rad, height_m, doy).hydro;
+    case TropoCorrection::kSaastamoinenCosZ:
+      return standard_troposphere_cosz_m(lat_rad, height_m, el_rad);
   }
   return 0.0;
 }

@@ -20,6 +20,9 @@ enum class TropoCorrection {
   /// Zenith hydrostatic delay a exp(-b h) (a = 2.31 m, b = 1.2e-4 1/m) times
   /// the Niell hydrostatic mapping; no wet part.
   kZhdNiell,
+  /// Saastamoinen ZHD + ZWD as kSaastamoinenNiell, both mapped with 1/sin(el)
+  /// (= 1/cos z), as RTKLIB's tropmodel does: for comparing with rnx2rtkp.
+  kSaastamoinenCosZ,
 };
 
 /// Broadcast ionospheric code delay at L1, m (>= 0). params invalid (the

@@ -159,4 +159,12 @@ double standard_troposphere_correction_m(double lat_rad, double height_m, double
          saastamoinen_zwd_m(met.temperature_k, met.water_vapour_hpa) * m.wet;
 }
 
+double standard_troposphere_cosz_m(double lat_rad, double height_m, double el_rad) noexcept {
+  const Meteo met = standard_atmosphere(height_m, 0.7);
+  const double zenith_m =
+      saastamoinen_zhd_m(met.pressure_hpa, lat_rad, height_m) + saastamoinen_zwd_m(met.temperature_k, met.water_vapour_hpa);
+  const double el = std::isfinite(el_rad) ? std::clamp(el_rad, kMinMappingEl_rad, 0.5 * kPi) : 0.5 * kPi;
+  return zenith_m / std::sin(el);
+}
+
 }  // namespace gnssemu::atmosphere

@@ -91,4 +91,8 @@ private:
 /// atmosphere (RH 0.7, as RTKLIB) mapped with Niell, m.
 double standard_troposphere_correction_m(double lat_rad, double height_m, double el_rad, double doy) noexcept;
 
+/// The same zenith delays mapped with 1/sin(el) (= 1/cos z, RTKLIB tropmodel), m.
+/// el_rad held at >= 1 deg.
+double standard_troposphere_cosz_m(double lat_rad, double height_m, double el_rad) noexcept;
+
 }  // namespace gnssemu::atmosphere

@@ -62,6 +62,7 @@ def main():
     ap.add_argument("--obs", required=True)
     ap.add_argument("--nav", required=True)
     ap.add_argument("--mask", type=float, default=10.0)
+    ap.add_argument("--config", help="gnssemu config for spp's solver settings (e.g. troposphere mapping)")
     ap.add_argument("--max-diff", type=float, default=1.5, help="largest allowed per-epoch 3D difference, m")
     ap.add_argument("--p95-diff", type=float, default=0.8, help="largest allowed 95th percentile 3D difference, m")
     ap.add_argument("--rms-diff", type=float, default=0.45, help="largest allowed RMS 3D difference, m")
@@ -89,8 +90,10 @@ def main():
                     continue
                 rtk[(int(c[0]), round(float(c[1]), 1))] = (float(c[2]), float(c[3]), float(c[4]), int(c[6]))
 
-    res = subprocess.run([a.gnssemu, "spp", "--obs", a.obs, "--nav", a.nav, "--mask", str(a.mask)],
-                         check=True, capture_output=True, text=True)
+    argv = [a.gnssemu, "spp", "--obs", a.obs, "--nav", a.nav, "--mask", str(a.mask)]
+    if a.config:
+        argv += ["--config", a.config]
+    res = subprocess.run(argv, check=True, capture_output=True, text=True)
     lines = res.stdout.strip().splitlines()
     head = lines[0].split(",")
     col = {n: i for i, n in enumerate(head)}

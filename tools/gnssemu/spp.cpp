@@ -4,8 +4,7 @@
 
 #include <cmath>
 
-#include "core/atmosphere/klobuchar.hpp"
-#include "core/atmosphere/troposphere.hpp"
+#include "core/atmosphere/receiver_corrections.hpp"
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/geo/local_frame.hpp"
@@ -14,11 +13,12 @@
 namespace gnssemu::cli {
 
 double receiver_correction_m(const orbit::KlobucharParams& k, const Lla& rx, double az_rad, double el_rad,
-                             const time::GpsTime& t) {
-  const orbit::KlobucharParams p = k.valid ? k : atmosphere::rtklib_default_klobuchar();
+                             const time::GpsTime& t, const receiver::SolverConfig& solver) {
   const double doy = t.day_of_year() + std::fmod(t.tow_s(), kSecondsPerDay) / kSecondsPerDay;
-  return atmosphere::klobuchar_delay_l1_m(p, rx.lat_rad, rx.lon_rad, az_rad, el_rad, t.tow_s()) +
-         atmosphere::standard_troposphere_correction_m(rx.lat_rad, rx.height_m, el_rad, doy);
+  const double iono_m = solver.iono == atmosphere::IonoCorrection::kKlobuchar
+                            ? atmosphere::receiver_iono_delay_m(k, rx.lat_rad, rx.lon_rad, az_rad, el_rad, t.tow_s())
+                            : 0.0;
+  return iono_m + atmosphere::receiver_tropo_delay_m(rx.lat_rad, rx.height_m, el_rad, doy, solver.tropo);
 }
 
 namespace {
@@ -54,7 +54,7 @@ bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
     if (site != nullptr) {
       const receiver::SkySat sky = receiver::sky_sat(*eph, epoch.t, *site, site_lla, Ecef{});
       if (!(sky.el_rad >= opt_.mask_rad)) continue;
-      corr_m = receiver_correction_m(klobuchar_, site_lla, sky.az_rad, sky.el_rad, epoch.t);
+      corr_m = receiver_correction_m(klobuchar_, site_lla, sky.az_rad, sky.el_rad, epoch.t, opt_.solver);
     }
     receiver::Measurement& m = in_.meas[static_cast<std::size_t>(in_.num_meas)];
     m.eph = eph;

@@ -19,10 +19,11 @@
 namespace gnssemu::cli {
 
 /// The receiver's own ionosphere (broadcast Klobuchar; RTKLIB defaults when
-/// k is invalid) plus standard troposphere correction for a satellite at
-/// (az_rad, el_rad) seen from rx at GPS time t, m.
+/// k is invalid) plus troposphere correction for a satellite at (az_rad,
+/// el_rad) seen from rx at GPS time t, m, with the models chosen in solver
+/// ([receiver.corrections]; the defaults are the receiver's).
 double receiver_correction_m(const orbit::KlobucharParams& k, const Lla& rx, double az_rad, double el_rad,
-                             const time::GpsTime& t);
+                             const time::GpsTime& t, const receiver::SolverConfig& solver = {});
 
 struct SppOptions {
   double mask_rad = 5.0 * kDegToRad;  ///< elevation mask, rad [0, pi/2)

@@ -235,7 +235,7 @@ TEST(AtmosphereConfig, BadValuesNameFileAndLine) {
       {"[atmosphere.ionosphere]\nmapping = \"flat\"\n",
        "t.toml:8: atmosphere.ionosphere.mapping: 'flat' is not one of \"obliquity\", \"thin_shell\""},
       {"[receiver.corrections]\ntroposphere = \"hopfield\"\n",
-       "t.toml:8: receiver.corrections.troposphere: 'hopfield' is not one of \"saastamoinen\", \"zhd_niell\", \"none\""},
+       "t.toml:8: receiver.corrections.troposphere: 'hopfield' is not one of \"saastamoinen\", \"zhd_niell\", \"saastamoinen_cosz\", \"none\""},
       {"[atmosphere.ionosphere]\nvtec_tecu = -1\n", "t.toml:8: atmosphere.ionosphere.vtec_tecu: -1 is out of range"},
       {"[atmosphere.rain]\nrate_mm_h = 600\n", "t.toml:8: atmosphere.rain.rate_mm_h: 600 is out of range [0, 500] mm/h"},
       {"[atmosphere]\ncache_refresh_s = -1\n", "t.toml:8: atmosphere.cache_refresh_s: -1 is out of range"},
