@@ -1,25 +1,21 @@
 #include "core/orbit/almanac.hpp"
 
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
+#include "core/common/text_fields.hpp"
 
 namespace gnssemu::orbit {
 
 namespace {
 
-std::string_view trim(std::string_view s) {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string_view::npos) return {};
-  const auto e = s.find_last_not_of(" \t\r");
-  return s.substr(b, e - b + 1);
-}
+using text::trim;
 
 bool starts_with_nocase(std::string_view s, std::string_view prefix) {
   if (s.size() < prefix.size()) return false;
@@ -32,19 +28,10 @@ bool starts_with_nocase(std::string_view s, std::string_view prefix) {
 }
 
 double parse_real(std::string_view tok, const std::string& path, int line, const std::string& what) {
-  std::string s(trim(tok));
-  for (char& c : s) {
-    if (c == 'D' || c == 'd') c = 'E';
-  }
-  const char* first = s.data();
-  if (!s.empty() && *first == '+') ++first;
-  double v = 0.0;
-  const auto [ptr, ec] = std::from_chars(first, s.data() + s.size(), v);
-  if (s.empty() || ec != std::errc() || ptr != s.data() + s.size()) {
-    throw Error(path, line, "unparsable number '" + s + "' for " + what);
-  }
-  if (!std::isfinite(v)) throw Error(path, line, "non-finite value for " + what);
-  return v;
+  const std::optional<double> v = text::parse_real(tok);
+  if (!v) throw Error(path, line, "unparsable number '" + std::string(trim(tok)) + "' for " + what);
+  if (!std::isfinite(*v)) throw Error(path, line, "non-finite value for " + what);
+  return *v;
 }
 
 int parse_int(std::string_view tok, const std::string& path, int line, const std::string& what) {

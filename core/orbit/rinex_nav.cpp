@@ -1,13 +1,14 @@
 #include "core/orbit/rinex_nav.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <string_view>
 #include <vector>
 
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
+#include "core/common/text_fields.hpp"
 
 namespace gnssemu::orbit {
 
@@ -21,17 +22,8 @@ struct Line {
   int number = 0;  // 1-based
 };
 
-std::string_view trim(std::string_view s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string_view::npos) return {};
-  const auto e = s.find_last_not_of(" \t");
-  return s.substr(b, e - b + 1);
-}
-
-std::string_view columns(const std::string& line, std::size_t col, std::size_t width) {
-  if (col >= line.size()) return {};
-  return std::string_view(line).substr(col, width);
-}
+using text::columns;
+using text::trim;
 
 class Parser {
 public:
@@ -43,18 +35,11 @@ public:
   double real(const Line& l, std::size_t col, std::size_t width, const char* what) const {
     const std::string_view f = trim(columns(l.text, col, width));
     if (f.empty()) return 0.0;
-    std::string s(f);
-    for (char& c : s) {
-      if (c == 'D' || c == 'd') c = 'E';
+    const std::optional<double> parsed = text::parse_real(f);
+    if (!parsed) {
+      fail(l.number, "unparsable number '" + std::string(f) + "' for " + what + " at column " + std::to_string(col + 1));
     }
-    double v = 0.0;
-    const char* first = s.data();
-    if (*first == '+') ++first;
-    const auto [ptr, ec] = std::from_chars(first, s.data() + s.size(), v);
-    if (ec != std::errc() || ptr != s.data() + s.size()) {
-      fail(l.number, std::string("unparsable number '") + s + "' for " + what + " at column " +
-                         std::to_string(col + 1));
-    }
+    const double v = *parsed;
     if (!std::isfinite(v)) fail(l.number, std::string("non-finite value for ") + what);
     return v;
   }
@@ -63,15 +48,11 @@ public:
   int integer(const Line& l, std::size_t col, std::size_t width, const char* what) const {
     const std::string_view f = trim(columns(l.text, col, width));
     if (f.empty()) return 0;
-    int v = 0;
-    const char* first = f.data();
-    if (*first == '+') ++first;
-    const auto [ptr, ec] = std::from_chars(first, f.data() + f.size(), v);
-    if (ec != std::errc() || ptr != f.data() + f.size()) {
-      fail(l.number, std::string("unparsable integer '") + std::string(f) + "' for " + what +
-                         " at column " + std::to_string(col + 1));
+    const std::optional<int> v = text::parse_int(f);
+    if (!v) {
+      fail(l.number, "unparsable integer '" + std::string(f) + "' for " + what + " at column " + std::to_string(col + 1));
     }
-    return v;
+    return *v;
   }
 
   const std::string& name() const { return name_; }

@@ -23,9 +23,10 @@ import signal
 import socket
 import subprocess
 import sys
-import tempfile
 import threading
 import time
+
+from itlib import RigBase, free_port
 
 ORIGIN = (48.8738, 2.2950, 100.0)  # lat deg, lon deg, height m
 RADIUS_M = 50.0
@@ -39,14 +40,6 @@ DEMO_SPEED_M_S = 5.0
 START_GPS = "2022-01-01T01:00:00"
 START_GPS_EPOCH_S = 1640998800.0  # the same instant as Unix seconds of the GPS calendar
 GPS_MINUS_UTC_S = 18.0            # LEAP SECONDS in brdc0010.22n
-
-
-def free_port(kind):
-    s = socket.socket(socket.AF_INET, kind)
-    s.bind(("127.0.0.1", 0))
-    port = s.getsockname()[1]
-    s.close()
-    return port
 
 
 def enu_to_latlon(e, n):
@@ -68,22 +61,16 @@ def horizontal_m(lat_a, lon_a, lat_b, lon_b):
     return math.hypot(de, dn)
 
 
-class Rig:
+class Rig(RigBase):
     """gnssemud + gpsd + gpspipe in a temp dir; everything torn down by close()."""
 
     def __init__(self, args):
+        super().__init__("gnssemu-it-")
         self.args = args
-        self.tmp = tempfile.mkdtemp(prefix="gnssemu-it-")
-        self.procs = []
         self.lines = queue.Queue()
         self.udp_port = free_port(socket.SOCK_DGRAM)
         self.gpsd_port = free_port(socket.SOCK_STREAM)
         self.pty = os.path.join(self.tmp, "gps0")
-
-    def spawn(self, argv, **kw):
-        p = subprocess.Popen(argv, start_new_session=True, **kw)
-        self.procs.append(p)
-        return p
 
     def start(self):
         cfg = os.path.join(self.tmp, "it.toml")
@@ -162,35 +149,15 @@ level = "info"
         return self.spawn([sys.executable, self.args.sender, "--port", str(self.udp_port),
                            "--rate", "10", "--vehicle", "it", *extra])
 
-    def stop(self, p):
-        if p.poll() is None:
-            os.killpg(p.pid, signal.SIGTERM)
-            try:
-                p.wait(5)
-            except subprocess.TimeoutExpired:
-                os.killpg(p.pid, signal.SIGKILL)
-                p.wait()
-
     def close(self, failed):
-        daemon_rc = None
-        for p in reversed(self.procs):
-            try:
-                self.stop(p)
-            except ProcessLookupError:
-                pass
-            if p is getattr(self, "daemon", None):
-                daemon_rc = p.returncode
+        daemon_rc = self.stop_all()
         for f in ("daemon_log", "gpsd_log"):
             if hasattr(self, f):
                 getattr(self, f).close()
         if failed:
-            for name in ("gnssemud.log", "gpsd.log"):
-                path = os.path.join(self.tmp, name)
-                if os.path.exists(path):
-                    print(f"--- {name} ---")
-                    print(open(path).read()[-3000:])
+            self.dump_logs()
         link_left = os.path.lexists(self.pty)
-        shutil.rmtree(self.tmp, ignore_errors=True)
+        self.remove_tmp()
         return daemon_rc, link_left
 
 

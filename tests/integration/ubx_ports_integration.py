@@ -30,9 +30,10 @@ import socket
 import struct
 import subprocess
 import sys
-import tempfile
 import termios
 import time
+
+from itlib import RigBase, free_port
 import tty
 
 ORIGIN = (48.8738, 2.2950, 100.0)
@@ -126,28 +127,14 @@ def is_ack_for(cls, mid):
     return lambda k, m: k == "ubx" and m[2] == 0x05 and m[6:8] == bytes([cls, mid])
 
 
-def free_port(kind):
-    s = socket.socket(socket.AF_INET, kind)
-    s.bind(("127.0.0.1", 0))
-    p = s.getsockname()[1]
-    s.close()
-    return p
-
-
 # --- rig ---------------------------------------------------------------------
 
-class Rig:
+class Rig(RigBase):
     def __init__(self, args):
+        super().__init__("gnssemu-ubx-it-")
         self.args = args
-        self.tmp = tempfile.mkdtemp(prefix="gnssemu-ubx-it-")
-        self.procs = []
         self.fds = []
         self.banner = []
-
-    def spawn(self, argv, **kw):
-        p = subprocess.Popen(argv, start_new_session=True, **kw)
-        self.procs.append(p)
-        return p
 
     def start_daemon(self, outputs, rate_hz=1.0, verbose=False, n_outputs=None):
         cfg = os.path.join(self.tmp, "it.toml")
@@ -189,35 +176,16 @@ enabled = true
         self.daemon_log.flush()
         return open(self.daemon_log_path).read()
 
-    def stop(self, p):
-        if p.poll() is None:
-            os.killpg(p.pid, signal.SIGTERM)
-            try:
-                p.wait(5)
-            except subprocess.TimeoutExpired:
-                os.killpg(p.pid, signal.SIGKILL)
-                p.wait()
-
     def close(self, failed):
         for fd in self.fds:
             try:
                 os.close(fd)
             except OSError:
                 pass
-        rc = None
-        for p in reversed(self.procs):
-            try:
-                self.stop(p)
-            except ProcessLookupError:
-                pass
-            if p is getattr(self, "daemon", None):
-                rc = p.returncode
+        rc = self.stop_all()
         if failed:
-            for name in sorted(os.listdir(self.tmp)):
-                if name.endswith(".log"):
-                    print(f"--- {name} ---")
-                    print(open(os.path.join(self.tmp, name), errors="replace").read()[-3000:])
-        shutil.rmtree(self.tmp, ignore_errors=True)
+            self.dump_logs()
+        self.remove_tmp()
         return rc
 
 

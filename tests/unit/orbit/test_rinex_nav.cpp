@@ -246,7 +246,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"v3_galileo_only.rnx", 1, "need GPS"},
                       BadCase{"v2_truncated_eof.n", 17, "truncated record"},
                       BadCase{"v3_truncated_next_record.rnx", 14, "truncated record"},
-                      BadCase{"v2_bad_number.n", 10, "unparsable number '-0.1411x5000000E+03'"},
+                      BadCase{"v2_bad_number.n", 10, "unparsable number '-0.1411x5000000D+03'"},
                       BadCase{"v2_sqrta_negative.n", 11, "sqrt(A)"},
                       BadCase{"v3_eccentricity_one.rnx", 10, "eccentricity"},
                       BadCase{"v2_nan.n", 13, "non-finite"},

@@ -1,0 +1,62 @@
+"""Shared pieces of the integration tests: free loopback ports, and a rig
+that owns its processes and temp dir and tears them down even on failure."""
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import tempfile
+
+
+def free_port(kind):
+    """A port on 127.0.0.1 that is free now (socket.SOCK_DGRAM or SOCK_STREAM)."""
+    s = socket.socket(socket.AF_INET, kind)
+    s.bind(("127.0.0.1", 0))
+    port = s.getsockname()[1]
+    s.close()
+    return port
+
+
+class RigBase:
+    """Processes in their own sessions plus a temp dir. Subclasses set
+    self.daemon to the gnssemud process so stop_all() reports its exit code."""
+
+    def __init__(self, prefix):
+        self.tmp = tempfile.mkdtemp(prefix=prefix)
+        self.procs = []
+
+    def spawn(self, argv, **kw):
+        p = subprocess.Popen(argv, start_new_session=True, **kw)
+        self.procs.append(p)
+        return p
+
+    def stop(self, p):
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGTERM)
+            try:
+                p.wait(5)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait()
+
+    def stop_all(self):
+        """SIGTERM (then SIGKILL) every process, newest first; the daemon's exit code."""
+        rc = None
+        for p in reversed(self.procs):
+            try:
+                self.stop(p)
+            except ProcessLookupError:
+                pass
+            if p is getattr(self, "daemon", None):
+                rc = p.returncode
+        return rc
+
+    def dump_logs(self):
+        """Print the tail of every *.log in the temp dir (on failure)."""
+        for name in sorted(os.listdir(self.tmp)):
+            if name.endswith(".log"):
+                print(f"--- {name} ---")
+                print(open(os.path.join(self.tmp, name), errors="replace").read()[-3000:])
+
+    def remove_tmp(self):
+        shutil.rmtree(self.tmp, ignore_errors=True)
