@@ -524,6 +524,65 @@ std::vector<OutputPortConfig> read_outputs(TableReader& root, const std::string&
   return out;
 }
 
+Enu read_offset(TableReader& t) {
+  const toml::node* n = t.find("offset_m");
+  if (n == nullptr) return {};
+  const std::string name = t.full_name("offset_m");
+  const auto* a = n->as_array();
+  if (a == nullptr || a->size() != 3) t.fail(*n, name + ": expected [east_m, north_m, up_m]");
+  double v[3];
+  for (std::size_t i = 0; i < 3; ++i) {
+    const auto x = a->get(i)->value<double>();
+    if (!x || !std::isfinite(*x) || std::fabs(*x) > 1.0e6) {
+      t.fail(*a->get(i), name + ": components must be finite numbers within 1000 km");
+    }
+    v[i] = *x;
+  }
+  return Enu(v[0], v[1], v[2]);
+}
+
+SceneConfig read_scene(TableReader& t, const std::string& base_dir) {
+  SceneConfig s;
+  const std::string mesh = t.string("mesh", std::nullopt);
+  const toml::node* mesh_node = t.find("mesh");
+  if (mesh.empty()) t.fail(*mesh_node, "scene.mesh: must not be empty");
+  const fs::path mesh_path = resolve(mesh, base_dir);
+  std::error_code ec;
+  if (!fs::is_regular_file(mesh_path, ec)) {
+    t.fail(*mesh_node, "scene.mesh: '" + mesh + "' not found (tried " + mesh_path.string() + ")");
+  }
+  s.mesh_file = mesh_path.string();
+  s.placement.offset_m = read_offset(t);
+  s.placement.yaw_rad = t.number("yaw_deg", 0.0, Range{-360.0, 360.0, "deg"}) * kDegToRad;
+  s.placement.scale = t.number("scale", 1.0, Range{0.0, 1.0e6, "", true});
+  if (const toml::node* n = t.find("up_axis")) {
+    const std::string up = t.string("up_axis", std::nullopt);
+    if (up != "z" && up != "y") t.fail(*n, t.full_name("up_axis") + ": '" + up + "' is not \"z\" or \"y\"");
+    s.placement.y_up = up == "y";
+  }
+  scene::SearchConfig& q = s.search;
+  q.rays = static_cast<int>(t.integer("rays", q.rays, 16, 4'000'000));
+  q.azimuth_rays = static_cast<int>(t.integer("azimuth_rays", q.azimuth_rays, 0, 100000));
+  q.max_bounces = static_cast<int>(t.integer("max_bounces", q.max_bounces, 1, scene::Propagator::kMaxBounces));
+  q.match_factor = t.number("match_factor", q.match_factor, Range{0.0, 20.0, "", true});
+  q.reuse_distance_m = t.number("reuse_distance_m", q.reuse_distance_m, Range{0.0, 1000.0, "m"});
+  q.reuse_angle_rad = t.number("reuse_angle_deg", q.reuse_angle_rad * kRadToDeg, Range{0.0, 90.0, "deg"}) * kDegToRad;
+  q.min_arrival_el_rad =
+      t.number("min_arrival_elevation_deg", q.min_arrival_el_rad * kRadToDeg, Range{-89.0, 89.0, "deg"}) * kDegToRad;
+  q.max_loss_db = t.number("max_loss_db", 21.0, Range{0.0, 1000.0, "dB", true});
+  s.reflection_loss_db = t.number("reflection_loss_db", s.reflection_loss_db, Range{0.0, 100.0, "dB"});
+  if (auto m = t.table("material_loss_db", false)) {
+    const toml::node* tn = t.find("material_loss_db");
+    for (const auto& [k, v] : *tn->as_table()) {
+      const std::string key(k.str());
+      s.material_loss_db.push_back({key, m->number(key, std::nullopt, Range{0.0, 100.0, "dB"}), detail::line_of(v)});
+    }
+    m->finish();
+  }
+  t.finish();
+  return s;
+}
+
 Config read_config(const toml::table& doc, const std::string& name, const std::string& base_dir) {
   Config c;
   TableReader root(doc, "", name);
@@ -561,6 +620,7 @@ Config read_config(const toml::table& doc, const std::string& name, const std::s
   if (auto t = root.table("truth", false)) c.truth = read_truth(*t);
   if (auto t = root.table("demo", false)) c.demo = read_demo(*t);
   c.outputs = read_outputs(root, base_dir);
+  if (auto t = root.table("scene", false)) c.scene = read_scene(*t, base_dir);
   if (auto t = root.table("log", false)) {
     if (const toml::node* n = t->find("level")) {
       c.log.level = t->string("level", std::nullopt);

@@ -11,6 +11,8 @@
 #include "core/common/vec3.hpp"
 #include "core/protocol/nmea/nmea_encoder.hpp"
 #include "core/receiver/receiver_config.hpp"
+#include "core/scene/mesh.hpp"
+#include "core/scene/propagator.hpp"
 #include "core/time/gps_time.hpp"
 
 namespace gnssemu::config {
@@ -97,6 +99,20 @@ struct LogConfig {
   std::string level = "info";     ///< trace, debug, info, warn, error
 };
 
+/// Buildings around the origin (docs/scene.md): mesh, placement, search effort.
+struct SceneConfig {
+  std::string mesh_file;           ///< .obj/.ply/.toml, absolute (resolved against the config file's folder)
+  scene::Placement placement;      ///< model -> local ENU of [origin]
+  scene::SearchConfig search;      ///< rays, bounces, reuse, arrival mask, loss cap
+  double reflection_loss_db = 3.0; ///< every material, dB per reflection
+  struct MaterialLoss {
+    std::string name;              ///< material name in the mesh (OBJ usemtl, footprint material)
+    double loss_db = 3.0;          ///< dB per reflection
+    int line = 0;                  ///< config line (for messages)
+  };
+  std::vector<MaterialLoss> material_loss_db;
+};
+
 struct Config {
   std::string source;             ///< file the config came from ("" if built in)
   Lla origin;                     ///< local frame origin (lat/lon rad, height m)
@@ -108,6 +124,7 @@ struct Config {
   DemoConfig demo;
   std::vector<OutputPortConfig> outputs;
   LogConfig log;
+  std::optional<SceneConfig> scene;  ///< no [scene]: no scene stage
 };
 
 /// Load and validate a TOML file. Relative paths inside are resolved against

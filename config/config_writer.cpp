@@ -243,6 +243,30 @@ std::string to_toml(const Config& c, const std::string& relative_to) {
     if (const std::string rt = rates(p); !rt.empty()) o += "rates = " + rt + "  # epochs per message\n";
   }
 
+  if (c.scene) {
+    const SceneConfig& s = *c.scene;
+    o += "\n[scene]  # buildings, docs/scene.md\n";
+    o += "mesh = " + quoted(path_text(s.mesh_file, relative_to)) + "\n";
+    o += "offset_m = [" + number(s.placement.offset_m.x) + ", " + number(s.placement.offset_m.y) + ", " +
+         number(s.placement.offset_m.z) + "]  # model origin in local ENU\n";
+    o += "yaw_deg = " + degrees(s.placement.yaw_rad) + "  # counter-clockwise from east\n";
+    o += "scale = " + number(s.placement.scale) + "\n";
+    o += "up_axis = " + quoted(s.placement.y_up ? "y" : "z") + "\n";
+    o += "rays = " + std::to_string(s.search.rays) + "\n";
+    o += "azimuth_rays = " + std::to_string(s.search.azimuth_rays) + "  # per blocked satellite, vertical/horizontal scenes\n";
+    o += "max_bounces = " + std::to_string(s.search.max_bounces) + "\n";
+    o += "match_factor = " + number(s.search.match_factor) + "\n";
+    o += "reuse_distance_m = " + number(s.search.reuse_distance_m) + "\n";
+    o += "reuse_angle_deg = " + degrees(s.search.reuse_angle_rad) + "\n";
+    o += "min_arrival_elevation_deg = " + degrees(s.search.min_arrival_el_rad) + "\n";
+    o += "max_loss_db = " + number(s.search.max_loss_db) + "\n";
+    o += "reflection_loss_db = " + number(s.reflection_loss_db) + "\n";
+    if (!s.material_loss_db.empty()) {
+      o += "\n[scene.material_loss_db]\n";
+      for (const SceneConfig::MaterialLoss& m : s.material_loss_db) o += quoted(m.name) + " = " + number(m.loss_db) + "\n";
+    }
+  }
+
   o += "\n[log]\n";
   o += "level = " + quoted(c.log.level) + "\n";
   return o;

@@ -6,6 +6,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "config/scene_loader.hpp"
 #include "core/common/error.hpp"
 #include "core/time/utc.hpp"
 #include "daemon/epoch_schedule.hpp"
@@ -51,6 +52,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       nav_klobuchar_(nav.klobuchar),
       store_(nav.ephemerides),
       frame_(cfg.origin),
+      scene_(config::load_scene(cfg)),
       demo_(frame_, cfg.demo.radius_m, cfg.demo.speed_m_s, cfg.demo.height_m),
       router_(TrackParams{cfg.truth.timeout_s, cfg.truth.max_extrapolation_s}, cfg.time.mode),
       coverage_(coverage_for(cfg, nav)),
@@ -62,6 +64,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       signals_(io, SIGINT, SIGTERM) {
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
   restart_receiver();
+  if (scene_) spdlog::info("scene {}: {} triangles", cfg_.scene->mesh_file, scene_->triangle_count());
   lock_next_ = coverage_.start;
 }
 
@@ -71,6 +74,7 @@ void Daemon::restart_receiver() {
   receiver_ = std::make_unique<receiver::Receiver>(store_, cfg_.receiver);
   if (nav_leap_s_) receiver_->set_leap_seconds(*nav_leap_s_);
   receiver_->set_klobuchar(nav_klobuchar_);
+  config::attach_scene(*receiver_, cfg_, scene_.get());
 }
 
 Daemon::~Daemon() { shutdown(); }

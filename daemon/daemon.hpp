@@ -16,6 +16,7 @@
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/nav_data.hpp"
 #include "core/receiver/receiver.hpp"
+#include "core/scene/scene.hpp"
 #include "daemon/demo_trajectory.hpp"
 #include "daemon/drop_stats.hpp"
 #include "daemon/output_port.hpp"
@@ -66,6 +67,7 @@ private:
   orbit::KlobucharParams nav_klobuchar_;  ///< broadcast iono of the nav header (invalid: RTKLIB defaults)
   orbit::EphemerisStore store_;
   geo::LocalFrame frame_;
+  std::unique_ptr<scene::Scene> scene_;  ///< buildings ([scene]); outlives receiver_
   std::unique_ptr<receiver::Receiver> receiver_;
   DemoTrajectory demo_;
   TruthRouter router_;

@@ -35,6 +35,11 @@ struct SatInfo {
   double pseudorange_m = 0.0; ///< measured (with all errors), m
   double doppler_hz = 0.0;    ///< measured L1 Doppler, Hz
   double residual_m = 0.0;    ///< post-fit pseudorange residual, m (used only)
+  // Scene propagation (world truth, for analysis; zero without a scene).
+  bool nlos = false;          ///< received via reflections only
+  bool blocked = false;       ///< above the mask but no signal path (not received)
+  int bounces = 0;            ///< reflections on the tracked path
+  double nlos_delay_m = 0.0;  ///< extra path length added to the pseudorange, m
 };
 
 struct Fix {

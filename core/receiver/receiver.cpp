@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <string>
 
 #include "core/common/error.hpp"
@@ -98,6 +99,12 @@ Receiver::Receiver(const orbit::EphemerisStore& store, const ReceiverConfig& con
       link_(config.signal.link),
       solver_(config.solver, config.max_pdop) {
   no_fix_epoch();
+}
+
+void Receiver::attach_scene(const scene::Scene& scene, const Lla& origin, const scene::SearchConfig& search) {
+  propagator_ = std::make_unique<scene::Propagator>(scene, search);
+  scene_frame_ = std::make_unique<geo::LocalFrame>(origin);
+  scene_path_.fill(scene::SatPath{});
 }
 
 void Receiver::set_klobuchar(const orbit::KlobucharParams& p) {
@@ -228,6 +235,31 @@ void Receiver::propagation_stage(const time::GpsTime& t, const Lla& rx_lla, cons
   }
 }
 
+// Stage 3b (propagation, buildings): direct, reflected only (extra path
+// length and reflection loss join the atmosphere's), or not received.
+void Receiver::scene_stage(const Ecef& rx_pos_m) noexcept {
+  scene_path_.fill(scene::SatPath{});
+  if (!propagator_) return;
+  for (int i = 0; i < n_above_; ++i) {
+    const SkySat& s = sky_[above_[i] - 1];
+    scene_query_[i] = scene::SatQuery{above_[i], scene_frame_->vector_to_enu((s.pos_m - rx_pos_m) / s.range_m)};
+  }
+  const auto n = static_cast<std::size_t>(n_above_);
+  propagator_->compute(scene_frame_->to_enu(rx_pos_m), std::span<const scene::SatQuery>(scene_query_.data(), n),
+                       std::span<scene::SatPath>(scene_out_.data(), n));
+  for (int i = 0; i < n_above_; ++i) {
+    const scene::SatPath& sp = scene_out_[i];
+    scene_path_[above_[i] - 1] = sp;
+    PathEffects& e = path_[above_[i] - 1];
+    if (sp.kind == scene::PathKind::kNone) {
+      e.received = false;
+    } else if (sp.kind == scene::PathKind::kNlos) {
+      e.delay_m += sp.extra_delay_m;
+      e.loss_db += sp.loss_db;
+    }
+  }
+}
+
 // Stage 4 (signal): C/N0 from the link budget, acquisition / loss with
 // hysteresis, then the channel limit (highest elevations first).
 void Receiver::signal_stage() noexcept {
@@ -250,7 +282,7 @@ void Receiver::signal_stage() noexcept {
     double cn0 = 0.0;
     if (!config_.signal.enabled) {
       const double one_m_sin = 1.0 - std::sin(s.el_rad);
-      cn0 = config_.nominal_cn0_dbhz - kCn0ElevationLoss_db * one_m_sin * one_m_sin;
+      cn0 = config_.nominal_cn0_dbhz - kCn0ElevationLoss_db * one_m_sin * one_m_sin - scene_path_[p - 1].loss_db;
       ok = e.received;
     } else if (e.received) {
       cn0 = link_.cn0_dbhz(s.range_m, s.el_rad, e.loss_db);
@@ -292,6 +324,11 @@ void Receiver::observables_stage(const time::GpsTime& t, uint64_t epoch) noexcep
     si.healthy = true;
     si.above_mask = s.el_rad >= config_.elevation_mask_rad;
     if (si.above_mask) ++fix_.num_visible;
+    const scene::SatPath& sp = scene_path_[p - 1];
+    si.blocked = si.above_mask && sp.kind == scene::PathKind::kNone;
+    si.nlos = si.above_mask && sp.kind == scene::PathKind::kNlos;
+    si.bounces = si.nlos ? sp.bounces : 0;
+    si.nlos_delay_m = si.nlos ? sp.extra_delay_m : 0.0;
     if (!tracked_[p - 1]) continue;
     const orbit::Ephemeris* eph = store_.select(p, t);
     const double cn0 = cn0_dbhz_[p - 1];
@@ -344,6 +381,7 @@ const Fix& Receiver::step(const time::GpsTime& t, const Truth& truth) noexcept {
   const Lla rx_lla = geo::lla_from_ecef(truth.pos_m);
   sky_stage(t, truth, rx_lla);
   propagation_stage(t, rx_lla, truth.pos_m);
+  scene_stage(truth.pos_m);
   signal_stage();
   observables_stage(t, epoch);
 

@@ -7,9 +7,11 @@
 // receiver's own solver with its broadcast corrections.
 #include <array>
 #include <cstdint>
+#include <memory>
 
 #include "core/atmosphere/term_cache.hpp"
 #include "core/common/vec3.hpp"
+#include "core/geo/local_frame.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/nav_data.hpp"
 #include "core/receiver/error_processes.hpp"
@@ -19,6 +21,7 @@
 #include "core/receiver/receiver_config.hpp"
 #include "core/receiver/sky.hpp"
 #include "core/receiver/solver.hpp"
+#include "core/scene/propagator.hpp"
 #include "core/signal/link_budget.hpp"
 #include "core/signal/tracking.hpp"
 
@@ -58,6 +61,14 @@ public:
   /// RTKLIB's default coefficients. Throws gnssemu::Error for non-finite values.
   void set_klobuchar(const orbit::KlobucharParams& p);
 
+  /// Buildings: the scene (built in the ENU frame of origin) decides per
+  /// satellite direct / reflected only (extra delay and reflection loss join
+  /// the PathEffects) / not received. scene must outlive the receiver. Setup
+  /// only (allocates); throws gnssemu::Error on a bad search config.
+  void attach_scene(const scene::Scene& scene, const Lla& origin, const scene::SearchConfig& search);
+  /// The scene stage (null without a scene); its stats() describe the last epoch.
+  const scene::Propagator* propagator() const noexcept { return propagator_.get(); }
+
   /// The world's propagation effects on prn (1..32) at the last epoch with
   /// truth (zero when the satellite was not above the mask).
   const PathEffects& path_effects(int prn) const noexcept { return path_[static_cast<std::size_t>(prn - 1)]; }
@@ -74,6 +85,7 @@ private:
   void advance_world(const time::GpsTime& t) noexcept;
   int sky_stage(const time::GpsTime& t, const Truth& truth, const Lla& rx_lla) noexcept;
   void propagation_stage(const time::GpsTime& t, const Lla& rx_lla, const Ecef& rx_pos_m) noexcept;
+  void scene_stage(const Ecef& rx_pos_m) noexcept;
   void signal_stage() noexcept;
   void observables_stage(const time::GpsTime& t, uint64_t epoch) noexcept;
   void no_fix_epoch() noexcept;
@@ -104,6 +116,12 @@ private:
   bool cache_pos_valid_ = false;
   long atmosphere_evaluations_ = 0;
   std::array<PathEffects, kMaxGpsPrn> path_{};
+  // Scene (optional part of the propagation stage).
+  std::unique_ptr<scene::Propagator> propagator_;
+  std::unique_ptr<geo::LocalFrame> scene_frame_;
+  std::array<scene::SatQuery, kMaxGpsPrn> scene_query_{};
+  std::array<scene::SatPath, kMaxGpsPrn> scene_out_{};
+  std::array<scene::SatPath, kMaxGpsPrn> scene_path_{};  ///< per PRN, this epoch
   // Signal stage.
   signal::LinkBudgetModel link_;
   std::array<signal::TrackingState, kMaxGpsPrn> tracking_{};

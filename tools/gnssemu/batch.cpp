@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "config/scene_loader.hpp"
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
@@ -65,16 +66,25 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
   }
 
   const orbit::EphemerisStore store(nav.ephemerides);
+  scene::MeshStats mesh_stats;
+  const std::unique_ptr<scene::Scene> buildings = config::load_scene(config, &mesh_stats);
   receiver::Receiver rx(store, config.receiver);
   if (nav.leap_seconds) rx.set_leap_seconds(*nav.leap_seconds);
   rx.set_klobuchar(nav.klobuchar);
+  config::attach_scene(rx, config, buildings.get());
   const protocol::nmea::NmeaEncoder encoder(nmea_config_of(config));
   std::string sentences;
   sentences.reserve(4096);
   fmt::memory_buffer row;
 
-  if (errors) *errors << "gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop\n";
   BatchSummary sum;
+  sum.scene = buildings != nullptr;
+  sum.mesh_skipped = mesh_stats.skipped();
+  if (errors) {
+    *errors << "gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop"
+            << (sum.scene ? ",nvisible,ntracked,nlos,nblocked,nlos_delay_mean_m\n" : "\n");
+  }
+  long visible_sum = 0, nlos_sum = 0, blocked_sum = 0;
   std::vector<double> h_err, v_err;
   double se = 0.0, sn = 0.0, su = 0.0;
   for (double k = k0;; k += 1.0) {
@@ -110,9 +120,37 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
       } else {
         fmt::format_to(std::back_inserter(row), ",,,");
       }
-      fmt::format_to(std::back_inserter(row), "{:.2f},{:.2f},{:.2f}\n", fix.dop.hdop, fix.dop.vdop, fix.dop.pdop);
+      fmt::format_to(std::back_inserter(row), "{:.2f},{:.2f},{:.2f}", fix.dop.hdop, fix.dop.vdop, fix.dop.pdop);
+    }
+    if (sum.scene) {
+      int nlos = 0, blocked = 0;
+      double delay_m = 0.0;
+      for (int i = 0; i < fix.num_sats; ++i) {
+        const receiver::SatInfo& si = fix.sats[i];
+        if (!si.above_mask) continue;
+        blocked += si.blocked;
+        if (si.tracked && si.nlos) {
+          ++nlos;
+          delay_m += si.nlos_delay_m;
+        }
+      }
+      visible_sum += fix.num_visible;
+      nlos_sum += nlos;
+      blocked_sum += blocked;
+      if (errors) {
+        fmt::format_to(std::back_inserter(row), ",{},{},{},{},{:.3f}", fix.num_visible, fix.num_tracked, nlos, blocked,
+                       nlos > 0 ? delay_m / nlos : 0.0);
+      }
+    }
+    if (errors) {
+      row.push_back('\n');
       errors->write(row.data(), static_cast<std::streamsize>(row.size()));
     }
+  }
+  if (sum.epochs > 0) {
+    sum.mean_visible = static_cast<double>(visible_sum) / sum.epochs;
+    sum.mean_nlos = static_cast<double>(nlos_sum) / sum.epochs;
+    sum.mean_blocked = static_cast<double>(blocked_sum) / sum.epochs;
   }
   sum.h_rms_m = rms(h_err);
   sum.h_95_m = percentile(h_err, 0.95);
@@ -131,6 +169,11 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
 void write_summary(const BatchSummary& s, std::ostream& out) {
   const double avail = s.epochs > 0 ? 100.0 * s.fixes / s.epochs : 0.0;
   out << fmt::format("epochs {}  fixes {} ({:.1f}%)  3D {}\n", s.epochs, s.fixes, avail, s.fixes_3d);
+  if (s.scene) {
+    out << fmt::format("scene: per epoch {:.2f} above mask, {:.2f} NLOS (reflections only), {:.2f} blocked{}\n",
+                       s.mean_visible, s.mean_nlos, s.mean_blocked,
+                       s.mesh_skipped > 0 ? fmt::format("; mesh: {} bad elements skipped", s.mesh_skipped) : "");
+  }
   if (s.fixes == 0) {
     out << "no fix: no error statistics\n";
     return;

@@ -19,13 +19,19 @@ struct BatchSummary {
   double h_rms_m = 0.0, h_95_m = 0.0, h_max_m = 0.0;
   double v_rms_m = 0.0, v_95_m = 0.0, v_max_m = 0.0;
   double mean_e_m = 0.0, mean_n_m = 0.0, mean_u_m = 0.0;
+  // With a [scene]: per-epoch means of satellites above the mask, received
+  // via reflections only (NLOS), and blocked (not received).
+  bool scene = false;
+  double mean_visible = 0.0, mean_nlos = 0.0, mean_blocked = 0.0;
+  int mesh_skipped = 0;  ///< mesh elements the reader skipped
 };
 
 /// Run the receiver, set up as the daemon sets it up from the nav file (its
 /// ephemerides, its header's leap seconds), at config.rate_hz on the GPS-time grid (multiples of
 /// 1/rate s of week) from the first to the last truth time. nmea: the NMEA
 /// stream of the first configured output port (u-blox default set when none);
-/// errors: CSV `gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop`.
+/// errors: CSV `gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop`, plus
+/// `nvisible,ntracked,nlos,nblocked,nlos_delay_mean_m` when the config has a [scene].
 /// Either may be null. Throws gnssemu::Error when the truth spans no epoch.
 BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const TruthTrack& track,
                        std::ostream* nmea, std::ostream* errors);

@@ -10,6 +10,7 @@
 #include <optional>
 #include <utility>
 #include <string>
+#include <vector>
 
 #include "config/config.hpp"
 #include "core/common/constants.hpp"
@@ -17,8 +18,10 @@
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/observation/rinex_obs.hpp"
 #include "core/orbit/rinex_nav.hpp"
+#include "core/scene/scene.hpp"
 #include "tools/gnssemu/batch.hpp"
 #include "tools/gnssemu/calibrate.hpp"
+#include "tools/gnssemu/bench_multipath.hpp"
 #include "tools/gnssemu/satpos.hpp"
 #include "tools/gnssemu/sky.hpp"
 #include "tools/gnssemu/spp.hpp"
@@ -39,6 +42,13 @@ struct TimeArgs {
 struct SiteArgs {
   double lat_deg = 0.0, lon_deg = 0.0, height_m = 0.0;
   double mask_deg = 5.0;
+};
+
+struct SceneArgs {
+  std::string mesh_path;
+  std::vector<double> origin;  ///< lat_deg, lon_deg, height_m; empty: the site
+  int rays = scene::SearchConfig{}.rays;
+  int bounces = scene::SearchConfig{}.max_bounces;
 };
 
 struct BatchArgs {
@@ -263,6 +273,13 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   add_time(satpos);
   CLI::App* sky = app.add_subcommand("sky", "azimuth, elevation and range of the satellites above the mask");
   add_site(sky);
+  SceneArgs scene_args;
+  sky->add_option("--scene", scene_args.mesh_path, "buildings: .obj/.ply/.toml mesh in the local ENU frame of --scene-origin");
+  sky->add_option("--scene-origin", scene_args.origin, "scene frame origin LAT_DEG,LON_DEG,HEIGHT_M (default: the site)")
+      ->delimiter(',')
+      ->expected(3);
+  sky->add_option("--rays", scene_args.rays, "reflection search: launch rays")->capture_default_str();
+  sky->add_option("--bounces", scene_args.bounces, "reflection search: bounces at most")->capture_default_str();
   CLI::App* dop = app.add_subcommand("dop", "dilutions of precision of the satellites above the mask");
   add_site(dop);
   CLI::App* batch_cmd =
@@ -287,17 +304,38 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   calib->add_option("--mask", obs_args.mask_deg, "elevation mask, deg [0, 90)")->capture_default_str();
   calib->add_option("--config", obs_args.config_path, "start from this config (default: the built-in one)");
   calib->add_option("--residuals", obs_args.residuals_path, "also write every satellite residual used as CSV");
+  CLI::App* bench = app.add_subcommand("bench", "benchmarks that print time next to the error it costs");
+  bench->require_subcommand(1);
+  CLI::App* bench_mp = bench->add_subcommand("multipath", "scene stage: time per epoch vs error against a dense reference");
+  BenchMultipathArgs bmp;
+  int bench_week = -1;
+  double bench_tow_s = -1.0;
+  bench_mp->add_option("--scene", bmp.scene_path, "buildings: .obj/.ply/.toml in the ENU frame of --origin");
+  bench_mp->add_option("--city", bmp.city_blocks, "instead of --scene: procedural city of N x N blocks (N=10: ~160k triangles)");
+  bench_mp->add_option("--write-city", bmp.write_city, "write the procedural city as OBJ");
+  bench_mp->add_option("--origin", bmp.origin, "scene frame origin LAT_DEG,LON_DEG,HEIGHT_M")->delimiter(',')->expected(3)->required();
+  bench_mp->add_option("--nav", bmp.nav_path, "RINEX navigation file")->required();
+  bench_mp->add_option("--week", bench_week, "GPS week of the first epoch (default: nav start + 2 h)");
+  bench_mp->add_option("--tow", bench_tow_s, "GPS time of week of the first epoch, s");
+  bench_mp->add_option("--path", bmp.path_en_m, "drive polyline E0,N0,E1,N1,... (ENU m)")->delimiter(',')->required();
+  bench_mp->add_option("--speed", bmp.speed_m_s, "drive speed, m/s")->capture_default_str();
+  bench_mp->add_option("--rate", bmp.rate_hz, "epoch rate, Hz")->capture_default_str();
+  bench_mp->add_option("--antenna-height", bmp.antenna_height_m, "antenna above the scene's z = 0, m")->capture_default_str();
+  bench_mp->add_option("--mask", bmp.mask_deg, "elevation mask, deg")->capture_default_str();
+  bench_mp->add_option("--reference-rays", bmp.reference_rays, "dense reference rays")->capture_default_str();
+  bench_mp->add_option("--repeats", bmp.repeats, "timing passes (median)")->capture_default_str();
+  bench_mp->add_option("--max-loss-db", bmp.max_loss_db, "loss cap of every path (default: off)");
   CLI::App* version = app.add_subcommand("version", "versions of gnssemu, Embree and GeographicLib");
 
   // CLI11 reports a mistyped subcommand only as "A subcommand is required".
   const auto known = [&](const std::string& name) {
-    for (const CLI::App* sub : {satpos, sky, dop, batch_cmd, spp, calib, version}) {
+    for (const CLI::App* sub : {satpos, sky, dop, batch_cmd, spp, calib, bench, version}) {
       if (sub->get_name() == name) return true;
     }
     return false;
   };
   if (argc > 1 && argv[1][0] != '-' && !known(argv[1])) {
-    err << "gnssemu: unknown subcommand '" << argv[1] << "' (satpos, sky, dop, batch, spp, calibrate, version; see --help)\n";
+    err << "gnssemu: unknown subcommand '" << argv[1] << "' (satpos, sky, dop, batch, spp, calibrate, bench, version; see --help)\n";
     return kExitUsage;
   }
   try {
@@ -317,7 +355,23 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       SkyRequest req = checked_site(site, t);
       const orbit::EphemerisStore store = load_store(nav_path, t, &req.klobuchar);
       if (*sky) {
-        write_sky(store, req, out);
+        SkyRequest sreq = req;
+        std::unique_ptr<scene::Scene> buildings;
+        if (!scene_args.mesh_path.empty()) {
+          sreq.scene_origin = req.rx_lla;
+          if (!scene_args.origin.empty()) {
+            check_range("--scene-origin latitude", scene_args.origin[0], -90.0, 90.0);
+            check_range("--scene-origin longitude", scene_args.origin[1], -180.0, 180.0);
+            check_range("--scene-origin height", scene_args.origin[2], -1.0e4, 1.0e6);
+            sreq.scene_origin = Lla{scene_args.origin[0] * kDegToRad, scene_args.origin[1] * kDegToRad, scene_args.origin[2]};
+          }
+          sreq.search.rays = scene_args.rays;
+          sreq.search.max_bounces = scene_args.bounces;
+          scene::validate(sreq.search);
+          buildings = std::make_unique<scene::Scene>(scene::load_mesh(scene_args.mesh_path));
+          sreq.scene = buildings.get();
+        }
+        write_sky(store, sreq, out);
       } else if (const DopResult d = write_dop(store, req, out); !d.defined) {
         err << "gnssemu dop: DOP undefined: " << d.nsat << " satellites above the mask"
             << (d.nsat < 4 ? " (4 needed)\n" : " in a singular geometry\n");
@@ -328,6 +382,10 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       return run_spp_command(obs_args, out, err);
     } else if (*calib) {
       return run_calibrate_command(obs_args, out, err);
+    } else if (*bench_mp) {
+      if (bmp.scene_path.empty() == (bmp.city_blocks <= 0)) throw Error("bench multipath: give either --scene or --city");
+      if (bench_week >= 0 || bench_tow_s >= 0.0) bmp.start = checked_time(TimeArgs{bench_week, bench_tow_s});
+      run_bench_multipath(bmp, out, err);
     }
   } catch (const Error& e) {
     err << "gnssemu: " << e.what() << '\n';

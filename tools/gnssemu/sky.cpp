@@ -4,9 +4,12 @@
 
 #include <cmath>
 #include <iterator>
+#include <optional>
+#include <span>
 
 #include "core/common/constants.hpp"
 #include "core/geo/geodesy.hpp"
+#include "core/geo/local_frame.hpp"
 #include "core/receiver/receiver.hpp"
 #include "core/receiver/propagation.hpp"
 #include "core/receiver/sky.hpp"
@@ -36,13 +39,17 @@ receiver::ReceiverConfig geometry_receiver_config(double mask_rad) {
 }  // namespace
 
 int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out) {
-  out << "prn,az_deg,el_deg,range_m,iono_klobuchar_m,tropo_zhd_m,nmf_hydro,nmf_wet,atten_db,cn0_dbhz\n";
+  out << "prn,az_deg,el_deg,range_m,iono_klobuchar_m,tropo_zhd_m,nmf_hydro,nmf_wet,atten_db,cn0_dbhz"
+      << (req.scene ? ",los,bounces,nlos_delay_m,path_loss_db\n" : "\n");
   const Ecef rx = geo::ecef_from_lla(req.rx_lla);
   const receiver::ReceiverConfig defaults;
   const receiver::AtmospherePropagation world(defaults.atmosphere);
   const signal::LinkBudgetModel link(defaults.signal.link);
   const double doy = req.t.day_of_year() + std::fmod(req.t.tow_s(), kSecondsPerDay) / kSecondsPerDay;
   const double zhd_m = atmosphere::receiver_zhd_m(req.rx_lla.lat_rad, req.rx_lla.height_m);
+  const geo::LocalFrame frame(req.scene_origin);
+  std::optional<scene::Propagator> prop;
+  if (req.scene) prop.emplace(*req.scene, req.search);
   int rows = 0;
   fmt::memory_buffer buf;
   for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
@@ -57,9 +64,21 @@ int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::os
     const double atten_db =
         world.slow_terms(req.rx_lla, s.az_rad, s.el_rad, req.t.tow_s(), doy)[receiver::kAttenDb];
     buf.clear();
-    fmt::format_to(std::back_inserter(buf), "{},{:.6f},{:.6f},{:.4f},{:.4f},{:.4f},{:.5f},{:.5f},{:.4f},{:.2f}\n", prn,
+    fmt::format_to(std::back_inserter(buf), "{},{:.6f},{:.6f},{:.4f},{:.4f},{:.4f},{:.5f},{:.5f},{:.4f},{:.2f}", prn,
                    s.az_rad * kRadToDeg, s.el_rad * kRadToDeg, s.range_m, iono_m, zhd_m, nmf.hydro, nmf.wet, atten_db,
                    link.cn0_dbhz(s.range_m, s.el_rad, atten_db));
+    if (prop) {
+      const scene::SatQuery q{prn, frame.vector_to_enu((s.pos_m - rx) / s.range_m)};
+      scene::SatPath p;
+      prop->compute(frame.to_enu(rx), std::span<const scene::SatQuery>(&q, 1), std::span<scene::SatPath>(&p, 1));
+      if (p.kind == scene::PathKind::kNone) {
+        fmt::format_to(std::back_inserter(buf), ",0,0,,");
+      } else {
+        fmt::format_to(std::back_inserter(buf), ",{},{},{:.4f},{:.2f}", p.kind == scene::PathKind::kLos ? 1 : 0,
+                       p.bounces, p.extra_delay_m, p.loss_db);
+      }
+    }
+    buf.push_back('\n');
     out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
     ++rows;
   }

@@ -6,6 +6,7 @@
 #include "core/common/vec3.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/nav_data.hpp"
+#include "core/scene/propagator.hpp"
 #include "core/time/gps_time.hpp"
 
 namespace gnssemu::cli {
@@ -15,6 +16,9 @@ struct SkyRequest {
   Lla rx_lla;             ///< receiver (lat/lon rad, ellipsoidal height m)
   double mask_rad = 0.0;  ///< elevation mask, rad [0, pi/2)
   orbit::KlobucharParams klobuchar;  ///< nav header's broadcast iono (invalid: RTKLIB defaults)
+  const scene::Scene* scene = nullptr;  ///< buildings (built in the ENU frame of scene_origin), optional
+  Lla scene_origin;                     ///< origin of the scene's local frame
+  scene::SearchConfig search;           ///< reflection search effort
 };
 
 /// Writes `prn,az_deg,el_deg,range_m,iono_klobuchar_m,tropo_zhd_m,nmf_hydro,
@@ -25,6 +29,9 @@ struct SkyRequest {
 /// hydrostatic delay (Saastamoinen), the Niell mapping functions at that
 /// elevation and day of year, and the default world's attenuation (gases over
 /// the shells; no clouds or rain) and C/N0 (default link budget, countryside).
+/// With req.scene, also `los,bounces,nlos_delay_m,path_loss_db` (los 1 direct,
+/// 0 blocked; a blocked satellite without a reflection path has empty delay
+/// and loss: not received).
 /// Returns the number of rows.
 int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out);
 

@@ -1,0 +1,33 @@
+#include "config/scene_loader.hpp"
+
+#include "core/common/error.hpp"
+
+namespace gnssemu::config {
+
+std::unique_ptr<scene::Scene> load_scene(const Config& c, scene::MeshStats* stats) {
+  if (!c.scene) return nullptr;
+  const SceneConfig& s = *c.scene;
+  const scene::Mesh mesh = scene::load_mesh(s.mesh_file, s.placement);
+  if (stats != nullptr) *stats = mesh.stats;
+  auto out = std::make_unique<scene::Scene>(mesh);
+  out->set_default_loss_db(s.reflection_loss_db);
+  for (const SceneConfig::MaterialLoss& m : s.material_loss_db) {
+    if (!out->set_material_loss_db(m.name, m.loss_db)) {
+      std::string known;
+      for (const std::string& n : out->material_names()) {
+        if (!n.empty()) known += (known.empty() ? "" : ", ") + n;
+      }
+      throw Error(c.source, m.line,
+                  "scene.material_loss_db." + m.name + ": no such material in " + s.mesh_file +
+                      (known.empty() ? " (it has none)" : " (it has: " + known + ")"));
+    }
+  }
+  return out;
+}
+
+void attach_scene(receiver::Receiver& rx, const Config& c, const scene::Scene* scene) {
+  if (scene == nullptr || !c.scene) return;
+  rx.attach_scene(*scene, c.origin, c.scene->search);
+}
+
+}  // namespace gnssemu::config

@@ -1,0 +1,92 @@
+#pragma once
+// Triangle mesh in the local ENU frame of the configured origin, and the
+// readers that produce it (Wavefront OBJ, PLY ascii/binary, TOML footprints).
+// Bad input: a gnssemu::Error naming file:line, or the element skipped and
+// counted in MeshStats (never a crash, never a NaN vertex in the mesh).
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/common/vec3.hpp"
+
+namespace gnssemu::scene {
+
+/// What the reader dropped. A skipped triangle never reaches the scene.
+struct MeshStats {
+  int faces_read = 0;            ///< faces (polygons) in the file
+  int triangles = 0;             ///< triangles kept
+  int skipped_bad_index = 0;     ///< triangles referring to a missing vertex
+  int skipped_nonfinite = 0;     ///< triangles using a NaN/inf vertex
+  int skipped_degenerate = 0;    ///< triangles of zero area (repeated or collinear vertices)
+  std::string first_problem;     ///< "file:line: reason" of the first skipped element, or ""
+  int skipped() const noexcept { return skipped_bad_index + skipped_nonfinite + skipped_degenerate; }
+};
+
+/// Model-to-ENU placement: p_enu = offset_m + Rz(yaw_rad) * (scale * axes(p_model)).
+struct Placement {
+  Enu offset_m;            ///< model origin in local ENU, m
+  double yaw_rad = 0.0;    ///< rotation about up, counter-clockwise seen from above (east towards north), rad
+  double scale = 1.0;      ///< model units to metres (> 0)
+  bool y_up = false;       ///< model is Y-up (Blender/glTF export): (x, y, z) -> (x, -z, y) before yaw
+};
+
+struct Mesh {
+  std::vector<Vec3> vertices_m;                  ///< local ENU, m
+  std::vector<std::array<uint32_t, 3>> triangles;
+  std::vector<uint16_t> material;                ///< per triangle, index into material_names
+  std::vector<std::string> material_names;       ///< [0] is "" (no material given)
+  MeshStats stats;
+};
+
+/// Incremental builder used by the readers: checks indices, finiteness and
+/// area after placement, and counts what it skips.
+class MeshBuilder {
+public:
+  MeshBuilder(std::string file, const Placement& placement);
+
+  /// Adds a model-frame vertex; a non-finite one is kept as a marker so
+  /// faces using it are skipped (not an error).
+  void add_vertex(double x, double y, double z);
+  uint32_t vertex_count() const noexcept { return static_cast<uint32_t>(vertices_.size()); }
+  /// Sets the material of the faces that follow; "" = none.
+  void set_material(const std::string& name);
+  /// Adds a polygon (fan-triangulated) of 0-based indices; line for messages.
+  void add_face(const uint32_t* idx, int n, int line);
+  /// Adds a polygon by indices that may be out of range (counted as bad).
+  void add_face_checked(const int64_t* idx, int n, int line);
+
+  Mesh finish() &&;
+
+private:
+  void skip(int& counter, int line, const std::string& why);
+
+  std::string file_;
+  Placement placement_;
+  double cos_yaw_, sin_yaw_;
+  std::vector<Vec3> vertices_;
+  std::vector<bool> finite_;
+  Mesh mesh_;
+  uint16_t current_material_ = 0;
+};
+
+/// Reads a mesh by extension: .obj, .ply, .toml (footprints). Throws
+/// gnssemu::Error (file:line: reason) on a missing file or unreadable syntax.
+Mesh load_mesh(const std::string& path, const Placement& placement = {});
+
+/// Wavefront OBJ: v, f (v, v/t, v//n, v/t/n, negative = relative), usemtl;
+/// other statements ignored. Polygons are fan-triangulated.
+Mesh read_obj(const std::string& path, const Placement& placement = {});
+
+/// PLY 1.0 (ascii, binary_little_endian, binary_big_endian): element vertex
+/// with x, y, z, element face with a list of vertex indices; other elements
+/// and properties skipped.
+Mesh read_ply(const std::string& path, const Placement& placement = {});
+
+/// Extruded building footprints (docs/scene.md):
+///   [[building]] footprint = [[e, n], ...] (m, >= 3 points), height_m, base_m (0), material ("")
+///   [ground] half_size_m, height_m (0), material ("")  -- optional square ground plane
+/// Each building is closed (walls, roof, floor).
+Mesh read_footprints(const std::string& path, const Placement& placement = {});
+
+}  // namespace gnssemu::scene

@@ -1,0 +1,141 @@
+// The scene stage in the receiver: empty scene == no scene, NLOS delay and
+// loss enter pseudorange and C/N0 exactly, blocked satellites take no
+// channel, a receiver inside a building has no fix.
+#include <gtest/gtest.h>
+
+#include "core/geo/geodesy.hpp"
+#include "core/geo/local_frame.hpp"
+#include "core/orbit/ephemeris_store.hpp"
+#include "core/orbit/rinex_nav.hpp"
+#include "core/receiver/receiver.hpp"
+#include "core/scene/mesh.hpp"
+#include "core/scene/scene.hpp"
+#include "tests/support/alloc_counter.hpp"
+
+namespace gnssemu::receiver {
+namespace {
+
+const std::string kData = GNSSEMU_TEST_DATA;
+const Lla kOrigin{48.8738 * kDegToRad, 2.2950 * kDegToRad, 100.0};
+
+struct ReceiverScene : ::testing::Test {
+  orbit::NavData nav = orbit::read_rinex_nav(kData + "/nav/brdc0010.22n");
+  orbit::EphemerisStore store{nav.ephemerides};
+  time::GpsTime t0 = time::GpsTime::from_calendar({2022, 1, 1, 12, 0, 0.0});
+  geo::LocalFrame frame{kOrigin};
+
+  Truth truth_at(const Enu& p, double dt) const {
+    Truth tr;
+    tr.t = t0 + dt;
+    tr.pos_m = frame.to_ecef(p);
+    tr.valid = true;
+    return tr;
+  }
+};
+
+TEST_F(ReceiverScene, EmptySceneIsIdenticalToNoScene) {
+  const scene::Scene empty(scene::load_mesh(kData + "/scenes/empty.obj"));
+  Receiver plain(store, ReceiverConfig{});
+  Receiver with(store, ReceiverConfig{});
+  with.attach_scene(empty, kOrigin, scene::SearchConfig{});
+  for (int k = 0; k < 120; ++k) {
+    const Truth tr = truth_at(Enu(2.0 * k, -1.0 * k, 1.5), k);
+    const Fix a = plain.step(tr.t, tr);
+    const Fix& b = with.step(tr.t, tr);
+    ASSERT_EQ(a.type, b.type);
+    EXPECT_EQ(a.pos_m, b.pos_m);
+    EXPECT_EQ(a.num_used, b.num_used);
+    for (int i = 0; i < a.num_sats; ++i) {
+      EXPECT_EQ(a.sats[i].pseudorange_m, b.sats[i].pseudorange_m);
+      EXPECT_EQ(a.sats[i].cn0_dbhz, b.sats[i].cn0_dbhz);
+      EXPECT_FALSE(b.sats[i].nlos || b.sats[i].blocked);
+    }
+  }
+}
+
+TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
+  const scene::Scene canyon(scene::load_mesh(kData + "/scenes/street_canyon.toml"));
+  // Fixed code noise, so the only pseudorange difference is the path (the
+  // DLL model's noise follows C/N0, which the reflection loss lowers).
+  ReceiverConfig cfg;
+  cfg.errors.thermal_model = ThermalModel::kFixed;
+  Receiver plain(store, cfg);
+  Receiver with(store, cfg);
+  with.attach_scene(canyon, kOrigin, scene::SearchConfig{});
+  int nlos = 0, blocked = 0, weak = 0;
+  for (int k = 0; k < 60; ++k) {
+    const Truth tr = truth_at(Enu(3.0, -100.0 + 3.0 * k, 1.5), 30.0 * k);
+    const Fix a = plain.step(tr.t, tr);
+    const Fix& b = with.step(tr.t, tr);
+    ASSERT_EQ(a.num_sats, b.num_sats);
+    for (int i = 0; i < a.num_sats; ++i) {
+      const SatInfo& sa = a.sats[i];
+      const SatInfo& sb = b.sats[i];
+      ASSERT_EQ(sa.prn, sb.prn);
+      if (!sa.tracked) continue;
+      if (sb.blocked) {
+        EXPECT_FALSE(sb.tracked);
+        EXPECT_FALSE(sb.used);
+        ++blocked;
+      } else if (sb.nlos && !sb.tracked) {
+        ++weak;  // reflection loss took C/N0 below the tracking threshold
+        EXPECT_GT(sb.bounces, 0);
+      } else if (sb.nlos) {
+        EXPECT_GT(sb.nlos_delay_m, 0.0);
+        EXPECT_NEAR(sb.pseudorange_m - sa.pseudorange_m, sb.nlos_delay_m, 1e-6);
+        // Link budget: the loss comes off C/N0 dB for dB (glass and concrete 3 dB each).
+        EXPECT_NEAR(sa.cn0_dbhz - sb.cn0_dbhz, 3.0 * sb.bounces, 1e-9);
+        ++nlos;
+      } else {
+        EXPECT_EQ(sb.pseudorange_m, sa.pseudorange_m);
+      }
+    }
+  }
+  EXPECT_GT(nlos, 10);
+  EXPECT_GT(blocked, 10);
+  EXPECT_GE(weak, 0);
+}
+
+TEST_F(ReceiverScene, InsideClosedBuildingNoSatelliteNoFix) {
+  const scene::Scene box(scene::load_mesh(kData + "/scenes/closed_box.obj"));
+  Receiver rx(store, ReceiverConfig{});
+  rx.attach_scene(box, kOrigin, scene::SearchConfig{});
+  for (int k = 0; k < 5; ++k) {
+    const Truth tr = truth_at(Enu(1.0, 2.0, 1.5), k);
+    const Fix& f = rx.step(tr.t, tr);
+    EXPECT_EQ(f.type, FixType::kNone);
+    EXPECT_EQ(f.num_tracked, 0);
+    EXPECT_GT(f.num_visible, 4);
+    for (int i = 0; i < f.num_sats; ++i) {
+      if (f.sats[i].above_mask) {
+        EXPECT_TRUE(f.sats[i].blocked);
+      }
+    }
+  }
+  // Walking out of the door: satellites come back.
+  const Truth out = truth_at(Enu(40.0, 0.0, 1.5), 10.0);
+  EXPECT_EQ(rx.step(out.t, out).type, FixType::k3D);
+}
+
+TEST_F(ReceiverScene, StepWithSceneDoesNotAllocate) {
+  const scene::Scene canyon(scene::load_mesh(kData + "/scenes/street_canyon.toml"));
+  scene::SearchConfig search;
+  search.reuse_distance_m = 1.0;
+  Receiver rx(store, ReceiverConfig{});
+  rx.attach_scene(canyon, kOrigin, search);
+  rx.step(t0, truth_at(Enu(3.0, -100.0, 1.5), 0.0));
+  const long before = support::allocation_count();
+  int tracked = 0, nlos = 0;
+  for (int k = 1; k <= 200; ++k) {
+    const Truth tr = truth_at(Enu(3.0, -100.0 + 0.7 * k, 1.5), 0.5 * k);
+    const Fix& f = rx.step(tr.t, tr);
+    tracked += f.num_tracked;
+    for (int i = 0; i < f.num_sats; ++i) nlos += f.sats[i].nlos;
+  }
+  EXPECT_EQ(support::allocation_count() - before, 0);
+  EXPECT_GT(tracked, 0);
+  EXPECT_GT(nlos, 0);
+}
+
+}  // namespace
+}  // namespace gnssemu::receiver

@@ -1,0 +1,210 @@
+// Mesh readers: OBJ, PLY (ascii and binary), TOML footprints; placement;
+// bad input -> file:line error or skipped-and-counted, never a crash.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include "core/common/error.hpp"
+#include "core/scene/mesh.hpp"
+#include "core/scene/scene.hpp"
+#include "scene_test_util.hpp"
+
+namespace gnssemu::scene {
+namespace {
+
+using test::temp_file;
+
+// Runs f, expects a gnssemu::Error whose message contains every piece.
+template <class F>
+void expect_error(F f, std::initializer_list<std::string> pieces) {
+  try {
+    f();
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    for (const std::string& p : pieces) EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
+  }
+}
+
+TEST(ObjReader, ReadsPolygonsMaterialsAndRelativeIndices) {
+  const std::string p = temp_file("ok.obj",
+                                  "# comment\n"
+                                  "mtllib x.mtl\n"
+                                  "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\n"
+                                  "vt 0 0\nvn 0 0 1\n"
+                                  "usemtl glass\n"
+                                  "f 1/1/1 2/1/1 3/1/1 4/1/1\n"
+                                  "usemtl brick\n"
+                                  "v 0 0 5\nv 1 0 5\nv 0 1 5\n"
+                                  "f -3 -2 -1\n");
+  const Mesh m = load_mesh(p);
+  ASSERT_EQ(m.triangles.size(), 3u);
+  EXPECT_EQ(m.stats.faces_read, 2);
+  EXPECT_EQ(m.stats.skipped(), 0);
+  EXPECT_EQ(m.material_names.size(), 3u);  // "", glass, brick
+  EXPECT_EQ(m.material_names[m.material[0]], "glass");
+  EXPECT_EQ(m.material_names[m.material[2]], "brick");
+  EXPECT_EQ(m.triangles[2][0], 4u);
+  EXPECT_EQ(m.triangles[2][2], 6u);
+}
+
+TEST(ObjReader, BadElementsAreSkippedAndCounted) {
+  const std::string p = temp_file("bad.obj",
+                                  "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                  "v nan 0 0\n"
+                                  "v 2 0 0\n"
+                                  "f 1 2 3\n"     // ok
+                                  "f 1 2 9\n"     // line 7: index out of range
+                                  "f 1 2 4\n"     // line 8: NaN vertex
+                                  "f 1 2 5\n"     // line 9: collinear
+                                  "f 1 1 2\n"     // line 10: repeated index
+                                  "f 1 2\n");     // line 11: two vertices
+  const Mesh m = load_mesh(p);
+  EXPECT_EQ(m.triangles.size(), 1u);
+  EXPECT_EQ(m.stats.skipped_bad_index, 1);
+  EXPECT_EQ(m.stats.skipped_nonfinite, 1);
+  EXPECT_EQ(m.stats.skipped_degenerate, 3);
+  EXPECT_NE(m.stats.first_problem.find("bad.obj:7:"), std::string::npos) << m.stats.first_problem;
+  for (const Vec3& v : m.vertices_m) EXPECT_TRUE(v.finite());
+  const Scene s(m);  // builds without the bad triangles
+  EXPECT_EQ(s.triangle_count(), 1u);
+}
+
+TEST(ObjReader, SyntaxErrorsNameFileAndLine) {
+  expect_error([] { load_mesh(temp_file("syn1.obj", "v 0 0 0\nv 1 x 0\n")); }, {"syn1.obj:2:", "not a number"});
+  expect_error([] { load_mesh(temp_file("syn2.obj", "v 0 0\n")); }, {"syn2.obj:1:", "x y z"});
+  expect_error([] { load_mesh(temp_file("syn3.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n")); },
+               {"syn3.obj:4:", "non-zero"});
+  expect_error([] { load_mesh("/nonexistent/city.obj"); }, {"/nonexistent/city.obj", "not found"});
+  expect_error([] { load_mesh(temp_file("mesh.stl", "solid\n")); }, {"mesh.stl", "unknown mesh format"});
+}
+
+TEST(Placement, OffsetYawScaleAndYUp) {
+  const std::string p = temp_file("place.obj", "v 1 0 0\nv 0 2 0\nv 0 0 3\nf 1 2 3\n");
+  Placement pl;
+  pl.offset_m = Enu(100.0, 200.0, 5.0);
+  pl.yaw_rad = kPi / 2.0;  // east -> north
+  pl.scale = 2.0;
+  const Mesh m = load_mesh(p, pl);
+  ASSERT_EQ(m.vertices_m.size(), 3u);
+  EXPECT_NEAR(m.vertices_m[0].x, 100.0, 1e-12);
+  EXPECT_NEAR(m.vertices_m[0].y, 202.0, 1e-12);
+  EXPECT_NEAR(m.vertices_m[1].x, 96.0, 1e-12);
+  EXPECT_NEAR(m.vertices_m[1].y, 200.0, 1e-12);
+  EXPECT_NEAR(m.vertices_m[2].z, 11.0, 1e-12);
+  Placement yup;
+  yup.y_up = true;  // model y is up, model z is south
+  const Mesh my = load_mesh(p, yup);
+  EXPECT_NEAR(my.vertices_m[1].z, 2.0, 1e-12);
+  EXPECT_NEAR(my.vertices_m[2].y, -3.0, 1e-12);
+  pl.scale = 0.0;
+  expect_error([&] { load_mesh(p, pl); }, {"scale"});
+}
+
+std::string binary_ply(bool big_endian, int n_faces_declared, bool truncate) {
+  std::string h = std::string("ply\nformat ") + (big_endian ? "binary_big_endian" : "binary_little_endian") +
+                  " 1.0\ncomment test\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                  "property uchar red\nelement face " + std::to_string(n_faces_declared) +
+                  "\nproperty list uchar int vertex_indices\nelement edge 0\nproperty int v1\nend_header\n";
+  auto put = [&](const void* p, int n) {
+    char b[8];
+    std::memcpy(b, p, static_cast<std::size_t>(n));
+    if (big_endian) std::reverse(b, b + n);
+    h.append(b, static_cast<std::size_t>(n));
+  };
+  const float v[4][3] = {{0, 0, 0}, {4, 0, 0}, {4, 3, 0}, {0, 3, 7}};
+  for (const auto& p : v) {
+    for (const float c : p) put(&c, 4);
+    h.push_back('\x7f');
+  }
+  const unsigned char four = 4;
+  h.push_back(static_cast<char>(four));
+  for (int32_t i : {0, 1, 2, 3}) put(&i, 4);
+  if (n_faces_declared > 1) {
+    h.push_back(3);
+    for (int32_t i : {0, 1, 99}) put(&i, 4);
+  }
+  if (truncate) h.resize(h.size() - 6);
+  return h;
+}
+
+TEST(PlyReader, BinaryBothEndiansAndAscii) {
+  for (const bool be : {false, true}) {
+    const Mesh m = load_mesh(temp_file(be ? "be.ply" : "le.ply", binary_ply(be, 2, false)));
+    ASSERT_EQ(m.triangles.size(), 2u) << be;
+    EXPECT_EQ(m.stats.skipped_bad_index, 1);
+    EXPECT_FLOAT_EQ(static_cast<float>(m.vertices_m[3].z), 7.0f);
+    EXPECT_FLOAT_EQ(static_cast<float>(m.vertices_m[2].x), 4.0f);
+  }
+  const Mesh a = load_mesh(temp_file("a.ply",
+                                     "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+                                     "property double z\nelement face 1\nproperty list uchar uint vertex_index\n"
+                                     "end_header\n0 0 0\n1 0 0\n0 1 2.5\n3 0 1 2\n"));
+  ASSERT_EQ(a.triangles.size(), 1u);
+  EXPECT_DOUBLE_EQ(a.vertices_m[2].z, 2.5);
+}
+
+TEST(PlyReader, ErrorsNameFileAndLine) {
+  expect_error([] { load_mesh(temp_file("t.ply", binary_ply(false, 1, true))); }, {"t.ply", "truncated"});
+  expect_error([] { load_mesh(temp_file("h.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\n")); },
+               {"h.ply:4:", "unknown property type"});
+  expect_error([] { load_mesh(temp_file("n.ply", "plx\n")); }, {"n.ply:1:", "not a PLY"});
+  expect_error([] {
+    load_mesh(temp_file("v.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                                 "property float z\nend_header\n0 0 0\n1 oops 0\n"));
+  }, {"v.ply:9:", "oops"});
+  expect_error([] {
+    load_mesh(temp_file("nz.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+                                  "end_header\n0 0\n"));
+  }, {"nz.ply:3:", "x, y and z"});
+}
+
+TEST(PlyReader, SharedStreetCanyonIfPresent) {
+  const std::string dir = std::string(GNSSEMU_SOURCE_DIR) + "/../shared/data/scenes/simple_street_canyon";
+  if (!std::filesystem::exists(dir + "/meshes/building_1.ply")) GTEST_SKIP() << "shared data not present: " << dir;
+  const Mesh m = load_mesh(dir + "/meshes/building_1.ply");
+  EXPECT_EQ(m.triangles.size(), 12u);
+  EXPECT_EQ(m.stats.skipped(), 0);
+  const Mesh obj = load_mesh(dir + "/simple_street_canyon.obj");
+  EXPECT_EQ(obj.stats.faces_read, 74);
+  EXPECT_EQ(obj.triangles.size(), 74u);
+}
+
+TEST(Footprints, ExtrudedClosedBuildingsAndGround) {
+  const std::string p = temp_file("fp.toml",
+                                  "[ground]\nhalf_size_m = 500\nmaterial = \"concrete\"\n"
+                                  "[[building]]\nfootprint = [[0, 0], [10, 0], [10, 20], [0, 20]]\nheight_m = 15\n"
+                                  "material = \"glass\"\n"
+                                  "[[building]]  # L-shaped, clockwise, concave\n"
+                                  "footprint = [[30, 0], [30, 20], [35, 20], [35, 5], [50, 5], [50, 0]]\n"
+                                  "height_m = 30\nbase_m = 2\n");
+  const Mesh m = load_mesh(p);
+  EXPECT_EQ(m.stats.skipped(), 0);
+  // ground 2 + box (4 walls x 2 + roof 2 + floor 2) + L (6 walls x 2 + roof 4 + floor 4)
+  EXPECT_EQ(m.triangles.size(), 2u + 12u + 20u);
+  const Scene s(m);
+  EXPECT_DOUBLE_EQ(s.bounds_max_m().z, 32.0);
+  // Closed: a point inside the concave part is enclosed; the notch is open.
+  EXPECT_TRUE(s.occluded(Ray{Vec3(32.0, 10.0, 10.0), Vec3(0, 0, 1), 0.0, 1e30}));
+  EXPECT_TRUE(s.occluded(Ray{Vec3(32.0, 10.0, 10.0), Vec3(0, 0, -1), 0.0, 1e30}));
+  EXPECT_FALSE(s.occluded(Ray{Vec3(45.0, 15.0, 10.0), Vec3(0, 0, 1), 0.0, 1e30}));
+}
+
+TEST(Footprints, ErrorsNameFileAndLine) {
+  expect_error([] { load_mesh(temp_file("f1.toml", "[[building]]\nfootprint = [[0, 0], [1, 0]]\nheight_m = 5\n")); },
+               {"f1.toml:2:", "at least 3"});
+  expect_error([] { load_mesh(temp_file("f2.toml", "[[building]]\nfootprint = [[0,0],[1,0],[0,1]]\nheight_m = -5\n")); },
+               {"f2.toml:3:", "height_m"});
+  expect_error([] { load_mesh(temp_file("f3.toml", "[[building]]\nfootprint = [[0,0],[1,0],[0,1]]\nhieght_m = 5\n")); },
+               {"f3.toml:3:", "unknown key 'hieght_m'"});
+  expect_error([] {
+    load_mesh(temp_file("f4.toml", "[[building]]\nfootprint = [[0,0],[4,4],[4,0],[0,3]]\nheight_m = 5\n"));
+  }, {"f4.toml:2:", "self-intersecting"});
+  expect_error([] { load_mesh(temp_file("f5.toml", "[[building]]\nfootprint = [[0,0],[1,0],[0,\n")); },
+               {"f5.toml:", "TOML syntax"});
+}
+
+}  // namespace
+}  // namespace gnssemu::scene
