@@ -170,6 +170,12 @@ void read_receiver(TableReader& t, Config& c) {
     em.thermal_sigma_m = e->number("thermal_sigma_m", em.thermal_sigma_m, Range{0.0, 100.0, "m"});
     em.doppler_sigma_m_s = e->number("doppler_sigma_m_s", em.doppler_sigma_m_s, Range{0.0, 10.0, "m/s"});
     if (auto oc = e->table("orbit_clock", false)) read_gauss_markov(*oc, em.orbit_clock);
+    if (auto mp = e->table("multipath", false)) read_gauss_markov(*mp, em.multipath);
+    if (auto g = e->table("gradient", false)) {
+      em.gradient.north_m = g->number("north_m", em.gradient.north_m, Range{-100.0, 100.0, "m"});
+      em.gradient.east_m = g->number("east_m", em.gradient.east_m, Range{-100.0, 100.0, "m"});
+      read_gauss_markov(*g, em.gradient.process);
+    }
     e->finish();
   }
   if (auto k = t.table("clock", false)) {

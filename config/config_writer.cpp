@@ -185,6 +185,14 @@ std::string to_toml(const Config& c, const std::string& relative_to) {
   o += "\n[receiver.errors.orbit_clock]  # first-order Gauss-Markov\n";
   o += "sigma_m = " + number(r.errors.orbit_clock.sigma_m) + "\n";
   o += "tau_s = " + number(r.errors.orbit_clock.tau_s) + "\n";
+  o += "\n[receiver.errors.multipath]  # unit Gauss-Markov x sigma_m / sin(el); sigma_m 0 = off\n";
+  o += "sigma_m = " + number(r.errors.multipath.sigma_m) + "\n";
+  o += "tau_s = " + number(r.errors.multipath.tau_s) + "\n";
+  o += "\n[receiver.errors.gradient]  # delay += (north_m + g_N) cos(az) + (east_m + g_E) sin(az); g: Gauss-Markov\n";
+  o += "north_m = " + number(r.errors.gradient.north_m) + "\n";
+  o += "east_m = " + number(r.errors.gradient.east_m) + "\n";
+  o += "sigma_m = " + number(r.errors.gradient.process.sigma_m) + "\n";
+  o += "tau_s = " + number(r.errors.gradient.process.tau_s) + "\n";
   o += "\n[receiver.clock]\n";
   o += "bias_s = " + number(r.clock.bias_s) + "\n";
   o += "drift_s_s = " + number(r.clock.drift_s_s) + "\n";

@@ -22,7 +22,14 @@ enum class Purpose : uint64_t {
   kIonoStep = 7,
   kTropoInit = 8,  ///< zenith wet delay perturbation (stream kClockStream)
   kTropoStep = 9,
+  kMultipathInit = 10,  ///< unit multipath process per PRN
+  kMultipathStep = 11,
+  kGradientInit = 12,   ///< azimuthal gradient, streams kGradientStream + 0 (N) / 1 (E)
+  kGradientStep = 13,
 };
+
+/// First stream of the two azimuthal-gradient processes (after the 32 PRNs).
+inline constexpr uint64_t kGradientStream = 33;
 
 /// Stream id of the receiver clock (satellites use their PRN 1..32).
 inline constexpr uint64_t kClockStream = 0;

@@ -28,6 +28,8 @@ constexpr double kMinReportedCn0_dbhz = 1.0;
 // delay by ~1.5 cm; 5 km moves a pierce point by < 1 % of its scale.
 constexpr double kCacheMaxHeightChange_m = 5.0;
 constexpr double kCacheMaxMove_m = 5000.0;
+// Elevation floor of the multipath 1 / sin(el) scaling (ReceiverConfig doc), rad.
+constexpr double kMultipathMinEl_rad = 5.0 * kDegToRad;
 
 void check(bool ok, const std::string& what) {
   if (!ok) throw Error("receiver config: " + what);
@@ -41,6 +43,14 @@ void validate(const ReceiverConfig& c) {
   check(std::isfinite(e.orbit_clock.sigma_m) && e.orbit_clock.sigma_m >= 0.0,
         "errors.orbit_clock.sigma_m must be >= 0");
   check(std::isfinite(e.orbit_clock.tau_s) && e.orbit_clock.tau_s > 0.0, "errors.orbit_clock.tau_s must be > 0");
+  check(std::isfinite(e.multipath.sigma_m) && e.multipath.sigma_m >= 0.0, "errors.multipath.sigma_m must be >= 0");
+  check(std::isfinite(e.multipath.tau_s) && e.multipath.tau_s > 0.0, "errors.multipath.tau_s must be > 0");
+  check(std::isfinite(e.gradient.north_m) && std::isfinite(e.gradient.east_m),
+        "errors.gradient.north_m / east_m must be finite");
+  check(std::isfinite(e.gradient.process.sigma_m) && e.gradient.process.sigma_m >= 0.0,
+        "errors.gradient.sigma_m must be >= 0");
+  check(std::isfinite(e.gradient.process.tau_s) && e.gradient.process.tau_s > 0.0,
+        "errors.gradient.tau_s must be > 0");
   check(std::isfinite(e.doppler_sigma_m_s) && e.doppler_sigma_m_s >= 0.0, "errors.doppler_sigma_m_s must be >= 0");
   const ClockConfig& k = c.clock;
   check(std::isfinite(k.bias_s) && std::fabs(k.bias_s) < 1.0, "clock.bias_s must be finite and below 1 s");
@@ -112,7 +122,17 @@ void Receiver::advance_world(const time::GpsTime& t) noexcept {
                                    config_.atmosphere.ionosphere.perturbation.tau_s};
   const bool zwd_gm = atmosphere_.tropo_on() && config_.atmosphere.zwd_perturbation.sigma_m > 0.0;
   const GaussMarkovConfig& zwd_cfg = config_.atmosphere.zwd_perturbation;
+  const bool mp = config_.errors.multipath.sigma_m > 0.0;
+  const GaussMarkovConfig mp_unit{1.0, config_.errors.multipath.tau_s};
+  const GaussMarkovConfig& grad = config_.errors.gradient.process;
+  const bool grad_gm = grad.sigma_m > 0.0;
   if (!started_) {
+    if (grad_gm)
+      for (int c = 0; c < 2; ++c)
+        gradient_m_[c] = gauss_markov_init(grad, rng_.normal(kGradientStream + c, 0, Purpose::kGradientInit));
+    if (mp)
+      for (int p = 1; p <= kMaxGpsPrn; ++p)
+        multipath_unit_[p - 1] = gauss_markov_init(mp_unit, rng_.normal(p, 0, Purpose::kMultipathInit));
     for (int p = 1; p <= kMaxGpsPrn; ++p)
       orbit_clock_m_[p - 1] = gauss_markov_init(gm, rng_.normal(p, 0, Purpose::kGaussMarkovInit));
     if (iono_gm)
@@ -132,6 +152,14 @@ void Receiver::advance_world(const time::GpsTime& t) noexcept {
       for (int p = 1; p <= kMaxGpsPrn; ++p)
         iono_tecu_[p - 1] =
             gauss_markov_step(iono_tecu_[p - 1], dt_s, iono_cfg, rng_.normal(p, epoch_, Purpose::kIonoStep));
+    if (grad_gm && dt_s > 0.0)
+      for (int c = 0; c < 2; ++c)
+        gradient_m_[c] = gauss_markov_step(gradient_m_[c], dt_s, grad,
+                                           rng_.normal(kGradientStream + c, epoch_, Purpose::kGradientStep));
+    if (mp && dt_s > 0.0)
+      for (int p = 1; p <= kMaxGpsPrn; ++p)
+        multipath_unit_[p - 1] = gauss_markov_step(multipath_unit_[p - 1], dt_s, mp_unit,
+                                                   rng_.normal(p, epoch_, Purpose::kMultipathStep));
     if (zwd_gm && dt_s > 0.0)
       zwd_pert_m_ = gauss_markov_step(zwd_pert_m_, dt_s, zwd_cfg, rng_.normal(kClockStream, epoch_, Purpose::kTropoStep));
     clock_.advance(dt_s, rng_.normal(kClockStream, epoch_, Purpose::kClockDrift));
@@ -306,10 +334,17 @@ void Receiver::observables_stage(const time::GpsTime& t, uint64_t epoch) noexcep
     const double cn0 = cn0_dbhz_[p - 1];
     const double sigma_m = dll ? signal::dll_thermal_sigma_m(cn0, config_.signal.dll) : config_.errors.thermal_sigma_m;
     const double thermal_m = sigma_m * rng_.normal(p, epoch, Purpose::kThermal);
+    const double multipath_m =
+        config_.errors.multipath.sigma_m > 0.0
+            ? config_.errors.multipath.sigma_m / std::sin(std::max(s.el_rad, kMultipathMinEl_rad)) * multipath_unit_[p - 1]
+            : 0.0;
+    const ErrorModelConfig::Gradient& g = config_.errors.gradient;
+    const double gradient_m = (g.north_m + gradient_m_[0]) * std::cos(s.az_rad) +
+                              (g.east_m + gradient_m_[1]) * std::sin(s.az_rad);
     const double rr_noise_m_s = config_.errors.doppler_sigma_m_s * rng_.normal(p, epoch, Purpose::kDoppler);
     // The satellite's actual L1 clock = broadcast (dt_sv - TGD) + residual.
     const double pr_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - eph->tgd_s)) +
-                        orbit_clock_m_[p - 1] + path_[p - 1].delay_m + thermal_m;
+                        orbit_clock_m_[p - 1] + path_[p - 1].delay_m + thermal_m + multipath_m + gradient_m;
     const double rr_m_s = s.range_rate_m_s + kSpeedOfLight_m_s * (rx_drift_s_s - s.clk_drift_s_s) + rr_noise_m_s;
     si.tracked = true;
     si.cn0_dbhz = std::max(cn0, kMinReportedCn0_dbhz);

@@ -99,6 +99,8 @@ private:
   CounterRng rng_;
   ReceiverClock clock_;
   std::array<double, kMaxGpsPrn> orbit_clock_m_{};  ///< Gauss–Markov state per PRN, m
+  std::array<double, kMaxGpsPrn> multipath_unit_{};  ///< unit multipath Gauss–Markov state per PRN
+  std::array<double, 2> gradient_m_{};  ///< azimuthal gradient processes g_N, g_E, m
   std::array<double, kMaxGpsPrn> iono_tecu_{};      ///< vertical TEC perturbation per line of sight, TECU
   double zwd_pert_m_ = 0.0;                         ///< zenith wet delay perturbation, m
   double dt_s_ = 0.0;                               ///< time since the previous epoch, s (>= 0)

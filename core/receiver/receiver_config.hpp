@@ -32,6 +32,20 @@ struct ErrorModelConfig {
   double thermal_sigma_m = 0.3;                  ///< kFixed: white pseudorange noise, m
   GaussMarkovConfig orbit_clock{1.2, 1800.0};    ///< broadcast orbit/clock residual per satellite
   double doppler_sigma_m_s = 0.03;               ///< white range-rate noise, m/s
+  /// Multipath-like residual per satellite: a unit Gauss–Markov process (tau_s)
+  /// times sigma_m / sin(el) (el held at >= 5 deg), so sigma_m is the zenith
+  /// 1-sigma, m; sigma_m 0 disables (the default).
+  GaussMarkovConfig multipath{0.0, 60.0};
+  /// Azimuthal delay pattern common to all satellites (an unmodelled
+  /// horizontal gradient): delay += G_N cos(az) + G_E sin(az), m, with
+  /// G_N = north_m + g_N(t), G_E = east_m + g_E(t) and g_N, g_E two independent
+  /// Gauss–Markov processes (sigma_m, tau_s). Fitted by `gnssemu calibrate`;
+  /// all zero (the default) disables it.
+  struct Gradient {
+    double north_m = 0.0;  ///< mean north component, m
+    double east_m = 0.0;   ///< mean east component, m
+    GaussMarkovConfig process{0.0, 3600.0};
+  } gradient;
 };
 
 struct ClockConfig {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -13,6 +14,9 @@
 #include "core/geo/geodesy.hpp"
 #include "core/geo/local_frame.hpp"
 #include "core/orbit/ephemeris_store.hpp"
+#include "core/atmosphere/ionosphere.hpp"
+#include "core/atmosphere/receiver_corrections.hpp"
+#include "core/atmosphere/troposphere.hpp"
 #include "core/receiver/sky.hpp"
 #include "core/signal/link_budget.hpp"
 #include "tools/gnssemu/spp.hpp"
@@ -27,15 +31,10 @@ constexpr int kMinEpochs = 100;
 constexpr double kMaxLag_s = 3600.0;    // autocovariance lags fitted (1 h)
 constexpr double kOutlier_m = 30.0;     // |residual| beyond this: not a model error (blunder)
 
-/// One satellite residual at the known position.
-struct Residual {
-  int grid = 0;          // epoch index on the regular grid
-  int prn = 0;
-  double el_rad = 0.0;
-  double range_m = 0.0;
-  double value_m = 0.0;  // pseudorange - model - epoch clock, m
-  double cn0_dbhz = kNaN;
-};
+
+double day_of_year(const time::GpsTime& t) {
+  return t.day_of_year() + std::fmod(t.tow_s(), kSecondsPerDay) / kSecondsPerDay;
+}
 
 double grid_step_s(const observation::ObsData& obs) {
   if (obs.header.interval_s > 0.0) return obs.header.interval_s;
@@ -76,9 +75,15 @@ std::vector<Residual> station_residuals(const CalibrationInput& in, const orbit:
       const geo::LookAngles look = geo::look_angles(in.station_m, lla, p);
       if (!(look.el_rad >= in.mask_rad)) continue;
       Residual r;
+      r.tow_s = e.t.tow_s();
       r.prn = s.prn;
       r.el_rad = look.el_rad;
+      r.az_rad = look.az_rad;
       r.range_m = rho;
+      r.klobuchar_m = receiver_correction_m(in.nav->klobuchar, lla, look.az_rad, look.el_rad, e.t) -
+                      atmosphere::standard_troposphere_correction_m(lla.lat_rad, lla.height_m, look.el_rad,
+                                                                    day_of_year(e.t));
+      r.nmf_wet = atmosphere::niell_mapping(look.el_rad, lla.lat_rad, lla.height_m, day_of_year(e.t)).wet;
       r.value_m = pr->value - (rho - kSpeedOfLight_m_s * (st.clk_bias_s - eph->tgd_s) +
                                receiver_correction_m(in.nav->klobuchar, lla, look.az_rad, look.el_rad, e.t));
       if (const observation::ObsValue* sn = s.get(s1c)) r.cn0_dbhz = sn->value;
@@ -181,6 +186,262 @@ Cn0Fit fit_cn0(const std::vector<Residual>& res, const signal::LinkBudgetConfig&
   f.rms_db = std::sqrt(ss / n);
   f.zenith_dbhz = model.cn0_dbhz(srange / n, kPi / 2.0, 0.0);
   return f;
+}
+
+/// Solve the n x n system a x = b (Gaussian elimination, partial pivoting).
+template <std::size_t N>
+bool solve_linear(std::array<std::array<double, N>, N> a, std::array<double, N> b, std::array<double, N>& x) {
+  for (std::size_t c = 0; c < N; ++c) {
+    std::size_t p = c;
+    for (std::size_t r = c + 1; r < N; ++r)
+      if (std::fabs(a[r][c]) > std::fabs(a[p][c])) p = r;
+    if (!(std::fabs(a[p][c]) > 1e-300)) return false;
+    std::swap(a[c], a[p]);
+    std::swap(b[c], b[p]);
+    for (std::size_t r = 0; r < N; ++r) {
+      if (r == c) continue;
+      const double f = a[r][c] / a[c][c];
+      for (std::size_t k = c; k < N; ++k) a[r][k] -= f * a[c][k];
+      b[r] -= f * b[c];
+    }
+  }
+  for (std::size_t i = 0; i < N; ++i) x[i] = b[i] / a[i][i];
+  return true;
+}
+
+/// Regressors of one residual for fit_atmosphere_bias.
+std::array<double, 4> bias_regressors(const Residual& r) {
+  return {r.klobuchar_m, r.nmf_wet, std::cos(r.az_rad), std::sin(r.az_rad)};
+}
+
+}  // namespace
+
+AtmosphereBiasFit fit_atmosphere_bias(const std::vector<Residual>& res) {
+  using Vec = std::array<double, 4>;
+  std::array<Vec, 4> a{};
+  Vec b{};
+  for (std::size_t i = 0; i < res.size();) {
+    std::size_t j = i;
+    Vec mx{};
+    double mr = 0.0;
+    for (; j < res.size() && res[j].grid == res[i].grid; ++j) {
+      const Vec x = bias_regressors(res[j]);
+      for (std::size_t p = 0; p < 4; ++p) mx[p] += x[p];
+      mr += res[j].value_m;
+    }
+    const double n = static_cast<double>(j - i);
+    for (double& v : mx) v /= n;
+    mr /= n;
+    for (std::size_t k = i; k < j; ++k) {
+      Vec u = bias_regressors(res[k]);
+      for (std::size_t p = 0; p < 4; ++p) u[p] -= mx[p];
+      const double y = res[k].value_m - mr;
+      for (std::size_t p = 0; p < 4; ++p) {
+        b[p] += u[p] * y;
+        for (std::size_t q = 0; q < 4; ++q) a[p][q] += u[p] * u[q];
+      }
+    }
+    i = j;
+  }
+  AtmosphereBiasFit f;
+  Vec x{};
+  if (!solve_linear(a, b, x)) return f;
+  f.klobuchar_alpha = x[0];
+  f.zwd_beta_m = x[1];
+  f.gradient_north_m = x[2];
+  f.gradient_east_m = x[3];
+  f.correlation = a[0][1] / std::sqrt(a[0][0] * a[1][1]);
+  return f;
+}
+
+namespace {
+
+/// Per-epoch azimuthal gradient about its mean (after alpha, beta and the
+/// mean gradient are removed), with the 2x2 estimator rows kept so the
+/// leakage of the per-satellite processes can be computed afterwards.
+struct GradientEpoch {
+  int grid = 0;
+  double g_n_m = 0.0, g_e_m = 0.0;
+  std::size_t first = 0, last = 0;                 ///< residuals [first, last)
+  std::vector<std::array<double, 2>> weights;      ///< estimator row per residual (N, E)
+};
+
+/// Remove alpha, beta and the whole gradient of each epoch from res (then
+/// the epoch mean again, scaled for the two extra parameters per epoch);
+/// returns the per-epoch gradients.
+std::vector<GradientEpoch> remove_common_terms(std::vector<Residual>& res, const AtmosphereBiasFit& b) {
+  std::vector<GradientEpoch> out;
+  for (std::size_t i = 0; i < res.size();) {
+    std::size_t j = i;
+    for (; j < res.size() && res[j].grid == res[i].grid; ++j) {
+      res[j].value_m -= b.klobuchar_alpha * res[j].klobuchar_m + b.zwd_beta_m * res[j].nmf_wet +
+                        b.gradient_north_m * std::cos(res[j].az_rad) + b.gradient_east_m * std::sin(res[j].az_rad);
+    }
+    const double n = static_cast<double>(j - i);
+    double mc = 0, ms = 0, mr = 0;
+    for (std::size_t k = i; k < j; ++k) mc += std::cos(res[k].az_rad), ms += std::sin(res[k].az_rad), mr += res[k].value_m;
+    mc /= n, ms /= n, mr /= n;
+    std::array<std::array<double, 2>, 2> a{};
+    std::array<double, 2> v{};
+    for (std::size_t k = i; k < j; ++k) {
+      const double u0 = std::cos(res[k].az_rad) - mc, u1 = std::sin(res[k].az_rad) - ms, y = res[k].value_m - mr;
+      a[0][0] += u0 * u0, a[0][1] += u0 * u1, a[1][1] += u1 * u1, v[0] += u0 * y, v[1] += u1 * y;
+    }
+    a[1][0] = a[0][1];
+    const double det = a[0][0] * a[1][1] - a[0][1] * a[0][1];
+    if (n >= 5 && det > 1e-6 * (a[0][0] + a[1][1]) * (a[0][0] + a[1][1])) {
+      GradientEpoch g;
+      g.grid = res[i].grid;
+      g.first = i, g.last = j;
+      for (std::size_t k = i; k < j; ++k) {
+        const double u0 = std::cos(res[k].az_rad) - mc, u1 = std::sin(res[k].az_rad) - ms;
+        g.weights.push_back({(a[1][1] * u0 - a[0][1] * u1) / det, (a[0][0] * u1 - a[0][1] * u0) / det});
+      }
+      for (std::size_t k = i; k < j; ++k) {
+        g.g_n_m += g.weights[k - i][0] * (res[k].value_m - mr);
+        g.g_e_m += g.weights[k - i][1] * (res[k].value_m - mr);
+      }
+      for (std::size_t k = i; k < j; ++k)
+        res[k].value_m -= g.g_n_m * std::cos(res[k].az_rad) + g.g_e_m * std::sin(res[k].az_rad);
+      out.push_back(std::move(g));
+    }
+    double m = 0.0;
+    for (std::size_t k = i; k < j; ++k) m += res[k].value_m;
+    m /= n;
+    const double inflate = n > 3.0 ? std::sqrt((n - 1.0) / (n - 3.0)) : 1.0;
+    for (std::size_t k = i; k < j; ++k) res[k].value_m = (res[k].value_m - m) * inflate;
+    i = j;
+  }
+  return out;
+}
+
+ProcessFit fit_processes(const std::vector<Residual>& res, const signal::LinkBudgetConfig& link,
+                         const signal::DllParams& dll, double step_s) {
+  constexpr std::size_t kTerms = 4;  // white, multipath, orbit/clock, iono
+  using Vec = std::array<double, kTerms>;
+  using Mat = std::array<Vec, kTerms>;
+  const signal::LinkBudgetModel budget(link);
+  signal::DllParams unit = dll;
+  unit.loop_bandwidth_hz = 1.0;
+  const double m_per_tecu = atmosphere::iono_m_per_tecu(link.freq_hz);
+  struct Row {
+    double value_m, white_m2, mp, iono;
+  };
+  std::map<int, std::map<int, Row>> by_prn;  // prn -> grid -> regressors
+  for (const Residual& r : res) {
+    const double s = signal::dll_thermal_sigma_m(budget.cn0_dbhz(r.range_m, r.el_rad, 0.0), unit);
+    by_prn[r.prn][r.grid] = Row{r.value_m, s * s, 1.0 / std::sin(std::max(r.el_rad, 5.0 * kDegToRad)),
+                                m_per_tecu * atmosphere::iono_obliquity_factor(r.el_rad)};
+  }
+  // Lags: every step to 10 min, then sparser to 4 h (long lags are many and alike).
+  std::vector<int> lags;
+  const int k10 = static_cast<int>(std::lround(600.0 / step_s));
+  const int kmax = static_cast<int>(std::lround(4.0 * 3600.0 / step_s));
+  for (int k = 0; k <= kmax; k += k < k10 ? 1 : std::max(1, k10 / 4)) lags.push_back(k);
+  std::vector<Mat> a(lags.size(), Mat{});
+  std::vector<Vec> b(lags.size(), Vec{});
+  ProcessFit f;
+  for (const auto& [prn, series] : by_prn) {
+    for (const auto& [g, r1] : series) {
+      for (std::size_t li = 0; li < lags.size(); ++li) {
+        const auto it = series.find(g + lags[li]);
+        if (it == series.end()) continue;
+        const Row& r2 = it->second;
+        const Vec u{lags[li] == 0 ? r1.white_m2 : 0.0, r1.mp * r2.mp, 1.0, r1.iono * r2.iono};
+        const double y = r1.value_m * r2.value_m;
+        for (std::size_t i = 0; i < kTerms; ++i) {
+          b[li][i] += u[i] * y;
+          for (std::size_t j = 0; j < kTerms; ++j) a[li][i][j] += u[i] * u[j];
+        }
+        ++f.pairs;
+      }
+    }
+  }
+  double best = std::numeric_limits<double>::infinity();
+  constexpr int kGrid = 22;  // 30 s x sqrt(2)^i: 30 s .. 12.9 h
+  const auto tau_at = [](int i) { return 30.0 * std::pow(2.0, i / 2.0); };
+  for (int i_mp = 0; i_mp < kGrid; ++i_mp) {
+    for (int i_oc = i_mp + 2; i_oc < kGrid; ++i_oc) {
+      for (int i_io = i_mp + 2; i_io < kGrid; ++i_io) {
+        const Vec tau{0.0, tau_at(i_mp), tau_at(i_oc), tau_at(i_io)};
+        Mat n{};
+        Vec v{};
+        for (std::size_t li = 0; li < lags.size(); ++li) {
+          Vec d{1.0, 0.0, 0.0, 0.0};
+          for (std::size_t t = 1; t < kTerms; ++t) d[t] = std::exp(-lags[li] * step_s / tau[t]);
+          for (std::size_t p = 0; p < kTerms; ++p) {
+            v[p] += d[p] * b[li][p];
+            for (std::size_t q = 0; q < kTerms; ++q) n[p][q] += d[p] * d[q] * a[li][p][q];
+          }
+        }
+        Vec x{};
+        if (!solve_linear(n, v, x)) continue;
+        if (*std::min_element(x.begin(), x.end()) < 0.0) continue;  // variances are >= 0
+        double cost = 0.0;  // sum of squared misfit minus sum y^2 (constant)
+        for (std::size_t p = 0; p < kTerms; ++p) cost -= x[p] * v[p];
+        if (cost < best) {
+          best = cost;
+          f.dll_bandwidth_hz = x[0];
+          f.multipath_sigma_m = std::sqrt(x[1]);
+          f.multipath_tau_s = tau[1];
+          f.orbit_clock_sigma_m = std::sqrt(x[2]);
+          f.orbit_clock_tau_s = tau[2];
+          f.iono_sigma_tecu = std::sqrt(x[3]);
+          f.iono_tau_s = tau[3];
+        }
+      }
+    }
+  }
+  return f;
+}
+
+/// Gauss–Markov of the per-epoch gradient: autocovariance of g_N, g_E
+/// (pooled) less the leakage of the fitted per-satellite processes, whose
+/// variance at lag k is sum_i w_i(t) w_i(t + k) C_i(k) (same PRN), C_i from
+/// the fitted multipath + orbit/clock + iono terms.
+void fit_gradient_process(const std::vector<GradientEpoch>& grads, const std::vector<Residual>& res,
+                          const ProcessFit& p, double step_s, AtmosphereBiasFit& out) {
+  if (grads.size() < 10) return;
+  const int max_lag = static_cast<int>(std::lround(4.0 * 3600.0 / step_s));
+  std::map<int, const GradientEpoch*> by_grid;
+  for (const GradientEpoch& g : grads) by_grid[g.grid] = &g;
+  const double m_per_tecu = atmosphere::iono_m_per_tecu(1575.42e6);
+  const auto slow_cov = [&](const Residual& a, const Residual& b, double lag_s) {
+    const double mp = p.multipath_sigma_m * p.multipath_sigma_m /
+                      (std::sin(std::max(a.el_rad, 5.0 * kDegToRad)) * std::sin(std::max(b.el_rad, 5.0 * kDegToRad)));
+    const double io = p.iono_sigma_tecu * p.iono_sigma_tecu * m_per_tecu * m_per_tecu *
+                      atmosphere::iono_obliquity_factor(a.el_rad) * atmosphere::iono_obliquity_factor(b.el_rad);
+    const auto e = [&](double tau) { return tau > 0.0 ? std::exp(-lag_s / tau) : 0.0; };
+    return mp * e(p.multipath_tau_s) + p.orbit_clock_sigma_m * p.orbit_clock_sigma_m * e(p.orbit_clock_tau_s) +
+           io * e(p.iono_tau_s);
+  };
+  std::vector<double> acov(static_cast<std::size_t>(max_lag + 1), 0.0), leak(acov.size(), 0.0), cnt(acov.size(), 0.0);
+  for (const GradientEpoch& g : grads) {
+    for (int k = 0; k <= max_lag; ++k) {
+      const auto it = by_grid.find(g.grid + k);
+      if (it == by_grid.end()) continue;
+      const GradientEpoch& h = *it->second;
+      const std::size_t ks = static_cast<std::size_t>(k);
+      acov[ks] += 0.5 * (g.g_n_m * h.g_n_m + g.g_e_m * h.g_e_m);
+      double l = 0.0;
+      for (std::size_t a = g.first; a < g.last; ++a) {
+        for (std::size_t b = h.first; b < h.last; ++b) {
+          if (res[a].prn != res[b].prn) continue;
+          const auto& wa = g.weights[a - g.first];
+          const auto& wb = h.weights[b - h.first];
+          l += 0.5 * (wa[0] * wb[0] + wa[1] * wb[1]) * slow_cov(res[a], res[b], k * step_s);
+        }
+      }
+      leak[ks] += l;
+      cnt[ks] += 1.0;
+    }
+  }
+  std::vector<double> net;
+  for (std::size_t k = 0; k < acov.size() && cnt[k] > 0.0; ++k) net.push_back((acov[k] - leak[k]) / cnt[k]);
+  if (cnt[0] > 0.0) out.gradient_leak_m = std::sqrt(std::max(leak[0] / cnt[0], 0.0));
+  const NoiseFit f = fit_gauss_markov(net, step_s);
+  out.gradient_sigma_m = f.gm_sigma_m;
+  out.gradient_tau_s = f.gm_tau_s;
 }
 
 double quantile(std::vector<double> v, double q) {
@@ -289,6 +550,7 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
                             kMinSatsPerEpoch, kMinEpochs));
   }
   r.residuals = static_cast<int>(res.size());
+  r.residual_rows = res;
   double ss = 0.0;
   for (const Residual& x : res) ss += x.value_m * x.value_m;
   r.residual_rms_m = std::sqrt(ss / r.residuals);
@@ -296,11 +558,21 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
   const int max_lag = static_cast<int>(std::lround(kMaxLag_s / step_s));
   r.range_noise = fit_gauss_markov(pooled_autocovariance(res, max_lag), step_s);
 
-  const Cn0Fit cn0 = fit_cn0(res, signal::LinkBudgetConfig{});
+  const Cn0Fit cn0 = fit_cn0(res, base.receiver.signal.link);
   r.cn0_rms_db = cn0.rms_db;
   r.cn0_zenith_dbhz = cn0.zenith_dbhz;
   r.cn0_slope_db = cn0.slope_db;
   r.cn0_samples = cn0.n;
+
+  // Elevation-dependent bias of the broadcast corrections, then the processes
+  // on what remains, with the C/N0 the fitted link budget will give.
+  r.bias = fit_atmosphere_bias(res);
+  std::vector<Residual> rest = res;
+  const std::vector<GradientEpoch> grads = remove_common_terms(rest, r.bias);
+  signal::LinkBudgetConfig link = base.receiver.signal.link;
+  if (cn0.n >= 10) link.antenna = cn0.antenna;
+  r.processes = fit_processes(rest, link, base.receiver.signal.dll, step_s);
+  fit_gradient_process(grads, res, r.processes, step_s, r.bias);
 
   // The data's own single-point errors through the receiver's solver.
   SppOptions opt;
@@ -328,17 +600,48 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
   c.nav_file = in.nav_path;
   c.time.start.reset();
   c.receiver.elevation_mask_rad = in.mask_rad;
-  c.receiver.errors.orbit_clock.sigma_m = r.range_noise.gm_sigma_m;
-  c.receiver.errors.orbit_clock.tau_s = r.range_noise.gm_tau_s;
-  c.receiver.errors.thermal_sigma_m = r.range_noise.white_sigma_m;
   if (cn0.n >= 10) c.receiver.nominal_cn0_dbhz = cn0.zenith_dbhz;
-  // The fitted GM + white process already holds all the receiver's broadcast
-  // corrections miss: the world's random atmosphere is off, the white part is
-  // used as fitted (not from C/N0), and the link budget takes the fitted antenna.
-  c.receiver.errors.thermal_model = receiver::ThermalModel::kFixed;
-  c.receiver.atmosphere.ionosphere.perturbation.sigma = 0.0;
-  c.receiver.atmosphere.zwd_perturbation.sigma_m = 0.0;
   if (cn0.n >= 10) c.receiver.signal.link.antenna = cn0.antenna;
+  const ProcessFit& p = r.processes;
+  receiver::ErrorModelConfig& em = c.receiver.errors;
+  em.orbit_clock = {p.orbit_clock_sigma_m, p.orbit_clock_tau_s};
+  em.multipath = {p.multipath_sigma_m, p.multipath_tau_s};
+  // White noise: DLL jitter from the link budget's C/N0 with the fitted loop
+  // bandwidth (the config range is (0, 50] Hz; none fitted -> fixed 0).
+  if (p.dll_bandwidth_hz > 1e-6) {
+    em.thermal_model = receiver::ThermalModel::kDll;
+    c.receiver.signal.dll.loop_bandwidth_hz = std::min(p.dll_bandwidth_hz, 50.0);
+  } else {
+    em.thermal_model = receiver::ThermalModel::kFixed;
+    em.thermal_sigma_m = 0.0;
+  }
+  // World ionosphere: Klobuchar shape x (1 + alpha) with the broadcast
+  // obliquity (what the receiver removes is 1 x the same), plus the fitted
+  // per-line-of-sight TEC process.
+  atmosphere::IonosphereConfig& io = c.receiver.atmosphere.ionosphere;
+  io.enabled = true;
+  io.source = atmosphere::VtecSource::kKlobucharShape;
+  io.klobuchar_scale = std::max(1.0 + r.bias.klobuchar_alpha, 0.0);
+  io.mapping = atmosphere::IonoMapping::kObliquityFactor;
+  io.obliquity_pivot_deg = 95.4;
+  io.perturbation = {p.iono_sigma_tecu, p.iono_tau_s};
+  // World troposphere: the receiver's Saastamoinen ZHD, and its standard ZWD
+  // plus the fitted beta (one value for the site; the common ZWD process is
+  // not observable once the epoch clock is removed, so it stays off).
+  const Lla site = c.origin;
+  const double doy = day_of_year(in.obs->epochs.front().t);
+  atmosphere::TroposphereConfig& tr = c.receiver.atmosphere.troposphere;
+  tr.enabled = true;
+  tr.zhd_model = atmosphere::ZhdModel::kSaastamoinen;
+  tr.zwd_model = atmosphere::ZwdModel::kFixed;
+  const double zwd_rx_m = atmosphere::standard_troposphere_correction_m(site.lat_rad, site.height_m, kPi / 2.0, doy) -
+                          atmosphere::receiver_zhd_m(site.lat_rad, site.height_m);
+  tr.zwd_m = std::clamp((zwd_rx_m + r.bias.zwd_beta_m) * std::exp(std::max(site.height_m, 0.0) / tr.zwd_scale_height_m),
+                        0.0, 1.0);
+  c.receiver.atmosphere.zwd_perturbation.sigma_m = 0.0;
+  em.gradient.north_m = r.bias.gradient_north_m;
+  em.gradient.east_m = r.bias.gradient_east_m;
+  em.gradient.process = {r.bias.gradient_sigma_m, r.bias.gradient_tau_s > 0.0 ? r.bias.gradient_tau_s : 3600.0};
   r.config = c;
   return r;
 }
@@ -348,11 +651,25 @@ std::string calibration_toml(const CalibrationResult& r, const std::string& out_
   s << "# gnssemu calibrate: receiver error model fitted to real observations.\n"
     << fmt::format("# {} epochs, {} satellite residuals (RMS {:.3f} m after the receiver's corrections and clock).\n",
                    r.epochs, r.residuals, r.residual_rms_m)
-    << fmt::format("# Residual process: Gauss-Markov sigma {:.3f} m tau {:.0f} s + white {:.3f} m.\n",
-                   r.range_noise.gm_sigma_m, r.range_noise.gm_tau_s, r.range_noise.white_sigma_m)
+    << fmt::format("# Ionosphere: world = {:.3f} x broadcast Klobuchar; troposphere: ZWD {:+.3f} m against the "
+                   "receiver's (regressor correlation {:.2f}).\n",
+                   1.0 + r.bias.klobuchar_alpha, r.bias.zwd_beta_m, r.bias.correlation)
+    << fmt::format("# Processes ({} products): DLL B_L {:.3f} Hz; multipath {:.3f} m / sin(el), tau {:.0f} s; "
+                   "orbit/clock {:.3f} m, tau {:.0f} s; iono {:.2f} TECU x obliquity, tau {:.0f} s.\n",
+                   r.processes.pairs, r.processes.dll_bandwidth_hz, r.processes.multipath_sigma_m,
+                   r.processes.multipath_tau_s, r.processes.orbit_clock_sigma_m, r.processes.orbit_clock_tau_s,
+                   r.processes.iono_sigma_tecu, r.processes.iono_tau_s)
     << fmt::format("# C/N0 curve: {} S1C samples, RMS {:.2f} dB-Hz about the fit.\n", r.cn0_samples, r.cn0_rms_db)
     << config::to_toml(r.config, out_dir);
   return s.str();
+}
+
+void write_residuals_csv(const CalibrationResult& r, std::ostream& out) {
+  out << "tow_s,prn,el_deg,az_deg,residual_m,cn0_dbhz,klobuchar_m,nmf_wet\n";
+  for (const Residual& x : r.residual_rows) {
+    out << fmt::format("{:.1f},{},{:.3f},{:.3f},{:.4f},{:.2f},{:.4f},{:.4f}\n", x.tow_s, x.prn, x.el_rad / kDegToRad,
+                       x.az_rad / kDegToRad, x.value_m, x.cn0_dbhz, x.klobuchar_m, x.nmf_wet);
+  }
 }
 
 void write_calibration_report(const CalibrationResult& r, std::ostream& out) {
@@ -366,6 +683,21 @@ void write_calibration_report(const CalibrationResult& r, std::ostream& out) {
   row("gm_sigma", r.range_noise.gm_sigma_m, "m");
   row("gm_tau", r.range_noise.gm_tau_s, "s");
   row("white_sigma", r.range_noise.white_sigma_m, "m");
+  row("klobuchar_scale", 1.0 + r.bias.klobuchar_alpha, "");
+  row("zwd_residual", r.bias.zwd_beta_m, "m");
+  row("bias_regressor_correlation", r.bias.correlation, "");
+  row("gradient_north", r.bias.gradient_north_m, "m");
+  row("gradient_east", r.bias.gradient_east_m, "m");
+  row("gradient_sigma", r.bias.gradient_sigma_m, "m");
+  row("gradient_tau", r.bias.gradient_tau_s, "s");
+  row("gradient_leak", r.bias.gradient_leak_m, "m");
+  row("dll_bandwidth", r.processes.dll_bandwidth_hz, "Hz");
+  row("multipath_sigma_zenith", r.processes.multipath_sigma_m, "m");
+  row("multipath_tau", r.processes.multipath_tau_s, "s");
+  row("orbit_clock_sigma", r.processes.orbit_clock_sigma_m, "m");
+  row("orbit_clock_tau", r.processes.orbit_clock_tau_s, "s");
+  row("iono_sigma", r.processes.iono_sigma_tecu, "TECU");
+  row("iono_tau", r.processes.iono_tau_s, "s");
   row("cn0_samples", r.cn0_samples, "");
   row("cn0_zenith", r.cn0_zenith_dbhz, "dB-Hz");
   row("cn0_zenith_to_horizon", r.cn0_slope_db, "dB");

@@ -56,7 +56,7 @@ struct BatchArgs {
 };
 
 struct ObsArgs {
-  std::string obs_path, nav_path, station, out_path, config_path;
+  std::string obs_path, nav_path, station, out_path, config_path, residuals_path;
   double mask_deg = 5.0;
 };
 
@@ -233,6 +233,13 @@ int run_calibrate_command(const ObsArgs& a, std::ostream& out, std::ostream& err
   f << calibration_toml(r, out_dir);
   f.close();
   if (!f) throw Error(a.out_path, 0, "write failed");
+  if (!a.residuals_path.empty()) {
+    std::ofstream rf(a.residuals_path, std::ios::binary | std::ios::trunc);
+    if (!rf) throw Error(a.residuals_path, 0, "cannot open for writing");
+    write_residuals_csv(r, rf);
+    rf.close();
+    if (!rf) throw Error(a.residuals_path, 0, "write failed");
+  }
   write_calibration_report(r, out);
   err << "gnssemu calibrate: wrote " << a.out_path << '\n';
   return kExitOk;
@@ -296,6 +303,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   calib->add_option("--out", obs_args.out_path, "write the fitted TOML configuration here")->required();
   calib->add_option("--mask", obs_args.mask_deg, "elevation mask, deg [0, 90)")->capture_default_str();
   calib->add_option("--config", obs_args.config_path, "start from this config (default: the built-in one)");
+  calib->add_option("--residuals", obs_args.residuals_path, "also write every satellite residual used as CSV");
   CLI::App* bench = app.add_subcommand("bench", "benchmarks that print time next to the error it costs");
   bench->require_subcommand(1);
   CLI::App* bench_mp = bench->add_subcommand("multipath", "scene stage: time per epoch vs error against a dense reference");

@@ -131,11 +131,39 @@ TEST(Calibrate, FitsNya1DayAndWritesALoadableConfig) {
   EXPECT_LT(v["cn0_zenith"], 58.0);
   EXPECT_LT(v["cn0_rms"], 3.0);
   EXPECT_EQ(v["spp_fixes"], 2880);
+  // The fitted model (docs/validation.md): the world's ionosphere below the
+  // broadcast Klobuchar, a south-north azimuthal pattern (longer ranges to
+  // the south at 79 N), white DLL noise of a narrow carrier-aided loop, an
+  // hours-long orbit/clock process and a fast multipath term.
+  EXPECT_GT(v["klobuchar_scale"], 0.5);
+  EXPECT_LT(v["klobuchar_scale"], 1.0);
+  EXPECT_GT(std::fabs(v["bias_regressor_correlation"]), 0.8);  // reported: alpha and beta are nearly collinear
+  EXPECT_LT(v["gradient_north"], -0.2);
+  EXPECT_GT(v["gradient_north"], -0.6);
+  EXPECT_GT(v["gradient_sigma"], 0.1);
+  EXPECT_GT(v["gradient_tau"], 3600.0);
+  EXPECT_GT(v["dll_bandwidth"], 0.03);
+  EXPECT_LT(v["dll_bandwidth"], 0.5);
+  EXPECT_GT(v["orbit_clock_sigma"], 0.2);
+  EXPECT_LT(v["orbit_clock_sigma"], 1.0);
+  EXPECT_GT(v["orbit_clock_tau"], 1800.0);
+  EXPECT_LT(v["multipath_tau"], v["orbit_clock_tau"]);
+  EXPECT_GE(v["iono_sigma"], 0.0);
 
-  // The config loads as is, and batch runs it at the station.
+  // The config loads as is and holds the fit, and batch runs it at the station.
   const config::Config c = config::load_config(out);
-  EXPECT_NEAR(c.receiver.errors.orbit_clock.sigma_m, v["gm_sigma"], 1e-4);
-  EXPECT_NEAR(c.receiver.errors.orbit_clock.tau_s, v["gm_tau"], 1e-2 * v["gm_tau"]);
+  const receiver::ReceiverConfig& rc = c.receiver;
+  EXPECT_NEAR(rc.errors.orbit_clock.sigma_m, v["orbit_clock_sigma"], 1e-5);
+  EXPECT_NEAR(rc.errors.orbit_clock.tau_s, v["orbit_clock_tau"], 1e-5 * v["orbit_clock_tau"]);
+  EXPECT_NEAR(rc.errors.multipath.sigma_m, v["multipath_sigma_zenith"], 1e-5);
+  EXPECT_NEAR(rc.errors.gradient.north_m, v["gradient_north"], 1e-5);
+  EXPECT_NEAR(rc.errors.gradient.east_m, v["gradient_east"], 1e-5);
+  EXPECT_NEAR(rc.errors.gradient.process.sigma_m, v["gradient_sigma"], 1e-5);
+  EXPECT_EQ(rc.errors.thermal_model, receiver::ThermalModel::kDll);
+  EXPECT_NEAR(rc.signal.dll.loop_bandwidth_hz, v["dll_bandwidth"], 1e-5);
+  EXPECT_NEAR(rc.atmosphere.ionosphere.klobuchar_scale, v["klobuchar_scale"], 1e-5);
+  EXPECT_NEAR(rc.atmosphere.ionosphere.perturbation.sigma, v["iono_sigma"], 1e-5);
+  EXPECT_EQ(rc.atmosphere.zwd_perturbation.sigma_m, 0.0);
   EXPECT_NEAR(c.receiver.elevation_mask_rad * 180.0 / 3.14159265358979, 10.0, 1e-9);
   EXPECT_NEAR(c.origin.lat_rad * 180.0 / 3.14159265358979, 78.93, 0.01);
   const std::string truth = dir.write("truth.csv",
@@ -149,6 +177,38 @@ TEST(Calibrate, FitsNya1DayAndWritesALoadableConfig) {
   int fixes = 0;
   for (std::size_t i = 0; i < e.rows.size(); ++i) fixes += e.cell(i, "fix_type") == "3";
   EXPECT_GT(fixes, 590);
+}
+
+TEST(Calibrate, CommonTermsRecoveredFromSyntheticResiduals) {
+  // 2000 epochs of 9 satellites: residual = -0.3 K + 0.2 m_w + 0.5 cos az
+  // - 0.1 sin az + clock + noise; the clock and the noise must not leak in.
+  std::vector<cli::Residual> res;
+  uint64_t state = 12345;
+  const auto uniform = [&] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  for (int g = 0; g < 2000; ++g) {
+    const double clock = 1000.0 * uniform();
+    for (int s = 0; s < 9; ++s) {
+      cli::Residual r;
+      r.grid = g;
+      r.prn = s + 1;
+      r.el_rad = (10.0 + 70.0 * uniform()) * 3.14159265358979 / 180.0;
+      r.az_rad = 2.0 * 3.14159265358979 * uniform();
+      r.klobuchar_m = 1.5 + 3.0 * uniform() / std::sin(r.el_rad + 0.2);
+      r.nmf_wet = 1.0 / std::sin(r.el_rad);
+      const double noise = 0.3 * (uniform() + uniform() + uniform() - 1.5);
+      r.value_m = -0.3 * r.klobuchar_m + 0.2 * r.nmf_wet + 0.5 * std::cos(r.az_rad) - 0.1 * std::sin(r.az_rad) +
+                  clock + noise;
+      res.push_back(r);
+    }
+  }
+  const cli::AtmosphereBiasFit f = cli::fit_atmosphere_bias(res);
+  EXPECT_NEAR(f.klobuchar_alpha, -0.3, 0.01);
+  EXPECT_NEAR(f.zwd_beta_m, 0.2, 0.01);
+  EXPECT_NEAR(f.gradient_north_m, 0.5, 0.01);
+  EXPECT_NEAR(f.gradient_east_m, -0.1, 0.01);
 }
 
 TEST(Calibrate, ErrorStatsAndGaussMarkovFit) {

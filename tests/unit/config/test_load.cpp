@@ -34,6 +34,12 @@ void expect_same(const Config& a, const Config& b) {
   EXPECT_EQ(ra.errors.thermal_sigma_m, rb.errors.thermal_sigma_m);
   EXPECT_EQ(ra.errors.orbit_clock.sigma_m, rb.errors.orbit_clock.sigma_m);
   EXPECT_EQ(ra.errors.orbit_clock.tau_s, rb.errors.orbit_clock.tau_s);
+  EXPECT_EQ(ra.errors.multipath.sigma_m, rb.errors.multipath.sigma_m);
+  EXPECT_EQ(ra.errors.multipath.tau_s, rb.errors.multipath.tau_s);
+  EXPECT_EQ(ra.errors.gradient.north_m, rb.errors.gradient.north_m);
+  EXPECT_EQ(ra.errors.gradient.east_m, rb.errors.gradient.east_m);
+  EXPECT_EQ(ra.errors.gradient.process.sigma_m, rb.errors.gradient.process.sigma_m);
+  EXPECT_EQ(ra.errors.gradient.process.tau_s, rb.errors.gradient.process.tau_s);
   EXPECT_EQ(ra.errors.doppler_sigma_m_s, rb.errors.doppler_sigma_m_s);
   EXPECT_EQ(ra.clock.bias_s, rb.clock.bias_s);
   EXPECT_EQ(ra.clock.drift_s_s, rb.clock.drift_s_s);
@@ -117,6 +123,16 @@ doppler_sigma_m_s = 0.07
 sigma_m = 0.8
 tau_s = 900
 
+[receiver.errors.multipath]
+sigma_m = 0.061145637
+tau_s = 1920
+
+[receiver.errors.gradient]
+north_m = -0.383278
+east_m = -0.134185
+sigma_m = 0.351071
+tau_s = 15291.3
+
 [receiver.clock]
 bias_s = -2.5e-4
 drift_s_s = -1.5e-7
@@ -186,6 +202,12 @@ TEST(ConfigLoad, EveryFieldParsed) {
   EXPECT_EQ(r.errors.doppler_sigma_m_s, 0.07);
   EXPECT_EQ(r.errors.orbit_clock.sigma_m, 0.8);
   EXPECT_EQ(r.errors.orbit_clock.tau_s, 900.0);
+  EXPECT_EQ(r.errors.multipath.sigma_m, 0.061145637);
+  EXPECT_EQ(r.errors.multipath.tau_s, 1920.0);
+  EXPECT_EQ(r.errors.gradient.north_m, -0.383278);
+  EXPECT_EQ(r.errors.gradient.east_m, -0.134185);
+  EXPECT_EQ(r.errors.gradient.process.sigma_m, 0.351071);
+  EXPECT_EQ(r.errors.gradient.process.tau_s, 15291.3);
   EXPECT_EQ(r.clock.bias_s, -2.5e-4);
   EXPECT_EQ(r.clock.drift_s_s, -1.5e-7);
   EXPECT_EQ(r.clock.drift_noise_s_s_sqrt_s, 3e-11);

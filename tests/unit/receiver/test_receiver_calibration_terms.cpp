@@ -1,0 +1,147 @@
+// The error terms `gnssemu calibrate` fits beyond the original model: the
+// per-satellite multipath process sigma / sin(el) and the azimuthal delay
+// gradient common to all satellites (docs/models.md).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/geo/geodesy.hpp"
+#include "core/orbit/ephemeris_store.hpp"
+#include "core/receiver/receiver.hpp"
+#include "synthetic_sky.hpp"
+
+namespace gnssemu::receiver {
+namespace {
+
+const time::GpsTime kToe(2190, 200000.0);
+const Lla kSite{45.0 * kDegToRad, 7.0 * kDegToRad, 300.0};
+
+Truth truth_at(const Ecef& pos, const time::GpsTime& t) {
+  Truth tr;
+  tr.t = t;
+  tr.pos_m = pos;
+  tr.valid = true;
+  return tr;
+}
+
+/// No random process, no clock noise: pseudoranges differ only by what a test switches on.
+ReceiverConfig quiet() {
+  ReceiverConfig c;
+  c.errors.orbit_clock.sigma_m = 0.0;
+  c.errors.thermal_model = ThermalModel::kFixed;
+  c.errors.thermal_sigma_m = 0.0;
+  c.errors.doppler_sigma_m_s = 0.0;
+  c.clock.drift_noise_s_s_sqrt_s = 0.0;
+  c.atmosphere.ionosphere.perturbation.sigma = 0.0;
+  c.atmosphere.zwd_perturbation.sigma_m = 0.0;
+  c.atmosphere.cache_refresh_s = 0.0;
+  return c;
+}
+
+TEST(ReceiverCalibrationTerms, ConstantGradientIsNorthCosAzPlusEastSinAz) {
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  ReceiverConfig with = quiet();
+  with.errors.gradient.north_m = 0.7;
+  with.errors.gradient.east_m = -0.4;
+  Receiver a(store, quiet()), b(store, with);
+  const Ecef pos = geo::ecef_from_lla(kSite);
+  const Fix fa = a.step(kToe, truth_at(pos, kToe));
+  const Fix& fb = b.step(kToe, truth_at(pos, kToe));
+  int checked = 0;
+  for (int i = 0; i < fb.num_sats; ++i) {
+    if (!fb.sats[i].tracked) continue;
+    ASSERT_EQ(fa.sats[i].prn, fb.sats[i].prn);
+    const double az = fb.sats[i].az_rad;
+    EXPECT_NEAR(fb.sats[i].pseudorange_m - fa.sats[i].pseudorange_m, 0.7 * std::cos(az) - 0.4 * std::sin(az), 1e-6);
+    ++checked;
+  }
+  EXPECT_GE(checked, 6);
+  // A pattern cos(az) pushes the fix away from the side with the longer ranges.
+  ASSERT_EQ(fb.type, FixType::k3D);
+  const double dn = (fb.lla.lat_rad - fa.lla.lat_rad) * 6.37e6;
+  EXPECT_LT(dn, -0.1);
+}
+
+TEST(ReceiverCalibrationTerms, MultipathScalesWithOneOverSinElevationAndDecorrelates) {
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  ReceiverConfig with = quiet();
+  with.errors.multipath = {0.2, 60.0};
+  Receiver a(store, quiet()), b(store, with);
+  const Ecef pos = geo::ecef_from_lla(kSite);
+  // Normalised value d sin(el) / sigma is a unit Gauss–Markov with tau 60 s.
+  std::vector<std::vector<double>> z(33);
+  for (int k = 0; k < 3000; ++k) {
+    const time::GpsTime t = kToe + static_cast<double>(k);
+    const Fix fa = a.step(t, truth_at(pos, t));
+    const Fix& fb = b.step(t, truth_at(pos, t));
+    for (int i = 0; i < fb.num_sats; ++i) {
+      if (!fb.sats[i].tracked || !fa.sats[i].tracked) continue;
+      const double d = fb.sats[i].pseudorange_m - fa.sats[i].pseudorange_m;
+      z[fb.sats[i].prn].push_back(d * std::sin(std::max(fb.sats[i].el_rad, 5.0 * kDegToRad)) / 0.2);
+    }
+  }
+  double s0 = 0, s60 = 0, n0 = 0, n60 = 0;
+  for (const auto& v : z) {
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      s0 += v[i] * v[i], n0 += 1;
+      if (i + 60 < v.size()) s60 += v[i] * v[i + 60], n60 += 1;
+    }
+  }
+  ASSERT_GT(n0, 10000);
+  // ~ 8 satellites x 50 correlation times: the variance within 15 %, rho(60 s) = 0.37 within 0.1.
+  EXPECT_NEAR(s0 / n0, 1.0, 0.15);
+  EXPECT_NEAR((s60 / n60) / (s0 / n0), std::exp(-1.0), 0.1);
+}
+
+TEST(ReceiverCalibrationTerms, GradientProcessHasItsSigmaAndIsDeterministic) {
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  ReceiverConfig with = quiet();
+  with.errors.gradient.process = {0.3, 30.0};
+  Receiver a(store, quiet()), b(store, with), c(store, with);
+  const Ecef pos = geo::ecef_from_lla(kSite);
+  double ss = 0.0;
+  int n = 0;
+  for (int k = 0; k < 4000; k += 2) {
+    const time::GpsTime t = kToe + static_cast<double>(k);
+    const Fix fa = a.step(t, truth_at(pos, t));
+    const Fix fb = b.step(t, truth_at(pos, t));
+    const Fix& fc = c.step(t, truth_at(pos, t));
+    // Two satellites give G_N and G_E exactly: d = G_N cos az + G_E sin az.
+    int idx[2], m = 0;
+    for (int i = 0; i < fb.num_sats && m < 2; ++i)
+      if (fb.sats[i].tracked && fa.sats[i].tracked) idx[m++] = i;
+    ASSERT_EQ(m, 2);
+    const double a0 = fb.sats[idx[0]].az_rad, a1 = fb.sats[idx[1]].az_rad;
+    const double d0 = fb.sats[idx[0]].pseudorange_m - fa.sats[idx[0]].pseudorange_m;
+    const double d1 = fb.sats[idx[1]].pseudorange_m - fa.sats[idx[1]].pseudorange_m;
+    const double det = std::cos(a0) * std::sin(a1) - std::sin(a0) * std::cos(a1);
+    if (std::fabs(det) < 0.3) continue;
+    const double gn = (d0 * std::sin(a1) - d1 * std::sin(a0)) / det;
+    const double ge = (std::cos(a0) * d1 - std::cos(a1) * d0) / det;
+    ss += gn * gn + ge * ge;
+    n += 2;
+    EXPECT_EQ(fb.sats[idx[0]].pseudorange_m, fc.sats[idx[0]].pseudorange_m);  // same seed, same world
+  }
+  ASSERT_GT(n, 1000);
+  EXPECT_NEAR(std::sqrt(ss / n), 0.3, 0.03);
+}
+
+TEST(ReceiverCalibrationTerms, BadValuesAreRejected) {
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  ReceiverConfig c = quiet();
+  c.errors.multipath = {-0.1, 60.0};
+  EXPECT_THROW(Receiver(store, c), Error);
+  c = quiet();
+  c.errors.multipath = {0.1, 0.0};
+  EXPECT_THROW(Receiver(store, c), Error);
+  c = quiet();
+  c.errors.gradient.north_m = std::nan("");
+  EXPECT_THROW(Receiver(store, c), Error);
+  c = quiet();
+  c.errors.gradient.process = {0.1, -1.0};
+  EXPECT_THROW(Receiver(store, c), Error);
+}
+
+}  // namespace
+}  // namespace gnssemu::receiver
