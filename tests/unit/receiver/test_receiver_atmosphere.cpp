@@ -194,7 +194,16 @@ TEST(ReceiverAtmosphere, NoiseRiseDropsLowSatellitesThenEverything) {
     EXPECT_EQ(fc.num_tracked, 0);
     EXPECT_EQ(fc.num_visible, fa.num_visible);
     EXPECT_EQ(fc.dop.pdop, Dop::kNoDop);
+    // The fix carries the world's noise floor (MON-HW jamInd / AGC read it).
+    EXPECT_EQ(fa.noise_rise_db, ReceiverConfig{}.signal.link.environment_noise_rise_db);
+    EXPECT_EQ(fb.noise_rise_db, 15.0);
+    EXPECT_EQ(fc.noise_rise_db, 20.0);
   }
+  // With the signal stage off the C/N0 curve is fixed: a quiet sky.
+  ReceiverConfig off = industrial;
+  off.signal.enabled = false;
+  Receiver d(store, off);
+  EXPECT_EQ(d.step(kToe, truth_at(pos, kToe)).noise_rise_db, Fix{}.noise_rise_db);
 }
 
 TEST(ReceiverAtmosphere, AllStagesOffIsExactAndCostsNothing) {
