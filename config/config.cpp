@@ -145,6 +145,8 @@ void read_solver(TableReader& t, receiver::SolverConfig& s) {
     t.fail(*n, t.path() + ": sigma_a_m and sigma_b_m are both 0 (the solver's weights would be infinite)");
   }
   s.sigma_c_m_sqrt_hz = t.number("sigma_c_m_sqrt_hz", s.sigma_c_m_sqrt_hz, Range{0.0, 10000.0, "m sqrt(Hz)"});
+  s.iono_model_fraction = t.number("iono_model_fraction", s.iono_model_fraction, Range{0.0, 10.0, ""});
+  s.tropo_model_sigma_m = t.number("tropo_model_sigma_m", s.tropo_model_sigma_m, Range{0.0, 100.0, "m"});
   s.sigma_range_rate_m_s =
       t.number("sigma_range_rate_m_s", s.sigma_range_rate_m_s, Range{0.0, 10.0, "m/s", true});
   s.height_hold_sigma_m = t.number("height_hold_sigma_m", s.height_hold_sigma_m, Range{0.0, 1000.0, "m", true});
@@ -174,6 +176,11 @@ void read_receiver(TableReader& t, Config& c) {
     if (auto g = e->table("gradient", false)) {
       em.gradient.north_m = g->number("north_m", em.gradient.north_m, Range{-100.0, 100.0, "m"});
       em.gradient.east_m = g->number("east_m", em.gradient.east_m, Range{-100.0, 100.0, "m"});
+      em.gradient.north_diurnal_m = g->number("north_diurnal_m", em.gradient.north_diurnal_m, Range{0.0, 100.0, "m"});
+      em.gradient.north_peak_h =
+          g->number("north_peak_h", em.gradient.north_peak_h, Range{0.0, 24.0, "h", false, true});
+      em.gradient.east_diurnal_m = g->number("east_diurnal_m", em.gradient.east_diurnal_m, Range{0.0, 100.0, "m"});
+      em.gradient.east_peak_h = g->number("east_peak_h", em.gradient.east_peak_h, Range{0.0, 24.0, "h", false, true});
       read_gauss_markov(*g, em.gradient.process);
     }
     e->finish();

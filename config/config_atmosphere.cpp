@@ -142,6 +142,23 @@ void read_shells(TableReader& t, atmosphere::ShellsConfig& c) {
     sh.gas_absorption = s->boolean("gas_absorption", sh.gas_absorption);
     s->finish();
   }
+  // The neutral shells stack (the ionosphere overlaps them by design): an
+  // overlap would count the gases of the common heights twice.
+  const auto neutral = [](std::size_t i) { return static_cast<atmosphere::ShellKind>(i) != atmosphere::ShellKind::kIonosphere; };
+  for (std::size_t i = 0; i < atmosphere::kShellCount; ++i) {
+    for (std::size_t j = 0; j < atmosphere::kShellCount; ++j) {
+      const atmosphere::Shell& a = c.shells[i];
+      const atmosphere::Shell& b = c.shells[j];
+      if (i == j || !neutral(i) || !neutral(j) || !a.enabled || !b.enabled) continue;
+      if (!(a.bottom_m <= b.bottom_m && b.bottom_m < a.top_m && b.top_m > b.bottom_m)) continue;
+      const toml::node* n = t.find(kShellNames[j]);
+      if (n == nullptr) n = t.find(kShellNames[i]);
+      if (n == nullptr) continue;  // the defaults do not overlap
+      t.fail(*n, t.path() + ": " + std::string(kShellNames[i]) + " (" + format_number(a.bottom_m) + "-" +
+                     format_number(a.top_m) + " m) and " + std::string(kShellNames[j]) + " (" +
+                     format_number(b.bottom_m) + "-" + format_number(b.top_m) + " m) overlap");
+    }
+  }
   t.finish();
 }
 

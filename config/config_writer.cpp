@@ -188,9 +188,14 @@ std::string to_toml(const Config& c, const std::string& relative_to) {
   o += "\n[receiver.errors.multipath]  # unit Gauss-Markov x sigma_m / sin(el); sigma_m 0 = off\n";
   o += "sigma_m = " + number(r.errors.multipath.sigma_m) + "\n";
   o += "tau_s = " + number(r.errors.multipath.tau_s) + "\n";
-  o += "\n[receiver.errors.gradient]  # delay += (north_m + g_N) cos(az) + (east_m + g_E) sin(az); g: Gauss-Markov\n";
+  o += "\n[receiver.errors.gradient]  # delay += G_N cos(az) + G_E sin(az); G_N = north_m + "
+       "north_diurnal_m cos(2 pi (LT - north_peak_h) / 24 h) + g_N (E alike); g: Gauss-Markov\n";
   o += "north_m = " + number(r.errors.gradient.north_m) + "\n";
   o += "east_m = " + number(r.errors.gradient.east_m) + "\n";
+  o += "north_diurnal_m = " + number(r.errors.gradient.north_diurnal_m) + "\n";
+  o += "north_peak_h = " + number(r.errors.gradient.north_peak_h) + "\n";
+  o += "east_diurnal_m = " + number(r.errors.gradient.east_diurnal_m) + "\n";
+  o += "east_peak_h = " + number(r.errors.gradient.east_peak_h) + "\n";
   o += "sigma_m = " + number(r.errors.gradient.process.sigma_m) + "\n";
   o += "tau_s = " + number(r.errors.gradient.process.tau_s) + "\n";
   o += "\n[receiver.clock]\n";
@@ -202,6 +207,8 @@ std::string to_toml(const Config& c, const std::string& relative_to) {
   o += "sigma_a_m = " + number(r.solver.sigma_a_m) + "\n";
   o += "sigma_b_m = " + number(r.solver.sigma_b_m) + "\n";
   o += "sigma_c_m_sqrt_hz = " + number(r.solver.sigma_c_m_sqrt_hz) + "\n";
+  o += "iono_model_fraction = " + number(r.solver.iono_model_fraction) + "\n";
+  o += "tropo_model_sigma_m = " + number(r.solver.tropo_model_sigma_m) + "\n";
   o += "sigma_range_rate_m_s = " + number(r.solver.sigma_range_rate_m_s) + "\n";
   o += "height_hold_sigma_m = " + number(r.solver.height_hold_sigma_m) + "\n";
   o += "residual_test_pfa = " + number(r.solver.residual_test_pfa) + "\n";

@@ -47,6 +47,12 @@ void validate(const ReceiverConfig& c) {
   check(std::isfinite(e.multipath.tau_s) && e.multipath.tau_s > 0.0, "errors.multipath.tau_s must be > 0");
   check(std::isfinite(e.gradient.north_m) && std::isfinite(e.gradient.east_m),
         "errors.gradient.north_m / east_m must be finite");
+  check(std::isfinite(e.gradient.north_diurnal_m) && e.gradient.north_diurnal_m >= 0.0 &&
+            std::isfinite(e.gradient.east_diurnal_m) && e.gradient.east_diurnal_m >= 0.0,
+        "errors.gradient.north_diurnal_m / east_diurnal_m must be >= 0");
+  check(e.gradient.north_peak_h >= 0.0 && e.gradient.north_peak_h < 24.0 && e.gradient.east_peak_h >= 0.0 &&
+            e.gradient.east_peak_h < 24.0,
+        "errors.gradient.north_peak_h / east_peak_h must be in [0, 24) h");
   check(std::isfinite(e.gradient.process.sigma_m) && e.gradient.process.sigma_m >= 0.0,
         "errors.gradient.sigma_m must be >= 0");
   check(std::isfinite(e.gradient.process.tau_s) && e.gradient.process.tau_s > 0.0,
@@ -165,6 +171,18 @@ void Receiver::advance_world(const time::GpsTime& t) noexcept {
     clock_.advance(dt_s, rng_.normal(kClockStream, epoch_, Purpose::kClockDrift));
   }
   t_prev_ = t;
+}
+
+void Receiver::gradient_now(const time::GpsTime& t, double lon_rad) noexcept {
+  const ErrorModelConfig::Gradient& g = config_.errors.gradient;
+  gradient_now_m_ = {g.north_m + gradient_m_[0], g.east_m + gradient_m_[1]};
+  if (g.north_diurnal_m == 0.0 && g.east_diurnal_m == 0.0) return;
+  // Local time as in the Klobuchar model (IS-GPS-200 20.3.3.5.2.5): GPS time
+  // plus 43200 s per semicircle of longitude; 2 pi per day.
+  const double lt_rad = 2.0 * kPi * (t.tow_s() / kSecondsPerDay) + lon_rad;
+  const double h_to_rad = 2.0 * kPi / 24.0;
+  gradient_now_m_[0] += g.north_diurnal_m * std::cos(lt_rad - g.north_peak_h * h_to_rad);
+  gradient_now_m_[1] += g.east_diurnal_m * std::cos(lt_rad - g.east_peak_h * h_to_rad);
 }
 
 void Receiver::no_fix_epoch() noexcept {
@@ -338,9 +356,7 @@ void Receiver::observables_stage(const time::GpsTime& t, uint64_t epoch) noexcep
         config_.errors.multipath.sigma_m > 0.0
             ? config_.errors.multipath.sigma_m / std::sin(std::max(s.el_rad, kMultipathMinEl_rad)) * multipath_unit_[p - 1]
             : 0.0;
-    const ErrorModelConfig::Gradient& g = config_.errors.gradient;
-    const double gradient_m = (g.north_m + gradient_m_[0]) * std::cos(s.az_rad) +
-                              (g.east_m + gradient_m_[1]) * std::sin(s.az_rad);
+    const double gradient_m = gradient_now_m_[0] * std::cos(s.az_rad) + gradient_now_m_[1] * std::sin(s.az_rad);
     const double rr_noise_m_s = config_.errors.doppler_sigma_m_s * rng_.normal(p, epoch, Purpose::kDoppler);
     // The satellite's actual L1 clock = broadcast (dt_sv - TGD) + residual.
     const double pr_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - eph->tgd_s)) +
@@ -365,6 +381,9 @@ const Fix& Receiver::step(const time::GpsTime& t, const Truth& truth) noexcept {
   const uint64_t epoch = epoch_++;
 
   fix_.t = t;
+  // The world's noise floor, as MON-HW reports it; with the signal stage off
+  // the C/N0 curve is fixed, so the receiver sees a quiet sky.
+  fix_.noise_rise_db = config_.signal.enabled ? config_.signal.link.environment_noise_rise_db : Fix{}.noise_rise_db;
   fix_.leap_seconds = leap_override_ ? leap_s_ : time::leap_seconds_at(t);
   fix_.num_sats = fix_.num_visible = fix_.num_tracked = 0;
   in_sky_.fill(false);
@@ -379,6 +398,7 @@ const Fix& Receiver::step(const time::GpsTime& t, const Truth& truth) noexcept {
   fix_.time_valid = true;
 
   const Lla rx_lla = geo::lla_from_ecef(truth.pos_m);
+  gradient_now(t, rx_lla.lon_rad);
   sky_stage(t, truth, rx_lla);
   propagation_stage(t, rx_lla, truth.pos_m);
   scene_stage(truth.pos_m);

@@ -88,6 +88,8 @@ private:
   void scene_stage(const Ecef& rx_pos_m) noexcept;
   void signal_stage() noexcept;
   void observables_stage(const time::GpsTime& t, uint64_t epoch) noexcept;
+  /// G_N, G_E of the azimuthal gradient at t for a receiver at lon_rad.
+  void gradient_now(const time::GpsTime& t, double lon_rad) noexcept;
   void no_fix_epoch() noexcept;
   void fill_solution() noexcept;
 
@@ -101,6 +103,7 @@ private:
   std::array<double, kMaxGpsPrn> orbit_clock_m_{};  ///< Gauss–Markov state per PRN, m
   std::array<double, kMaxGpsPrn> multipath_unit_{};  ///< unit multipath Gauss–Markov state per PRN
   std::array<double, 2> gradient_m_{};  ///< azimuthal gradient processes g_N, g_E, m
+  std::array<double, 2> gradient_now_m_{};  ///< G_N, G_E this epoch (mean + daily cycle + process), m
   std::array<double, kMaxGpsPrn> iono_tecu_{};      ///< vertical TEC perturbation per line of sight, TECU
   double zwd_pert_m_ = 0.0;                         ///< zenith wet delay perturbation, m
   double dt_s_ = 0.0;                               ///< time since the previous epoch, s (>= 0)

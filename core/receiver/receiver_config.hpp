@@ -38,12 +38,18 @@ struct ErrorModelConfig {
   GaussMarkovConfig multipath{0.0, 60.0};
   /// Azimuthal delay pattern common to all satellites (an unmodelled
   /// horizontal gradient): delay += G_N cos(az) + G_E sin(az), m, with
-  /// G_N = north_m + g_N(t), G_E = east_m + g_E(t) and g_N, g_E two independent
-  /// Gauss–Markov processes (sigma_m, tau_s). Fitted by `gnssemu calibrate`;
-  /// all zero (the default) disables it.
+  /// G_N = north_m + north_diurnal_m cos(2 pi (LT - north_peak_h) / 24 h) + g_N(t)
+  /// (E alike), LT the local mean solar time at the receiver from GPS time and
+  /// longitude (IS-GPS-200 20.3.3.5.2.5 convention), and g_N, g_E two
+  /// independent Gauss–Markov processes (sigma_m, tau_s). Fitted by
+  /// `gnssemu calibrate`; all zero (the default) disables it.
   struct Gradient {
-    double north_m = 0.0;  ///< mean north component, m
-    double east_m = 0.0;   ///< mean east component, m
+    double north_m = 0.0;          ///< mean north component, m
+    double east_m = 0.0;           ///< mean east component, m
+    double north_diurnal_m = 0.0;  ///< amplitude of the daily cycle of G_N, m (>= 0)
+    double north_peak_h = 0.0;     ///< local time of its maximum, h [0, 24)
+    double east_diurnal_m = 0.0;   ///< amplitude of the daily cycle of G_E, m (>= 0)
+    double east_peak_h = 0.0;      ///< local time of its maximum, h [0, 24)
     GaussMarkovConfig process{0.0, 3600.0};
   } gradient;
 };
@@ -65,6 +71,12 @@ struct SolverConfig {
   /// C/N0 term: sigma^2 += c^2 10^(-C/N0 / 10), m sqrt(Hz) (Kuusniemi et al.
   /// 2004); 0 = elevation-only weights.
   double sigma_c_m_sqrt_hz = 150.0;
+  /// What the receiver's own corrections may miss, added to sigma^2 when the
+  /// correction is on (RTKLIB's ERR_BRDCI and ERR_SAAS): (f I_klobuchar)^2
+  /// and (s / (sin el + 0.1))^2. f: fraction of the Klobuchar delay (>= 0);
+  /// s: zenith troposphere model sigma, m (>= 0); 0 leaves the term out.
+  double iono_model_fraction = 0.0;
+  double tropo_model_sigma_m = 0.0;
   /// The receiver's own propagation corrections (DESIGN.md §1, step 7).
   atmosphere::IonoCorrection iono = atmosphere::IonoCorrection::kKlobuchar;
   atmosphere::TropoCorrection tropo = atmosphere::TropoCorrection::kSaastamoinenNiell;

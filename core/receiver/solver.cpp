@@ -94,8 +94,17 @@ void Solver::update_corrections(const SolverInput& in, const Ecef& pos, const Ll
     double az = std::atan2(e, n);
     if (az < 0.0) az += 2.0 * kPi;
     s.corr_m = 0.0;
-    if (iono) s.corr_m += atmosphere::receiver_iono_delay_m(klobuchar_, lla.lat_rad, lla.lon_rad, az, el, tow_s);
-    if (tropo) s.corr_m += atmosphere::receiver_tropo_delay_m(lla.lat_rad, lla.height_m, el, in.doy, cfg_.tropo);
+    s.model_var_m2 = 0.0;
+    if (iono) {
+      const double i_m = atmosphere::receiver_iono_delay_m(klobuchar_, lla.lat_rad, lla.lon_rad, az, el, tow_s);
+      s.corr_m += i_m;
+      s.model_var_m2 += cfg_.iono_model_fraction * cfg_.iono_model_fraction * i_m * i_m;
+    }
+    if (tropo) {
+      s.corr_m += atmosphere::receiver_tropo_delay_m(lla.lat_rad, lla.height_m, el, in.doy, cfg_.tropo);
+      const double t_m = cfg_.tropo_model_sigma_m / (std::max(std::sin(el), 0.0) + 0.1);
+      s.model_var_m2 += t_m * t_m;
+    }
   }
 }
 
@@ -105,7 +114,7 @@ void Solver::linearise(const SolverInput& in, const Ecef& pos, double clock_m, c
     update_corrections(in, pos, *lla);
   } else if (corr_valid_) {
     corr_valid_ = false;
-    for (int i = 0; i < n_; ++i) sats_[i].corr_m = 0.0;
+    for (int i = 0; i < n_; ++i) sats_[i].corr_m = sats_[i].model_var_m2 = 0.0;
   }
   const double a2 = cfg_.sigma_a_m * cfg_.sigma_a_m, b2 = cfg_.sigma_b_m * cfg_.sigma_b_m;
   for (int i = 0; i < n_; ++i) {
@@ -120,7 +129,7 @@ void Solver::linearise(const SolverInput& in, const Ecef& pos, double clock_m, c
     s.los = rho > 0.0 ? d / rho : Vec3{0.0, 0.0, 1.0};
     s.resid_m = in.meas[i].pseudorange_m - (rho + clock_m - s.clk_m + s.corr_m);
     const double sin_el = lla ? std::max(s.los.dot(up), kMinSinEl) : 1.0;
-    s.sigma2 = a2 + b2 / (sin_el * sin_el) + s.cn0_var_m2;
+    s.sigma2 = a2 + b2 / (sin_el * sin_el) + s.cn0_var_m2 + s.model_var_m2;
     s.weight = 1.0 / s.sigma2;
   }
 }
@@ -247,6 +256,7 @@ void Solver::solve(const SolverInput& in, SolverOutput& out) noexcept {
     s.drift_m_s = kSpeedOfLight_m_s * st.clk_drift_s_s;
     s.since_tx_s = in.t_rx_local - t_tx;
     s.corr_m = 0.0;
+    s.model_var_m2 = 0.0;
     // C/N0 weight term (Kuusniemi et al., GPS Solutions 8(2), 2004).
     s.cn0_var_m2 = c2 > 0.0 && m.cn0_dbhz > 0.0 ? c2 * std::pow(10.0, -std::min(m.cn0_dbhz, 70.0) / 10.0) : 0.0;
   }

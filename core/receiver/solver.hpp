@@ -83,6 +83,7 @@ private:
     double since_tx_s = 0.0;  // t_rx_local - t_tx, s
     double cn0_var_m2 = 0.0;  // C/N0 term of the assumed variance, m^2
     double corr_m = 0.0;      // receiver's iono + tropo correction, m
+    double model_var_m2 = 0.0;  // variance of what those corrections miss, m^2
     // Per-iteration linearisation.
     Vec3 los;              // unit vector receiver -> satellite, ECEF
     Ecef vel_rx_frame_m_s; // velocity rotated into the receive-time frame

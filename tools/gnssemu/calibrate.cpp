@@ -84,6 +84,8 @@ std::vector<Residual> station_residuals(const CalibrationInput& in, const orbit:
                       atmosphere::standard_troposphere_correction_m(lla.lat_rad, lla.height_m, look.el_rad,
                                                                     day_of_year(e.t));
       r.nmf_wet = atmosphere::niell_mapping(look.el_rad, lla.lat_rad, lla.height_m, day_of_year(e.t)).wet;
+      // Local time as the receiver's gradient and Klobuchar (IS-GPS-200 20.3.3.5.2.5) take it.
+      r.local_time_rad = 2.0 * kPi * (e.t.tow_s() / kSecondsPerDay) + lla.lon_rad;
       r.value_m = pr->value - (rho - kSpeedOfLight_m_s * (st.clk_bias_s - eph->tgd_s) +
                                receiver_correction_m(in.nav->klobuchar, lla, look.az_rad, look.el_rad, e.t));
       if (const observation::ObsValue* sn = s.get(s1c)) r.cn0_dbhz = sn->value;
@@ -209,16 +211,31 @@ bool solve_linear(std::array<std::array<double, N>, N> a, std::array<double, N> 
   return true;
 }
 
-/// Regressors of one residual for fit_atmosphere_bias.
-std::array<double, 4> bias_regressors(const Residual& r) {
-  return {r.klobuchar_m, r.nmf_wet, std::cos(r.az_rad), std::sin(r.az_rad)};
+constexpr std::size_t kBiasTerms = 8;
+
+/// Regressors of one residual for fit_atmosphere_bias: alpha, beta, G_N, G_E,
+/// then the daily cycle of G_N (cos, sin LT) and of G_E.
+std::array<double, kBiasTerms> bias_regressors(const Residual& r) {
+  const double cn = std::cos(r.az_rad), se = std::sin(r.az_rad);
+  const double cl = std::cos(r.local_time_rad), sl = std::sin(r.local_time_rad);
+  return {r.klobuchar_m, r.nmf_wet, cn, se, cl * cn, sl * cn, cl * se, sl * se};
 }
 
 }  // namespace
 
-AtmosphereBiasFit fit_atmosphere_bias(const std::vector<Residual>& res) {
-  using Vec = std::array<double, 4>;
-  std::array<Vec, 4> a{};
+double AtmosphereBiasFit::north_at(const Residual& r) const {
+  return gradient_north_m + north_cos_m * std::cos(r.local_time_rad) + north_sin_m * std::sin(r.local_time_rad);
+}
+
+double AtmosphereBiasFit::east_at(const Residual& r) const {
+  return gradient_east_m + east_cos_m * std::cos(r.local_time_rad) + east_sin_m * std::sin(r.local_time_rad);
+}
+
+AtmosphereBiasFit fit_atmosphere_bias(const std::vector<Residual>& res, bool diurnal) {
+  constexpr std::size_t kN = kBiasTerms;
+  const std::size_t used = diurnal ? kN : 4;
+  using Vec = std::array<double, kN>;
+  std::array<Vec, kN> a{};
   Vec b{};
   for (std::size_t i = 0; i < res.size();) {
     std::size_t j = i;
@@ -226,7 +243,7 @@ AtmosphereBiasFit fit_atmosphere_bias(const std::vector<Residual>& res) {
     double mr = 0.0;
     for (; j < res.size() && res[j].grid == res[i].grid; ++j) {
       const Vec x = bias_regressors(res[j]);
-      for (std::size_t p = 0; p < 4; ++p) mx[p] += x[p];
+      for (std::size_t p = 0; p < kN; ++p) mx[p] += x[p];
       mr += res[j].value_m;
     }
     const double n = static_cast<double>(j - i);
@@ -234,15 +251,16 @@ AtmosphereBiasFit fit_atmosphere_bias(const std::vector<Residual>& res) {
     mr /= n;
     for (std::size_t k = i; k < j; ++k) {
       Vec u = bias_regressors(res[k]);
-      for (std::size_t p = 0; p < 4; ++p) u[p] -= mx[p];
+      for (std::size_t p = 0; p < kN; ++p) u[p] -= mx[p];
       const double y = res[k].value_m - mr;
-      for (std::size_t p = 0; p < 4; ++p) {
+      for (std::size_t p = 0; p < used; ++p) {
         b[p] += u[p] * y;
-        for (std::size_t q = 0; q < 4; ++q) a[p][q] += u[p] * u[q];
+        for (std::size_t q = 0; q < used; ++q) a[p][q] += u[p] * u[q];
       }
     }
     i = j;
   }
+  for (std::size_t p = used; p < kN; ++p) a[p][p] = 1.0;  // terms not fitted: 0
   AtmosphereBiasFit f;
   Vec x{};
   if (!solve_linear(a, b, x)) return f;
@@ -250,6 +268,11 @@ AtmosphereBiasFit fit_atmosphere_bias(const std::vector<Residual>& res) {
   f.zwd_beta_m = x[1];
   f.gradient_north_m = x[2];
   f.gradient_east_m = x[3];
+  f.diurnal = diurnal;
+  f.north_cos_m = x[4];
+  f.north_sin_m = x[5];
+  f.east_cos_m = x[6];
+  f.east_sin_m = x[7];
   f.correlation = a[0][1] / std::sqrt(a[0][0] * a[1][1]);
   return f;
 }
@@ -275,7 +298,7 @@ std::vector<GradientEpoch> remove_common_terms(std::vector<Residual>& res, const
     std::size_t j = i;
     for (; j < res.size() && res[j].grid == res[i].grid; ++j) {
       res[j].value_m -= b.klobuchar_alpha * res[j].klobuchar_m + b.zwd_beta_m * res[j].nmf_wet +
-                        b.gradient_north_m * std::cos(res[j].az_rad) + b.gradient_east_m * std::sin(res[j].az_rad);
+                        b.north_at(res[j]) * std::cos(res[j].az_rad) + b.east_at(res[j]) * std::sin(res[j].az_rad);
     }
     const double n = static_cast<double>(j - i);
     double mc = 0, ms = 0, mr = 0;
@@ -566,7 +589,8 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
 
   // Elevation-dependent bias of the broadcast corrections, then the processes
   // on what remains, with the C/N0 the fitted link budget will give.
-  r.bias = fit_atmosphere_bias(res);
+  const double span_s = in.obs->epochs.back().t - in.obs->epochs.front().t;
+  r.bias = fit_atmosphere_bias(res, span_s >= kMinDiurnalSpan_s);
   std::vector<Residual> rest = res;
   const std::vector<GradientEpoch> grads = remove_common_terms(rest, r.bias);
   signal::LinkBudgetConfig link = base.receiver.signal.link;
@@ -641,6 +665,14 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
   c.receiver.atmosphere.zwd_perturbation.sigma_m = 0.0;
   em.gradient.north_m = r.bias.gradient_north_m;
   em.gradient.east_m = r.bias.gradient_east_m;
+  // a cos LT + b sin LT = A cos(LT - peak): amplitude and local time of the maximum.
+  const auto cycle = [](double a, double b, double& amp_m, double& peak_h) {
+    amp_m = std::hypot(a, b);
+    peak_h = amp_m > 0.0 ? std::fmod(std::atan2(b, a) * 12.0 / kPi + 24.0, 24.0) : 0.0;
+    if (!(peak_h < 24.0)) peak_h = 0.0;
+  };
+  cycle(r.bias.north_cos_m, r.bias.north_sin_m, em.gradient.north_diurnal_m, em.gradient.north_peak_h);
+  cycle(r.bias.east_cos_m, r.bias.east_sin_m, em.gradient.east_diurnal_m, em.gradient.east_peak_h);
   em.gradient.process = {r.bias.gradient_sigma_m, r.bias.gradient_tau_s > 0.0 ? r.bias.gradient_tau_s : 3600.0};
   r.config = c;
   return r;
@@ -688,6 +720,11 @@ void write_calibration_report(const CalibrationResult& r, std::ostream& out) {
   row("bias_regressor_correlation", r.bias.correlation, "");
   row("gradient_north", r.bias.gradient_north_m, "m");
   row("gradient_east", r.bias.gradient_east_m, "m");
+  const receiver::ErrorModelConfig::Gradient& g = r.config.receiver.errors.gradient;
+  row("gradient_north_diurnal", g.north_diurnal_m, "m");
+  row("gradient_north_peak", g.north_peak_h, "h");
+  row("gradient_east_diurnal", g.east_diurnal_m, "m");
+  row("gradient_east_peak", g.east_peak_h, "h");
   row("gradient_sigma", r.bias.gradient_sigma_m, "m");
   row("gradient_tau", r.bias.gradient_tau_s, "s");
   row("gradient_leak", r.bias.gradient_leak_m, "m");

@@ -38,6 +38,7 @@ struct Residual {
   double cn0_dbhz = std::numeric_limits<double>::quiet_NaN();  ///< S1C, dB-Hz (NaN if absent)
   double klobuchar_m = 0.0;   ///< broadcast Klobuchar delay the receiver removed, m
   double nmf_wet = 0.0;       ///< Niell wet mapping factor at el
+  double local_time_rad = 0.0;  ///< local mean solar time at the station, 2 pi per day
 };
 
 /// First-order Gauss–Markov plus white noise fitted to an autocovariance.
@@ -68,12 +69,20 @@ NoiseFit fit_gauss_markov(const std::vector<double>& acov, double step_s);
 
 /// What is common to the satellites of an epoch, fitted with the epoch clock
 /// removed: residual = alpha Klobuchar + beta Niell_wet + G_N cos(az) + G_E sin(az)
-/// + clock (least squares over all epochs, each epoch demeaned).
+/// + clock (least squares over all epochs, each epoch demeaned), where
+/// G_N = gradient_north_m + north_cos_m cos(LT) + north_sin_m sin(LT) (E alike)
+/// when the daily cycle is fitted (data spanning kMinDiurnalSpan_s or more).
 struct AtmosphereBiasFit {
   double klobuchar_alpha = 0.0;  ///< world ionosphere = (1 + alpha) x Klobuchar
   double zwd_beta_m = 0.0;       ///< world zenith wet delay minus the receiver's, m
   double correlation = 0.0;      ///< correlation of the Klobuchar and wet regressors (conditioning)
   double gradient_north_m = 0.0, gradient_east_m = 0.0;  ///< mean azimuthal pattern, m
+  bool diurnal = false;          ///< the daily cycle was fitted
+  double north_cos_m = 0.0, north_sin_m = 0.0;  ///< daily cycle of G_N, m
+  double east_cos_m = 0.0, east_sin_m = 0.0;    ///< daily cycle of G_E, m
+  /// G_N, G_E of residual r (mean plus daily cycle), m.
+  double north_at(const Residual& r) const;
+  double east_at(const Residual& r) const;
   /// Variation of G_N, G_E about the mean: per-epoch estimates, their
   /// autocovariance less what the per-satellite processes leak into them,
   /// one Gauss–Markov fitted (fit_gauss_markov).
@@ -98,9 +107,13 @@ struct ProcessFit {
   long pairs = 0;                                             ///< products used
 };
 
+/// Shortest span of data over which the daily cycle of the gradient is
+/// fitted (10 h, 5/12 of the cycle: less cannot separate it from the mean), s.
+inline constexpr double kMinDiurnalSpan_s = 36000.0;
+
 /// The common terms of AtmosphereBiasFit (not the gradient process) from
-/// residuals ordered by grid (epoch).
-AtmosphereBiasFit fit_atmosphere_bias(const std::vector<Residual>& res);
+/// residuals ordered by grid (epoch); the daily cycle only with diurnal.
+AtmosphereBiasFit fit_atmosphere_bias(const std::vector<Residual>& res, bool diurnal = false);
 
 struct CalibrationResult {
   config::Config config;        ///< the fitted configuration

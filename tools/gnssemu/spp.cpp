@@ -62,6 +62,9 @@ bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
     // within 100 m of the result, where they change by < 1 mm.
     m.pseudorange_m = pr->value - corr_m;
     m.doppler_hz = 0.0;  // velocity is not reported by spp
+    // S1C gives the solver's C/N0 weight term, as the live receiver's tracking does.
+    const observation::ObsValue* sn = s1c_ >= 0 ? s.get(s1c_) : nullptr;
+    m.cn0_dbhz = sn != nullptr && std::isfinite(sn->value) ? sn->value : 0.0;
     meas_prn_[static_cast<std::size_t>(in_.num_meas++)] = s.prn;
   }
   if (last_pos_m_) {

@@ -156,7 +156,9 @@ def main():
 
     print(f"# calibration ({'00:00-12:00' if a.span == 'holdout' else 'full day'}): residual RMS "
           f"{fit['residual_rms']:.3f} m; iono {fit['klobuchar_scale']:.3f} x Klobuchar, ZWD {fit['zwd_residual']:+.3f} m; "
-          f"gradient N {fit['gradient_north']:+.3f} E {fit['gradient_east']:+.3f} m, GM {fit['gradient_sigma']:.3f} m "
+          f"gradient N {fit['gradient_north']:+.3f} E {fit['gradient_east']:+.3f} m, daily cycle N "
+          f"{fit['gradient_north_diurnal']:.3f} m peak {fit['gradient_north_peak']:.1f} h E {fit['gradient_east_diurnal']:.3f} m "
+          f"peak {fit['gradient_east_peak']:.1f} h, GM {fit['gradient_sigma']:.3f} m "
           f"{fit['gradient_tau']:.0f} s; DLL B_L {fit['dll_bandwidth']:.3f} Hz; multipath {fit['multipath_sigma_zenith']:.3f} m"
           f"/sin(el) {fit['multipath_tau']:.0f} s; orbit/clock {fit['orbit_clock_sigma']:.3f} m {fit['orbit_clock_tau']:.0f} s; "
           f"iono GM {fit['iono_sigma']:.2f} TECU {fit['iono_tau']:.0f} s; C/N0 RMS {fit['cn0_rms']:.2f} dB-Hz")

@@ -140,8 +140,14 @@ TEST(Calibrate, FitsNya1DayAndWritesALoadableConfig) {
   EXPECT_GT(std::fabs(v["bias_regressor_correlation"]), 0.8);  // reported: alpha and beta are nearly collinear
   EXPECT_LT(v["gradient_north"], -0.2);
   EXPECT_GT(v["gradient_north"], -0.6);
-  EXPECT_GT(v["gradient_sigma"], 0.1);
-  EXPECT_GT(v["gradient_tau"], 3600.0);
+  // The pattern swings with local time (afternoon several times the night's):
+  // a daily cycle of ~0.5 m per component, leaving a small slow process.
+  EXPECT_GT(v["gradient_north_diurnal"], 0.3);
+  EXPECT_LT(v["gradient_north_diurnal"], 0.7);
+  EXPECT_GT(v["gradient_east_diurnal"], 0.25);
+  EXPECT_LT(v["gradient_east_diurnal"], 0.6);
+  EXPECT_LT(v["gradient_sigma"], 0.2);
+  EXPECT_GT(v["gradient_tau"], 1800.0);
   EXPECT_GT(v["dll_bandwidth"], 0.03);
   EXPECT_LT(v["dll_bandwidth"], 0.5);
   EXPECT_GT(v["orbit_clock_sigma"], 0.2);
@@ -159,6 +165,10 @@ TEST(Calibrate, FitsNya1DayAndWritesALoadableConfig) {
   EXPECT_NEAR(rc.errors.gradient.north_m, v["gradient_north"], 1e-5);
   EXPECT_NEAR(rc.errors.gradient.east_m, v["gradient_east"], 1e-5);
   EXPECT_NEAR(rc.errors.gradient.process.sigma_m, v["gradient_sigma"], 1e-5);
+  EXPECT_NEAR(rc.errors.gradient.north_diurnal_m, v["gradient_north_diurnal"], 1e-5);
+  EXPECT_NEAR(rc.errors.gradient.north_peak_h, v["gradient_north_peak"], 1e-4);
+  EXPECT_NEAR(rc.errors.gradient.east_diurnal_m, v["gradient_east_diurnal"], 1e-5);
+  EXPECT_NEAR(rc.errors.gradient.east_peak_h, v["gradient_east_peak"], 1e-4);
   EXPECT_EQ(rc.errors.thermal_model, receiver::ThermalModel::kDll);
   EXPECT_NEAR(rc.signal.dll.loop_bandwidth_hz, v["dll_bandwidth"], 1e-5);
   EXPECT_NEAR(rc.atmosphere.ionosphere.klobuchar_scale, v["klobuchar_scale"], 1e-5);
@@ -179,25 +189,41 @@ TEST(Calibrate, FitsNya1DayAndWritesALoadableConfig) {
   EXPECT_GT(fixes, 590);
 }
 
+namespace {
+
+/// Deterministic uniform numbers in [0, 1) for synthetic residuals.
+struct Lcg {
+  uint64_t state;
+  double operator()() {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  }
+};
+
+/// A satellite of epoch grid at a random place in the sky (10-80 deg), with
+/// the Klobuchar and wet regressors of that elevation; value_m left to the test.
+cli::Residual synthetic_residual(Lcg& uniform, int grid, int prn) {
+  cli::Residual r;
+  r.grid = grid;
+  r.prn = prn;
+  r.el_rad = (10.0 + 70.0 * uniform()) * 3.14159265358979 / 180.0;
+  r.az_rad = 2.0 * 3.14159265358979 * uniform();
+  r.klobuchar_m = 1.5 + 3.0 * uniform() / std::sin(r.el_rad + 0.2);
+  r.nmf_wet = 1.0 / std::sin(r.el_rad);
+  return r;
+}
+
+}  // namespace
+
 TEST(Calibrate, CommonTermsRecoveredFromSyntheticResiduals) {
   // 2000 epochs of 9 satellites: residual = -0.3 K + 0.2 m_w + 0.5 cos az
   // - 0.1 sin az + clock + noise; the clock and the noise must not leak in.
   std::vector<cli::Residual> res;
-  uint64_t state = 12345;
-  const auto uniform = [&] {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<double>(state >> 11) / 9007199254740992.0;
-  };
+  Lcg uniform{12345};
   for (int g = 0; g < 2000; ++g) {
     const double clock = 1000.0 * uniform();
     for (int s = 0; s < 9; ++s) {
-      cli::Residual r;
-      r.grid = g;
-      r.prn = s + 1;
-      r.el_rad = (10.0 + 70.0 * uniform()) * 3.14159265358979 / 180.0;
-      r.az_rad = 2.0 * 3.14159265358979 * uniform();
-      r.klobuchar_m = 1.5 + 3.0 * uniform() / std::sin(r.el_rad + 0.2);
-      r.nmf_wet = 1.0 / std::sin(r.el_rad);
+      cli::Residual r = synthetic_residual(uniform, g, s + 1);
       const double noise = 0.3 * (uniform() + uniform() + uniform() - 1.5);
       r.value_m = -0.3 * r.klobuchar_m + 0.2 * r.nmf_wet + 0.5 * std::cos(r.az_rad) - 0.1 * std::sin(r.az_rad) +
                   clock + noise;
@@ -209,6 +235,39 @@ TEST(Calibrate, CommonTermsRecoveredFromSyntheticResiduals) {
   EXPECT_NEAR(f.zwd_beta_m, 0.2, 0.01);
   EXPECT_NEAR(f.gradient_north_m, 0.5, 0.01);
   EXPECT_NEAR(f.gradient_east_m, -0.1, 0.01);
+}
+
+TEST(Calibrate, DailyCycleOfTheGradientRecoveredOnlyWhenAsked) {
+  // 2880 epochs over a day, 9 satellites: G_N = -0.3 + 0.5 cos(LT - 4 h),
+  // G_E = 0.4 sin(LT) plus clock and noise.
+  std::vector<cli::Residual> res;
+  Lcg uniform{777};
+  const double pi = 3.14159265358979;
+  for (int g = 0; g < 2880; ++g) {
+    const double clock = 1000.0 * uniform();
+    const double lt = 2.0 * pi * g / 2880.0;
+    const double gn = -0.3 + 0.5 * std::cos(lt - 4.0 * pi / 12.0), ge = 0.4 * std::sin(lt);
+    for (int s = 0; s < 9; ++s) {
+      cli::Residual r = synthetic_residual(uniform, g, s + 1);
+      r.local_time_rad = lt;
+      r.value_m = gn * std::cos(r.az_rad) + ge * std::sin(r.az_rad) + clock + 0.3 * (uniform() - 0.5);
+      res.push_back(r);
+    }
+  }
+  const cli::AtmosphereBiasFit f = cli::fit_atmosphere_bias(res, true);
+  EXPECT_TRUE(f.diurnal);
+  EXPECT_NEAR(f.gradient_north_m, -0.3, 0.01);
+  EXPECT_NEAR(f.north_cos_m, 0.5 * std::cos(4.0 * pi / 12.0), 0.01);
+  EXPECT_NEAR(f.north_sin_m, 0.5 * std::sin(4.0 * pi / 12.0), 0.01);
+  EXPECT_NEAR(f.gradient_east_m, 0.0, 0.01);
+  EXPECT_NEAR(f.east_cos_m, 0.0, 0.01);
+  EXPECT_NEAR(f.east_sin_m, 0.4, 0.01);
+  EXPECT_NEAR(f.klobuchar_alpha, 0.0, 0.01);
+  const cli::AtmosphereBiasFit m = cli::fit_atmosphere_bias(res);  // mean only
+  EXPECT_FALSE(m.diurnal);
+  EXPECT_EQ(m.north_cos_m, 0.0);
+  EXPECT_EQ(m.east_sin_m, 0.0);
+  EXPECT_NEAR(m.gradient_north_m, -0.3, 0.02);
 }
 
 TEST(Calibrate, ErrorStatsAndGaussMarkovFit) {

@@ -199,6 +199,17 @@ TEST(AtmosphereConfig, RoundTripIsExact) {
   expect_same_models(d.receiver, parse(to_toml(d, kData)).receiver);
 }
 
+TEST(AtmosphereConfig, ShellsMovedTogetherDoNotOverlap) {
+  // Checked after every shell is read: a boundary moved in both shells is fine.
+  const Config c = parse(kBase + "[atmosphere.shells.stratosphere]\ntop_m = 60000\n"
+                                 "[atmosphere.shells.mesosphere]\nbottom_m = 60000\n");
+  EXPECT_EQ(c.receiver.atmosphere.shells.shells[1].top_m, 60000.0);
+  EXPECT_EQ(c.receiver.atmosphere.shells.shells[2].bottom_m, 60000.0);
+  // A disabled shell overlaps nothing.
+  EXPECT_NO_THROW(parse(kBase + "[atmosphere.shells.stratosphere]\ntop_m = 60000\n"
+                                "[atmosphere.shells.mesosphere]\nenabled = false\n"));
+}
+
 TEST(AtmosphereConfig, DefaultTomlIsTheStructDefaults) {
   const Config shipped = load_config(kSource + "/config/default.toml");
   expect_same_models(shipped.receiver, receiver::ReceiverConfig{});
@@ -215,6 +226,8 @@ TEST(AtmosphereConfig, BadValuesNameFileAndLine) {
        "t.toml:9: atmosphere.clouds[0].thickness_m: negative thickness -5 m"},
       {"[atmosphere.shells.mesosphere]\nbottom_m = 50000\ntop_m = 40000\n",
        "t.toml:9: atmosphere.shells.mesosphere: negative thickness (top_m 40000 m < bottom_m 50000 m)"},
+      {"[atmosphere.shells.stratosphere]\ntop_m = 60000\n",
+       "t.toml:7: atmosphere.shells: stratosphere (12000-60000 m) and mesosphere (50000-85000 m) overlap"},
       {"[atmosphere.shells.troposphere]\ntemperature_k = 0\n",
        "t.toml:8: atmosphere.shells.troposphere.temperature_k: 0 is out of range (0, 5000] K"},
       {"[[atmosphere.clouds]]\npreset = \"fog\"\ntemperature_k = -3\n",

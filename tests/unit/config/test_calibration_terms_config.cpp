@@ -12,6 +12,8 @@ TEST(ConfigCalibrationTerms, DefaultsAreOff) {
   EXPECT_EQ(c.receiver.errors.gradient.north_m, 0.0);
   EXPECT_EQ(c.receiver.errors.gradient.east_m, 0.0);
   EXPECT_EQ(c.receiver.errors.gradient.process.sigma_m, 0.0);
+  EXPECT_EQ(c.receiver.errors.gradient.north_diurnal_m, 0.0);
+  EXPECT_EQ(c.receiver.errors.gradient.east_diurnal_m, 0.0);
 }
 
 TEST(ConfigCalibrationTerms, BadValuesNameFileAndLine) {
@@ -25,6 +27,10 @@ TEST(ConfigCalibrationTerms, BadValuesNameFileAndLine) {
             "t.toml:8: receiver.errors.gradient.east_m: must be a finite number, got nan");
   EXPECT_EQ(error_of(kBase + "[receiver.errors.gradient]\nsigma_m = 0.3\ntau_s = -5\n"),
             "t.toml:9: receiver.errors.gradient.tau_s: -5 is out of range (0, 1000000] s");
+  EXPECT_EQ(error_of(kBase + "[receiver.errors.gradient]\nnorth_diurnal_m = -0.2\n"),
+            "t.toml:8: receiver.errors.gradient.north_diurnal_m: -0.2 is out of range [0, 100] m");
+  EXPECT_EQ(error_of(kBase + "[receiver.errors.gradient]\neast_peak_h = 24\n"),
+            "t.toml:8: receiver.errors.gradient.east_peak_h: 24 is out of range [0, 24) h");
   EXPECT_EQ(error_of(kBase + "[receiver.errors.gradient]\nnorth = 1\n"),
             "t.toml:8: unknown key 'receiver.errors.gradient.north' (did you mean 'north_m'?)");
 }

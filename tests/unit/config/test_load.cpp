@@ -38,6 +38,10 @@ void expect_same(const Config& a, const Config& b) {
   EXPECT_EQ(ra.errors.multipath.tau_s, rb.errors.multipath.tau_s);
   EXPECT_EQ(ra.errors.gradient.north_m, rb.errors.gradient.north_m);
   EXPECT_EQ(ra.errors.gradient.east_m, rb.errors.gradient.east_m);
+  EXPECT_EQ(ra.errors.gradient.north_diurnal_m, rb.errors.gradient.north_diurnal_m);
+  EXPECT_EQ(ra.errors.gradient.north_peak_h, rb.errors.gradient.north_peak_h);
+  EXPECT_EQ(ra.errors.gradient.east_diurnal_m, rb.errors.gradient.east_diurnal_m);
+  EXPECT_EQ(ra.errors.gradient.east_peak_h, rb.errors.gradient.east_peak_h);
   EXPECT_EQ(ra.errors.gradient.process.sigma_m, rb.errors.gradient.process.sigma_m);
   EXPECT_EQ(ra.errors.gradient.process.tau_s, rb.errors.gradient.process.tau_s);
   EXPECT_EQ(ra.errors.doppler_sigma_m_s, rb.errors.doppler_sigma_m_s);
@@ -130,6 +134,10 @@ tau_s = 1920
 [receiver.errors.gradient]
 north_m = -0.383278
 east_m = -0.134185
+north_diurnal_m = 0.471
+north_peak_h = 3.8
+east_diurnal_m = 0.416
+east_peak_h = 6.3
 sigma_m = 0.351071
 tau_s = 15291.3
 
@@ -206,6 +214,10 @@ TEST(ConfigLoad, EveryFieldParsed) {
   EXPECT_EQ(r.errors.multipath.tau_s, 1920.0);
   EXPECT_EQ(r.errors.gradient.north_m, -0.383278);
   EXPECT_EQ(r.errors.gradient.east_m, -0.134185);
+  EXPECT_EQ(r.errors.gradient.north_diurnal_m, 0.471);
+  EXPECT_EQ(r.errors.gradient.north_peak_h, 3.8);
+  EXPECT_EQ(r.errors.gradient.east_diurnal_m, 0.416);
+  EXPECT_EQ(r.errors.gradient.east_peak_h, 6.3);
   EXPECT_EQ(r.errors.gradient.process.sigma_m, 0.351071);
   EXPECT_EQ(r.errors.gradient.process.tau_s, 15291.3);
   EXPECT_EQ(r.clock.bias_s, -2.5e-4);

@@ -194,7 +194,47 @@ TEST(ReceiverAtmosphere, NoiseRiseDropsLowSatellitesThenEverything) {
     EXPECT_EQ(fc.num_tracked, 0);
     EXPECT_EQ(fc.num_visible, fa.num_visible);
     EXPECT_EQ(fc.dop.pdop, Dop::kNoDop);
+    // The fix carries the world's noise floor (MON-HW jamInd / AGC read it).
+    EXPECT_EQ(fa.noise_rise_db, ReceiverConfig{}.signal.link.environment_noise_rise_db);
+    EXPECT_EQ(fb.noise_rise_db, 15.0);
+    EXPECT_EQ(fc.noise_rise_db, 20.0);
   }
+  // With the signal stage off the C/N0 curve is fixed: a quiet sky.
+  ReceiverConfig off = industrial;
+  off.signal.enabled = false;
+  Receiver d(store, off);
+  EXPECT_EQ(d.step(kToe, truth_at(pos, kToe)).noise_rise_db, Fix{}.noise_rise_db);
+}
+
+TEST(ReceiverAtmosphere, ModelErrorVarianceWidensTheAccuracyOnlyWhenCorrecting) {
+  // sigma^2 += (f I_klobuchar)^2 + (s / (sin el + 0.1))^2: the fix is the same
+  // geometry re-weighted, its hAcc/vAcc grow; without corrections nothing changes.
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  const Ecef pos = geo::ecef_from_lla(kSite);
+  ReceiverConfig base;  // default world and corrections
+  ASSERT_NE(base.solver.iono, atmosphere::IonoCorrection::kNone);
+  ASSERT_NE(base.solver.tropo, atmosphere::TropoCorrection::kNone);
+  ReceiverConfig wide = base;
+  wide.solver.iono_model_fraction = 0.5;
+  wide.solver.tropo_model_sigma_m = 0.3;
+  Receiver a(store, base), b(store, wide);
+  const Fix fa = a.step(kToe, truth_at(pos, kToe));
+  const Fix& fb = b.step(kToe, truth_at(pos, kToe));
+  ASSERT_EQ(fa.type, FixType::k3D);
+  ASSERT_EQ(fb.type, FixType::k3D);
+  EXPECT_GT(fb.h_acc_m, 1.05 * fa.h_acc_m);
+  EXPECT_GT(fb.v_acc_m, 1.05 * fa.v_acc_m);
+  ReceiverConfig none = base;
+  none.solver.iono = atmosphere::IonoCorrection::kNone;
+  none.solver.tropo = atmosphere::TropoCorrection::kNone;
+  ReceiverConfig none_wide = none;
+  none_wide.solver.iono_model_fraction = 0.5;
+  none_wide.solver.tropo_model_sigma_m = 0.3;
+  Receiver c(store, none), d(store, none_wide);
+  const Fix fc = c.step(kToe, truth_at(pos, kToe));
+  const Fix& fd = d.step(kToe, truth_at(pos, kToe));
+  EXPECT_EQ(fc.h_acc_m, fd.h_acc_m);
+  EXPECT_EQ(fc.v_acc_m, fd.v_acc_m);
 }
 
 TEST(ReceiverAtmosphere, AllStagesOffIsExactAndCostsNothing) {

@@ -63,6 +63,37 @@ TEST(ReceiverCalibrationTerms, ConstantGradientIsNorthCosAzPlusEastSinAz) {
   EXPECT_LT(dn, -0.1);
 }
 
+TEST(ReceiverCalibrationTerms, DiurnalGradientFollowsLocalSolarTime) {
+  // G_N = 0.1 + 0.6 cos(2 pi (LT - 15 h) / 24 h), G_E = 0.4 cos(2 pi (LT - 3 h) / 24 h),
+  // LT = GPS time of day + longitude / 15 deg per hour (7 deg E: 28 min).
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  ReceiverConfig with = quiet();
+  with.errors.gradient.north_m = 0.1;
+  with.errors.gradient.north_diurnal_m = 0.6;
+  with.errors.gradient.north_peak_h = 15.0;
+  with.errors.gradient.east_diurnal_m = 0.4;
+  with.errors.gradient.east_peak_h = 3.0;
+  const Ecef pos = geo::ecef_from_lla(kSite);
+  int checked = 0;
+  for (double dt_s : {0.0, 3600.0, 5.0 * 3600.0, 11.0 * 3600.0}) {
+    Receiver a(store, quiet()), b(store, with);
+    const time::GpsTime t = kToe + dt_s;
+    const Fix fa = a.step(t, truth_at(pos, t));
+    const Fix& fb = b.step(t, truth_at(pos, t));
+    const double lt_h = std::fmod(t.tow_s(), 86400.0) / 3600.0 + 7.0 / 15.0;
+    const double gn = 0.1 + 0.6 * std::cos(2.0 * kPi * (lt_h - 15.0) / 24.0);
+    const double ge = 0.4 * std::cos(2.0 * kPi * (lt_h - 3.0) / 24.0);
+    for (int i = 0; i < fb.num_sats; ++i) {
+      if (!fb.sats[i].tracked) continue;
+      const double az = fb.sats[i].az_rad;
+      EXPECT_NEAR(fb.sats[i].pseudorange_m - fa.sats[i].pseudorange_m, gn * std::cos(az) + ge * std::sin(az), 1e-6)
+          << "LT " << lt_h << " h";
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 16);
+}
+
 TEST(ReceiverCalibrationTerms, MultipathScalesWithOneOverSinElevationAndDecorrelates) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
   ReceiverConfig with = quiet();
@@ -140,6 +171,12 @@ TEST(ReceiverCalibrationTerms, BadValuesAreRejected) {
   EXPECT_THROW(Receiver(store, c), Error);
   c = quiet();
   c.errors.gradient.process = {0.1, -1.0};
+  EXPECT_THROW(Receiver(store, c), Error);
+  c = quiet();
+  c.errors.gradient.north_diurnal_m = -0.1;
+  EXPECT_THROW(Receiver(store, c), Error);
+  c = quiet();
+  c.errors.gradient.east_peak_h = 24.0;
   EXPECT_THROW(Receiver(store, c), Error);
 }
 
