@@ -17,6 +17,9 @@ Cases (each bounded, every process killed and the temp dir removed on exit):
              UDP output on loopback
   budget     9600 baud with NAV-SAT + NAV-SVINFO + NMEA at 5 Hz: the line
              carries at most baud/10 bytes/s, messages dropped, one warning
+  jamming    MON-HW noisePerMS / agcCnt / jamInd with [signal] noise_rise_db
+             30 dB differ from the quiet (1 dB) daemon as docs/ubx.md maps
+             them; SKIP (77) while Fix::noise_rise_db is not set by the receiver
 usage: ubx_ports_integration.py --gnssemud PATH --nav FILE CASE
 """
 import argparse
@@ -136,7 +139,7 @@ class Rig(RigBase):
         self.fds = []
         self.banner = []
 
-    def start_daemon(self, outputs, rate_hz=1.0, verbose=False, n_outputs=None):
+    def start_daemon(self, outputs, rate_hz=1.0, verbose=False, n_outputs=None, extra_toml=""):
         cfg = os.path.join(self.tmp, "it.toml")
         with open(cfg, "w") as f:
             f.write(f"""
@@ -152,6 +155,7 @@ rate_hz = {rate_hz}
 port = {free_port(socket.SOCK_DGRAM)}
 [demo]
 enabled = true
+{extra_toml}
 {outputs}
 """)
         self.daemon_log_path = os.path.join(self.tmp, "gnssemud.log")
@@ -582,8 +586,52 @@ def case_budget(rig):
           f"warned once")
 
 
+class Skip(Exception):
+    """The case cannot run here or cannot pass yet (exit 77, CTest SKIP)."""
+
+
+def mon_hw_poll(rig, extra_toml):
+    """Start a daemon with extra_toml, wait for an epoch, poll MON-HW; stop it.
+    Returns (noisePerMS, agcCnt, jamInd)."""
+    path, out = pty_output(rig)
+    rig.start_daemon(out, extra_toml=extra_toml)
+    fd = rig.open_tty(path)
+    s = Stream(fd)
+    s.wait_for(lambda k, m: k == "nmea" and m.startswith(b"$GPGGA"), 5, "GGA (an epoch)")
+    send(fd, frame(0x0A, 0x09))
+    m = s.frame_of(0x0A, 0x09)
+    assert len(m) == 8 + 60, f"MON-HW of {len(m)} bytes"
+    noise, agc = struct.unpack_from("<HH", m, 6 + 16)
+    jam = m[6 + 45]
+    rig.fds.remove(fd)
+    os.close(fd)
+    rig.stop(rig.daemon)
+    return noise, agc, jam
+
+
+def case_jamming(rig):
+    # MON-HW follows the world: the receiver's environment noise rise
+    # ([signal] noise_rise_db, or environment = "jamming") drives noisePerMS,
+    # agcCnt and jamInd (docs/ubx.md MON-HW), through Fix::noise_rise_db.
+    quiet = mon_hw_poll(rig, "[signal]\nnoise_rise_db = 1.0\n")
+    jammed = mon_hw_poll(rig, "[signal]\nnoise_rise_db = 30.0\n")
+    print(f"  jamming: quiet noisePerMS/agcCnt/jamInd {quiet}, 30 dB rise {jammed}")
+    if jammed == quiet and quiet == (85, 4890, 12):
+        # Both equal the encoder's mapping of Fix::noise_rise_db's default
+        # (1 dB): core/receiver does not set Fix::noise_rise_db from
+        # [signal] yet (pending change in core/receiver/receiver.cpp). Skip
+        # until it does; once it lands this case must pass, not skip.
+        raise Skip("Fix::noise_rise_db stays at its 1 dB default: the receiver does not set it yet")
+    assert jammed[0] > quiet[0], f"noisePerMS {jammed[0]} not above quiet {quiet[0]}"
+    assert jammed[1] < quiet[1], f"agcCnt {jammed[1]} not below quiet {quiet[1]}"
+    assert jammed[2] > quiet[2], f"jamInd {jammed[2]} not above quiet {quiet[2]}"
+    # The documented mapping: 82 + 3 rise, 5000 - 110 rise, 7 + 5 rise (clamped).
+    assert jammed == (82 + 3 * 30, 5000 - 110 * 30, 7 + 5 * 30), jammed
+
+
 CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx, "gpsd_nmea": case_gpsd_nmea,
-         "gpsdecode": case_gpsdecode, "serial": case_serial, "net": case_net, "budget": case_budget}
+         "gpsdecode": case_gpsdecode, "serial": case_serial, "net": case_net, "budget": case_budget,
+         "jamming": case_jamming}
 NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_nmea": ["gpsd", "gpspipe"], "gpsdecode": ["gpsdecode"],
          "serial": ["socat", "stty"]}
 
@@ -610,15 +658,23 @@ def main():
         signal.signal(signal.SIGALRM, on_alarm)
         signal.alarm(CASE_LIMIT_S)
         ok = False
+        skipped = False
         try:
             print(f"case {name}:")
             CASES[name](rig)
             ok = True
+        except Skip as e:
+            print(f"SKIP {name}: {e}")
+            ok = skipped = True
         except AssertionError as e:
             print(f"FAIL {name}: {e}")
         finally:
             signal.alarm(0)
             rc = rig.close(failed=not ok)
+        if skipped:
+            if args.case != "all":
+                return 77
+            continue
         if ok and rc not in (0, None):
             print(f"FAIL {name}: gnssemud exited {rc} on SIGTERM (want 0)")
             ok = False
