@@ -40,7 +40,7 @@ std::string gps_text(const time::GpsTime& t) {
 }  // namespace
 
 Coverage coverage_for(const config::Config& cfg, const orbit::NavData& nav) {
-  if (cfg.time.use_wall_clock_date) return Coverage{system_clock_gps(), 0.0};
+  if (cfg.time.use_wall_clock_date) return Coverage{whole_second_start(system_clock_gps()).start, 0.0};
   if (cfg.time.start) return coverage_from(*cfg.time.start, nav.ephemerides);
   return default_coverage(nav.ephemerides);
 }
