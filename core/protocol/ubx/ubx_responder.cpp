@@ -476,10 +476,15 @@ void ConfigResponder::on_epoch(const receiver::Fix& fix, double uptime_s) noexce
   last_fix_ = fix;
   ++epochs_;
   const double ms = std::isfinite(uptime_s) ? std::clamp(uptime_s * 1e3, 0.0, 4294967295.0) : 0.0;
-  info_.msss_ms = static_cast<std::uint32_t>(ms);
+  // Whole ms; the 1 ns slack keeps a clock difference such as 100.35 - 100
+  // (0.34999...) from losing a ms to binary rounding.
+  constexpr double kSlackMs = 1e-6;
+  info_.msss_ms = static_cast<std::uint32_t>(std::min(ms + kSlackMs, 4294967295.0));
   if (!have_fix_once_ && fix.type != receiver::FixType::kNone && fix.time_valid) {
     have_fix_once_ = true;
-    info_.ttff_ms = std::max<std::uint32_t>(info_.msss_ms, 1);
+    // The uptime of this epoch, rounded up to the ms: a fix comes after the
+    // start, and 0 on the wire means "no fix yet".
+    info_.ttff_ms = static_cast<std::uint32_t>(std::max(1.0, std::ceil(ms - kSlackMs)));
   }
   const StoredBlock* itfm = current_.stored(msg::kCfgItfm);
   info_.itfm_enabled = itfm != nullptr && itfm->size >= 4 && (itfm->bytes[3] & 0x80) != 0;
