@@ -15,6 +15,11 @@
 namespace gnssemu::daemon {
 namespace {
 
+// The emulated receiver's power-on: the process start (static initialisation,
+// before the config and nav file are read). NAV-STATUS msss and the time to
+// first fix count from here, so ttff is what the emulator really took.
+const std::chrono::steady_clock::time_point kProcessStart = std::chrono::steady_clock::now();
+
 time::GpsTime system_clock_gps() {
   const auto now = std::chrono::system_clock::now();
   const double unix_s = std::chrono::duration<double>(now.time_since_epoch()).count();
@@ -40,7 +45,7 @@ std::string gps_text(const time::GpsTime& t) {
 }  // namespace
 
 Coverage coverage_for(const config::Config& cfg, const orbit::NavData& nav) {
-  if (cfg.time.use_wall_clock_date) return Coverage{system_clock_gps(), 0.0};
+  if (cfg.time.use_wall_clock_date) return Coverage{whole_second_start(system_clock_gps()).start, 0.0};
   if (cfg.time.start) return coverage_from(*cfg.time.start, nav.ephemerides);
   return default_coverage(nav.ephemerides);
 }
@@ -63,6 +68,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       socket_(io),
       signals_(io, SIGINT, SIGTERM) {
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
+  power_on_ = kProcessStart;
   restart_receiver();
   if (scene_) spdlog::info("scene {}: {} triangles", cfg_.scene->mesh_file, scene_->triangle_count());
   lock_next_ = coverage_.start;
@@ -77,6 +83,21 @@ void Daemon::restart_receiver() {
   config::attach_scene(*receiver_, cfg_, scene_.get());
 }
 
+void Daemon::on_receiver_reset(std::size_t src, const protocol::ubx::ResetRequest& reset) {
+  // Every reset mode but "GNSS stop" (8) restarts navigation: the tracked
+  // satellites and the solution are gone and the fix is reacquired; the
+  // channel measures the time to first fix from the reset. All ports share
+  // the one receiver, so all of them see the fix drop.
+  if (reset.reset_mode == 8) {
+    spdlog::info("output {}: CFG-RST GNSS stop: not modelled, the receiver keeps navigating",
+                 cfg_.outputs[src].name);
+    return;
+  }
+  const char* kind = reset.nav_bbr_mask == 0 ? "hot" : reset.nav_bbr_mask == 0xFFFF ? "cold" : "warm";
+  spdlog::info("output {}: CFG-RST {} start: the receiver restarts and reacquires", cfg_.outputs[src].name, kind);
+  restart_receiver();
+}
+
 Daemon::~Daemon() { shutdown(); }
 
 double Daemon::now_s() const noexcept {
@@ -86,10 +107,23 @@ double Daemon::now_s() const noexcept {
 void Daemon::start() {
   const auto clock = [this] { return now_s(); };
   t0_ = Clock::now();
+  if (cfg_.time.use_wall_clock_date && cfg_.time.mode == config::TimeMode::kRealtime) {
+    // Epoch 0 at the next whole GPS second of the wall clock, so every epoch
+    // sits on a whole multiple of the period in GPS time (as a u-blox's do).
+    const WholeSecondStart w = whole_second_start(system_clock_gps());
+    coverage_.start = w.start;
+    lock_next_ = w.start;
+    t0_ += std::chrono::nanoseconds(std::llround(w.wait_s * 1e9));
+  }
+  const double power_on_s = std::chrono::duration<double>(power_on_ - t0_).count();
   for (const auto& p : cfg_.outputs) {
     channels_.push_back(std::make_unique<PortChannel>(p, open_port(p, io_), period_s_, clock));
     const std::size_t i = channels_.size() - 1;
-    channels_.back()->on_nav_period_change([this, i](double period_s) { on_nav_period(i, period_s); });
+    PortChannel& c = *channels_.back();
+    c.set_power_on(power_on_s);
+    c.use_idle_timer(io_);
+    c.on_nav_period_change([this, i](double period_s) { on_nav_period(i, period_s); });
+    c.on_reset([this, i](const protocol::ubx::ResetRequest& r) { on_receiver_reset(i, r); });
   }
   for (const auto& c : channels_) c->start();
 
@@ -231,8 +265,7 @@ void Daemon::lockstep_advance(const time::GpsTime& stamp) {
 void Daemon::emit_epoch(const time::GpsTime& t, const receiver::Truth& truth) {
   const receiver::Fix& fix = receiver_->step(t, truth);
   ++epochs_;
-  const double uptime_s = now_s();
-  for (const auto& c : channels_) c->on_epoch(fix, uptime_s);
+  for (const auto& c : channels_) c->on_epoch(fix);
   const int type = static_cast<int>(fix.type);
   if (type != last_fix_type_ || truth.valid != last_truth_valid_) {
     spdlog::info("epoch {}: truth {}, fix {} with {} satellites (PDOP {:.1f})", gps_text(t),
@@ -254,6 +287,7 @@ void Daemon::on_nav_period(std::size_t src, double period_s) {
   const protocol::ubx::wire::CfgRate rate = channels_[src]->responder().current().rate;
   for (std::size_t i = 0; i < channels_.size(); ++i) {
     if (i != src) channels_[i]->set_nav_rate(rate);
+    channels_[i]->set_epoch_period(p);
   }
   if (p != period_s) {
     spdlog::warn("output {}: host asked for a {:.3f} s navigation period (CFG-RATE measRate {} ms, navRate {}); "

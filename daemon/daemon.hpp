@@ -48,6 +48,8 @@ private:
   double now_s() const noexcept;
   time::GpsTime realtime_clock_gps() noexcept;
   void restart_receiver();
+  /// A host on channel src sent CFG-RST: the receiver restarts (fix lost).
+  void on_receiver_reset(std::size_t src, const protocol::ubx::ResetRequest& reset);
   void arm_timer();
   void on_timer(const boost::system::error_code& ec);
   void receive();
@@ -86,6 +88,7 @@ private:
   asio::signal_set signals_;
   std::array<char, 65536> rx_buf_{};
 
+  Clock::time_point power_on_;  // receiver power-on (process start): uptime (msss) and ttff count from here
   Clock::time_point t0_;
   int64_t index_ = 0;           // realtime: epoch index since t0
   int64_t wraps_ = 0;

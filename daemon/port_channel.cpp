@@ -1,5 +1,6 @@
 #include "daemon/port_channel.hpp"
 
+#include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -55,7 +56,9 @@ PortChannel::PortChannel(const config::OutputPortConfig& cfg, std::unique_ptr<Ou
       nmea_cfg_(cfg.nmea),
       budget_(cfg.baud),
       line_(cfg.baud != 0),
-      sink_(std::make_unique<Sink>(*this)) {
+      sink_(std::make_unique<Sink>(*this)),
+      uptime_origin_s_(clock_()),
+      epoch_period_s_(nav_period_s) {
   ubx::ReceiverConfig& rc = responder_.current();
   ubx::PortSettings& p = rc.ports[kWiredPort];
   if (cfg.baud != 0) p.baud_bps = cfg.baud;
@@ -99,13 +102,80 @@ std::string PortChannel::output_summary() const {
 void PortChannel::set_nav_rate(const ubx::wire::CfgRate& rate) noexcept { responder_.current().rate = rate; }
 
 void PortChannel::on_port_input(int source, std::span<const uint8_t> bytes) {
-  auto& dec = decoders_[source];
-  if (!dec) dec = std::make_unique<ubx::StreamDecoder>();
+  auto& in = inputs_[source];
+  if (!in) in = std::make_unique<Input>();
   sink_->source = source;
-  dec->feed(bytes, *sink_);
+  in->last_input_s = clock_();
+  feeding_ = true;
+  in->decoder.feed(bytes, *sink_);
+  feeding_ = false;
+  if (drop_after_feed_) {
+    inputs_.erase(source);
+  } else if (reset_after_feed_) {
+    in->decoder.reset();
+  } else if (in->decoder.pending_bytes() > 0) {
+    arm_idle_timer(kInputIdleS);
+  }
+  drop_after_feed_ = reset_after_feed_ = false;
 }
 
-void PortChannel::on_source_closed(int source) { decoders_.erase(source); }
+void PortChannel::on_source_closed(int source) {
+  // A closed or reopened source (tcp client gone, serial device lost) starts
+  // again with an empty decoder.
+  if (feeding_ && source == sink_->source) {
+    drop_after_feed_ = true;
+    return;
+  }
+  inputs_.erase(source);
+}
+
+void PortChannel::use_idle_timer(boost::asio::io_context& io) {
+  idle_timer_ = std::make_unique<boost::asio::steady_timer>(io);
+}
+
+void PortChannel::arm_idle_timer(double delay_s) {
+  if (!idle_timer_) return;
+  idle_timer_->expires_after(std::chrono::nanoseconds(std::llround(delay_s * 1e9)));
+  idle_timer_->async_wait([this](const boost::system::error_code& ec) {
+    if (!ec) check_idle();
+  });
+}
+
+bool PortChannel::check_idle() noexcept {
+  const double now = clock_();
+  double next_s = -1.0;  // earliest time another check is due
+  for (auto it = inputs_.begin(); it != inputs_.end();) {
+    Input& in = *it->second;
+    const int source = it->first;
+    ++it;  // the sink may close sources (a reply's write failing)
+    if (in.decoder.pending_bytes() == 0) continue;
+    const double quiet_s = now - in.last_input_s;
+    if (quiet_s + 1e-9 < kInputIdleS) {
+      const double due = kInputIdleS - quiet_s;
+      if (next_s < 0.0 || due < next_s) next_s = due;
+      continue;
+    }
+    // The line is quiet, so nothing held is the start of a frame still on
+    // its way: resync until no partial frame is left.
+    sink_->source = source;
+    feeding_ = true;
+    for (std::size_t before = in.decoder.pending_bytes(); before > 0;) {
+      in.decoder.on_idle(*sink_);
+      const std::size_t after = in.decoder.pending_bytes();
+      if (after >= before || drop_after_feed_ || reset_after_feed_) break;
+      before = after;
+    }
+    feeding_ = false;
+    if (drop_after_feed_) {
+      inputs_.erase(source);  // it already points past source
+    } else if (reset_after_feed_) {
+      in.decoder.reset();
+    }
+    drop_after_feed_ = reset_after_feed_ = false;
+  }
+  if (next_s >= 0.0) arm_idle_timer(next_s);
+  return next_s >= 0.0;
+}
 
 void PortChannel::handle_result(int source, const ubx::ResponderResult& r) {
   if (r.bytes > 0) send_reply(source);
@@ -120,14 +190,22 @@ void PortChannel::handle_result(int source, const ubx::ResponderResult& r) {
     }
   }
   if (r.reset.requested) {
-    spdlog::info("output {}: host sent CFG-RST (navBbrMask 0x{:04x}, resetMode {}): configuration reloaded",
-                 cfg_.name, r.reset.nav_bbr_mask, r.reset.reset_mode);
+    spdlog::info("output {}: host sent CFG-RST (navBbrMask 0x{:04x}, resetMode {}): uptime restarts{}", cfg_.name,
+                 r.reset.nav_bbr_mask, r.reset.reset_mode,
+                 r.reset.reset_mode == 0 || r.reset.reset_mode == 1 || r.reset.reset_mode == 4
+                     ? ", saved configuration loaded"
+                     : "");
+    // The receiver restarts: uptime (msss) and time to first fix count from
+    // now; whatever arrived before the reset is gone.
+    uptime_origin_s_ = clock_();
+    reset_after_feed_ = true;
   }
   const uint32_t baud = r.new_baud_bps[kWiredPort];
   if (baud != 0 && baud != port_->baud()) {
     spdlog::info("output {}: host set {} baud (was {}){}", cfg_.name, baud, port_->baud(),
                  line_ ? "; switching after the transmit buffer drains" : " (recorded; no line on this port)");
     port_->set_baud_after_drain(baud);
+    reset_after_feed_ = true;  // bytes after the switch arrive at the new rate
     if (line_) {
       budget_.set_baud(baud, clock_());
       warned_ = false;  // new figures deserve a new warning
@@ -142,6 +220,7 @@ void PortChannel::handle_result(int source, const ubx::ResponderResult& r) {
     }
   }
   if ((r.nav_rate_changed || r.reset.requested) && on_nav_period_) on_nav_period_(responder_.nav_period_s());
+  if (r.reset.requested && on_reset_) on_reset_(r.reset);
   if (r.rates_changed || r.ports_changed) {
     spdlog::debug("output {}: host changed the output: now {}", cfg_.name, output_summary());
   }
@@ -151,7 +230,16 @@ void PortChannel::send_reply(int source) noexcept {
   // Replies share the TX buffer with the epochs: a full buffer drops them too.
   if (!budget_.admit(reply_.size(), clock_())) {
     ++stats_.messages_dropped;
-    ++drops_by_name_[std::string(message_label(reply_))];
+    const std::string_view label = message_label(reply_);
+    ++drops_by_name_[std::string(label)];
+    if (!warned_) {
+      warned_ = true;
+      spdlog::warn("output {}: the {} B transmit buffer is full at {} baud (8N1, {:.0f} B/s), so the reply {} ({} B) "
+                   "is dropped as a u-blox drops it; the epochs' messages need more than the line carries. Raise the "
+                   "baud or lower the rates (warned once; totals at exit)",
+                   cfg_.name, budget_.capacity_bytes(), budget_.baud_bps(), budget_.line_bytes_per_s(), label,
+                   reply_.size());
+    }
     return;
   }
   port_->write_reply(source, reply_);
@@ -181,17 +269,17 @@ void PortChannel::admit_all(std::string_view data, double now_s) noexcept {
   }
 }
 
-void PortChannel::on_epoch(const receiver::Fix& fix, double uptime_s) noexcept {
+void PortChannel::on_epoch(const receiver::Fix& fix) noexcept {
   last_fix_ = fix;
   have_fix_ = true;
-  responder_.on_epoch(fix, uptime_s);
+  const double now = clock_();
+  responder_.on_epoch(fix, now - uptime_origin_s_);
   ubx_buf_.clear();
   responder_.encode_epoch(kWiredPort, ubx_buf_);
   nmea_cfg_.sentences = responder_.nmea_sentences(kWiredPort);
   nmea_buf_.clear();
   protocol::nmea::NmeaEncoder(nmea_cfg_).encode_epoch(fix, nmea_buf_);
 
-  const double now = clock_();
   out_.clear();
   epoch_bytes_ = 0;
   epoch_dropped_.clear();
@@ -208,12 +296,12 @@ void PortChannel::on_epoch(const receiver::Fix& fix, double uptime_s) noexcept {
   admit_all(nmea_buf_, now);
   admit_ubx(false);
   if (!out_.empty()) port_->write_epoch(out_);
-  if (!epoch_dropped_.empty() && !warned_) warn_drops(now);
+  if (!epoch_dropped_.empty() && !warned_) warn_drops();
 }
 
-void PortChannel::warn_drops(double /*now_s*/) {
+void PortChannel::warn_drops() {
   warned_ = true;
-  const double period_s = responder_.nav_period_s();
+  const double period_s = epoch_period_s_;
   const double line_per_epoch = budget_.line_bytes_per_s() * period_s;
   spdlog::warn("output {}: the configured messages need {} bytes per epoch at {:.3g} Hz but {} baud carries {:.0f} "
                "(8N1, {:.0f} B/s); the {} B transmit buffer is full, so messages are dropped as a u-blox drops "

@@ -222,8 +222,11 @@ private:
       last_warning_ = now;
     }
     ++failures_;
+    const bool was_open = line_.is_open();
     close_device();
     if (stopped_) return;
+    // Whatever the decoder holds belongs to the old connection.
+    if (was_open && listener_ != nullptr) listener_->on_source_closed(0);
     retry_timer_.expires_after(retry_delay_);
     retry_delay_ = std::min<std::chrono::steady_clock::duration>(retry_delay_ * 2, kMaxRetry);
     retry_timer_.async_wait([this](const boost::system::error_code& ec) {
@@ -237,6 +240,15 @@ private:
     if (sd_.is_open()) sd_.release();  // Line owns the fd
     line_.close();
     queue_.clear();
+    held_.clear();
+    // A switch waiting for the drain: nothing is left to drain, so the next
+    // open uses the new rate (the host asked for it before the line went).
+    drain_timer_.cancel();
+    if (pending_baud_ != 0) {
+      baud_ = pending_baud_;
+      pending_baud_ = 0;
+      ++stats_.baud_changes;
+    }
     writing_ = false;
     ++generation_;
   }
@@ -296,6 +308,9 @@ private:
     pending_baud_ = 0;
     if (line_.is_open() && !line_.set_baud(b)) {
       spdlog::warn("output {}: cannot set {} baud", config_.name, b);
+      queue_.append(held_);  // goes out at the old rate rather than never
+      held_.clear();
+      flush();
       return;
     }
     spdlog::info("output {}: line now {} baud (was {})", config_.name, b, baud_);

@@ -37,6 +37,16 @@ Coverage coverage_from(const time::GpsTime& start, const std::vector<orbit::Ephe
   return c;
 }
 
+WholeSecondStart whole_second_start(const time::GpsTime& now) noexcept {
+  const double tow = now.tow_s();
+  double wait = std::ceil(tow) - tow;
+  if (!(wait >= 0.0 && wait < 1.0)) wait = 0.0;  // non-finite input: leave it
+  WholeSecondStart w;
+  w.start = time::GpsTime(now.week(), std::ceil(tow));  // 604800 carries into the next week
+  w.wait_s = wait;
+  return w;
+}
+
 EpochTime realtime_gps_time(const Coverage& coverage, double elapsed_s) noexcept {
   EpochTime out;
   if (coverage.span_s <= 0.0 || elapsed_s < coverage.span_s) {

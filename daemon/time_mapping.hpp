@@ -25,6 +25,15 @@ Coverage default_coverage(const std::vector<orbit::Ephemeris>& ephemerides);
 /// later than start + 1 h, else never wraps.
 Coverage coverage_from(const time::GpsTime& start, const std::vector<orbit::Ephemeris>& ephemerides);
 
+/// Start of the epoch clock for time.use_wall_clock_date: a u-blox receiver's
+/// epochs sit on whole multiples of the measurement period in GPS time, so
+/// the clock starts at the next whole GPS second after now.
+struct WholeSecondStart {
+  time::GpsTime start;  ///< now rounded up to a whole GPS second
+  double wait_s = 0.0;  ///< start - now, s, in [0, 1)
+};
+WholeSecondStart whole_second_start(const time::GpsTime& now) noexcept;
+
 struct EpochTime {
   time::GpsTime t;     ///< GPS time
   int64_t wraps = 0;   ///< how often the clock has wrapped back to coverage.start

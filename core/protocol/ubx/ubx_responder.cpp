@@ -16,7 +16,11 @@ constexpr MsgId kEpochOrder[] = {msg::kNavPosllh, msg::kNavStatus, msg::kNavDop,
                                  msg::kNavPvt,    msg::kNavVelned, msg::kNavTimegps, msg::kNavTimeutc,
                                  msg::kNavSvinfo, msg::kNavSat,    msg::kMonHw,      msg::kNavEoe};
 
-constexpr std::uint32_t kMaxUartBaud = 921600;
+// CFG-PRT UART mode (UBX-13003221 CFG-PRT): charLen b6-7 (3 = 8 bit),
+// parity b9-11 (10x = none), nStopBits b12-13 (0 = 1 stop bit).
+constexpr bool is_8n1(std::uint32_t mode) noexcept {
+  return (mode >> 6 & 0x3U) == 0x3U && (mode >> 9 & 0x6U) == 0x4U && (mode >> 12 & 0x3U) == 0U;
+}
 constexpr std::uint16_t kMinMeasRate_ms = 25;  // M8: up to 40 Hz measurement rate (GPS only)
 constexpr std::uint16_t kMaxNavRate = 127;
 
@@ -179,7 +183,11 @@ ResponderResult ConfigResponder::handle_ubx(std::uint8_t port_id, const FrameVie
           wire::CfgPrt w{};
           read_wire(p, w, off);
           if (w.portID >= kNumPorts || !current_.ports[w.portID].exists) ok = false;
-          if (ok && is_uart(w.portID) && (w.baudRate == 0 || w.baudRate > kMaxUartBaud)) ok = false;
+          // A UART block must ask for what the emulated line can really be
+          // set to: a standard u-blox baud and 8N1. Anything else would be
+          // ACKed and then silently not applied (the daemon's lines run
+          // 8N1 at the standard rates only), so it gets a NAK.
+          if (ok && is_uart(w.portID) && (!is_ubx_baud(w.baudRate) || !is_8n1(w.mode))) ok = false;
         }
         if (ok) {
           for (std::size_t off = 0; off < p.size(); off += sizeof(wire::CfgPrt)) {
@@ -468,10 +476,15 @@ void ConfigResponder::on_epoch(const receiver::Fix& fix, double uptime_s) noexce
   last_fix_ = fix;
   ++epochs_;
   const double ms = std::isfinite(uptime_s) ? std::clamp(uptime_s * 1e3, 0.0, 4294967295.0) : 0.0;
-  info_.msss_ms = static_cast<std::uint32_t>(ms);
+  // Whole ms; the 1 ns slack keeps a clock difference such as 100.35 - 100
+  // (0.34999...) from losing a ms to binary rounding.
+  constexpr double kSlackMs = 1e-6;
+  info_.msss_ms = static_cast<std::uint32_t>(std::min(ms + kSlackMs, 4294967295.0));
   if (!have_fix_once_ && fix.type != receiver::FixType::kNone && fix.time_valid) {
     have_fix_once_ = true;
-    info_.ttff_ms = std::max<std::uint32_t>(info_.msss_ms, 1);
+    // The uptime of this epoch, rounded up to the ms: a fix comes after the
+    // start, and 0 on the wire means "no fix yet".
+    info_.ttff_ms = static_cast<std::uint32_t>(std::max(1.0, std::ceil(ms - kSlackMs)));
   }
   const StoredBlock* itfm = current_.stored(msg::kCfgItfm);
   info_.itfm_enabled = itfm != nullptr && itfm->size >= 4 && (itfm->bytes[3] & 0x80) != 0;

@@ -1,7 +1,12 @@
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
+#include <pty.h>
+#include <termios.h>
 #include <unistd.h>
+
+#include <chrono>
+#include <string>
 
 #include <filesystem>
 #include <fstream>
@@ -131,4 +136,54 @@ TEST(ConfigLocator, SearchOrder) {
   EXPECT_EQ(c.back(), std::string(GNSSEMU_SOURCE_DIR) + "/config/default.toml");
   // The source tree's default is found from anywhere.
   EXPECT_EQ(find_default_config("/nonexistent/bin/gnssemud"), std::string(GNSSEMU_SOURCE_DIR) + "/config/default.toml");
+}
+
+TEST(OutputPort, SerialLostDuringABaudSwitchReopensAtTheNewRateWithoutStaleOutput) {
+  // The host asked for 38400; the switch waits for the line to drain, and
+  // output produced meanwhile is held for the new rate. The device vanishes
+  // before the drain: the reopened device must run at 38400 and must not
+  // replay the held output of the old connection first.
+  TempDir d;
+  const fs::path link = d.path / "ttyGPS";
+  int m1 = -1, s1 = -1;
+  ASSERT_EQ(::openpty(&m1, &s1, nullptr, nullptr, nullptr), 0);
+  fs::create_symlink(::ttyname(s1), link);
+  config::OutputPortConfig c;
+  c.name = "uart";
+  c.type = config::PortType::kSerial;
+  c.path = link.string();
+  c.baud = 9600;
+  auto port = open_port(c, io);
+  port->start(nullptr);
+  ::close(s1);  // the port holds its own fd
+  // Fill the pty (nobody reads the master) so the drain cannot finish.
+  port->write_epoch(std::string(60000, 'A'));
+  port->set_baud_after_drain(38400);
+  port->write_epoch("HELD");
+  io.restart();
+  io.run_for(std::chrono::milliseconds(50));
+  EXPECT_EQ(port->baud(), 9600u);  // still draining
+  // Unplug: the master goes, the slave reads EIO, the port closes.
+  ::close(m1);
+  io.restart();
+  io.run_for(std::chrono::milliseconds(100));
+  EXPECT_EQ(port->baud(), 38400u);
+  // Plug in again: a new pty behind the same path; the port reopens (back-off 0.5 s).
+  int m2 = -1, s2 = -1;
+  ASSERT_EQ(::openpty(&m2, &s2, nullptr, nullptr, nullptr), 0);
+  fs::remove(link);
+  fs::create_symlink(::ttyname(s2), link);
+  io.restart();
+  io.run_for(std::chrono::milliseconds(900));
+  ::close(s2);
+  EXPECT_EQ(port->stats().reopens, 1u);
+  port->write_epoch("NEW");
+  io.restart();
+  io.run_for(std::chrono::milliseconds(50));
+  ::fcntl(m2, F_SETFL, ::fcntl(m2, F_GETFL) | O_NONBLOCK);
+  char buf[64] = {};
+  const ssize_t n = ::read(m2, buf, sizeof buf);
+  EXPECT_EQ(std::string(buf, n > 0 ? static_cast<std::size_t>(n) : 0), "NEW");
+  port.reset();
+  ::close(m2);
 }

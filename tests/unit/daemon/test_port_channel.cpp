@@ -2,8 +2,14 @@
 // responder -> reply, per-port rates, budget drops) with a fake port.
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
+
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 
 #include "core/common/error.hpp"
 #include "core/protocol/ubx/ubx_frame.hpp"
@@ -68,7 +74,7 @@ struct Rig {
   }
   std::vector<std::string> epoch(double tow_s) {
     port->epochs.clear();
-    ch->on_epoch(good_fix(tow_s), tow_s);
+    ch->on_epoch(good_fix(tow_s));
     std::vector<std::string> labels;
     if (port->epochs.empty()) return labels;
     std::string_view d = port->epochs.front();
@@ -78,6 +84,53 @@ struct Rig {
       d.remove_prefix(n);
     }
     return labels;
+  }
+};
+
+std::string pubx41(uint32_t baud) {
+  const std::string body = "PUBX,41,1,0007,0003," + std::to_string(baud) + ",0";
+  uint8_t cs = 0;
+  for (char ch : body) cs ^= static_cast<uint8_t>(ch);
+  char tail[8];
+  std::snprintf(tail, sizeof tail, "*%02X\r\n", cs);
+  return "$" + body + tail;
+}
+
+// The first frame of id in the last epoch written, "" if none.
+std::string epoch_frame(const FakePort& port, ubx::MsgId id) {
+  if (port.epochs.empty()) return {};
+  std::string_view d = port.epochs.back();
+  while (!d.empty()) {
+    const std::size_t n = message_length(d);
+    if (n >= 8 && static_cast<uint8_t>(d[0]) == 0xB5 && static_cast<uint8_t>(d[2]) == id.cls &&
+        static_cast<uint8_t>(d[3]) == id.id) {
+      return std::string(d.substr(0, n));
+    }
+    d.remove_prefix(n);
+  }
+  return {};
+}
+
+uint32_t u32_at(const std::string& f, std::size_t payload_off) {
+  uint32_t v = 0;
+  std::memcpy(&v, f.data() + 6 + payload_off, 4);  // little-endian host
+  return v;
+}
+
+// Captures spdlog output while alive.
+struct LogCapture {
+  std::ostringstream text;
+  std::shared_ptr<spdlog::logger> saved = spdlog::default_logger();
+  LogCapture() {
+    auto sink = std::make_shared<spdlog::sinks::ostream_sink_mt>(text);
+    spdlog::set_default_logger(std::make_shared<spdlog::logger>("capture", sink));
+  }
+  ~LogCapture() { spdlog::set_default_logger(saved); }
+  int count(const std::string& what) const {
+    const std::string t = text.str();
+    int n = 0;
+    for (std::size_t at = t.find(what); at != std::string::npos; at = t.find(what, at + 1)) ++n;
+    return n;
   }
 };
 
@@ -232,17 +285,164 @@ TEST(PortChannel, PerEpochPathDoesNotAllocateAfterWarmUp) {
   // Warm-up: fills the TX buffer so drops happen, and the one warning is out.
   for (int k = 0; k < 50; ++k) {
     r.now = 100.0 + 0.2 * k;
-    r.ch->on_epoch(fix, 0.2 * k);
+    r.ch->on_epoch(fix);
   }
   r.port->epochs.clear();
   r.port->epochs.reserve(100);
   const long before = gnssemu::support::allocation_count();
   for (int k = 50; k < 100; ++k) {
     r.now = 100.0 + 0.2 * k;
-    r.ch->on_epoch(fix, 0.2 * k);
+    r.ch->on_epoch(fix);
   }
   // The fake port copies each epoch into a std::string (one allocation each);
   // the channel itself allocates nothing.
   EXPECT_EQ(gnssemu::support::allocation_count() - before, static_cast<long>(r.port->epochs.size()));
   EXPECT_GT(r.ch->stats().messages_dropped, 0u);
+}
+
+TEST(PortChannel, TruncatedHeaderIsAbandonedAfterTheLineGoesQuiet) {
+  // A garbage header announcing a 1023-byte payload, then the host's MON-VER
+  // polls: without the idle resync they wait for 1031 bytes that never come.
+  Rig r(port_cfg());
+  const std::string garbage("\xB5\x62\x06\x01\xFF\x03", 6);
+  r.input(garbage + frame(ubx::msg::kMonVer) + frame(ubx::msg::kMonVer));
+  EXPECT_TRUE(r.port->replies.empty());
+  EXPECT_TRUE(r.ch->check_idle());  // not quiet long enough yet: still pending
+  EXPECT_TRUE(r.port->replies.empty());
+  r.now += kInputIdleS;
+  EXPECT_FALSE(r.ch->check_idle());  // nothing pending afterwards
+  ASSERT_EQ(r.port->replies.size(), 2u);
+  EXPECT_EQ(message_label(r.port->replies[0]), "MON-VER");
+  EXPECT_EQ(message_label(r.port->replies[1]), "MON-VER");
+  // Input keeps the line busy: a fresh partial frame is not abandoned early.
+  r.input(garbage);
+  r.now += 0.05;
+  r.input(frame(ubx::msg::kMonVer));
+  r.now += 0.06;
+  EXPECT_TRUE(r.ch->check_idle());
+  EXPECT_EQ(r.port->replies.size(), 2u);
+  r.now += 0.05;
+  EXPECT_FALSE(r.ch->check_idle());
+  EXPECT_EQ(r.port->replies.size(), 3u);
+}
+
+TEST(PortChannel, BaudChangeAndReopenDropThePartialFrame) {
+  config::OutputPortConfig c = port_cfg(9600);
+  c.type = config::PortType::kPty;
+  Rig r(c);
+  const std::string poll = frame(ubx::msg::kMonVer);
+  // Bytes after $PUBX,41 in the same read were sent at the old rate: the
+  // partial frame they start must not swallow what comes at the new rate.
+  r.input(pubx41(38400) + poll.substr(0, 4));
+  ASSERT_EQ(r.port->bauds.size(), 1u);
+  r.input(poll.substr(4));
+  EXPECT_TRUE(r.port->replies.empty());
+  r.input(poll);
+  ASSERT_EQ(r.port->replies.size(), 1u);
+  // The device went away and came back (serial reopen): a fresh decoder.
+  r.input(poll.substr(0, 4));
+  r.ch->on_source_closed(0);
+  r.input(poll.substr(4));
+  EXPECT_EQ(r.port->replies.size(), 1u);
+  r.input(poll);
+  EXPECT_EQ(r.port->replies.size(), 2u);
+}
+
+TEST(PortChannel, UptimeAndTtffCountFromPowerOnAndFromCfgRst) {
+  config::OutputPortConfig c = port_cfg();
+  c.protocols_out = config::kProtoUbx;
+  c.ubx_messages = {{0x01, 0x03, 1}};  // NAV-STATUS
+  Rig r(c);  // powered on at clock 100 s
+  int resets = 0;
+  protocol::ubx::ResetRequest last{};
+  r.ch->on_reset([&](const protocol::ubx::ResetRequest& q) {
+    ++resets;
+    last = q;
+  });
+  receiver::Fix none = good_fix(1000.0);
+  none.type = receiver::FixType::kNone;
+  r.now = 100.2;
+  r.ch->on_epoch(none);
+  std::string st = epoch_frame(*r.port, ubx::msg::kNavStatus);
+  ASSERT_EQ(st.size(), 24u);
+  EXPECT_EQ(u32_at(st, 8), 0u);    // ttff: no fix yet
+  EXPECT_EQ(u32_at(st, 12), 200u);  // msss
+  r.now = 100.35;
+  r.epoch(1000.35);
+  st = epoch_frame(*r.port, ubx::msg::kNavStatus);
+  EXPECT_EQ(u32_at(st, 8), 350u);  // the real time to the first fix
+  EXPECT_EQ(u32_at(st, 12), 350u);
+  r.now = 105.0;
+  r.epoch(1005.0);
+  st = epoch_frame(*r.port, ubx::msg::kNavStatus);
+  EXPECT_EQ(u32_at(st, 8), 350u);
+  EXPECT_EQ(u32_at(st, 12), 5000u);
+  // Cold start, hardware reset (watchdog): no ACK, the daemon is told.
+  r.input(frame(ubx::msg::kCfgRst, {0xFF, 0xFF, 0, 0}));
+  EXPECT_TRUE(r.port->replies.empty());
+  ASSERT_EQ(resets, 1);
+  EXPECT_EQ(last.nav_bbr_mask, 0xFFFF);
+  EXPECT_EQ(last.reset_mode, 0);
+  r.now = 105.2;
+  r.ch->on_epoch(none);  // the restarted receiver has no fix yet
+  st = epoch_frame(*r.port, ubx::msg::kNavStatus);
+  EXPECT_EQ(u32_at(st, 8), 0u);
+  EXPECT_EQ(u32_at(st, 12), 200u);  // uptime restarted at the reset
+  r.now = 106.25;
+  r.epoch(1006.25);
+  st = epoch_frame(*r.port, ubx::msg::kNavStatus);
+  EXPECT_EQ(u32_at(st, 8), 1250u);  // ttff measured from the reset
+  EXPECT_EQ(u32_at(st, 12), 1250u);
+}
+
+TEST(PortChannel, BudgetWarnsOnceUntilTheBaudChanges) {
+  LogCapture log;
+  config::OutputPortConfig c = port_cfg(9600);
+  c.type = config::PortType::kPty;
+  c.ubx_messages = {{0x01, 0x07, 1}, {0x01, 0x35, 1}, {0x01, 0x30, 1}, {0x01, 0x06, 1}};
+  Rig r(c, 0.2);
+  const auto run = [&](int from, int to) {
+    for (int k = from; k < to; ++k) {
+      r.now = 100.0 + 0.2 * k;
+      r.epoch(1000.0 + 0.2 * k);
+    }
+  };
+  run(0, 100);
+  ASSERT_GT(r.ch->stats().messages_dropped, 10u);
+  EXPECT_EQ(log.count("transmit buffer is full"), 1);
+  EXPECT_EQ(log.count("at 5 Hz but 9600 baud"), 1);
+  // A new line rate gets its own warning, once, with its own figures.
+  r.input(pubx41(4800));
+  run(100, 200);
+  EXPECT_EQ(log.count("transmit buffer is full"), 2);
+  EXPECT_EQ(log.count("at 5 Hz but 4800 baud"), 1);
+}
+
+TEST(PortChannel, BudgetWarningQuotesTheRunRateAndCoversReplies) {
+  {
+    // A host asked for 20 Hz; the daemon runs 10 Hz (clamped) and says so.
+    LogCapture log;
+    config::OutputPortConfig c = port_cfg(9600);
+    c.ubx_messages = {{0x01, 0x07, 1}, {0x01, 0x35, 1}, {0x01, 0x30, 1}, {0x01, 0x06, 1}};
+    Rig r(c, 0.1);
+    r.input(frame(ubx::msg::kCfgRate, {50, 0, 1, 0, 1, 0}));
+    EXPECT_DOUBLE_EQ(r.ch->responder().nav_period_s(), 0.05);
+    r.ch->set_epoch_period(0.1);
+    for (int k = 0; k < 100; ++k) {
+      r.now = 100.0 + 0.1 * k;
+      r.epoch(1000.0 + 0.1 * k);
+    }
+    EXPECT_EQ(log.count("at 10 Hz but 9600 baud carries 96 "), 1) << log.text.str();
+    EXPECT_EQ(log.count("at 20 Hz"), 0);
+  }
+  {
+    // Replies alone overflow the buffer: the first dropped one warns.
+    LogCapture log;
+    Rig r(port_cfg(9600));
+    for (int k = 0; k < 40; ++k) r.input(frame(ubx::msg::kMonVer));  // 40 x 168 B at once
+    EXPECT_LT(r.port->replies.size(), 40u);
+    EXPECT_GT(r.ch->stats().messages_dropped, 0u);
+    EXPECT_EQ(log.count("transmit buffer is full"), 1) << log.text.str();
+    EXPECT_EQ(log.count("reply MON-VER"), 1);
+  }
 }

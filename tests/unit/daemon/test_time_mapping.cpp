@@ -115,3 +115,25 @@ TEST(EpochSchedule, LateByMoreThanAPeriodSkips) {
   EXPECT_EQ(s.next_index, 2);
   EXPECT_EQ(s.skipped, 1);
 }
+
+TEST(TimeMapping, WallClockStartIsOnAWholeGpsSecond) {
+  // The wall clock is read at an arbitrary instant; epochs must still fall on
+  // whole multiples of the period in GPS time (iTOW ...000, ...200 at 5 Hz),
+  // not on the instant's fraction (...455, ...655).
+  const WholeSecondStart w = whole_second_start(time::GpsTime(2390, 345600.455));
+  EXPECT_EQ(w.start.week(), 2390);
+  EXPECT_DOUBLE_EQ(w.start.tow_s(), 345601.0);
+  EXPECT_NEAR(w.wait_s, 0.545, 1e-9);
+  for (int k = 0; k < 10; ++k) {  // 5 Hz from there: every iTOW a multiple of 200 ms
+    const EpochTime e = realtime_gps_time(Coverage{w.start, 0.0}, epoch_offset_s(k, 5.0));
+    const auto itow_ms = std::llround(e.t.tow_s() * 1000.0);
+    EXPECT_EQ(itow_ms % 200, 0) << k;
+  }
+  const WholeSecondStart exact = whole_second_start(time::GpsTime(2390, 17.0));
+  EXPECT_DOUBLE_EQ(exact.start.tow_s(), 17.0);
+  EXPECT_EQ(exact.wait_s, 0.0);
+  const WholeSecondStart carry = whole_second_start(time::GpsTime(2390, 604799.75));
+  EXPECT_EQ(carry.start.week(), 2391);  // rounds into the next week
+  EXPECT_DOUBLE_EQ(carry.start.tow_s(), 0.0);
+  EXPECT_NEAR(carry.wait_s, 0.25, 1e-9);
+}

@@ -64,9 +64,23 @@ TEST(UbxEncoder, NavPvtFieldsFromTheFix) {
   EXPECT_EQ(m.gSpeed, 13400);
   EXPECT_EQ(m.headMot, 8730000);
   EXPECT_EQ(m.sAcc, 210u);
-  EXPECT_EQ(m.headAcc, 89785u);  // atan2(0.21, 13.4) deg
+  EXPECT_EQ(m.headAcc, 89792u);  // 0.21 / 13.4 rad in deg
   EXPECT_EQ(m.pDOP, 194);
   EXPECT_EQ(m.flags3, 0);
+}
+
+TEST(UbxEncoder, HeadAccIs180DegWhenStandingAndFollowsSpeedWhenMoving) {
+  // docs/ubx.md: headAcc = sAcc / gSpeed (rad -> deg), capped at 180 deg.
+  // atan2 stopped at 90 deg while the doc promised 180 when standing.
+  receiver::Fix f = sample_fix();
+  f.speed_m_s = 0.0;
+  f.vel_enu_m_s = {0.0, 0.0, 0.0};
+  EXPECT_EQ(encode_one<wire::NavPvt>(&UbxEncoder::nav_pvt, f, msg::kNavPvt).headAcc, 18000000u);
+  EXPECT_EQ(encode_one<wire::NavVelned>(&UbxEncoder::nav_velned, f, msg::kNavVelned).cAcc, 18000000u);
+  f.speed_m_s = 0.21;  // gSpeed = sAcc: one radian
+  EXPECT_EQ(encode_one<wire::NavPvt>(&UbxEncoder::nav_pvt, f, msg::kNavPvt).headAcc, 5729578u);
+  f.speed_m_s = 0.05;  // crawling: capped
+  EXPECT_EQ(encode_one<wire::NavPvt>(&UbxEncoder::nav_pvt, f, msg::kNavPvt).headAcc, 18000000u);
 }
 
 TEST(UbxEncoder, PosllhVelnedSolAgreeWithPvt) {

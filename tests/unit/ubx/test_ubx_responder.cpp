@@ -406,5 +406,28 @@ TEST(UbxResponder, Pubx40SetsNmeaRatesPerPort) {
   EXPECT_EQ(r.message_rate(kPortDdc, msg::kNmeaGsv), 0);
 }
 
+TEST(UbxResponder, CfgPrtNaksWhatTheLineCannotBeSetTo) {
+  // The daemon's lines run 8N1 at the standard u-blox rates; a baud or frame
+  // format it cannot set must not be ACKed and then silently misapplied.
+  ConfigResponder r({});
+  Host h(r);
+  const std::string nak = "B5 62 05 00 02 00 06 00 0D 32";
+  EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(1, 0x8D0, 100000, 1, 1)), nak);  // not a u-blox rate
+  EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(1, 0x8D0, 14400, 1, 1)), nak);
+  EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(1, 0x8D0, 0, 1, 1)), nak);
+  EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(1, 0x8D0, 1843200, 1, 1)), nak);
+  EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(1, 0x880, 9600, 1, 1)), nak);           // 7 data bits
+  EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(1, 0x0C0, 9600, 1, 1)), nak);           // even parity
+  EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(1, 0x8C0 | 0x2000, 9600, 1, 1)), nak);  // 2 stop bits
+  EXPECT_EQ(r.port(kPortUart1).baud_bps, 9600u);
+  EXPECT_EQ(r.port(kPortUart1).in_proto_mask, 0x07);  // nothing applied
+  for (std::uint32_t b : {4800u, 19200u, 57600u, 230400u, 460800u, 921600u}) {
+    EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(1, 0x8C0, b, 7, 3)), kAckPrt) << b;
+    EXPECT_EQ(h.last().new_baud_bps[kPortUart1], b);
+  }
+  // USB and DDC blocks carry no baud: still ACKed.
+  EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(3, 0, 0, 7, 3)), kAckPrt);
+}
+
 }  // namespace
 }  // namespace gnssemu::protocol::ubx
