@@ -79,17 +79,21 @@ std::string label_of(const std::string& line) {
   return std::string(trim(columns(line, 60, 20)));
 }
 
-/// Lines per record for a RINEX 3 system letter (RINEX 3.04 Tables A6-A19), 0 = unknown.
-int record_lines_v3(char sys) {
+/// Lines per record for a RINEX 3 system letter, 0 = unknown. version_x100:
+/// 300..305. RINEX 3.04 Tables A6-A19: G/E/C/J/I 8 lines, R/S 4; RINEX 3.05
+/// Table A11 adds a 5th GLONASS line (status flags, L1/L2 delay, URAI, health).
+int record_lines_v3(char sys, int version_x100) {
   switch (sys) {
     case 'G': case 'E': case 'C': case 'J': case 'I': return 8;
-    case 'R': case 'S': return 4;
+    case 'R': return version_x100 >= 305 ? 5 : 4;
+    case 'S': return 4;
     default: return 0;
   }
 }
 
 struct Header {
   double version = 0.0;
+  int version_x100 = 0;  // 305 for 3.05: exact comparisons on the version
   int major = 0;
   std::size_t first_record = 0;  // index into lines
 };
@@ -102,6 +106,7 @@ Header parse_header(const Parser& p, const std::vector<Line>& lines, NavData& ou
     p.fail(first.number, "first line is not 'RINEX VERSION / TYPE'");
   }
   h.version = p.real(first, 0, 9, "RINEX version");
+  h.version_x100 = static_cast<int>(std::lround(h.version * 100.0));
   const char type = first.text.size() > 20 ? first.text[20] : ' ';
   const char sys = first.text.size() > 40 ? first.text[40] : ' ';
   if (h.version >= 2.0 && h.version < 2.12) {
@@ -278,7 +283,7 @@ NavData read_rinex_nav(std::istream& in, const std::string& name) {
     bool gps = true;
     if (h.major == 3) {
       const char sys = l.text[0];
-      n_lines = record_lines_v3(sys);
+      n_lines = record_lines_v3(sys, h.version_x100);
       if (n_lines == 0) p.fail(l.number, std::string("unknown satellite system '") + sys + "' at record start");
       gps = sys == 'G';
     } else if (l.text[0] != ' ' && (l.text[0] < '0' || l.text[0] > '9')) {

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -149,6 +150,43 @@ TEST(RinexNav, KnownRecordRinex3) {
   EXPECT_DOUBLE_EQ(e.tgd_s, 1.862645149231e-09);
   EXPECT_DOUBLE_EQ(e.transmit_tow_s, 4.320180000000e+05);
   EXPECT_DOUBLE_EQ(e.fit_interval_h, 4.0);  // short last line: 2 of 4 fields
+}
+
+// RINEX 3.05 Table A11: GLONASS records have 5 lines (3.04: 4). A synthetic
+// mixed file R01 (5 lines), G27 (NYA1 lines 8-15), R02 (5 lines, at the end).
+TEST(RinexNav, Rinex305GlonassFiveLineRecords) {
+  const NavData d = read_rinex_nav(kNav + "SYNT00XXX_R_20241240000_01H_MN_v305.rnx");
+  EXPECT_DOUBLE_EQ(d.rinex_version, 3.05);
+  EXPECT_EQ(d.skipped_records, 2);
+  ASSERT_EQ(d.ephemerides.size(), 1u);
+  const Ephemeris& e = d.ephemerides.front();
+  EXPECT_EQ(e.prn, 27);
+  EXPECT_EQ(e.toc, time::GpsTime(2312, 5 * 86400.0 + 7200.0));
+  EXPECT_DOUBLE_EQ(e.af0_s, -2.202996984124e-05);
+  EXPECT_EQ(e.iode, 42);
+  EXPECT_DOUBLE_EQ(e.sqrt_a_sqrtm, 5.153678092957e+03);
+  EXPECT_EQ(e.toe, time::GpsTime(2312, 4.392e5));
+  EXPECT_DOUBLE_EQ(e.tgd_s, 1.862645149231e-09);
+  EXPECT_EQ(e.iodc, 42);
+  EXPECT_DOUBLE_EQ(e.transmit_tow_s, 4.320180000000e+05);
+  EXPECT_DOUBLE_EQ(e.fit_interval_h, 4.0);
+}
+
+// The same 5-line GLONASS record in a 3.04 file is a record of 4 lines plus
+// a stray continuation line: rejected, not misread.
+TEST(RinexNav, Rinex304GlonassIsFourLines) {
+  std::ifstream f(kNav + "SYNT00XXX_R_20241240000_01H_MN_v305.rnx");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  std::string text = ss.str();
+  text.replace(0, 9, "     3.04");
+  std::istringstream in(text);
+  try {
+    (void)read_rinex_nav(in, "mem304.rnx");
+    FAIL() << "5-line GLONASS record accepted in RINEX 3.04";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.line(), 9) << e.what();
+  }
 }
 
 // ELKO G02 second record: toe 0 of week 2012, transmitted 7182 s before the
