@@ -253,6 +253,48 @@ TEST(RinexNav, WeekOfTransmissionIsMovedToToe) {
   EXPECT_DOUBLE_EQ(d.ephemerides[0].transmit_tow_s, 604900.0);
 }
 
+// brdc0010.22n PRN 1 (toc 2022-01-01 00:00, toe 2190/518400) with the BO-5
+// week given as `week_field`.
+std::string brdc_prn1_with_week(const char* week_field) {
+  return std::string(kV2Header) +
+         " 1 22  1  1  0  0  0.0 0.469126738608D-03-0.100044417195D-10 0.000000000000D+00\n"
+         "    0.390000000000D+02-0.141125000000D+03 0.398838041777D-08-0.624294238235D+00\n"
+         "   -0.736303627491D-05 0.112181392033D-01 0.469572842121D-05 0.515367499542D+04\n"
+         "    0.518400000000D+06-0.316649675369D-07-0.103661124009D+01 0.195577740669D-06\n"
+         "    0.986418769490D+00 0.299750000000D+03 0.884087601569D+00-0.813355308085D-08\n"
+         "   -0.377872882780D-09 0.100000000000D+01 " + std::string(week_field) + " 0.000000000000D+00\n"
+         "    0.200000000000D+01 0.000000000000D+00 0.512227416039D-08 0.390000000000D+02\n"
+         "    0.511218000000D+06 0.400000000000D+01\n";
+}
+
+// A 10-bit week (2190 mod 1024 = 142): toc's full date decides toe's week.
+TEST(RinexNav, TenBitWeekResolvedFromToc) {
+  std::istringstream in(brdc_prn1_with_week("0.142000000000D+03"));
+  const NavData d = read_rinex_nav(in, "mem.22n");
+  ASSERT_EQ(d.ephemerides.size(), 1u);
+  EXPECT_EQ(d.ephemerides[0].toe, time::GpsTime(2190, 518400.0));
+  EXPECT_DOUBLE_EQ(d.ephemerides[0].transmit_tow_s, 511218.0);
+  // One rollover (2190 - 1024) and transmission week + 1 mod 1024 are fine too.
+  for (const char* w : {"0.116600000000D+04", "0.143000000000D+03"}) {
+    std::istringstream in2(brdc_prn1_with_week(w));
+    EXPECT_EQ(read_rinex_nav(in2, "mem.22n").ephemerides.at(0).toe, time::GpsTime(2190, 518400.0)) << w;
+  }
+}
+
+// A week that is neither toc's (+-1) nor that mod 1024 is a corrupt record.
+TEST(RinexNav, WrongWeekIsAnError) {
+  std::istringstream in(brdc_prn1_with_week("0.200000000000D+04"));
+  try {
+    (void)read_rinex_nav(in, "mem.22n");
+    FAIL() << "week 2000 with toc in week 2190 accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.line(), 8) << e.what();  // BROADCAST ORBIT 5
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind("mem.22n:8: ", 0), 0u) << msg;
+    EXPECT_NE(msg.find("GPS week 2000 does not match toc"), std::string::npos) << msg;
+  }
+}
+
 struct BadCase {
   const char* file;
   int line;
