@@ -366,6 +366,7 @@ const Fix& Receiver::step(const time::GpsTime& t, const Truth& truth) noexcept {
 
   fix_.t = t;
   fix_.leap_seconds = leap_override_ ? leap_s_ : time::leap_seconds_at(t);
+  fix_.in_leap_second = !leap_override_ && time::in_inserted_leap_second(t);  // a fixed count never steps
   fix_.num_sats = fix_.num_visible = fix_.num_tracked = 0;
   in_sky_.fill(false);
 
