@@ -181,6 +181,23 @@ TEST(NmeaEncoder, TwoDimensionalFix) {
   EXPECT_EQ(parse_sentence(lines[0]).fields[11], "A");
 }
 
+// 2D fix from 3 satellites: VDOP/PDOP unavailable (99.99 as u-blox), HDOP
+// from the height-constrained geometry; GGA and GSA print the same HDOP.
+TEST(NmeaEncoder, TwoDimensionalFixDops) {
+  receiver::Fix f = sample_fix_3d();
+  f.type = receiver::FixType::k2D;
+  f.dop.hdop = 1.5;
+  f.dop.tdop = 0.9;
+  f.dop.vdop = f.dop.pdop = f.dop.gdop = receiver::Dop::kNoDop;
+  const auto lines = encode(f, all_sentences(NmeaVersion::k411));
+  const Sentence gga = parse_sentence(lines[2]);
+  const Sentence gsa = parse_sentence(lines[3]);
+  EXPECT_EQ(gga.fields[7], "1.50");
+  EXPECT_EQ(gsa.fields[14], "99.99");  // PDOP
+  EXPECT_EQ(gsa.fields[15], "1.50");   // HDOP
+  EXPECT_EQ(gsa.fields[16], "99.99");  // VDOP
+}
+
 // Leap second 2016-12-31 23:59:60 UTC = GPS 2017-01-01 00:00:17-18 GPST,
 // leap count 17 until the step: UTC prints second 60, never 00:00:00 twice.
 TEST(NmeaEncoder, InsertedLeapSecondPrintsSixty) {

@@ -266,6 +266,24 @@ TEST(UbxEncoder, ItowRollsIntoTheNextWeek) {
   EXPECT_EQ(pvt.nano, -400000);
 }
 
+// 2D fix: NAV-DOP carries the solver's values, unavailable ones as 9999.
+TEST(UbxEncoder, TwoDimensionalFixDops) {
+  receiver::Fix f = sample_fix();
+  f.type = receiver::FixType::k2D;
+  f.dop.hdop = 1.5;
+  f.dop.tdop = 0.9;
+  f.dop.vdop = f.dop.pdop = f.dop.gdop = receiver::Dop::kNoDop;
+  const auto dop = encode_one<wire::NavDop>(&UbxEncoder::nav_dop, f, msg::kNavDop);
+  EXPECT_EQ(dop.gDOP, 9999);
+  EXPECT_EQ(dop.pDOP, 9999);
+  EXPECT_EQ(dop.vDOP, 9999);
+  EXPECT_EQ(dop.hDOP, 150);
+  EXPECT_EQ(dop.tDOP, 90);
+  const auto pvt = encode_one<wire::NavPvt>(&UbxEncoder::nav_pvt, f, msg::kNavPvt);
+  EXPECT_EQ(pvt.fixType, 2);
+  EXPECT_EQ(pvt.pDOP, 9999);
+}
+
 // u-blox reports sec 60 in NAV-PVT / NAV-TIMEUTC during an inserted leap
 // second (UBX-13003221: sec 0..60): GPS 2017-01-01 00:00:17.5, count 17.
 TEST(UbxEncoder, InsertedLeapSecondIsSecondSixty) {
