@@ -49,7 +49,9 @@ receiver::Truth TruthTrack::truth_at(const time::GpsTime& t, double now_s,
     const double dt = std::min(t - last.t, params.max_extrapolation_s);
     const Ecef v = velocity_at_end(true);
     out.pos_m = Ecef(last.pos_m + v * dt);
-    out.vel_m_s = v;
+    // Held after max_extrapolation_s: a held position does not move, so the
+    // velocity is zero (a frozen fix that claims motion misleads an EKF).
+    out.vel_m_s = t - last.t > params.max_extrapolation_s ? Ecef{} : v;
     out.valid = true;
     return out;
   }

@@ -52,7 +52,8 @@ public:
 
   /// Truth at GPS time t, judged at monotonic time now_s (s). Invalid when
   /// empty, timed out, or t is more than max_extrapolation_s before the oldest sample.
-  /// Past the newest sample, extrapolation stops at max_extrapolation_s (held there until timeout).
+  /// Past the newest sample, extrapolation stops at max_extrapolation_s; then
+  /// the position is held there with zero velocity until the timeout.
   receiver::Truth truth_at(const time::GpsTime& t, double now_s, const TrackParams& params) const noexcept;
 
   /// A packet arrived within timeout_s of now_s.

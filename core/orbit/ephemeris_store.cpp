@@ -25,8 +25,8 @@ EphemerisStore::EphemerisStore(const std::vector<Ephemeris>& ephemerides) {
       return transmit_key(a) < transmit_key(b);
     });
     auto& u = usable_[prn];
+    // Unhealthy sets stay candidates: they are the current broadcast.
     for (std::size_t i = 0; i < v.size(); ++i) {
-      if (v[i].health != 0) continue;
       if (!u.empty() && v[u.back()].toe == v[i].toe) {
         u.back() = i;  // later transmitted duplicate replaces the earlier one
       } else {
@@ -55,9 +55,10 @@ const Ephemeris* EphemerisStore::select(int prn, const time::GpsTime& t) const n
     first = before;
     second = after;
   }
-  if (valid(first)) return first;
-  if (valid(second)) return second;
-  return nullptr;
+  const Ephemeris* chosen = valid(first) ? first : valid(second) ? second : nullptr;
+  // A satellite flagged unhealthy in its current set is not used, even if
+  // an older healthy set is still within its validity window.
+  return chosen != nullptr && chosen->health == 0 ? chosen : nullptr;
 }
 
 std::size_t EphemerisStore::count(int prn) const noexcept {

@@ -1,16 +1,19 @@
 #pragma once
-// EphemerisStore: per satellite, the healthy ephemeris whose toe is nearest
-// to the requested time and within its validity window (RTKLIB seleph rule).
+// EphemerisStore: per satellite, the ephemeris whose toe is nearest to the
+// requested time and within its validity window (RTKLIB seleph rule), if it
+// is healthy.
 //
 // Rules, in order:
-//  - unhealthy sets (health != 0) are never selected;
 //  - duplicates (same PRN and toe, e.g. an IODE change or a merged file
 //    listing the same set twice): the one transmitted last wins; an unknown
 //    transmission time counts as earliest, equal ones fall back to file order
 //    (later wins);
 //  - among the remaining sets whose validity window covers t
 //    (|t - toe| <= validity_half_window_s()), the nearest toe wins; at equal
-//    distance the later toe wins (the newer upload).
+//    distance the later toe wins (the newer upload);
+//  - if that set is unhealthy (health != 0) the satellite is not used: a
+//    receiver follows the current broadcast and does not fall back to an
+//    older healthy set.
 #include <array>
 #include <vector>
 
@@ -25,8 +28,8 @@ public:
   /// Copies and indexes the ephemerides (load time; allocates).
   explicit EphemerisStore(const std::vector<Ephemeris>& ephemerides);
 
-  /// Ephemeris for prn (1..32) valid at t, or nullptr. Unhealthy sets are
-  /// never returned. No allocation; safe on the per-epoch path.
+  /// Ephemeris for prn (1..32) valid at t, or nullptr (none valid, or the
+  /// nearest valid set is unhealthy). No allocation; safe on the per-epoch path.
   const Ephemeris* select(int prn, const time::GpsTime& t) const noexcept;
 
   /// Number of ephemerides stored for prn (all, healthy or not).
@@ -39,8 +42,8 @@ public:
 
 private:
   std::array<std::vector<Ephemeris>, kMaxGpsPrn + 1> by_prn_;  // sorted by toe
-  // Per PRN, indices into by_prn_ of the selectable sets: healthy, one per
-  // toe (the latest transmitted one), ascending toe.
+  // Per PRN, indices into by_prn_ of the selectable sets (healthy or not):
+  // one per toe (the latest transmitted one), ascending toe.
   std::array<std::vector<std::size_t>, kMaxGpsPrn + 1> usable_;
 };
 

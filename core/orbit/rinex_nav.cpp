@@ -79,17 +79,21 @@ std::string label_of(const std::string& line) {
   return std::string(trim(columns(line, 60, 20)));
 }
 
-/// Lines per record for a RINEX 3 system letter (RINEX 3.04 Tables A6-A19), 0 = unknown.
-int record_lines_v3(char sys) {
+/// Lines per record for a RINEX 3 system letter, 0 = unknown. version_x100:
+/// 300..305. RINEX 3.04 Tables A6-A19: G/E/C/J/I 8 lines, R/S 4; RINEX 3.05
+/// Table A11 adds a 5th GLONASS line (status flags, L1/L2 delay, URAI, health).
+int record_lines_v3(char sys, int version_x100) {
   switch (sys) {
     case 'G': case 'E': case 'C': case 'J': case 'I': return 8;
-    case 'R': case 'S': return 4;
+    case 'R': return version_x100 >= 305 ? 5 : 4;
+    case 'S': return 4;
     default: return 0;
   }
 }
 
 struct Header {
   double version = 0.0;
+  int version_x100 = 0;  // 305 for 3.05: exact comparisons on the version
   int major = 0;
   std::size_t first_record = 0;  // index into lines
 };
@@ -102,6 +106,7 @@ Header parse_header(const Parser& p, const std::vector<Line>& lines, NavData& ou
     p.fail(first.number, "first line is not 'RINEX VERSION / TYPE'");
   }
   h.version = p.real(first, 0, 9, "RINEX version");
+  h.version_x100 = static_cast<int>(std::lround(h.version * 100.0));
   const char type = first.text.size() > 20 ? first.text[20] : ' ';
   const char sys = first.text.size() > 40 ? first.text[40] : ' ';
   if (h.version >= 2.0 && h.version < 2.12) {
@@ -238,12 +243,23 @@ Ephemeris parse_gps_record(const Parser& p, const std::vector<Line>& lines, std:
   if (week < 0.0 || week > 100000.0 || week != std::floor(week)) p.fail(line_no(5), "invalid GPS week");
   if (eph.iode < 0 || eph.iodc < 0) p.fail(line_no(1), "negative IODE/IODC");
 
-  // The BO-5 week goes with toe (RINEX 2.11 Table A4). Some writers give the
-  // week of transmission instead; keep toe within half a week of toc.
-  eph.toe = time::GpsTime(static_cast<int32_t>(week), toe_sow);
-  const double toe_minus_toc = eph.toe - eph.toc;
-  if (toe_minus_toc > kHalfWeek_s) eph.toe = time::GpsTime(eph.toe.week() - 1, toe_sow);
-  if (toe_minus_toc < -kHalfWeek_s) eph.toe = time::GpsTime(eph.toe.week() + 1, toe_sow);
+  // toc (full calendar date) fixes toe's week: the one putting toe within
+  // half a week of toc. The BO-5 week (RINEX 2.11 Table A4: continuous, goes
+  // with toe) is only checked: writers may give it mod 1024 or as the week of
+  // transmission (+-1), anything else is a corrupt record.
+  int32_t toe_week = eph.toc.week();
+  const double toe_minus_toc = time::GpsTime(toe_week, toe_sow) - eph.toc;
+  if (toe_minus_toc > kHalfWeek_s) --toe_week;
+  if (toe_minus_toc < -kHalfWeek_s) ++toe_week;
+  eph.toe = time::GpsTime(toe_week, toe_sow);
+  const int64_t week_diff = static_cast<int64_t>(week) - toe_week;
+  const int64_t off = ((week_diff % 1024) + 1024 + 512) % 1024 - 512;  // in [-512, 512)
+  if (off < -1 || off > 1) {
+    p.fail(line_no(5), "GPS week " + std::to_string(static_cast<int64_t>(week)) + " does not match toc: toe is in week " +
+                           std::to_string(toe_week) + " (mod 1024: " + std::to_string(toe_week % 1024) +
+                           "), allowed are that week +-1, also mod 1024");
+  }
+  const double file_week = static_cast<double>(toe_week + off);  // BO-5 week with 1024 rollovers undone
 
   if (std::fabs(ttr - kUnknownTransmitTime_s) < 1.0) {
     eph.transmit_tow_s = 0.0;
@@ -251,7 +267,7 @@ Ephemeris parse_gps_record(const Parser& p, const std::vector<Line>& lines, std:
   } else {
     // Seconds relative to the start of the BO-5 week (negative = previous
     // week, RINEX 3.04 Table A6 note); re-referenced to toe's week.
-    eph.transmit_tow_s = ttr + (static_cast<double>(week) - eph.toe.week()) * kSecondsPerWeek;
+    eph.transmit_tow_s = ttr + (file_week - eph.toe.week()) * kSecondsPerWeek;
     eph.transmit_known = true;
   }
   return eph;
@@ -278,7 +294,7 @@ NavData read_rinex_nav(std::istream& in, const std::string& name) {
     bool gps = true;
     if (h.major == 3) {
       const char sys = l.text[0];
-      n_lines = record_lines_v3(sys);
+      n_lines = record_lines_v3(sys, h.version_x100);
       if (n_lines == 0) p.fail(l.number, std::string("unknown satellite system '") + sys + "' at record start");
       gps = sys == 'G';
     } else if (l.text[0] != ' ' && (l.text[0] < '0' || l.text[0] > '9')) {

@@ -45,6 +45,7 @@ struct SatInfo {
 struct Fix {
   time::GpsTime t;             ///< epoch, GPS time (receive time)
   int leap_seconds = 18;       ///< GPS - UTC used for UTC output, s
+  bool in_leap_second = false; ///< t is in an inserted leap second: UTC 23:59:60.x (leap_seconds still the old count)
   bool time_valid = false;     ///< receiver time known (false before first epoch with truth)
   FixType type = FixType::kNone;
 

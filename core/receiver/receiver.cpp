@@ -385,6 +385,7 @@ const Fix& Receiver::step(const time::GpsTime& t, const Truth& truth) noexcept {
   // the C/N0 curve is fixed, so the receiver sees a quiet sky.
   fix_.noise_rise_db = config_.signal.enabled ? config_.signal.link.environment_noise_rise_db : Fix{}.noise_rise_db;
   fix_.leap_seconds = leap_override_ ? leap_s_ : time::leap_seconds_at(t);
+  fix_.in_leap_second = !leap_override_ && time::in_inserted_leap_second(t);  // a fixed count never steps
   fix_.num_sats = fix_.num_visible = fix_.num_tracked = 0;
   in_sky_.fill(false);
 

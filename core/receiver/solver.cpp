@@ -190,8 +190,11 @@ bool Solver::finish(const SolverInput& in, const Ecef& pos, double clock_m, bool
     out.residual_m[i] = s.resid_m;
   }
   if (two_d) {
+    // DOP is satellite geometry only: with 3 satellites the 4x4 is singular,
+    // so take E, N, clock with the height known exactly (U row/column out).
+    for (int k = 0; k < 4; ++k) nu[2][k] = nu[k][2] = 0.0;
+    nu[2][2] = 1.0;
     const Vec4 h{0.0, 0.0, 1.0, 0.0};
-    accumulate(nu, unused, h, 1.0, 0.0);
     accumulate(nw, unused, h, wh, 0.0);
     accumulate(nv, gv, h, wv, 0.0);  // vertical velocity held at zero
     const double dh = in.held_height_m - lla.height_m;
@@ -202,17 +205,24 @@ bool Solver::finish(const SolverInput& in, const Ecef& pos, double clock_m, bool
       !spd_inverse4(nv, qv, kPivotTol) || !finite4(qu) || !finite4(qw) || !finite4(qv))
     return false;
 
-  const double pdop = std::sqrt(qu[0][0] + qu[1][1] + qu[2][2]);
+  // 2D: the max_pdop gate applies to the height-constrained position DOP (= HDOP).
+  const double hdop = std::sqrt(qu[0][0] + qu[1][1]);
+  const double pdop = two_d ? hdop : std::sqrt(qu[0][0] + qu[1][1] + qu[2][2]);
   if (!(pdop <= max_pdop_)) return false;
   out.dof = n_ + (two_d ? 1 : 0) - 4;
   out.chi2 = chi2;
   if (out.dof >= 1 && z_pfa_ > 0.0 && chi2 > chi2_threshold(out.dof)) return false;
 
-  out.dop.gdop = std::sqrt(qu[0][0] + qu[1][1] + qu[2][2] + qu[3][3]);
-  out.dop.pdop = pdop;
-  out.dop.hdop = std::sqrt(qu[0][0] + qu[1][1]);
-  out.dop.vdop = std::sqrt(qu[2][2]);
+  out.dop.hdop = hdop;
   out.dop.tdop = std::sqrt(qu[3][3]);
+  if (two_d) {
+    // Undefined from 3 satellites: reported as unavailable (u-blox 99.99).
+    out.dop.vdop = out.dop.pdop = out.dop.gdop = Dop::kNoDop;
+  } else {
+    out.dop.vdop = std::sqrt(qu[2][2]);
+    out.dop.pdop = pdop;
+    out.dop.gdop = std::sqrt(qu[0][0] + qu[1][1] + qu[2][2] + qu[3][3]);
+  }
 
   const Vec4 xv = mul4(qv, gv);
   out.vel_enu_m_s = Enu(xv[0], xv[1], xv[2]);

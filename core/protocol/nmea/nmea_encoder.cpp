@@ -65,7 +65,7 @@ Epoch derive(const Fix& fix, const NmeaConfig& cfg) {
   Epoch e;
   e.v4 = cfg.version != NmeaVersion::k23;
   e.has_time = fix.time_valid;
-  if (e.has_time) e.utc = utc_stamp(fix.t, fix.leap_seconds);
+  if (e.has_time) e.utc = utc_stamp(fix.t, fix.leap_seconds, fix.in_leap_second);
   // A position needs time (a receiver cannot navigate without it) and finite numbers.
   e.has_fix = fix.type != FixType::kNone && e.has_time && std::isfinite(fix.lla.lat_rad) &&
               std::isfinite(fix.lla.lon_rad) && std::isfinite(fix.lla.height_m);

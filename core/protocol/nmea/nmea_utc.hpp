@@ -13,12 +13,14 @@ struct UtcStamp {
   int day = 6;         ///< 1..31
   int hour = 0;        ///< 0..23
   int minute = 0;      ///< 0..59
-  int second = 0;      ///< 0..59
+  int second = 0;      ///< 0..59; 60 in an inserted leap second
   int centisecond = 0; ///< 0..99
 };
 
 /// UTC of GPS instant t rounded to the nearest 0.01 s (half up), using
 /// leap_seconds = GPS - UTC, s. 23:59:59.996 becomes 00:00:00.00 of the next day.
-UtcStamp utc_stamp(const time::GpsTime& t, int leap_seconds) noexcept;
+/// in_leap_second: t is in an inserted leap second (leap_seconds = old count);
+/// printed as 23:59:60.xx, and 23:59:60.996 becomes 00:00:00.00.
+UtcStamp utc_stamp(const time::GpsTime& t, int leap_seconds, bool in_leap_second = false) noexcept;
 
 }  // namespace gnssemu::protocol::nmea

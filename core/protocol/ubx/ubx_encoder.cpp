@@ -87,7 +87,10 @@ Common derive(const Fix& fix) noexcept {
   c.week = static_cast<std::int16_t>(std::clamp<std::int64_t>(week, 0, 32767));
   if (c.has_time) {
     // UTC = GPS - leap seconds, split at the ms: sec is floored, nano carries the rest.
-    const std::int64_t gps_ms = week * kMsPerWeek + ms - static_cast<std::int64_t>(fix.leap_seconds) * 1000;
+    // An inserted leap second is 23:59:60 (u-blox NAV-PVT/NAV-TIMEUTC sec 0..60):
+    // counted from 23:59:59 with the new count.
+    const int leap_s = fix.leap_seconds + (fix.in_leap_second ? 1 : 0);
+    const std::int64_t gps_ms = week * kMsPerWeek + ms - static_cast<std::int64_t>(leap_s) * 1000;
     const std::int64_t day0 = time::days_from_civil(1980, 1, 6);
     std::int64_t days = gps_ms / kMsPerDay;
     std::int64_t ms_of_day = gps_ms % kMsPerDay;
@@ -99,6 +102,7 @@ Common derive(const Fix& fix) noexcept {
     c.hour = static_cast<int>(ms_of_day / 3600000);
     c.minute = static_cast<int>(ms_of_day / 60000 % 60);
     c.second = static_cast<int>(ms_of_day / 1000 % 60);
+    if (fix.in_leap_second && c.hour == 23 && c.minute == 59 && c.second == 59) c.second = 60;
     c.nano = static_cast<std::int32_t>(ms_of_day % 1000) * 1000000 + c.ftow_ns;
   }
   if (c.has_fix) {

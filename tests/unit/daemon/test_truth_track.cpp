@@ -59,9 +59,17 @@ TEST(TruthTrack, ExtrapolatesBrieflyThenHolds) {
   receiver::Truth t = tr.truth_at(kT0 + 0.7, 0.8, kParams);
   ASSERT_TRUE(t.valid);
   EXPECT_NEAR(t.pos_m.x, 1007.0, 1e-6);  // 0.3 s at 10 m/s
+  EXPECT_NEAR(t.vel_m_s.x, 10.0, 1e-6);
+  t = tr.truth_at(kT0 + 0.9, 0.9, kParams);  // exactly max_extrapolation_s: still moving
+  EXPECT_NEAR(t.pos_m.x, 1009.0, 1e-6);
+  EXPECT_NEAR(t.vel_m_s.x, 10.0, 1e-6);
   t = tr.truth_at(kT0 + 1.9, 1.9, kParams);  // 1.5 s past: capped at 0.5 s
   ASSERT_TRUE(t.valid);
   EXPECT_NEAR(t.pos_m.x, 1009.0, 1e-6);
+  // Held, not moving: zero velocity, not the last one (pos and vel agree).
+  EXPECT_EQ(t.vel_m_s.x, 0.0);
+  EXPECT_EQ(t.vel_m_s.y, 0.0);
+  EXPECT_EQ(t.vel_m_s.z, 0.0);
   // Given velocity is preferred over differences.
   TruthTrack tv;
   tv.add(0.0, kT0, Ecef(0, 0, 0), Ecef(0, 3, 0), 0.0);

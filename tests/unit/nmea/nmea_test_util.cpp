@@ -11,6 +11,7 @@ receiver::Fix fix_from_json(const nlohmann::json& j) {
   receiver::Fix f;
   f.t = time::GpsTime(j.at("week").get<int>(), j.at("tow_s").get<double>());
   f.leap_seconds = j.value("leap_seconds", 18);
+  f.in_leap_second = j.value("in_leap_second", false);
   f.time_valid = j.value("time_valid", true);
   const std::string type = j.value("type", "3d");
   if (type == "none") {

@@ -181,6 +181,41 @@ TEST(NmeaEncoder, TwoDimensionalFix) {
   EXPECT_EQ(parse_sentence(lines[0]).fields[11], "A");
 }
 
+// 2D fix from 3 satellites: VDOP/PDOP unavailable (99.99 as u-blox), HDOP
+// from the height-constrained geometry; GGA and GSA print the same HDOP.
+TEST(NmeaEncoder, TwoDimensionalFixDops) {
+  receiver::Fix f = sample_fix_3d();
+  f.type = receiver::FixType::k2D;
+  f.dop.hdop = 1.5;
+  f.dop.tdop = 0.9;
+  f.dop.vdop = f.dop.pdop = f.dop.gdop = receiver::Dop::kNoDop;
+  const auto lines = encode(f, all_sentences(NmeaVersion::k411));
+  const Sentence gga = parse_sentence(lines[2]);
+  const Sentence gsa = parse_sentence(lines[3]);
+  EXPECT_EQ(gga.fields[7], "1.50");
+  EXPECT_EQ(gsa.fields[14], "99.99");  // PDOP
+  EXPECT_EQ(gsa.fields[15], "1.50");   // HDOP
+  EXPECT_EQ(gsa.fields[16], "99.99");  // VDOP
+}
+
+// Leap second 2016-12-31 23:59:60 UTC = GPS 2017-01-01 00:00:17-18 GPST,
+// leap count 17 until the step: UTC prints second 60, never 00:00:00 twice.
+TEST(NmeaEncoder, InsertedLeapSecondPrintsSixty) {
+  receiver::Fix f = sample_fix_3d();
+  f.t = time::GpsTime::from_calendar({2017, 1, 1, 0, 0, 17.5});
+  f.leap_seconds = 17;
+  f.in_leap_second = true;
+  const auto lines = encode(f, all_sentences(NmeaVersion::k411));
+  expect_well_formed(lines);
+  EXPECT_EQ(parse_sentence(lines[0]).fields[0], "235960.50");  // RMC time
+  EXPECT_EQ(parse_sentence(lines[0]).fields[8], "311216");     // RMC date: the day before the step
+  EXPECT_EQ(parse_sentence(lines[2]).fields[0], "235960.50");  // GGA
+  EXPECT_EQ(lines[9].substr(0, lines[9].find('*')), "$GPZDA,235960.50,31,12,2016,00,00");
+  // The last centisecond of the inserted second rounds to the new day.
+  f.t = time::GpsTime::from_calendar({2017, 1, 1, 0, 0, 17.996});
+  EXPECT_EQ(encode(f, all_sentences(NmeaVersion::k411))[9].substr(0, 33), "$GPZDA,000000.00,01,01,2017,00,00");
+}
+
 TEST(NmeaEncoder, CourseEmptyBelowThreshold) {
   receiver::Fix f = sample_fix_3d();
   f.speed_m_s = 0.3;

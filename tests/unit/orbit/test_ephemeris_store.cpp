@@ -73,12 +73,24 @@ TEST(EphemerisStore, ValidityEdges) {
 
 TEST(EphemerisStore, UnhealthySkipped) {
   const EphemerisStore s({at(9, 2000, 0, 1), at(9, 2000, 7200, 2, 1), at(9, 2000, 14400, 3)});
-  // Nearest (toe 7200) is unhealthy: the nearest healthy one within 2 h wins.
-  EXPECT_EQ(iode_at(s, 9, time::GpsTime(2000, 7000)), 1);
-  EXPECT_EQ(iode_at(s, 9, time::GpsTime(2000, 7400)), 3);
+  // Nearest (toe 7200) is unhealthy: the satellite is not used, the older
+  // healthy set is not a fallback.
+  EXPECT_EQ(iode_at(s, 9, time::GpsTime(2000, 3500)), 1);
+  EXPECT_EQ(iode_at(s, 9, time::GpsTime(2000, 3700)), -1);
+  EXPECT_EQ(iode_at(s, 9, time::GpsTime(2000, 7000)), -1);
+  EXPECT_EQ(iode_at(s, 9, time::GpsTime(2000, 7400)), -1);
+  EXPECT_EQ(iode_at(s, 9, time::GpsTime(2000, 10900)), 3);  // healthy again
   EXPECT_EQ(s.count(9), 3u);
   const EphemerisStore only_bad({at(9, 2000, 7200, 2, 63)});
   EXPECT_EQ(iode_at(only_bad, 9, time::GpsTime(2000, 7200)), -1);
+}
+
+// Healthy at toe 0, flagged unhealthy in the set at toe +2 h: from +2 h on
+// the satellite is not used (before: the toe-0 set was used up to +2 h).
+TEST(EphemerisStore, NewlyUnhealthyNotUsed) {
+  const EphemerisStore s({at(10, 2000, 0, 1), at(10, 2000, 7200, 2, 1)});
+  EXPECT_EQ(iode_at(s, 10, time::GpsTime(2000, 0)), 1);
+  EXPECT_EQ(s.select(10, time::GpsTime(2000, 7200)), nullptr);
 }
 
 TEST(EphemerisStore, DuplicateToePrefersLaterTransmission) {
@@ -100,10 +112,11 @@ TEST(EphemerisStore, DuplicateToePrefersLaterTransmission) {
   Ephemeris twin = early;
   twin.iode = 13;
   EXPECT_EQ(iode_at(EphemerisStore({early, twin}), 11, time::GpsTime(2000, 7200)), 13);
-  // An unhealthy later duplicate does not hide the healthy set.
+  // A later transmitted duplicate flagged unhealthy is the current broadcast:
+  // the satellite is not used.
   Ephemeris bad_late = late;
   bad_late.health = 1;
-  EXPECT_EQ(iode_at(EphemerisStore({early, bad_late}), 11, time::GpsTime(2000, 7200)), 10);
+  EXPECT_EQ(iode_at(EphemerisStore({early, bad_late}), 11, time::GpsTime(2000, 7200)), -1);
 }
 
 TEST(EphemerisStore, AcrossWeekBoundary) {

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -151,6 +152,43 @@ TEST(RinexNav, KnownRecordRinex3) {
   EXPECT_DOUBLE_EQ(e.fit_interval_h, 4.0);  // short last line: 2 of 4 fields
 }
 
+// RINEX 3.05 Table A11: GLONASS records have 5 lines (3.04: 4). A synthetic
+// mixed file R01 (5 lines), G27 (NYA1 lines 8-15), R02 (5 lines, at the end).
+TEST(RinexNav, Rinex305GlonassFiveLineRecords) {
+  const NavData d = read_rinex_nav(kNav + "SYNT00XXX_R_20241240000_01H_MN_v305.rnx");
+  EXPECT_DOUBLE_EQ(d.rinex_version, 3.05);
+  EXPECT_EQ(d.skipped_records, 2);
+  ASSERT_EQ(d.ephemerides.size(), 1u);
+  const Ephemeris& e = d.ephemerides.front();
+  EXPECT_EQ(e.prn, 27);
+  EXPECT_EQ(e.toc, time::GpsTime(2312, 5 * 86400.0 + 7200.0));
+  EXPECT_DOUBLE_EQ(e.af0_s, -2.202996984124e-05);
+  EXPECT_EQ(e.iode, 42);
+  EXPECT_DOUBLE_EQ(e.sqrt_a_sqrtm, 5.153678092957e+03);
+  EXPECT_EQ(e.toe, time::GpsTime(2312, 4.392e5));
+  EXPECT_DOUBLE_EQ(e.tgd_s, 1.862645149231e-09);
+  EXPECT_EQ(e.iodc, 42);
+  EXPECT_DOUBLE_EQ(e.transmit_tow_s, 4.320180000000e+05);
+  EXPECT_DOUBLE_EQ(e.fit_interval_h, 4.0);
+}
+
+// The same 5-line GLONASS record in a 3.04 file is a record of 4 lines plus
+// a stray continuation line: rejected, not misread.
+TEST(RinexNav, Rinex304GlonassIsFourLines) {
+  std::ifstream f(kNav + "SYNT00XXX_R_20241240000_01H_MN_v305.rnx");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  std::string text = ss.str();
+  text.replace(0, 9, "     3.04");
+  std::istringstream in(text);
+  try {
+    (void)read_rinex_nav(in, "mem304.rnx");
+    FAIL() << "5-line GLONASS record accepted in RINEX 3.04";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.line(), 9) << e.what();
+  }
+}
+
 // ELKO G02 second record: toe 0 of week 2012, transmitted 7182 s before the
 // week started (negative transmission time, RINEX 3.04 Table A6 note).
 TEST(RinexNav, NegativeTransmissionTimeAcrossWeek) {
@@ -213,6 +251,48 @@ TEST(RinexNav, WeekOfTransmissionIsMovedToToe) {
   EXPECT_EQ(d.ephemerides[0].toe, time::GpsTime(2190, 518400.0));
   // Transmission time stays tied to the file's week: 100 s into week 2191.
   EXPECT_DOUBLE_EQ(d.ephemerides[0].transmit_tow_s, 604900.0);
+}
+
+// brdc0010.22n PRN 1 (toc 2022-01-01 00:00, toe 2190/518400) with the BO-5
+// week given as `week_field`.
+std::string brdc_prn1_with_week(const char* week_field) {
+  return std::string(kV2Header) +
+         " 1 22  1  1  0  0  0.0 0.469126738608D-03-0.100044417195D-10 0.000000000000D+00\n"
+         "    0.390000000000D+02-0.141125000000D+03 0.398838041777D-08-0.624294238235D+00\n"
+         "   -0.736303627491D-05 0.112181392033D-01 0.469572842121D-05 0.515367499542D+04\n"
+         "    0.518400000000D+06-0.316649675369D-07-0.103661124009D+01 0.195577740669D-06\n"
+         "    0.986418769490D+00 0.299750000000D+03 0.884087601569D+00-0.813355308085D-08\n"
+         "   -0.377872882780D-09 0.100000000000D+01 " + std::string(week_field) + " 0.000000000000D+00\n"
+         "    0.200000000000D+01 0.000000000000D+00 0.512227416039D-08 0.390000000000D+02\n"
+         "    0.511218000000D+06 0.400000000000D+01\n";
+}
+
+// A 10-bit week (2190 mod 1024 = 142): toc's full date decides toe's week.
+TEST(RinexNav, TenBitWeekResolvedFromToc) {
+  std::istringstream in(brdc_prn1_with_week("0.142000000000D+03"));
+  const NavData d = read_rinex_nav(in, "mem.22n");
+  ASSERT_EQ(d.ephemerides.size(), 1u);
+  EXPECT_EQ(d.ephemerides[0].toe, time::GpsTime(2190, 518400.0));
+  EXPECT_DOUBLE_EQ(d.ephemerides[0].transmit_tow_s, 511218.0);
+  // One rollover (2190 - 1024) and transmission week + 1 mod 1024 are fine too.
+  for (const char* w : {"0.116600000000D+04", "0.143000000000D+03"}) {
+    std::istringstream in2(brdc_prn1_with_week(w));
+    EXPECT_EQ(read_rinex_nav(in2, "mem.22n").ephemerides.at(0).toe, time::GpsTime(2190, 518400.0)) << w;
+  }
+}
+
+// A week that is neither toc's (+-1) nor that mod 1024 is a corrupt record.
+TEST(RinexNav, WrongWeekIsAnError) {
+  std::istringstream in(brdc_prn1_with_week("0.200000000000D+04"));
+  try {
+    (void)read_rinex_nav(in, "mem.22n");
+    FAIL() << "week 2000 with toc in week 2190 accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.line(), 8) << e.what();  // BROADCAST ORBIT 5
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind("mem.22n:8: ", 0), 0u) << msg;
+    EXPECT_NE(msg.find("GPS week 2000 does not match toc"), std::string::npos) << msg;
+  }
 }
 
 struct BadCase {

@@ -205,6 +205,46 @@ TEST(ReceiverHardCases, ThreeSatellitesGive2DOnlyAfterA3DFix) {
   EXPECT_LT((f2.pos_m - rx_pos).norm(), 30.0);
 }
 
+// 2D DOP comes from the 3 satellites only: VDOP/PDOP/GDOP unavailable
+// (99.99), HDOP/TDOP from the E, N, clock geometry with the height known.
+TEST(ReceiverHardCases, TwoDFixDopFromSatelliteGeometryOnly) {
+  std::vector<orbit::Ephemeris> ephs = placed(kSite, kToe, {{0.0, 35.0}, {120.0, 40.0}, {240.0, 30.0}});
+  const Ecef rx_pos = geo::ecef_from_lla(kSite);
+  orbit::Ephemeris short_lived =
+      test::placed_eph(4, kToe - 7190.0, kToe, test::sat_position_at(rx_pos, kSite, 0.0, 80.0 * kDegToRad));
+  short_lived.fit_interval_h = 0.0;
+  ephs.push_back(short_lived);
+  const orbit::EphemerisStore store(ephs);
+  Receiver rx(store, errors_off_config());
+  ASSERT_EQ(rx.step(kToe, truth_at(rx_pos, kToe)).type, FixType::k3D);
+  const Fix& f = rx.step(kToe + 20.0, truth_at(rx_pos, kToe + 20.0));
+  ASSERT_EQ(f.type, FixType::k2D);
+  EXPECT_EQ(f.dop.vdop, Dop::kNoDop);
+  EXPECT_EQ(f.dop.pdop, Dop::kNoDop);
+  EXPECT_EQ(f.dop.gdop, Dop::kNoDop);
+  // Expected: inverse of sum h h' with h = (-cos el sin az, -cos el cos az, 1).
+  double n[3][3] = {};
+  int used = 0;
+  for (int k = 0; k < f.num_sats; ++k) {
+    const SatInfo& s = f.sats[static_cast<std::size_t>(k)];
+    if (!s.used) continue;
+    ++used;
+    const double h[3] = {-std::cos(s.el_rad) * std::sin(s.az_rad), -std::cos(s.el_rad) * std::cos(s.az_rad), 1.0};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) n[i][j] += h[i] * h[j];
+  }
+  ASSERT_EQ(used, 3);
+  const double det = n[0][0] * (n[1][1] * n[2][2] - n[1][2] * n[2][1]) -
+                     n[0][1] * (n[1][0] * n[2][2] - n[1][2] * n[2][0]) +
+                     n[0][2] * (n[1][0] * n[2][1] - n[1][1] * n[2][0]);
+  const double q00 = (n[1][1] * n[2][2] - n[1][2] * n[2][1]) / det;
+  const double q11 = (n[0][0] * n[2][2] - n[0][2] * n[2][0]) / det;
+  const double q22 = (n[0][0] * n[1][1] - n[0][1] * n[1][0]) / det;
+  EXPECT_NEAR(f.dop.hdop, std::sqrt(q00 + q11), 1e-6);
+  EXPECT_NEAR(f.dop.tdop, std::sqrt(q22), 1e-6);
+  EXPECT_LT(f.dop.hdop, Dop::kNoDop);
+}
+
 TEST(ReceiverHardCases, MaskNearZenithGivesNoFix) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
   ReceiverConfig cfg;

@@ -280,6 +280,55 @@ TEST(UbxEncoder, ItowRollsIntoTheNextWeek) {
   EXPECT_EQ(pvt.nano, -400000);
 }
 
+// 2D fix: NAV-DOP carries the solver's values, unavailable ones as 9999.
+TEST(UbxEncoder, TwoDimensionalFixDops) {
+  receiver::Fix f = sample_fix();
+  f.type = receiver::FixType::k2D;
+  f.dop.hdop = 1.5;
+  f.dop.tdop = 0.9;
+  f.dop.vdop = f.dop.pdop = f.dop.gdop = receiver::Dop::kNoDop;
+  const auto dop = encode_one<wire::NavDop>(&UbxEncoder::nav_dop, f, msg::kNavDop);
+  EXPECT_EQ(dop.gDOP, 9999);
+  EXPECT_EQ(dop.pDOP, 9999);
+  EXPECT_EQ(dop.vDOP, 9999);
+  EXPECT_EQ(dop.hDOP, 150);
+  EXPECT_EQ(dop.tDOP, 90);
+  const auto pvt = encode_one<wire::NavPvt>(&UbxEncoder::nav_pvt, f, msg::kNavPvt);
+  EXPECT_EQ(pvt.fixType, 2);
+  EXPECT_EQ(pvt.pDOP, 9999);
+}
+
+// u-blox reports sec 60 in NAV-PVT / NAV-TIMEUTC during an inserted leap
+// second (UBX-13003221: sec 0..60): GPS 2017-01-01 00:00:17.5, count 17.
+TEST(UbxEncoder, InsertedLeapSecondIsSecondSixty) {
+  receiver::Fix f = sample_fix();
+  f.t = time::GpsTime::from_calendar({2017, 1, 1, 0, 0, 17.5});
+  f.leap_seconds = 17;
+  f.in_leap_second = true;
+  const auto pvt = encode_one<wire::NavPvt>(&UbxEncoder::nav_pvt, f, msg::kNavPvt);
+  EXPECT_EQ(pvt.year, 2016);
+  EXPECT_EQ(pvt.month, 12);
+  EXPECT_EQ(pvt.day, 31);
+  EXPECT_EQ(pvt.hour, 23);
+  EXPECT_EQ(pvt.min, 59);
+  EXPECT_EQ(pvt.sec, 60);
+  EXPECT_EQ(pvt.nano, 500000000);
+  const auto tu = encode_one<wire::NavTimeutc>(&UbxEncoder::nav_timeutc, f, msg::kNavTimeutc);
+  EXPECT_EQ(tu.day, 31);
+  EXPECT_EQ(tu.hour, 23);
+  EXPECT_EQ(tu.min, 59);
+  EXPECT_EQ(tu.sec, 60);
+  // One second later the new count applies: 2017-01-01 00:00:00.5.
+  f.t = f.t + 1.0;
+  f.leap_seconds = 18;
+  f.in_leap_second = false;
+  const auto next = encode_one<wire::NavPvt>(&UbxEncoder::nav_pvt, f, msg::kNavPvt);
+  EXPECT_EQ(next.year, 2017);
+  EXPECT_EQ(next.hour, 0);
+  EXPECT_EQ(next.sec, 0);
+  EXPECT_EQ(next.nano, 500000000);
+}
+
 TEST(UbxEncoder, MonVerIsAnM8AndConfigurable) {
   std::string out;
   UbxEncoder().mon_ver(out);
