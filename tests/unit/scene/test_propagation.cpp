@@ -66,6 +66,39 @@ TEST(Propagation, OneInfiniteWallMatchesClosedForm) {
   }
 }
 
+// Ground plane and a wall floating above it (z in [7, 100] m) 20 m north:
+// the direct ray to a satellite north at 20 deg meets the wall at 8.78 m;
+// the ground reflection, unfolded from the image antenna at -h, passes at
+// 5.78 m, under the wall. It arrives from -20 deg, so it exists only when
+// min_arrival_el allows it; its extra path is 2 h sin(el). The elevation
+// cone must launch the mirrored (downward) cone too.
+TEST(Propagation, GroundReflectionUnderAFloatingWallConeAndHemisphere) {
+  const double h_m = 1.5, el = 20.0;
+  MeshBuilder b("ground_wall", {});
+  test::add_quad(b, {-kFar, -kFar, 0.0}, {kFar, -kFar, 0.0}, {kFar, kFar, 0.0}, {-kFar, kFar, 0.0});
+  add_wall_y(b, 20.0, -kFar, kFar, 7.0, 100.0);
+  const Mesh mesh = std::move(b).finish();
+  const Scene scene(mesh);
+  ASSERT_TRUE(scene.vertical_horizontal());
+  const Enu rx(0.0, 0.0, h_m);
+  for (const int azimuth_rays : {128, 0}) {
+    SearchConfig cfg;
+    cfg.azimuth_rays = azimuth_rays;
+    cfg.min_arrival_el_rad = -30.0 * kDegToRad;
+    Propagator prop(scene, cfg);
+    const SatPath p = one(prop, rx, direction(0.0, el));
+    ASSERT_EQ(p.kind, PathKind::kNlos) << "azimuth_rays " << azimuth_rays;
+    EXPECT_EQ(p.bounces, 1);
+    EXPECT_NEAR(p.extra_delay_m, 2.0 * h_m * std::sin(el * kDegToRad), 1e-4);
+    EXPECT_NEAR(p.arrival_dir.z, -std::sin(el * kDegToRad), 1e-9);
+    // The default antenna mask (0 deg) rejects the arrival from below.
+    SearchConfig masked = cfg;
+    masked.min_arrival_el_rad = 0.0;
+    Propagator prop0(scene, masked);
+    EXPECT_EQ(one(prop0, rx, direction(0.0, el)).kind, PathKind::kNone) << "azimuth_rays " << azimuth_rays;
+  }
+}
+
 // Street canyon: walls y = +-W/2 of height H. The south wall blocks the
 // direct signal and the one-bounce path; the two-bounce path (south wall,
 // then north wall) leaves high enough. Unfolded, its extra length is
