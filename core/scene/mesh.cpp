@@ -22,6 +22,13 @@ std::string lower_extension(const std::string& path) {
 
 }  // namespace
 
+std::string skip_report(const MeshStats& s) {
+  if (s.skipped() == 0) return {};
+  return "mesh: " + std::to_string(s.skipped()) + " bad elements skipped (" + std::to_string(s.skipped_bad_index) +
+         " bad index, " + std::to_string(s.skipped_nonfinite) + " NaN/inf, " + std::to_string(s.skipped_degenerate) +
+         " degenerate); first: " + s.first_problem;
+}
+
 MeshBuilder::MeshBuilder(std::string file, const Placement& placement)
     : file_(std::move(file)),
       placement_(placement),

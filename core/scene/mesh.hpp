@@ -23,6 +23,10 @@ struct MeshStats {
   int skipped() const noexcept { return skipped_bad_index + skipped_nonfinite + skipped_degenerate; }
 };
 
+/// One line for users: "mesh: N bad elements skipped (a bad index, b
+/// NaN/inf, c degenerate); first: file:line: reason", or "" when nothing was skipped.
+std::string skip_report(const MeshStats& s);
+
 /// Model-to-ENU placement: p_enu = offset_m + Rz(yaw_rad) * (scale * axes(p_model)).
 struct Placement {
   Enu offset_m;            ///< model origin in local ENU, m

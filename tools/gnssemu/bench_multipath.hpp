@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/scene/propagator.hpp"
 #include "core/time/gps_time.hpp"
 
 namespace gnssemu::cli {
@@ -27,7 +28,7 @@ struct BenchMultipathArgs {
   double mask_deg = 5.0;
   int reference_rays = 65536;       ///< dense reference: rays (16 bounces, no reuse)
   int repeats = 3;
-  double max_loss_db = 1.0e9;       ///< loss cap for reference and sweep (default: off, all 16 bounces)                  ///< timing passes (median reported)
+  double max_loss_db = scene::SearchConfig{}.max_loss_db;  ///< loss cap for reference and sweep, dB (1000: off)
 };
 
 /// Runs the sweep; CSV on out (one row per setting), context on err.

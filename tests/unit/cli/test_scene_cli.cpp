@@ -1,6 +1,8 @@
 // gnssemu sky --scene, batch with [scene], bench multipath.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "cli_test_util.hpp"
@@ -137,6 +139,86 @@ TEST(BatchScene, ConfigSceneAddsColumnsAndChangesTheFix) {
   const test::CliResult rb = run({"batch", "--config", box, "--truth", still});
   ASSERT_EQ(rb.status, 0) << rb.err;
   EXPECT_NE(rb.err.find("fixes 0 (0.0%)"), std::string::npos) << rb.err;
+}
+
+// What sky says of each satellite at the antenna position `at`, one letter
+// per row: L direct, R reflections only, X not received.
+std::string sky_classes(const Enu& at, const std::vector<std::string>& extra = {}) {
+  std::vector<std::string> a = sky_args(at, kScenes + "street_canyon.toml");
+  a.insert(a.end(), extra.begin(), extra.end());
+  const test::CliResult r = run(a);
+  EXPECT_EQ(r.status, 0) << r.err;
+  const Csv c = parse_csv(r.out);
+  std::string k;
+  for (std::size_t i = 0; i < c.rows.size(); ++i) {
+    k += c.cell(i, "los") == "1" ? 'L' : c.cell(i, "nlos_delay_m").empty() ? 'X' : 'R';
+  }
+  return k;
+}
+
+int sky_not_received(const Enu& at, const std::vector<std::string>& extra = {}) {
+  const std::string k = sky_classes(at, extra);
+  return static_cast<int>(std::count(k.begin(), k.end(), 'X'));
+}
+
+TEST(SkyScene, ClassifiesLikeBatchWithTheConfigDefaults) {
+  // One default loss cap (21 dB) in every entry point: sky and a receiver
+  // configured only with [scene] mesh agree on what is not received.
+  TempDir dir;
+  const std::string cfg = dir.write(
+      "c.toml", test::config_text(nav_path("brdc0010.22n"), "[scene]\nmesh = \"" + kScenes + "street_canyon.toml\"\n"));
+  bool capped_somewhere = false;
+  for (const Enu& at : {Enu(3.0, 0.0, 1.5), Enu(-8.0, 60.0, 1.5), Enu(8.0, -120.0, 1.5), Enu(0.0, 140.0, 1.5)}) {
+    const Ecef p = geo::LocalFrame(kOrigin).to_ecef(at);
+    const std::string truth = dir.write(
+        "t.csv", fmt::format("gps_week,tow_s,x_m,y_m,z_m\n2190,561600.0,{:.4f},{:.4f},{:.4f}\n", p.x, p.y, p.z));
+    const test::CliResult b = run({"batch", "--config", cfg, "--truth", truth, "--errors", dir.file("e.csv")});
+    ASSERT_EQ(b.status, 0) << b.err;
+    const Csv e = parse_csv(read_file(dir.file("e.csv")));
+    ASSERT_EQ(e.rows.size(), 1u);
+    const int none = sky_not_received(at);
+    EXPECT_EQ(none, static_cast<int>(e.num(0, "nblocked"))) << at.x << "," << at.y;
+    // The same options as the config keys: no cap receives deeper paths.
+    capped_somewhere = capped_somewhere || sky_not_received(at, {"--max-loss-db", "1000"}) < none;
+  }
+  EXPECT_TRUE(capped_somewhere) << "the test positions never need more than 7 reflections";
+}
+
+TEST(SkyScene, PlacementAndSearchOptionsMirrorTheConfig) {
+  // The canyon moved 100 m east and turned by 90 deg (now east-west,
+  // y in [-10, 10]): the config placement in batch and the same options
+  // in sky give the same not-received count.
+  TempDir dir;
+  const std::string extra = "[scene]\nmesh = \"" + kScenes +
+                            "street_canyon.toml\"\noffset_m = [100, 0, 0]\nyaw_deg = 90\nmax_loss_db = 9\n"
+                            "azimuth_rays = 64\nmin_arrival_elevation_deg = -10\n";
+  const std::string cfg = dir.write("c.toml", test::config_text(nav_path("brdc0010.22n"), extra));
+  const Enu at(100.0, -3.0, 1.5);
+  const Ecef p = geo::LocalFrame(kOrigin).to_ecef(at);
+  const std::string truth = dir.write(
+      "t.csv", fmt::format("gps_week,tow_s,x_m,y_m,z_m\n2190,561600.0,{:.4f},{:.4f},{:.4f}\n", p.x, p.y, p.z));
+  const test::CliResult b = run({"batch", "--config", cfg, "--truth", truth, "--errors", dir.file("e.csv")});
+  ASSERT_EQ(b.status, 0) << b.err;
+  const Csv e = parse_csv(read_file(dir.file("e.csv")));
+  const std::vector<std::string> opts = {"--offset-m", "100,0,0", "--yaw-deg", "90", "--max-loss-db", "9",
+                                         "--azimuth-rays", "64", "--min-arrival-elevation-deg", "-10"};
+  const int none = sky_not_received(at, opts);
+  EXPECT_EQ(none, static_cast<int>(e.num(0, "nblocked")));
+  EXPECT_GT(none, 0);
+  // The options are not ignored: without the yaw the antenna stands east of
+  // the canyon, and a 9 dB cap drops paths of more than 3 reflections.
+  std::vector<std::string> no_yaw = opts;
+  no_yaw[3] = "0";
+  EXPECT_NE(sky_classes(at, opts), sky_classes(at, no_yaw));
+  std::vector<std::string> no_cap = opts;
+  no_cap[5] = "1000";
+  EXPECT_NE(sky_classes(at, opts), sky_classes(at, no_cap));
+  const test::CliResult bad = run([&] {
+    auto a = sky_args(at, kScenes + "street_canyon.toml");
+    a.insert(a.end(), {"--up-axis", "x"});
+    return a;
+  }());
+  EXPECT_NE(bad.status, 0);
 }
 
 TEST(BenchMultipath, PrintsTheSweep) {
