@@ -37,6 +37,14 @@ std::string gps_text(const time::GpsTime& t) {
   return buf;
 }
 
+// The configured scene; what the mesh reader skipped goes to the log.
+std::unique_ptr<scene::Scene> load_scene_logged(const config::Config& cfg) {
+  scene::MeshStats stats;
+  std::unique_ptr<scene::Scene> s = config::load_scene(cfg, &stats);
+  if (const std::string w = scene::skip_report(stats); !w.empty()) spdlog::warn("scene {}", w);
+  return s;
+}
+
 }  // namespace
 
 Coverage coverage_for(const config::Config& cfg, const orbit::NavData& nav) {
@@ -52,7 +60,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       nav_klobuchar_(nav.klobuchar),
       store_(nav.ephemerides),
       frame_(cfg.origin),
-      scene_(config::load_scene(cfg)),
+      scene_(load_scene_logged(cfg)),
       demo_(frame_, cfg.demo.radius_m, cfg.demo.speed_m_s, cfg.demo.height_m),
       router_(TrackParams{cfg.truth.timeout_s, cfg.truth.max_extrapolation_s}, cfg.time.mode),
       coverage_(coverage_for(cfg, nav)),

@@ -355,7 +355,11 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   bench_mp->add_option("--antenna-height", bmp.antenna_height_m, "antenna above the scene's z = 0, m")->capture_default_str();
   bench_mp->add_option("--mask", bmp.mask_deg, "elevation mask, deg")->capture_default_str();
   bench_mp->add_option("--reference-rays", bmp.reference_rays, "dense reference rays")->capture_default_str();
-  bench_mp->add_option("--repeats", bmp.repeats, "timing passes (median)")->capture_default_str();
+  bench_mp->add_option("--repeats", bmp.repeats, "timing passes; the median one gives mean, p95 and max")
+      ->capture_default_str();
+  bench_mp->add_option("--settings", bmp.settings,
+                       "instead of the sweep: AZIMUTH_RAYS,RAYS,BOUNCES,REUSE_M,REUSE_DEG[,...] (groups of 5)")
+      ->delimiter(',');
   bench_mp->add_option("--max-loss-db", bmp.max_loss_db, "loss cap of every path, dB (1000: off)")->capture_default_str();
   CLI::App* version = app.add_subcommand("version", "versions of gnssemu, Embree and GeographicLib");
 

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "cli_test_util.hpp"
+#include "tools/gnssemu/bench_multipath.hpp"
 #include "core/common/constants.hpp"
 #include "core/geo/local_frame.hpp"
 
@@ -76,7 +77,10 @@ TEST(SkyScene, ColumnsAndCanyonPaths) {
 }
 
 TEST(SkyScene, EmptySceneAllDirectInsideABoxNothing) {
-  const test::CliResult e = run(sky_args(Enu(0.0, 0.0, 1.5), kScenes + "empty.obj"));
+  // A box 5 km away hides nothing (an empty mesh file is an error).
+  std::vector<std::string> far = sky_args(Enu(0.0, 0.0, 1.5), kScenes + "closed_box.obj");
+  far.insert(far.end(), {"--offset-m", "5000,0,0"});
+  const test::CliResult e = run(far);
   ASSERT_EQ(e.status, 0) << e.err;
   const Csv es = parse_csv(e.out);
   ASSERT_GT(es.rows.size(), 4u);
@@ -94,6 +98,35 @@ TEST(SkyScene, EmptySceneAllDirectInsideABoxNothing) {
   const test::CliResult bad = run(sky_args(Enu(), kScenes + "missing.obj"));
   EXPECT_EQ(bad.status, kExitBadInput);
   EXPECT_NE(bad.err.find("missing.obj"), std::string::npos) << bad.err;
+  const test::CliResult empty = run(sky_args(Enu(), kScenes + "empty.obj"));
+  EXPECT_EQ(empty.status, kExitBadInput);
+  EXPECT_NE(empty.err.find("empty.obj: no triangles"), std::string::npos) << empty.err;
+}
+
+std::string canyon_truth(int n);
+
+TEST(SceneCli, SkippedMeshElementsAreReportedWithTheFirstProblem) {
+  // Two good triangles of a wall far east, one face with a missing vertex.
+  TempDir dir;
+  const std::string mesh = dir.write("w.obj", "v 500 -10 0\nv 500 10 0\nv 500 10 30\nv 500 -10 30\n"
+                                              "f 1 2 3\nf 1 3 4\nf 1 2 9\n");
+  const std::string expect = "mesh: 1 bad elements skipped (1 bad index, 0 NaN/inf, 0 degenerate); first: " + mesh +
+                             ":7: face refers to a vertex that does not exist";
+  const test::CliResult s = run(sky_args(Enu(0.0, 0.0, 1.5), mesh));
+  ASSERT_EQ(s.status, 0) << s.err;
+  EXPECT_NE(s.err.find(expect), std::string::npos) << s.err;
+  const std::string cfg =
+      dir.write("c.toml", test::config_text(nav_path("brdc0010.22n"), "[scene]\nmesh = \"" + mesh + "\"\n"));
+  const std::string truth = dir.write("t.csv", canyon_truth(2));
+  const test::CliResult b = run({"batch", "--config", cfg, "--truth", truth});
+  ASSERT_EQ(b.status, 0) << b.err;
+  EXPECT_NE(b.err.find(expect), std::string::npos) << b.err;
+  const test::CliResult m =
+      run({"bench", "multipath", "--scene", mesh, "--origin", "48.8738,2.2950,100", "--nav", nav_path("brdc0010.22n"),
+           "--week", "2190", "--tow", "561600", "--path=0,0,0,20", "--speed", "20", "--repeats", "1",
+           "--reference-rays", "1024", "--settings", "0,256,2,0,0"});
+  ASSERT_EQ(m.status, 0) << m.err;
+  EXPECT_NE(m.err.find(expect), std::string::npos) << m.err;
 }
 
 std::string canyon_truth(int n) {
@@ -219,6 +252,36 @@ TEST(SkyScene, PlacementAndSearchOptionsMirrorTheConfig) {
     return a;
   }());
   EXPECT_NE(bad.status, 0);
+}
+
+TEST(BenchMultipath, MeanP95AndMaxComeFromTheSameMedianRepeat) {
+  EXPECT_EQ(median_repeat({5.0, 1.0, 3.0}), 2u);
+  EXPECT_EQ(median_repeat({4.0, 2.0}), 1u);  // lower median
+  EXPECT_EQ(median_repeat({7.0}), 0u);
+  const test::CliResult r =
+      run({"bench", "multipath", "--scene", kScenes + "street_canyon.toml", "--origin", "48.8738,2.2950,100",
+           "--nav", nav_path("brdc0010.22n"), "--week", "2190", "--tow", "561600", "--path=3,-100,3,100", "--speed",
+           "20", "--repeats", "3", "--reference-rays", "8192", "--settings", "128,0,16,0,0,0,256,4,2,1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("of 3 repeat(s) per setting the median one by mean gives mean, p95 and max"),
+            std::string::npos)
+      << r.err;
+  const Csv c = parse_csv(r.out);
+  ASSERT_EQ(c.rows.size(), 2u);
+  EXPECT_EQ(c.num(0, "azimuth_rays"), 128.0);
+  EXPECT_EQ(c.num(1, "rays"), 256.0);
+  EXPECT_EQ(c.num(1, "max_bounces"), 4.0);
+  EXPECT_EQ(c.num(1, "reuse_m"), 2.0);
+  for (std::size_t i = 0; i < 2; ++i) {
+    // One repeat's figures: its mean cannot exceed its own max.
+    EXPECT_LE(c.num(i, "us_per_epoch_mean"), c.num(i, "us_per_epoch_max") + 0.05);
+    EXPECT_LE(c.num(i, "us_per_epoch_p95"), c.num(i, "us_per_epoch_max"));
+  }
+  const test::CliResult bad = run({"bench", "multipath", "--scene", kScenes + "street_canyon.toml", "--origin",
+                                   "48.8738,2.2950,100", "--nav", nav_path("brdc0010.22n"), "--path=3,-100,3,100",
+                                   "--settings", "128,0,16"});
+  EXPECT_EQ(bad.status, kExitBadInput);
+  EXPECT_NE(bad.err.find("groups of 5"), std::string::npos) << bad.err;
 }
 
 TEST(BenchMultipath, PrintsTheSweep) {

@@ -34,7 +34,7 @@ struct ReceiverScene : ::testing::Test {
 };
 
 TEST_F(ReceiverScene, EmptySceneIsIdenticalToNoScene) {
-  const scene::Scene empty(scene::load_mesh(kData + "/scenes/empty.obj"));
+  const scene::Scene empty(scene::MeshBuilder("empty", {}).finish());  // an empty mesh file is an error
   Receiver plain(store, ReceiverConfig{});
   Receiver with(store, ReceiverConfig{});
   with.attach_scene(empty, kOrigin, scene::SearchConfig{});
