@@ -10,6 +10,7 @@
 #include "core/common/error.hpp"
 #include "core/time/utc.hpp"
 #include "daemon/epoch_schedule.hpp"
+#include "daemon/scene_setup.hpp"
 #include "daemon/truth_packet.hpp"
 
 namespace gnssemu::daemon {
@@ -35,14 +36,6 @@ std::string gps_text(const time::GpsTime& t) {
   std::snprintf(buf, sizeof buf, "%04d-%02d-%02d %02d:%02d:%02.0f GPST (week %d, tow %.1f)", c.year,
                 c.month, c.day, c.hour, c.minute, std::floor(c.second), t.week(), t.tow_s());
   return buf;
-}
-
-// The configured scene; what the mesh reader skipped goes to the log.
-std::unique_ptr<scene::Scene> load_scene_logged(const config::Config& cfg) {
-  scene::MeshStats stats;
-  std::unique_ptr<scene::Scene> s = config::load_scene(cfg, &stats);
-  if (const std::string w = scene::skip_report(stats); !w.empty()) spdlog::warn("scene {}", w);
-  return s;
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -252,6 +253,39 @@ TEST(SkyScene, PlacementAndSearchOptionsMirrorTheConfig) {
     return a;
   }());
   EXPECT_NE(bad.status, 0);
+}
+
+TEST(BatchScene, ExcludedSatellitesDropFromGsa) {
+  // Default receiver (residual test + fault exclusion) in the canyon: GSA
+  // lists exactly the satellites used, fewer than tracked when some were
+  // excluded.
+  TempDir dir;
+  const std::string cfg = dir.write(
+      "c.toml", test::config_text(nav_path("brdc0010.22n"), "[scene]\nmesh = \"" + kScenes + "street_canyon.toml\"\n"));
+  const std::string truth = dir.write("t.csv", canyon_truth(100));
+  const test::CliResult r =
+      run({"batch", "--config", cfg, "--truth", truth, "--errors", dir.file("e.csv"), "--nmea", dir.file("o.nmea")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Csv e = parse_csv(read_file(dir.file("e.csv")));
+  std::vector<int> gsa_used;
+  std::istringstream nmea(read_file(dir.file("o.nmea")));
+  for (std::string line; std::getline(nmea, line);) {
+    if (line.size() < 6 || line.substr(3, 3) != "GSA") continue;
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+    int n = 0;
+    for (std::size_t i = 3; i < 15 && i < f.size(); ++i) n += !f[i].empty();
+    gsa_used.push_back(n);
+  }
+  ASSERT_EQ(gsa_used.size(), e.rows.size());
+  int excluded_epochs = 0;
+  for (std::size_t i = 0; i < e.rows.size(); ++i) {
+    if (e.cell(i, "e_m").empty()) continue;
+    EXPECT_EQ(gsa_used[i], std::min(12, static_cast<int>(e.num(i, "nsat")))) << i;
+    excluded_epochs += e.num(i, "nsat") < e.num(i, "ntracked");
+  }
+  EXPECT_GT(excluded_epochs, 0);
 }
 
 TEST(BenchMultipath, MeanP95AndMaxComeFromTheSameMedianRepeat) {
