@@ -576,7 +576,7 @@ SceneConfig read_scene(TableReader& t, const std::string& base_dir) {
   q.reuse_angle_rad = t.number("reuse_angle_deg", q.reuse_angle_rad * kRadToDeg, Range{0.0, 90.0, "deg"}) * kDegToRad;
   q.min_arrival_el_rad =
       t.number("min_arrival_elevation_deg", q.min_arrival_el_rad * kRadToDeg, Range{-89.0, 89.0, "deg"}) * kDegToRad;
-  q.max_loss_db = t.number("max_loss_db", 21.0, Range{0.0, 1000.0, "dB", true});
+  q.max_loss_db = t.number("max_loss_db", q.max_loss_db, Range{0.0, 1000.0, "dB", true});
   s.reflection_loss_db = t.number("reflection_loss_db", s.reflection_loss_db, Range{0.0, 100.0, "dB"});
   if (auto m = t.table("material_loss_db", false)) {
     const toml::node* tn = t.find("material_loss_db");

@@ -10,6 +10,7 @@
 #include "core/common/error.hpp"
 #include "core/time/utc.hpp"
 #include "daemon/epoch_schedule.hpp"
+#include "daemon/scene_setup.hpp"
 #include "daemon/truth_packet.hpp"
 
 namespace gnssemu::daemon {
@@ -57,7 +58,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       nav_klobuchar_(nav.klobuchar),
       store_(nav.ephemerides),
       frame_(cfg.origin),
-      scene_(config::load_scene(cfg)),
+      scene_(load_scene_logged(cfg)),
       demo_(frame_, cfg.demo.radius_m, cfg.demo.speed_m_s, cfg.demo.height_m),
       router_(TrackParams{cfg.truth.timeout_s, cfg.truth.max_extrapolation_s}, cfg.time.mode),
       coverage_(coverage_for(cfg, nav)),

@@ -460,7 +460,7 @@ void Receiver::fill_solution() noexcept {
   for (int i = 0; i < f.num_sats && k < in_.num_meas; ++i) {
     SatInfo& si = f.sats[i];
     if (si.prn != meas_prn_[k]) continue;
-    si.used = true;
+    si.used = !out_.excluded[k];  // excluded by the residual test: tracked, not used
     si.residual_m = out_.residual_m[k++];
   }
 

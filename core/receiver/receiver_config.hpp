@@ -83,7 +83,8 @@ struct SolverConfig {
   double sigma_range_rate_m_s = 0.05;  ///< Doppler range-rate 1-sigma, m/s
   double height_hold_sigma_m = 1.0;    ///< 1-sigma of the held height in 2D fixes, m
   /// False-alarm probability of the chi-square test on post-fit residuals
-  /// (fails -> no fix); 0 disables the test.
+  /// (fails -> the worst satellite is excluded and the epoch re-solved while
+  /// >= 5 remain, else no fix; docs/models.md); 0 disables the test.
   double residual_test_pfa = 1.0e-3;
   int max_iterations = 15;             ///< Gauss–Newton iterations at most
 };

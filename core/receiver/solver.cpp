@@ -210,8 +210,7 @@ bool Solver::finish(const SolverInput& in, const Ecef& pos, double clock_m, bool
   const double pdop = two_d ? hdop : std::sqrt(qu[0][0] + qu[1][1] + qu[2][2]);
   if (!(pdop <= max_pdop_)) return false;
   out.dof = n_ + (two_d ? 1 : 0) - 4;
-  out.chi2 = chi2;
-  if (out.dof >= 1 && z_pfa_ > 0.0 && chi2 > chi2_threshold(out.dof)) return false;
+  out.chi2 = chi2;  // residual test: solve()
 
   out.dop.hdop = hdop;
   out.dop.tdop = std::sqrt(qu[3][3]);
@@ -243,6 +242,65 @@ bool Solver::finish(const SolverInput& in, const Ecef& pos, double clock_m, bool
 }
 
 void Solver::solve(const SolverInput& in, SolverOutput& out) noexcept {
+  // idx[j]: index in `in` of measurement j of the set being solved.
+  std::array<int, kMaxGpsPrn> idx{};
+  for (int i = 0; i < kMaxGpsPrn; ++i) idx[i] = i;
+  const SolverInput* cur = &in;
+  Outcome o = solve_all(*cur, out);
+  while (o == Outcome::kResidualTestFailed && n_ - 1 >= kMinSatsAfterExclusion) {
+    const int worst = worst_residual(out);
+    if (cur != &subset_) {
+      subset_ = in;
+      subset_.num_meas = n_;
+      cur = &subset_;
+    }
+    for (int j = worst; j + 1 < subset_.num_meas; ++j) {
+      subset_.meas[j] = subset_.meas[j + 1];
+      idx[j] = idx[j + 1];
+    }
+    --subset_.num_meas;
+    o = solve_all(subset_, out);
+  }
+  if (o != Outcome::kFix) {
+    out = SolverOutput{};
+    return;
+  }
+  if (cur == &in) return;
+  // Back to the indices of `in`; the excluded ones are flagged.
+  const int n_in = std::clamp(in.num_meas, 0, kMaxGpsPrn);
+  std::array<double, kMaxGpsPrn> r{};
+  out.excluded.fill(false);
+  for (int i = 0; i < n_in; ++i) out.excluded[i] = true;
+  for (int j = 0; j < subset_.num_meas; ++j) {
+    r[idx[j]] = out.residual_m[j];
+    out.excluded[idx[j]] = false;
+  }
+  out.residual_m = r;
+  out.num_excluded = n_in - subset_.num_meas;
+}
+
+int Solver::worst_residual(const SolverOutput& out) const noexcept {
+  // Normalised (studentised) residual: v_i / sqrt(sigma_i^2 - h_i' Q h_i),
+  // Q the weighted covariance of the solution (ENU + clock).
+  int worst = 0;
+  double worst_w = -1.0;
+  for (int i = 0; i < n_; ++i) {
+    const Sat& s = sats_[i];
+    const Enu e = geo::ecef_to_enu_vector(s.los, out.lla.lat_rad, out.lla.lon_rad);
+    const Vec4 h{-e.x, -e.y, -e.z, 1.0};
+    const Vec4 qh = mul4(out.cov_pos, h);
+    const double hqh = h[0] * qh[0] + h[1] * qh[1] + h[2] * qh[2] + h[3] * qh[3];
+    const double var = std::max(s.sigma2 - hqh, 1e-6 * s.sigma2);
+    const double w = out.residual_m[i] * out.residual_m[i] / var;
+    if (w > worst_w) {
+      worst_w = w;
+      worst = i;
+    }
+  }
+  return worst;
+}
+
+Solver::Outcome Solver::solve_all(const SolverInput& in, SolverOutput& out) noexcept {
   out = SolverOutput{};
   n_ = std::clamp(in.num_meas, 0, kMaxGpsPrn);
   corr_valid_ = false;
@@ -270,9 +328,9 @@ void Solver::solve(const SolverInput& in, SolverOutput& out) noexcept {
     // C/N0 weight term (Kuusniemi et al., GPS Solutions 8(2), 2004).
     s.cn0_var_m2 = c2 > 0.0 && m.cn0_dbhz > 0.0 ? c2 * std::pow(10.0, -std::min(m.cn0_dbhz, 70.0) / 10.0) : 0.0;
   }
-  if (n_ < 3) return;
+  if (n_ < 3) return Outcome::kNoFix;
   const bool two_d = n_ == 3;
-  if (two_d && !in.have_held_height) return;
+  if (two_d && !in.have_held_height) return Outcome::kNoFix;
 
   Ecef pos;
   double clock_m = 0.0;
@@ -291,7 +349,10 @@ void Solver::solve(const SolverInput& in, SolverOutput& out) noexcept {
   }
   if (!ok || !finish(in, pos, clock_m, two_d, out)) {
     out = SolverOutput{};
+    return Outcome::kNoFix;
   }
+  if (out.dof >= 1 && z_pfa_ > 0.0 && out.chi2 > chi2_threshold(out.dof)) return Outcome::kResidualTestFailed;
+  return Outcome::kFix;
 }
 
 }  // namespace gnssemu::receiver

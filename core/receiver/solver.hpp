@@ -56,6 +56,10 @@ struct SolverOutput {
   double sigma_uere_m = 0.0;     ///< RMS of the assumed 1-sigma over used satellites
   double chi2 = 0.0;             ///< weighted sum of squared residuals
   int dof = 0;
+  /// Fault exclusion: per measurement index, true when the residual test
+  /// excluded that satellite from the solution (residual_m is then 0).
+  std::array<bool, kMaxGpsPrn> excluded{};
+  int num_excluded = 0;
 };
 
 class Solver {
@@ -63,7 +67,16 @@ public:
   /// cfg and max_pdop as in ReceiverConfig. Does not validate (Receiver does).
   Solver(const SolverConfig& cfg, double max_pdop) noexcept;
 
+  /// Solves, then runs fault detection and exclusion (RAIM-style): while the
+  /// chi-square residual test fails and at least kMinSatsAfterExclusion
+  /// satellites would remain, the satellite with the largest normalised
+  /// residual |v_i| / sqrt(sigma_i^2 (1 - h_ii)) is excluded and the epoch
+  /// re-solved; if the test still fails, no fix.
   void solve(const SolverInput& in, SolverOutput& out) noexcept;
+
+  /// Satellites that must remain after an exclusion: 4 unknowns + 1 to
+  /// keep the residual test meaningful.
+  static constexpr int kMinSatsAfterExclusion = 5;
 
   /// Broadcast Klobuchar coefficients for the ionospheric correction (the
   /// nav header's); invalid -> RTKLIB defaults (the state after construction).
@@ -96,11 +109,18 @@ private:
   void linearise(const SolverInput& in, const Ecef& pos, double clock_m, const Lla* lla) noexcept;
   void update_corrections(const SolverInput& in, const Ecef& pos, const Lla& lla) noexcept;
   bool finish(const SolverInput& in, const Ecef& pos, double clock_m, bool two_d, SolverOutput& out) noexcept;
+  enum class Outcome { kFix, kNoFix, kResidualTestFailed };
+  /// One solution over every measurement of in (no exclusion). On
+  /// kResidualTestFailed out holds the rejected solution and its residuals.
+  Outcome solve_all(const SolverInput& in, SolverOutput& out) noexcept;
+  /// Index of the largest normalised residual of the solution in out.
+  int worst_residual(const SolverOutput& out) const noexcept;
 
   SolverConfig cfg_;
   double max_pdop_;
   double z_pfa_;  // standard-normal upper quantile of residual_test_pfa
   std::array<Sat, kMaxGpsPrn> sats_{};
+  SolverInput subset_;  ///< in without the excluded measurements (fault exclusion)
   int n_ = 0;
   orbit::KlobucharParams klobuchar_;  // invalid: RTKLIB defaults
   bool corr_valid_ = false;           // corr_m computed at corr_pos_

@@ -123,6 +123,10 @@ void add_building(MeshBuilder& b, const toml::table& t, const std::string& path,
     }
     poly.push_back({*e, *n});
   }
+  // A repeated point (consecutive, or the closing one) adds no edge: drop it
+  // rather than call the polygon self-intersecting.
+  poly.erase(std::unique(poly.begin(), poly.end(), [](const P2& a, const P2& c) { return a.e == c.e && a.n == c.n; }),
+             poly.end());
   if (poly.size() > 1 && poly.front().e == poly.back().e && poly.front().n == poly.back().n) poly.pop_back();
   if (poly.size() < 3) throw Error(path, line_of(*fp), where + ".footprint: needs at least 3 distinct points");
   const double area = signed_area(poly);

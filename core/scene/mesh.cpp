@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "core/common/error.hpp"
@@ -22,6 +23,13 @@ std::string lower_extension(const std::string& path) {
 
 }  // namespace
 
+std::string skip_report(const MeshStats& s) {
+  if (s.skipped() == 0) return {};
+  return "mesh: " + std::to_string(s.skipped()) + " bad elements skipped (" + std::to_string(s.skipped_bad_index) +
+         " bad index, " + std::to_string(s.skipped_nonfinite) + " NaN/inf, " + std::to_string(s.skipped_degenerate) +
+         " degenerate); first: " + s.first_problem;
+}
+
 MeshBuilder::MeshBuilder(std::string file, const Placement& placement)
     : file_(std::move(file)),
       placement_(placement),
@@ -30,7 +38,7 @@ MeshBuilder::MeshBuilder(std::string file, const Placement& placement)
   mesh_.material_names.emplace_back();
 }
 
-void MeshBuilder::add_vertex(double x, double y, double z) {
+void MeshBuilder::add_vertex(double x, double y, double z, int line) {
   const bool ok = std::isfinite(x) && std::isfinite(y) && std::isfinite(z);
   if (placement_.y_up) {
     const double y_model = y;
@@ -42,6 +50,14 @@ void MeshBuilder::add_vertex(double x, double y, double z) {
   z *= placement_.scale;
   const Vec3 p(cos_yaw_ * x - sin_yaw_ * y + placement_.offset_m.x, sin_yaw_ * x + cos_yaw_ * y + placement_.offset_m.y,
                z + placement_.offset_m.z);
+  if (ok && p.finite() &&
+      (std::fabs(p.x) > kMaxCoordinate_m || std::fabs(p.y) > kMaxCoordinate_m || std::fabs(p.z) > kMaxCoordinate_m)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "vertex at (%.6g, %.6g, %.6g) m after placement is beyond 1e6 m of the origin", p.x,
+                  p.y, p.z);
+    throw Error(file_, line,
+                std::string(buf) + " (Embree stores float32); model the scene in a local frame near [origin]");
+  }
   vertices_.push_back(ok ? p : Vec3());
   finite_.push_back(ok && p.finite());
 }
@@ -122,10 +138,27 @@ Mesh load_mesh(const std::string& path, const Placement& placement) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw Error(path, 0, "mesh file not found");
   const std::string ext = lower_extension(path);
-  if (ext == ".obj") return read_obj(path, placement);
-  if (ext == ".ply") return read_ply(path, placement);
-  if (ext == ".toml") return read_footprints(path, placement);
-  throw Error(path, 0, "unknown mesh format '" + ext + "' (expected .obj, .ply or .toml footprints)");
+  Mesh m;
+  if (ext == ".obj") {
+    m = read_obj(path, placement);
+  } else if (ext == ".ply") {
+    m = read_ply(path, placement);
+  } else if (ext == ".toml") {
+    m = read_footprints(path, placement);
+  } else {
+    throw Error(path, 0, "unknown mesh format '" + ext + "' (expected .obj, .ply or .toml footprints)");
+  }
+  if (m.triangles.empty()) {
+    throw Error(path, 0,
+                "no triangles in this mesh (" + std::to_string(m.vertices_m.size()) + " vertices, " +
+                    std::to_string(m.stats.faces_read) + " faces read" +
+                    (m.stats.skipped() > 0 ? ", " + std::to_string(m.stats.skipped()) +
+                                                 " skipped; first: " + m.stats.first_problem
+                                           : "") +
+                    "): not a " + (ext == ".toml" ? "footprint file" : ext == ".ply" ? "PLY mesh" : "Wavefront OBJ mesh") +
+                    ", or nothing usable in it");
+  }
+  return m;
 }
 
 }  // namespace gnssemu::scene

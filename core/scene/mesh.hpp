@@ -23,6 +23,10 @@ struct MeshStats {
   int skipped() const noexcept { return skipped_bad_index + skipped_nonfinite + skipped_degenerate; }
 };
 
+/// One line for users: "mesh: N bad elements skipped (a bad index, b
+/// NaN/inf, c degenerate); first: file:line: reason", or "" when nothing was skipped.
+std::string skip_report(const MeshStats& s);
+
 /// Model-to-ENU placement: p_enu = offset_m + Rz(yaw_rad) * (scale * axes(p_model)).
 struct Placement {
   Enu offset_m;            ///< model origin in local ENU, m
@@ -43,11 +47,17 @@ struct Mesh {
 /// area after placement, and counts what it skips.
 class MeshBuilder {
 public:
+  /// Largest |e|, |n|, |u| of a placed vertex, m: Embree stores float32, whose
+  /// resolution at 1000 km is 6 cm (and 0.5 m at ECEF magnitudes).
+  static constexpr double kMaxCoordinate_m = 1.0e6;
+
   MeshBuilder(std::string file, const Placement& placement);
 
   /// Adds a model-frame vertex; a non-finite one is kept as a marker so
-  /// faces using it are skipped (not an error).
-  void add_vertex(double x, double y, double z);
+  /// faces using it are skipped (not an error). Throws gnssemu::Error
+  /// (file:line) when the placed vertex is farther than kMaxCoordinate_m
+  /// from the origin in any axis. line: source line for messages.
+  void add_vertex(double x, double y, double z, int line = 0);
   uint32_t vertex_count() const noexcept { return static_cast<uint32_t>(vertices_.size()); }
   /// Sets the material of the faces that follow; "" = none.
   void set_material(const std::string& name);
@@ -71,7 +81,8 @@ private:
 };
 
 /// Reads a mesh by extension: .obj, .ply, .toml (footprints). Throws
-/// gnssemu::Error (file:line: reason) on a missing file or unreadable syntax.
+/// gnssemu::Error (file:line: reason) on a missing file, unreadable syntax,
+/// or a file that gives no triangle at all (e.g. not a mesh).
 Mesh load_mesh(const std::string& path, const Placement& placement = {});
 
 /// Wavefront OBJ: v, f (v, v/t, v//n, v/t/n, negative = relative), usemtl;

@@ -60,7 +60,7 @@ Mesh read_obj(const std::string& path, const Placement& placement) {
         if (tok.empty()) throw Error(path, line_no, "vertex needs x y z");
         if (!parse_double(tok, c)) throw Error(path, line_no, "vertex coordinate '" + std::string(tok) + "' is not a number");
       }
-      b.add_vertex(xyz[0], xyz[1], xyz[2]);
+      b.add_vertex(xyz[0], xyz[1], xyz[2], line_no);
     } else if (kw == "f") {
       face.clear();
       const auto nv = static_cast<int64_t>(b.vertex_count());

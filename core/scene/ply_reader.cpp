@@ -2,6 +2,8 @@
 // header, then elements in header order; ascii or binary (either endianness).
 #include <algorithm>
 #include <bit>
+#include <charconv>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <cstring>
@@ -16,6 +18,15 @@
 namespace gnssemu::scene {
 
 namespace {
+
+// Elements per PLY element line at most (vertex indices are 32-bit).
+constexpr int64_t kMaxElementCount = 2'000'000'000;
+
+std::string fmt_number(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
 
 enum class Type { kI8, kU8, kI16, kU16, kI32, kU32, kF32, kF64, kBad };
 
@@ -158,8 +169,17 @@ Mesh read_ply(const std::string& path, const Placement& placement) {
       have_format = true;
     } else if (kw == "element") {
       Element e;
-      ls >> e.name >> e.count;
-      if (!ls || e.count < 0) throw Error(path, line_no, "bad element line (element NAME COUNT)");
+      std::string count_text, rest;
+      ls >> e.name >> count_text;
+      const char* end = count_text.data() + count_text.size();
+      const auto r = std::from_chars(count_text.data(), end, e.count);
+      if (!ls || e.name.empty() || r.ec != std::errc() || r.ptr != end || e.count < 0 || (ls >> rest)) {
+        throw Error(path, line_no, "bad element line '" + line + "' (element NAME COUNT, COUNT a non-negative integer)");
+      }
+      if (e.count > kMaxElementCount) {
+        throw Error(path, line_no, "element " + e.name + " count " + count_text + " is larger than " +
+                                       std::to_string(kMaxElementCount));
+      }
       e.header_line = line_no;
       elements.push_back(std::move(e));
     } else if (kw == "property") {
@@ -226,7 +246,13 @@ Mesh read_ply(const std::string& path, const Placement& placement) {
           if (ki == iface) face.clear();
           for (int64_t j = 0; j < count; ++j) {
             const double v = body.read(p.type, where);
-            if (ki == iface) face.push_back(std::isfinite(v) ? static_cast<int64_t>(v) : -1);
+            if (ki != iface) continue;
+            // Integers only, within what a vertex count can reach (the
+            // float-to-int64 conversion is undefined beyond 9.2e18).
+            if (!std::isfinite(v) || v != std::floor(v) || std::fabs(v) > 4.0e9) {
+              throw Error(path, body.line(), "vertex index " + fmt_number(v) + " in " + where + " is not an integer index");
+            }
+            face.push_back(static_cast<int64_t>(v));
           }
         } else {
           const double v = body.read(p.type, where);
@@ -235,7 +261,7 @@ Mesh read_ply(const std::string& path, const Placement& placement) {
           if (ki == iz) xyz[2] = v;
         }
       }
-      if (e.name == "vertex") b.add_vertex(xyz[0], xyz[1], xyz[2]);
+      if (e.name == "vertex") b.add_vertex(xyz[0], xyz[1], xyz[2], body.line());
       if (e.name == "face") b.add_face_checked(face.data(), static_cast<int>(face.size()), body.line());
     }
   }

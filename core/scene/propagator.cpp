@@ -76,8 +76,9 @@ Propagator::Propagator(const Scene& scene, const SearchConfig& config) : scene_(
   const double solid_angle_sr = 2.0 * kPi * (1.0 - z0);
   const double spacing_rad = std::sqrt(solid_angle_sr / static_cast<double>(m));
   cos_match_ = std::cos(std::min(kPi / 2.0, config_.match_factor * spacing_rad));
+  // Cone search: up to kMaxConeSats satellites, each with its cone and the mirrored one.
   const std::size_t front =
-      std::max(m, static_cast<std::size_t>(config_.azimuth_rays) * static_cast<std::size_t>(kMaxConeSats));
+      std::max(m, 2 * static_cast<std::size_t>(config_.azimuth_rays) * static_cast<std::size_t>(kMaxConeSats));
   rays_.resize(front);
   hits_.resize(front);
   ray_id_.resize(front);
@@ -205,12 +206,18 @@ void Propagator::search(const Vec3& rx_m, int n_blocked) noexcept {
       const double az0 = std::atan2(b.dir.x, b.dir.y);
       const double step = 2.0 * kPi / n_az;
       b.cos_match = std::cos(std::min(kPi / 2.0, config_.match_factor * step * ch));
-      for (int i = 0; i < n_az; ++i) {
-        const double az = az0 + step * (i + 0.5);
-        rays_[n_active] = Ray{rx_m, Vec3(ch * std::sin(az), ch * std::cos(az), b.dir.z), kStart_m, 1.0e30};
-        ray_id_[n_active] = static_cast<int32_t>(n_active);
-        ray_sat_[n_active] = static_cast<int16_t>(j);
-        ++n_active;
+      // The cone at +el, and its mirror at -el (first bounce on a horizontal
+      // face, e.g. the ground) when arrivals from below are allowed.
+      for (int side = 0; side < 2; ++side) {
+        const double z = side == 0 ? b.dir.z : -b.dir.z;
+        if (side == 1 && (!(b.dir.z > 0.0) || z < sin_min_arrival_)) continue;
+        for (int i = 0; i < n_az; ++i) {
+          const double az = az0 + step * (i + 0.5);
+          rays_[n_active] = Ray{rx_m, Vec3(ch * std::sin(az), ch * std::cos(az), z), kStart_m, 1.0e30};
+          ray_id_[n_active] = static_cast<int32_t>(n_active);
+          ray_sat_[n_active] = static_cast<int16_t>(j);
+          ++n_active;
+        }
       }
     }
   } else {

@@ -48,7 +48,9 @@ struct SearchConfig {
   int rays = 1024;                  ///< launch directions over the arrival hemisphere (>= 16)
   /// Scenes of vertical and horizontal faces only: per blocked satellite,
   /// rays on the cone of its elevation (the only launch directions that can
-  /// reach it), this many in azimuth; 0: always the hemisphere.
+  /// reach it), this many in azimuth, and as many on the mirrored cone
+  /// (-elevation, a first bounce on the ground) when min_arrival_el_rad
+  /// allows arrivals from there; 0: always the hemisphere.
   int azimuth_rays = 128;
   int max_bounces = 16;             ///< reflections per path at most [1, 32]
   double match_factor = 1.5;        ///< candidate tolerance in units of the mean ray spacing (> 0)
@@ -60,7 +62,10 @@ struct SearchConfig {
   double reuse_distance_m = 0.0;    ///< m
   double reuse_angle_rad = 0.0;     ///< rad
   double min_arrival_el_rad = 0.0;  ///< arrivals from below this elevation are rejected (antenna gain), rad
-  double max_loss_db = 1.0e9;       ///< paths weaker than this are not received, dB
+  /// Paths weaker than this are not received, dB: 45 dB-Hz nominal minus
+  /// ~24 dB-Hz tracking threshold. The one default of every entry point
+  /// (config [scene] max_loss_db, gnssemu sky, bench multipath).
+  double max_loss_db = 21.0;
 };
 
 /// Throws gnssemu::Error naming the first bad field.

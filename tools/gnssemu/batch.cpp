@@ -80,6 +80,7 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
   BatchSummary sum;
   sum.scene = buildings != nullptr;
   sum.mesh_skipped = mesh_stats.skipped();
+  sum.mesh_report = scene::skip_report(mesh_stats);
   if (errors) {
     *errors << "gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop"
             << (sum.scene ? ",nvisible,ntracked,nlos,nblocked,nlos_delay_mean_m\n" : "\n");
@@ -170,9 +171,9 @@ void write_summary(const BatchSummary& s, std::ostream& out) {
   const double avail = s.epochs > 0 ? 100.0 * s.fixes / s.epochs : 0.0;
   out << fmt::format("epochs {}  fixes {} ({:.1f}%)  3D {}\n", s.epochs, s.fixes, avail, s.fixes_3d);
   if (s.scene) {
-    out << fmt::format("scene: per epoch {:.2f} above mask, {:.2f} NLOS (reflections only), {:.2f} blocked{}\n",
-                       s.mean_visible, s.mean_nlos, s.mean_blocked,
-                       s.mesh_skipped > 0 ? fmt::format("; mesh: {} bad elements skipped", s.mesh_skipped) : "");
+    out << fmt::format("scene: per epoch {:.2f} above mask, {:.2f} NLOS (reflections only), {:.2f} blocked\n",
+                       s.mean_visible, s.mean_nlos, s.mean_blocked);
+    if (!s.mesh_report.empty()) out << "scene " << s.mesh_report << '\n';
   }
   if (s.fixes == 0) {
     out << "no fix: no error statistics\n";

@@ -1,6 +1,7 @@
 #pragma once
 // `gnssemu batch`: the daemon's code path (config -> ephemeris store ->
 // Receiver -> NmeaEncoder) run over a truth trajectory faster than real time.
+#include <string>
 #include <ostream>
 
 #include "config/config.hpp"
@@ -24,6 +25,7 @@ struct BatchSummary {
   bool scene = false;
   double mean_visible = 0.0, mean_nlos = 0.0, mean_blocked = 0.0;
   int mesh_skipped = 0;  ///< mesh elements the reader skipped
+  std::string mesh_report;  ///< scene::skip_report of the mesh, \"\" when nothing was skipped
 };
 
 /// Run the receiver, set up as the daemon sets it up from the nav file (its

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/scene/propagator.hpp"
 #include "core/time/gps_time.hpp"
 
 namespace gnssemu::cli {
@@ -26,9 +27,16 @@ struct BenchMultipathArgs {
   double antenna_height_m = 1.5;    ///< above the scene's z = 0
   double mask_deg = 5.0;
   int reference_rays = 65536;       ///< dense reference: rays (16 bounces, no reuse)
-  int repeats = 3;
-  double max_loss_db = 1.0e9;       ///< loss cap for reference and sweep (default: off, all 16 bounces)                  ///< timing passes (median reported)
+  int repeats = 3;                  ///< timing passes: the median one (by mean) gives mean, p95 and max
+  /// Settings to run instead of the built-in sweep, 5 numbers each:
+  /// azimuth_rays, rays, max_bounces, reuse_m, reuse_deg (empty: the sweep).
+  std::vector<double> settings;
+  double max_loss_db = scene::SearchConfig{}.max_loss_db;  ///< loss cap for reference and sweep, dB (1000: off)
 };
+
+/// Index of the median of the per-repeat means (the lower median for an
+/// even count): the repeat whose mean, p95 and max are reported.
+std::size_t median_repeat(const std::vector<double>& repeat_means);
 
 /// Runs the sweep; CSV on out (one row per setting), context on err.
 /// Throws gnssemu::Error on bad input.

@@ -47,8 +47,18 @@ struct SiteArgs {
 struct SceneArgs {
   std::string mesh_path;
   std::vector<double> origin;  ///< lat_deg, lon_deg, height_m; empty: the site
+  // Mirrors the [scene] keys of the config (docs/scene.md), same defaults.
   int rays = scene::SearchConfig{}.rays;
+  int azimuth_rays = scene::SearchConfig{}.azimuth_rays;
   int bounces = scene::SearchConfig{}.max_bounces;
+  double match_factor = scene::SearchConfig{}.match_factor;
+  double min_arrival_elevation_deg = scene::SearchConfig{}.min_arrival_el_rad * kRadToDeg;
+  double max_loss_db = scene::SearchConfig{}.max_loss_db;
+  double reflection_loss_db = 3.0;
+  std::vector<double> offset_m;  ///< east, north, up; empty: 0, 0, 0
+  double yaw_deg = 0.0;
+  double scale = 1.0;
+  std::string up_axis = "z";
 };
 
 struct BatchArgs {
@@ -278,8 +288,30 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   sky->add_option("--scene-origin", scene_args.origin, "scene frame origin LAT_DEG,LON_DEG,HEIGHT_M (default: the site)")
       ->delimiter(',')
       ->expected(3);
-  sky->add_option("--rays", scene_args.rays, "reflection search: launch rays")->capture_default_str();
-  sky->add_option("--bounces", scene_args.bounces, "reflection search: bounces at most")->capture_default_str();
+  sky->add_option("--rays", scene_args.rays, "reflection search: hemisphere launch rays ([scene] rays)")->capture_default_str();
+  sky->add_option("--azimuth-rays", scene_args.azimuth_rays,
+                  "reflection search: cone rays per blocked satellite on vertical/horizontal scenes, 0: hemisphere")
+      ->capture_default_str();
+  sky->add_option("--bounces,--max-bounces", scene_args.bounces, "reflection search: bounces at most [1, 32]")
+      ->capture_default_str();
+  sky->add_option("--match-factor", scene_args.match_factor, "reflection search: candidate tolerance in ray spacings")
+      ->capture_default_str();
+  sky->add_option("--min-arrival-elevation-deg", scene_args.min_arrival_elevation_deg,
+                  "reflected arrivals from below this elevation are rejected, deg [-89, 89]")
+      ->capture_default_str();
+  sky->add_option("--max-loss-db", scene_args.max_loss_db, "paths weaker than this are not received, dB")
+      ->capture_default_str();
+  sky->add_option("--reflection-loss-db", scene_args.reflection_loss_db, "loss per reflection, dB [0, 100]")
+      ->capture_default_str();
+  sky->add_option("--offset-m", scene_args.offset_m, "mesh placement: model origin in ENU E,N,U m")
+      ->delimiter(',')
+      ->expected(3);
+  sky->add_option("--yaw-deg", scene_args.yaw_deg, "mesh placement: rotation about up, deg, east towards north")
+      ->capture_default_str();
+  sky->add_option("--scale", scene_args.scale, "mesh placement: model units to metres (> 0)")->capture_default_str();
+  sky->add_option("--up-axis", scene_args.up_axis, "mesh placement: z, or y for Y-up exports")
+      ->check(CLI::IsMember({"z", "y"}))
+      ->capture_default_str();
   CLI::App* dop = app.add_subcommand("dop", "dilutions of precision of the satellites above the mask");
   add_site(dop);
   CLI::App* batch_cmd =
@@ -323,8 +355,12 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   bench_mp->add_option("--antenna-height", bmp.antenna_height_m, "antenna above the scene's z = 0, m")->capture_default_str();
   bench_mp->add_option("--mask", bmp.mask_deg, "elevation mask, deg")->capture_default_str();
   bench_mp->add_option("--reference-rays", bmp.reference_rays, "dense reference rays")->capture_default_str();
-  bench_mp->add_option("--repeats", bmp.repeats, "timing passes (median)")->capture_default_str();
-  bench_mp->add_option("--max-loss-db", bmp.max_loss_db, "loss cap of every path (default: off)");
+  bench_mp->add_option("--repeats", bmp.repeats, "timing passes; the median one gives mean, p95 and max")
+      ->capture_default_str();
+  bench_mp->add_option("--settings", bmp.settings,
+                       "instead of the sweep: AZIMUTH_RAYS,RAYS,BOUNCES,REUSE_M,REUSE_DEG[,...] (groups of 5)")
+      ->delimiter(',');
+  bench_mp->add_option("--max-loss-db", bmp.max_loss_db, "loss cap of every path, dB (1000: off)")->capture_default_str();
   CLI::App* version = app.add_subcommand("version", "versions of gnssemu, Embree and GeographicLib");
 
   // CLI11 reports a mistyped subcommand only as "A subcommand is required".
@@ -366,9 +402,30 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
             sreq.scene_origin = Lla{scene_args.origin[0] * kDegToRad, scene_args.origin[1] * kDegToRad, scene_args.origin[2]};
           }
           sreq.search.rays = scene_args.rays;
+          sreq.search.azimuth_rays = scene_args.azimuth_rays;
           sreq.search.max_bounces = scene_args.bounces;
+          sreq.search.match_factor = scene_args.match_factor;
+          check_range("--min-arrival-elevation-deg", scene_args.min_arrival_elevation_deg, -89.0, 89.0);
+          sreq.search.min_arrival_el_rad = scene_args.min_arrival_elevation_deg * kDegToRad;
+          check_range("--max-loss-db", scene_args.max_loss_db, 0.0, 1000.0);
+          sreq.search.max_loss_db = scene_args.max_loss_db;
           scene::validate(sreq.search);
-          buildings = std::make_unique<scene::Scene>(scene::load_mesh(scene_args.mesh_path));
+          check_range("--reflection-loss-db", scene_args.reflection_loss_db, 0.0, 100.0);
+          scene::Placement place;
+          if (!scene_args.offset_m.empty()) {
+            for (const double v : scene_args.offset_m) check_range("--offset-m", v, -1.0e6, 1.0e6);
+            place.offset_m = Enu(scene_args.offset_m[0], scene_args.offset_m[1], scene_args.offset_m[2]);
+          }
+          check_range("--yaw-deg", scene_args.yaw_deg, -360.0, 360.0);
+          place.yaw_rad = scene_args.yaw_deg * kDegToRad;
+          check_range("--scale", scene_args.scale, 0.0, 1.0e6);
+          if (!(scene_args.scale > 0.0)) throw Error("--scale: must be > 0");
+          place.scale = scene_args.scale;
+          place.y_up = scene_args.up_axis == "y";
+          const scene::Mesh mesh = scene::load_mesh(scene_args.mesh_path, place);
+          if (const std::string w = scene::skip_report(mesh.stats); !w.empty()) err << "gnssemu sky: " << w << '\n';
+          buildings = std::make_unique<scene::Scene>(mesh);
+          buildings->set_default_loss_db(scene_args.reflection_loss_db);
           sreq.scene = buildings.get();
         }
         write_sky(store, sreq, out);

@@ -101,11 +101,15 @@ const SppEpoch& SppEngine::solve(const observation::ObsEpoch& epoch) {
   result_.pdop = out_.dop.pdop;
   result_.nsat = out_.num_used;
   const Lla lla = out_.lla;
-  for (int i = 0; i < out_.num_used; ++i) {
+  // Used satellites only (fault exclusion may drop some of the measurements).
+  std::size_t n = 0;
+  for (int i = 0; i < in_.num_meas; ++i) {
     const std::size_t k = static_cast<std::size_t>(i);
-    result_.prn[k] = meas_prn_[k];
-    result_.residual_m[k] = out_.residual_m[k];
-    result_.el_rad[k] = receiver::sky_sat(*in_.meas[k].eph, epoch.t, out_.pos_m, lla, Ecef{}).el_rad;
+    if (out_.excluded[k]) continue;
+    result_.prn[n] = meas_prn_[k];
+    result_.residual_m[n] = out_.residual_m[k];
+    result_.el_rad[n] = receiver::sky_sat(*in_.meas[k].eph, epoch.t, out_.pos_m, lla, Ecef{}).el_rad;
+    ++n;
   }
   last_pos_m_ = out_.pos_m;
   last_clock_m_ = out_.clock_m;

@@ -1,9 +1,13 @@
 // gnssemu sky --scene, batch with [scene], bench multipath.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <sstream>
+
 #include <fmt/format.h>
 
 #include "cli_test_util.hpp"
+#include "tools/gnssemu/bench_multipath.hpp"
 #include "core/common/constants.hpp"
 #include "core/geo/local_frame.hpp"
 
@@ -74,7 +78,10 @@ TEST(SkyScene, ColumnsAndCanyonPaths) {
 }
 
 TEST(SkyScene, EmptySceneAllDirectInsideABoxNothing) {
-  const test::CliResult e = run(sky_args(Enu(0.0, 0.0, 1.5), kScenes + "empty.obj"));
+  // A box 5 km away hides nothing (an empty mesh file is an error).
+  std::vector<std::string> far = sky_args(Enu(0.0, 0.0, 1.5), kScenes + "closed_box.obj");
+  far.insert(far.end(), {"--offset-m", "5000,0,0"});
+  const test::CliResult e = run(far);
   ASSERT_EQ(e.status, 0) << e.err;
   const Csv es = parse_csv(e.out);
   ASSERT_GT(es.rows.size(), 4u);
@@ -92,6 +99,35 @@ TEST(SkyScene, EmptySceneAllDirectInsideABoxNothing) {
   const test::CliResult bad = run(sky_args(Enu(), kScenes + "missing.obj"));
   EXPECT_EQ(bad.status, kExitBadInput);
   EXPECT_NE(bad.err.find("missing.obj"), std::string::npos) << bad.err;
+  const test::CliResult empty = run(sky_args(Enu(), kScenes + "empty.obj"));
+  EXPECT_EQ(empty.status, kExitBadInput);
+  EXPECT_NE(empty.err.find("empty.obj: no triangles"), std::string::npos) << empty.err;
+}
+
+std::string canyon_truth(int n);
+
+TEST(SceneCli, SkippedMeshElementsAreReportedWithTheFirstProblem) {
+  // Two good triangles of a wall far east, one face with a missing vertex.
+  TempDir dir;
+  const std::string mesh = dir.write("w.obj", "v 500 -10 0\nv 500 10 0\nv 500 10 30\nv 500 -10 30\n"
+                                              "f 1 2 3\nf 1 3 4\nf 1 2 9\n");
+  const std::string expect = "mesh: 1 bad elements skipped (1 bad index, 0 NaN/inf, 0 degenerate); first: " + mesh +
+                             ":7: face refers to a vertex that does not exist";
+  const test::CliResult s = run(sky_args(Enu(0.0, 0.0, 1.5), mesh));
+  ASSERT_EQ(s.status, 0) << s.err;
+  EXPECT_NE(s.err.find(expect), std::string::npos) << s.err;
+  const std::string cfg =
+      dir.write("c.toml", test::config_text(nav_path("brdc0010.22n"), "[scene]\nmesh = \"" + mesh + "\"\n"));
+  const std::string truth = dir.write("t.csv", canyon_truth(2));
+  const test::CliResult b = run({"batch", "--config", cfg, "--truth", truth});
+  ASSERT_EQ(b.status, 0) << b.err;
+  EXPECT_NE(b.err.find(expect), std::string::npos) << b.err;
+  const test::CliResult m =
+      run({"bench", "multipath", "--scene", mesh, "--origin", "48.8738,2.2950,100", "--nav", nav_path("brdc0010.22n"),
+           "--week", "2190", "--tow", "561600", "--path=0,0,0,20", "--speed", "20", "--repeats", "1",
+           "--reference-rays", "1024", "--settings", "0,256,2,0,0"});
+  ASSERT_EQ(m.status, 0) << m.err;
+  EXPECT_NE(m.err.find(expect), std::string::npos) << m.err;
 }
 
 std::string canyon_truth(int n) {
@@ -137,6 +173,149 @@ TEST(BatchScene, ConfigSceneAddsColumnsAndChangesTheFix) {
   const test::CliResult rb = run({"batch", "--config", box, "--truth", still});
   ASSERT_EQ(rb.status, 0) << rb.err;
   EXPECT_NE(rb.err.find("fixes 0 (0.0%)"), std::string::npos) << rb.err;
+}
+
+// What sky says of each satellite at the antenna position `at`, one letter
+// per row: L direct, R reflections only, X not received.
+std::string sky_classes(const Enu& at, const std::vector<std::string>& extra = {}) {
+  std::vector<std::string> a = sky_args(at, kScenes + "street_canyon.toml");
+  a.insert(a.end(), extra.begin(), extra.end());
+  const test::CliResult r = run(a);
+  EXPECT_EQ(r.status, 0) << r.err;
+  const Csv c = parse_csv(r.out);
+  std::string k;
+  for (std::size_t i = 0; i < c.rows.size(); ++i) {
+    k += c.cell(i, "los") == "1" ? 'L' : c.cell(i, "nlos_delay_m").empty() ? 'X' : 'R';
+  }
+  return k;
+}
+
+int sky_not_received(const Enu& at, const std::vector<std::string>& extra = {}) {
+  const std::string k = sky_classes(at, extra);
+  return static_cast<int>(std::count(k.begin(), k.end(), 'X'));
+}
+
+TEST(SkyScene, ClassifiesLikeBatchWithTheConfigDefaults) {
+  // One default loss cap (21 dB) in every entry point: sky and a receiver
+  // configured only with [scene] mesh agree on what is not received.
+  TempDir dir;
+  const std::string cfg = dir.write(
+      "c.toml", test::config_text(nav_path("brdc0010.22n"), "[scene]\nmesh = \"" + kScenes + "street_canyon.toml\"\n"));
+  bool capped_somewhere = false;
+  for (const Enu& at : {Enu(3.0, 0.0, 1.5), Enu(-8.0, 60.0, 1.5), Enu(8.0, -120.0, 1.5), Enu(0.0, 140.0, 1.5)}) {
+    const Ecef p = geo::LocalFrame(kOrigin).to_ecef(at);
+    const std::string truth = dir.write(
+        "t.csv", fmt::format("gps_week,tow_s,x_m,y_m,z_m\n2190,561600.0,{:.4f},{:.4f},{:.4f}\n", p.x, p.y, p.z));
+    const test::CliResult b = run({"batch", "--config", cfg, "--truth", truth, "--errors", dir.file("e.csv")});
+    ASSERT_EQ(b.status, 0) << b.err;
+    const Csv e = parse_csv(read_file(dir.file("e.csv")));
+    ASSERT_EQ(e.rows.size(), 1u);
+    const int none = sky_not_received(at);
+    EXPECT_EQ(none, static_cast<int>(e.num(0, "nblocked"))) << at.x << "," << at.y;
+    // The same options as the config keys: no cap receives deeper paths.
+    capped_somewhere = capped_somewhere || sky_not_received(at, {"--max-loss-db", "1000"}) < none;
+  }
+  EXPECT_TRUE(capped_somewhere) << "the test positions never need more than 7 reflections";
+}
+
+TEST(SkyScene, PlacementAndSearchOptionsMirrorTheConfig) {
+  // The canyon moved 100 m east and turned by 90 deg (now east-west,
+  // y in [-10, 10]): the config placement in batch and the same options
+  // in sky give the same not-received count.
+  TempDir dir;
+  const std::string extra = "[scene]\nmesh = \"" + kScenes +
+                            "street_canyon.toml\"\noffset_m = [100, 0, 0]\nyaw_deg = 90\nmax_loss_db = 9\n"
+                            "azimuth_rays = 64\nmin_arrival_elevation_deg = -10\n";
+  const std::string cfg = dir.write("c.toml", test::config_text(nav_path("brdc0010.22n"), extra));
+  const Enu at(100.0, -3.0, 1.5);
+  const Ecef p = geo::LocalFrame(kOrigin).to_ecef(at);
+  const std::string truth = dir.write(
+      "t.csv", fmt::format("gps_week,tow_s,x_m,y_m,z_m\n2190,561600.0,{:.4f},{:.4f},{:.4f}\n", p.x, p.y, p.z));
+  const test::CliResult b = run({"batch", "--config", cfg, "--truth", truth, "--errors", dir.file("e.csv")});
+  ASSERT_EQ(b.status, 0) << b.err;
+  const Csv e = parse_csv(read_file(dir.file("e.csv")));
+  const std::vector<std::string> opts = {"--offset-m", "100,0,0", "--yaw-deg", "90", "--max-loss-db", "9",
+                                         "--azimuth-rays", "64", "--min-arrival-elevation-deg", "-10"};
+  const int none = sky_not_received(at, opts);
+  EXPECT_EQ(none, static_cast<int>(e.num(0, "nblocked")));
+  EXPECT_GT(none, 0);
+  // The options are not ignored: without the yaw the antenna stands east of
+  // the canyon, and a 9 dB cap drops paths of more than 3 reflections.
+  std::vector<std::string> no_yaw = opts;
+  no_yaw[3] = "0";
+  EXPECT_NE(sky_classes(at, opts), sky_classes(at, no_yaw));
+  std::vector<std::string> no_cap = opts;
+  no_cap[5] = "1000";
+  EXPECT_NE(sky_classes(at, opts), sky_classes(at, no_cap));
+  const test::CliResult bad = run([&] {
+    auto a = sky_args(at, kScenes + "street_canyon.toml");
+    a.insert(a.end(), {"--up-axis", "x"});
+    return a;
+  }());
+  EXPECT_NE(bad.status, 0);
+}
+
+TEST(BatchScene, ExcludedSatellitesDropFromGsa) {
+  // Default receiver (residual test + fault exclusion) in the canyon: GSA
+  // lists exactly the satellites used, fewer than tracked when some were
+  // excluded.
+  TempDir dir;
+  const std::string cfg = dir.write(
+      "c.toml", test::config_text(nav_path("brdc0010.22n"), "[scene]\nmesh = \"" + kScenes + "street_canyon.toml\"\n"));
+  const std::string truth = dir.write("t.csv", canyon_truth(100));
+  const test::CliResult r =
+      run({"batch", "--config", cfg, "--truth", truth, "--errors", dir.file("e.csv"), "--nmea", dir.file("o.nmea")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Csv e = parse_csv(read_file(dir.file("e.csv")));
+  std::vector<int> gsa_used;
+  std::istringstream nmea(read_file(dir.file("o.nmea")));
+  for (std::string line; std::getline(nmea, line);) {
+    if (line.size() < 6 || line.substr(3, 3) != "GSA") continue;
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+    int n = 0;
+    for (std::size_t i = 3; i < 15 && i < f.size(); ++i) n += !f[i].empty();
+    gsa_used.push_back(n);
+  }
+  ASSERT_EQ(gsa_used.size(), e.rows.size());
+  int excluded_epochs = 0;
+  for (std::size_t i = 0; i < e.rows.size(); ++i) {
+    if (e.cell(i, "e_m").empty()) continue;
+    EXPECT_EQ(gsa_used[i], std::min(12, static_cast<int>(e.num(i, "nsat")))) << i;
+    excluded_epochs += e.num(i, "nsat") < e.num(i, "ntracked");
+  }
+  EXPECT_GT(excluded_epochs, 0);
+}
+
+TEST(BenchMultipath, MeanP95AndMaxComeFromTheSameMedianRepeat) {
+  EXPECT_EQ(median_repeat({5.0, 1.0, 3.0}), 2u);
+  EXPECT_EQ(median_repeat({4.0, 2.0}), 1u);  // lower median
+  EXPECT_EQ(median_repeat({7.0}), 0u);
+  const test::CliResult r =
+      run({"bench", "multipath", "--scene", kScenes + "street_canyon.toml", "--origin", "48.8738,2.2950,100",
+           "--nav", nav_path("brdc0010.22n"), "--week", "2190", "--tow", "561600", "--path=3,-100,3,100", "--speed",
+           "20", "--repeats", "3", "--reference-rays", "8192", "--settings", "128,0,16,0,0,0,256,4,2,1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("of 3 repeat(s) per setting the median one by mean gives mean, p95 and max"),
+            std::string::npos)
+      << r.err;
+  const Csv c = parse_csv(r.out);
+  ASSERT_EQ(c.rows.size(), 2u);
+  EXPECT_EQ(c.num(0, "azimuth_rays"), 128.0);
+  EXPECT_EQ(c.num(1, "rays"), 256.0);
+  EXPECT_EQ(c.num(1, "max_bounces"), 4.0);
+  EXPECT_EQ(c.num(1, "reuse_m"), 2.0);
+  for (std::size_t i = 0; i < 2; ++i) {
+    // One repeat's figures: its mean cannot exceed its own max.
+    EXPECT_LE(c.num(i, "us_per_epoch_mean"), c.num(i, "us_per_epoch_max") + 0.05);
+    EXPECT_LE(c.num(i, "us_per_epoch_p95"), c.num(i, "us_per_epoch_max"));
+  }
+  const test::CliResult bad = run({"bench", "multipath", "--scene", kScenes + "street_canyon.toml", "--origin",
+                                   "48.8738,2.2950,100", "--nav", nav_path("brdc0010.22n"), "--path=3,-100,3,100",
+                                   "--settings", "128,0,16"});
+  EXPECT_EQ(bad.status, kExitBadInput);
+  EXPECT_NE(bad.err.find("groups of 5"), std::string::npos) << bad.err;
 }
 
 TEST(BenchMultipath, PrintsTheSweep) {

@@ -57,11 +57,15 @@ TEST(Spp, Nya1AllEpochsNearTheStation) {
 }
 
 TEST(Spp, LarmWithBrdcSmokeTest) {
-  // With the default sigma model (a = 1.2 m) the chi-square test rejects
-  // these epochs (brdc residuals of 2-3 m); without the test they solve.
-  const CliResult strict = run({"spp", "--obs", obs_path("LARM0010.22O"), "--nav", nav_path("brdc0010.22n")});
+  // With the default sigma model (a = 1.2 m) the chi-square test failed the
+  // first (cold, uncorrected) solution of these epochs (brdc residuals of
+  // 2-3 m), so spp had no fix; fault exclusion now rescues that first
+  // solution and the refined passes keep >= 5 satellites and metre errors.
+  const CliResult strict = run({"spp", "--obs", obs_path("LARM0010.22O"), "--nav", nav_path("brdc0010.22n"),
+                                "--station", "4549397.1706,1874003.1392,4045167.6109"});
   ASSERT_EQ(strict.status, 0) << strict.err;
-  EXPECT_NE(strict.err.find("4 epochs, 0 with a fix"), std::string::npos) << strict.err;
+  EXPECT_NE(strict.err.find("4 epochs, 4 with a fix"), std::string::npos) << strict.err;
+  const Csv sc = parse_csv(strict.out);
   TempDir dir;
   const std::string cfg =
       dir.write("no_test.toml", config_text(nav_path("brdc0010.22n"), "[receiver.solver]\nresidual_test_pfa = 0.0\n"));
@@ -70,9 +74,14 @@ TEST(Spp, LarmWithBrdcSmokeTest) {
   ASSERT_EQ(r.status, 0) << r.err;
   const Csv csv = parse_csv(r.out);
   ASSERT_EQ(csv.rows.size(), 4u);
+  ASSERT_EQ(sc.rows.size(), 4u);
   for (std::size_t i = 0; i < 4; ++i) {
     EXPECT_LT(std::hypot(csv.num(i, "e_m"), csv.num(i, "n_m")), 3.0);
     EXPECT_LT(std::fabs(csv.num(i, "u_m")), 5.0);
+    EXPECT_LE(sc.num(i, "nsat"), csv.num(i, "nsat"));
+    EXPECT_GE(sc.num(i, "nsat"), 5.0);
+    EXPECT_LT(std::hypot(sc.num(i, "e_m"), sc.num(i, "n_m")), 3.0);
+    EXPECT_LT(std::fabs(sc.num(i, "u_m")), 5.0);
   }
 }
 

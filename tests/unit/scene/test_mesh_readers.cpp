@@ -161,9 +161,9 @@ TEST(PlyReader, ErrorsNameFileAndLine) {
   }, {"nz.ply:3:", "x, y and z"});
 }
 
-TEST(PlyReader, SharedStreetCanyonIfPresent) {
-  const std::string dir = std::string(GNSSEMU_SOURCE_DIR) + "/../shared/data/scenes/simple_street_canyon";
-  if (!std::filesystem::exists(dir + "/meshes/building_1.ply")) GTEST_SKIP() << "shared data not present: " << dir;
+TEST(PlyReader, SionnaStreetCanyon) {
+  // Copied from ../shared/data (Apache-2.0): always present, never skipped.
+  const std::string dir = std::string(GNSSEMU_TEST_DATA) + "/scenes/simple_street_canyon";
   const Mesh m = load_mesh(dir + "/meshes/building_1.ply");
   EXPECT_EQ(m.triangles.size(), 12u);
   EXPECT_EQ(m.stats.skipped(), 0);
@@ -204,6 +204,56 @@ TEST(Footprints, ErrorsNameFileAndLine) {
   }, {"f4.toml:2:", "self-intersecting"});
   expect_error([] { load_mesh(temp_file("f5.toml", "[[building]]\nfootprint = [[0,0],[1,0],[0,\n")); },
                {"f5.toml:", "TOML syntax"});
+}
+
+TEST(Footprints, RepeatedPointIsDroppedNotSelfIntersecting) {
+  // A point entered twice (consecutively, or closing the ring) adds no edge.
+  const Mesh m = load_mesh(temp_file(
+      "dup.toml", "[[building]]\nfootprint = [[0,0],[10,0],[10,0],[10,20],[0,20],[0,0]]\nheight_m = 5\n"));
+  EXPECT_EQ(m.triangles.size(), 12u);  // 4 walls + roof + floor
+  EXPECT_EQ(m.stats.skipped(), 0);
+  expect_error([] { load_mesh(temp_file("dup2.toml", "[[building]]\nfootprint = [[0,0],[1,0],[1,0],[0,0]]\nheight_m = 5\n")); },
+               {"dup2.toml:2:", "at least 3 distinct points"});
+}
+
+TEST(MeshLoad, NoTrianglesIsAnErrorNamingTheFile) {
+  std::string garbage(4096, '\0');
+  for (std::size_t i = 0; i < garbage.size(); ++i) garbage[i] = static_cast<char>((i * 131 + 7) % 256);
+  expect_error([&] { load_mesh(temp_file("garbage.obj", garbage)); }, {"garbage.obj", "no triangles"});
+  expect_error([] { load_mesh(std::string(GNSSEMU_TEST_DATA) + "/scenes/empty.obj"); }, {"empty.obj", "no triangles"});
+  // Every face skipped: the count and the first problem are in the message.
+  expect_error([] { load_mesh(temp_file("allbad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n")); },
+               {"allbad.obj", "no triangles", "allbad.obj:3:", "does not exist"});
+}
+
+TEST(MeshLoad, CoordinatesBeyondFloat32RangeAreRejected) {
+  expect_error([] { load_mesh(temp_file("far.obj", "v 0 0 0\nv 1 0 0\nv 4200000 0 0\nf 1 2 3\n")); },
+               {"far.obj:3:", "beyond 1e6 m"});
+  // After placement: an in-range model scaled out of range.
+  Placement p;
+  p.scale = 1000.0;
+  expect_error([&] { load_mesh(temp_file("scaled.obj", "v 0 0 0\nv 1 0 0\nv 2000 0 0\nf 1 2 3\n"), p); },
+               {"scaled.obj:3:", "after placement"});
+  expect_error([] {
+    load_mesh(temp_file("far.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+                                   "property float z\nend_header\n6378137 0 0\n"));
+  }, {"far.ply:8:", "beyond 1e6 m"});
+  EXPECT_EQ(load_mesh(temp_file("near.obj", "v 999999 0 0\nv 999999 1 0\nv 999998 0 5\nf 1 2 3\n")).triangles.size(), 1u);
+}
+
+TEST(PlyReader, HugeOrFractionalIndexAndBadCountAreErrors) {
+  const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                           "property float z\nelement face 1\nproperty list uchar float vertex_indices\nend_header\n"
+                           "0 0 0\n1 0 0\n0 1 0\n";
+  EXPECT_EQ(load_mesh(temp_file("fi.ply", head + "3 0 1 2\n")).triangles.size(), 1u);
+  expect_error([&] { load_mesh(temp_file("big.ply", head + "3 0 1 1e19\n")); }, {"big.ply:13:", "1e+19", "not an integer"});
+  expect_error([&] { load_mesh(temp_file("frac.ply", head + "3 0 1 1.5\n")); }, {"frac.ply:13:", "not an integer"});
+  expect_error([] {
+    load_mesh(temp_file("cnt.ply", "ply\nformat ascii 1.0\nelement vertex 1e10\nproperty float x\nend_header\n"));
+  }, {"cnt.ply:3:", "1e10", "non-negative integer"});
+  expect_error([] {
+    load_mesh(temp_file("cnt2.ply", "ply\nformat ascii 1.0\nelement vertex 99999999999\nproperty float x\nend_header\n"));
+  }, {"cnt2.ply:3:", "larger than"});
 }
 
 }  // namespace

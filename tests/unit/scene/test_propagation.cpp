@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/common/error.hpp"
+#include "core/scene/mesh.hpp"
 #include "core/scene/propagator.hpp"
 #include "core/scene/scene.hpp"
 #include "scene_test_util.hpp"
@@ -63,6 +64,80 @@ TEST(Propagation, OneInfiniteWallMatchesClosedForm) {
   EXPECT_EQ(los.kind, PathKind::kLos);
   EXPECT_EQ(los.extra_delay_m, 0.0);
   EXPECT_EQ(los.loss_db, 0.0);
+  }
+}
+
+// Ground plane and a wall floating above it (z in [7, 100] m) 20 m north:
+// the direct ray to a satellite north at 20 deg meets the wall at 8.78 m;
+// the ground reflection, unfolded from the image antenna at -h, passes at
+// 5.78 m, under the wall. It arrives from -20 deg, so it exists only when
+// min_arrival_el allows it; its extra path is 2 h sin(el). The elevation
+// cone must launch the mirrored (downward) cone too.
+TEST(Propagation, GroundReflectionUnderAFloatingWallConeAndHemisphere) {
+  const double h_m = 1.5, el = 20.0;
+  MeshBuilder b("ground_wall", {});
+  test::add_quad(b, {-kFar, -kFar, 0.0}, {kFar, -kFar, 0.0}, {kFar, kFar, 0.0}, {-kFar, kFar, 0.0});
+  add_wall_y(b, 20.0, -kFar, kFar, 7.0, 100.0);
+  const Mesh mesh = std::move(b).finish();
+  const Scene scene(mesh);
+  ASSERT_TRUE(scene.vertical_horizontal());
+  const Enu rx(0.0, 0.0, h_m);
+  for (const int azimuth_rays : {128, 0}) {
+    SearchConfig cfg;
+    cfg.azimuth_rays = azimuth_rays;
+    cfg.min_arrival_el_rad = -30.0 * kDegToRad;
+    Propagator prop(scene, cfg);
+    const SatPath p = one(prop, rx, direction(0.0, el));
+    ASSERT_EQ(p.kind, PathKind::kNlos) << "azimuth_rays " << azimuth_rays;
+    EXPECT_EQ(p.bounces, 1);
+    EXPECT_NEAR(p.extra_delay_m, 2.0 * h_m * std::sin(el * kDegToRad), 1e-4);
+    EXPECT_NEAR(p.arrival_dir.z, -std::sin(el * kDegToRad), 1e-9);
+    // The default antenna mask (0 deg) rejects the arrival from below.
+    SearchConfig masked = cfg;
+    masked.min_arrival_el_rad = 0.0;
+    Propagator prop0(scene, masked);
+    EXPECT_EQ(one(prop0, rx, direction(0.0, el)).kind, PathKind::kNone) << "azimuth_rays " << azimuth_rays;
+  }
+}
+
+// Sionna's simple_street_canyon (Apache-2.0, tests/data/scenes): an
+// east-west street between 50.94 m towers (wood south, marble north at
+// x in [-15, 16]). From the street centre a satellite due south at 30 deg
+// is blocked; a N-S ray climbs tan(30) per metre, so the first path over
+// the south tower is 5 bounces (N, S, N, S, N): unfolded, the antenna's
+// image is at y5 = 6a + 4b (a, b: distances to the north and south
+// facades) and the extra path is cos(el) y5; 5 x 3 dB. At 15 deg it takes
+// 10 bounces starting south (image at 10 (a + b); 30 dB): not received
+// under the 21 dB default cap.
+TEST(Propagation, SionnaSimpleStreetCanyonDeepPathsClosedForm) {
+  const Mesh mesh = load_mesh(std::string(GNSSEMU_TEST_DATA) + "/scenes/simple_street_canyon/simple_street_canyon.obj");
+  EXPECT_EQ(mesh.triangles.size(), 74u);
+  const Scene scene(mesh);
+  ASSERT_TRUE(scene.vertical_horizontal());
+  const Enu rx(0.0, 0.0, 1.5);
+  const double a = scene.intersect(Ray{rx, Vec3(0.0, 1.0, 0.0), 0.0, 1e30}).t_m;
+  const double b = scene.intersect(Ray{rx, Vec3(0.0, -1.0, 0.0), 0.0, 1e30}).t_m;
+  ASSERT_NEAR(a, 9.57, 0.05);
+  ASSERT_NEAR(b, 8.61, 0.05);
+  for (const int azimuth_rays : {128, 0}) {
+    SearchConfig cfg;
+    cfg.azimuth_rays = azimuth_rays;
+    cfg.rays = 4096;
+    Propagator prop(scene, cfg);
+    const SatPath p = one(prop, rx, direction(180.0, 30.0));
+    ASSERT_EQ(p.kind, PathKind::kNlos) << azimuth_rays;
+    EXPECT_EQ(p.bounces, 5);
+    EXPECT_NEAR(p.extra_delay_m, std::cos(30.0 * kDegToRad) * (6.0 * a + 4.0 * b), 1e-3);
+    EXPECT_DOUBLE_EQ(p.loss_db, 15.0);
+    EXPECT_EQ(one(prop, rx, direction(180.0, 85.0)).kind, PathKind::kLos);
+    EXPECT_EQ(one(prop, rx, direction(180.0, 15.0)).kind, PathKind::kNone);
+    cfg.max_loss_db = 1000.0;
+    Propagator uncapped(scene, cfg);
+    const SatPath deep = one(uncapped, rx, direction(180.0, 15.0));
+    ASSERT_EQ(deep.kind, PathKind::kNlos) << azimuth_rays;
+    EXPECT_EQ(deep.bounces, 10);
+    EXPECT_NEAR(deep.extra_delay_m, std::cos(15.0 * kDegToRad) * 10.0 * (a + b), 1e-3);
+    EXPECT_DOUBLE_EQ(deep.loss_db, 30.0);
   }
 }
 
