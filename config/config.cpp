@@ -151,6 +151,7 @@ void read_solver(TableReader& t, receiver::SolverConfig& s) {
       t.number("sigma_range_rate_m_s", s.sigma_range_rate_m_s, Range{0.0, 10.0, "m/s", true});
   s.height_hold_sigma_m = t.number("height_hold_sigma_m", s.height_hold_sigma_m, Range{0.0, 1000.0, "m", true});
   s.residual_test_pfa = t.number("residual_test_pfa", s.residual_test_pfa, Range{0.0, 1.0, "", false, true});
+  s.max_exclusions = static_cast<int>(t.integer("max_exclusions", s.max_exclusions, 0, 32));
   s.max_iterations = static_cast<int>(t.integer("max_iterations", s.max_iterations, 1, 100));
   t.finish();
 }

@@ -212,6 +212,7 @@ std::string to_toml(const Config& c, const std::string& relative_to) {
   o += "sigma_range_rate_m_s = " + number(r.solver.sigma_range_rate_m_s) + "\n";
   o += "height_hold_sigma_m = " + number(r.solver.height_hold_sigma_m) + "\n";
   o += "residual_test_pfa = " + number(r.solver.residual_test_pfa) + "\n";
+  o += "max_exclusions = " + std::to_string(r.solver.max_exclusions) + "\n";
   o += "max_iterations = " + std::to_string(r.solver.max_iterations) + "\n";
   o += detail::corrections_toml(r.solver, number);
   o += detail::atmosphere_toml(r, number);

@@ -77,6 +77,7 @@ void validate(const ReceiverConfig& c) {
   check(std::isfinite(s.height_hold_sigma_m) && s.height_hold_sigma_m > 0.0,
         "solver.height_hold_sigma_m must be > 0");
   check(s.residual_test_pfa >= 0.0 && s.residual_test_pfa < 0.5, "solver.residual_test_pfa must be in [0, 0.5)");
+  check(s.max_exclusions >= 0 && s.max_exclusions <= kMaxGpsPrn, "solver.max_exclusions must be in [0, 32]");
   check(s.max_iterations >= 1 && s.max_iterations <= 100, "solver.max_iterations must be in [1, 100]");
   check(std::isfinite(s.sigma_c_m_sqrt_hz) && s.sigma_c_m_sqrt_hz >= 0.0, "solver.sigma_c_m_sqrt_hz must be >= 0");
   const AtmosphereConfig& a = c.atmosphere;

@@ -86,6 +86,11 @@ struct SolverConfig {
   /// (fails -> the worst satellite is excluded and the epoch re-solved while
   /// >= 5 remain, else no fix; docs/models.md); 0 disables the test.
   double residual_test_pfa = 1.0e-3;
+  /// Satellites fault exclusion may remove in one epoch before the epoch is
+  /// given up: 1 is RAIM's single-fault assumption (RTCA DO-229, RTKLIB
+  /// raim_fde); more lets a canyon with several NLOS satellites keep a fix,
+  /// and lets a storm that biases every satellite keep a wrong one. 0: none.
+  int max_exclusions = 1;
   int max_iterations = 15;             ///< Gauss–Newton iterations at most
 };
 

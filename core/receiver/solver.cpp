@@ -247,7 +247,9 @@ void Solver::solve(const SolverInput& in, SolverOutput& out) noexcept {
   for (int i = 0; i < kMaxGpsPrn; ++i) idx[i] = i;
   const SolverInput* cur = &in;
   Outcome o = solve_all(*cur, out);
-  while (o == Outcome::kResidualTestFailed && n_ - 1 >= kMinSatsAfterExclusion) {
+  int exclusions = 0;
+  while (o == Outcome::kResidualTestFailed && n_ - 1 >= kMinSatsAfterExclusion &&
+         exclusions++ < cfg_.max_exclusions) {
     const int worst = worst_residual(out);
     if (cur != &subset_) {
       subset_ = in;

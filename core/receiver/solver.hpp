@@ -68,8 +68,9 @@ public:
   Solver(const SolverConfig& cfg, double max_pdop) noexcept;
 
   /// Solves, then runs fault detection and exclusion (RAIM-style): while the
-  /// chi-square residual test fails and at least kMinSatsAfterExclusion
-  /// satellites would remain, the satellite with the largest normalised
+  /// chi-square residual test fails, at least kMinSatsAfterExclusion
+  /// satellites would remain and fewer than cfg.max_exclusions have been
+  /// excluded, the satellite with the largest normalised
   /// residual |v_i| / sqrt(sigma_i^2 (1 - h_ii)) is excluded and the epoch
   /// re-solved; if the test still fails, no fix.
   void solve(const SolverInput& in, SolverOutput& out) noexcept;

@@ -256,12 +256,13 @@ TEST(SkyScene, PlacementAndSearchOptionsMirrorTheConfig) {
 }
 
 TEST(BatchScene, ExcludedSatellitesDropFromGsa) {
-  // Default receiver (residual test + fault exclusion) in the canyon: GSA
-  // lists exactly the satellites used, fewer than tracked when some were
-  // excluded.
+  // Receiver with the residual test and fault exclusion in the canyon (up to
+  // 4 exclusions: the canyon often has several NLOS satellites): GSA lists
+  // exactly the satellites used, fewer than tracked when some were excluded.
   TempDir dir;
   const std::string cfg = dir.write(
-      "c.toml", test::config_text(nav_path("brdc0010.22n"), "[scene]\nmesh = \"" + kScenes + "street_canyon.toml\"\n"));
+      "c.toml", test::config_text(nav_path("brdc0010.22n"), "[receiver.solver]\nmax_exclusions = 4\n\n[scene]\nmesh = \"" +
+                                                                kScenes + "street_canyon.toml\"\n"));
   const std::string truth = dir.write("t.csv", canyon_truth(100));
   const test::CliResult r =
       run({"batch", "--config", cfg, "--truth", truth, "--errors", dir.file("e.csv"), "--nmea", dir.file("o.nmea")});

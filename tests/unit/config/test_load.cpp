@@ -50,6 +50,9 @@ void expect_same(const Config& a, const Config& b) {
   EXPECT_EQ(ra.clock.drift_noise_s_s_sqrt_s, rb.clock.drift_noise_s_s_sqrt_s);
   EXPECT_EQ(ra.clock.jump_threshold_s, rb.clock.jump_threshold_s);
   EXPECT_EQ(ra.solver.sigma_a_m, rb.solver.sigma_a_m);
+  EXPECT_EQ(ra.solver.max_exclusions, rb.solver.max_exclusions);
+  EXPECT_EQ(ra.solver.iono_model_fraction, rb.solver.iono_model_fraction);
+  EXPECT_EQ(ra.solver.tropo_model_sigma_m, rb.solver.tropo_model_sigma_m);
   EXPECT_EQ(ra.solver.sigma_b_m, rb.solver.sigma_b_m);
   EXPECT_EQ(ra.solver.sigma_range_rate_m_s, rb.solver.sigma_range_rate_m_s);
   EXPECT_EQ(ra.solver.height_hold_sigma_m, rb.solver.height_hold_sigma_m);
@@ -153,6 +156,9 @@ sigma_b_m = 0.45
 sigma_range_rate_m_s = 0.08
 height_hold_sigma_m = 2.5
 residual_test_pfa = 0
+max_exclusions = 3
+iono_model_fraction = 0.5
+tropo_model_sigma_m = 0.3
 max_iterations = 8
 
 [truth]
@@ -229,6 +235,9 @@ TEST(ConfigLoad, EveryFieldParsed) {
   EXPECT_EQ(r.solver.sigma_range_rate_m_s, 0.08);
   EXPECT_EQ(r.solver.height_hold_sigma_m, 2.5);
   EXPECT_EQ(r.solver.residual_test_pfa, 0.0);
+  EXPECT_EQ(r.solver.max_exclusions, 3);
+  EXPECT_EQ(r.solver.iono_model_fraction, 0.5);
+  EXPECT_EQ(r.solver.tropo_model_sigma_m, 0.3);
   EXPECT_EQ(r.solver.max_iterations, 8);
   EXPECT_EQ(c.truth.bind_address, "0.0.0.0");
   EXPECT_EQ(c.truth.port, 6001);

@@ -103,9 +103,31 @@ TEST(SolverFde, OneNlosBiasedSatelliteAmongNineIsExcluded) {
   EXPECT_GT((out.pos_m - sky.truth).norm(), 10.0);
 }
 
-TEST(SolverFde, TwoBiasedSatellitesAreBothExcluded) {
+TEST(SolverFde, SingleFaultByDefaultTwoBiasedSatellitesGiveNoFix) {
+  // RAIM's single-fault assumption: one exclusion cannot make the set consistent.
   const Sky sky(kNine);
   Solver s(plain_solver(), 20.0);
+  SolverOutput out;
+  std::vector<double> bias(9, 0.0);
+  bias[1] = 60.0;
+  bias[7] = 45.0;
+  s.solve(sky.input(bias), out);
+  EXPECT_EQ(out.type, FixType::kNone);
+  EXPECT_EQ(out.num_used, 0);
+  // Detection only: not even the one.
+  SolverConfig none = plain_solver();
+  none.max_exclusions = 0;
+  Solver d(none, 20.0);
+  bias[7] = 0.0;
+  d.solve(sky.input(bias), out);
+  EXPECT_EQ(out.type, FixType::kNone);
+}
+
+TEST(SolverFde, TwoBiasedSatellitesAreBothExcludedWhenTwoAreAllowed) {
+  const Sky sky(kNine);
+  SolverConfig two = plain_solver();
+  two.max_exclusions = 2;
+  Solver s(two, 20.0);
   SolverOutput out;
   std::vector<double> bias(9, 0.0);
   bias[1] = 60.0;
