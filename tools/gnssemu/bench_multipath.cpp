@@ -254,7 +254,15 @@ void run_bench_multipath(const BenchMultipathArgs& a, std::ostream& out, std::os
   out << "azimuth_rays,rays,max_bounces,reuse_m,reuse_deg,us_per_epoch_mean,us_per_epoch_p95,us_per_epoch_max,rays_per_epoch,"
          "misclassified,misclassified_pct,nlos_delay_err_rms_m,nlos_delay_err_max_m,pos_err_rms_m,pos_err_max_m\n";
   for (const Setting& st : sweep) {
-    if (st.azimuth_rays > 0 && !buildings.vertical_horizontal()) continue;  // cone search not applicable
+    if (st.azimuth_rays > 0 && !buildings.vertical_horizontal()) {
+      // Cone search needs vertical/horizontal faces; the receiver uses the hemisphere here too.
+      if (!a.settings.empty()) {
+        err << fmt::format("setting {},{},{},{},{} skipped: the scene has slanted faces, so the cone search does "
+                           "not apply (use azimuth_rays 0)\n",
+                           st.azimuth_rays, st.rays, st.bounces, st.reuse_m, st.reuse_deg);
+      }
+      continue;
+    }
     scene::SearchConfig cfg;
     cfg.azimuth_rays = st.azimuth_rays;
     cfg.max_loss_db = a.max_loss_db;
