@@ -97,6 +97,9 @@ void Daemon::on_receiver_reset(std::size_t src, const protocol::ubx::ResetReques
   const char* kind = reset.nav_bbr_mask == 0 ? "hot" : reset.nav_bbr_mask == 0xFFFF ? "cold" : "warm";
   spdlog::info("output {}: CFG-RST {} start: the receiver restarts and reacquires", cfg_.outputs[src].name, kind);
   restart_receiver();
+  // One chip: every port's NAV-STATUS counts uptime and ttff from the reset.
+  for (std::size_t i = 0; i < channels_.size(); ++i)
+    if (i != src) channels_[i]->navigation_restarted();
 }
 
 Daemon::~Daemon() { shutdown(); }

@@ -135,9 +135,16 @@ void PortChannel::use_idle_timer(boost::asio::io_context& io) {
 
 void PortChannel::arm_idle_timer(double delay_s) {
   if (!idle_timer_) return;
-  idle_timer_->expires_after(std::chrono::nanoseconds(std::llround(delay_s * 1e9)));
+  const auto due = std::chrono::steady_clock::now() + std::chrono::nanoseconds(std::llround(delay_s * 1e9));
+  // One timer for every source: a busy source must not push back the check
+  // another, quiet one is waiting for.
+  if (idle_armed_ && idle_timer_->expiry() <= due) return;
+  idle_armed_ = true;
+  idle_timer_->expires_at(due);
   idle_timer_->async_wait([this](const boost::system::error_code& ec) {
-    if (!ec) check_idle();
+    if (ec) return;  // re-armed earlier, or shut down
+    idle_armed_ = false;
+    check_idle();
   });
 }
 
@@ -190,14 +197,16 @@ void PortChannel::handle_result(int source, const ubx::ResponderResult& r) {
     }
   }
   if (r.reset.requested) {
-    spdlog::info("output {}: host sent CFG-RST (navBbrMask 0x{:04x}, resetMode {}): uptime restarts{}", cfg_.name,
-                 r.reset.nav_bbr_mask, r.reset.reset_mode,
+    // GNSS stop (8) keeps navigating (daemon.cpp): uptime and ttff stay.
+    const bool restart = r.reset.reset_mode != 8;
+    spdlog::info("output {}: host sent CFG-RST (navBbrMask 0x{:04x}, resetMode {}){}{}", cfg_.name,
+                 r.reset.nav_bbr_mask, r.reset.reset_mode, restart ? ": uptime restarts" : "",
                  r.reset.reset_mode == 0 || r.reset.reset_mode == 1 || r.reset.reset_mode == 4
                      ? ", saved configuration loaded"
                      : "");
     // The receiver restarts: uptime (msss) and time to first fix count from
     // now; whatever arrived before the reset is gone.
-    uptime_origin_s_ = clock_();
+    if (restart) uptime_origin_s_ = clock_();
     reset_after_feed_ = true;
   }
   const uint32_t baud = r.new_baud_bps[kWiredPort];
@@ -205,8 +214,8 @@ void PortChannel::handle_result(int source, const ubx::ResponderResult& r) {
     spdlog::info("output {}: host set {} baud (was {}){}", cfg_.name, baud, port_->baud(),
                  line_ ? "; switching after the transmit buffer drains" : " (recorded; no line on this port)");
     port_->set_baud_after_drain(baud);
-    reset_after_feed_ = true;  // bytes after the switch arrive at the new rate
     if (line_) {
+      reset_after_feed_ = true;  // bytes after the switch arrive at the new rate
       budget_.set_baud(baud, clock_());
       warned_ = false;  // new figures deserve a new warning
     }
@@ -224,6 +233,11 @@ void PortChannel::handle_result(int source, const ubx::ResponderResult& r) {
   if (r.rates_changed || r.ports_changed) {
     spdlog::debug("output {}: host changed the output: now {}", cfg_.name, output_summary());
   }
+}
+
+void PortChannel::navigation_restarted() noexcept {
+  uptime_origin_s_ = clock_();
+  responder_.navigation_restarted();
 }
 
 void PortChannel::send_reply(int source) noexcept {

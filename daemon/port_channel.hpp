@@ -74,6 +74,9 @@ public:
   /// uptime (NAV-STATUS msss) and the time to first fix count from it, and
   /// from every CFG-RST.
   void set_power_on(double clock_s) noexcept { uptime_origin_s_ = clock_s; }
+  /// The shared receiver restarted (a CFG-RST on another port of the same
+  /// chip): uptime and time to first fix count from now here too.
+  void navigation_restarted() noexcept;
 
   /// One navigation epoch: messages due on this port, through the TX budget,
   /// written as one block. No allocation after the first epochs.
@@ -124,6 +127,7 @@ private:
   NavPeriodHandler on_nav_period_;
   ResetHandler on_reset_;
   std::unique_ptr<boost::asio::steady_timer> idle_timer_;
+  bool idle_armed_ = false;  ///< idle_timer_ has a wait pending
   double uptime_origin_s_ = 0.0;  ///< power-on or the last CFG-RST, clock s
   // Set while a decoder is feeding the responder: the decoder must not be
   // reset or destroyed under it, so those wait until feed() returns.

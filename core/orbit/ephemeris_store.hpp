@@ -11,9 +11,10 @@
 //  - among the remaining sets whose validity window covers t
 //    (|t - toe| <= validity_half_window_s()), the nearest toe wins; at equal
 //    distance the later toe wins (the newer upload);
-//  - if that set is unhealthy (health != 0) the satellite is not used: a
-//    receiver follows the current broadcast and does not fall back to an
-//    older healthy set.
+//  - if that set is unhealthy (health != 0) the satellite is not used, and
+//    an older healthy set is not used in its place. The choice is by toe,
+//    not by transmission time: a set whose toe is nearer decides even in the
+//    hour before it is broadcast (RINEX files hold the whole day).
 #include <array>
 #include <vector>
 

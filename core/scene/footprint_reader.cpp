@@ -141,9 +141,9 @@ void add_building(MeshBuilder& b, const toml::table& t, const std::string& path,
   if (!triangulate(poly, tris)) throw Error(path, line_of(*fp), where + ".footprint: self-intersecting polygon");
   const uint32_t v0 = b.vertex_count();
   const auto m = static_cast<uint32_t>(poly.size());
-  for (const P2& p : poly) b.add_vertex(p.e, p.n, base);
-  for (const P2& p : poly) b.add_vertex(p.e, p.n, base + height);
   const int line = line_of(t);
+  for (const P2& p : poly) b.add_vertex(p.e, p.n, base, line_of(*fp));
+  for (const P2& p : poly) b.add_vertex(p.e, p.n, base + height, line_of(*fp));
   for (uint32_t i = 0; i < m; ++i) {
     const uint32_t j = (i + 1) % m;
     const uint32_t quad[4] = {v0 + i, v0 + j, v0 + m + j, v0 + m + i};  // outward for CCW footprints
@@ -177,10 +177,11 @@ Mesh read_footprints(const std::string& path, const Placement& placement) {
     const double z = number(*t, "height_m", 0.0, path, "ground", false);
     b.set_material(text(*t, "material", path, "ground"));
     const uint32_t v0 = b.vertex_count();
-    b.add_vertex(-h, -h, z);
-    b.add_vertex(h, -h, z);
-    b.add_vertex(h, h, z);
-    b.add_vertex(-h, h, z);
+    const int line = line_of(*t);
+    b.add_vertex(-h, -h, z, line);
+    b.add_vertex(h, -h, z, line);
+    b.add_vertex(h, h, z, line);
+    b.add_vertex(-h, h, z, line);
     const uint32_t quad[4] = {v0, v0 + 1, v0 + 2, v0 + 3};
     b.add_face(quad, 4, line_of(*t));
   }

@@ -31,7 +31,7 @@ Cases (each bounded, every process killed and the temp dir removed on exit):
              carries at most baud/10 bytes/s, messages dropped, one warning
   jamming    MON-HW noisePerMS / agcCnt / jamInd with [signal] noise_rise_db
              30 dB differ from the quiet (1 dB) daemon as docs/ubx.md maps
-             them; SKIP (77) while Fix::noise_rise_db is not set by the receiver
+             them
 usage: ubx_ports_integration.py --gnssemud PATH --nav FILE CASE
 """
 import argparse
@@ -724,12 +724,6 @@ def case_jamming(rig):
     quiet = mon_hw_poll(rig, "[signal]\nnoise_rise_db = 1.0\n")
     jammed = mon_hw_poll(rig, "[signal]\nnoise_rise_db = 30.0\n")
     print(f"  jamming: quiet noisePerMS/agcCnt/jamInd {quiet}, 30 dB rise {jammed}")
-    if jammed == quiet and quiet == (85, 4890, 12):
-        # Both equal the encoder's mapping of Fix::noise_rise_db's default
-        # (1 dB): core/receiver does not set Fix::noise_rise_db from
-        # [signal] yet (pending change in core/receiver/receiver.cpp). Skip
-        # until it does; once it lands this case must pass, not skip.
-        raise Skip("Fix::noise_rise_db stays at its 1 dB default: the receiver does not set it yet")
     assert jammed[0] > quiet[0], f"noisePerMS {jammed[0]} not above quiet {quiet[0]}"
     assert jammed[1] < quiet[1], f"agcCnt {jammed[1]} not below quiet {quiet[1]}"
     assert jammed[2] > quiet[2], f"jamInd {jammed[2]} not above quiet {quiet[2]}"

@@ -374,10 +374,7 @@ ResponderResult ConfigResponder::handle_ubx(std::uint8_t port_id, const FrameVie
         // A hardware or software reset reboots the chip: RAM configuration is
         // lost and the saved one loaded. GNSS-only resets keep it.
         if (m == 0 || m == 1 || m == 4) current_ = saved_;
-        if (m != 8) {
-          have_fix_once_ = false;
-          info_.ttff_ms = 0;
-        }
+        if (m != 8) navigation_restarted();
       } else {
         ack(false);
       }

@@ -89,6 +89,12 @@ public:
   /// counts epochs for rates > 1. uptime_s: time since start-up or the last
   /// reset (monotonic, s), for NAV-STATUS msss and ttff.
   void on_epoch(const receiver::Fix& fix, double uptime_s) noexcept;
+  /// Navigation restarted (a reset on this or another port of the chip):
+  /// the next fix is a first fix again, its ttff measured anew.
+  void navigation_restarted() noexcept {
+    have_fix_once_ = false;
+    info_.ttff_ms = 0;
+  }
   /// Append the UBX messages due on port_id this epoch (rate divides the
   /// epoch count, UBX in outProtoMask), NAV in id order, MON-HW after, NAV-EOE
   /// last. Returns bytes. No allocation once out has capacity (+ kMaxEpochBytes).

@@ -348,6 +348,16 @@ TEST(PortChannel, BaudChangeAndReopenDropThePartialFrame) {
   EXPECT_EQ(r.port->replies.size(), 2u);
 }
 
+TEST(PortChannel, BaudRecordedOnALinelessPortKeepsAFrameSplitAcrossReads) {
+  // TCP: the baud is only recorded, no rate changes, so a frame TCP split
+  // across two reads after $PUBX,41 is still answered.
+  Rig r(port_cfg());
+  const std::string poll = frame(ubx::msg::kMonVer);
+  r.input(pubx41(38400) + poll.substr(0, 4));
+  r.input(poll.substr(4));
+  EXPECT_EQ(r.port->replies.size(), 1u);
+}
+
 TEST(PortChannel, UptimeAndTtffCountFromPowerOnAndFromCfgRst) {
   config::OutputPortConfig c = port_cfg();
   c.protocols_out = config::kProtoUbx;
@@ -393,6 +403,42 @@ TEST(PortChannel, UptimeAndTtffCountFromPowerOnAndFromCfgRst) {
   st = epoch_frame(*r.port, ubx::msg::kNavStatus);
   EXPECT_EQ(u32_at(st, 8), 1250u);  // ttff measured from the reset
   EXPECT_EQ(u32_at(st, 12), 1250u);
+}
+
+TEST(PortChannel, GnssStopKeepsUptimeAndAnotherPortsResetRestartsIt) {
+  config::OutputPortConfig c = port_cfg();
+  c.protocols_out = config::kProtoUbx;
+  c.ubx_messages = {{0x01, 0x03, 1}};  // NAV-STATUS
+  Rig r(c);  // powered on at clock 100 s
+  r.now = 100.35;
+  r.epoch(1000.35);
+  r.now = 105.0;
+  r.epoch(1005.0);
+  std::string st = epoch_frame(*r.port, ubx::msg::kNavStatus);
+  EXPECT_EQ(u32_at(st, 8), 350u);
+  EXPECT_EQ(u32_at(st, 12), 5000u);
+  // GNSS stop (resetMode 8): the receiver keeps navigating (daemon.cpp), so
+  // uptime and ttff go on; ttff never exceeds msss.
+  r.input(frame(ubx::msg::kCfgRst, {0, 0, 8, 0}));
+  r.now = 106.0;
+  r.epoch(1006.0);
+  st = epoch_frame(*r.port, ubx::msg::kNavStatus);
+  EXPECT_EQ(u32_at(st, 8), 350u);
+  EXPECT_EQ(u32_at(st, 12), 6000u);
+  // A CFG-RST on another port of the same chip restarted the receiver.
+  r.ch->navigation_restarted();
+  receiver::Fix none = good_fix(1006.2);
+  none.type = receiver::FixType::kNone;
+  r.now = 106.2;
+  r.ch->on_epoch(none);
+  st = epoch_frame(*r.port, ubx::msg::kNavStatus);
+  EXPECT_EQ(u32_at(st, 8), 0u);
+  EXPECT_EQ(u32_at(st, 12), 200u);
+  r.now = 107.0;
+  r.epoch(1007.0);
+  st = epoch_frame(*r.port, ubx::msg::kNavStatus);
+  EXPECT_EQ(u32_at(st, 8), 1000u);
+  EXPECT_EQ(u32_at(st, 12), 1000u);
 }
 
 TEST(PortChannel, BudgetWarnsOnceUntilTheBaudChanges) {

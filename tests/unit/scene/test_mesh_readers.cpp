@@ -239,6 +239,12 @@ TEST(MeshLoad, CoordinatesBeyondFloat32RangeAreRejected) {
                                    "property float z\nend_header\n6378137 0 0\n"));
   }, {"far.ply:8:", "beyond 1e6 m"});
   EXPECT_EQ(load_mesh(temp_file("near.obj", "v 999999 0 0\nv 999999 1 0\nv 999998 0 5\nf 1 2 3\n")).triangles.size(), 1u);
+  // Footprints and the ground name their own lines too.
+  expect_error([] {
+    load_mesh(temp_file("farfp.toml", "[[building]]\nheight_m = 5\nfootprint = [[2000000, 0], [2000010, 0], [2000000, 10]]\n"));
+  }, {"farfp.toml:3:", "beyond 1e6 m"});
+  expect_error([] { load_mesh(temp_file("farground.toml", "\n[ground]\nhalf_size_m = 3000000\n")); },
+               {"farground.toml:2:", "beyond 1e6 m"});
 }
 
 TEST(PlyReader, HugeOrFractionalIndexAndBadCountAreErrors) {
