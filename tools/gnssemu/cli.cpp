@@ -54,11 +54,11 @@ struct SceneArgs {
   double match_factor = scene::SearchConfig{}.match_factor;
   double min_arrival_elevation_deg = scene::SearchConfig{}.min_arrival_el_rad * kRadToDeg;
   double max_loss_db = scene::SearchConfig{}.max_loss_db;
-  double reflection_loss_db = 3.0;
+  double reflection_loss_db = config::SceneConfig{}.reflection_loss_db;
   std::vector<double> offset_m;  ///< east, north, up; empty: 0, 0, 0
-  double yaw_deg = 0.0;
-  double scale = 1.0;
-  std::string up_axis = "z";
+  double yaw_deg = scene::Placement{}.yaw_rad * kRadToDeg;
+  double scale = scene::Placement{}.scale;
+  std::string up_axis = scene::Placement{}.y_up ? "y" : "z";
 };
 
 struct BatchArgs {
