@@ -8,11 +8,13 @@
 #include <string>
 #include <vector>
 
+#include "config/message_names.hpp"
 #include "config/scene_loader.hpp"
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/protocol/nmea/nmea_encoder.hpp"
+#include "core/protocol/ubx/ubx_responder.hpp"
 #include "core/receiver/receiver.hpp"
 
 namespace gnssemu::cli {
@@ -48,10 +50,34 @@ protocol::nmea::NmeaConfig nmea_config_of(const config::Config& config) {
   return {};
 }
 
+// The emulated u-blox of the first output port, set up as the daemon sets
+// up a port's receiver (UART1: protocols and message rates from the config).
+void configure_port(protocol::ubx::ConfigResponder& r, const config::Config& config) {
+  namespace ubx = protocol::ubx;
+  constexpr std::uint8_t kPort = ubx::kPortUart1;
+  ubx::ReceiverConfig& rc = r.current();
+  ubx::PortSettings& p = rc.ports[kPort];
+  if (!config.outputs.empty()) {
+    const config::OutputPortConfig& cfg = config.outputs.front();
+    if (cfg.baud != 0) p.baud_bps = cfg.baud;
+    const auto ours = static_cast<std::uint16_t>(ubx::proto::kUbx | ubx::proto::kNmea);
+    p.in_proto_mask =
+        cfg.protocols_in == 0 ? 0 : static_cast<std::uint16_t>((p.in_proto_mask & ~ours) | cfg.protocols_in);
+    p.out_proto_mask = static_cast<std::uint16_t>((p.out_proto_mask & ~ours) | cfg.protocols_out);
+    for (const config::MessageName& m : config::nmea_sentences()) rc.set_message_rate(kPort, {m.msg_class, m.msg_id}, 0);
+    for (const config::MessageRate& m : config::message_rates(cfg)) {
+      rc.set_message_rate(kPort, {m.msg_class, m.msg_id}, m.rate);
+    }
+  }
+  rc.rate.measRate = static_cast<std::uint16_t>(std::lround(1000.0 / config.rate_hz));
+  rc.rate.navRate = 1;
+  r.save_current();
+}
+
 }  // namespace
 
 BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const TruthTrack& track,
-                       std::ostream* nmea, std::ostream* errors) {
+                       std::ostream* nmea, std::ostream* errors, std::ostream* ubx) {
   if (!(config.rate_hz > 0.0) || !std::isfinite(config.rate_hz)) {
     throw Error(config.source, 0, "rate_hz must be positive");
   }
@@ -72,9 +98,13 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
   if (nav.leap_seconds) rx.set_leap_seconds(*nav.leap_seconds);
   rx.set_klobuchar(nav.klobuchar);
   config::attach_scene(rx, config, buildings.get());
-  const protocol::nmea::NmeaEncoder encoder(nmea_config_of(config));
-  std::string sentences;
+  protocol::nmea::NmeaConfig nmea_cfg = nmea_config_of(config);
+  protocol::ubx::ConfigResponder device({});
+  configure_port(device, config);
+  std::string sentences, frames;
   sentences.reserve(4096);
+  frames.reserve(2 * protocol::ubx::kMaxEpochBytes);
+  time::GpsTime power_on;
   fmt::memory_buffer row;
 
   BatchSummary sum;
@@ -93,11 +123,19 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
     if (t - track.last() > kGridTolerance_s) break;
     const receiver::Truth truth = track.at(t);
     const receiver::Fix& fix = rx.step(t, truth);
+    if (sum.epochs == 0) power_on = t;
     ++sum.epochs;
+    device.on_epoch(fix, t - power_on);
     if (nmea) {
       sentences.clear();
-      encoder.encode_epoch(fix, sentences);
+      if (!config.outputs.empty()) nmea_cfg.sentences = device.nmea_sentences(protocol::ubx::kPortUart1);
+      protocol::nmea::NmeaEncoder(nmea_cfg).encode_epoch(fix, sentences);
       nmea->write(sentences.data(), static_cast<std::streamsize>(sentences.size()));
+    }
+    if (ubx) {
+      frames.clear();
+      device.encode_epoch(protocol::ubx::kPortUart1, frames);
+      ubx->write(frames.data(), static_cast<std::streamsize>(frames.size()));
     }
     const bool has_fix = fix.type != receiver::FixType::kNone;
     Enu d;

@@ -30,13 +30,14 @@ struct BatchSummary {
 
 /// Run the receiver, set up as the daemon sets it up from the nav file (its
 /// ephemerides, its header's leap seconds), at config.rate_hz on the GPS-time grid (multiples of
-/// 1/rate s of week) from the first to the last truth time. nmea: the NMEA
-/// stream of the first configured output port (u-blox default set when none);
-/// errors: CSV `gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop`, plus
+/// 1/rate s of week) from the first to the last truth time. nmea and ubx: the
+/// NMEA and UBX streams of the first configured output port, under its
+/// message rates (u-blox default NMEA set and no UBX when there is none);
+/// the emulated receiver powers on at the first epoch. errors: CSV `gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop`, plus
 /// `nvisible,ntracked,nlos,nblocked,nlos_delay_mean_m` when the config has a [scene].
 /// Either may be null. Throws gnssemu::Error when the truth spans no epoch.
 BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const TruthTrack& track,
-                       std::ostream* nmea, std::ostream* errors);
+                       std::ostream* nmea, std::ostream* errors, std::ostream* ubx = nullptr);
 
 /// Human-readable summary (for stderr).
 void write_summary(const BatchSummary& summary, std::ostream& out);

@@ -62,7 +62,7 @@ struct SceneArgs {
 };
 
 struct BatchArgs {
-  std::string config_path, truth_path, nmea_path, errors_path;
+  std::string config_path, truth_path, nmea_path, errors_path, ubx_path;
 };
 
 struct ObsArgs {
@@ -141,7 +141,9 @@ private:
 };
 
 int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) {
-  if (a.nmea_path == "-" && a.errors_path == "-") throw Error("--nmea and --errors cannot both be '-' (stdout)");
+  if ((a.nmea_path == "-") + (a.errors_path == "-") + (a.ubx_path == "-") > 1) {
+    throw Error("--nmea, --ubx, --errors: two outputs cannot both be '-' (stdout)");
+  }
   const config::Config cfg = config::load_config(a.config_path);
   const TruthTrack track(read_truth_csv(a.truth_path));
   std::error_code ec;
@@ -159,8 +161,10 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
   }
   OutputFile nmea(a.nmea_path, out);
   OutputFile errors(a.errors_path, out);
-  const BatchSummary sum = run_batch(cfg, nav, track, nmea.get(), errors.get());
+  OutputFile ubx(a.ubx_path, out);
+  const BatchSummary sum = run_batch(cfg, nav, track, nmea.get(), errors.get(), ubx.get());
   nmea.close(a.nmea_path);
+  ubx.close(a.ubx_path);
   errors.close(a.errors_path);
   write_summary(sum, err);
   return kExitOk;
@@ -319,6 +323,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   batch_cmd->add_option("--config", batch.config_path, "gnssemu TOML configuration")->required();
   batch_cmd->add_option("--truth", batch.truth_path, "truth trajectory CSV")->required();
   batch_cmd->add_option("--nmea", batch.nmea_path, "write the NMEA stream here ('-' = stdout)");
+  batch_cmd->add_option("--ubx", batch.ubx_path, "write the UBX stream here ('-' = stdout)");
   batch_cmd->add_option("--errors", batch.errors_path, "write per-epoch fix errors CSV here ('-' = stdout)");
   ObsArgs obs_args;
   CLI::App* spp = app.add_subcommand("spp", "single-point positions from a real RINEX observation file (C1C)");

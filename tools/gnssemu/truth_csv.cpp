@@ -51,6 +51,7 @@ struct Columns {
   int lat = -1, lon = -1, height = -1;
   int x = -1, y = -1, z = -1;
   int ve = -1, vn = -1, vu = -1;
+  int valid = -1;
   std::size_t count = 0;
   bool lla() const { return lat >= 0; }
   bool vel() const { return ve >= 0; }
@@ -67,7 +68,7 @@ Columns parse_header(std::string_view line, const std::string& name, int line_no
   const Slot slots[] = {{"gps_week", &c.week}, {"tow_s", &c.tow},   {"lat_deg", &c.lat},
                         {"lon_deg", &c.lon},   {"height_m", &c.height}, {"x_m", &c.x},
                         {"y_m", &c.y},         {"z_m", &c.z},       {"ve_m_s", &c.ve},
-                        {"vn_m_s", &c.vn},     {"vu_m_s", &c.vu}};
+                        {"vn_m_s", &c.vn},     {"vu_m_s", &c.vu},   {"valid", &c.valid}};
   for (std::size_t i = 0; i < fields.size(); ++i) {
     for (const Slot& s : slots) {
       if (fields[i] != s.name) continue;
@@ -127,7 +128,7 @@ public:
     int v = 0;
     const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
     if (f.empty()) fail(col, "empty value");
-    if (ec != std::errc() || end != f.data() + f.size()) fail(col, "'" + std::string(f) + "' is not an integer");
+    if (ec != std::errc() || end != f.data() + f.size()) fail_value(col, f, "is not an integer");
     return v;
   }
 
@@ -137,6 +138,13 @@ public:
       fail(col, std::string(fields_[col]) + " outside [" + fmt_num(lo) + ", " + fmt_num(hi) + (hi_open ? ")" : "]"));
     }
     return v;
+  }
+
+  // Built with append: GCC 12 warns falsely (-Wrestrict) on "'" + std::string(...) once inlined.
+  [[noreturn]] void fail_value(int col, std::string_view value, std::string_view what) const {
+    std::string reason = "'";
+    reason.append(value).append("' ").append(what);
+    fail(col, reason);
   }
 
   [[noreturn]] void fail(int col, const std::string& reason) const {
@@ -186,6 +194,17 @@ std::vector<TruthSample> read_truth_csv(std::istream& in, const std::string& nam
     const double tow_s = p.in_range(cols->tow, 0.0, kSecondsPerWeek, true);
     TruthSample s;
     s.t = time::GpsTime(week, tow_s);
+    if (cols->valid >= 0) {
+      const int v = p.integer(cols->valid);
+      if (v != 0 && v != 1) p.fail(cols->valid, std::to_string(v) + " is not 0 (no truth) or 1");
+      s.valid = v == 1;
+    }
+    if (!s.valid) {
+      // No truth: the position and velocity cells are not read (may be empty).
+      if (!out.empty() && !(s.t - out.back().t > 0.0)) p.fail(cols->tow, "time is not after the previous row's");
+      out.push_back(s);
+      continue;
+    }
     Lla lla;
     if (cols->lla()) {
       lla.lat_rad = p.in_range(cols->lat, -90.0, 90.0) * kDegToRad;

@@ -15,7 +15,8 @@ public:
 
   /// Truth at t: position linear between the neighbouring samples; velocity
   /// linear when the samples carry it, else the segment's mean velocity (zero
-  /// for a single sample). valid == false outside [first, last].
+  /// for a single sample). valid == false outside [first, last], and inside a
+  /// segment with a no-truth end (TruthSample::valid) except at a valid end itself.
   receiver::Truth at(const time::GpsTime& t) const noexcept;
 
   const time::GpsTime& first() const noexcept { return samples_.front().t; }

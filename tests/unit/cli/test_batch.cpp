@@ -2,6 +2,10 @@
 // broadcast ephemerides; error statistics, NMEA validity, determinism.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
+#include <map>
+
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -221,4 +225,47 @@ TEST(Batch, TruthBetweenEpochsIsAnError) {
   const CliResult r = run({"batch", "--config", cfg, "--truth", truth});
   EXPECT_EQ(r.status, cli::kExitBadInput);
   EXPECT_NE(r.err.find("truth spans no epoch at 1 Hz"), std::string::npos) << r.err;
+}
+
+TEST(Batch, UbxStreamFollowsTheFirstPortsMessageRates) {
+  TempDir dir;
+  const std::string cfg = dir.write(
+      "c.toml", config_text(nav_path("brdc0010.22n"),
+                            "[[output]]\nname = \"a\"\ntype = \"pty\"\npath = \"/tmp/gnssemu-test/a\"\n"
+                            "ubx_messages = [\"NAV-PVT\", \"NAV-SAT\"]\nsentences = [\"GGA\", \"GSV\"]\n"
+                            "rates = { NAV-SAT = 5, GSV = 2 }\n"));
+  const std::string truth = dir.write("truth.csv", static_truth(9.0));
+  const std::string ubx_path = dir.file("out.ubx"), nmea_path = dir.file("out.nmea");
+  const CliResult r = run({"batch", "--config", cfg, "--truth", truth, "--ubx", ubx_path, "--nmea", nmea_path});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(ubx_path, std::ios::binary);
+  const std::string b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::map<std::string, int> count;
+  for (std::size_t i = 0; i + 8 <= b.size();) {
+    ASSERT_EQ(static_cast<unsigned char>(b[i]), 0xB5u) << "byte " << i;
+    ASSERT_EQ(static_cast<unsigned char>(b[i + 1]), 0x62u) << "byte " << i;
+    const std::size_t len = static_cast<unsigned char>(b[i + 4]) | static_cast<std::size_t>(static_cast<unsigned char>(b[i + 5])) << 8;
+    ASSERT_LE(i + 8 + len, b.size());
+    uint8_t ck_a = 0, ck_b = 0;
+    for (std::size_t k = i + 2; k < i + 6 + len; ++k) {
+      ck_a = static_cast<uint8_t>(ck_a + static_cast<unsigned char>(b[k]));
+      ck_b = static_cast<uint8_t>(ck_b + ck_a);
+    }
+    EXPECT_EQ(ck_a, static_cast<unsigned char>(b[i + 6 + len]));
+    EXPECT_EQ(ck_b, static_cast<unsigned char>(b[i + 7 + len]));
+    ++count[std::to_string(static_cast<unsigned char>(b[i + 2])) + "-" + std::to_string(static_cast<unsigned char>(b[i + 3]))];
+    i += 8 + len;
+  }
+  EXPECT_EQ(count["1-7"], 10);   // NAV-PVT every epoch, 10 epochs
+  EXPECT_EQ(count["1-53"], 2);   // NAV-SAT at rate 5: epochs 1 and 6
+  EXPECT_EQ(count.size(), 2u);
+  std::ifstream nin(nmea_path);
+  int gga = 0, gsv_groups = 0;
+  for (std::string line; std::getline(nin, line);) {
+    if (line.rfind("$GPGGA", 0) == 0) ++gga;
+    // $GPGSV,<total>,<number>,...: one group per epoch it is due in.
+    if (line.rfind("$GPGSV,", 0) == 0 && line.substr(line.find(',', 7) + 1, 2) == "1,") ++gsv_groups;
+  }
+  EXPECT_EQ(gga, 10);
+  EXPECT_EQ(gsv_groups, 5);  // rate 2: epochs 1, 3, 5, 7, 9
 }

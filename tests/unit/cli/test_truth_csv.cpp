@@ -119,3 +119,33 @@ TEST(TruthTrack, LinearInterpolationAndEnds) {
   // Going back in time after a forward query still finds the right segment.
   EXPECT_NEAR(track.at(time::GpsTime(2190, 604799.5)).pos_m.x, 6378142.0, 1e-6);
 }
+
+TEST(TruthCsv, ValidColumnMarksRowsWithoutTruth) {
+  const auto s = read(
+      "gps_week,tow_s,lat_deg,lon_deg,height_m,valid\n"
+      "2190,10,48,2,100,1\n"
+      "2190,11,,,,0\n"
+      "2190,15,48,2,100,1\n"
+      "2190,16,48.0001,2,100,1\n");
+  ASSERT_EQ(s.size(), 4u);
+  EXPECT_TRUE(s[0].valid);
+  EXPECT_FALSE(s[1].valid);
+  const TruthTrack track(s);
+  EXPECT_TRUE(track.at(time::GpsTime(2190, 10.0)).valid);   // valid end of a segment
+  EXPECT_FALSE(track.at(time::GpsTime(2190, 10.5)).valid);  // towards the no-truth row
+  EXPECT_FALSE(track.at(time::GpsTime(2190, 11.0)).valid);
+  EXPECT_FALSE(track.at(time::GpsTime(2190, 14.9)).valid);
+  const receiver::Truth back = track.at(time::GpsTime(2190, 15.0));
+  EXPECT_TRUE(back.valid);
+  EXPECT_EQ(back.pos_m.x, s[2].pos_m.x);
+  EXPECT_TRUE(track.at(time::GpsTime(2190, 15.5)).valid);
+}
+
+TEST(TruthCsv, ValidColumnTakesOnlyZeroOrOne) {
+  EXPECT_NE(error_of("gps_week,tow_s,lat_deg,lon_deg,height_m,valid\n2190,1,0,0,0,2\n")
+                .find("t.csv:2: column 'valid': 2 is not 0 (no truth) or 1"),
+            std::string::npos);
+  // A valid row still needs its position.
+  EXPECT_NE(error_of("gps_week,tow_s,lat_deg,lon_deg,height_m,valid\n2190,1,,0,0,1\n").find("column 'lat_deg': empty"),
+            std::string::npos);
+}

@@ -1,0 +1,138 @@
+// The whole pipeline pinned, as gpsd pins its drivers: config + truth ->
+// `batch` (receiver, encoders, the emulated u-blox's message rates) ->
+// NMEA, UBX, per-epoch errors and the summary, compared byte for byte with
+// tests/golden/pipeline/<case>/expected.*. GNSSEMU_REBUILD_GOLDEN=1 rewrites
+// them (review the diff); a missing expected file is a failure.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "config/config.hpp"
+#include "core/orbit/rinex_nav.hpp"
+#include "tools/gnssemu/batch.hpp"
+#include "tools/gnssemu/truth_csv.hpp"
+#include "tools/gnssemu/truth_track.hpp"
+
+namespace gnssemu::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path golden_dir() { return fs::path(GNSSEMU_SOURCE_DIR) / "tests" / "golden" / "pipeline"; }
+
+std::vector<std::string> case_names() {
+  std::vector<std::string> v;
+  for (const auto& e : fs::directory_iterator(golden_dir())) {
+    if (e.is_directory() && fs::exists(e.path() / "config.toml")) v.push_back(e.path().filename().string());
+  }
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> lines(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+bool rebuild() {
+  const char* env = std::getenv("GNSSEMU_REBUILD_GOLDEN");
+  return env != nullptr && std::string(env) == "1";
+}
+
+/// Text outputs: the first differing lines are named.
+void expect_text(const fs::path& expected, const std::string& got) {
+  if (rebuild()) {
+    std::ofstream(expected, std::ios::binary) << got;
+    return;
+  }
+  ASSERT_TRUE(fs::exists(expected)) << "missing " << expected << " (GNSSEMU_REBUILD_GOLDEN=1 writes it)";
+  const std::string want = read_file(expected);
+  if (want == got) return;
+  const auto a = lines(want), b = lines(got);
+  int shown = 0;
+  for (std::size_t i = 0; i < std::max(a.size(), b.size()) && shown < 5; ++i) {
+    const std::string x = i < a.size() ? a[i] : "<none>";
+    const std::string y = i < b.size() ? b[i] : "<none>";
+    if (x != y) {
+      ADD_FAILURE() << expected.filename().string() << " line " << i + 1 << "\n  want " << x << "\n  got  " << y;
+      ++shown;
+    }
+  }
+  ADD_FAILURE() << "output differs from " << expected << " (" << a.size() << " lines expected, " << b.size() << " got)";
+}
+
+/// UBX: the first differing byte, with the frame it falls in.
+void expect_binary(const fs::path& expected, const std::string& got) {
+  if (rebuild()) {
+    std::ofstream(expected, std::ios::binary) << got;
+    return;
+  }
+  ASSERT_TRUE(fs::exists(expected)) << "missing " << expected << " (GNSSEMU_REBUILD_GOLDEN=1 writes it)";
+  const std::string want = read_file(expected);
+  if (want == got) return;
+  std::size_t i = 0;
+  while (i < want.size() && i < got.size() && want[i] == got[i]) ++i;
+  // Walk the expected frames (B5 62 cls id len16 payload ck16) to name the one.
+  std::size_t frame = 0, start = 0;
+  while (start + 6 <= want.size()) {
+    const std::size_t len = static_cast<unsigned char>(want[start + 4]) |
+                            static_cast<std::size_t>(static_cast<unsigned char>(want[start + 5])) << 8;
+    if (start + 8 + len > i) break;
+    start += 8 + len;
+    ++frame;
+  }
+  char id[32] = "?";
+  if (start + 4 <= want.size()) {
+    std::snprintf(id, sizeof id, "%02X-%02X", static_cast<unsigned char>(want[start + 2]),
+                  static_cast<unsigned char>(want[start + 3]));
+  }
+  ADD_FAILURE() << expected.filename().string() << ": " << want.size() << " bytes expected, " << got.size()
+                << " got; first difference at byte " << i << ", in frame " << frame << " (class-id " << id
+                << ", starting at byte " << start << ")";
+}
+
+class PipelineGolden : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(PipelineGolden, MatchesByteForByte) {
+  const fs::path dir = golden_dir() / GetParam();
+  const config::Config cfg = config::load_config((dir / "config.toml").string());
+  const orbit::NavData nav = orbit::read_rinex_nav(cfg.nav_file);
+  const TruthTrack track(read_truth_csv((dir / "truth.csv").string()));
+  std::ostringstream nmea, ubx, errors, summary;
+  const BatchSummary sum = run_batch(cfg, nav, track, &nmea, &errors, &ubx);
+  write_summary(sum, summary);
+  EXPECT_GT(sum.epochs, 0);
+  expect_text(dir / "expected.nmea", nmea.str());
+  expect_binary(dir / "expected.ubx", ubx.str());
+  expect_text(dir / "expected_errors.csv", errors.str());
+  expect_text(dir / "expected_summary.txt", summary.str());
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, PipelineGolden, ::testing::ValuesIn(case_names()),
+                         [](const ::testing::TestParamInfo<std::string>& i) { return i.param; });
+
+TEST(PipelineGoldenCases, CoverWhatTheyMustCover) {
+  // Static open sky, 10 Hz motion, truth loss, buildings, a 2D fix, a week rollover.
+  const auto names = case_names();
+  for (const char* want : {"static_open_sky", "moving_10hz", "truth_loss", "building_canyon", "fix_2d", "week_rollover"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
+  }
+}
+
+}  // namespace
+}  // namespace gnssemu::cli
