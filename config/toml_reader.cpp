@@ -27,27 +27,7 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
-std::string format_range(const Range& r) {
-  std::string s = r.min_open ? "(" : "[";
-  s += format_number(r.min) + ", " + format_number(r.max);
-  s += r.max_open ? ")" : "]";
-  if (!r.unit.empty()) {
-    s += ' ';
-    s += r.unit;
-  }
-  return s;
-}
-
 }  // namespace
-
-std::string format_number(double v) {
-  char buf[64];
-  // Whole numbers as integers ("100000", not "1e+05"); else the shortest text.
-  const bool whole = std::isfinite(v) && std::fabs(v) < 1e15 && v == std::trunc(v);
-  const auto res = whole ? std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed)
-                         : std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, res.ptr);
-}
 
 std::string_view type_name(const toml::node& n) {
   switch (n.type()) {
@@ -106,9 +86,7 @@ double TableReader::number(std::string_view key, std::optional<double> def, cons
     fail(*n, full_name(key) + ": expected a number, got " + std::string(type_name(*n)));
   }
   if (!std::isfinite(v)) fail(*n, full_name(key) + ": must be a finite number, got " + format_number(v));
-  const bool below = range.min_open ? v <= range.min : v < range.min;
-  const bool above = range.max_open ? v >= range.max : v > range.max;
-  if (below || above) {
+  if (!range.contains(v)) {
     fail(*n, full_name(key) + ": " + format_number(v) + " is out of range " + format_range(range));
   }
   return v;

@@ -11,19 +11,12 @@
 
 #include <toml++/toml.h>
 
+#include "core/common/range.hpp"
+
 namespace gnssemu::config::detail {
 
-/// Closed or open interval for a number, with the unit shown in messages.
-struct Range {
-  double min;
-  double max;
-  std::string_view unit;
-  bool min_open = false;  ///< true: min itself is rejected
-  bool max_open = false;  ///< true: max itself is rejected
-};
-
-/// Shortest text that reads back as v ("1e-10", "45").
-std::string format_number(double v);
+using gnssemu::format_number;
+using gnssemu::Range;
 /// "a string", "an integer", ...
 std::string_view type_name(const toml::node& n);
 /// 1-based line of a node, 0 if toml++ has none.
