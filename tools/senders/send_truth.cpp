@@ -33,23 +33,21 @@ constexpr double kSecondsPerWeek = 604800.0;
 volatile std::sig_atomic_t g_stop = 0;
 extern "C" void on_signal(int) { g_stop = 1; }
 
+// Command line; ranges are checked by CLI11 (see main).
 struct Options {
   std::string host = "127.0.0.1";
-  int port = 5500;
-  std::string vehicle = "ego";
-  double rate_hz = 10.0;
-  double duration_s = 0.0;
-  long count = 0;
-  double sim_start_s = 0.0;
-  std::vector<double> gps_start;  // week, tow_s
+  int port = 5500;                  // 1..65535
+  std::string vehicle = "ego";      // 1..64 printable characters
+  double rate_hz = 10.0;            // records per second, (0, 1000]
+  double duration_s = 0.0;          // s; 0: no limit
+  long count = 0;                   // records; 0: no limit
+  double sim_start_s = 0.0;         // sim_time_s of the first record, s
+  std::vector<double> gps_start;    // empty, or week 0..9999 and tow_s [0, 604800)
   bool hex = false;
-  // static
-  std::vector<double> lla, ecef, enu;
-  // circle
+  std::vector<double> lla, ecef, enu;  // static: one of them, deg/deg/m or m
   gnssemu::senders::CircleParams circle;
-  // csv
   std::string csv_file;
-  double speedup = 1.0;
+  double speedup = 1.0;             // csv replay speed factor, > 0
 };
 
 // One record to send and when, in seconds after the start.
