@@ -1,7 +1,10 @@
 #pragma once
 // Truth datagram parser (docs/truth-protocol.md). A pure function: one UDP
-// payload in, one validated sample (ECEF, SI) or a drop reason out. Never
-// throws; the daemon counts drops per reason and keeps running.
+// payload in, one validated sample (ECEF, SI) or a drop reason out. Two
+// encodings share the port, told apart by the first byte: a JSON object, or
+// a fixed little-endian binary record starting with kTruthRecordMagic.
+// Never throws; the daemon counts drops per reason and keeps running.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -15,6 +18,16 @@ namespace gnssemu::daemon {
 
 /// Protocol version this parser accepts in the "version" field.
 inline constexpr int kTruthProtocolVersion = 1;
+/// Binary record (docs/truth-protocol.md §Binary record): magic, then
+/// version; its size is fixed per version. 0xF7 never occurs in UTF-8, so
+/// it cannot start a JSON text.
+inline constexpr std::array<uint8_t, 4> kTruthRecordMagic = {0xF7, 'G', 'T', 'R'};
+/// Binary record version this parser accepts.
+inline constexpr uint8_t kTruthRecordVersion = 1;
+/// Size of a version-1 binary record, bytes.
+inline constexpr std::size_t kTruthRecordBytes = 160;
+/// Size of the binary record's vehicle id field, bytes (NUL-padded).
+inline constexpr std::size_t kTruthRecordVehicleBytes = 64;
 /// Largest datagram accepted, bytes.
 inline constexpr std::size_t kMaxTruthDatagramBytes = 4096;
 /// Limits of plausible truth (docs/truth-protocol.md §Validation).
@@ -28,8 +41,11 @@ enum class DropReason : uint8_t {
   kTooLarge,
   kMalformedJson,
   kNotObject,
+  kBadMagic,
+  kBadSize,
   kMissingVersion,
   kUnknownVersion,
+  kBadFlags,
   kMissingField,
   kBadType,
   kNonFinite,
@@ -41,6 +57,7 @@ enum class DropReason : uint8_t {
   kLongitudeRange,
   kHeightRange,
   kSpeedRange,
+  kAttitudeRange,
   kBadGpsTime,
   kBadVehicleId,
   kSimTimeBackwards,
@@ -52,6 +69,14 @@ inline constexpr std::size_t kDropReasonCount = static_cast<std::size_t>(DropRea
 /// Short snake_case name of a reason ("sim_time_backwards"), for logs.
 const char* drop_reason_name(DropReason reason) noexcept;
 
+/// Attitude of the vehicle body (forward-right-down) relative to local
+/// north-east-down, Tait-Bryan yaw-pitch-roll (z-y'-x''), rad.
+struct Attitude {
+  double roll_rad = 0.0;   ///< right side down positive, [-pi, pi]
+  double pitch_rad = 0.0;  ///< nose up positive, [-pi/2, pi/2]
+  double yaw_rad = 0.0;    ///< heading clockwise from north, [-pi, 2 pi]
+};
+
 /// One validated truth sample.
 struct TruthSample {
   std::string vehicle;                 ///< vehicle id, 1..64 printable characters
@@ -60,6 +85,7 @@ struct TruthSample {
   Lla lla;                             ///< same position, geodetic (rad, m)
   std::optional<Ecef> vel_m_s;         ///< ECEF velocity m/s, when the packet had one
   std::optional<time::GpsTime> gps_time;  ///< from gps_week + gps_tow_s, when given
+  std::optional<Attitude> attitude;    ///< binary records only; validated, not yet used by the receiver
 };
 
 struct ParseResult {
@@ -69,9 +95,9 @@ struct ParseResult {
   TruthSample sample;                  ///< valid when ok
 };
 
-/// Parse and validate one datagram. frame: the configured local origin, for
-/// "enu" positions. Checks everything a single packet can show; ordering
-/// (sim time going backwards) is checked by the TruthTrack.
+/// Parse and validate one datagram, JSON or binary. frame: the configured
+/// local origin, for "enu" positions. Checks everything a single packet can
+/// show; ordering (sim time going backwards) is checked by the TruthTrack.
 ParseResult parse_truth_packet(std::string_view datagram, const geo::LocalFrame& frame);
 
 }  // namespace gnssemu::daemon
