@@ -4,7 +4,10 @@
 #include <bit>
 #include <charconv>
 #include <cstdio>
+#include <cerrno>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <cstring>
 #include <fstream>
@@ -96,11 +99,11 @@ public:
     return 0.0;
   }
   // Ascii: one element per line.
-  void next_element() {
+  void next_element(const Element& e, int64_t i) {
     if (format_ != Format::kAscii) return;
     if (!std::getline(in_, text_)) {
-      text_.clear();
-      eof_ = true;
+      throw Error(path_, line_, "ASCII body ends before element " + e.name + " " + std::to_string(i) + " of " +
+                                    std::to_string(e.count));
     }
     ++line_;
     tokens_.clear();
@@ -111,18 +114,17 @@ public:
 private:
   double read_ascii(const std::string& where) {
     std::string tok;
-    if (eof_ || !(tokens_ >> tok)) throw Error(path_, line_, "missing value in " + where);
+    if (!(tokens_ >> tok)) throw Error(path_, line_, "missing value in " + where);
     if (tok == "nan" || tok == "-nan" || tok == "inf" || tok == "-inf") return std::numeric_limits<double>::quiet_NaN();
-    std::size_t used = 0;
-    double v = 0.0;
-    try {
-      v = std::stod(tok, &used);
-    } catch (const std::out_of_range&) {
-      return std::numeric_limits<double>::infinity();
-    } catch (const std::exception&) {
-      used = 0;
+    // strtod, not stod: an underflowing value (1e-320) is a valid number
+    // (subnormal or 0), only overflow is out of range (infinite).
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(tok.c_str(), &end);
+    if (end != tok.c_str() + tok.size() || tok.empty() || std::isspace(static_cast<unsigned char>(tok[0]))) {
+      throw Error(path_, line_, "'" + tok + "' is not a number in " + where);
     }
-    if (used != tok.size()) throw Error(path_, line_, "'" + tok + "' is not a number in " + where);
+    if (errno == ERANGE && std::fabs(v) > 1.0) return std::numeric_limits<double>::infinity();
     return v;
   }
 
@@ -132,7 +134,6 @@ private:
   int line_;
   std::string text_;
   std::istringstream tokens_;
-  bool eof_ = false;
 };
 
 }  // namespace
@@ -209,6 +210,12 @@ Mesh read_ply(const std::string& path, const Placement& placement) {
     }
   }
   if (!have_format) throw Error(path, line_no, "PLY header has no format line");
+  for (const Element& e : elements) {
+    // Items without properties take no bytes: a huge count would only spin.
+    if (e.count > 0 && e.props.empty()) {
+      throw Error(path, e.header_line, "element " + e.name + " has " + std::to_string(e.count) + " items but no property lines");
+    }
+  }
 
   MeshBuilder b(path, placement);
   Body body(in, path, format, line_no);
@@ -233,7 +240,7 @@ Mesh read_ply(const std::string& path, const Placement& placement) {
     if (e.name == "face" && !have_vertices) throw Error(path, e.header_line, "element face before element vertex");
     if (e.name == "vertex") have_vertices = true;
     for (int64_t i = 0; i < e.count; ++i) {
-      body.next_element();
+      body.next_element(e, i);
       const std::string where = "element " + e.name + " " + std::to_string(i);
       double xyz[3] = {0.0, 0.0, 0.0};
       for (std::size_t k = 0; k < e.props.size(); ++k) {

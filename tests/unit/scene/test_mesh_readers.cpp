@@ -264,3 +264,43 @@ TEST(PlyReader, HugeOrFractionalIndexAndBadCountAreErrors) {
 
 }  // namespace
 }  // namespace gnssemu::scene
+
+namespace gnssemu::scene {
+namespace {
+
+TEST(PlyReader, ElementWithoutPropertiesIsAnErrorNotASpin) {
+  // 53 bytes that made the reader loop 2e9 times over items of no bytes.
+  expect_error([] {
+    load_mesh(temp_file("noprop.ply", "ply\nformat ascii 1.0\nelement a 2000000000\nend_header\n"));
+  }, {"noprop.ply:3:", "element a", "no property lines"});
+  expect_error([] {
+    load_mesh(temp_file("noprop_bin.ply", "ply\nformat binary_little_endian 1.0\nelement a 2000000000\nend_header\n"));
+  }, {"noprop_bin.ply:3:", "no property lines"});
+}
+
+TEST(PlyReader, AsciiBodyEndingEarlyNamesTheElement) {
+  expect_error([] {
+    load_mesh(temp_file("short.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                     "property float z\nend_header\n0 0 0\n1 0 0\n"));
+  }, {"short.ply:9:", "ends before element vertex 2 of 3"});
+}
+
+TEST(PlyReader, UnderflowingCoordinateIsAValidNumber) {
+  // 1e-320 is subnormal (strtod reports ERANGE): still a number, not infinity.
+  const Mesh m = load_mesh(temp_file("tiny.ply",
+                                     "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+                                     "property double z\nelement face 1\nproperty list uchar uint vertex_index\n"
+                                     "end_header\n1e-320 0 0\n1 0 0\n0 1 -1e-400\n3 0 1 2\n"));
+  ASSERT_EQ(m.triangles.size(), 1u);
+  EXPECT_EQ(m.stats.skipped(), 0);
+  EXPECT_NEAR(m.vertices_m[0].x, 0.0, 1e-300);
+  // Overflow stays an error of the value (infinite coordinate: skipped and counted).
+  const Mesh big = load_mesh(temp_file("huge.ply",
+                                       "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\n"
+                                       "property double z\nelement face 2\nproperty list uchar uint vertex_index\n"
+                                       "end_header\n1e400 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 2 3\n"));
+  EXPECT_EQ(big.triangles.size(), 1u);
+}
+
+}  // namespace
+}  // namespace gnssemu::scene
