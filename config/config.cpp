@@ -246,18 +246,6 @@ protocol::nmea::NmeaVersion read_nmea_version(TableReader& t, protocol::nmea::Nm
   t.fail(*n, t.full_name("nmea_version") + ": '" + v + "' is not one of \"2.3\", \"4.10\", \"4.11\"");
 }
 
-bool* sentence_flag(protocol::nmea::SentenceSet& s, std::string_view name) {
-  if (name == "GGA") return &s.gga;
-  if (name == "RMC") return &s.rmc;
-  if (name == "GSA") return &s.gsa;
-  if (name == "GSV") return &s.gsv;
-  if (name == "VTG") return &s.vtg;
-  if (name == "GLL") return &s.gll;
-  if (name == "GST") return &s.gst;
-  if (name == "ZDA") return &s.zda;
-  return nullptr;
-}
-
 protocol::nmea::SentenceSet read_sentences(TableReader& t, const protocol::nmea::SentenceSet& def) {
   const toml::node* n = t.find("sentences");
   if (n == nullptr) return def;
@@ -266,17 +254,16 @@ protocol::nmea::SentenceSet read_sentences(TableReader& t, const protocol::nmea:
   if (a == nullptr) t.fail(*n, name + ": expected an array of strings, got " + std::string(detail::type_name(*n)));
   if (a->empty()) t.fail(*n, name + ": must name at least one sentence");
   protocol::nmea::SentenceSet out;
-  out.gga = out.rmc = out.gsa = out.gsv = out.vtg = out.gll = out.gst = out.zda = false;
   for (std::size_t i = 0; i < a->size(); ++i) {
     const toml::node& e = *a->get(i);
     const auto* s = e.as_string();
     if (s == nullptr) t.fail(e, name + ": expected sentence names (strings), got " + std::string(detail::type_name(e)));
-    bool* flag = sentence_flag(out, s->get());
-    if (flag == nullptr) {
+    const std::optional<protocol::nmea::Sentence> sentence = protocol::nmea::sentence_by_name(s->get());
+    if (!sentence) {
       t.fail(e, name + ": unknown sentence '" + s->get() + "' (known: GGA RMC GSA GSV VTG GLL GST ZDA)");
     }
-    if (*flag) t.fail(e, name + ": '" + s->get() + "' listed twice");
-    *flag = true;
+    if (out.has(*sentence)) t.fail(e, name + ": '" + s->get() + "' listed twice");
+    out.set(*sentence);
   }
   return out;
 }
@@ -373,12 +360,8 @@ std::vector<MessageRate> read_ubx_messages(TableReader& t) {
 }
 
 bool sentence_on(const protocol::nmea::SentenceSet& s, uint8_t id) {
-  for (const MessageName& m : nmea_sentences()) {
-    if (m.msg_id != id) continue;
-    protocol::nmea::SentenceSet copy = s;
-    return *sentence_flag(copy, m.name);
-  }
-  return false;
+  const std::optional<protocol::nmea::Sentence> sentence = protocol::nmea::sentence_by_msg_id(id);
+  return sentence && s.has(*sentence);
 }
 
 // rates = { NAV-SAT = 5, GSV = 2 }: rates other than 1 for listed messages.

@@ -93,19 +93,11 @@ std::string nmea_version(protocol::nmea::NmeaVersion v) {
 
 std::string sentences(const protocol::nmea::SentenceSet& s) {
   std::string out = "[";
-  const auto add = [&out](bool on, const char* name) {
-    if (!on) return;
+  for (const protocol::nmea::SentenceInfo& info : protocol::nmea::kSentences) {
+    if (!s.has(info.sentence)) continue;
     if (out.size() > 1) out += ", ";
-    out += quoted(name);
-  };
-  add(s.rmc, "RMC");
-  add(s.vtg, "VTG");
-  add(s.gga, "GGA");
-  add(s.gsa, "GSA");
-  add(s.gsv, "GSV");
-  add(s.gll, "GLL");
-  add(s.gst, "GST");
-  add(s.zda, "ZDA");
+    out += quoted(std::string(info.name));
+  }
   return out + "]";
 }
 

@@ -186,8 +186,7 @@ bool PortChannel::check_idle() noexcept {
 
 void PortChannel::handle_result(int source, const ubx::ResponderResult& r) {
   if (r.bytes > 0) send_reply(source);
-  if (r.nmea_poll.gga || r.nmea_poll.rmc || r.nmea_poll.gsa || r.nmea_poll.gsv || r.nmea_poll.vtg ||
-      r.nmea_poll.gll || r.nmea_poll.gst || r.nmea_poll.zda) {
+  if (!r.nmea_poll.empty()) {
     if (have_fix_) {
       protocol::nmea::NmeaConfig c = nmea_cfg_;
       c.sentences = r.nmea_poll;

@@ -449,17 +449,12 @@ ResponderResult ConfigResponder::handle_nmea(std::uint8_t port_id, std::string_v
   } else if (sentence.size() >= 11 && sentence[0] == '$' && sentence.substr(5, 2) == "Q," &&
              current_.ports[port_id].outputs_nmea()) {
     // Standard poll $ttxxQ,sss*hh, e.g. $EIGPQ,RMC*3A.
-    const std::string_view f = sentence.substr(7, sentence.size() - 10);
-    auto& q = r.nmea_poll;
-    if (f == "GGA") q.gga = true;
-    else if (f == "RMC") q.rmc = true;
-    else if (f == "GSA") q.gsa = true;
-    else if (f == "GSV") q.gsv = true;
-    else if (f == "VTG") q.vtg = true;
-    else if (f == "GLL") q.gll = true;
-    else if (f == "GST") q.gst = true;
-    else if (f == "ZDA") q.zda = true;
-    else ++stats_.ignored;
+    const std::optional<nmea::Sentence> asked = nmea::sentence_by_name(sentence.substr(7, sentence.size() - 10));
+    if (asked) {
+      r.nmea_poll.set(*asked);
+    } else {
+      ++stats_.ignored;
+    }
     return r;
   } else {
     ++stats_.ignored;
@@ -498,20 +493,12 @@ std::size_t ConfigResponder::encode_epoch(std::uint8_t port_id, std::string& out
 }
 
 nmea::SentenceSet ConfigResponder::nmea_sentences(std::uint8_t port_id) const noexcept {
-  nmea::SentenceSet s{false, false, false, false, false, false, false, false};
+  nmea::SentenceSet s;
   if (port_id >= kNumPorts || epochs_ == 0 || !current_.ports[port_id].outputs_nmea()) return s;
-  const auto due = [&](MsgId id) {
-    const std::uint8_t rate = current_.message_rate(port_id, id);
-    return rate != 0 && (epochs_ - 1) % rate == 0;
-  };
-  s.gga = due(msg::kNmeaGga);
-  s.rmc = due(msg::kNmeaRmc);
-  s.gsa = due(msg::kNmeaGsa);
-  s.gsv = due(msg::kNmeaGsv);
-  s.vtg = due(msg::kNmeaVtg);
-  s.gll = due(msg::kNmeaGll);
-  s.gst = due(msg::kNmeaGst);
-  s.zda = due(msg::kNmeaZda);
+  for (const nmea::SentenceInfo& info : nmea::kSentences) {
+    const std::uint8_t rate = current_.message_rate(port_id, MsgId{nmea::kMsgClass, info.msg_id});
+    s.set(info.sentence, rate != 0 && (epochs_ - 1) % rate == 0);
+  }
   return s;
 }
 

@@ -63,7 +63,7 @@ struct ResponderResult {
   std::array<std::uint32_t, kNumPorts> new_baud_bps{};
   ResetRequest reset;
   /// NMEA standard poll ($xxGPQ,sss): sentences to send once, now.
-  nmea::SentenceSet nmea_poll{false, false, false, false, false, false, false, false};
+  nmea::SentenceSet nmea_poll;
 };
 
 /// Counters for logs and tests.

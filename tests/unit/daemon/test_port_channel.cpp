@@ -260,7 +260,8 @@ TEST(PortChannel, CfgRateReachesTheDaemonAndPubx41SwitchesBaudAfterTheReply) {
 
 TEST(PortChannel, SlowLineDropsMessagesAndNeverExceedsIt) {
   config::OutputPortConfig c = port_cfg(9600);
-  c.nmea.sentences.gst = c.nmea.sentences.zda = true;
+  c.nmea.sentences.set(protocol::nmea::Sentence::kGst);
+  c.nmea.sentences.set(protocol::nmea::Sentence::kZda);
   c.ubx_messages = {{0x01, 0x07, 1}, {0x01, 0x35, 1}, {0x01, 0x30, 1}, {0x01, 0x06, 1}};
   Rig r(c, 0.2);
   std::size_t sent = 0;

@@ -133,7 +133,7 @@ TEST(UbxResponder, Px4StartupSequence) {
     EXPECT_EQ(frames[1].id, msg::kNavDop);
     EXPECT_EQ(frames[2].id, msg::kNavPvt);
     const auto n = r.nmea_sentences(kPortUart1);
-    EXPECT_FALSE(n.gga || n.rmc || n.gsa || n.gsv || n.vtg || n.gll);  // NMEA off in outProtoMask
+    EXPECT_TRUE(n.empty());  // NMEA off in outProtoMask
   }
   EXPECT_EQ(pvt, 10);
   EXPECT_EQ(status, 10);
@@ -231,9 +231,9 @@ TEST(UbxResponder, CfgMsgLongFormSetsAllPortsAndRatesApplyPerPort) {
     std::string out;
     r.encode_epoch(kPortUsb, out);
     usb_pvt += static_cast<int>(test::split_frames(out).size());
-    EXPECT_FALSE(r.nmea_sentences(kPortUart1).gga);
-    EXPECT_TRUE(r.nmea_sentences(kPortUart1).rmc);
-    EXPECT_TRUE(r.nmea_sentences(kPortUsb).gga);
+    EXPECT_FALSE(r.nmea_sentences(kPortUart1).has(nmea::Sentence::kGga));
+    EXPECT_TRUE(r.nmea_sentences(kPortUart1).has(nmea::Sentence::kRmc));
+    EXPECT_TRUE(r.nmea_sentences(kPortUsb).has(nmea::Sentence::kGga));
   }
   EXPECT_EQ(usb_pvt, 2);  // every 3rd epoch
   // Bad lengths and non-output classes are NAKed.
@@ -370,8 +370,8 @@ TEST(UbxResponder, RepliesFollowThePortsProtocolMasks) {
   EXPECT_EQ(h.send(msg::kMonVer, {}), "");
   // NMEA standard poll asks for one sentence now.
   h.send("$EIGPQ,RMC*3A\r\n");
-  EXPECT_TRUE(h.last().nmea_poll.rmc);
-  EXPECT_FALSE(h.last().nmea_poll.gga);
+  EXPECT_TRUE(h.last().nmea_poll.has(nmea::Sentence::kRmc));
+  EXPECT_FALSE(h.last().nmea_poll.has(nmea::Sentence::kGga));
 }
 
 TEST(UbxResponder, StatusCountsTtffAndUptime) {
