@@ -26,8 +26,6 @@ namespace fs = std::filesystem;
 using detail::Range;
 using detail::TableReader;
 
-// u-blox M8 UART rates (u-blox M8 protocol spec, CFG-PRT baudRate).
-constexpr std::array<uint32_t, 9> kStandardBauds{4800, 9600, 19200, 38400, 57600, 115200, 230400, 460800, 921600};
 constexpr std::array<std::string_view, 7> kLogLevels{"trace", "debug", "info", "warn", "error", "critical", "off"};
 
 fs::path resolve(const std::string& path, const std::string& base_dir) {
@@ -270,17 +268,6 @@ protocol::nmea::SentenceSet read_sentences(TableReader& t, const protocol::nmea:
 
 bool is_line(PortType type) { return type == PortType::kPty || type == PortType::kSerial; }
 
-std::string_view type_text(PortType type) {
-  switch (type) {
-    case PortType::kPty: return "pty";
-    case PortType::kFile: return "file";
-    case PortType::kSerial: return "serial";
-    case PortType::kTcp: return "tcp";
-    case PortType::kUdp: return "udp";
-  }
-  return "pty";
-}
-
 // Keys that belong to one port type only.
 struct TypedKey {
   std::string_view key;
@@ -301,10 +288,10 @@ void reject_foreign_keys(TableReader& t, PortType type) {
     std::string owners;
     for (const PortType o : k.types) {
       owners += owners.empty() ? "\"" : " or \"";
-      owners += type_text(o);
+      owners += port_type_name(o);
       owners += '"';
     }
-    t.fail(*n, t.full_name(k.key) + ": not used by a port of type \"" + std::string(type_text(type)) +
+    t.fail(*n, t.full_name(k.key) + ": not used by a port of type \"" + std::string(port_type_name(type)) +
                    "\" (only " + owners + ")");
   }
 }
@@ -320,7 +307,7 @@ uint16_t read_protocols(TableReader& t, std::string_view key, uint16_t def) {
     const toml::node& e = *a->get(i);
     const auto* s = e.as_string();
     if (s == nullptr) t.fail(e, name + ": expected protocol names (strings), got " + std::string(detail::type_name(e)));
-    const uint16_t bit = s->get() == "ubx" ? kProtoUbx : s->get() == "nmea" ? kProtoNmea : 0;
+    const uint16_t bit = s->get() == "ubx" ? protocol::ubx::proto::kUbx : s->get() == "nmea" ? protocol::ubx::proto::kNmea : 0;
     if (bit == 0) t.fail(e, name + ": unknown protocol '" + s->get() + "' (known: \"ubx\", \"nmea\")");
     if ((mask & bit) != 0) t.fail(e, name + ": '" + s->get() + "' listed twice");
     mask |= bit;
@@ -419,13 +406,8 @@ OutputPortConfig read_output(TableReader& t, const std::string& base_dir) {
   }
   if (const toml::node* n = t.find("type")) {
     const std::string type = t.string("type", std::nullopt);
-    bool known = false;
-    for (const PortType p : {PortType::kPty, PortType::kFile, PortType::kSerial, PortType::kTcp, PortType::kUdp}) {
-      if (type == type_text(p)) {
-        out.type = p;
-        known = true;
-      }
-    }
+    const std::optional<PortType> known = port_type_from_name(type);
+    if (known) out.type = *known;
     if (!known) t.fail(*n, t.full_name("type") + ": '" + type + "' is not one of \"pty\", \"serial\", \"tcp\", \"udp\", \"file\"");
   }
   reject_foreign_keys(t, out.type);
@@ -471,20 +453,21 @@ OutputPortConfig read_output(TableReader& t, const std::string& base_dir) {
   const bool line = is_line(out.type);
   out.baud = line ? 9600 : 0;
   const int64_t baud = t.integer("baud", out.baud, line ? 1 : 0, std::numeric_limits<uint32_t>::max());
-  if (baud != 0 && std::find(kStandardBauds.begin(), kStandardBauds.end(), baud) == kStandardBauds.end()) {
-    t.fail(*t.find("baud"), t.full_name("baud") + ": " + std::to_string(baud) +
-                                " is not a standard rate (4800 9600 19200 38400 57600 115200 230400 460800 921600)" +
-                                (line ? "" : " or 0 (no line budget)"));
+  if (baud != 0 && !protocol::ubx::is_ubx_baud(static_cast<uint32_t>(baud))) {
+    std::string rates;
+    for (const uint32_t b : protocol::ubx::kUartBauds) rates += (rates.empty() ? "" : " ") + std::to_string(b);
+    t.fail(*t.find("baud"), t.full_name("baud") + ": " + std::to_string(baud) + " is not a standard rate (" + rates +
+                                ")" + (line ? "" : " or 0 (no line budget)"));
   }
   out.baud = static_cast<uint32_t>(baud);
 
   const bool has_input = out.type != PortType::kFile && out.type != PortType::kUdp;
-  out.protocols_in = read_protocols(t, "protocols_in", has_input ? kProtoUbx | kProtoNmea : 0);
+  out.protocols_in = read_protocols(t, "protocols_in", has_input ? protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea : 0);
   if (!has_input && out.protocols_in != 0) {
     t.fail(*t.find("protocols_in"), t.full_name("protocols_in") + ": a port of type \"" +
-                                        std::string(type_text(out.type)) + "\" has no input; use []");
+                                        std::string(port_type_name(out.type)) + "\" has no input; use []");
   }
-  out.protocols_out = read_protocols(t, "protocols_out", kProtoUbx | kProtoNmea);
+  out.protocols_out = read_protocols(t, "protocols_out", protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea);
   out.ubx_messages = read_ubx_messages(t);
   out.nmea.version = read_nmea_version(t, out.nmea.version);
   out.nmea.sentences = read_sentences(t, out.nmea.sentences);
@@ -626,6 +609,19 @@ Config read_config(const toml::table& doc, const std::string& name, const std::s
 }
 
 }  // namespace
+
+namespace {
+constexpr std::array<std::string_view, 5> kPortTypeNames{"pty", "file", "serial", "tcp", "udp"};  // by PortType
+}  // namespace
+
+std::string_view port_type_name(PortType type) noexcept { return kPortTypeNames[static_cast<std::size_t>(type)]; }
+
+std::optional<PortType> port_type_from_name(std::string_view name) noexcept {
+  for (std::size_t i = 0; i < kPortTypeNames.size(); ++i) {
+    if (kPortTypeNames[i] == name) return static_cast<PortType>(i);
+  }
+  return std::nullopt;
+}
 
 std::vector<MessageRate> message_rates(const OutputPortConfig& port) {
   std::vector<MessageRate> out = port.ubx_messages;

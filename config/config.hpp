@@ -10,6 +10,7 @@
 
 #include "core/common/vec3.hpp"
 #include "core/protocol/nmea/nmea_encoder.hpp"
+#include "core/protocol/ubx/ubx_ports.hpp"
 #include "core/receiver/receiver_config.hpp"
 #include "core/scene/mesh.hpp"
 #include "core/scene/propagator.hpp"
@@ -55,9 +56,10 @@ enum class PortType {
   kUdp,     ///< datagrams to one destination, output only
 };
 
-/// Protocol bits as in u-blox CFG-PRT inProtoMask / outProtoMask.
-inline constexpr uint16_t kProtoUbx = 0x0001;
-inline constexpr uint16_t kProtoNmea = 0x0002;
+/// The TOML `type` value of a port type: "pty", "file", "serial", "tcp", "udp".
+std::string_view port_type_name(PortType type) noexcept;
+/// Port type of a TOML `type` value, or nullopt.
+std::optional<PortType> port_type_from_name(std::string_view name) noexcept;
 
 /// A periodic message and its rate (u-blox CFG-MSG): sent every `rate`
 /// navigation epochs, 0 = off. Standard NMEA sentences are class 0xF0.
@@ -81,8 +83,10 @@ struct OutputPortConfig {
   /// recorded on a pty; sets the per-epoch byte budget. 0: no line (no
   /// budget), allowed for file/tcp/udp only.
   uint32_t baud = 9600;
-  uint16_t protocols_in = kProtoUbx | kProtoNmea;   ///< what the port's input accepts
-  uint16_t protocols_out = kProtoUbx | kProtoNmea;  ///< what the port sends
+  /// What the port's input accepts and what it sends: u-blox CFG-PRT
+  /// inProtoMask / outProtoMask bits (protocol::ubx::proto).
+  uint16_t protocols_in = protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea;
+  uint16_t protocols_out = protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea;
   /// Periodic UBX messages with their rates (u-blox factory default: none),
   /// in config/message_names.hpp order.
   std::vector<MessageRate> ubx_messages;

@@ -101,21 +101,10 @@ std::string sentences(const protocol::nmea::SentenceSet& s) {
   return out + "]";
 }
 
-std::string type_text(PortType t) {
-  switch (t) {
-    case PortType::kPty: return "pty";
-    case PortType::kFile: return "file";
-    case PortType::kSerial: return "serial";
-    case PortType::kTcp: return "tcp";
-    case PortType::kUdp: return "udp";
-  }
-  return "pty";
-}
-
 std::string protocols(uint16_t mask) {
   std::string out = "[";
-  if ((mask & kProtoUbx) != 0) out += "\"ubx\"";
-  if ((mask & kProtoNmea) != 0) out += std::string(out.size() > 1 ? ", " : "") + "\"nmea\"";
+  if ((mask & protocol::ubx::proto::kUbx) != 0) out += "\"ubx\"";
+  if ((mask & protocol::ubx::proto::kNmea) != 0) out += std::string(out.size() > 1 ? ", " : "") + "\"nmea\"";
   return out + "]";
 }
 
@@ -225,7 +214,7 @@ std::string to_toml(const Config& c, const std::string& relative_to) {
   for (const OutputPortConfig& p : c.outputs) {
     o += "\n[[output]]\n";
     o += "name = " + quoted(p.name) + "\n";
-    o += "type = " + quoted(type_text(p.type)) + "\n";
+    o += "type = " + quoted(std::string(port_type_name(p.type))) + "\n";
     switch (p.type) {
       case PortType::kPty: o += "path = " + quoted(p.path) + "\n"; break;
       case PortType::kFile: o += "path = " + quoted(path_text(p.path, relative_to)) + "\n"; break;

@@ -46,19 +46,19 @@ void print_summary(const config::Config& cfg, const orbit::NavData& nav) {
   std::printf("demo:    %s (circle r=%.1f m, %.1f m/s)\n", cfg.demo.enabled ? "on" : "off", cfg.demo.radius_m,
               cfg.demo.speed_m_s);
   for (const auto& p : cfg.outputs) {
-    const char* type = "pty";
     std::string where = p.path;
     switch (p.type) {
-      case config::PortType::kPty: break;
-      case config::PortType::kFile: type = "file"; break;
-      case config::PortType::kSerial: type = "serial"; break;
-      case config::PortType::kTcp: type = "tcp"; where = "listen " + p.address + ":" + std::to_string(p.port); break;
-      case config::PortType::kUdp: type = "udp"; where = "to " + p.address + ":" + std::to_string(p.port); break;
+      case config::PortType::kPty:
+      case config::PortType::kFile:
+      case config::PortType::kSerial: break;
+      case config::PortType::kTcp: where = "listen " + p.address + ":" + std::to_string(p.port); break;
+      case config::PortType::kUdp: where = "to " + p.address + ":" + std::to_string(p.port); break;
     }
     std::string protos;
-    if (p.protocols_out & config::kProtoNmea) protos += "NMEA";
-    if (p.protocols_out & config::kProtoUbx) protos += protos.empty() ? "UBX" : "+UBX";
-    std::printf("output:  %s: %s %s, %u baud, out %s, %zu UBX message(s)\n", p.name.c_str(), type, where.c_str(),
+    if (p.protocols_out & protocol::ubx::proto::kNmea) protos += "NMEA";
+    if (p.protocols_out & protocol::ubx::proto::kUbx) protos += protos.empty() ? "UBX" : "+UBX";
+    const std::string type(config::port_type_name(p.type));
+    std::printf("output:  %s: %s %s, %u baud, out %s, %zu UBX message(s)\n", p.name.c_str(), type.c_str(), where.c_str(),
                 static_cast<unsigned>(p.baud), protos.empty() ? "nothing" : protos.c_str(), p.ubx_messages.size());
   }
 }

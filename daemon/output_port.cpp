@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 #include <termios.h>
 
+#include <array>
 #include <cerrno>
 #include <cstring>
 
@@ -16,18 +17,13 @@ namespace gnssemu::daemon {
 namespace detail {
 
 unsigned baud_constant(uint32_t baud) noexcept {
-  switch (baud) {
-    case 4800: return B4800;
-    case 9600: return B9600;
-    case 19200: return B19200;
-    case 38400: return B38400;
-    case 57600: return B57600;
-    case 115200: return B115200;
-    case 230400: return B230400;
-    case 460800: return B460800;
-    case 921600: return B921600;
-    default: return B9600;
+  // termios speeds of protocol::ubx::kUartBauds, in the same order.
+  static constexpr std::array<unsigned, protocol::ubx::kUartBauds.size()> kSpeeds{
+      B4800, B9600, B19200, B38400, B57600, B115200, B230400, B460800, B921600};
+  for (std::size_t i = 0; i < kSpeeds.size(); ++i) {
+    if (protocol::ubx::kUartBauds[i] == baud) return kSpeeds[i];
   }
+  return B9600;
 }
 
 std::string errno_text() { return std::strerror(errno); }

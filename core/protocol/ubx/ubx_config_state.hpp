@@ -10,17 +10,9 @@
 
 #include "core/protocol/ubx/ubx_frame.hpp"
 #include "core/protocol/ubx/ubx_messages.hpp"
+#include "core/protocol/ubx/ubx_ports.hpp"
 
 namespace gnssemu::protocol::ubx {
-
-/// Ports in CFG-MSG rate order (M8 spec CFG-MSG, CFG-PRT portID).
-inline constexpr std::size_t kNumPorts = 6;
-inline constexpr std::uint8_t kPortDdc = 0, kPortUart1 = 1, kPortUart2 = 2, kPortUsb = 3, kPortSpi = 4;
-
-/// inProtoMask / outProtoMask bits.
-namespace proto {
-inline constexpr std::uint16_t kUbx = 0x0001, kNmea = 0x0002, kRtcm2 = 0x0004, kRtcm3 = 0x0020;
-}
 
 /// One port as CFG-PRT describes it (plus PUBX,41 autobauding).
 struct PortSettings {

@@ -16,15 +16,8 @@ constexpr MsgId kEpochOrder[] = {msg::kNavPosllh, msg::kNavStatus, msg::kNavDop,
                                  msg::kNavPvt,    msg::kNavVelned, msg::kNavTimegps, msg::kNavTimeutc,
                                  msg::kNavSvinfo, msg::kNavSat,    msg::kMonHw,      msg::kNavEoe};
 
-// CFG-PRT UART mode (UBX-13003221 CFG-PRT): charLen b6-7 (3 = 8 bit),
-// parity b9-11 (10x = none), nStopBits b12-13 (0 = 1 stop bit).
-constexpr bool is_8n1(std::uint32_t mode) noexcept {
-  return (mode >> 6 & 0x3U) == 0x3U && (mode >> 9 & 0x6U) == 0x4U && (mode >> 12 & 0x3U) == 0U;
-}
 constexpr std::uint16_t kMinMeasRate_ms = 25;  // M8: up to 40 Hz measurement rate (GPS only)
 constexpr std::uint16_t kMaxNavRate = 127;
-
-bool is_uart(std::uint8_t port_id) noexcept { return port_id == kPortUart1 || port_id == kPortUart2; }
 
 /// Classes whose messages CFG-MSG can rate: output messages only.
 bool rateable_class(std::uint8_t cls) noexcept {

@@ -41,8 +41,8 @@ TEST(ConfigPorts, EveryTypeParses) {
   EXPECT_EQ(s.type, PortType::kSerial);
   EXPECT_EQ(s.path, "/dev/ttyUSB0");
   EXPECT_EQ(s.baud, 38400u);
-  EXPECT_EQ(s.protocols_in, kProtoUbx);
-  EXPECT_EQ(s.protocols_out, kProtoUbx);
+  EXPECT_EQ(s.protocols_in, protocol::ubx::proto::kUbx);
+  EXPECT_EQ(s.protocols_out, protocol::ubx::proto::kUbx);
   // Stored in epoch order (NAV-PVT first), whatever the order in the file.
   ASSERT_EQ(s.ubx_messages.size(), 3u);
   EXPECT_EQ(s.ubx_messages[0], (MessageRate{0x01, 0x07, 1}));
@@ -54,7 +54,7 @@ TEST(ConfigPorts, EveryTypeParses) {
   EXPECT_EQ(t.address, "127.0.0.1");  // default bind: loopback only
   EXPECT_EQ(t.port, 2947);
   EXPECT_EQ(t.baud, 0u);  // no line budget by default
-  EXPECT_EQ(t.protocols_in, kProtoUbx | kProtoNmea);
+  EXPECT_EQ(t.protocols_in, protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea);
   ASSERT_EQ(t.nmea_rates.size(), 1u);
   EXPECT_EQ(t.nmea_rates[0], (MessageRate{kNmeaClass, 0x03, 4}));
   const std::vector<MessageRate> all = message_rates(t);
@@ -79,8 +79,8 @@ TEST(ConfigPorts, DefaultsAreAFactoryM8) {
   const OutputPortConfig& p = c.outputs.at(0);
   EXPECT_EQ(p.type, PortType::kPty);
   EXPECT_EQ(p.baud, 9600u);
-  EXPECT_EQ(p.protocols_in, kProtoUbx | kProtoNmea);
-  EXPECT_EQ(p.protocols_out, kProtoUbx | kProtoNmea);
+  EXPECT_EQ(p.protocols_in, protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea);
+  EXPECT_EQ(p.protocols_out, protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea);
   EXPECT_TRUE(p.ubx_messages.empty());
   EXPECT_TRUE(p.nmea_rates.empty());
 }

@@ -225,7 +225,7 @@ TEST(PortChannel, CfgMsgRatesApplyFromTheNextEpochInUbloxOrder) {
 
 TEST(PortChannel, ConfiguredRatesAndProtocols) {
   config::OutputPortConfig c = port_cfg();
-  c.protocols_out = config::kProtoUbx;
+  c.protocols_out = ubx::proto::kUbx;
   c.ubx_messages = {{0x01, 0x07, 1}, {0x01, 0x04, 3}};
   Rig r(c);
   EXPECT_EQ(r.ch->output_summary(), "UBX");
@@ -361,7 +361,7 @@ TEST(PortChannel, BaudRecordedOnALinelessPortKeepsAFrameSplitAcrossReads) {
 
 TEST(PortChannel, UptimeAndTtffCountFromPowerOnAndFromCfgRst) {
   config::OutputPortConfig c = port_cfg();
-  c.protocols_out = config::kProtoUbx;
+  c.protocols_out = ubx::proto::kUbx;
   c.ubx_messages = {{0x01, 0x03, 1}};  // NAV-STATUS
   Rig r(c);  // powered on at clock 100 s
   int resets = 0;
@@ -408,7 +408,7 @@ TEST(PortChannel, UptimeAndTtffCountFromPowerOnAndFromCfgRst) {
 
 TEST(PortChannel, GnssStopKeepsUptimeAndAnotherPortsResetRestartsIt) {
   config::OutputPortConfig c = port_cfg();
-  c.protocols_out = config::kProtoUbx;
+  c.protocols_out = ubx::proto::kUbx;
   c.ubx_messages = {{0x01, 0x03, 1}};  // NAV-STATUS
   Rig r(c);  // powered on at clock 100 s
   r.now = 100.35;
