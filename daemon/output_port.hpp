@@ -42,11 +42,15 @@ public:
   /// Begin reading input (pty, serial, tcp clients) and, for serial,
   /// reopening after failures. listener may be null: input is discarded.
   virtual void start(PortListener* listener) { (void)listener; }
-  /// Deliver one epoch (complete messages) to every reader.
-  void write_epoch(std::string_view data) noexcept { deliver(kAllSources, data, true); }
-  /// Deliver bytes outside the epoch schedule (a reply) to source (a tcp
-  /// client) or, for other ports, the port.
-  void write_reply(int source, std::string_view data) noexcept { deliver(source, data, false); }
+  /// Deliver one epoch of complete messages to every reader; message k ends
+  /// at byte ends[k] of data (empty: data is one message). Datagram ports
+  /// split only there.
+  void write_epoch(std::string_view data, std::span<const std::size_t> ends = {}) noexcept {
+    deliver(kAllSources, data, ends, true);
+  }
+  /// Deliver bytes outside the epoch schedule (a reply, sent whole) to
+  /// source (a tcp client) or, for other ports, the port.
+  void write_reply(int source, std::string_view data) noexcept { deliver(source, data, {}, false); }
   /// Switch the line rate once everything queued so far has been
   /// transmitted (tcdrain), as a u-blox does after CFG-PRT / $PUBX,41.
   /// Serial: applied; pty: recorded in the termios only; others: ignored.
@@ -61,9 +65,10 @@ public:
 protected:
   static constexpr int kAllSources = -1;
   explicit OutputPort(config::OutputPortConfig config) : config_(std::move(config)) {}
-  /// Write data to source (kAllSources: everyone); epoch: count as an epoch,
-  /// else as a reply. Never blocks or throws.
-  virtual void deliver(int source, std::string_view data, bool epoch) noexcept = 0;
+  /// Write data to source (kAllSources: everyone); ends: message ends as
+  /// write_epoch's; epoch: count as an epoch, else as a reply. Never blocks
+  /// or throws.
+  virtual void deliver(int source, std::string_view data, std::span<const std::size_t> ends, bool epoch) noexcept = 0;
   config::OutputPortConfig config_;
   PortStats stats_;
 };

@@ -76,7 +76,7 @@ public:
   std::string describe() const override { return config_.path + " (pty " + slave_name_ + ")"; }
 
 protected:
-  void deliver(int /*source*/, std::string_view data, bool epoch) noexcept override {
+  void deliver(int /*source*/, std::string_view data, std::span<const std::size_t> /*ends*/, bool epoch) noexcept override {
     const int master = master_sd_.native_handle();
     int backlog = 0;
     if (epoch && ::ioctl(slave_, FIONREAD, &backlog) == 0) {
@@ -175,7 +175,7 @@ public:
   std::string describe() const override { return config_.path + " (file)"; }
 
 protected:
-  void deliver(int /*source*/, std::string_view data, bool epoch) noexcept override {
+  void deliver(int /*source*/, std::string_view data, std::span<const std::size_t> /*ends*/, bool epoch) noexcept override {
     const ssize_t n = ::write(fd_, data.data(), data.size());
     if (n == static_cast<ssize_t>(data.size())) {
       stats_.bytes_written += static_cast<uint64_t>(n);

@@ -174,7 +174,7 @@ public:
   }
 
 protected:
-  void deliver(int /*source*/, std::string_view data, bool epoch) noexcept override {
+  void deliver(int /*source*/, std::string_view data, std::span<const std::size_t> /*ends*/, bool epoch) noexcept override {
     if (!line_.is_open()) {
       if (epoch) ++stats_.epochs_dropped;
       return;

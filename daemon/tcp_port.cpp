@@ -51,7 +51,7 @@ public:
   }
 
 protected:
-  void deliver(int source, std::string_view data, bool epoch) noexcept override {
+  void deliver(int source, std::string_view data, std::span<const std::size_t> /*ends*/, bool epoch) noexcept override {
     bool any = false;
     for (auto& c : clients_) {
       if (source != kAllSources && c->id != source) continue;

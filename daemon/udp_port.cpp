@@ -3,7 +3,6 @@
 #include <boost/asio/ip/udp.hpp>
 
 #include "core/common/error.hpp"
-#include "daemon/message_split.hpp"
 #include "daemon/port_impl.hpp"
 
 namespace gnssemu::daemon::detail {
@@ -27,17 +26,15 @@ public:
   }
 
 protected:
-  void deliver(int /*source*/, std::string_view data, bool epoch) noexcept override {
+  void deliver(int /*source*/, std::string_view data, std::span<const std::size_t> ends, bool epoch) noexcept override {
+    const std::size_t whole = data.size();
+    if (ends.empty() && !data.empty()) ends = {&whole, 1};
     bool ok = true;
     std::size_t start = 0;
-    while (start < data.size()) {
+    for (std::size_t k = 0; k < ends.size();) {
       // Whole messages up to the datagram size (a longer message goes alone).
-      std::size_t end = start + message_length(data.substr(start));
-      while (end < data.size()) {
-        const std::size_t next = end + message_length(data.substr(end));
-        if (next - start > kMaxDatagramBytes) break;
-        end = next;
-      }
+      std::size_t end = ends[k++];
+      while (k < ends.size() && ends[k] - start <= kMaxDatagramBytes) end = ends[k++];
       boost::system::error_code ec;
       const std::size_t n = socket_.send_to(asio::buffer(data.data() + start, end - start), dest_, 0, ec);
       if (ec) {

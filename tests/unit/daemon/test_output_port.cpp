@@ -187,3 +187,27 @@ TEST(OutputPort, SerialLostDuringABaudSwitchReopensAtTheNewRateWithoutStaleOutpu
   port.reset();
   ::close(m2);
 }
+
+TEST(ValidatePort, EveryType) {
+  config::OutputPortConfig c;
+  c.name = "t";
+  c.type = config::PortType::kTcp;
+  c.address = "127.0.0.1";
+  c.baud = 0;
+  EXPECT_NO_THROW(validate_port(c));
+  c.address = "not-an-ip";
+  EXPECT_THROW(validate_port(c), Error);
+  c.type = config::PortType::kUdp;
+  c.address = "127.0.0.1";
+  c.port = 0;
+  EXPECT_THROW(validate_port(c), Error);
+  c.type = config::PortType::kSerial;
+  c.path = "/dev/ttyUSB-absent-gnssemu";  // absent: fine, the port retries
+  c.baud = 9600;
+  EXPECT_NO_THROW(validate_port(c));
+  c.path = GNSSEMU_SOURCE_DIR "/CMakeLists.txt";  // a regular file is a mistake
+  EXPECT_THROW(validate_port(c), Error);
+  c.path = "ttyS0";
+  EXPECT_THROW(validate_port(c), Error);
+}
+

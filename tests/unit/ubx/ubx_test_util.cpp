@@ -103,4 +103,14 @@ std::uint32_t u4(const std::vector<std::uint8_t>& p, std::size_t off) {
 }
 std::int32_t i4(const std::vector<std::uint8_t>& p, std::size_t off) { return static_cast<std::int32_t>(u4(p, off)); }
 
+std::size_t ubx_epoch(const Device& d, Link at, std::string& out) {
+  MessageList list;
+  d.compose(at, list, Layout::kPerProtocol);
+  const std::size_t before = out.size();
+  for (const MessageList::Message& m : list.messages()) {
+    if (m.protocol == Protocol::kUbx) out.append(list.bytes(m));
+  }
+  return out.size() - before;
+}
+
 }  // namespace gnssemu::protocol::ubx::test

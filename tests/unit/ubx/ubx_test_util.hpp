@@ -5,6 +5,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/protocol/ubx/ubx_device.hpp"
 #include "core/protocol/ubx/ubx_frame.hpp"
 #include "core/receiver/fix.hpp"
 
@@ -30,6 +31,10 @@ std::string from_hex(std::string_view hex);
 std::string to_hex(std::string_view bytes);
 /// Complete frame bytes.
 std::string frame_bytes(MsgId id, const std::vector<std::uint8_t>& payload);
+
+/// Append the UBX messages d sends at at this epoch, in their own order (no
+/// NMEA), to out; returns the bytes appended.
+std::size_t ubx_epoch(const Device& d, Link at, std::string& out);
 
 /// Little-endian readers for asserting payload fields by offset.
 std::uint16_t u2(const std::vector<std::uint8_t>& p, std::size_t off);
