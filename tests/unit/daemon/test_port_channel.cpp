@@ -480,3 +480,29 @@ TEST(PortChannel, BudgetWarningQuotesTheRunRateAndCoversReplies) {
     EXPECT_EQ(log.count("reply MON-VER"), 1);
   }
 }
+
+TEST(PortChannel, FollowsAResetAnotherHostSentToTheChip) {
+  config::OutputPortConfig a = port_cfg(9600);
+  a.type = config::PortType::kPty;
+  config::OutputPortConfig b = a;
+  b.name = "b";
+  Rig r({a, b}, 1.0);
+  // What the daemon does with a host's input: the other channels follow.
+  r.channels[0]->on_input([&](const ubx::InputResult& q) {
+    if (q.reset || q.ports_changed) r.channels[1]->follow_device(q.reset.has_value());
+  });
+  r.input(pubx41(38400), 1);
+  ASSERT_EQ(r.ports[1]->bauds, (std::vector<uint32_t>{38400}));
+  const std::string poll = frame(ubx::msg::kMonVer);
+  r.input(poll.substr(0, 4), 1);  // B's host is midway through a frame
+  // A hardware reset from A's host: the chip loads its saved configuration,
+  // B's UART1 included, so B's line goes back to 9600 and its partial frame is gone.
+  r.input(frame(ubx::msg::kCfgRst, {0xFF, 0xFF, 0, 0}), 0);
+  EXPECT_EQ(r.ports[1]->bauds, (std::vector<uint32_t>{38400, 9600}));
+  EXPECT_DOUBLE_EQ(r.channels[1]->budget().line_bytes_per_s(), 960.0);
+  r.input(poll.substr(4), 1);
+  EXPECT_TRUE(r.ports[1]->replies.empty());
+  r.input(poll, 1);
+  EXPECT_EQ(r.ports[1]->replies.size(), 1u);
+  EXPECT_TRUE(r.ports[0]->bauds.empty());  // A never left 9600
+}
