@@ -395,6 +395,67 @@ void read_rates(TableReader& t, OutputPortConfig& out) {
   out.nmea_rates = std::move(sorted);
 }
 
+PtyPortConfig read_pty(TableReader& t) {
+  PtyPortConfig pty{t.string("path", std::nullopt)};
+  const toml::node* node = t.find("path");
+  if (pty.path.empty()) t.fail(*node, t.full_name("path") + ": must not be empty");
+  if (fs::path(pty.path).is_relative()) t.fail(*node, t.full_name("path") + ": pty path '" + pty.path + "' must be absolute");
+  return pty;
+}
+
+FilePortConfig read_file(TableReader& t, const std::string& base_dir) {
+  FilePortConfig file{t.string("path", std::nullopt)};
+  if (file.path.empty()) t.fail(*t.find("path"), t.full_name("path") + ": must not be empty");
+  file.path = resolve(file.path, base_dir).string();
+  return file;
+}
+
+SerialPortConfig read_serial(TableReader& t) {
+  SerialPortConfig serial{t.string("device", std::nullopt)};
+  if (serial.device.empty() || fs::path(serial.device).is_relative()) {
+    t.fail(*t.find("device"), t.full_name("device") + ": serial device '" + serial.device +
+                                  "' must be an absolute path (e.g. /dev/ttyUSB0)");
+  }
+  return serial;
+}
+
+// An IPv4 or IPv6 address at key, or def when the key is absent.
+std::string read_address(TableReader& t, std::string_view key, std::optional<std::string> def) {
+  const toml::node* n = t.find(key);
+  if (n == nullptr) {
+    if (!def) t.fail_missing(key, "key");
+    return *def;
+  }
+  std::string address = t.string(key, std::nullopt);
+  in6_addr buf{};
+  if (inet_pton(AF_INET, address.c_str(), &buf) != 1 && inet_pton(AF_INET6, address.c_str(), &buf) != 1) {
+    t.fail(*n, t.full_name(key) + ": '" + address + "' is not an IPv4 or IPv6 address");
+  }
+  return address;
+}
+
+TcpPortConfig read_tcp(TableReader& t) {
+  TcpPortConfig tcp;
+  tcp.bind = read_address(t, "bind", tcp.bind);
+  tcp.port = static_cast<uint16_t>(t.integer("port", 0, 0, 65535));
+  return tcp;
+}
+
+UdpPortConfig read_udp(TableReader& t) {
+  UdpPortConfig udp;
+  udp.address = read_address(t, "address", std::nullopt);
+  udp.port = static_cast<uint16_t>(t.integer("port", std::nullopt, 1, 65535));
+  return udp;
+}
+
+// The file or device a port claims for itself ("" for network ports).
+std::string claimed_path(const PortTransport& transport) {
+  if (const auto* pty = std::get_if<PtyPortConfig>(&transport)) return pty->path;
+  if (const auto* file = std::get_if<FilePortConfig>(&transport)) return file->path;
+  if (const auto* serial = std::get_if<SerialPortConfig>(&transport)) return serial->device;
+  return {};
+}
+
 OutputPortConfig read_output(TableReader& t, const std::string& base_dir) {
   OutputPortConfig out;
   out.name = t.string("name", std::nullopt);
@@ -404,68 +465,40 @@ OutputPortConfig read_output(TableReader& t, const std::string& base_dir) {
       t.fail(*t.find("name"), t.full_name("name") + ": '" + out.name + "' contains a space or control character");
     }
   }
+  PortType type = PortType::kPty;
   if (const toml::node* n = t.find("type")) {
-    const std::string type = t.string("type", std::nullopt);
-    const std::optional<PortType> known = port_type_from_name(type);
-    if (known) out.type = *known;
-    if (!known) t.fail(*n, t.full_name("type") + ": '" + type + "' is not one of \"pty\", \"serial\", \"tcp\", \"udp\", \"file\"");
+    const std::string name = t.string("type", std::nullopt);
+    const std::optional<PortType> known = port_type_from_name(name);
+    if (known) type = *known;
+    if (!known) t.fail(*n, t.full_name("type") + ": '" + name + "' is not one of \"pty\", \"serial\", \"tcp\", \"udp\", \"file\"");
   }
-  reject_foreign_keys(t, out.type);
-  switch (out.type) {
-    case PortType::kPty:
-    case PortType::kFile: {
-      out.path = t.string("path", std::nullopt);
-      const toml::node* path_node = t.find("path");
-      if (out.path.empty()) t.fail(*path_node, t.full_name("path") + ": must not be empty");
-      if (out.type == PortType::kFile) {
-        out.path = resolve(out.path, base_dir).string();
-      } else if (fs::path(out.path).is_relative()) {
-        t.fail(*path_node, t.full_name("path") + ": pty path '" + out.path + "' must be absolute");
-      }
-      break;
-    }
-    case PortType::kSerial: {
-      out.path = t.string("device", std::nullopt);
-      const toml::node* node = t.find("device");
-      if (out.path.empty() || fs::path(out.path).is_relative()) {
-        t.fail(*node, t.full_name("device") + ": serial device '" + out.path + "' must be an absolute path (e.g. /dev/ttyUSB0)");
-      }
-      break;
-    }
-    case PortType::kTcp:
-    case PortType::kUdp: {
-      const std::string_view key = out.type == PortType::kTcp ? "bind" : "address";
-      if (out.type == PortType::kTcp) out.address = "127.0.0.1";
-      if (const toml::node* n = t.find(key)) {
-        out.address = t.string(key, std::nullopt);
-        in6_addr buf{};
-        if (inet_pton(AF_INET, out.address.c_str(), &buf) != 1 && inet_pton(AF_INET6, out.address.c_str(), &buf) != 1) {
-          t.fail(*n, t.full_name(key) + ": '" + out.address + "' is not an IPv4 or IPv6 address");
-        }
-      } else if (out.type == PortType::kUdp) {
-        t.fail_missing("address", "key");
-      }
-      out.port = static_cast<uint16_t>(out.type == PortType::kTcp ? t.integer("port", 0, 0, 65535)
-                                                                   : t.integer("port", std::nullopt, 1, 65535));
-      break;
-    }
+  reject_foreign_keys(t, type);
+  switch (type) {
+    case PortType::kPty: out.transport = read_pty(t); break;
+    case PortType::kFile: out.transport = read_file(t, base_dir); break;
+    case PortType::kSerial: out.transport = read_serial(t); break;
+    case PortType::kTcp: out.transport = read_tcp(t); break;
+    case PortType::kUdp: out.transport = read_udp(t); break;
   }
-  const bool line = is_line(out.type);
+  const bool line = is_line(out.type());
   out.baud = line ? 9600 : 0;
   const int64_t baud = t.integer("baud", out.baud, line ? 1 : 0, std::numeric_limits<uint32_t>::max());
   if (baud != 0 && !protocol::ubx::is_ubx_baud(static_cast<uint32_t>(baud))) {
     std::string rates;
-    for (const uint32_t b : protocol::ubx::kUartBauds) rates += (rates.empty() ? "" : " ") + std::to_string(b);
+    for (const uint32_t b : protocol::ubx::kUartBauds) {
+      if (!rates.empty()) rates += ' ';
+      rates += std::to_string(b);
+    }
     t.fail(*t.find("baud"), t.full_name("baud") + ": " + std::to_string(baud) + " is not a standard rate (" + rates +
                                 ")" + (line ? "" : " or 0 (no line budget)"));
   }
   out.baud = static_cast<uint32_t>(baud);
 
-  const bool has_input = out.type != PortType::kFile && out.type != PortType::kUdp;
+  const bool has_input = out.type() != PortType::kFile && out.type() != PortType::kUdp;
   out.protocols_in = read_protocols(t, "protocols_in", has_input ? protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea : 0);
   if (!has_input && out.protocols_in != 0) {
     t.fail(*t.find("protocols_in"), t.full_name("protocols_in") + ": a port of type \"" +
-                                        std::string(port_type_name(out.type)) + "\" has no input; use []");
+                                        std::string(port_type_name(out.type())) + "\" has no input; use []");
   }
   out.protocols_out = read_protocols(t, "protocols_out", protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea);
   out.ubx_messages = read_ubx_messages(t);
@@ -484,12 +517,15 @@ std::vector<OutputPortConfig> read_outputs(TableReader& root, const std::string&
     OutputPortConfig port = read_output(t, base_dir);
     for (const OutputPortConfig& prev : out) {
       if (prev.name == port.name) t.fail(*t.find("name"), t.full_name("name") + ": '" + port.name + "' is used twice");
-      if (!port.path.empty() && prev.path == port.path) {
-        const std::string_view key = port.type == PortType::kSerial ? "device" : "path";
-        t.fail(*t.find(key), t.full_name(key) + ": '" + port.path + "' is already used by output '" + prev.name + "'");
+      const std::string path = claimed_path(port.transport);
+      if (!path.empty() && claimed_path(prev.transport) == path) {
+        const std::string_view key = port.type() == PortType::kSerial ? "device" : "path";
+        t.fail(*t.find(key), t.full_name(key) + ": '" + path + "' is already used by output '" + prev.name + "'");
       }
-      if (port.type == PortType::kTcp && prev.type == PortType::kTcp && port.port != 0 && prev.port == port.port) {
-        t.fail(*t.find("port"), t.full_name("port") + ": tcp port " + std::to_string(port.port) +
+      const auto* tcp = std::get_if<TcpPortConfig>(&port.transport);
+      const auto* prev_tcp = std::get_if<TcpPortConfig>(&prev.transport);
+      if (tcp != nullptr && prev_tcp != nullptr && tcp->port != 0 && prev_tcp->port == tcp->port) {
+        t.fail(*t.find("port"), t.full_name("port") + ": tcp port " + std::to_string(tcp->port) +
                                     " is already used by output '" + prev.name + "'");
       }
     }

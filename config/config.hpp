@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "core/common/vec3.hpp"
@@ -47,7 +48,7 @@ struct DemoConfig {
   double height_m = 0.0;          ///< above the origin
 };
 
-/// Port kinds (docs/ports.md).
+/// Port kinds (docs/ports.md), in the order of PortTransport's alternatives.
 enum class PortType {
   kPty,     ///< pseudo-terminal with a stable symlink (gpsd, SITL)
   kFile,    ///< log of everything sent (truncated at start)
@@ -55,6 +56,32 @@ enum class PortType {
   kTcp,     ///< TCP server; every client gets the stream, input from all clients
   kUdp,     ///< datagrams to one destination, output only
 };
+
+/// What each port type needs besides the settings every port has. The
+/// daemon checks each (daemon::validate_port) and sets it up (open_port).
+struct PtyPortConfig {
+  std::string path;  ///< stable symlink to the pty, absolute (key "path")
+  bool operator==(const PtyPortConfig&) const = default;
+};
+struct FilePortConfig {
+  std::string path;  ///< file written, absolute: resolved against the config file's folder (key "path")
+  bool operator==(const FilePortConfig&) const = default;
+};
+struct SerialPortConfig {
+  std::string device;  ///< e.g. /dev/ttyUSB0, absolute (key "device")
+  bool operator==(const SerialPortConfig&) const = default;
+};
+struct TcpPortConfig {
+  std::string bind = "127.0.0.1";  ///< listen address, IPv4 or IPv6 (key "bind")
+  uint16_t port = 0;               ///< listen port; 0: any free one (printed)
+  bool operator==(const TcpPortConfig&) const = default;
+};
+struct UdpPortConfig {
+  std::string address;  ///< destination, IPv4 or IPv6 (key "address")
+  uint16_t port = 0;    ///< destination port, 1..65535
+  bool operator==(const UdpPortConfig&) const = default;
+};
+using PortTransport = std::variant<PtyPortConfig, FilePortConfig, SerialPortConfig, TcpPortConfig, UdpPortConfig>;
 
 /// The TOML `type` value of a port type: "pty", "file", "serial", "tcp", "udp".
 std::string_view port_type_name(PortType type) noexcept;
@@ -72,13 +99,7 @@ struct MessageRate {
 
 struct OutputPortConfig {
   std::string name;               ///< unique, for logs
-  PortType type = PortType::kPty;
-  /// pty: stable symlink to create; file: file to write; serial: device
-  /// (key "device"); unused for tcp/udp.
-  std::string path;
-  /// tcp: listen address (key "bind"); udp: destination address (key "address").
-  std::string address;
-  uint16_t port = 0;              ///< tcp: listen port (0: any free, printed); udp: destination port
+  PortTransport transport;        ///< the port type and its own settings
   /// Line rate, bit/s (8N1: 10 bits per byte). Applied on a serial port,
   /// recorded on a pty; sets the per-epoch byte budget. 0: no line (no
   /// budget), allowed for file/tcp/udp only.
@@ -93,6 +114,8 @@ struct OutputPortConfig {
   protocol::nmea::NmeaConfig nmea;  ///< sentences: the NMEA set
   /// Rates other than 1 for sentences of the set (class 0xF0), in u-blox order.
   std::vector<MessageRate> nmea_rates;
+
+  PortType type() const noexcept { return static_cast<PortType>(transport.index()); }
 };
 
 /// The port's full periodic-message table: every UBX message and every

@@ -1,7 +1,7 @@
 #pragma once
 // Output ports: the transports an emulated receiver talks on (docs/ports.md).
 // A port moves bytes only; what to send is decided by its PortChannel. Every
-// port type has a plain config (config::OutputPortConfig), a static
+// port type has a plain config (config::PtyPortConfig, ...), a static
 // validator testable without hardware (validate_port) and a setup
 // (open_port). Writes never block the event loop and never throw.
 #include <cstdint>
@@ -73,12 +73,19 @@ protected:
   PortStats stats_;
 };
 
-/// Static checks of a port config, without touching the system beyond
-/// lstat(): a pty path must be free or a symlink (a regular file is never
-/// overwritten); a serial device must be an absolute path that is not a
-/// regular file or folder; tcp/udp addresses must parse. Throws
-/// gnssemu::Error naming the port.
-void validate_port(const config::OutputPortConfig& config);
+/// Static checks of one port type, testable without hardware: they touch
+/// the system no more than lstat()/stat(). A pty path must be free or a
+/// symlink (a regular file is never overwritten); a file path not empty; a
+/// serial device an absolute path that is not a regular file or folder, with
+/// a baud rate; tcp/udp addresses must parse, a udp port be non-zero. Throw
+/// gnssemu::Error naming the port (defined with each type's port).
+void validate_port(const config::OutputPortConfig& port, const config::PtyPortConfig& pty);
+void validate_port(const config::OutputPortConfig& port, const config::FilePortConfig& file);
+void validate_port(const config::OutputPortConfig& port, const config::SerialPortConfig& serial);
+void validate_port(const config::OutputPortConfig& port, const config::TcpPortConfig& server);
+void validate_port(const config::OutputPortConfig& port, const config::UdpPortConfig& destination);
+/// The check of port's type.
+void validate_port(const config::OutputPortConfig& port);
 
 /// Create the port (pty + symlink, serial device, listening socket, udp
 /// socket, file). A serial device that is absent is not an error: the port

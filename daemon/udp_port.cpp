@@ -13,16 +13,17 @@ using asio::ip::udp;
 
 class UdpPort final : public OutputPort {
 public:
-  UdpPort(const config::OutputPortConfig& cfg, asio::io_context& io) : OutputPort(cfg), socket_(io) {
+  UdpPort(const config::OutputPortConfig& cfg, const config::UdpPortConfig& destination, asio::io_context& io)
+      : OutputPort(cfg), destination_(destination), socket_(io) {
     boost::system::error_code ec;
-    dest_ = udp::endpoint(asio::ip::make_address(cfg.address, ec), cfg.port);
+    dest_ = udp::endpoint(asio::ip::make_address(destination.address, ec), destination.port);
     if (!ec) socket_.open(dest_.protocol(), ec);
     if (!ec) socket_.non_blocking(true, ec);
     if (ec) throw Error("output '" + cfg.name + "': cannot open udp socket: " + ec.message());
   }
 
   std::string describe() const override {
-    return "udp to " + config_.address + ":" + std::to_string(config_.port);
+    return "udp to " + destination_.address + ":" + std::to_string(destination_.port);
   }
 
 protected:
@@ -52,14 +53,28 @@ protected:
   }
 
 private:
+  config::UdpPortConfig destination_;
   udp::socket socket_;
   udp::endpoint dest_;
 };
 
 }  // namespace
 
-std::unique_ptr<OutputPort> make_udp_port(const config::OutputPortConfig& cfg, asio::io_context& io) {
-  return std::make_unique<UdpPort>(cfg, io);
+std::unique_ptr<OutputPort> make_port(const config::OutputPortConfig& cfg, const config::UdpPortConfig& destination,
+                                      asio::io_context& io) {
+  return std::make_unique<UdpPort>(cfg, destination, io);
 }
 
 }  // namespace gnssemu::daemon::detail
+
+namespace gnssemu::daemon {
+
+void validate_port(const config::OutputPortConfig& port, const config::UdpPortConfig& destination) {
+  const std::string who = "output '" + port.name + "'";
+  boost::system::error_code ec;
+  boost::asio::ip::make_address(destination.address, ec);
+  if (ec) throw Error(who + ": bad address '" + destination.address + "'");
+  if (destination.port == 0) throw Error(who + ": udp destination port 0");
+}
+
+}  // namespace gnssemu::daemon

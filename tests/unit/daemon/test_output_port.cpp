@@ -36,8 +36,7 @@ struct TempDir {
 config::OutputPortConfig pty_config(const fs::path& p) {
   config::OutputPortConfig c;
   c.name = "gps0";
-  c.type = config::PortType::kPty;
-  c.path = p.string();
+  c.transport = config::PtyPortConfig{p.string()};
   return c;
 }
 
@@ -54,7 +53,7 @@ TEST(OutputPort, RefusesToReplaceRegularFile) {
   in >> s;
   EXPECT_EQ(s, "precious");
   config::OutputPortConfig empty = pty_config(p);
-  empty.path.clear();
+  std::get<config::PtyPortConfig>(empty.transport).path.clear();
   EXPECT_THROW(validate_port(empty), Error);
 }
 
@@ -113,15 +112,14 @@ TEST(OutputPort, FilePortWrites) {
   TempDir dir;
   config::OutputPortConfig c;
   c.name = "log";
-  c.type = config::PortType::kFile;
-  c.path = (dir.path / "out.nmea").string();
+  c.transport = config::FilePortConfig{(dir.path / "out.nmea").string()};
   {
     auto port = open_port(c, io);
     port->write_epoch("A\r\n");
     port->write_epoch("B\r\n");
     EXPECT_EQ(port->stats().epochs_written, 2u);
   }
-  std::ifstream in(c.path);
+  std::ifstream in(std::get<config::FilePortConfig>(c.transport).path);
   std::stringstream ss;
   ss << in.rdbuf();
   EXPECT_EQ(ss.str(), "A\r\nB\r\n");
@@ -150,8 +148,7 @@ TEST(OutputPort, SerialLostDuringABaudSwitchReopensAtTheNewRateWithoutStaleOutpu
   fs::create_symlink(::ttyname(s1), link);
   config::OutputPortConfig c;
   c.name = "uart";
-  c.type = config::PortType::kSerial;
-  c.path = link.string();
+  c.transport = config::SerialPortConfig{link.string()};
   c.baud = 9600;
   auto port = open_port(c, io);
   port->start(nullptr);
@@ -191,23 +188,20 @@ TEST(OutputPort, SerialLostDuringABaudSwitchReopensAtTheNewRateWithoutStaleOutpu
 TEST(ValidatePort, EveryType) {
   config::OutputPortConfig c;
   c.name = "t";
-  c.type = config::PortType::kTcp;
-  c.address = "127.0.0.1";
+  c.transport = config::TcpPortConfig{"127.0.0.1", 0};
   c.baud = 0;
   EXPECT_NO_THROW(validate_port(c));
-  c.address = "not-an-ip";
+  std::get<config::TcpPortConfig>(c.transport).bind = "not-an-ip";
   EXPECT_THROW(validate_port(c), Error);
-  c.type = config::PortType::kUdp;
-  c.address = "127.0.0.1";
-  c.port = 0;
+  c.transport = config::UdpPortConfig{"127.0.0.1", 0};
   EXPECT_THROW(validate_port(c), Error);
-  c.type = config::PortType::kSerial;
-  c.path = "/dev/ttyUSB-absent-gnssemu";  // absent: fine, the port retries
+  c.transport = config::SerialPortConfig{"/dev/ttyUSB-absent-gnssemu"};  // absent: fine, the port retries
   c.baud = 9600;
   EXPECT_NO_THROW(validate_port(c));
-  c.path = GNSSEMU_SOURCE_DIR "/CMakeLists.txt";  // a regular file is a mistake
-  EXPECT_THROW(validate_port(c), Error);
-  c.path = "ttyS0";
+  const config::SerialPortConfig plain_file{GNSSEMU_SOURCE_DIR "/CMakeLists.txt"};  // a regular file is a mistake
+  EXPECT_THROW(validate_port(c, plain_file), Error);
+  EXPECT_THROW(validate_port(c, config::SerialPortConfig{"ttyS0"}), Error);
+  c.baud = 0;  // a serial line needs a rate
   EXPECT_THROW(validate_port(c), Error);
 }
 

@@ -172,8 +172,7 @@ struct LogCapture {
 config::OutputPortConfig port_cfg(uint32_t baud = 0) {
   config::OutputPortConfig c;
   c.name = "t";
-  c.type = config::PortType::kTcp;
-  c.address = "127.0.0.1";
+  c.transport = config::TcpPortConfig{"127.0.0.1", 0};
   c.baud = baud;
   return c;
 }
@@ -223,7 +222,7 @@ TEST(PortChannel, ConfiguredRatesAndProtocols) {
 
 TEST(PortChannel, CfgRateReachesTheDaemonAndPubx41SwitchesBaudAfterTheReply) {
   config::OutputPortConfig c = port_cfg(9600);
-  c.type = config::PortType::kPty;
+  c.transport = config::PtyPortConfig{"/tmp/gnssemu-test-pty"};
   Rig r(c);
   int inputs = 0;
   r.ch->on_input([&](const ubx::InputResult& q) { inputs += q.nav_rate_changed; });
@@ -312,7 +311,7 @@ TEST(PortChannel, TruncatedHeaderIsAbandonedAfterTheLineGoesQuiet) {
 
 TEST(PortChannel, BaudChangeAndReopenDropThePartialFrame) {
   config::OutputPortConfig c = port_cfg(9600);
-  c.type = config::PortType::kPty;
+  c.transport = config::PtyPortConfig{"/tmp/gnssemu-test-pty"};
   Rig r(c);
   const std::string poll = frame(ubx::msg::kMonVer);
   // Bytes after $PUBX,41 in the same read were sent at the old rate: the
@@ -432,7 +431,7 @@ TEST(PortChannel, GnssStopKeepsUptimeAndAnotherPortsResetRestartsIt) {
 TEST(PortChannel, BudgetWarnsOnceUntilTheBaudChanges) {
   LogCapture log;
   config::OutputPortConfig c = port_cfg(9600);
-  c.type = config::PortType::kPty;
+  c.transport = config::PtyPortConfig{"/tmp/gnssemu-test-pty"};
   c.ubx_messages = {{0x01, 0x07, 1}, {0x01, 0x35, 1}, {0x01, 0x30, 1}, {0x01, 0x06, 1}};
   Rig r(c, 0.2);
   const auto run = [&](int from, int to) {
@@ -483,7 +482,7 @@ TEST(PortChannel, BudgetWarningQuotesTheRunRateAndCoversReplies) {
 
 TEST(PortChannel, FollowsAResetAnotherHostSentToTheChip) {
   config::OutputPortConfig a = port_cfg(9600);
-  a.type = config::PortType::kPty;
+  a.transport = config::PtyPortConfig{"/tmp/gnssemu-test-pty"};
   config::OutputPortConfig b = a;
   b.name = "b";
   Rig r({a, b}, 1.0);
