@@ -13,7 +13,6 @@
 #include <sstream>
 
 #include "core/common/error.hpp"
-#include "daemon/config_locator.hpp"
 #include "daemon/output_port.hpp"
 
 using namespace gnssemu;
@@ -123,17 +122,6 @@ TEST(OutputPort, FilePortWrites) {
   std::stringstream ss;
   ss << in.rdbuf();
   EXPECT_EQ(ss.str(), "A\r\nB\r\n");
-}
-
-TEST(ConfigLocator, SearchOrder) {
-  const auto c = default_config_candidates("/opt/gnssemu/bin/gnssemud");
-  ASSERT_GE(c.size(), 5u);
-  EXPECT_EQ(c[0], "/opt/gnssemu/bin/default.toml");
-  EXPECT_EQ(c[1], "/opt/gnssemu/bin/config/default.toml");
-  EXPECT_EQ(c[2], "/opt/gnssemu/share/gnssemu/default.toml");
-  EXPECT_EQ(c.back(), std::string(GNSSEMU_SOURCE_DIR) + "/config/default.toml");
-  // The source tree's default is found from anywhere.
-  EXPECT_EQ(find_default_config("/nonexistent/bin/gnssemud"), std::string(GNSSEMU_SOURCE_DIR) + "/config/default.toml");
 }
 
 TEST(OutputPort, SerialLostDuringABaudSwitchReopensAtTheNewRateWithoutStaleOutput) {
