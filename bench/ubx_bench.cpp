@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
                   per_epoch * 5, per_epoch * 10, per_epoch * 10 * 10, us / static_cast<double>(fixes.size()),
                   static_cast<double>(allocs) / static_cast<double>(fixes.size()));
     }
-    // PX4 configuration sequence through decoder and responder.
+    // PX4 configuration sequence through the decoder and the device.
     std::string seq = frame(ubx::msg::kCfgValset, {0, 1, 0, 0, 1, 0, 0x52, 0x40, 0, 0xC2, 1, 0});
     std::vector<std::uint8_t> prt(20, 0);
     prt[0] = 1;
