@@ -15,7 +15,7 @@
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
 #include "core/protocol/ubx/ubx_decoder.hpp"
-#include "core/protocol/ubx/ubx_responder.hpp"
+#include "core/protocol/ubx/ubx_device.hpp"
 #include "core/receiver/receiver.hpp"
 #include "tests/support/alloc_counter.hpp"
 
@@ -30,10 +30,10 @@ struct MessageSet {
 };
 
 struct Feed : ubx::DecoderSink {
-  ubx::ConfigResponder* r = nullptr;
+  ubx::Device* r = nullptr;
   std::string* out = nullptr;
-  void on_ubx(const ubx::FrameView& f) override { r->handle_ubx(ubx::kPortUart1, f, *out); }
-  void on_nmea(std::string_view s) override { r->handle_nmea(ubx::kPortUart1, s, *out); }
+  void on_ubx(const ubx::FrameView& f) override { r->handle_ubx({}, f, 0.0, *out); }
+  void on_nmea(std::string_view s) override { r->handle_nmea({}, s, *out); }
 };
 
 std::string frame(ubx::MsgId id, std::vector<std::uint8_t> p) {
@@ -85,20 +85,19 @@ int main(int argc, char** argv) {
     std::printf("%-10s %10s %10s %12s %12s %10s %10s %10s\n", "set", "bytes/ep", "max_bytes", "B/s@5Hz", "B/s@10Hz",
                 "baud@10Hz", "enc_us", "allocs/ep");
     for (const auto& s : sets) {
-      ubx::ConfigResponder r({});
-      r.current().ports[ubx::kPortUart1].out_proto_mask = ubx::proto::kUbx;
-      for (const auto& [id, rate] : s.rates) r.current().set_message_rate(ubx::kPortUart1, id, static_cast<std::uint8_t>(rate));
-      std::string out;
-      out.reserve(ubx::kMaxEpochBytes);
+      ubx::Device r({});
+      r.config().port(ubx::kPortUart1).out_proto_mask = ubx::proto::kUbx;
+      for (const auto& [id, rate] : s.rates) r.config().set_message_rate(ubx::kPortUart1, id, static_cast<std::uint8_t>(rate));
+      ubx::MessageList out;
       std::size_t total = 0, max_bytes = 0;
       double us = 0;
       long allocs = 0;
       for (std::size_t k = 0; k < fixes.size(); ++k) {
-        out.clear();
         const long a0 = support::allocation_count();
         const auto c0 = std::chrono::steady_clock::now();
         r.on_epoch(fixes[k], 0.2 * static_cast<double>(k));
-        const std::size_t n = r.encode_epoch(ubx::kPortUart1, out);
+        r.compose({}, out);
+        const std::size_t n = out.bytes().size();
         const auto c1 = std::chrono::steady_clock::now();
         allocs += support::allocation_count() - a0;
         us += std::chrono::duration<double, std::micro>(c1 - c0).count();
@@ -111,7 +110,7 @@ int main(int argc, char** argv) {
                   per_epoch * 5, per_epoch * 10, per_epoch * 10 * 10, us / static_cast<double>(fixes.size()),
                   static_cast<double>(allocs) / static_cast<double>(fixes.size()));
     }
-    // PX4 configuration sequence through decoder and responder.
+    // PX4 configuration sequence through the decoder and the device.
     std::string seq = frame(ubx::msg::kCfgValset, {0, 1, 0, 0, 1, 0, 0x52, 0x40, 0, 0xC2, 1, 0});
     std::vector<std::uint8_t> prt(20, 0);
     prt[0] = 1;
@@ -135,7 +134,7 @@ int main(int argc, char** argv) {
     reply.reserve(4096);
     double us = 0;
     for (int i = 0; i < reps; ++i) {
-      ubx::ConfigResponder r({});
+      ubx::Device r({});
       ubx::StreamDecoder d;
       Feed f;
       f.r = &r;

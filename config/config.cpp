@@ -26,8 +26,6 @@ namespace fs = std::filesystem;
 using detail::Range;
 using detail::TableReader;
 
-// u-blox M8 UART rates (u-blox M8 protocol spec, CFG-PRT baudRate).
-constexpr std::array<uint32_t, 9> kStandardBauds{4800, 9600, 19200, 38400, 57600, 115200, 230400, 460800, 921600};
 constexpr std::array<std::string_view, 7> kLogLevels{"trace", "debug", "info", "warn", "error", "critical", "off"};
 
 fs::path resolve(const std::string& path, const std::string& base_dir) {
@@ -246,18 +244,6 @@ protocol::nmea::NmeaVersion read_nmea_version(TableReader& t, protocol::nmea::Nm
   t.fail(*n, t.full_name("nmea_version") + ": '" + v + "' is not one of \"2.3\", \"4.10\", \"4.11\"");
 }
 
-bool* sentence_flag(protocol::nmea::SentenceSet& s, std::string_view name) {
-  if (name == "GGA") return &s.gga;
-  if (name == "RMC") return &s.rmc;
-  if (name == "GSA") return &s.gsa;
-  if (name == "GSV") return &s.gsv;
-  if (name == "VTG") return &s.vtg;
-  if (name == "GLL") return &s.gll;
-  if (name == "GST") return &s.gst;
-  if (name == "ZDA") return &s.zda;
-  return nullptr;
-}
-
 protocol::nmea::SentenceSet read_sentences(TableReader& t, const protocol::nmea::SentenceSet& def) {
   const toml::node* n = t.find("sentences");
   if (n == nullptr) return def;
@@ -266,33 +252,21 @@ protocol::nmea::SentenceSet read_sentences(TableReader& t, const protocol::nmea:
   if (a == nullptr) t.fail(*n, name + ": expected an array of strings, got " + std::string(detail::type_name(*n)));
   if (a->empty()) t.fail(*n, name + ": must name at least one sentence");
   protocol::nmea::SentenceSet out;
-  out.gga = out.rmc = out.gsa = out.gsv = out.vtg = out.gll = out.gst = out.zda = false;
   for (std::size_t i = 0; i < a->size(); ++i) {
     const toml::node& e = *a->get(i);
     const auto* s = e.as_string();
     if (s == nullptr) t.fail(e, name + ": expected sentence names (strings), got " + std::string(detail::type_name(e)));
-    bool* flag = sentence_flag(out, s->get());
-    if (flag == nullptr) {
+    const std::optional<protocol::nmea::Sentence> sentence = protocol::nmea::sentence_by_name(s->get());
+    if (!sentence) {
       t.fail(e, name + ": unknown sentence '" + s->get() + "' (known: GGA RMC GSA GSV VTG GLL GST ZDA)");
     }
-    if (*flag) t.fail(e, name + ": '" + s->get() + "' listed twice");
-    *flag = true;
+    if (out.has(*sentence)) t.fail(e, name + ": '" + s->get() + "' listed twice");
+    out.set(*sentence);
   }
   return out;
 }
 
 bool is_line(PortType type) { return type == PortType::kPty || type == PortType::kSerial; }
-
-std::string_view type_text(PortType type) {
-  switch (type) {
-    case PortType::kPty: return "pty";
-    case PortType::kFile: return "file";
-    case PortType::kSerial: return "serial";
-    case PortType::kTcp: return "tcp";
-    case PortType::kUdp: return "udp";
-  }
-  return "pty";
-}
 
 // Keys that belong to one port type only.
 struct TypedKey {
@@ -314,10 +288,10 @@ void reject_foreign_keys(TableReader& t, PortType type) {
     std::string owners;
     for (const PortType o : k.types) {
       owners += owners.empty() ? "\"" : " or \"";
-      owners += type_text(o);
+      owners += port_type_name(o);
       owners += '"';
     }
-    t.fail(*n, t.full_name(k.key) + ": not used by a port of type \"" + std::string(type_text(type)) +
+    t.fail(*n, t.full_name(k.key) + ": not used by a port of type \"" + std::string(port_type_name(type)) +
                    "\" (only " + owners + ")");
   }
 }
@@ -333,7 +307,7 @@ uint16_t read_protocols(TableReader& t, std::string_view key, uint16_t def) {
     const toml::node& e = *a->get(i);
     const auto* s = e.as_string();
     if (s == nullptr) t.fail(e, name + ": expected protocol names (strings), got " + std::string(detail::type_name(e)));
-    const uint16_t bit = s->get() == "ubx" ? kProtoUbx : s->get() == "nmea" ? kProtoNmea : 0;
+    const uint16_t bit = s->get() == "ubx" ? protocol::ubx::proto::kUbx : s->get() == "nmea" ? protocol::ubx::proto::kNmea : 0;
     if (bit == 0) t.fail(e, name + ": unknown protocol '" + s->get() + "' (known: \"ubx\", \"nmea\")");
     if ((mask & bit) != 0) t.fail(e, name + ": '" + s->get() + "' listed twice");
     mask |= bit;
@@ -373,12 +347,8 @@ std::vector<MessageRate> read_ubx_messages(TableReader& t) {
 }
 
 bool sentence_on(const protocol::nmea::SentenceSet& s, uint8_t id) {
-  for (const MessageName& m : nmea_sentences()) {
-    if (m.msg_id != id) continue;
-    protocol::nmea::SentenceSet copy = s;
-    return *sentence_flag(copy, m.name);
-  }
-  return false;
+  const std::optional<protocol::nmea::Sentence> sentence = protocol::nmea::sentence_by_msg_id(id);
+  return sentence && s.has(*sentence);
 }
 
 // rates = { NAV-SAT = 5, GSV = 2 }: rates other than 1 for listed messages.
@@ -425,6 +395,67 @@ void read_rates(TableReader& t, OutputPortConfig& out) {
   out.nmea_rates = std::move(sorted);
 }
 
+PtyPortConfig read_pty(TableReader& t) {
+  PtyPortConfig pty{t.string("path", std::nullopt)};
+  const toml::node* node = t.find("path");
+  if (pty.path.empty()) t.fail(*node, t.full_name("path") + ": must not be empty");
+  if (fs::path(pty.path).is_relative()) t.fail(*node, t.full_name("path") + ": pty path '" + pty.path + "' must be absolute");
+  return pty;
+}
+
+FilePortConfig read_file(TableReader& t, const std::string& base_dir) {
+  FilePortConfig file{t.string("path", std::nullopt)};
+  if (file.path.empty()) t.fail(*t.find("path"), t.full_name("path") + ": must not be empty");
+  file.path = resolve(file.path, base_dir).string();
+  return file;
+}
+
+SerialPortConfig read_serial(TableReader& t) {
+  SerialPortConfig serial{t.string("device", std::nullopt)};
+  if (serial.device.empty() || fs::path(serial.device).is_relative()) {
+    t.fail(*t.find("device"), t.full_name("device") + ": serial device '" + serial.device +
+                                  "' must be an absolute path (e.g. /dev/ttyUSB0)");
+  }
+  return serial;
+}
+
+// An IPv4 or IPv6 address at key, or def when the key is absent.
+std::string read_address(TableReader& t, std::string_view key, std::optional<std::string> def) {
+  const toml::node* n = t.find(key);
+  if (n == nullptr) {
+    if (!def) t.fail_missing(key, "key");
+    return *def;
+  }
+  std::string address = t.string(key, std::nullopt);
+  in6_addr buf{};
+  if (inet_pton(AF_INET, address.c_str(), &buf) != 1 && inet_pton(AF_INET6, address.c_str(), &buf) != 1) {
+    t.fail(*n, t.full_name(key) + ": '" + address + "' is not an IPv4 or IPv6 address");
+  }
+  return address;
+}
+
+TcpPortConfig read_tcp(TableReader& t) {
+  TcpPortConfig tcp;
+  tcp.bind = read_address(t, "bind", tcp.bind);
+  tcp.port = static_cast<uint16_t>(t.integer("port", 0, 0, 65535));
+  return tcp;
+}
+
+UdpPortConfig read_udp(TableReader& t) {
+  UdpPortConfig udp;
+  udp.address = read_address(t, "address", std::nullopt);
+  udp.port = static_cast<uint16_t>(t.integer("port", std::nullopt, 1, 65535));
+  return udp;
+}
+
+// The file or device a port claims for itself ("" for network ports).
+std::string claimed_path(const PortTransport& transport) {
+  if (const auto* pty = std::get_if<PtyPortConfig>(&transport)) return pty->path;
+  if (const auto* file = std::get_if<FilePortConfig>(&transport)) return file->path;
+  if (const auto* serial = std::get_if<SerialPortConfig>(&transport)) return serial->device;
+  return {};
+}
+
 OutputPortConfig read_output(TableReader& t, const std::string& base_dir) {
   OutputPortConfig out;
   out.name = t.string("name", std::nullopt);
@@ -434,74 +465,42 @@ OutputPortConfig read_output(TableReader& t, const std::string& base_dir) {
       t.fail(*t.find("name"), t.full_name("name") + ": '" + out.name + "' contains a space or control character");
     }
   }
+  PortType type = PortType::kPty;
   if (const toml::node* n = t.find("type")) {
-    const std::string type = t.string("type", std::nullopt);
-    bool known = false;
-    for (const PortType p : {PortType::kPty, PortType::kFile, PortType::kSerial, PortType::kTcp, PortType::kUdp}) {
-      if (type == type_text(p)) {
-        out.type = p;
-        known = true;
-      }
-    }
-    if (!known) t.fail(*n, t.full_name("type") + ": '" + type + "' is not one of \"pty\", \"serial\", \"tcp\", \"udp\", \"file\"");
+    const std::string name = t.string("type", std::nullopt);
+    const std::optional<PortType> known = port_type_from_name(name);
+    if (known) type = *known;
+    if (!known) t.fail(*n, t.full_name("type") + ": '" + name + "' is not one of \"pty\", \"serial\", \"tcp\", \"udp\", \"file\"");
   }
-  reject_foreign_keys(t, out.type);
-  switch (out.type) {
-    case PortType::kPty:
-    case PortType::kFile: {
-      out.path = t.string("path", std::nullopt);
-      const toml::node* path_node = t.find("path");
-      if (out.path.empty()) t.fail(*path_node, t.full_name("path") + ": must not be empty");
-      if (out.type == PortType::kFile) {
-        out.path = resolve(out.path, base_dir).string();
-      } else if (fs::path(out.path).is_relative()) {
-        t.fail(*path_node, t.full_name("path") + ": pty path '" + out.path + "' must be absolute");
-      }
-      break;
-    }
-    case PortType::kSerial: {
-      out.path = t.string("device", std::nullopt);
-      const toml::node* node = t.find("device");
-      if (out.path.empty() || fs::path(out.path).is_relative()) {
-        t.fail(*node, t.full_name("device") + ": serial device '" + out.path + "' must be an absolute path (e.g. /dev/ttyUSB0)");
-      }
-      break;
-    }
-    case PortType::kTcp:
-    case PortType::kUdp: {
-      const std::string_view key = out.type == PortType::kTcp ? "bind" : "address";
-      if (out.type == PortType::kTcp) out.address = "127.0.0.1";
-      if (const toml::node* n = t.find(key)) {
-        out.address = t.string(key, std::nullopt);
-        in6_addr buf{};
-        if (inet_pton(AF_INET, out.address.c_str(), &buf) != 1 && inet_pton(AF_INET6, out.address.c_str(), &buf) != 1) {
-          t.fail(*n, t.full_name(key) + ": '" + out.address + "' is not an IPv4 or IPv6 address");
-        }
-      } else if (out.type == PortType::kUdp) {
-        t.fail_missing("address", "key");
-      }
-      out.port = static_cast<uint16_t>(out.type == PortType::kTcp ? t.integer("port", 0, 0, 65535)
-                                                                   : t.integer("port", std::nullopt, 1, 65535));
-      break;
-    }
+  reject_foreign_keys(t, type);
+  switch (type) {
+    case PortType::kPty: out.transport = read_pty(t); break;
+    case PortType::kFile: out.transport = read_file(t, base_dir); break;
+    case PortType::kSerial: out.transport = read_serial(t); break;
+    case PortType::kTcp: out.transport = read_tcp(t); break;
+    case PortType::kUdp: out.transport = read_udp(t); break;
   }
-  const bool line = is_line(out.type);
+  const bool line = is_line(out.type());
   out.baud = line ? 9600 : 0;
   const int64_t baud = t.integer("baud", out.baud, line ? 1 : 0, std::numeric_limits<uint32_t>::max());
-  if (baud != 0 && std::find(kStandardBauds.begin(), kStandardBauds.end(), baud) == kStandardBauds.end()) {
-    t.fail(*t.find("baud"), t.full_name("baud") + ": " + std::to_string(baud) +
-                                " is not a standard rate (4800 9600 19200 38400 57600 115200 230400 460800 921600)" +
-                                (line ? "" : " or 0 (no line budget)"));
+  if (baud != 0 && !protocol::ubx::is_ubx_baud(static_cast<uint32_t>(baud))) {
+    std::string rates;
+    for (const uint32_t b : protocol::ubx::kUartBauds) {
+      if (!rates.empty()) rates += ' ';
+      rates += std::to_string(b);
+    }
+    t.fail(*t.find("baud"), t.full_name("baud") + ": " + std::to_string(baud) + " is not a standard rate (" + rates +
+                                ")" + (line ? "" : " or 0 (no line budget)"));
   }
   out.baud = static_cast<uint32_t>(baud);
 
-  const bool has_input = out.type != PortType::kFile && out.type != PortType::kUdp;
-  out.protocols_in = read_protocols(t, "protocols_in", has_input ? kProtoUbx | kProtoNmea : 0);
+  const bool has_input = out.type() != PortType::kFile && out.type() != PortType::kUdp;
+  out.protocols_in = read_protocols(t, "protocols_in", has_input ? protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea : 0);
   if (!has_input && out.protocols_in != 0) {
     t.fail(*t.find("protocols_in"), t.full_name("protocols_in") + ": a port of type \"" +
-                                        std::string(type_text(out.type)) + "\" has no input; use []");
+                                        std::string(port_type_name(out.type())) + "\" has no input; use []");
   }
-  out.protocols_out = read_protocols(t, "protocols_out", kProtoUbx | kProtoNmea);
+  out.protocols_out = read_protocols(t, "protocols_out", protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea);
   out.ubx_messages = read_ubx_messages(t);
   out.nmea.version = read_nmea_version(t, out.nmea.version);
   out.nmea.sentences = read_sentences(t, out.nmea.sentences);
@@ -518,12 +517,15 @@ std::vector<OutputPortConfig> read_outputs(TableReader& root, const std::string&
     OutputPortConfig port = read_output(t, base_dir);
     for (const OutputPortConfig& prev : out) {
       if (prev.name == port.name) t.fail(*t.find("name"), t.full_name("name") + ": '" + port.name + "' is used twice");
-      if (!port.path.empty() && prev.path == port.path) {
-        const std::string_view key = port.type == PortType::kSerial ? "device" : "path";
-        t.fail(*t.find(key), t.full_name(key) + ": '" + port.path + "' is already used by output '" + prev.name + "'");
+      const std::string path = claimed_path(port.transport);
+      if (!path.empty() && claimed_path(prev.transport) == path) {
+        const std::string_view key = port.type() == PortType::kSerial ? "device" : "path";
+        t.fail(*t.find(key), t.full_name(key) + ": '" + path + "' is already used by output '" + prev.name + "'");
       }
-      if (port.type == PortType::kTcp && prev.type == PortType::kTcp && port.port != 0 && prev.port == port.port) {
-        t.fail(*t.find("port"), t.full_name("port") + ": tcp port " + std::to_string(port.port) +
+      const auto* tcp = std::get_if<TcpPortConfig>(&port.transport);
+      const auto* prev_tcp = std::get_if<TcpPortConfig>(&prev.transport);
+      if (tcp != nullptr && prev_tcp != nullptr && tcp->port != 0 && prev_tcp->port == tcp->port) {
+        t.fail(*t.find("port"), t.full_name("port") + ": tcp port " + std::to_string(tcp->port) +
                                     " is already used by output '" + prev.name + "'");
       }
     }
@@ -643,6 +645,19 @@ Config read_config(const toml::table& doc, const std::string& name, const std::s
 }
 
 }  // namespace
+
+namespace {
+constexpr std::array<std::string_view, 5> kPortTypeNames{"pty", "file", "serial", "tcp", "udp"};  // by PortType
+}  // namespace
+
+std::string_view port_type_name(PortType type) noexcept { return kPortTypeNames[static_cast<std::size_t>(type)]; }
+
+std::optional<PortType> port_type_from_name(std::string_view name) noexcept {
+  for (std::size_t i = 0; i < kPortTypeNames.size(); ++i) {
+    if (kPortTypeNames[i] == name) return static_cast<PortType>(i);
+  }
+  return std::nullopt;
+}
 
 std::vector<MessageRate> message_rates(const OutputPortConfig& port) {
   std::vector<MessageRate> out = port.ubx_messages;

@@ -6,10 +6,12 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "core/common/vec3.hpp"
 #include "core/protocol/nmea/nmea_encoder.hpp"
+#include "core/protocol/ubx/ubx_ports.hpp"
 #include "core/receiver/receiver_config.hpp"
 #include "core/scene/mesh.hpp"
 #include "core/scene/propagator.hpp"
@@ -46,7 +48,7 @@ struct DemoConfig {
   double height_m = 0.0;          ///< above the origin
 };
 
-/// Port kinds (docs/ports.md).
+/// Port kinds (docs/ports.md), in the order of PortTransport's alternatives.
 enum class PortType {
   kPty,     ///< pseudo-terminal with a stable symlink (gpsd, SITL)
   kFile,    ///< log of everything sent (truncated at start)
@@ -55,9 +57,36 @@ enum class PortType {
   kUdp,     ///< datagrams to one destination, output only
 };
 
-/// Protocol bits as in u-blox CFG-PRT inProtoMask / outProtoMask.
-inline constexpr uint16_t kProtoUbx = 0x0001;
-inline constexpr uint16_t kProtoNmea = 0x0002;
+/// What each port type needs besides the settings every port has. The
+/// daemon checks each (daemon::validate_port) and sets it up (open_port).
+struct PtyPortConfig {
+  std::string path;  ///< stable symlink to the pty, absolute (key "path")
+  bool operator==(const PtyPortConfig&) const = default;
+};
+struct FilePortConfig {
+  std::string path;  ///< file written, absolute: resolved against the config file's folder (key "path")
+  bool operator==(const FilePortConfig&) const = default;
+};
+struct SerialPortConfig {
+  std::string device;  ///< e.g. /dev/ttyUSB0, absolute (key "device")
+  bool operator==(const SerialPortConfig&) const = default;
+};
+struct TcpPortConfig {
+  std::string bind = "127.0.0.1";  ///< listen address, IPv4 or IPv6 (key "bind")
+  uint16_t port = 0;               ///< listen port; 0: any free one (printed)
+  bool operator==(const TcpPortConfig&) const = default;
+};
+struct UdpPortConfig {
+  std::string address;  ///< destination, IPv4 or IPv6 (key "address")
+  uint16_t port = 0;    ///< destination port, 1..65535
+  bool operator==(const UdpPortConfig&) const = default;
+};
+using PortTransport = std::variant<PtyPortConfig, FilePortConfig, SerialPortConfig, TcpPortConfig, UdpPortConfig>;
+
+/// The TOML `type` value of a port type: "pty", "file", "serial", "tcp", "udp".
+std::string_view port_type_name(PortType type) noexcept;
+/// Port type of a TOML `type` value, or nullopt.
+std::optional<PortType> port_type_from_name(std::string_view name) noexcept;
 
 /// A periodic message and its rate (u-blox CFG-MSG): sent every `rate`
 /// navigation epochs, 0 = off. Standard NMEA sentences are class 0xF0.
@@ -70,25 +99,23 @@ struct MessageRate {
 
 struct OutputPortConfig {
   std::string name;               ///< unique, for logs
-  PortType type = PortType::kPty;
-  /// pty: stable symlink to create; file: file to write; serial: device
-  /// (key "device"); unused for tcp/udp.
-  std::string path;
-  /// tcp: listen address (key "bind"); udp: destination address (key "address").
-  std::string address;
-  uint16_t port = 0;              ///< tcp: listen port (0: any free, printed); udp: destination port
+  PortTransport transport;        ///< the port type and its own settings
   /// Line rate, bit/s (8N1: 10 bits per byte). Applied on a serial port,
   /// recorded on a pty; sets the per-epoch byte budget. 0: no line (no
   /// budget), allowed for file/tcp/udp only.
   uint32_t baud = 9600;
-  uint16_t protocols_in = kProtoUbx | kProtoNmea;   ///< what the port's input accepts
-  uint16_t protocols_out = kProtoUbx | kProtoNmea;  ///< what the port sends
+  /// What the port's input accepts and what it sends: u-blox CFG-PRT
+  /// inProtoMask / outProtoMask bits (protocol::ubx::proto).
+  uint16_t protocols_in = protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea;
+  uint16_t protocols_out = protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea;
   /// Periodic UBX messages with their rates (u-blox factory default: none),
   /// in config/message_names.hpp order.
   std::vector<MessageRate> ubx_messages;
   protocol::nmea::NmeaConfig nmea;  ///< sentences: the NMEA set
   /// Rates other than 1 for sentences of the set (class 0xF0), in u-blox order.
   std::vector<MessageRate> nmea_rates;
+
+  PortType type() const noexcept { return static_cast<PortType>(transport.index()); }
 };
 
 /// The port's full periodic-message table: every UBX message and every

@@ -93,37 +93,37 @@ std::string nmea_version(protocol::nmea::NmeaVersion v) {
 
 std::string sentences(const protocol::nmea::SentenceSet& s) {
   std::string out = "[";
-  const auto add = [&out](bool on, const char* name) {
-    if (!on) return;
+  for (const protocol::nmea::SentenceInfo& info : protocol::nmea::kSentences) {
+    if (!s.has(info.sentence)) continue;
     if (out.size() > 1) out += ", ";
-    out += quoted(name);
-  };
-  add(s.rmc, "RMC");
-  add(s.vtg, "VTG");
-  add(s.gga, "GGA");
-  add(s.gsa, "GSA");
-  add(s.gsv, "GSV");
-  add(s.gll, "GLL");
-  add(s.gst, "GST");
-  add(s.zda, "ZDA");
+    out += quoted(std::string(info.name));
+  }
   return out + "]";
 }
 
-std::string type_text(PortType t) {
-  switch (t) {
-    case PortType::kPty: return "pty";
-    case PortType::kFile: return "file";
-    case PortType::kSerial: return "serial";
-    case PortType::kTcp: return "tcp";
-    case PortType::kUdp: return "udp";
-  }
-  return "pty";
+// The keys of a port's own type.
+std::string transport_keys(const PortTransport& transport, const std::string& relative_to) {
+  struct Keys {
+    const std::string& relative_to;
+    std::string operator()(const PtyPortConfig& pty) const { return "path = " + quoted(pty.path) + "\n"; }
+    std::string operator()(const FilePortConfig& file) const {
+      return "path = " + quoted(path_text(file.path, relative_to)) + "\n";
+    }
+    std::string operator()(const SerialPortConfig& serial) const { return "device = " + quoted(serial.device) + "\n"; }
+    std::string operator()(const TcpPortConfig& tcp) const {
+      return "bind = " + quoted(tcp.bind) + "\nport = " + std::to_string(tcp.port) + "\n";
+    }
+    std::string operator()(const UdpPortConfig& udp) const {
+      return "address = " + quoted(udp.address) + "\nport = " + std::to_string(udp.port) + "\n";
+    }
+  };
+  return std::visit(Keys{relative_to}, transport);
 }
 
 std::string protocols(uint16_t mask) {
   std::string out = "[";
-  if ((mask & kProtoUbx) != 0) out += "\"ubx\"";
-  if ((mask & kProtoNmea) != 0) out += std::string(out.size() > 1 ? ", " : "") + "\"nmea\"";
+  if ((mask & protocol::ubx::proto::kUbx) != 0) out += "\"ubx\"";
+  if ((mask & protocol::ubx::proto::kNmea) != 0) out += std::string(out.size() > 1 ? ", " : "") + "\"nmea\"";
   return out + "]";
 }
 
@@ -233,14 +233,8 @@ std::string to_toml(const Config& c, const std::string& relative_to) {
   for (const OutputPortConfig& p : c.outputs) {
     o += "\n[[output]]\n";
     o += "name = " + quoted(p.name) + "\n";
-    o += "type = " + quoted(type_text(p.type)) + "\n";
-    switch (p.type) {
-      case PortType::kPty: o += "path = " + quoted(p.path) + "\n"; break;
-      case PortType::kFile: o += "path = " + quoted(path_text(p.path, relative_to)) + "\n"; break;
-      case PortType::kSerial: o += "device = " + quoted(p.path) + "\n"; break;
-      case PortType::kTcp: o += "bind = " + quoted(p.address) + "\nport = " + std::to_string(p.port) + "\n"; break;
-      case PortType::kUdp: o += "address = " + quoted(p.address) + "\nport = " + std::to_string(p.port) + "\n"; break;
-    }
+    o += "type = " + quoted(std::string(port_type_name(p.type()))) + "\n";
+    o += transport_keys(p.transport, relative_to);
     o += "baud = " + std::to_string(p.baud) + "\n";
     o += "protocols_in = " + protocols(p.protocols_in) + "\n";
     o += "protocols_out = " + protocols(p.protocols_out) + "\n";

@@ -2,33 +2,35 @@
 
 #include <array>
 
+#include "core/protocol/nmea/nmea_sentences.hpp"
+#include "core/protocol/ubx/ubx_message_table.hpp"
+
 namespace gnssemu::config {
 namespace {
 
-constexpr std::array<MessageName, 11> kUbx{{
-    {"NAV-PVT", 0x01, 0x07},
-    {"NAV-POSLLH", 0x01, 0x02},
-    {"NAV-VELNED", 0x01, 0x12},
-    {"NAV-STATUS", 0x01, 0x03},
-    {"NAV-DOP", 0x01, 0x04},
-    {"NAV-SOL", 0x01, 0x06},
-    {"NAV-TIMEUTC", 0x01, 0x21},
-    {"NAV-SAT", 0x01, 0x35},
-    {"NAV-SVINFO", 0x01, 0x30},
-    {"MON-HW", 0x0A, 0x09},
-    {"NAV-EOE", 0x01, 0x61},
-}};
+namespace ubx = protocol::ubx;
+namespace nmea = protocol::nmea;
 
-constexpr std::array<MessageName, 8> kNmea{{
-    {"RMC", kNmeaClass, 0x04},
-    {"VTG", kNmeaClass, 0x05},
-    {"GGA", kNmeaClass, 0x00},
-    {"GSA", kNmeaClass, 0x02},
-    {"GSV", kNmeaClass, 0x03},
-    {"GLL", kNmeaClass, 0x01},
-    {"GST", kNmeaClass, 0x07},
-    {"ZDA", kNmeaClass, 0x08},
-}};
+constexpr std::size_t kNumConfigurable = [] {
+  std::size_t n = 0;
+  for (const ubx::PeriodicMessage& m : ubx::kPeriodicMessages) n += m.configurable ? 1 : 0;
+  return n;
+}();
+
+constexpr std::array<MessageName, kNumConfigurable> kUbx = [] {
+  std::array<MessageName, kNumConfigurable> out{};
+  std::size_t n = 0;
+  for (const ubx::PeriodicMessage& m : ubx::kPeriodicMessages) {
+    if (m.configurable) out[n++] = {m.name, m.id.cls, m.id.id};
+  }
+  return out;
+}();
+
+constexpr std::array<MessageName, nmea::kNumSentences> kNmea = [] {
+  std::array<MessageName, nmea::kNumSentences> out{};
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = {nmea::kSentences[i].name, kNmeaClass, nmea::kSentences[i].msg_id};
+  return out;
+}();
 
 }  // namespace
 

@@ -1,12 +1,13 @@
 #pragma once
 // Names of the periodic messages a port can be configured to send, with their
-// u-blox class and id (CFG-MSG addresses). UBX ids: shared/reference/ubx.md §2;
-// standard NMEA sentences are class 0xF0 with ids from the u-blox M8 protocol
-// specification (UBX-13003221, "NMEA Protocol" message overview).
+// u-blox class and id (CFG-MSG addresses): the configuration's view of the
+// core tables (ubx::kPeriodicMessages, nmea::kSentences).
 #include <cstdint>
 #include <optional>
 #include <span>
 #include <string_view>
+
+#include "core/protocol/nmea/nmea_sentences.hpp"
 
 namespace gnssemu::config {
 
@@ -16,10 +17,9 @@ struct MessageName {
   uint8_t msg_id;
 };
 
-inline constexpr uint8_t kNmeaClass = 0xF0;
+inline constexpr uint8_t kNmeaClass = protocol::nmea::kMsgClass;
 
-/// Periodic UBX messages the daemon can send (NAV-*, MON-HW), in the order an
-/// epoch carries them.
+/// Periodic UBX messages a port's ubx_messages may list, in configuration order.
 std::span<const MessageName> ubx_periodic_messages();
 /// NMEA sentences the encoder writes, in u-blox output order (RMC VTG GGA GSA GSV GLL GST ZDA).
 std::span<const MessageName> nmea_sentences();

@@ -6,6 +6,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "config/device_setup.hpp"
 #include "config/scene_loader.hpp"
 #include "core/common/error.hpp"
 #include "core/time/utc.hpp"
@@ -63,6 +64,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       router_(TrackParams{cfg.truth.timeout_s, cfg.truth.max_extrapolation_s}, cfg.time.mode),
       coverage_(coverage_for(cfg, nav)),
       period_s_(1.0 / cfg.rate_hz),
+      device_(config::device_setup(cfg)),
       rate_hz_(cfg.rate_hz),
       timer_(io),
       retry_timer_(io),
@@ -84,22 +86,28 @@ void Daemon::restart_receiver() {
   config::attach_scene(*receiver_, cfg_, scene_.get());
 }
 
-void Daemon::on_receiver_reset(std::size_t src, const protocol::ubx::ResetRequest& reset) {
-  // Every reset mode but "GNSS stop" (8) restarts navigation: the tracked
+void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& result) {
+  if (result.nav_rate_changed || result.reset) on_nav_period(src);
+  // One chip: a reset or a configuration load from any host changes the
+  // other outputs' UART1s too (their bauds; a reset drops partial input).
+  if (result.reset || result.ports_changed) {
+    for (std::size_t i = 0; i < channels_.size(); ++i)
+      if (i != src) channels_[i]->follow_device(result.reset.has_value());
+  }
+  if (!result.reset) return;
+  // Every reset mode but "GNSS stop" restarts navigation: the tracked
   // satellites and the solution are gone and the fix is reacquired; the
-  // channel measures the time to first fix from the reset. All ports share
-  // the one receiver, so all of them see the fix drop.
-  if (reset.reset_mode == 8) {
+  // device measures the time to first fix from the reset on every port.
+  // All ports share the one receiver, so all of them see the fix drop.
+  const protocol::ubx::Reset& reset = *result.reset;
+  if (!reset.restarts_navigation()) {
     spdlog::info("output {}: CFG-RST GNSS stop: not modelled, the receiver keeps navigating",
                  cfg_.outputs[src].name);
     return;
   }
-  const char* kind = reset.nav_bbr_mask == 0 ? "hot" : reset.nav_bbr_mask == 0xFFFF ? "cold" : "warm";
-  spdlog::info("output {}: CFG-RST {} start: the receiver restarts and reacquires", cfg_.outputs[src].name, kind);
+  spdlog::info("output {}: CFG-RST {} start: the receiver restarts and reacquires", cfg_.outputs[src].name,
+               reset.start_name());
   restart_receiver();
-  // One chip: every port's NAV-STATUS counts uptime and ttff from the reset.
-  for (std::size_t i = 0; i < channels_.size(); ++i)
-    if (i != src) channels_[i]->navigation_restarted();
 }
 
 Daemon::~Daemon() { shutdown(); }
@@ -119,15 +127,12 @@ void Daemon::start() {
     lock_next_ = w.start;
     t0_ += std::chrono::nanoseconds(std::llround(w.wait_s * 1e9));
   }
-  const double power_on_s = std::chrono::duration<double>(power_on_ - t0_).count();
-  for (const auto& p : cfg_.outputs) {
-    channels_.push_back(std::make_unique<PortChannel>(p, open_port(p, io_), period_s_, clock));
-    const std::size_t i = channels_.size() - 1;
+  device_.power_on(std::chrono::duration<double>(power_on_ - t0_).count());
+  for (std::size_t i = 0; i < cfg_.outputs.size(); ++i) {
+    channels_.push_back(std::make_unique<PortChannel>(open_port(cfg_.outputs[i], io_), device_, i, clock));
     PortChannel& c = *channels_.back();
-    c.set_power_on(power_on_s);
     c.use_idle_timer(io_);
-    c.on_nav_period_change([this, i](double period_s) { on_nav_period(i, period_s); });
-    c.on_reset([this, i](const protocol::ubx::ResetRequest& r) { on_receiver_reset(i, r); });
+    c.on_input([this, i](const protocol::ubx::InputResult& r) { on_host_input(i, r); });
   }
   for (const auto& c : channels_) c->start();
 
@@ -269,7 +274,8 @@ void Daemon::lockstep_advance(const time::GpsTime& stamp) {
 void Daemon::emit_epoch(const time::GpsTime& t, const receiver::Truth& truth) {
   const receiver::Fix& fix = receiver_->step(t, truth);
   ++epochs_;
-  for (const auto& c : channels_) c->on_epoch(fix);
+  device_.on_epoch(fix, now_s());
+  for (const auto& c : channels_) c->send_epoch();
   const int type = static_cast<int>(fix.type);
   if (type != last_fix_type_ || truth.valid != last_truth_valid_) {
     spdlog::info("epoch {}: truth {}, fix {} with {} satellites (PDOP {:.1f})", gps_text(t),
@@ -282,17 +288,12 @@ void Daemon::emit_epoch(const time::GpsTime& t, const receiver::Truth& truth) {
                 fix.lla.lat_rad * kRadToDeg, fix.lla.lon_rad * kRadToDeg, fix.lla.height_m);
 }
 
-void Daemon::on_nav_period(std::size_t src, double period_s) {
-  // The M8 runs 1..10 Hz GPS-only (docs/configuration.md rate_hz); a host
-  // asking for more or less gets the nearest rate the emulator runs.
-  double p = period_s;
-  if (!(p >= 0.1)) p = 0.1;
-  if (p > 1.0) p = 1.0;
-  const protocol::ubx::wire::CfgRate rate = channels_[src]->responder().current().rate;
-  for (std::size_t i = 0; i < channels_.size(); ++i) {
-    if (i != src) channels_[i]->set_nav_rate(rate);
-    channels_[i]->set_epoch_period(p);
-  }
+void Daemon::on_nav_period(std::size_t src) {
+  // The emulator runs 1..10 Hz GPS-only (docs/configuration.md rate_hz); the
+  // device gives a host asking for more or less the nearest rate it runs.
+  const double period_s = device_.config().nav_period_s();
+  const double p = device_.epoch_period_s();
+  const protocol::ubx::wire::CfgRate rate = device_.config().rate;
   if (p != period_s) {
     spdlog::warn("output {}: host asked for a {:.3f} s navigation period (CFG-RATE measRate {} ms, navRate {}); "
                  "running at {:.3g} Hz, the nearest rate within 1..10 Hz",

@@ -48,8 +48,9 @@ private:
   double now_s() const noexcept;
   time::GpsTime realtime_clock_gps() noexcept;
   void restart_receiver();
-  /// A host on channel src sent CFG-RST: the receiver restarts (fix lost).
-  void on_receiver_reset(std::size_t src, const protocol::ubx::ResetRequest& reset);
+  /// A host on channel src changed the device: follow its reset, epoch
+  /// period and the other ports' line settings.
+  void on_host_input(std::size_t src, const protocol::ubx::InputResult& result);
   void arm_timer();
   void on_timer(const boost::system::error_code& ec);
   void receive();
@@ -59,8 +60,9 @@ private:
   void emit_epoch(const time::GpsTime& t, const receiver::Truth& truth);
   receiver::Truth fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept;
   void note_clock_wrap(int64_t wraps);
-  /// A host on channel src set the navigation period (CFG-RATE), s.
-  void on_nav_period(std::size_t src, double period_s);
+  /// The device's epoch period may have changed (CFG-RATE, a reset or a
+  /// configuration load from channel src): run at it.
+  void on_nav_period(std::size_t src);
   void shutdown();
 
   asio::io_context& io_;
@@ -77,6 +79,7 @@ private:
   Coverage coverage_;
   double period_s_;
 
+  protocol::ubx::Device device_;  ///< the emulated u-blox: every output is one of its UART1s
   std::vector<std::unique_ptr<PortChannel>> channels_;
   double rate_hz_;              // epoch rate now (CFG-RATE may change it)
   double sched_base_s_ = 0.0;   // realtime: elapsed time of index 0 of the current rate

@@ -46,19 +46,21 @@ void print_summary(const config::Config& cfg, const orbit::NavData& nav) {
   std::printf("demo:    %s (circle r=%.1f m, %.1f m/s)\n", cfg.demo.enabled ? "on" : "off", cfg.demo.radius_m,
               cfg.demo.speed_m_s);
   for (const auto& p : cfg.outputs) {
-    const char* type = "pty";
-    std::string where = p.path;
-    switch (p.type) {
-      case config::PortType::kPty: break;
-      case config::PortType::kFile: type = "file"; break;
-      case config::PortType::kSerial: type = "serial"; break;
-      case config::PortType::kTcp: type = "tcp"; where = "listen " + p.address + ":" + std::to_string(p.port); break;
-      case config::PortType::kUdp: type = "udp"; where = "to " + p.address + ":" + std::to_string(p.port); break;
+    std::string where;
+    if (const auto* pty = std::get_if<config::PtyPortConfig>(&p.transport)) where = pty->path;
+    if (const auto* file = std::get_if<config::FilePortConfig>(&p.transport)) where = file->path;
+    if (const auto* serial = std::get_if<config::SerialPortConfig>(&p.transport)) where = serial->device;
+    if (const auto* tcp = std::get_if<config::TcpPortConfig>(&p.transport)) {
+      where = "listen " + tcp->bind + ":" + std::to_string(tcp->port);
+    }
+    if (const auto* udp = std::get_if<config::UdpPortConfig>(&p.transport)) {
+      where = "to " + udp->address + ":" + std::to_string(udp->port);
     }
     std::string protos;
-    if (p.protocols_out & config::kProtoNmea) protos += "NMEA";
-    if (p.protocols_out & config::kProtoUbx) protos += protos.empty() ? "UBX" : "+UBX";
-    std::printf("output:  %s: %s %s, %u baud, out %s, %zu UBX message(s)\n", p.name.c_str(), type, where.c_str(),
+    if (p.protocols_out & protocol::ubx::proto::kNmea) protos += "NMEA";
+    if (p.protocols_out & protocol::ubx::proto::kUbx) protos += protos.empty() ? "UBX" : "+UBX";
+    const std::string type(config::port_type_name(p.type()));
+    std::printf("output:  %s: %s %s, %u baud, out %s, %zu UBX message(s)\n", p.name.c_str(), type.c_str(), where.c_str(),
                 static_cast<unsigned>(p.baud), protos.empty() ? "nothing" : protos.c_str(), p.ubx_messages.size());
   }
 }
@@ -91,8 +93,7 @@ int main(int argc, char** argv) {
         p.name = "pty";
         cfg.outputs.push_back(p);
       }
-      cfg.outputs.front().type = config::PortType::kPty;
-      cfg.outputs.front().path = pty_path;
+      cfg.outputs.front().transport = config::PtyPortConfig{pty_path};
     }
     for (const auto& p : cfg.outputs) daemon::validate_port(p);
     const orbit::NavData nav = orbit::read_rinex_nav(cfg.nav_file);

@@ -1,7 +1,7 @@
 #pragma once
 // Output ports: the transports an emulated receiver talks on (docs/ports.md).
 // A port moves bytes only; what to send is decided by its PortChannel. Every
-// port type has a plain config (config::OutputPortConfig), a static
+// port type has a plain config (config::PtyPortConfig, ...), a static
 // validator testable without hardware (validate_port) and a setup
 // (open_port). Writes never block the event loop and never throw.
 #include <cstdint>
@@ -42,11 +42,15 @@ public:
   /// Begin reading input (pty, serial, tcp clients) and, for serial,
   /// reopening after failures. listener may be null: input is discarded.
   virtual void start(PortListener* listener) { (void)listener; }
-  /// Deliver one epoch (complete messages) to every reader.
-  void write_epoch(std::string_view data) noexcept { deliver(kAllSources, data, true); }
-  /// Deliver bytes outside the epoch schedule (a reply) to source (a tcp
-  /// client) or, for other ports, the port.
-  void write_reply(int source, std::string_view data) noexcept { deliver(source, data, false); }
+  /// Deliver one epoch of complete messages to every reader; message k ends
+  /// at byte ends[k] of data (empty: data is one message). Datagram ports
+  /// split only there.
+  void write_epoch(std::string_view data, std::span<const std::size_t> ends = {}) noexcept {
+    deliver(kAllSources, data, ends, true);
+  }
+  /// Deliver bytes outside the epoch schedule (a reply, sent whole) to
+  /// source (a tcp client) or, for other ports, the port.
+  void write_reply(int source, std::string_view data) noexcept { deliver(source, data, {}, false); }
   /// Switch the line rate once everything queued so far has been
   /// transmitted (tcdrain), as a u-blox does after CFG-PRT / $PUBX,41.
   /// Serial: applied; pty: recorded in the termios only; others: ignored.
@@ -61,19 +65,27 @@ public:
 protected:
   static constexpr int kAllSources = -1;
   explicit OutputPort(config::OutputPortConfig config) : config_(std::move(config)) {}
-  /// Write data to source (kAllSources: everyone); epoch: count as an epoch,
-  /// else as a reply. Never blocks or throws.
-  virtual void deliver(int source, std::string_view data, bool epoch) noexcept = 0;
+  /// Write data to source (kAllSources: everyone); ends: message ends as
+  /// write_epoch's; epoch: count as an epoch, else as a reply. Never blocks
+  /// or throws.
+  virtual void deliver(int source, std::string_view data, std::span<const std::size_t> ends, bool epoch) noexcept = 0;
   config::OutputPortConfig config_;
   PortStats stats_;
 };
 
-/// Static checks of a port config, without touching the system beyond
-/// lstat(): a pty path must be free or a symlink (a regular file is never
-/// overwritten); a serial device must be an absolute path that is not a
-/// regular file or folder; tcp/udp addresses must parse. Throws
-/// gnssemu::Error naming the port.
-void validate_port(const config::OutputPortConfig& config);
+/// Static checks of one port type, testable without hardware: they touch
+/// the system no more than lstat()/stat(). A pty path must be free or a
+/// symlink (a regular file is never overwritten); a file path not empty; a
+/// serial device an absolute path that is not a regular file or folder, with
+/// a baud rate; tcp/udp addresses must parse, a udp port be non-zero. Throw
+/// gnssemu::Error naming the port (defined with each type's port).
+void validate_port(const config::OutputPortConfig& port, const config::PtyPortConfig& pty);
+void validate_port(const config::OutputPortConfig& port, const config::FilePortConfig& file);
+void validate_port(const config::OutputPortConfig& port, const config::SerialPortConfig& serial);
+void validate_port(const config::OutputPortConfig& port, const config::TcpPortConfig& server);
+void validate_port(const config::OutputPortConfig& port, const config::UdpPortConfig& destination);
+/// The check of port's type.
+void validate_port(const config::OutputPortConfig& port);
 
 /// Create the port (pty + symlink, serial device, listening socket, udp
 /// socket, file). A serial device that is absent is not an error: the port

@@ -1,6 +1,7 @@
 // Pseudo-terminal with a stable symlink to its slave side (docs/daemon.md).
 #include <fcntl.h>
 #include <pty.h>
+#include <sys/stat.h>
 #include <sys/ioctl.h>
 #include <termios.h>
 #include <unistd.h>
@@ -28,11 +29,12 @@ void set_nonblocking(int fd) {
 // vanishing. Input the reader writes arrives on the master.
 class PtyPort final : public OutputPort {
 public:
-  PtyPort(const config::OutputPortConfig& cfg, asio::io_context& io) : OutputPort(cfg), master_sd_(io) {
+  PtyPort(const config::OutputPortConfig& cfg, const config::PtyPortConfig& pty, asio::io_context& io)
+      : OutputPort(cfg), pty_(pty), master_sd_(io) {
     std::array<char, 128> name{};
     int master = -1;
     if (::openpty(&master, &slave_, name.data(), nullptr, nullptr) != 0) {
-      throw Error(cfg.path, 0, "output '" + cfg.name + "': openpty failed: " + errno_text());
+      throw Error(pty_.path, 0, "output '" + cfg.name + "': openpty failed: " + errno_text());
     }
     master_sd_.assign(master);
     slave_name_ = name.data();
@@ -50,9 +52,9 @@ public:
 
   ~PtyPort() override {
     std::error_code ec;
-    if (linked_ && fs::is_symlink(fs::symlink_status(config_.path, ec)) &&
-        fs::read_symlink(config_.path, ec) == slave_name_) {
-      fs::remove(config_.path, ec);
+    if (linked_ && fs::is_symlink(fs::symlink_status(pty_.path, ec)) &&
+        fs::read_symlink(pty_.path, ec) == slave_name_) {
+      fs::remove(pty_.path, ec);
     }
     boost::system::error_code bec;
     master_sd_.close(bec);
@@ -73,10 +75,10 @@ public:
   }
   uint32_t baud() const noexcept override { return baud_; }
 
-  std::string describe() const override { return config_.path + " (pty " + slave_name_ + ")"; }
+  std::string describe() const override { return pty_.path + " (pty " + slave_name_ + ")"; }
 
 protected:
-  void deliver(int /*source*/, std::string_view data, bool epoch) noexcept override {
+  void deliver(int /*source*/, std::string_view data, std::span<const std::size_t> /*ends*/, bool epoch) noexcept override {
     const int master = master_sd_.native_handle();
     int backlog = 0;
     if (epoch && ::ioctl(slave_, FIONREAD, &backlog) == 0) {
@@ -136,23 +138,24 @@ private:
   }
 
   void make_symlink() {
-    const fs::path link(config_.path);
+    const fs::path link(pty_.path);
     std::error_code ec;
     if (link.has_parent_path()) fs::create_directories(link.parent_path(), ec);
-    if (ec) throw Error(config_.path, 0, "output '" + config_.name + "': cannot create folder: " + ec.message());
+    if (ec) throw Error(pty_.path, 0, "output '" + config_.name + "': cannot create folder: " + ec.message());
     // Atomic replace of a stale symlink: link a temporary name, rename over.
     const fs::path tmp = link.string() + ".tmp." + std::to_string(::getpid());
     fs::remove(tmp, ec);
     fs::create_symlink(slave_name_, tmp, ec);
-    if (ec) throw Error(config_.path, 0, "output '" + config_.name + "': cannot create symlink: " + ec.message());
+    if (ec) throw Error(pty_.path, 0, "output '" + config_.name + "': cannot create symlink: " + ec.message());
     fs::rename(tmp, link, ec);
     if (ec) {
       fs::remove(tmp, ec);
-      throw Error(config_.path, 0, "output '" + config_.name + "': cannot place symlink");
+      throw Error(pty_.path, 0, "output '" + config_.name + "': cannot place symlink");
     }
     linked_ = true;
   }
 
+  config::PtyPortConfig pty_;
   asio::posix::stream_descriptor master_sd_;
   int slave_ = -1;
   std::string slave_name_;
@@ -165,17 +168,17 @@ private:
 
 class FilePort final : public OutputPort {
 public:
-  explicit FilePort(const config::OutputPortConfig& cfg) : OutputPort(cfg) {
-    fd_ = ::open(cfg.path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NONBLOCK, 0644);
-    if (fd_ < 0) throw Error(cfg.path, 0, "output '" + cfg.name + "': cannot open: " + errno_text());
+  FilePort(const config::OutputPortConfig& cfg, const config::FilePortConfig& file) : OutputPort(cfg), file_(file) {
+    fd_ = ::open(file_.path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NONBLOCK, 0644);
+    if (fd_ < 0) throw Error(file_.path, 0, "output '" + cfg.name + "': cannot open: " + errno_text());
   }
   ~FilePort() override {
     if (fd_ >= 0) ::close(fd_);
   }
-  std::string describe() const override { return config_.path + " (file)"; }
+  std::string describe() const override { return file_.path + " (file)"; }
 
 protected:
-  void deliver(int /*source*/, std::string_view data, bool epoch) noexcept override {
+  void deliver(int /*source*/, std::string_view data, std::span<const std::size_t> /*ends*/, bool epoch) noexcept override {
     const ssize_t n = ::write(fd_, data.data(), data.size());
     if (n == static_cast<ssize_t>(data.size())) {
       stats_.bytes_written += static_cast<uint64_t>(n);
@@ -186,17 +189,37 @@ protected:
   }
 
 private:
+  config::FilePortConfig file_;
   int fd_ = -1;
 };
 
 }  // namespace
 
-std::unique_ptr<OutputPort> make_pty_port(const config::OutputPortConfig& cfg, asio::io_context& io) {
-  return std::make_unique<PtyPort>(cfg, io);
+std::unique_ptr<OutputPort> make_port(const config::OutputPortConfig& cfg, const config::PtyPortConfig& pty,
+                                      asio::io_context& io) {
+  return std::make_unique<PtyPort>(cfg, pty, io);
 }
 
-std::unique_ptr<OutputPort> make_file_port(const config::OutputPortConfig& cfg) {
-  return std::make_unique<FilePort>(cfg);
+std::unique_ptr<OutputPort> make_port(const config::OutputPortConfig& cfg, const config::FilePortConfig& file,
+                                      asio::io_context& /*io*/) {
+  return std::make_unique<FilePort>(cfg, file);
 }
 
 }  // namespace gnssemu::daemon::detail
+
+namespace gnssemu::daemon {
+
+void validate_port(const config::OutputPortConfig& port, const config::PtyPortConfig& pty) {
+  const std::string who = "output '" + port.name + "'";
+  if (pty.path.empty()) throw Error(who + ": empty path");
+  struct stat st{};
+  if (::lstat(pty.path.c_str(), &st) == 0 && !S_ISLNK(st.st_mode)) {
+    throw Error(pty.path, 0, who + ": path exists and is not a symlink; refusing to replace it");
+  }
+}
+
+void validate_port(const config::OutputPortConfig& port, const config::FilePortConfig& file) {
+  if (file.path.empty()) throw Error("output '" + port.name + "': empty path");
+}
+
+}  // namespace gnssemu::daemon

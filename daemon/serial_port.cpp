@@ -3,6 +3,7 @@
 // wait until the bytes already queued have left the line (docs/ports.md).
 #include <fcntl.h>
 #include <sys/ioctl.h>
+#include <sys/stat.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -141,8 +142,8 @@ private:
 
 class SerialPort final : public OutputPort {
 public:
-  SerialPort(const config::OutputPortConfig& cfg, asio::io_context& io)
-      : OutputPort(cfg), sd_(io), retry_timer_(io), drain_timer_(io), baud_(cfg.baud) {
+  SerialPort(const config::OutputPortConfig& cfg, const config::SerialPortConfig& serial, asio::io_context& io)
+      : OutputPort(cfg), device_(serial.device), sd_(io), retry_timer_(io), drain_timer_(io), baud_(cfg.baud) {
     queue_.reserve(kMaxQueuedBytes);
     held_.reserve(kMaxQueuedBytes);
   }
@@ -170,11 +171,11 @@ public:
   uint32_t baud() const noexcept override { return baud_; }
 
   std::string describe() const override {
-    return config_.path + " (serial " + std::to_string(baud_) + " 8N1" + (!line_.is_open() ? ", not open yet)" : ")");
+    return device_ + " (serial " + std::to_string(baud_) + " 8N1" + (!line_.is_open() ? ", not open yet)" : ")");
   }
 
 protected:
-  void deliver(int /*source*/, std::string_view data, bool epoch) noexcept override {
+  void deliver(int /*source*/, std::string_view data, std::span<const std::size_t> /*ends*/, bool epoch) noexcept override {
     if (!line_.is_open()) {
       if (epoch) ++stats_.epochs_dropped;
       return;
@@ -194,7 +195,7 @@ protected:
 private:
   void try_open() {
     if (stopped_) return;
-    const std::string why = line_.open(config_.path, baud_);
+    const std::string why = line_.open(device_, baud_);
     if (!why.empty()) {
       fail("cannot open: " + why);
       return;
@@ -203,9 +204,9 @@ private:
     sd_.assign(line_.fd(), ec);
     if (failures_ > 0) {
       ++stats_.reopens;
-      spdlog::info("output {}: {} open again after {} failed attempt(s)", config_.name, config_.path, failures_);
+      spdlog::info("output {}: {} open again after {} failed attempt(s)", config_.name, device_, failures_);
     } else {
-      spdlog::debug("output {}: {} open via {}", config_.name, config_.path,
+      spdlog::debug("output {}: {} open via {}", config_.name, device_,
                     line_.via_libserialport() ? "libserialport" : "termios (not a UART libserialport knows)");
     }
     failures_ = 0;
@@ -217,7 +218,7 @@ private:
   void fail(const std::string& what) {
     const auto now = std::chrono::steady_clock::now();
     if (failures_ == 0 || now - last_warning_ >= kRepeatWarning) {
-      spdlog::warn("output {}: {} {}; retrying every {} s at most ({} attempts so far)", config_.name, config_.path,
+      spdlog::warn("output {}: {} {}; retrying every {} s at most ({} attempts so far)", config_.name, device_,
                    what, std::chrono::duration<double>(kMaxRetry).count(), failures_ + 1);
       last_warning_ = now;
     }
@@ -321,6 +322,7 @@ private:
     flush();
   }
 
+  std::string device_;  ///< path of the serial device
   asio::posix::stream_descriptor sd_;
   asio::steady_timer retry_timer_;
   asio::steady_timer drain_timer_;
@@ -342,8 +344,24 @@ private:
 
 }  // namespace
 
-std::unique_ptr<OutputPort> make_serial_port(const config::OutputPortConfig& cfg, asio::io_context& io) {
-  return std::make_unique<SerialPort>(cfg, io);
+std::unique_ptr<OutputPort> make_port(const config::OutputPortConfig& cfg, const config::SerialPortConfig& serial,
+                                      asio::io_context& io) {
+  return std::make_unique<SerialPort>(cfg, serial, io);
 }
 
 }  // namespace gnssemu::daemon::detail
+
+namespace gnssemu::daemon {
+
+void validate_port(const config::OutputPortConfig& port, const config::SerialPortConfig& serial) {
+  const std::string who = "output '" + port.name + "'";
+  if (serial.device.empty() || serial.device.front() != '/') throw Error(who + ": serial device must be an absolute path");
+  struct stat st{};
+  // Absent is fine (unplugged adapter: the port retries); a plain file is a mistake.
+  if (::stat(serial.device.c_str(), &st) == 0 && (S_ISREG(st.st_mode) || S_ISDIR(st.st_mode))) {
+    throw Error(serial.device, 0, who + ": is a regular file or folder, not a serial device");
+  }
+  if (port.baud == 0) throw Error(who + ": a serial port needs a baud rate");
+}
+
+}  // namespace gnssemu::daemon

@@ -21,15 +21,16 @@ constexpr std::size_t kMaxClients = 16;
 
 class TcpPort final : public OutputPort {
 public:
-  TcpPort(const config::OutputPortConfig& cfg, asio::io_context& io) : OutputPort(cfg), io_(io), acceptor_(io) {
+  TcpPort(const config::OutputPortConfig& cfg, const config::TcpPortConfig& server, asio::io_context& io)
+      : OutputPort(cfg), bind_(server.bind), io_(io), acceptor_(io) {
     boost::system::error_code ec;
-    const tcp::endpoint ep(asio::ip::make_address(cfg.address, ec), cfg.port);
+    const tcp::endpoint ep(asio::ip::make_address(server.bind, ec), server.port);
     if (!ec) acceptor_.open(ep.protocol(), ec);
     if (!ec) acceptor_.set_option(tcp::acceptor::reuse_address(true), ec);
     if (!ec) acceptor_.bind(ep, ec);
     if (!ec) acceptor_.listen(asio::socket_base::max_listen_connections, ec);
     if (ec) {
-      throw Error("output '" + cfg.name + "': cannot listen on tcp " + cfg.address + ":" + std::to_string(cfg.port) +
+      throw Error("output '" + cfg.name + "': cannot listen on tcp " + server.bind + ":" + std::to_string(server.port) +
                   ": " + ec.message());
     }
     local_port_ = acceptor_.local_endpoint(ec).port();
@@ -47,11 +48,11 @@ public:
   }
 
   std::string describe() const override {
-    return "tcp " + config_.address + ":" + std::to_string(local_port_) + " (server)";
+    return "tcp " + bind_ + ":" + std::to_string(local_port_) + " (server)";
   }
 
 protected:
-  void deliver(int source, std::string_view data, bool epoch) noexcept override {
+  void deliver(int source, std::string_view data, std::span<const std::size_t> /*ends*/, bool epoch) noexcept override {
     bool any = false;
     for (auto& c : clients_) {
       if (source != kAllSources && c->id != source) continue;
@@ -81,6 +82,8 @@ private:
     std::array<uint8_t, 1024> rx{};
   };
   using ClientPtr = std::shared_ptr<Client>;
+
+  std::string bind_;  ///< listen address
 
   void accept() {
     auto c = std::make_shared<Client>(io_);
@@ -155,8 +158,19 @@ private:
 
 }  // namespace
 
-std::unique_ptr<OutputPort> make_tcp_port(const config::OutputPortConfig& cfg, asio::io_context& io) {
-  return std::make_unique<TcpPort>(cfg, io);
+std::unique_ptr<OutputPort> make_port(const config::OutputPortConfig& cfg, const config::TcpPortConfig& server,
+                                      asio::io_context& io) {
+  return std::make_unique<TcpPort>(cfg, server, io);
 }
 
 }  // namespace gnssemu::daemon::detail
+
+namespace gnssemu::daemon {
+
+void validate_port(const config::OutputPortConfig& port, const config::TcpPortConfig& server) {
+  boost::system::error_code ec;
+  boost::asio::ip::make_address(server.bind, ec);
+  if (ec) throw Error("output '" + port.name + "': bad address '" + server.bind + "'");
+}
+
+}  // namespace gnssemu::daemon

@@ -3,7 +3,6 @@
 #include <boost/asio/ip/udp.hpp>
 
 #include "core/common/error.hpp"
-#include "daemon/message_split.hpp"
 #include "daemon/port_impl.hpp"
 
 namespace gnssemu::daemon::detail {
@@ -14,30 +13,29 @@ using asio::ip::udp;
 
 class UdpPort final : public OutputPort {
 public:
-  UdpPort(const config::OutputPortConfig& cfg, asio::io_context& io) : OutputPort(cfg), socket_(io) {
+  UdpPort(const config::OutputPortConfig& cfg, const config::UdpPortConfig& destination, asio::io_context& io)
+      : OutputPort(cfg), destination_(destination), socket_(io) {
     boost::system::error_code ec;
-    dest_ = udp::endpoint(asio::ip::make_address(cfg.address, ec), cfg.port);
+    dest_ = udp::endpoint(asio::ip::make_address(destination.address, ec), destination.port);
     if (!ec) socket_.open(dest_.protocol(), ec);
     if (!ec) socket_.non_blocking(true, ec);
     if (ec) throw Error("output '" + cfg.name + "': cannot open udp socket: " + ec.message());
   }
 
   std::string describe() const override {
-    return "udp to " + config_.address + ":" + std::to_string(config_.port);
+    return "udp to " + destination_.address + ":" + std::to_string(destination_.port);
   }
 
 protected:
-  void deliver(int /*source*/, std::string_view data, bool epoch) noexcept override {
+  void deliver(int /*source*/, std::string_view data, std::span<const std::size_t> ends, bool epoch) noexcept override {
+    const std::size_t whole = data.size();
+    if (ends.empty() && !data.empty()) ends = {&whole, 1};
     bool ok = true;
     std::size_t start = 0;
-    while (start < data.size()) {
+    for (std::size_t k = 0; k < ends.size();) {
       // Whole messages up to the datagram size (a longer message goes alone).
-      std::size_t end = start + message_length(data.substr(start));
-      while (end < data.size()) {
-        const std::size_t next = end + message_length(data.substr(end));
-        if (next - start > kMaxDatagramBytes) break;
-        end = next;
-      }
+      std::size_t end = ends[k++];
+      while (k < ends.size() && ends[k] - start <= kMaxDatagramBytes) end = ends[k++];
       boost::system::error_code ec;
       const std::size_t n = socket_.send_to(asio::buffer(data.data() + start, end - start), dest_, 0, ec);
       if (ec) {
@@ -55,14 +53,28 @@ protected:
   }
 
 private:
+  config::UdpPortConfig destination_;
   udp::socket socket_;
   udp::endpoint dest_;
 };
 
 }  // namespace
 
-std::unique_ptr<OutputPort> make_udp_port(const config::OutputPortConfig& cfg, asio::io_context& io) {
-  return std::make_unique<UdpPort>(cfg, io);
+std::unique_ptr<OutputPort> make_port(const config::OutputPortConfig& cfg, const config::UdpPortConfig& destination,
+                                      asio::io_context& io) {
+  return std::make_unique<UdpPort>(cfg, destination, io);
 }
 
 }  // namespace gnssemu::daemon::detail
+
+namespace gnssemu::daemon {
+
+void validate_port(const config::OutputPortConfig& port, const config::UdpPortConfig& destination) {
+  const std::string who = "output '" + port.name + "'";
+  boost::system::error_code ec;
+  boost::asio::ip::make_address(destination.address, ec);
+  if (ec) throw Error(who + ": bad address '" + destination.address + "'");
+  if (destination.port == 0) throw Error(who + ": udp destination port 0");
+}
+
+}  // namespace gnssemu::daemon

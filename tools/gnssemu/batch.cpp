@@ -8,13 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "config/message_names.hpp"
+#include "config/device_setup.hpp"
 #include "config/scene_loader.hpp"
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
-#include "core/protocol/nmea/nmea_encoder.hpp"
-#include "core/protocol/ubx/ubx_responder.hpp"
+#include "core/protocol/ubx/ubx_device.hpp"
 #include "core/receiver/receiver.hpp"
 
 namespace gnssemu::cli {
@@ -45,35 +44,6 @@ double max_abs(const std::vector<double>& v) {
   return m;
 }
 
-protocol::nmea::NmeaConfig nmea_config_of(const config::Config& config) {
-  if (!config.outputs.empty()) return config.outputs.front().nmea;
-  return {};
-}
-
-// The emulated u-blox of the first output port, set up as the daemon sets
-// up a port's receiver (UART1: protocols and message rates from the config).
-void configure_port(protocol::ubx::ConfigResponder& r, const config::Config& config) {
-  namespace ubx = protocol::ubx;
-  constexpr std::uint8_t kPort = ubx::kPortUart1;
-  ubx::ReceiverConfig& rc = r.current();
-  ubx::PortSettings& p = rc.ports[kPort];
-  if (!config.outputs.empty()) {
-    const config::OutputPortConfig& cfg = config.outputs.front();
-    if (cfg.baud != 0) p.baud_bps = cfg.baud;
-    const auto ours = static_cast<std::uint16_t>(ubx::proto::kUbx | ubx::proto::kNmea);
-    p.in_proto_mask =
-        cfg.protocols_in == 0 ? 0 : static_cast<std::uint16_t>((p.in_proto_mask & ~ours) | cfg.protocols_in);
-    p.out_proto_mask = static_cast<std::uint16_t>((p.out_proto_mask & ~ours) | cfg.protocols_out);
-    for (const config::MessageName& m : config::nmea_sentences()) rc.set_message_rate(kPort, {m.msg_class, m.msg_id}, 0);
-    for (const config::MessageRate& m : config::message_rates(cfg)) {
-      rc.set_message_rate(kPort, {m.msg_class, m.msg_id}, m.rate);
-    }
-  }
-  rc.rate.measRate = static_cast<std::uint16_t>(std::lround(1000.0 / config.rate_hz));
-  rc.rate.navRate = 1;
-  r.save_current();
-}
-
 }  // namespace
 
 BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const TruthTrack& track,
@@ -98,12 +68,10 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
   if (nav.leap_seconds) rx.set_leap_seconds(*nav.leap_seconds);
   rx.set_klobuchar(nav.klobuchar);
   config::attach_scene(rx, config, buildings.get());
-  protocol::nmea::NmeaConfig nmea_cfg = nmea_config_of(config);
-  protocol::ubx::ConfigResponder device({});
-  configure_port(device, config);
-  std::string sentences, frames;
-  sentences.reserve(4096);
-  frames.reserve(2 * protocol::ubx::kMaxEpochBytes);
+  // The daemon's emulated u-blox; its first output (a factory UART1 when
+  // there is none) writes the NMEA and UBX logs. It powers on at the first epoch.
+  protocol::ubx::Device device(config::device_setup(config));
+  protocol::ubx::MessageList messages;
   time::GpsTime power_on;
   fmt::memory_buffer row;
 
@@ -126,16 +94,11 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
     if (sum.epochs == 0) power_on = t;
     ++sum.epochs;
     device.on_epoch(fix, t - power_on);
-    if (nmea) {
-      sentences.clear();
-      if (!config.outputs.empty()) nmea_cfg.sentences = device.nmea_sentences(protocol::ubx::kPortUart1);
-      protocol::nmea::NmeaEncoder(nmea_cfg).encode_epoch(fix, sentences);
-      nmea->write(sentences.data(), static_cast<std::streamsize>(sentences.size()));
-    }
-    if (ubx) {
-      frames.clear();
-      device.encode_epoch(protocol::ubx::kPortUart1, frames);
-      ubx->write(frames.data(), static_cast<std::streamsize>(frames.size()));
+    device.compose({}, messages, protocol::ubx::Layout::kPerProtocol);
+    for (const protocol::ubx::MessageList::Message& m : messages.messages()) {
+      std::ostream* log = m.protocol == protocol::ubx::Protocol::kNmea ? nmea : ubx;
+      const std::string_view bytes = messages.bytes(m);
+      if (log != nullptr) log->write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     }
     const bool has_fix = fix.type != receiver::FixType::kNone;
     Enu d;

@@ -121,13 +121,20 @@ void put_position(SentenceWriter& w, const Epoch& e) {
 char pos_mode(const Epoch& e) { return e.has_fix ? 'A' : 'N'; }
 char status(const Epoch& e) { return e.has_fix ? 'A' : 'V'; }
 
-void append(std::string& out, SentenceWriter& w) {
-  const std::string_view s = w.finish();
-  out.append(s.data(), s.size());
-}
+/// Appends finished sentences to out and tells the sink where each ends.
+struct Emit {
+  std::string& out;
+  SentenceSink* sink;
+  Sentence sentence;
+  void operator()(SentenceWriter& w) const noexcept {
+    const std::string_view s = w.finish();
+    out.append(s.data(), s.size());
+    if (sink != nullptr) sink->on_sentence(sentence, out.size());
+  }
+};
 
 // RMC time,status,lat,NS,lon,EW,spd,cog,date,mv,mvEW,posMode[,navStatus] (ref §3).
-void write_rmc(const Epoch& e, std::string& out) {
+void write_rmc(const Epoch& e, const Emit& emit) {
   SentenceWriter w("GPRMC");
   put_time(w, e);
   w.character(status(e));
@@ -151,11 +158,11 @@ void write_rmc(const Epoch& e, std::string& out) {
   w.empty();
   w.character(pos_mode(e));
   if (e.v4) w.character('V');  // navStatus: u-blox always sends V
-  append(out, w);
+  emit(w);
 }
 
 // VTG cogt,T,cogm,M,sogn,N,sogk,K,posMode; all units empty without a fix (ref §6).
-void write_vtg(const Epoch& e, std::string& out) {
+void write_vtg(const Epoch& e, const Emit& emit) {
   SentenceWriter w("GPVTG");
   if (e.has_fix) {
     if (e.course_valid) {
@@ -174,12 +181,12 @@ void write_vtg(const Epoch& e, std::string& out) {
     for (int i = 0; i < 8; ++i) w.empty();
   }
   w.character(pos_mode(e));
-  append(out, w);
+  emit(w);
 }
 
 // GGA time,lat,NS,lon,EW,quality,numSV,HDOP,alt,M,sep,M,diffAge,diffStation.
 // u-blox reports quality 1 for both 2D and 3D fixes (ref §4).
-void write_gga(const Epoch& e, std::string& out) {
+void write_gga(const Epoch& e, const Emit& emit) {
   SentenceWriter w("GPGGA");
   put_time(w, e);
   put_position(w, e);
@@ -196,11 +203,11 @@ void write_gga(const Epoch& e, std::string& out) {
   }
   w.empty();  // no DGPS
   w.empty();
-  append(out, w);
+  emit(w);
 }
 
 // GSA opMode,navMode,sv1..sv12,PDOP,HDOP,VDOP[,systemId].
-void write_gsa(const Epoch& e, std::string& out) {
+void write_gsa(const Epoch& e, const Emit& emit) {
   SentenceWriter w("GPGSA");
   w.character('A');
   w.integer(e.nav_mode, 1);
@@ -215,11 +222,11 @@ void write_gsa(const Epoch& e, std::string& out) {
   w.fixed(e.hdop, 2);
   w.fixed(e.vdop, 2);
   if (e.v4) w.integer(1, 1);  // systemId 1 = GPS
-  append(out, w);
+  emit(w);
 }
 
 // GSV numMsg,msgNum,numSV,{svid,elv,az,cno}x1..4[,signalId]; cno empty when not tracked.
-void write_gsv(const Epoch& e, std::string& out) {
+void write_gsv(const Epoch& e, const Emit& emit) {
   const int num_msg = std::max(1, (e.num_in_view + kSatsPerGsv - 1) / kSatsPerGsv);
   for (int m = 0; m < num_msg; ++m) {
     SentenceWriter w("GPGSV");
@@ -242,25 +249,25 @@ void write_gsv(const Epoch& e, std::string& out) {
       }
     }
     if (e.v4) w.integer(1, 1);  // signalId 1 = GPS L1 C/A
-    append(out, w);
+    emit(w);
   }
 }
 
 // GLL lat,NS,lon,EW,time,status,posMode.
-void write_gll(const Epoch& e, std::string& out) {
+void write_gll(const Epoch& e, const Emit& emit) {
   SentenceWriter w("GPGLL");
   put_position(w, e);
   put_time(w, e);
   w.character(status(e));
   w.character(pos_mode(e));
-  append(out, w);
+  emit(w);
 }
 
 // GST time,rangeRms,stdMajor,stdMinor,orient,stdLat,stdLong,stdAlt. The
 // ellipse fields stay empty as on the M8 (ref §3): the Fix carries no
 // east-north covariance, and an ellipse from sigma_e / sigma_n alone would
 // claim an orientation the solver never computed. Empty values without a fix.
-void write_gst(const Epoch& e, const Fix& fix, std::string& out) {
+void write_gst(const Epoch& e, const Fix& fix, const Emit& emit) {
   SentenceWriter w("GPGST");
   put_time(w, e);
   if (e.has_fix) {
@@ -274,11 +281,11 @@ void write_gst(const Epoch& e, const Fix& fix, std::string& out) {
   } else {
     for (int i = 0; i < 7; ++i) w.empty();
   }
-  append(out, w);
+  emit(w);
 }
 
 // ZDA time,day,month,year,ltzh,ltzn (local zone always 00,00).
-void write_zda(const Epoch& e, std::string& out) {
+void write_zda(const Epoch& e, const Emit& emit) {
   SentenceWriter w("GPZDA");
   put_time(w, e);
   if (e.has_time) {
@@ -290,7 +297,7 @@ void write_zda(const Epoch& e, std::string& out) {
   }
   w.integer(0, 2);
   w.integer(0, 2);
-  append(out, w);
+  emit(w);
 }
 
 }  // namespace
@@ -306,18 +313,23 @@ NmeaEncoder::NmeaEncoder(const NmeaConfig& config) : config_(config) {
 namespace gnssemu::protocol::nmea {
 
 std::size_t NmeaEncoder::encode_epoch(const receiver::Fix& fix, std::string& out) const {
+  return encode_epoch(fix, config_.sentences, out);
+}
+
+std::size_t NmeaEncoder::encode_epoch(const receiver::Fix& fix, SentenceSet set, std::string& out,
+                                      SentenceSink* sink) const {
   const std::size_t before = out.size();
   const Epoch e = derive(fix, config_);
-  const SentenceSet& set = config_.sentences;
+  const auto emit = [&](Sentence s) { return Emit{out, sink, s}; };
   // u-blox epoch order (ref §6).
-  if (set.rmc) write_rmc(e, out);
-  if (set.vtg) write_vtg(e, out);
-  if (set.gga) write_gga(e, out);
-  if (set.gsa) write_gsa(e, out);
-  if (set.gsv) write_gsv(e, out);
-  if (set.gll) write_gll(e, out);
-  if (set.gst) write_gst(e, fix, out);
-  if (set.zda) write_zda(e, out);
+  if (set.has(Sentence::kRmc)) write_rmc(e, emit(Sentence::kRmc));
+  if (set.has(Sentence::kVtg)) write_vtg(e, emit(Sentence::kVtg));
+  if (set.has(Sentence::kGga)) write_gga(e, emit(Sentence::kGga));
+  if (set.has(Sentence::kGsa)) write_gsa(e, emit(Sentence::kGsa));
+  if (set.has(Sentence::kGsv)) write_gsv(e, emit(Sentence::kGsv));
+  if (set.has(Sentence::kGll)) write_gll(e, emit(Sentence::kGll));
+  if (set.has(Sentence::kGst)) write_gst(e, fix, emit(Sentence::kGst));
+  if (set.has(Sentence::kZda)) write_zda(e, emit(Sentence::kZda));
   return out.size() - before;
 }
 

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <string>
 
+#include "core/protocol/nmea/nmea_sentences.hpp"
 #include "core/receiver/fix.hpp"
 
 namespace gnssemu::protocol::nmea {
@@ -15,15 +16,9 @@ namespace gnssemu::protocol::nmea {
 /// two print the same sentences (4.11 only changes QZSS/NavIC talkers and ids).
 enum class NmeaVersion { k23, k410, k411 };
 
-/// Which sentences an epoch carries (u-blox default set: GGA GLL GSA GSV RMC VTG).
-struct SentenceSet {
-  bool gga = true, rmc = true, gsa = true, gsv = true, vtg = true, gll = true;
-  bool gst = false, zda = false;
-};
-
 struct NmeaConfig {
   NmeaVersion version = NmeaVersion::k411;
-  SentenceSet sentences;
+  SentenceSet sentences = SentenceSet::ublox_default();  ///< what encode_epoch(fix, out) writes
   /// Below this horizontal speed (m/s) the course fields of RMC and VTG are
   /// left empty, as u-blox does when its heading is not valid. Static u-blox
   /// logs show an empty course at up to 0.30 m/s; 0 always prints it.
@@ -34,16 +29,33 @@ struct NmeaConfig {
 /// (32 satellites), each at most 82 bytes. Reserve this much to never allocate.
 inline constexpr std::size_t kMaxEpochBytes = 15 * 82;
 
+/// Told where each sentence an encoder appends ends, so a caller can treat
+/// every sentence as a message of its own (a transmit budget drops whole
+/// sentences) without scanning the bytes again.
+class SentenceSink {
+public:
+  /// sentence ends at offset end of the output string (exclusive).
+  virtual void on_sentence(Sentence sentence, std::size_t end) noexcept = 0;
+
+protected:
+  ~SentenceSink() = default;
+};
+
 class NmeaEncoder {
 public:
+  /// Throws gnssemu::Error for a negative or non-finite course_min_speed_m_s.
   explicit NmeaEncoder(const NmeaConfig& config);
 
-  /// Append one epoch of sentences (CR LF terminated) to out, in u-blox order
-  /// (RMC, VTG, GGA, GSA, GSV, GLL, GST, ZDA). Returns bytes appended.
-  /// No allocation once out has capacity (out.size() + kMaxEpochBytes).
-  /// Never throws; non-finite inputs give empty fields, a fix with a
-  /// non-finite position or without valid time is sent as no fix.
+  /// Append one epoch of the config's sentences (CR LF terminated) to out,
+  /// in u-blox order (RMC, VTG, GGA, GSA, GSV, GLL, GST, ZDA). Returns bytes
+  /// appended. No allocation once out has capacity (out.size() +
+  /// kMaxEpochBytes). Never throws; non-finite inputs give empty fields, a
+  /// fix with a non-finite position or without valid time is sent as no fix.
   std::size_t encode_epoch(const receiver::Fix& fix, std::string& out) const;
+  /// The same for the sentences in set (instead of the config's); sink, if
+  /// not null, hears the end of every sentence (GSV: each of its parts).
+  std::size_t encode_epoch(const receiver::Fix& fix, SentenceSet set, std::string& out,
+                           SentenceSink* sink = nullptr) const;
 
   const NmeaConfig& config() const noexcept { return config_; }
 

@@ -2,6 +2,9 @@
 
 #include <charconv>
 
+#include "core/protocol/nmea/nmea_sentences.hpp"
+#include "core/protocol/ubx/ubx_ports.hpp"
+
 namespace gnssemu::protocol::ubx {
 
 namespace {
@@ -34,25 +37,17 @@ bool parse_uint(std::string_view s, T& v, int base = 10) noexcept {
 
 }  // namespace
 
-bool is_ubx_baud(std::uint32_t baud_bps) noexcept {
-  switch (baud_bps) {
-    case 4800: case 9600: case 19200: case 38400: case 57600: case 115200: case 230400:
-    case 460800: case 921600:
-      return true;
-    default:
-      return false;
-  }
-}
-
 int nmea_msg_id(std::string_view formatter) noexcept {
-  // Class 0xF0 ids (UBX-13003221 §31.1 "NMEA messages overview").
-  static constexpr std::string_view kIds[] = {"GGA", "GLL", "GSA", "GSV", "RMC", "VTG", "GRS",
-                                              "GST", "ZDA", "GBS", "DTM", "", "", "GNS", "THS",
-                                              "VLW"};
-  for (std::size_t i = 0; i < std::size(kIds); ++i) {
-    if (!kIds[i].empty() && kIds[i] == formatter) return static_cast<int>(i);
+  if (const auto s = nmea::sentence_by_name(formatter)) return nmea::info(*s).msg_id;
+  // Formatters u-blox rates that the encoder does not write (UBX-13003221
+  // §31.1 "NMEA messages overview").
+  static constexpr struct {
+    std::string_view name;
+    std::uint8_t id;
+  } kOthers[] = {{"GRS", 0x06}, {"GBS", 0x09}, {"DTM", 0x0A}, {"GNS", 0x0D}, {"THS", 0x0E}, {"VLW", 0x0F}, {"TXT", 0x41}};
+  for (const auto& o : kOthers) {
+    if (o.name == formatter) return o.id;
   }
-  if (formatter == "TXT") return 0x41;
   return -1;
 }
 

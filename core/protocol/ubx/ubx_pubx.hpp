@@ -32,7 +32,4 @@ std::optional<Pubx40> parse_pubx40(std::string_view sentence) noexcept;
 /// Class 0xF0 id of a standard sentence formatter ("GGA" -> 0x00), or -1.
 int nmea_msg_id(std::string_view formatter) noexcept;
 
-/// Baud rates a u-blox UART accepts (4800 .. 921600).
-bool is_ubx_baud(std::uint32_t baud_bps) noexcept;
-
 }  // namespace gnssemu::protocol::ubx

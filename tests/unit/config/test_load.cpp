@@ -74,11 +74,9 @@ void expect_same(const Config& a, const Config& b) {
     const OutputPortConfig& pa = a.outputs[i];
     const OutputPortConfig& pb = b.outputs[i];
     EXPECT_EQ(pa.name, pb.name);
-    EXPECT_EQ(pa.type, pb.type);
-    EXPECT_EQ(pa.path, pb.path);
+    EXPECT_EQ(pa.type(), pb.type());
+    EXPECT_TRUE(pa.transport == pb.transport);  // path, device, address, port
     EXPECT_EQ(pa.baud, pb.baud);
-    EXPECT_EQ(pa.address, pb.address);
-    EXPECT_EQ(pa.port, pb.port);
     EXPECT_EQ(pa.protocols_in, pb.protocols_in);
     EXPECT_EQ(pa.protocols_out, pb.protocols_out);
     EXPECT_EQ(pa.ubx_messages, pb.ubx_messages);
@@ -87,14 +85,14 @@ void expect_same(const Config& a, const Config& b) {
     EXPECT_EQ(pa.nmea.course_min_speed_m_s, pb.nmea.course_min_speed_m_s);
     const protocol::nmea::SentenceSet& sa = pa.nmea.sentences;
     const protocol::nmea::SentenceSet& sb = pb.nmea.sentences;
-    EXPECT_EQ(sa.gga, sb.gga);
-    EXPECT_EQ(sa.rmc, sb.rmc);
-    EXPECT_EQ(sa.gsa, sb.gsa);
-    EXPECT_EQ(sa.gsv, sb.gsv);
-    EXPECT_EQ(sa.vtg, sb.vtg);
-    EXPECT_EQ(sa.gll, sb.gll);
-    EXPECT_EQ(sa.gst, sb.gst);
-    EXPECT_EQ(sa.zda, sb.zda);
+    EXPECT_EQ(sa.has(protocol::nmea::Sentence::kGga), sb.has(protocol::nmea::Sentence::kGga));
+    EXPECT_EQ(sa.has(protocol::nmea::Sentence::kRmc), sb.has(protocol::nmea::Sentence::kRmc));
+    EXPECT_EQ(sa.has(protocol::nmea::Sentence::kGsa), sb.has(protocol::nmea::Sentence::kGsa));
+    EXPECT_EQ(sa.has(protocol::nmea::Sentence::kGsv), sb.has(protocol::nmea::Sentence::kGsv));
+    EXPECT_EQ(sa.has(protocol::nmea::Sentence::kVtg), sb.has(protocol::nmea::Sentence::kVtg));
+    EXPECT_EQ(sa.has(protocol::nmea::Sentence::kGll), sb.has(protocol::nmea::Sentence::kGll));
+    EXPECT_EQ(sa.has(protocol::nmea::Sentence::kGst), sb.has(protocol::nmea::Sentence::kGst));
+    EXPECT_EQ(sa.has(protocol::nmea::Sentence::kZda), sb.has(protocol::nmea::Sentence::kZda));
   }
   EXPECT_EQ(a.log.level, b.log.level);
 }
@@ -250,22 +248,22 @@ TEST(ConfigLoad, EveryFieldParsed) {
   ASSERT_EQ(c.outputs.size(), 2u);
   const OutputPortConfig& a = c.outputs[0];
   EXPECT_EQ(a.name, "ecu");
-  EXPECT_EQ(a.type, PortType::kPty);
-  EXPECT_EQ(a.path, "/tmp/gnssemu/ecu");
+  EXPECT_EQ(a.type(), PortType::kPty);
+  EXPECT_EQ(std::get<PtyPortConfig>(a.transport).path, "/tmp/gnssemu/ecu");
   EXPECT_EQ(a.baud, 115200u);
   EXPECT_EQ(a.nmea.version, protocol::nmea::NmeaVersion::k23);
   EXPECT_EQ(a.nmea.course_min_speed_m_s, 0.0);
-  EXPECT_TRUE(a.nmea.sentences.gga && a.nmea.sentences.rmc && a.nmea.sentences.gst && a.nmea.sentences.zda);
-  EXPECT_FALSE(a.nmea.sentences.gsa || a.nmea.sentences.gsv || a.nmea.sentences.vtg || a.nmea.sentences.gll);
+  EXPECT_TRUE(a.nmea.sentences.has(protocol::nmea::Sentence::kGga) && a.nmea.sentences.has(protocol::nmea::Sentence::kRmc) && a.nmea.sentences.has(protocol::nmea::Sentence::kGst) && a.nmea.sentences.has(protocol::nmea::Sentence::kZda));
+  EXPECT_FALSE(a.nmea.sentences.has(protocol::nmea::Sentence::kGsa) || a.nmea.sentences.has(protocol::nmea::Sentence::kGsv) || a.nmea.sentences.has(protocol::nmea::Sentence::kVtg) || a.nmea.sentences.has(protocol::nmea::Sentence::kGll));
   const OutputPortConfig& b = c.outputs[1];
   EXPECT_EQ(b.name, "log");
-  EXPECT_EQ(b.type, PortType::kFile);
-  EXPECT_EQ(b.path, kData + "/out/run.nmea");  // resolved against the config's folder
+  EXPECT_EQ(b.type(), PortType::kFile);
+  EXPECT_EQ(std::get<FilePortConfig>(b.transport).path, kData + "/out/run.nmea");  // resolved against the config's folder
   EXPECT_EQ(b.baud, 38400u);
   EXPECT_EQ(b.nmea.version, protocol::nmea::NmeaVersion::k410);
   EXPECT_EQ(b.nmea.course_min_speed_m_s, 1.25);
-  EXPECT_TRUE(b.nmea.sentences.gsa && b.nmea.sentences.gsv && b.nmea.sentences.vtg && b.nmea.sentences.gll);
-  EXPECT_FALSE(b.nmea.sentences.gga || b.nmea.sentences.rmc || b.nmea.sentences.gst || b.nmea.sentences.zda);
+  EXPECT_TRUE(b.nmea.sentences.has(protocol::nmea::Sentence::kGsa) && b.nmea.sentences.has(protocol::nmea::Sentence::kGsv) && b.nmea.sentences.has(protocol::nmea::Sentence::kVtg) && b.nmea.sentences.has(protocol::nmea::Sentence::kGll));
+  EXPECT_FALSE(b.nmea.sentences.has(protocol::nmea::Sentence::kGga) || b.nmea.sentences.has(protocol::nmea::Sentence::kRmc) || b.nmea.sentences.has(protocol::nmea::Sentence::kGst) || b.nmea.sentences.has(protocol::nmea::Sentence::kZda));
   EXPECT_EQ(c.log.level, "debug");
 }
 
@@ -311,7 +309,7 @@ TEST(ConfigLoad, RoundTripOddValues) {
   c.truth.bind_address = "::";
   c.outputs.push_back({});
   c.outputs[0].name = "q\"uote";
-  c.outputs[0].path = "/tmp/dir with space/\\back";
+  std::get<PtyPortConfig>(c.outputs[0].transport).path = "/tmp/dir with space/\\back";
   const Config back = parse(to_toml(c));
   expect_same(c, back);
   EXPECT_EQ(back.time.start->tow_s(), 561600.000001);
@@ -335,8 +333,8 @@ TEST(ConfigLoad, DefaultTomlLoads) {
   EXPECT_FALSE(c.time.start.has_value());
   EXPECT_TRUE(c.demo.enabled);
   ASSERT_EQ(c.outputs.size(), 1u);
-  EXPECT_EQ(c.outputs[0].type, PortType::kPty);
-  EXPECT_EQ(c.outputs[0].path.rfind("/tmp/gnssemu/", 0), 0u);
+  EXPECT_EQ(c.outputs[0].type(), PortType::kPty);
+  EXPECT_EQ(std::get<PtyPortConfig>(c.outputs[0].transport).path.rfind("/tmp/gnssemu/", 0), 0u);
   // The shipped defaults are the struct defaults (one source of truth).
   Config d;
   d.origin = c.origin;

@@ -38,11 +38,11 @@ TEST(ConfigPorts, EveryTypeParses) {
   const Config c = parse(kAllTypes);
   ASSERT_EQ(c.outputs.size(), 4u);
   const OutputPortConfig& s = c.outputs[0];
-  EXPECT_EQ(s.type, PortType::kSerial);
-  EXPECT_EQ(s.path, "/dev/ttyUSB0");
+  EXPECT_EQ(s.type(), PortType::kSerial);
+  EXPECT_EQ(std::get<SerialPortConfig>(s.transport).device, "/dev/ttyUSB0");
   EXPECT_EQ(s.baud, 38400u);
-  EXPECT_EQ(s.protocols_in, kProtoUbx);
-  EXPECT_EQ(s.protocols_out, kProtoUbx);
+  EXPECT_EQ(s.protocols_in, protocol::ubx::proto::kUbx);
+  EXPECT_EQ(s.protocols_out, protocol::ubx::proto::kUbx);
   // Stored in epoch order (NAV-PVT first), whatever the order in the file.
   ASSERT_EQ(s.ubx_messages.size(), 3u);
   EXPECT_EQ(s.ubx_messages[0], (MessageRate{0x01, 0x07, 1}));
@@ -50,11 +50,11 @@ TEST(ConfigPorts, EveryTypeParses) {
   EXPECT_EQ(s.ubx_messages[2], (MessageRate{0x0A, 0x09, 10}));
 
   const OutputPortConfig& t = c.outputs[1];
-  EXPECT_EQ(t.type, PortType::kTcp);
-  EXPECT_EQ(t.address, "127.0.0.1");  // default bind: loopback only
-  EXPECT_EQ(t.port, 2947);
+  EXPECT_EQ(t.type(), PortType::kTcp);
+  EXPECT_EQ(std::get<TcpPortConfig>(t.transport).bind, "127.0.0.1");  // default bind: loopback only
+  EXPECT_EQ(std::get<TcpPortConfig>(t.transport).port, 2947);
   EXPECT_EQ(t.baud, 0u);  // no line budget by default
-  EXPECT_EQ(t.protocols_in, kProtoUbx | kProtoNmea);
+  EXPECT_EQ(t.protocols_in, protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea);
   ASSERT_EQ(t.nmea_rates.size(), 1u);
   EXPECT_EQ(t.nmea_rates[0], (MessageRate{kNmeaClass, 0x03, 4}));
   const std::vector<MessageRate> all = message_rates(t);
@@ -63,13 +63,13 @@ TEST(ConfigPorts, EveryTypeParses) {
   EXPECT_EQ(all[1], (MessageRate{kNmeaClass, 0x03, 4}));  // GSV every 4th epoch
 
   const OutputPortConfig& u = c.outputs[2];
-  EXPECT_EQ(u.type, PortType::kUdp);
-  EXPECT_EQ(u.address, "127.0.0.1");
-  EXPECT_EQ(u.port, 10110);
+  EXPECT_EQ(u.type(), PortType::kUdp);
+  EXPECT_EQ(std::get<UdpPortConfig>(u.transport).address, "127.0.0.1");
+  EXPECT_EQ(std::get<UdpPortConfig>(u.transport).port, 10110);
   EXPECT_EQ(u.protocols_in, 0);  // output only
 
   const OutputPortConfig& f = c.outputs[3];
-  EXPECT_EQ(f.path, kData + "/out/x.ubx");
+  EXPECT_EQ(std::get<FilePortConfig>(f.transport).path, kData + "/out/x.ubx");
   EXPECT_EQ(f.protocols_in, 0);
   EXPECT_EQ(message_rates(f).size(), 1u + 6u);  // NAV-PVT + default sentences
 }
@@ -77,10 +77,10 @@ TEST(ConfigPorts, EveryTypeParses) {
 TEST(ConfigPorts, DefaultsAreAFactoryM8) {
   const Config c = parse(kBase + "[[output]]\nname = \"a\"\npath = \"/tmp/a\"\n");
   const OutputPortConfig& p = c.outputs.at(0);
-  EXPECT_EQ(p.type, PortType::kPty);
+  EXPECT_EQ(p.type(), PortType::kPty);
   EXPECT_EQ(p.baud, 9600u);
-  EXPECT_EQ(p.protocols_in, kProtoUbx | kProtoNmea);
-  EXPECT_EQ(p.protocols_out, kProtoUbx | kProtoNmea);
+  EXPECT_EQ(p.protocols_in, protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea);
+  EXPECT_EQ(p.protocols_out, protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea);
   EXPECT_TRUE(p.ubx_messages.empty());
   EXPECT_TRUE(p.nmea_rates.empty());
 }
@@ -93,10 +93,8 @@ TEST(ConfigPorts, RoundTrip) {
     SCOPED_TRACE(i);
     const OutputPortConfig& a = c.outputs[i];
     const OutputPortConfig& b = back.outputs[i];
-    EXPECT_EQ(a.type, b.type);
-    EXPECT_EQ(a.path, b.path);
-    EXPECT_EQ(a.address, b.address);
-    EXPECT_EQ(a.port, b.port);
+    EXPECT_EQ(a.type(), b.type());
+    EXPECT_TRUE(a.transport == b.transport);  // path, device, address, port
     EXPECT_EQ(a.baud, b.baud);
     EXPECT_EQ(a.protocols_in, b.protocols_in);
     EXPECT_EQ(a.protocols_out, b.protocols_out);
@@ -177,8 +175,8 @@ TEST(ConfigPorts, Errors) {
 
 TEST(ConfigPorts, TwoTcpPortsOnAnyPortAreFine) {
   const Config c = parse(kBase + "[[output]]\nname = \"a\"\ntype = \"tcp\"\n[[output]]\nname = \"b\"\ntype = \"tcp\"\n");
-  EXPECT_EQ(c.outputs.at(0).port, 0);
-  EXPECT_EQ(c.outputs.at(1).port, 0);
+  EXPECT_EQ(std::get<TcpPortConfig>(c.outputs.at(0).transport).port, 0);
+  EXPECT_EQ(std::get<TcpPortConfig>(c.outputs.at(1).transport).port, 0);
 }
 
 }  // namespace

@@ -13,7 +13,6 @@
 #include <sstream>
 
 #include "core/common/error.hpp"
-#include "daemon/config_locator.hpp"
 #include "daemon/output_port.hpp"
 
 using namespace gnssemu;
@@ -36,8 +35,7 @@ struct TempDir {
 config::OutputPortConfig pty_config(const fs::path& p) {
   config::OutputPortConfig c;
   c.name = "gps0";
-  c.type = config::PortType::kPty;
-  c.path = p.string();
+  c.transport = config::PtyPortConfig{p.string()};
   return c;
 }
 
@@ -54,7 +52,7 @@ TEST(OutputPort, RefusesToReplaceRegularFile) {
   in >> s;
   EXPECT_EQ(s, "precious");
   config::OutputPortConfig empty = pty_config(p);
-  empty.path.clear();
+  std::get<config::PtyPortConfig>(empty.transport).path.clear();
   EXPECT_THROW(validate_port(empty), Error);
 }
 
@@ -113,29 +111,17 @@ TEST(OutputPort, FilePortWrites) {
   TempDir dir;
   config::OutputPortConfig c;
   c.name = "log";
-  c.type = config::PortType::kFile;
-  c.path = (dir.path / "out.nmea").string();
+  c.transport = config::FilePortConfig{(dir.path / "out.nmea").string()};
   {
     auto port = open_port(c, io);
     port->write_epoch("A\r\n");
     port->write_epoch("B\r\n");
     EXPECT_EQ(port->stats().epochs_written, 2u);
   }
-  std::ifstream in(c.path);
+  std::ifstream in(std::get<config::FilePortConfig>(c.transport).path);
   std::stringstream ss;
   ss << in.rdbuf();
   EXPECT_EQ(ss.str(), "A\r\nB\r\n");
-}
-
-TEST(ConfigLocator, SearchOrder) {
-  const auto c = default_config_candidates("/opt/gnssemu/bin/gnssemud");
-  ASSERT_GE(c.size(), 5u);
-  EXPECT_EQ(c[0], "/opt/gnssemu/bin/default.toml");
-  EXPECT_EQ(c[1], "/opt/gnssemu/bin/config/default.toml");
-  EXPECT_EQ(c[2], "/opt/gnssemu/share/gnssemu/default.toml");
-  EXPECT_EQ(c.back(), std::string(GNSSEMU_SOURCE_DIR) + "/config/default.toml");
-  // The source tree's default is found from anywhere.
-  EXPECT_EQ(find_default_config("/nonexistent/bin/gnssemud"), std::string(GNSSEMU_SOURCE_DIR) + "/config/default.toml");
 }
 
 TEST(OutputPort, SerialLostDuringABaudSwitchReopensAtTheNewRateWithoutStaleOutput) {
@@ -150,8 +136,7 @@ TEST(OutputPort, SerialLostDuringABaudSwitchReopensAtTheNewRateWithoutStaleOutpu
   fs::create_symlink(::ttyname(s1), link);
   config::OutputPortConfig c;
   c.name = "uart";
-  c.type = config::PortType::kSerial;
-  c.path = link.string();
+  c.transport = config::SerialPortConfig{link.string()};
   c.baud = 9600;
   auto port = open_port(c, io);
   port->start(nullptr);
@@ -187,3 +172,24 @@ TEST(OutputPort, SerialLostDuringABaudSwitchReopensAtTheNewRateWithoutStaleOutpu
   port.reset();
   ::close(m2);
 }
+
+TEST(ValidatePort, EveryType) {
+  config::OutputPortConfig c;
+  c.name = "t";
+  c.transport = config::TcpPortConfig{"127.0.0.1", 0};
+  c.baud = 0;
+  EXPECT_NO_THROW(validate_port(c));
+  std::get<config::TcpPortConfig>(c.transport).bind = "not-an-ip";
+  EXPECT_THROW(validate_port(c), Error);
+  c.transport = config::UdpPortConfig{"127.0.0.1", 0};
+  EXPECT_THROW(validate_port(c), Error);
+  c.transport = config::SerialPortConfig{"/dev/ttyUSB-absent-gnssemu"};  // absent: fine, the port retries
+  c.baud = 9600;
+  EXPECT_NO_THROW(validate_port(c));
+  const config::SerialPortConfig plain_file{GNSSEMU_SOURCE_DIR "/CMakeLists.txt"};  // a regular file is a mistake
+  EXPECT_THROW(validate_port(c, plain_file), Error);
+  EXPECT_THROW(validate_port(c, config::SerialPortConfig{"ttyS0"}), Error);
+  c.baud = 0;  // a serial line needs a rate
+  EXPECT_THROW(validate_port(c), Error);
+}
+

@@ -1,5 +1,6 @@
-// TX budget, message splitting, port validation and PortChannel (decoder ->
-// responder -> reply, per-port rates, budget drops) with a fake port.
+// PortChannel with a fake port: decoder -> device -> reply, the messages the
+// device composes per port and epoch, budget drops and their warnings, and a
+// channel following a reset another host sent to the chip.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -11,9 +12,9 @@
 #include <spdlog/sinks/ostream_sink.h>
 #include <spdlog/spdlog.h>
 
-#include "core/common/error.hpp"
+#include "config/device_setup.hpp"
 #include "core/protocol/ubx/ubx_frame.hpp"
-#include "daemon/message_split.hpp"
+#include "core/protocol/ubx/ubx_message_table.hpp"
 #include "daemon/port_channel.hpp"
 #include "daemon/tx_budget.hpp"
 #include "tests/support/alloc_counter.hpp"
@@ -40,10 +41,37 @@ public:
   std::vector<uint32_t> bauds;
 
 protected:
-  void deliver(int, std::string_view data, bool epoch) noexcept override {
+  void deliver(int, std::string_view data, std::span<const std::size_t>, bool epoch) noexcept override {
     (epoch ? epochs : replies).emplace_back(data);
   }
 };
+
+/// The messages of a byte stream in order: UBX frames with their ids, NMEA sentences.
+struct Messages final : ubx::DecoderSink {
+  std::vector<std::string> labels;
+  std::vector<std::string> frames;  ///< whole UBX frames, "" for sentences
+  void on_ubx(const ubx::FrameView& f) override {
+    labels.emplace_back(ubx::message_label(f.id));
+    frames.push_back(frame(f.id, {f.payload.begin(), f.payload.end()}));
+  }
+  void on_nmea(std::string_view s) override {
+    labels.emplace_back(s.substr(3, 3));  // "$GPGGA" -> "GGA"
+    frames.emplace_back();
+  }
+};
+
+Messages split(std::string_view bytes) {
+  Messages m;
+  ubx::StreamDecoder d;
+  d.feed(bytes, m);
+  return m;
+}
+
+/// Label of the first message of bytes.
+std::string message_label(std::string_view bytes) {
+  const Messages m = split(bytes);
+  return m.labels.empty() ? std::string() : m.labels.front();
+}
 
 receiver::Fix good_fix(double tow_s) {
   receiver::Fix f;
@@ -60,30 +88,42 @@ receiver::Fix good_fix(double tow_s) {
   return f;
 }
 
+/// One device, one channel per port config, powered on at clock 100 s.
 struct Rig {
   double now = 100.0;
-  FakePort* port = nullptr;
-  std::unique_ptr<PortChannel> ch;
-  explicit Rig(config::OutputPortConfig c, double period_s = 1.0) {
-    auto p = std::make_unique<FakePort>(c);
-    port = p.get();
-    ch = std::make_unique<PortChannel>(c, std::move(p), period_s, [this] { return now; });
+  std::unique_ptr<ubx::Device> device;
+  std::vector<FakePort*> ports;
+  std::vector<std::unique_ptr<PortChannel>> channels;
+  FakePort* port = nullptr;  ///< the first
+  PortChannel* ch = nullptr;
+  explicit Rig(const config::OutputPortConfig& c, double period_s = 1.0) : Rig(std::vector{c}, period_s) {}
+  Rig(const std::vector<config::OutputPortConfig>& outputs, double period_s) {
+    ubx::DeviceSetup setup;
+    setup.nav_period_s = period_s;
+    for (const auto& c : outputs) setup.outputs.push_back(config::output_setup(c));
+    device = std::make_unique<ubx::Device>(setup);
+    device->power_on(now);
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+      auto p = std::make_unique<FakePort>(outputs[i]);
+      ports.push_back(p.get());
+      channels.push_back(std::make_unique<PortChannel>(std::move(p), *device, i, [this] { return now; }));
+    }
+    port = ports.front();
+    ch = channels.front().get();
   }
-  void input(const std::string& bytes) {
-    ch->on_port_input(0, {reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()});
+  void input(const std::string& bytes, std::size_t output = 0) {
+    channels[output]->on_port_input(0, {reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()});
+  }
+  /// One epoch: the device, then every channel.
+  void on_epoch(const receiver::Fix& fix) {
+    device->on_epoch(fix, now);
+    for (const auto& c : channels) c->send_epoch();
   }
   std::vector<std::string> epoch(double tow_s) {
     port->epochs.clear();
-    ch->on_epoch(good_fix(tow_s));
-    std::vector<std::string> labels;
-    if (port->epochs.empty()) return labels;
-    std::string_view d = port->epochs.front();
-    while (!d.empty()) {
-      const std::size_t n = message_length(d);
-      labels.emplace_back(message_label(d.substr(0, n)));
-      d.remove_prefix(n);
-    }
-    return labels;
+    on_epoch(good_fix(tow_s));
+    if (port->epochs.empty()) return {};
+    return split(port->epochs.front()).labels;
   }
 };
 
@@ -99,14 +139,9 @@ std::string pubx41(uint32_t baud) {
 // The first frame of id in the last epoch written, "" if none.
 std::string epoch_frame(const FakePort& port, ubx::MsgId id) {
   if (port.epochs.empty()) return {};
-  std::string_view d = port.epochs.back();
-  while (!d.empty()) {
-    const std::size_t n = message_length(d);
-    if (n >= 8 && static_cast<uint8_t>(d[0]) == 0xB5 && static_cast<uint8_t>(d[2]) == id.cls &&
-        static_cast<uint8_t>(d[3]) == id.id) {
-      return std::string(d.substr(0, n));
-    }
-    d.remove_prefix(n);
+  const Messages m = split(port.epochs.back());
+  for (const std::string& f : m.frames) {
+    if (f.size() >= 8 && static_cast<uint8_t>(f[2]) == id.cls && static_cast<uint8_t>(f[3]) == id.id) return f;
   }
   return {};
 }
@@ -137,66 +172,12 @@ struct LogCapture {
 config::OutputPortConfig port_cfg(uint32_t baud = 0) {
   config::OutputPortConfig c;
   c.name = "t";
-  c.type = config::PortType::kTcp;
-  c.address = "127.0.0.1";
+  c.transport = config::TcpPortConfig{"127.0.0.1", 0};
   c.baud = baud;
   return c;
 }
 
 }  // namespace
-
-TEST(TxBudget, DrainsAtBaudOverTenAndDropsWholeMessages) {
-  TxBudget b(9600, 4096);
-  EXPECT_DOUBLE_EQ(b.line_bytes_per_s(), 960.0);
-  EXPECT_TRUE(b.admit(4000, 0.0));
-  EXPECT_FALSE(b.admit(100, 0.0));  // 4100 > 4096: dropped whole
-  EXPECT_TRUE(b.admit(96, 0.0));    // a smaller one still fits
-  EXPECT_FALSE(b.admit(1, 0.0));
-  EXPECT_TRUE(b.admit(960, 1.0));   // one second drained 960 bytes
-  EXPECT_FALSE(b.admit(1, 1.0));
-  b.advance(100.0);
-  EXPECT_EQ(b.level_bytes(), 0.0);
-  b.set_baud(115200, 100.0);
-  EXPECT_DOUBLE_EQ(b.line_bytes_per_s(), 11520.0);
-  TxBudget none(0);
-  EXPECT_TRUE(none.admit(1 << 20, 0.0));
-}
-
-TEST(MessageSplit, FramesSentencesAndGarbage) {
-  const std::string pvt = frame(ubx::msg::kNavPvt, std::vector<uint8_t>(92));
-  const std::string gga = "$GPGGA,1*00\r\n";
-  const std::string s = pvt + gga + "xx" + gga;
-  std::string_view d = s;
-  EXPECT_EQ(message_length(d), 100u);
-  EXPECT_EQ(message_label(d), "NAV-PVT");
-  d.remove_prefix(100);
-  EXPECT_EQ(message_length(d), gga.size());
-  EXPECT_EQ(message_label(d), "GGA");
-  d.remove_prefix(gga.size());
-  EXPECT_EQ(message_length(d), 2u);  // garbage up to the next '$'
-  EXPECT_EQ(message_length(std::string_view(pvt).substr(0, 50)), 50u);  // truncated: the rest
-  EXPECT_EQ(message_length({}), 0u);
-  EXPECT_EQ(message_label(frame(ubx::msg::kAckAck, {6, 1})), "ACK-ACK");
-}
-
-TEST(ValidatePort, EveryType) {
-  config::OutputPortConfig c = port_cfg();
-  EXPECT_NO_THROW(validate_port(c));
-  c.address = "not-an-ip";
-  EXPECT_THROW(validate_port(c), Error);
-  c.type = config::PortType::kUdp;
-  c.address = "127.0.0.1";
-  c.port = 0;
-  EXPECT_THROW(validate_port(c), Error);
-  c.type = config::PortType::kSerial;
-  c.path = "/dev/ttyUSB-absent-gnssemu";  // absent: fine, the port retries
-  c.baud = 9600;
-  EXPECT_NO_THROW(validate_port(c));
-  c.path = GNSSEMU_SOURCE_DIR "/CMakeLists.txt";  // a regular file is a mistake
-  EXPECT_THROW(validate_port(c), Error);
-  c.path = "ttyS0";
-  EXPECT_THROW(validate_port(c), Error);
-}
 
 TEST(PortChannel, FactoryPortSendsNmeaOnlyAndAnswersPollsAtOnce) {
   Rig r(port_cfg());
@@ -225,7 +206,7 @@ TEST(PortChannel, CfgMsgRatesApplyFromTheNextEpochInUbloxOrder) {
 
 TEST(PortChannel, ConfiguredRatesAndProtocols) {
   config::OutputPortConfig c = port_cfg();
-  c.protocols_out = config::kProtoUbx;
+  c.protocols_out = ubx::proto::kUbx;
   c.ubx_messages = {{0x01, 0x07, 1}, {0x01, 0x04, 3}};
   Rig r(c);
   EXPECT_EQ(r.ch->output_summary(), "UBX");
@@ -241,12 +222,13 @@ TEST(PortChannel, ConfiguredRatesAndProtocols) {
 
 TEST(PortChannel, CfgRateReachesTheDaemonAndPubx41SwitchesBaudAfterTheReply) {
   config::OutputPortConfig c = port_cfg(9600);
-  c.type = config::PortType::kPty;
+  c.transport = config::PtyPortConfig{"/tmp/gnssemu-test-pty"};
   Rig r(c);
-  double period = 0.0;
-  r.ch->on_nav_period_change([&](double p) { period = p; });
+  int inputs = 0;
+  r.ch->on_input([&](const ubx::InputResult& q) { inputs += q.nav_rate_changed; });
   r.input(frame(ubx::msg::kCfgRate, {200, 0, 1, 0, 0, 0}));
-  EXPECT_DOUBLE_EQ(period, 0.2);
+  EXPECT_EQ(inputs, 1);
+  EXPECT_DOUBLE_EQ(r.device->epoch_period_s(), 0.2);
   const std::string body = "PUBX,41,1,0007,0003,38400,0";
   uint8_t cs = 0;
   for (char ch : body) cs ^= static_cast<uint8_t>(ch);
@@ -260,7 +242,8 @@ TEST(PortChannel, CfgRateReachesTheDaemonAndPubx41SwitchesBaudAfterTheReply) {
 
 TEST(PortChannel, SlowLineDropsMessagesAndNeverExceedsIt) {
   config::OutputPortConfig c = port_cfg(9600);
-  c.nmea.sentences.gst = c.nmea.sentences.zda = true;
+  c.nmea.sentences.set(protocol::nmea::Sentence::kGst);
+  c.nmea.sentences.set(protocol::nmea::Sentence::kZda);
   c.ubx_messages = {{0x01, 0x07, 1}, {0x01, 0x35, 1}, {0x01, 0x30, 1}, {0x01, 0x06, 1}};
   Rig r(c, 0.2);
   std::size_t sent = 0;
@@ -285,14 +268,14 @@ TEST(PortChannel, PerEpochPathDoesNotAllocateAfterWarmUp) {
   // Warm-up: fills the TX buffer so drops happen, and the one warning is out.
   for (int k = 0; k < 50; ++k) {
     r.now = 100.0 + 0.2 * k;
-    r.ch->on_epoch(fix);
+    r.on_epoch(fix);
   }
   r.port->epochs.clear();
   r.port->epochs.reserve(100);
   const long before = gnssemu::support::allocation_count();
   for (int k = 50; k < 100; ++k) {
     r.now = 100.0 + 0.2 * k;
-    r.ch->on_epoch(fix);
+    r.on_epoch(fix);
   }
   // The fake port copies each epoch into a std::string (one allocation each);
   // the channel itself allocates nothing.
@@ -328,7 +311,7 @@ TEST(PortChannel, TruncatedHeaderIsAbandonedAfterTheLineGoesQuiet) {
 
 TEST(PortChannel, BaudChangeAndReopenDropThePartialFrame) {
   config::OutputPortConfig c = port_cfg(9600);
-  c.type = config::PortType::kPty;
+  c.transport = config::PtyPortConfig{"/tmp/gnssemu-test-pty"};
   Rig r(c);
   const std::string poll = frame(ubx::msg::kMonVer);
   // Bytes after $PUBX,41 in the same read were sent at the old rate: the
@@ -360,19 +343,20 @@ TEST(PortChannel, BaudRecordedOnALinelessPortKeepsAFrameSplitAcrossReads) {
 
 TEST(PortChannel, UptimeAndTtffCountFromPowerOnAndFromCfgRst) {
   config::OutputPortConfig c = port_cfg();
-  c.protocols_out = config::kProtoUbx;
+  c.protocols_out = ubx::proto::kUbx;
   c.ubx_messages = {{0x01, 0x03, 1}};  // NAV-STATUS
   Rig r(c);  // powered on at clock 100 s
   int resets = 0;
-  protocol::ubx::ResetRequest last{};
-  r.ch->on_reset([&](const protocol::ubx::ResetRequest& q) {
+  ubx::Reset last{};
+  r.ch->on_input([&](const ubx::InputResult& q) {
+    if (!q.reset) return;
     ++resets;
-    last = q;
+    last = *q.reset;
   });
   receiver::Fix none = good_fix(1000.0);
   none.type = receiver::FixType::kNone;
   r.now = 100.2;
-  r.ch->on_epoch(none);
+  r.on_epoch(none);
   std::string st = epoch_frame(*r.port, ubx::msg::kNavStatus);
   ASSERT_EQ(st.size(), 24u);
   EXPECT_EQ(u32_at(st, 8), 0u);    // ttff: no fix yet
@@ -392,9 +376,9 @@ TEST(PortChannel, UptimeAndTtffCountFromPowerOnAndFromCfgRst) {
   EXPECT_TRUE(r.port->replies.empty());
   ASSERT_EQ(resets, 1);
   EXPECT_EQ(last.nav_bbr_mask, 0xFFFF);
-  EXPECT_EQ(last.reset_mode, 0);
+  EXPECT_EQ(last.mode_number(), 0u);
   r.now = 105.2;
-  r.ch->on_epoch(none);  // the restarted receiver has no fix yet
+  r.on_epoch(none);  // the restarted receiver has no fix yet
   st = epoch_frame(*r.port, ubx::msg::kNavStatus);
   EXPECT_EQ(u32_at(st, 8), 0u);
   EXPECT_EQ(u32_at(st, 12), 200u);  // uptime restarted at the reset
@@ -407,9 +391,11 @@ TEST(PortChannel, UptimeAndTtffCountFromPowerOnAndFromCfgRst) {
 
 TEST(PortChannel, GnssStopKeepsUptimeAndAnotherPortsResetRestartsIt) {
   config::OutputPortConfig c = port_cfg();
-  c.protocols_out = config::kProtoUbx;
+  c.protocols_out = ubx::proto::kUbx;
   c.ubx_messages = {{0x01, 0x03, 1}};  // NAV-STATUS
-  Rig r(c);  // powered on at clock 100 s
+  config::OutputPortConfig other = port_cfg();
+  other.name = "other";
+  Rig r({c, other}, 1.0);  // powered on at clock 100 s
   r.now = 100.35;
   r.epoch(1000.35);
   r.now = 105.0;
@@ -425,12 +411,13 @@ TEST(PortChannel, GnssStopKeepsUptimeAndAnotherPortsResetRestartsIt) {
   st = epoch_frame(*r.port, ubx::msg::kNavStatus);
   EXPECT_EQ(u32_at(st, 8), 350u);
   EXPECT_EQ(u32_at(st, 12), 6000u);
-  // A CFG-RST on another port of the same chip restarted the receiver.
-  r.ch->navigation_restarted();
+  // A CFG-RST on another port of the same chip restarted the receiver
+  // (GNSS-only cold start).
+  r.input(frame(ubx::msg::kCfgRst, {0xFF, 0xFF, 2, 0}), 1);
   receiver::Fix none = good_fix(1006.2);
   none.type = receiver::FixType::kNone;
   r.now = 106.2;
-  r.ch->on_epoch(none);
+  r.on_epoch(none);
   st = epoch_frame(*r.port, ubx::msg::kNavStatus);
   EXPECT_EQ(u32_at(st, 8), 0u);
   EXPECT_EQ(u32_at(st, 12), 200u);
@@ -444,7 +431,7 @@ TEST(PortChannel, GnssStopKeepsUptimeAndAnotherPortsResetRestartsIt) {
 TEST(PortChannel, BudgetWarnsOnceUntilTheBaudChanges) {
   LogCapture log;
   config::OutputPortConfig c = port_cfg(9600);
-  c.type = config::PortType::kPty;
+  c.transport = config::PtyPortConfig{"/tmp/gnssemu-test-pty"};
   c.ubx_messages = {{0x01, 0x07, 1}, {0x01, 0x35, 1}, {0x01, 0x30, 1}, {0x01, 0x06, 1}};
   Rig r(c, 0.2);
   const auto run = [&](int from, int to) {
@@ -472,8 +459,8 @@ TEST(PortChannel, BudgetWarningQuotesTheRunRateAndCoversReplies) {
     c.ubx_messages = {{0x01, 0x07, 1}, {0x01, 0x35, 1}, {0x01, 0x30, 1}, {0x01, 0x06, 1}};
     Rig r(c, 0.1);
     r.input(frame(ubx::msg::kCfgRate, {50, 0, 1, 0, 1, 0}));
-    EXPECT_DOUBLE_EQ(r.ch->responder().nav_period_s(), 0.05);
-    r.ch->set_epoch_period(0.1);
+    EXPECT_DOUBLE_EQ(r.device->config().nav_period_s(), 0.05);
+    EXPECT_DOUBLE_EQ(r.device->epoch_period_s(), 0.1);
     for (int k = 0; k < 100; ++k) {
       r.now = 100.0 + 0.1 * k;
       r.epoch(1000.0 + 0.1 * k);
@@ -491,4 +478,30 @@ TEST(PortChannel, BudgetWarningQuotesTheRunRateAndCoversReplies) {
     EXPECT_EQ(log.count("transmit buffer is full"), 1) << log.text.str();
     EXPECT_EQ(log.count("reply MON-VER"), 1);
   }
+}
+
+TEST(PortChannel, FollowsAResetAnotherHostSentToTheChip) {
+  config::OutputPortConfig a = port_cfg(9600);
+  a.transport = config::PtyPortConfig{"/tmp/gnssemu-test-pty"};
+  config::OutputPortConfig b = a;
+  b.name = "b";
+  Rig r({a, b}, 1.0);
+  // What the daemon does with a host's input: the other channels follow.
+  r.channels[0]->on_input([&](const ubx::InputResult& q) {
+    if (q.reset || q.ports_changed) r.channels[1]->follow_device(q.reset.has_value());
+  });
+  r.input(pubx41(38400), 1);
+  ASSERT_EQ(r.ports[1]->bauds, (std::vector<uint32_t>{38400}));
+  const std::string poll = frame(ubx::msg::kMonVer);
+  r.input(poll.substr(0, 4), 1);  // B's host is midway through a frame
+  // A hardware reset from A's host: the chip loads its saved configuration,
+  // B's UART1 included, so B's line goes back to 9600 and its partial frame is gone.
+  r.input(frame(ubx::msg::kCfgRst, {0xFF, 0xFF, 0, 0}), 0);
+  EXPECT_EQ(r.ports[1]->bauds, (std::vector<uint32_t>{38400, 9600}));
+  EXPECT_DOUBLE_EQ(r.channels[1]->budget().line_bytes_per_s(), 960.0);
+  r.input(poll.substr(4), 1);
+  EXPECT_TRUE(r.ports[1]->replies.empty());
+  r.input(poll, 1);
+  EXPECT_EQ(r.ports[1]->replies.size(), 1u);
+  EXPECT_TRUE(r.ports[0]->bauds.empty());  // A never left 9600
 }

@@ -80,14 +80,11 @@ NmeaConfig config_from_json(const nlohmann::json& j) {
     throw std::runtime_error("bad NMEA version " + v);
   }
   SentenceSet& s = c.sentences;
-  s.gga = j.value("gga", s.gga);
-  s.rmc = j.value("rmc", s.rmc);
-  s.gsa = j.value("gsa", s.gsa);
-  s.gsv = j.value("gsv", s.gsv);
-  s.vtg = j.value("vtg", s.vtg);
-  s.gll = j.value("gll", s.gll);
-  s.gst = j.value("gst", s.gst);
-  s.zda = j.value("zda", s.zda);
+  for (const SentenceInfo& info : kSentences) {
+    std::string key(info.name);
+    for (char& ch : key) ch = static_cast<char>(ch - 'A' + 'a');  // "GGA" -> "gga"
+    s.set(info.sentence, j.value(key, s.has(info.sentence)));
+  }
   c.course_min_speed_m_s = j.value("course_min_speed_m_s", c.course_min_speed_m_s);
   return c;
 }

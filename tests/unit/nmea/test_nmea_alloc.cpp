@@ -20,7 +20,8 @@ TEST(NmeaAlloc, CounterSeesAllocations) {
 
 TEST(NmeaAlloc, EncodeEpochDoesNotAllocateWithCapacity) {
   NmeaConfig c;
-  c.sentences.gst = c.sentences.zda = true;
+  c.sentences.set(Sentence::kGst);
+  c.sentences.set(Sentence::kZda);
   for (NmeaVersion v : {NmeaVersion::k23, NmeaVersion::k410, NmeaVersion::k411}) {
     c.version = v;
     const NmeaEncoder enc(c);

@@ -24,8 +24,8 @@ using test::split_lines;
 NmeaConfig all_sentences(NmeaVersion v) {
   NmeaConfig c;
   c.version = v;
-  c.sentences.gst = true;
-  c.sentences.zda = true;
+  c.sentences.set(nmea::Sentence::kGst);
+  c.sentences.set(nmea::Sentence::kZda);
   return c;
 }
 

@@ -104,7 +104,8 @@ void compare_with_log(const Expectations& x) {
   }
   NmeaConfig c;
   c.version = x.version;
-  c.sentences.gst = c.sentences.zda = true;
+  c.sentences.set(nmea::Sentence::kGst);
+  c.sentences.set(nmea::Sentence::kZda);
   c.course_min_speed_m_s = 0.0;  // print the course, to compare its format too
   std::string out;
   NmeaEncoder(c).encode_epoch(test::sample_fix_3d(), out);

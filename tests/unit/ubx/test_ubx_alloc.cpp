@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/protocol/ubx/ubx_decoder.hpp"
-#include "core/protocol/ubx/ubx_responder.hpp"
+#include "core/protocol/ubx/ubx_device.hpp"
 #include "tests/support/alloc_counter.hpp"
 #include "ubx_test_util.hpp"
 
@@ -14,25 +14,25 @@ namespace gnssemu::protocol::ubx {
 namespace {
 
 struct NullSink : DecoderSink {
-  ConfigResponder* r = nullptr;
+  Device* r = nullptr;
   std::string* out = nullptr;
   std::size_t frames = 0;
   void on_ubx(const FrameView& f) override {
     ++frames;
-    r->handle_ubx(kPortUart1, f, *out);
+    r->handle_ubx({}, f, 0.0, *out);
   }
   void on_nmea(std::string_view s) override {
     ++frames;
-    r->handle_nmea(kPortUart1, s, *out);
+    r->handle_nmea({}, s, *out);
   }
 };
 
 TEST(UbxAlloc, EpochEncodeConfigAndDecodeDoNotAllocate) {
-  ConfigResponder r({});
+  Device r({});
   // Every output message on, at rate 1, on UART1.
   for (MsgId id : {msg::kNavPvt, msg::kNavPosllh, msg::kNavStatus, msg::kNavDop, msg::kNavSol, msg::kNavVelned,
                    msg::kNavTimegps, msg::kNavTimeutc, msg::kNavSat, msg::kNavSvinfo, msg::kNavEoe, msg::kMonHw}) {
-    r.current().set_message_rate(kPortUart1, id, 1);
+    r.config().set_message_rate(kPortUart1, id, 1);
   }
   receiver::Fix fix = test::sample_fix();
   fix.num_sats = kMaxGpsPrn;  // worst case: 32 satellites
@@ -55,8 +55,9 @@ TEST(UbxAlloc, EpochEncodeConfigAndDecodeDoNotAllocate) {
   NullSink sink;
   sink.r = &r;
   sink.out = &out;
+  MessageList epoch;
   r.on_epoch(fix, 0.0);  // warm-up
-  r.encode_epoch(kPortUart1, out);
+  r.compose({}, epoch);
   decoder.feed(input, sink);
   out.clear();
 
@@ -66,8 +67,8 @@ TEST(UbxAlloc, EpochEncodeConfigAndDecodeDoNotAllocate) {
     out.clear();
     fix.t += 0.2;
     r.on_epoch(fix, 0.2 * e);
-    bytes += r.encode_epoch(kPortUart1, out);
-    (void)r.nmea_sentences(kPortUart1);
+    r.compose({}, epoch);
+    for (const MessageList::Message& m : epoch.messages()) bytes += m.protocol == Protocol::kUbx ? m.end - m.begin : 0;
     decoder.feed(input, sink);
   }
   EXPECT_EQ(support::allocation_count(), before);

@@ -103,4 +103,25 @@ std::uint32_t u4(const std::vector<std::uint8_t>& p, std::size_t off) {
 }
 std::int32_t i4(const std::vector<std::uint8_t>& p, std::size_t off) { return static_cast<std::int32_t>(u4(p, off)); }
 
+std::size_t ubx_epoch(const Device& d, Link at, std::string& out) {
+  MessageList list;
+  d.compose(at, list, Layout::kPerProtocol);
+  const std::size_t before = out.size();
+  for (const MessageList::Message& m : list.messages()) {
+    if (m.protocol == Protocol::kUbx) out.append(list.bytes(m));
+  }
+  return out.size() - before;
+}
+
+Reply HandlerRig::call(Handler handler, MsgId id, const std::vector<std::uint8_t>& payload, std::size_t uart,
+                       std::uint8_t port) {
+  out.clear();
+  HandlerContext ctx{current, saved, defaults, uart, port, out, encoder, fix, info, false, std::nullopt};
+  const Reply r = handler(ctx, FrameView{id, payload});
+  reset = ctx.reset;
+  return r;
+}
+
+std::vector<Frame> HandlerRig::replies() const { return split_frames(out); }
+
 }  // namespace gnssemu::protocol::ubx::test

@@ -5,7 +5,9 @@
 #include <string_view>
 #include <vector>
 
+#include "core/protocol/ubx/ubx_device.hpp"
 #include "core/protocol/ubx/ubx_frame.hpp"
+#include "core/protocol/ubx/ubx_handlers.hpp"
 #include "core/receiver/fix.hpp"
 
 namespace gnssemu::protocol::ubx::test {
@@ -30,6 +32,27 @@ std::string from_hex(std::string_view hex);
 std::string to_hex(std::string_view bytes);
 /// Complete frame bytes.
 std::string frame_bytes(MsgId id, const std::vector<std::uint8_t>& payload);
+
+/// Append the UBX messages d sends at at this epoch, in their own order (no
+/// NMEA), to out; returns the bytes appended.
+std::size_t ubx_epoch(const Device& d, Link at, std::string& out);
+
+/// A chip's configurations and what a handler needs, to call one handler
+/// alone: call(handler, frame) as a host on UART1 of output uart (or on port).
+struct HandlerRig {
+  explicit HandlerRig(std::size_t uarts = 2)
+      : defaults(DeviceConfig::factory_defaults(uarts)), saved(defaults), current(defaults) {}
+  DeviceConfig defaults, saved, current;
+  UbxEncoder encoder;
+  receiver::Fix fix = sample_fix();
+  EpochInfo info;
+  std::string out;
+  std::optional<Reset> reset;  ///< what the last call's CFG-RST asked for
+  Reply call(Handler handler, MsgId id, const std::vector<std::uint8_t>& payload, std::size_t uart = 0,
+             std::uint8_t port = kPortUart1);
+  /// The frames the last call appended.
+  std::vector<Frame> replies() const;
+};
 
 /// Little-endian readers for asserting payload fields by offset.
 std::uint16_t u2(const std::vector<std::uint8_t>& p, std::size_t off);

@@ -1,4 +1,4 @@
-#include "core/protocol/ubx/ubx_config_state.hpp"
+#include "core/protocol/ubx/ubx_device_config.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -40,20 +40,24 @@ std::uint32_t section_of(MsgId id) noexcept {
 
 }  // namespace
 
-ReceiverConfig ReceiverConfig::factory_defaults() {
-  ReceiverConfig c;
+DeviceConfig DeviceConfig::factory_defaults(std::size_t uarts) {
+  DeviceConfig c;
   // Ports (NEO-M8N: DDC, UART1, USB, SPI; no UART2). UART 8N1 = mode 0x8C0.
-  for (std::uint8_t p = 0; p < kNumPorts; ++p) c.ports[p].port_id = p;
+  c.ports_.resize(kNumPorts + std::max<std::size_t>(uarts, 1) - 1);
+  c.rates_.assign(kMaxRateEntries * c.ports_.size(), 0);
+  for (std::uint8_t p = 0; p < kNumPorts; ++p) c.ports_[p].port_id = p;
   const std::uint16_t in = proto::kUbx | proto::kNmea | proto::kRtcm2;
   const std::uint16_t out = proto::kUbx | proto::kNmea;
-  c.ports[kPortDdc] = {kPortDdc, true, 0, 0x42u << 1, 0, in, out, 0, false};
-  c.ports[kPortUart1] = {kPortUart1, true, 0, 0x8C0, 9600, in, out, 0, false};
-  c.ports[kPortUsb] = {kPortUsb, true, 0, 0, 0, in, out, 0, false};
-  c.ports[kPortSpi] = {kPortSpi, true, 0, 0x100, 0, in, out, 0, false};
+  const PortSettings uart1{kPortUart1, true, 0, 0x8C0, 9600, in, out, 0, false};
+  c.ports_[kPortDdc] = {kPortDdc, true, 0, 0x42u << 1, 0, in, out, 0, false};
+  c.ports_[kPortUsb] = {kPortUsb, true, 0, 0, 0, in, out, 0, false};
+  c.ports_[kPortSpi] = {kPortSpi, true, 0, 0x100, 0, in, out, 0, false};
+  for (std::size_t u = 0; u < c.uarts(); ++u) c.ports_[c.column(u, kPortUart1)] = uart1;
   // NMEA GGA GLL GSA GSV RMC VTG at 1 on every existing port; TXT is on too.
-  const std::array<std::uint8_t, kNumPorts> on{1, 1, 0, 1, 1, 0};
   for (MsgId id : {msg::kNmeaGga, msg::kNmeaGll, msg::kNmeaGsa, msg::kNmeaGsv, msg::kNmeaRmc, msg::kNmeaVtg}) {
-    c.set_message_rates(id, on);
+    for (std::size_t col = 0; col < c.columns(); ++col) {
+      if (c.ports_[col].exists) c.set_message_rate(col, id, 1);
+    }
   }
   c.rate = {1000, 1, 1};  // 1 Hz, aligned to GPS time
   c.nav5 = {};
@@ -139,46 +143,40 @@ ReceiverConfig ReceiverConfig::factory_defaults() {
   return c;
 }
 
-std::uint8_t ReceiverConfig::message_rate(std::uint8_t port_id, MsgId id) const noexcept {
-  if (port_id >= kNumPorts) return 0;
-  return message_rates(id)[port_id];
-}
-
-std::array<std::uint8_t, kNumPorts> ReceiverConfig::message_rates(MsgId id) const noexcept {
+std::size_t DeviceConfig::row(MsgId id) const noexcept {
   for (std::size_t i = 0; i < num_rates_; ++i) {
-    if (rates_[i].id == id) return rates_[i].rate;
+    if (rate_ids_[i] == id) return i;
   }
-  return {};
+  return num_rates_;
 }
 
-bool ReceiverConfig::set_message_rate(std::uint8_t port_id, MsgId id, std::uint8_t value) noexcept {
-  if (port_id >= kNumPorts) return false;
-  auto r = message_rates(id);
-  r[port_id] = value;
-  return set_message_rates(id, r);
+std::uint8_t DeviceConfig::message_rate(std::size_t column, MsgId id) const noexcept {
+  const std::size_t r = row(id);
+  if (column >= columns() || r == num_rates_) return 0;
+  return rates_[r * columns() + column];
 }
 
-bool ReceiverConfig::set_message_rates(MsgId id, const std::array<std::uint8_t, kNumPorts>& rates) noexcept {
-  for (std::size_t i = 0; i < num_rates_; ++i) {
-    if (rates_[i].id == id) {
-      rates_[i].rate = rates;
-      return true;
-    }
+bool DeviceConfig::set_message_rate(std::size_t column, MsgId id, std::uint8_t value) noexcept {
+  if (column >= columns()) return false;
+  std::size_t r = row(id);
+  if (r == num_rates_) {
+    if (value == 0) return true;
+    if (num_rates_ == kMaxRateEntries) return false;
+    rate_ids_[num_rates_++] = id;
+    std::fill_n(rates_.begin() + static_cast<std::ptrdiff_t>(r * columns()), columns(), std::uint8_t{0});
   }
-  if (std::all_of(rates.begin(), rates.end(), [](std::uint8_t r) { return r == 0; })) return true;
-  if (num_rates_ == rates_.size()) return false;
-  rates_[num_rates_++] = MessageRate{id, rates};
+  rates_[r * columns() + column] = value;
   return true;
 }
 
-const StoredBlock* ReceiverConfig::stored(MsgId id, std::uint8_t index) const noexcept {
+const StoredBlock* DeviceConfig::stored(MsgId id, std::uint8_t index) const noexcept {
   for (std::size_t i = 0; i < num_blocks_; ++i) {
     if (blocks_[i].id == id && blocks_[i].index == index) return &blocks_[i];
   }
   return nullptr;
 }
 
-bool ReceiverConfig::store(MsgId id, std::uint8_t index, std::span<const std::uint8_t> payload) noexcept {
+bool DeviceConfig::store(MsgId id, std::uint8_t index, std::span<const std::uint8_t> payload) noexcept {
   if (payload.size() > kMaxStoredBytes) return false;
   StoredBlock* slot = nullptr;
   for (std::size_t i = 0; i < num_blocks_; ++i) {
@@ -196,24 +194,18 @@ bool ReceiverConfig::store(MsgId id, std::uint8_t index, std::span<const std::ui
   return true;
 }
 
-bool ReceiverConfig::operator==(const ReceiverConfig& o) const {
+bool DeviceConfig::operator==(const DeviceConfig& o) const {
   const auto port_eq = [](const PortSettings& a, const PortSettings& b) {
     return a.port_id == b.port_id && a.exists == b.exists && a.tx_ready == b.tx_ready && a.mode == b.mode &&
            a.baud_bps == b.baud_bps && a.in_proto_mask == b.in_proto_mask &&
            a.out_proto_mask == b.out_proto_mask && a.flags == b.flags && a.autobauding == b.autobauding;
   };
-  for (std::size_t p = 0; p < kNumPorts; ++p) {
-    if (!port_eq(ports[p], o.ports[p])) return false;
+  if (columns() != o.columns()) return false;
+  for (std::size_t p = 0; p < columns(); ++p) {
+    if (!port_eq(ports_[p], o.ports_[p])) return false;
   }
   if (std::memcmp(&rate, &o.rate, sizeof rate) != 0 || std::memcmp(&nav5, &o.nav5, sizeof nav5) != 0) return false;
-  // Rate tables compare as sets of non-zero entries.
-  const auto covers = [](const ReceiverConfig& a, const ReceiverConfig& b) {
-    for (const MessageRate& m : a.rate_table()) {
-      if (b.message_rates(m.id) != m.rate) return false;
-    }
-    return true;
-  };
-  if (!covers(*this, o) || !covers(o, *this)) return false;
+  if (!same_rates(o)) return false;
   if (num_blocks_ != o.num_blocks_) return false;
   for (std::size_t i = 0; i < num_blocks_; ++i) {
     const StoredBlock* b = o.stored(blocks_[i].id, blocks_[i].index);
@@ -225,11 +217,36 @@ bool ReceiverConfig::operator==(const ReceiverConfig& o) const {
   return true;
 }
 
-void ReceiverConfig::copy_sections(const ReceiverConfig& src, std::uint32_t mask) noexcept {
-  if (mask & (1u << 0)) ports = src.ports;
+bool DeviceConfig::same_rates(const DeviceConfig& o) const noexcept {
+  if (columns() != o.columns()) return false;
+  // Rows are appended, so the tables of one chip usually share a prefix of
+  // ids: compare it cell by cell, the longer table's other rows must be 0.
+  const DeviceConfig& longer = num_rates_ >= o.num_rates_ ? *this : o;
+  const std::size_t common = std::min(num_rates_, o.num_rates_);
+  if (std::equal(rate_ids_.begin(), rate_ids_.begin() + common, o.rate_ids_.begin())) {
+    const auto cell = [this](std::size_t rows) { return static_cast<std::ptrdiff_t>(rows * columns()); };
+    return std::equal(rates_.begin(), rates_.begin() + cell(common), o.rates_.begin()) &&
+           std::all_of(longer.rates_.begin() + cell(common), longer.rates_.begin() + cell(longer.num_rates_),
+                       [](std::uint8_t r) { return r == 0; });
+  }
+  // Tables filled in another order: equal as sets of non-zero rates.
+  const auto covers = [](const DeviceConfig& a, const DeviceConfig& b) {
+    for (const MsgId id : a.rated_messages()) {
+      for (std::size_t col = 0; col < a.columns(); ++col) {
+        if (b.message_rate(col, id) != a.message_rate(col, id)) return false;
+      }
+    }
+    return true;
+  };
+  return covers(*this, o) && covers(o, *this);
+}
+
+void DeviceConfig::copy_sections(const DeviceConfig& src, std::uint32_t mask) noexcept {
+  if (mask & (1u << 0)) ports_ = src.ports_;
   if (mask & (1u << 1)) {
-    rates_ = src.rates_;
+    rate_ids_ = src.rate_ids_;
     num_rates_ = src.num_rates_;
+    rates_ = src.rates_;
   }
   if (mask & (1u << 3)) {
     rate = src.rate;

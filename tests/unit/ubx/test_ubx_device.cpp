@@ -1,4 +1,4 @@
-// Configuration responder: the PX4 and ArduPilot UBX start-up sequences
+// The emulated M8 (Device) as one host sees it: the PX4 and ArduPilot UBX start-up sequences
 // (DESIGN.md §4, shared/reference/ubx.md §5-6) replayed byte for byte, the
 // request bytes built from what those drivers send, the expected replies
 // computed independently (Python struct + Fletcher) and written as hex.
@@ -9,7 +9,7 @@
 
 #include "core/protocol/ubx/ubx_decoder.hpp"
 #include "core/protocol/ubx/ubx_messages.hpp"
-#include "core/protocol/ubx/ubx_responder.hpp"
+#include "core/protocol/ubx/ubx_device.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {
@@ -19,10 +19,10 @@ using test::frame_bytes;
 using test::from_hex;
 using test::to_hex;
 
-/// One host talking to one port: bytes in -> decoder -> responder -> bytes out.
+/// One host talking to one port: bytes in -> decoder -> device -> bytes out.
 class Host : public DecoderSink {
 public:
-  explicit Host(ConfigResponder& r, std::uint8_t port = kPortUart1) : r_(r), port_(port) {}
+  explicit Host(Device& r, std::uint8_t port = kPortUart1) : r_(r), port_(port) {}
   /// Send bytes; returns the hex of everything the receiver answered.
   std::string send(const std::string& bytes) {
     tx_.clear();
@@ -31,16 +31,16 @@ public:
     return to_hex(tx_);
   }
   std::string send(MsgId id, const std::vector<std::uint8_t>& payload) { return send(frame_bytes(id, payload)); }
-  const ResponderResult& last() const { return results_.back(); }
-  void on_ubx(const FrameView& f) override { results_.push_back(r_.handle_ubx(port_, f, tx_)); }
-  void on_nmea(std::string_view s) override { results_.push_back(r_.handle_nmea(port_, s, tx_)); }
+  const InputResult& last() const { return results_.back(); }
+  void on_ubx(const FrameView& f) override { results_.push_back(r_.handle_ubx({0, port_}, f, 0.0, tx_)); }
+  void on_nmea(std::string_view s) override { results_.push_back(r_.handle_nmea({0, port_}, s, tx_)); }
 
 private:
-  ConfigResponder& r_;
+  Device& r_;
   std::uint8_t port_;
   StreamDecoder decoder_;
   std::string tx_;
-  std::vector<ResponderResult> results_;
+  std::vector<InputResult> results_;
 };
 
 const std::string kAckPrt = "B5 62 05 01 02 00 06 00 0E 37";
@@ -68,26 +68,26 @@ std::vector<std::uint8_t> cfg_prt(std::uint8_t port, std::uint32_t mode, std::ui
   return {b, b + sizeof w};
 }
 
-TEST(UbxResponder, Px4StartupSequence) {
-  ConfigResponder r({});
+TEST(UbxDevice, Px4StartupSequence) {
+  Device r({});
   Host px4(r);
   // 1. CFG-VALSET (RAM, UART1 baud and protocols): an M8 does not know it.
   EXPECT_EQ(px4.send(msg::kCfgValset, {0, 1, 0, 0, 0x01, 0x00, 0x52, 0x40, 0x00, 0xC2, 0x01, 0x00}),
             "B5 62 05 00 02 00 06 8A 97 BC");
   // 2. CFG-PRT at the current baud (UBX in/out only): ACK.
   EXPECT_EQ(px4.send(msg::kCfgPrt, cfg_prt(1, 0x8D0, 9600, 0x01, 0x01)), kAckPrt);
-  EXPECT_EQ(px4.last().new_baud_bps[kPortUart1], 0u);
+  EXPECT_EQ(px4.last().new_baud_bps, 0u);
   EXPECT_TRUE(px4.last().ports_changed);
   //    then the target baud: ACK at the old rate, switch after it is sent.
   EXPECT_EQ(px4.send(msg::kCfgPrt, cfg_prt(1, 0x8D0, 115200, 0x01, 0x01)), kAckPrt);
-  EXPECT_EQ(px4.last().new_baud_bps[kPortUart1], 115200u);
-  EXPECT_EQ(r.port(kPortUart1).baud_bps, 115200u);
+  EXPECT_EQ(px4.last().new_baud_bps, 115200u);
+  EXPECT_EQ(r.port({0, kPortUart1}).baud_bps, 115200u);
   // 3. MON-VER poll: the M8 version, no ACK.
   EXPECT_EQ(px4.send(msg::kMonVer, {}), kMonVer);
   // 4. CFG-RATE 200 ms, navRate 1, UTC.
   EXPECT_EQ(px4.send(msg::kCfgRate, {0xC8, 0x00, 0x01, 0x00, 0x00, 0x00}), kAckRate);
   EXPECT_TRUE(px4.last().nav_rate_changed);
-  EXPECT_DOUBLE_EQ(r.nav_period_s(), 0.2);
+  EXPECT_DOUBLE_EQ(r.config().nav_period_s(), 0.2);
   // 5. CFG-NAV5 mask 0x0005: airborne < 4 g, auto 2D/3D.
   std::vector<std::uint8_t> nav5(36, 0);
   nav5[0] = 0x05;
@@ -95,8 +95,8 @@ TEST(UbxResponder, Px4StartupSequence) {
   nav5[3] = 3;
   EXPECT_EQ(px4.send(msg::kCfgNav5, nav5), kAckNav5);
   EXPECT_TRUE(px4.last().nav_config_changed);
-  EXPECT_EQ(r.current().nav5.dynModel, 8);
-  EXPECT_EQ(r.current().nav5.minElev, 5);  // not in the mask: kept
+  EXPECT_EQ(r.config().nav5.dynModel, 8);
+  EXPECT_EQ(r.config().nav5.minElev, 5);  // not in the mask: kept
   // 6. CFG-MSG (current port) NAV-PVT 1, NAV-STATUS 1, NAV-DOP 1, NAV-SVINFO 5, MON-HW 2.
   const std::vector<std::vector<std::uint8_t>> msgs = {
       {0x01, 0x07, 1}, {0x01, 0x03, 1}, {0x01, 0x04, 1}, {0x01, 0x30, 5}, {0x0A, 0x09, 2}};
@@ -114,7 +114,7 @@ TEST(UbxResponder, Px4StartupSequence) {
     r.on_epoch(f, 1.0 + 0.2 * e);
     f.t = f.t + 0.2;
     std::string out;
-    r.encode_epoch(kPortUart1, out);
+    test::ubx_epoch(r, {0, kPortUart1}, out);
     const auto frames = test::split_frames(out);
     for (const auto& fr : frames) {
       if (fr.id == msg::kNavPvt) {
@@ -132,8 +132,8 @@ TEST(UbxResponder, Px4StartupSequence) {
     EXPECT_EQ(frames[0].id, msg::kNavStatus);
     EXPECT_EQ(frames[1].id, msg::kNavDop);
     EXPECT_EQ(frames[2].id, msg::kNavPvt);
-    const auto n = r.nmea_sentences(kPortUart1);
-    EXPECT_FALSE(n.gga || n.rmc || n.gsa || n.gsv || n.vtg || n.gll);  // NMEA off in outProtoMask
+    const auto n = r.nmea_due({0, kPortUart1});
+    EXPECT_TRUE(n.empty());  // NMEA off in outProtoMask
   }
   EXPECT_EQ(pvt, 10);
   EXPECT_EQ(status, 10);
@@ -142,8 +142,8 @@ TEST(UbxResponder, Px4StartupSequence) {
   EXPECT_EQ(hw, 5);
 }
 
-TEST(UbxResponder, ArduPilotPollAndCompareSequence) {
-  ConfigResponder r({});
+TEST(UbxDevice, ArduPilotPollAndCompareSequence) {
+  Device r({});
   Host ap(r);
   // CFG-PRT poll (current port): UART1 9600 8N1, UBX+NMEA+RTCM2 in, UBX+NMEA out; then ACK.
   EXPECT_EQ(ap.send(msg::kCfgPrt, {}),
@@ -195,33 +195,33 @@ TEST(UbxResponder, ArduPilotPollAndCompareSequence) {
   EXPECT_EQ(r.stats().naks, 0u);
 }
 
-TEST(UbxResponder, ArduPilotPubx41ProbeSwitchesBaudAndProtocols) {
-  ConfigResponder r({});
+TEST(UbxDevice, ArduPilotPubx41ProbeSwitchesBaudAndProtocols) {
+  Device r({});
   Host ap(r);
   EXPECT_EQ(ap.send("$PUBX,41,1,0007,0001,230400,0*18\r\n"), "");  // no answer to PUBX
-  EXPECT_EQ(ap.last().new_baud_bps[kPortUart1], 230400u);
+  EXPECT_EQ(ap.last().new_baud_bps, 230400u);
   EXPECT_TRUE(ap.last().ports_changed);
-  EXPECT_EQ(r.port(kPortUart1).out_proto_mask, proto::kUbx);
-  EXPECT_EQ(r.port(kPortUart1).in_proto_mask, 0x0007);
+  EXPECT_EQ(r.port({0, kPortUart1}).out_proto_mask, proto::kUbx);
+  EXPECT_EQ(r.port({0, kPortUart1}).in_proto_mask, 0x0007);
   // Same command again: nothing changes, no baud switch.
   ap.send("$PUBX,41,1,0007,0001,230400,0*18\r\n");
-  EXPECT_EQ(ap.last().new_baud_bps[kPortUart1], 0u);
+  EXPECT_EQ(ap.last().new_baud_bps, 0u);
   EXPECT_FALSE(ap.last().ports_changed);
   // A bad baud is ignored.
   ap.send("$PUBX,41,1,0007,0001,12345,0*2C\r\n");
-  EXPECT_EQ(r.port(kPortUart1).baud_bps, 230400u);
+  EXPECT_EQ(r.port({0, kPortUart1}).baud_bps, 230400u);
 }
 
-TEST(UbxResponder, CfgMsgLongFormSetsAllPortsAndRatesApplyPerPort) {
-  ConfigResponder r({});
+TEST(UbxDevice, CfgMsgLongFormSetsAllPortsAndRatesApplyPerPort) {
+  Device r({});
   Host uart(r, kPortUart1), usb(r, kPortUsb);
   EXPECT_EQ(uart.send(msg::kCfgMsg, {0x01, 0x07, 0, 1, 0, 2, 0, 0}), kAckMsg);
-  EXPECT_EQ(r.message_rate(kPortUart1, msg::kNavPvt), 1);
-  EXPECT_EQ(r.message_rate(kPortUsb, msg::kNavPvt), 2);
+  EXPECT_EQ(r.message_rate({0, kPortUart1}, msg::kNavPvt), 1);
+  EXPECT_EQ(r.message_rate({0, kPortUsb}, msg::kNavPvt), 2);
   // Short form from USB changes only USB.
   EXPECT_EQ(usb.send(msg::kCfgMsg, {0x01, 0x07, 3}), kAckMsg);
-  EXPECT_EQ(r.message_rate(kPortUart1, msg::kNavPvt), 1);
-  EXPECT_EQ(r.message_rate(kPortUsb, msg::kNavPvt), 3);
+  EXPECT_EQ(r.message_rate({0, kPortUart1}, msg::kNavPvt), 1);
+  EXPECT_EQ(r.message_rate({0, kPortUsb}, msg::kNavPvt), 3);
   // NMEA GGA off on UART1 only.
   EXPECT_EQ(uart.send(msg::kCfgMsg, {0xF0, 0x00, 0}), kAckMsg);
   receiver::Fix f = test::sample_fix();
@@ -229,11 +229,11 @@ TEST(UbxResponder, CfgMsgLongFormSetsAllPortsAndRatesApplyPerPort) {
   for (int e = 0; e < 6; ++e) {
     r.on_epoch(f, e);
     std::string out;
-    r.encode_epoch(kPortUsb, out);
+    test::ubx_epoch(r, {0, kPortUsb}, out);
     usb_pvt += static_cast<int>(test::split_frames(out).size());
-    EXPECT_FALSE(r.nmea_sentences(kPortUart1).gga);
-    EXPECT_TRUE(r.nmea_sentences(kPortUart1).rmc);
-    EXPECT_TRUE(r.nmea_sentences(kPortUsb).gga);
+    EXPECT_FALSE(r.nmea_due({0, kPortUart1}).has(nmea::Sentence::kGga));
+    EXPECT_TRUE(r.nmea_due({0, kPortUart1}).has(nmea::Sentence::kRmc));
+    EXPECT_TRUE(r.nmea_due({0, kPortUsb}).has(nmea::Sentence::kGga));
   }
   EXPECT_EQ(usb_pvt, 2);  // every 3rd epoch
   // Bad lengths and non-output classes are NAKed.
@@ -241,23 +241,23 @@ TEST(UbxResponder, CfgMsgLongFormSetsAllPortsAndRatesApplyPerPort) {
   EXPECT_EQ(uart.send(msg::kCfgMsg, {0x06, 0x00, 1}), "B5 62 05 00 02 00 06 01 0E 33");
 }
 
-TEST(UbxResponder, NakVersionedConfigAndUnknownCfg) {
-  ConfigResponder r({});
+TEST(UbxDevice, NakVersionedConfigAndUnknownCfg) {
+  Device r({});
   Host h(r);
   EXPECT_EQ(h.send(msg::kCfgValget, {0, 0, 0, 0, 0x01, 0x00, 0x21, 0x30}), "B5 62 05 00 02 00 06 8B 98 BD");
   EXPECT_EQ(h.last().reply, Reply::kNak);
   EXPECT_EQ(h.send(MsgId{0x06, 0x8C}, {0, 1, 0, 0}).substr(0, 23), "B5 62 05 00 02 00 06 8C");
   EXPECT_EQ(h.send(MsgId{0x06, 0x70}, {1, 2}).substr(0, 23), "B5 62 05 00 02 00 06 70");  // CFG-DGNSS: not an M8N
-  ResponderConfig lenient;
+  DeviceSetup lenient;
   lenient.ack_unknown_cfg = true;
-  ConfigResponder r2(lenient);
+  Device r2(lenient);
   Host h2(r2);
   EXPECT_EQ(h2.send(MsgId{0x06, 0x70}, {1, 2}).substr(0, 23), "B5 62 05 01 02 00 06 70");
   EXPECT_EQ(h2.send(msg::kCfgValset, {0, 1, 0, 0}).substr(0, 23), "B5 62 05 00 02 00 06 8A");  // still NAK
 }
 
-TEST(UbxResponder, WrongLengthsAreNaked) {
-  ConfigResponder r({});
+TEST(UbxDevice, WrongLengthsAreNaked) {
+  Device r({});
   Host h(r);
   EXPECT_EQ(h.send(msg::kCfgRate, {1, 2, 3}).substr(0, 14), "B5 62 05 00 02");
   EXPECT_EQ(h.send(msg::kCfgNav5, std::vector<std::uint8_t>(35, 0)).substr(0, 14), "B5 62 05 00 02");
@@ -269,12 +269,12 @@ TEST(UbxResponder, WrongLengthsAreNaked) {
   nav5[2] = 1;  // reserved dynamic model
   EXPECT_EQ(h.send(msg::kCfgNav5, nav5).substr(0, 14), "B5 62 05 00 02");
   EXPECT_EQ(h.send(msg::kCfgPrt, {2}).substr(0, 14), "B5 62 05 00 02");  // no UART2 on a NEO-M8N
-  EXPECT_EQ(r.current().rate.measRate, 1000);
+  EXPECT_EQ(r.config().rate.measRate, 1000);
   EXPECT_EQ(r.stats().naks, 7u);
 }
 
-TEST(UbxResponder, EveryPollAnsweredAtItsLength) {
-  ConfigResponder r({});
+TEST(UbxDevice, EveryPollAnsweredAtItsLength) {
+  Device r({});
   Host h(r);
   const struct {
     MsgId id;
@@ -323,66 +323,66 @@ TEST(UbxResponder, EveryPollAnsweredAtItsLength) {
   EXPECT_EQ((frames[0].payload[22] >> 2) & 3, 1);  // ITFM now enabled: jamming state ok
 }
 
-TEST(UbxResponder, CfgCfgSaveLoadClearAndReset) {
-  ConfigResponder r({});
+TEST(UbxDevice, CfgCfgSaveLoadClearAndReset) {
+  Device r({});
   Host h(r);
   EXPECT_EQ(h.send(msg::kCfgRate, {0xC8, 0x00, 0x01, 0x00, 0x01, 0x00}), kAckRate);
   EXPECT_EQ(h.send(msg::kCfgMsg, {0x01, 0x07, 1}), kAckMsg);
   // Save everything, change again, then load: back to the saved values.
   EXPECT_EQ(h.send(msg::kCfgCfg, {0, 0, 0, 0, 0xFF, 0xFF, 0, 0, 0, 0, 0, 0, 0x17}), "B5 62 05 01 02 00 06 09 17 40");
   EXPECT_EQ(h.send(msg::kCfgRate, {0x64, 0x00, 0x01, 0x00, 0x01, 0x00}), kAckRate);
-  EXPECT_DOUBLE_EQ(r.nav_period_s(), 0.1);
+  EXPECT_DOUBLE_EQ(r.config().nav_period_s(), 0.1);
   h.send(msg::kCfgCfg, {0, 0, 0, 0, 0, 0, 0, 0, 0xFF, 0xFF, 0, 0});
   EXPECT_TRUE(h.last().nav_rate_changed);
-  EXPECT_DOUBLE_EQ(r.nav_period_s(), 0.2);
+  EXPECT_DOUBLE_EQ(r.config().nav_period_s(), 0.2);
   // A baud change, then a software reset: RAM config lost, saved loaded,
   // the port goes back to the saved baud. No ACK for CFG-RST.
   EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(1, 0x8C0, 115200, 7, 3)), kAckPrt);
   EXPECT_EQ(h.send(msg::kCfgRst, {0xFF, 0xFF, 0x01, 0x00}), "");
   EXPECT_EQ(h.last().reply, Reply::kReset);
-  EXPECT_TRUE(h.last().reset.requested);
-  EXPECT_EQ(h.last().reset.nav_bbr_mask, 0xFFFF);
-  EXPECT_EQ(h.last().new_baud_bps[kPortUart1], 9600u);
-  EXPECT_EQ(r.message_rate(kPortUart1, msg::kNavPvt), 1);  // saved
+  EXPECT_TRUE(h.last().reset.has_value());
+  EXPECT_EQ(h.last().reset->nav_bbr_mask, 0xFFFF);
+  EXPECT_EQ(h.last().new_baud_bps, 9600u);
+  EXPECT_EQ(r.message_rate({0, kPortUart1}, msg::kNavPvt), 1);  // saved
   // Clear the saved config to factory and load it.
   h.send(msg::kCfgCfg, {0xFF, 0xFF, 0, 0, 0, 0, 0, 0, 0xFF, 0xFF, 0, 0});
-  EXPECT_TRUE(r.current() == ReceiverConfig::factory_defaults());
-  EXPECT_EQ(r.message_rate(kPortUart1, msg::kNavPvt), 0);
-  EXPECT_DOUBLE_EQ(r.nav_period_s(), 1.0);
+  EXPECT_TRUE(r.config() == DeviceConfig::factory_defaults());
+  EXPECT_EQ(r.message_rate({0, kPortUart1}, msg::kNavPvt), 0);
+  EXPECT_DOUBLE_EQ(r.config().nav_period_s(), 1.0);
 }
 
-TEST(UbxResponder, RepliesFollowThePortsProtocolMasks) {
-  ConfigResponder r({});
+TEST(UbxDevice, RepliesFollowThePortsProtocolMasks) {
+  Device r({});
   Host h(r);
   // NMEA-only output: the ACK for this very change is not sent (UBX output off).
   EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(1, 0x8C0, 9600, 0x07, 0x02)), "");
-  EXPECT_EQ(r.port(kPortUart1).out_proto_mask, proto::kNmea);
+  EXPECT_EQ(r.port({0, kPortUart1}).out_proto_mask, proto::kNmea);
   EXPECT_EQ(h.send(msg::kMonVer, {}), "");
   r.on_epoch(test::sample_fix(), 1.0);
   std::string out;
-  EXPECT_EQ(r.encode_epoch(kPortUart1, out), 0u);
+  EXPECT_EQ(test::ubx_epoch(r, {0, kPortUart1}, out), 0u);
   // gpsd's way back to binary: PUBX,41 with UBX+NMEA out.
   h.send("$PUBX,41,1,0007,0003,9600,0*10\r\n");
-  EXPECT_EQ(r.port(kPortUart1).out_proto_mask, proto::kUbx | proto::kNmea);
+  EXPECT_EQ(r.port({0, kPortUart1}).out_proto_mask, proto::kUbx | proto::kNmea);
   EXPECT_EQ(h.send(msg::kMonVer, {}), kMonVer);
   // UBX input off: UBX commands are not even parsed.
   h.send("$PUBX,41,1,0002,0003,9600,0*15\r\n");
   EXPECT_EQ(h.send(msg::kMonVer, {}), "");
   // NMEA standard poll asks for one sentence now.
   h.send("$EIGPQ,RMC*3A\r\n");
-  EXPECT_TRUE(h.last().nmea_poll.rmc);
-  EXPECT_FALSE(h.last().nmea_poll.gga);
+  EXPECT_TRUE(h.last().nmea_poll.has(nmea::Sentence::kRmc));
+  EXPECT_FALSE(h.last().nmea_poll.has(nmea::Sentence::kGga));
 }
 
-TEST(UbxResponder, StatusCountsTtffAndUptime) {
-  ConfigResponder r({});
-  r.current().set_message_rate(kPortUart1, msg::kNavStatus, 1);
+TEST(UbxDevice, StatusCountsTtffAndUptime) {
+  Device r({});
+  r.config().set_message_rate(kPortUart1, msg::kNavStatus, 1);
   receiver::Fix none = test::sample_fix();
   none.type = receiver::FixType::kNone;
   const auto status = [&](double up, const receiver::Fix& f) {
     r.on_epoch(f, up);
     std::string out;
-    r.encode_epoch(kPortUart1, out);
+    test::ubx_epoch(r, {0, kPortUart1}, out);
     const auto fr = test::split_frames(out);
     wire::NavStatus s{};
     EXPECT_EQ(fr.size(), 1u);
@@ -396,20 +396,20 @@ TEST(UbxResponder, StatusCountsTtffAndUptime) {
   EXPECT_EQ(status(40.0, test::sample_fix()).ttff, 27500u);
 }
 
-TEST(UbxResponder, Pubx40SetsNmeaRatesPerPort) {
-  ConfigResponder r({});
+TEST(UbxDevice, Pubx40SetsNmeaRatesPerPort) {
+  Device r({});
   Host h(r);
   h.send("$PUBX,40,GSV,0,5,0,1,0,0*5D\r\n");
   EXPECT_TRUE(h.last().rates_changed);
-  EXPECT_EQ(r.message_rate(kPortUart1, msg::kNmeaGsv), 5);
-  EXPECT_EQ(r.message_rate(kPortUsb, msg::kNmeaGsv), 1);
-  EXPECT_EQ(r.message_rate(kPortDdc, msg::kNmeaGsv), 0);
+  EXPECT_EQ(r.message_rate({0, kPortUart1}, msg::kNmeaGsv), 5);
+  EXPECT_EQ(r.message_rate({0, kPortUsb}, msg::kNmeaGsv), 1);
+  EXPECT_EQ(r.message_rate({0, kPortDdc}, msg::kNmeaGsv), 0);
 }
 
-TEST(UbxResponder, CfgPrtNaksWhatTheLineCannotBeSetTo) {
+TEST(UbxDevice, CfgPrtNaksWhatTheLineCannotBeSetTo) {
   // The daemon's lines run 8N1 at the standard u-blox rates; a baud or frame
   // format it cannot set must not be ACKed and then silently misapplied.
-  ConfigResponder r({});
+  Device r({});
   Host h(r);
   const std::string nak = "B5 62 05 00 02 00 06 00 0D 32";
   EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(1, 0x8D0, 100000, 1, 1)), nak);  // not a u-blox rate
@@ -419,11 +419,11 @@ TEST(UbxResponder, CfgPrtNaksWhatTheLineCannotBeSetTo) {
   EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(1, 0x880, 9600, 1, 1)), nak);           // 7 data bits
   EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(1, 0x0C0, 9600, 1, 1)), nak);           // even parity
   EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(1, 0x8C0 | 0x2000, 9600, 1, 1)), nak);  // 2 stop bits
-  EXPECT_EQ(r.port(kPortUart1).baud_bps, 9600u);
-  EXPECT_EQ(r.port(kPortUart1).in_proto_mask, 0x07);  // nothing applied
+  EXPECT_EQ(r.port({0, kPortUart1}).baud_bps, 9600u);
+  EXPECT_EQ(r.port({0, kPortUart1}).in_proto_mask, 0x07);  // nothing applied
   for (std::uint32_t b : {4800u, 19200u, 57600u, 230400u, 460800u, 921600u}) {
     EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(1, 0x8C0, b, 7, 3)), kAckPrt) << b;
-    EXPECT_EQ(h.last().new_baud_bps[kPortUart1], b);
+    EXPECT_EQ(h.last().new_baud_bps, b);
   }
   // USB and DDC blocks carry no baud: still ACKed.
   EXPECT_EQ(h.send(msg::kCfgPrt, cfg_prt(3, 0, 0, 7, 3)), kAckPrt);

@@ -1,21 +1,21 @@
-// Random CFG and other input against the responder: never out of bounds
+// Random CFG and other input against the device: never out of bounds
 // (run under ASan by hand), exactly one ACK or NAK per CFG message except
 // CFG-RST, replies are valid frames, and the epoch output stays sane.
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "core/protocol/ubx/ubx_responder.hpp"
+#include "core/protocol/ubx/ubx_device.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {
 namespace {
 
-TEST(UbxResponderFuzz, RandomInputAlwaysAnsweredOnceOrIgnored) {
+TEST(UbxDeviceFuzz, RandomInputAlwaysAnsweredOnceOrIgnored) {
   std::mt19937 rng(2024);
   std::uniform_int_distribution<int> byte(0, 255);
   std::uniform_int_distribution<int> len(0, 120);
-  ConfigResponder r({});
+  Device r({});
   const receiver::Fix fix = test::sample_fix();
   int cfg = 0, answered = 0;
   for (int i = 0; i < 20000; ++i) {
@@ -27,7 +27,7 @@ TEST(UbxResponderFuzz, RandomInputAlwaysAnsweredOnceOrIgnored) {
     if (i % 4 == 0 && p.size() > 3) p[3] = static_cast<std::uint8_t>(p[3] % 8);  // plausible block counts
     std::string out;
     const std::uint8_t port = static_cast<std::uint8_t>(byte(rng) % 7);
-    const auto res = r.handle_ubx(port, FrameView{MsgId{cls, id}, p}, out);
+    const auto res = r.handle_ubx({0, port}, FrameView{MsgId{cls, id}, p}, 0.0, out);
     EXPECT_EQ(res.bytes, out.size());
     const auto frames = test::split_frames(out);
     std::size_t total = 0;
@@ -42,11 +42,11 @@ TEST(UbxResponderFuzz, RandomInputAlwaysAnsweredOnceOrIgnored) {
     }
     if (i % 50 == 0) {
       // Keep UBX on UART1 so answers keep flowing, and run an epoch.
-      r.current().ports[kPortUart1].in_proto_mask = 0x07;
-      r.current().ports[kPortUart1].out_proto_mask = 0x03;
+      r.config().port(kPortUart1).in_proto_mask = 0x07;
+      r.config().port(kPortUart1).out_proto_mask = 0x03;
       r.on_epoch(fix, i * 0.1);
       std::string epoch;
-      r.encode_epoch(kPortUart1, epoch);
+      test::ubx_epoch(r, {0, kPortUart1}, epoch);
       EXPECT_LE(epoch.size(), kMaxEpochBytes);
       std::size_t n = 0;
       for (const auto& f : test::split_frames(epoch)) n += f.payload.size() + 8;

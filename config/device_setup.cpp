@@ -1,0 +1,23 @@
+#include "config/device_setup.hpp"
+
+namespace gnssemu::config {
+
+protocol::ubx::OutputSetup output_setup(const OutputPortConfig& port) {
+  protocol::ubx::OutputSetup o;
+  o.baud_bps = port.baud;
+  o.protocols_in = port.protocols_in;
+  o.protocols_out = port.protocols_out;
+  for (const MessageRate& m : message_rates(port)) o.rates.push_back({{m.msg_class, m.msg_id}, m.rate});
+  o.nmea_version = port.nmea.version;
+  o.course_min_speed_m_s = port.nmea.course_min_speed_m_s;
+  return o;
+}
+
+protocol::ubx::DeviceSetup device_setup(const Config& config) {
+  protocol::ubx::DeviceSetup s;
+  s.nav_period_s = 1.0 / config.rate_hz;
+  for (const OutputPortConfig& p : config.outputs) s.outputs.push_back(output_setup(p));
+  return s;
+}
+
+}  // namespace gnssemu::config

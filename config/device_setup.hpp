@@ -1,0 +1,17 @@
+#pragma once
+// The emulated u-blox's start-up settings from a configuration: every
+// [[output]] is one UART1 of one chip (docs/ports.md), set up as its
+// section says and saved as the chip's stored configuration.
+#include "config/config.hpp"
+#include "core/protocol/ubx/ubx_device.hpp"
+
+namespace gnssemu::config {
+
+/// UART1 of one output: baud, protocols, every message of message_rates(port),
+/// NMEA version and course threshold.
+protocol::ubx::OutputSetup output_setup(const OutputPortConfig& port);
+
+/// The chip behind config's outputs, at epoch period 1 / rate_hz.
+protocol::ubx::DeviceSetup device_setup(const Config& config);
+
+}  // namespace gnssemu::config

@@ -1,0 +1,257 @@
+#include "core/protocol/ubx/ubx_device.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "core/protocol/ubx/ubx_message_table.hpp"
+#include "core/protocol/ubx/ubx_pubx.hpp"
+
+namespace gnssemu::protocol::ubx {
+
+static_assert(MessageList::kMaxBytes >= kMaxEpochBytes + nmea::kMaxEpochBytes);
+
+namespace {
+
+std::vector<nmea::NmeaEncoder> nmea_encoders(const DeviceSetup& setup) {
+  std::vector<nmea::NmeaEncoder> out;
+  const std::size_t n = std::max<std::size_t>(setup.outputs.size(), 1);
+  out.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    nmea::NmeaConfig c;
+    if (i < setup.outputs.size()) {
+      c.version = setup.outputs[i].nmea_version;
+      c.course_min_speed_m_s = setup.outputs[i].course_min_speed_m_s;
+    }
+    out.emplace_back(c);
+  }
+  return out;
+}
+
+bool ports_differ(const PortSettings& a, const PortSettings& b) noexcept {
+  return a.mode != b.mode || a.baud_bps != b.baud_bps || a.in_proto_mask != b.in_proto_mask ||
+         a.out_proto_mask != b.out_proto_mask || a.tx_ready != b.tx_ready || a.flags != b.flags;
+}
+
+/// Tells a MessageList where each NMEA sentence ends.
+class SentenceCloser final : public nmea::SentenceSink {
+public:
+  explicit SentenceCloser(MessageList& list) : list_(list) {}
+  void on_sentence(nmea::Sentence sentence, std::size_t /*end*/) noexcept override {
+    list_.close(nmea::info(sentence).name, Protocol::kNmea);
+  }
+
+private:
+  MessageList& list_;
+};
+
+}  // namespace
+
+Device::Device(const DeviceSetup& setup)
+    : ack_unknown_cfg_(setup.ack_unknown_cfg),
+      encoder_(setup.mon_ver),
+      nmea_(nmea_encoders(setup)),
+      defaults_(DeviceConfig::factory_defaults(nmea_.size())),
+      saved_(defaults_),
+      current_(defaults_),
+      before_(defaults_),
+      epoch_period_s_(setup.nav_period_s) {
+  for (std::size_t k = 0; k < setup.outputs.size(); ++k) {
+    const OutputSetup& o = setup.outputs[k];
+    const std::size_t col = current_.column(k, kPortUart1);
+    PortSettings& p = current_.port(col);
+    if (o.baud_bps != 0) p.baud_bps = o.baud_bps;
+    // The UBX and NMEA bits are the output's; the others (RTCM) stay the factory's.
+    const std::uint16_t ours = proto::kUbx | proto::kNmea;
+    p.in_proto_mask = o.protocols_in == 0 ? 0 : static_cast<std::uint16_t>((p.in_proto_mask & ~ours) | o.protocols_in);
+    p.out_proto_mask = static_cast<std::uint16_t>((p.out_proto_mask & ~ours) | o.protocols_out);
+    for (const nmea::SentenceInfo& s : nmea::kSentences) current_.set_message_rate(col, {nmea::kMsgClass, s.msg_id}, 0);
+    for (const MessageRate& m : o.rates) current_.set_message_rate(col, m.id, m.rate);
+  }
+  current_.rate.measRate = static_cast<std::uint16_t>(std::lround(setup.nav_period_s * 1000.0));
+  current_.rate.navRate = 1;
+  save_config();
+}
+
+InputResult Device::handle_ubx(Link at, const FrameView& frame, double now_s, std::string& out) {
+  InputResult r;
+  if (!valid(at) || !current_.port(column(at)).accepts_ubx()) {
+    ++stats_.ignored;
+    return r;
+  }
+  const std::size_t start = out.size();
+  const bool cfg = frame.id.cls == cls::kCfg;
+  if (cfg) before_ = current_;
+  HandlerContext ctx{current_, saved_, defaults_, at.output, at.port_id, out, encoder_, last_fix_, info_,
+                     ack_unknown_cfg_, std::nullopt};
+  const Handler handle = find_handler(frame.id);
+  r.reply = handle != nullptr ? handle(ctx, frame) : Reply::kNone;
+  if (ctx.reset) {
+    r.reset = ctx.reset;
+    ++stats_.resets;
+    if (ctx.reset->restarts_navigation()) restart_navigation(now_s);
+  }
+  if (cfg) diff(at, r);
+
+  // Replies go out only when the port (as now configured) outputs UBX.
+  if (!current_.port(column(at)).outputs_ubx()) {
+    out.resize(start);
+    if (r.reply != Reply::kReset) r.reply = Reply::kNone;
+  }
+  r.bytes = out.size() - start;
+  if (r.bytes >= kHeaderBytes) {
+    r.label = message_label(MsgId{static_cast<std::uint8_t>(out[start + 2]), static_cast<std::uint8_t>(out[start + 3])});
+  }
+  switch (r.reply) {
+    case Reply::kAck: ++stats_.acks; break;
+    case Reply::kNak: ++stats_.naks; break;
+    case Reply::kPollData: ++stats_.polls; break;
+    case Reply::kNone: ++stats_.ignored; break;
+    case Reply::kReset: break;
+  }
+  after_input(r);
+  return r;
+}
+
+InputResult Device::handle_nmea(Link at, std::string_view sentence, std::string& out) {
+  InputResult r;
+  if (!valid(at) || !current_.port(column(at)).accepts_nmea()) {
+    ++stats_.ignored;
+    return r;
+  }
+  before_ = current_;
+  if (const auto p41 = parse_pubx41(sentence)) {
+    PortSettings& s = current_.port(current_.column(at.output, p41->port_id));
+    if (s.exists) {
+      s.in_proto_mask = p41->in_proto_mask;
+      s.out_proto_mask = p41->out_proto_mask;
+      if (is_uart(p41->port_id)) s.baud_bps = p41->baud_bps;
+      s.autobauding = p41->autobauding;
+    }
+  } else if (const auto p40 = parse_pubx40(sentence)) {
+    for (std::uint8_t port = 0; port < kNumPorts; ++port) {
+      current_.set_message_rate(current_.column(at.output, port), MsgId{cls::kNmeaStd, p40->nmea_id}, p40->rates[port]);
+    }
+  } else if (sentence.size() >= 11 && sentence[0] == '$' && sentence.substr(5, 2) == "Q," &&
+             current_.port(column(at)).outputs_nmea()) {
+    // Standard poll $ttxxQ,sss*hh, e.g. $EIGPQ,RMC*3A: that sentence, now.
+    const std::optional<nmea::Sentence> asked = nmea::sentence_by_name(sentence.substr(7, sentence.size() - 10));
+    if (!asked) {
+      ++stats_.ignored;
+      return r;
+    }
+    r.nmea_poll.set(*asked);
+    if (epochs_ > 0) {
+      r.bytes = nmea_[at.output].encode_epoch(last_fix_, r.nmea_poll, out);
+      r.label = nmea::info(*asked).name;
+    }
+    return r;
+  } else {
+    ++stats_.ignored;  // u-blox sends no answer to PUBX,40/41 either
+    return r;
+  }
+  diff(at, r);
+  after_input(r);
+  return r;
+}
+
+void Device::diff(Link at, InputResult& r) const noexcept {
+  for (std::size_t col = 0; col < current_.columns(); ++col) {
+    if (ports_differ(before_.port(col), current_.port(col))) r.ports_changed = true;
+  }
+  const std::size_t uart1 = current_.column(at.output, kPortUart1);
+  const std::uint32_t baud = current_.port(uart1).baud_bps;
+  if (before_.port(uart1).baud_bps != baud && baud != 0) r.new_baud_bps = baud;
+  if (!before_.same_rates(current_)) r.rates_changed = true;
+  if (before_.nav_period_s() != current_.nav_period_s()) r.nav_rate_changed = true;
+  if (std::memcmp(&before_.nav5, &current_.nav5, sizeof current_.nav5) != 0) r.nav_config_changed = true;
+}
+
+void Device::after_input(const InputResult& r) noexcept {
+  if (!r.nav_rate_changed && !r.reset) return;
+  // A host asking for more or less than the emulator runs gets the nearest rate it does.
+  double p = current_.nav_period_s();
+  if (!(p >= kMinEpochPeriodS)) p = kMinEpochPeriodS;
+  if (p > kMaxEpochPeriodS) p = kMaxEpochPeriodS;
+  epoch_period_s_ = p;
+}
+
+void Device::restart_navigation(double now_s) noexcept {
+  // The next fix is a first fix again, its ttff measured from now, and
+  // uptime (NAV-STATUS msss) counts from now: on every output at once.
+  uptime_origin_s_ = now_s;
+  have_fix_once_ = false;
+  info_.ttff_ms = 0;
+}
+
+void Device::on_epoch(const receiver::Fix& fix, double now_s) noexcept {
+  last_fix_ = fix;
+  ++epochs_;
+  const double uptime_s = now_s - uptime_origin_s_;
+  const double ms = std::isfinite(uptime_s) ? std::clamp(uptime_s * 1e3, 0.0, 4294967295.0) : 0.0;
+  // Whole ms; the 1 ns slack keeps a clock difference such as 100.35 - 100
+  // (0.34999...) from losing a ms to binary rounding.
+  constexpr double kSlackMs = 1e-6;
+  info_.msss_ms = static_cast<std::uint32_t>(std::min(ms + kSlackMs, 4294967295.0));
+  if (!have_fix_once_ && fix.type != receiver::FixType::kNone && fix.time_valid) {
+    have_fix_once_ = true;
+    // The uptime of this epoch, rounded up to the ms: a fix comes after the
+    // start, and 0 on the wire means "no fix yet".
+    info_.ttff_ms = static_cast<std::uint32_t>(std::max(1.0, std::ceil(ms - kSlackMs)));
+  }
+  const StoredBlock* itfm = current_.stored(msg::kCfgItfm);
+  info_.itfm_enabled = itfm != nullptr && itfm->size >= 4 && (itfm->bytes[3] & 0x80) != 0;
+}
+
+bool Device::due(std::size_t col, MsgId id) const noexcept {
+  const std::uint8_t rate = current_.message_rate(col, id);
+  return rate != 0 && (epochs_ - 1) % rate == 0;
+}
+
+nmea::SentenceSet Device::nmea_due(Link at) const noexcept {
+  nmea::SentenceSet s;
+  if (!valid(at) || epochs_ == 0 || !port(at).outputs_nmea()) return s;
+  for (const nmea::SentenceInfo& info : nmea::kSentences) {
+    s.set(info.sentence, due(column(at), MsgId{nmea::kMsgClass, info.msg_id}));
+  }
+  return s;
+}
+
+void Device::compose(Link at, MessageList& out, Layout layout) const noexcept {
+  out.clear();
+  if (!valid(at) || epochs_ == 0) return;
+  const std::size_t col = column(at);
+  const bool ubx_on = current_.port(col).outputs_ubx();
+  const auto ubx_messages = [&](bool before_nmea) {
+    if (!ubx_on) return;
+    for (const std::size_t i : kEpochOrder) {
+      const PeriodicMessage& m = kPeriodicMessages[i];
+      if (layout == Layout::kLine && (m.group == EpochGroup::kBeforeNmea) != before_nmea) continue;
+      if (!due(col, m.id)) continue;
+      if (encoder_.encode(m.id, last_fix_, info_, out.buffer()) > 0) out.close(m.name, Protocol::kUbx);
+    }
+  };
+  ubx_messages(true);
+  const nmea::SentenceSet sentences = nmea_due(at);
+  if (!sentences.empty()) {
+    SentenceCloser closer(out);
+    nmea_[at.output].encode_epoch(last_fix_, sentences, out.buffer(), &closer);
+  }
+  if (layout == Layout::kLine) ubx_messages(false);
+}
+
+std::uint16_t Device::protocols_sent(Link at) const noexcept {
+  if (!valid(at)) return 0;
+  bool ubx_on = false;
+  bool nmea_on = false;
+  for (const MsgId id : current_.rated_messages()) {
+    if (current_.message_rate(column(at), id) == 0) continue;
+    (id.cls == nmea::kMsgClass ? nmea_on : ubx_on) = true;
+  }
+  std::uint16_t mask = 0;
+  if (ubx_on && port(at).outputs_ubx()) mask |= proto::kUbx;
+  if (nmea_on && port(at).outputs_nmea()) mask |= proto::kNmea;
+  return mask;
+}
+
+}  // namespace gnssemu::protocol::ubx

@@ -1,0 +1,189 @@
+#pragma once
+// Device: the one emulated u-blox M8 behind every output of the emulator.
+// Each output is a UART1 of this chip (a host on any output configures "its"
+// port 1); the navigation rate, NAV5, the stored CFG blocks, the DDC, USB
+// and SPI settings, the saved configuration, uptime, time to first fix and
+// resets exist once. Pure and deterministic, no I/O: callers feed it
+// decoded input with the output it arrived on and the epochs' Fixes, and
+// get back replies and, per output and epoch, the framed messages due.
+// Behaviour and sources: docs/ubx.md.
+//
+//   Device d(setup);                      // factory M8 + the outputs' start-up settings, saved
+//   d.power_on(now_s);
+//   per input frame:  InputResult r = d.handle_ubx(output, frame, now_s, reply);
+//                     send reply; r.new_baud_bps: switch the line after it drained;
+//                     r.reset / r.nav_rate_changed: restart navigation, reschedule at d.epoch_period_s()
+//   per epoch:        d.on_epoch(fix, now_s);
+//                     for each output: d.compose(output, list); send list.messages()
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/protocol/nmea/nmea_encoder.hpp"
+#include "core/protocol/ubx/ubx_device_config.hpp"
+#include "core/protocol/ubx/ubx_encoder.hpp"
+#include "core/protocol/ubx/ubx_frame.hpp"
+#include "core/protocol/ubx/ubx_handlers.hpp"
+#include "core/protocol/ubx/ubx_message_list.hpp"
+#include "core/protocol/ubx/ubx_reset.hpp"
+#include "core/receiver/fix.hpp"
+
+namespace gnssemu::protocol::ubx {
+
+/// Epoch periods the emulator runs, s (1..10 Hz, docs/configuration.md
+/// rate_hz): a CFG-RATE outside is stored as set and run at the nearest.
+inline constexpr double kMinEpochPeriodS = 0.1;
+inline constexpr double kMaxEpochPeriodS = 1.0;
+
+/// A CFG-MSG rate: id sent every rate navigation epochs (0 = off).
+struct MessageRate {
+  MsgId id;
+  std::uint8_t rate = 1;
+};
+
+/// One output's UART1 at start-up (the daemon's [[output]]).
+struct OutputSetup {
+  std::uint32_t baud_bps = 0;  ///< line rate, bit/s; 0: the port has no line, UART1 keeps 9600
+  std::uint16_t protocols_in = proto::kUbx | proto::kNmea;   ///< inProtoMask UBX/NMEA bits; 0: no input at all
+  std::uint16_t protocols_out = proto::kUbx | proto::kNmea;  ///< outProtoMask UBX/NMEA bits
+  /// Rates on this UART1, UBX and NMEA (class 0xF0); NMEA sentences not
+  /// listed are off, UBX messages not listed stay off.
+  std::vector<MessageRate> rates;
+  nmea::NmeaVersion nmea_version = nmea::NmeaVersion::k411;
+  double course_min_speed_m_s = 0.5;  ///< NMEA course blanking, m/s (>= 0, see nmea::NmeaConfig)
+};
+
+struct DeviceSetup {
+  MonVerConfig mon_ver;
+  /// M8 firmware NAKs CFG ids it does not implement (that is how PX4 tells an
+  /// M8 from an M9 with CFG-VALSET). true ACKs them instead (lenient hosts).
+  bool ack_unknown_cfg = false;
+  /// Epoch period at start-up, s (> 0): CFG-RATE measRate round(1000 period) ms, navRate 1.
+  double nav_period_s = 1.0;
+  /// One per output; empty: one factory UART1.
+  std::vector<OutputSetup> outputs;
+};
+
+/// Order of an epoch's messages.
+enum class Layout : std::uint8_t {
+  /// One line carrying both protocols, as a u-blox sends them (gpsd's
+  /// ublox-zed-f9t-ubx_nmea_l5.log): UBX position and velocity, the NMEA
+  /// sentences, the other UBX messages, NAV-EOE last.
+  kLine,
+  /// Each protocol in its own order, UBX first: NAV by id, MON-HW, NAV-EOE
+  /// last; then NMEA. What separate UBX and NMEA logs of the port hold.
+  kPerProtocol,
+};
+
+/// Where a host is attached: UART1 of an output (what the daemon wires every
+/// output to), or another port of the chip as that host sees it.
+struct Link {
+  std::size_t output = 0;
+  std::uint8_t port_id = kPortUart1;
+};
+
+/// What one input message did.
+struct InputResult {
+  Reply reply = Reply::kNone;
+  std::size_t bytes = 0;        ///< reply bytes appended to the caller's out (send on the receiving port)
+  std::string_view label;       ///< the reply's first message ("ACK-ACK", "MON-VER", "GGA"), for logs
+  bool rates_changed = false;   ///< some port's message rates (UBX or NMEA) changed
+  bool nav_rate_changed = false;  ///< CFG-RATE changed, see Device::epoch_period_s()
+  bool ports_changed = false;   ///< some port's protocol masks, mode or baud changed (any output's UART1)
+  bool nav_config_changed = false;  ///< CFG-NAV5 changed
+  /// Non-zero: switch the host's line (the UART1 of its output) to this baud
+  /// (bit/s) once the bytes already queued on it, this reply included, are sent.
+  std::uint32_t new_baud_bps = 0;
+  std::optional<Reset> reset;   ///< CFG-RST: applied to the whole chip
+  /// NMEA standard poll ($xxGPQ,sss): the sentences asked for, answered in
+  /// the reply once an epoch has run.
+  nmea::SentenceSet nmea_poll;
+};
+
+/// Counters for logs and tests.
+struct DeviceStats {
+  std::uint64_t acks = 0, naks = 0, polls = 0, resets = 0;
+  std::uint64_t ignored = 0;  ///< non-CFG input we do not answer, or input on a port with that protocol off
+};
+
+class Device {
+public:
+  /// Throws gnssemu::Error for a bad MON-VER config or NMEA setting.
+  explicit Device(const DeviceSetup& setup);
+
+  /// Outputs (UART1s), >= 1.
+  std::size_t outputs() const noexcept { return nmea_.size(); }
+
+  /// Power-on at now_s (a monotonic clock, s): uptime and ttff count from it.
+  void power_on(double now_s) noexcept { uptime_origin_s_ = now_s; }
+
+  /// A UBX frame received at at; now_s: the same clock as power_on (a reset
+  /// restarts uptime). Replies are appended to out. Never throws; no
+  /// allocation once out has capacity (out.size() + 2 KiB).
+  InputResult handle_ubx(Link at, const FrameView& frame, double now_s, std::string& out);
+  /// An NMEA sentence (as StreamDecoder delivers it, checksum verified)
+  /// received at at: $PUBX,41 (port protocols and baud), $PUBX,40 (NMEA
+  /// rates), $xxGPQ/GNQ polls (answered in out). Others are ignored.
+  InputResult handle_nmea(Link at, std::string_view sentence, std::string& out);
+
+  /// Start of a navigation epoch at now_s: keeps fix for compose() and
+  /// polls, counts epochs for rates > 1, updates uptime and ttff.
+  void on_epoch(const receiver::Fix& fix, double now_s) noexcept;
+  /// The messages due at at this epoch (rates divide the epoch count;
+  /// protocols per outProtoMask) in layout's order. No allocation
+  /// (MessageList reserves for the largest epoch).
+  void compose(Link at, MessageList& out, Layout layout = Layout::kLine) const noexcept;
+  /// NMEA sentences due at at this epoch (CFG-MSG class 0xF0 rates).
+  nmea::SentenceSet nmea_due(Link at) const noexcept;
+  /// outProtoMask bits of the protocols at at that have a message at a
+  /// non-zero rate: what the port sends each epoch.
+  std::uint16_t protocols_sent(Link at) const noexcept;
+
+  /// The epoch period the emulator runs, s: the start-up period until a host
+  /// changes CFG-RATE (or a reset or CFG-CFG load does), then measRate *
+  /// navRate clamped to [kMinEpochPeriodS, kMaxEpochPeriodS].
+  double epoch_period_s() const noexcept { return epoch_period_s_; }
+
+  /// Current (RAM) configuration. Mutable for start-up settings; call
+  /// save_config() afterwards so CFG-CFG load and resets restore them.
+  DeviceConfig& config() noexcept { return current_; }
+  const DeviceConfig& config() const noexcept { return current_; }
+  /// The saved (BBR/flash) configuration loaded at start-up and reset.
+  const DeviceConfig& saved() const noexcept { return saved_; }
+  void save_config() { saved_ = current_; }
+
+  /// Settings of the port at at.
+  const PortSettings& port(Link at) const noexcept { return current_.port(column(at)); }
+  std::uint8_t message_rate(Link at, MsgId id) const noexcept { return current_.message_rate(column(at), id); }
+
+  const UbxEncoder& encoder() const noexcept { return encoder_; }
+  const DeviceStats& stats() const noexcept { return stats_; }
+  std::uint64_t epoch_count() const noexcept { return epochs_; }
+
+private:
+  bool valid(Link at) const noexcept { return at.output < outputs() && at.port_id < kNumPorts; }
+  std::size_t column(Link at) const noexcept { return current_.column(at.output, at.port_id); }
+  bool due(std::size_t column, MsgId id) const noexcept;
+  /// Fill the change flags of r and the host's baud switch from before_ to current_.
+  void diff(Link at, InputResult& r) const noexcept;
+  void restart_navigation(double now_s) noexcept;
+  void after_input(const InputResult& r) noexcept;
+
+  bool ack_unknown_cfg_;
+  UbxEncoder encoder_;
+  std::vector<nmea::NmeaEncoder> nmea_;  ///< per output
+  DeviceConfig defaults_, saved_, current_;
+  DeviceConfig before_;  ///< current_ before the input being handled (no allocation per input)
+  double epoch_period_s_;
+  double uptime_origin_s_ = 0.0;  ///< power-on or the last reset that restarted navigation
+  receiver::Fix last_fix_{};
+  EpochInfo info_{};
+  std::uint64_t epochs_ = 0;
+  bool have_fix_once_ = false;
+  DeviceStats stats_;
+};
+
+}  // namespace gnssemu::protocol::ubx

@@ -1,0 +1,87 @@
+#pragma once
+// The periodic UBX messages the emulated M8 sends, named once: their ids,
+// where an epoch carries them and whether a port's configuration lists
+// them. Names are u-blox's (UBX-13003221 §32; shared/reference/ubx.md §2).
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "core/protocol/ubx/ubx_frame.hpp"
+
+namespace gnssemu::protocol::ubx {
+
+/// Where an epoch carries a message relative to its NMEA sentences: a real
+/// u-blox stream with both protocols (gpsd's ublox-zed-f9t-ubx_nmea_l5.log)
+/// sends position and velocity first, then NMEA, then the rest.
+enum class EpochGroup : std::uint8_t { kBeforeNmea, kAfterNmea };
+
+struct PeriodicMessage {
+  MsgId id;
+  std::string_view name;  ///< "NAV-PVT"
+  EpochGroup group;
+  bool configurable;      ///< may be listed in a port's ubx_messages (docs/configuration.md)
+};
+
+/// Rows in the order the configuration lists them (docs/configuration.md).
+inline constexpr std::array<PeriodicMessage, 12> kPeriodicMessages{{
+    {msg::kNavPvt, "NAV-PVT", EpochGroup::kBeforeNmea, true},
+    {msg::kNavPosllh, "NAV-POSLLH", EpochGroup::kBeforeNmea, true},
+    {msg::kNavVelned, "NAV-VELNED", EpochGroup::kBeforeNmea, true},
+    {msg::kNavStatus, "NAV-STATUS", EpochGroup::kBeforeNmea, true},
+    {msg::kNavDop, "NAV-DOP", EpochGroup::kAfterNmea, true},
+    {msg::kNavSol, "NAV-SOL", EpochGroup::kBeforeNmea, true},
+    {msg::kNavTimeutc, "NAV-TIMEUTC", EpochGroup::kAfterNmea, true},
+    {msg::kNavSat, "NAV-SAT", EpochGroup::kAfterNmea, true},
+    {msg::kNavSvinfo, "NAV-SVINFO", EpochGroup::kAfterNmea, true},
+    {msg::kMonHw, "MON-HW", EpochGroup::kAfterNmea, true},
+    {msg::kNavEoe, "NAV-EOE", EpochGroup::kAfterNmea, true},
+    {msg::kNavTimegps, "NAV-TIMEGPS", EpochGroup::kAfterNmea, false},
+}};
+
+namespace detail {
+/// Send order within an epoch: NAV by id (the M8 message table order), then
+/// MON, NAV-EOE closing the epoch (ubx.md §3 NAV-EOE).
+constexpr int epoch_rank(MsgId id) noexcept {
+  const int group = id == msg::kNavEoe ? 2 : id.cls == cls::kNav ? 0 : 1;
+  return group << 16 | id.key();
+}
+}  // namespace detail
+
+/// Indices into kPeriodicMessages in send order within an epoch group.
+inline constexpr std::array<std::size_t, kPeriodicMessages.size()> kEpochOrder = [] {
+  std::array<std::size_t, kPeriodicMessages.size()> order{};
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  for (std::size_t i = 1; i < order.size(); ++i) {
+    for (std::size_t j = i; j > 0 && detail::epoch_rank(kPeriodicMessages[order[j]].id) <
+                                          detail::epoch_rank(kPeriodicMessages[order[j - 1]].id);
+         --j) {
+      const std::size_t t = order[j];
+      order[j] = order[j - 1];
+      order[j - 1] = t;
+    }
+  }
+  return order;
+}();
+
+/// Row of a periodic message, or nullopt.
+constexpr std::optional<PeriodicMessage> periodic_message(MsgId id) noexcept {
+  for (const PeriodicMessage& m : kPeriodicMessages) {
+    if (m.id == id) return m;
+  }
+  return std::nullopt;
+}
+
+/// Name of a message the device sends, for logs: the periodic names,
+/// "ACK-ACK", "ACK-NAK", "MON-VER", "CFG" for CFG poll answers, else "UBX".
+constexpr std::string_view message_label(MsgId id) noexcept {
+  if (const auto m = periodic_message(id)) return m->name;
+  if (id == msg::kAckAck) return "ACK-ACK";
+  if (id == msg::kAckNak) return "ACK-NAK";
+  if (id == msg::kMonVer) return "MON-VER";
+  if (id.cls == cls::kCfg) return "CFG";
+  return "UBX";
+}
+
+}  // namespace gnssemu::protocol::ubx
