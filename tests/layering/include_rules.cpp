@@ -162,7 +162,7 @@ std::vector<Violation> LayerChecker::check(const std::string& file, std::string_
       if (!ok) {
         std::string where;
         for (const std::string& f : r.only_in) where += (where.empty() ? "" : ", ") + f;
-        out.push_back({file, inc.line, inc.path, inc.angled, "'" + r.prefix + "' headers belong in " + where + " only"});
+        out.push_back({file, inc.line, inc.path, inc.angled, "headers under '" + r.prefix + "' belong in " + where + " only"});
       }
     }
   }
