@@ -9,7 +9,7 @@
 #include "config/device_setup.hpp"
 #include "config/scene_loader.hpp"
 #include "core/common/error.hpp"
-#include "core/time/utc.hpp"
+#include "core/time/unix_time.hpp"
 #include "daemon/epoch_schedule.hpp"
 #include "daemon/scene_setup.hpp"
 #include "daemon/truth_packet.hpp"
@@ -24,16 +24,7 @@ const std::chrono::steady_clock::time_point kProcessStart = std::chrono::steady_
 
 time::GpsTime system_clock_gps() {
   const auto now = std::chrono::system_clock::now();
-  const double unix_s = std::chrono::duration<double>(now.time_since_epoch()).count();
-  const double day_s = std::floor(unix_s / 86400.0);
-  time::CalendarTime c;
-  time::civil_from_days(static_cast<int64_t>(day_s), c.year, c.month, c.day);
-  double sod = unix_s - day_s * 86400.0;
-  c.hour = static_cast<int>(sod / 3600.0);
-  sod -= c.hour * 3600.0;
-  c.minute = static_cast<int>(sod / 60.0);
-  c.second = sod - c.minute * 60.0;
-  return time::utc_to_gps(c);
+  return time::gps_from_unix(std::chrono::duration<double>(now.time_since_epoch()).count());
 }
 
 std::string gps_text(const time::GpsTime& t) {

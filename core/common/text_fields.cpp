@@ -2,6 +2,9 @@
 
 #include <array>
 #include <charconv>
+#include <cmath>
+
+#include "core/common/error.hpp"
 
 namespace gnssemu::text {
 
@@ -38,6 +41,64 @@ std::optional<int> parse_int(std::string_view field) noexcept {
   int v = 0;
   const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
   if (ec != std::errc() || ptr != f.data() + f.size()) return std::nullopt;
+  return v;
+}
+
+std::vector<Line> read_lines(std::istream& in) {
+  std::vector<Line> lines;
+  std::string s;
+  int n = 0;
+  while (std::getline(in, s)) {
+    ++n;
+    if (!s.empty() && s.back() == '\r') s.pop_back();
+    lines.push_back({std::move(s), n});
+  }
+  return lines;
+}
+
+void ColumnReader::fail(int line, const std::string& what) const { throw Error(name_, line, what); }
+
+template <class T>
+T ColumnReader::field(const Line& l, std::size_t col, std::size_t width, const char* what, const char* kind,
+                      std::optional<T> (*parse)(std::string_view) noexcept) const {
+  const std::string_view f = trim(columns(l.text, col, width));
+  if (f.empty()) return T{};
+  const std::optional<T> v = parse(f);
+  if (!v) {
+    fail(l.number, std::string("unparsable ") + kind + " '" + std::string(f) + "' for " + what + " at column " +
+                       std::to_string(col + 1));
+  }
+  return *v;
+}
+
+double ColumnReader::real(const Line& l, std::size_t col, std::size_t width, const char* what) const {
+  const double v = field<double>(l, col, width, what, "number", parse_real);
+  if (!std::isfinite(v)) fail(l.number, std::string("non-finite value for ") + what);
+  return v;
+}
+
+int ColumnReader::integer(const Line& l, std::size_t col, std::size_t width, const char* what) const {
+  return field<int>(l, col, width, what, "integer", parse_int);
+}
+
+std::string rinex_label(std::string_view line) { return std::string(trim(columns(line, 60, 20))); }
+
+RinexVersionLine read_rinex_version(const ColumnReader& r, const std::vector<Line>& lines) {
+  if (lines.empty()) r.fail(1, "empty file");
+  const Line& first = lines[0];
+  if (rinex_label(first.text) != "RINEX VERSION / TYPE") r.fail(first.number, "first line is not 'RINEX VERSION / TYPE'");
+  RinexVersionLine v;
+  v.version = r.real(first, 0, 9, "RINEX version");
+  if (v.version >= 2.0 && v.version < 2.12) {
+    v.major = 2;
+  } else if (v.version >= 3.0 && v.version < 3.06) {
+    v.major = 3;
+  } else {
+    r.fail(first.number, "unsupported RINEX version " + std::string(trim(columns(first.text, 0, 9))) +
+                             " (2.00-2.11 and 3.00-3.05 are supported)");
+  }
+  v.type = first.text.size() > 20 ? first.text[20] : ' ';
+  v.system = first.text.size() > 40 ? first.text[40] : ' ';
   return v;
 }
 

@@ -2,10 +2,10 @@
 
 #include <zlib.h>
 
-#include <cmath>
+#include <cctype>
 #include <fstream>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
@@ -21,15 +21,9 @@ constexpr std::size_t kFieldWidth = 16;  // F14.3 + LLI + SSI (RINEX 2.11 Table 
 constexpr int kV2SatsPerLine = 12;
 constexpr int kV2ValuesPerLine = 5;
 
-struct Line {
-  std::string text;
-  int number = 0;  // 1-based
-};
-
 using text::columns;
+using text::Line;
 using text::trim;
-
-std::string label_of(const std::string& line) { return std::string(trim(columns(line, 60, 20))); }
 
 /// RINEX 2 two-character GPS type -> RINEX 3 code (RINEX 3.05 §5.1 / Table A2 mapping).
 std::string v3_code_from_v2(std::string_view t) {
@@ -42,13 +36,13 @@ std::string v3_code_from_v2(std::string_view t) {
   return std::string(t);
 }
 
-class Parser {
+class Parser : private text::ColumnReader {
 public:
-  Parser(std::vector<Line> lines, const std::string& name) : lines_(std::move(lines)), name_(name) {}
+  Parser(std::vector<Line> lines, const std::string& name) : ColumnReader(name), lines_(std::move(lines)) {}
 
   ObsData parse() {
     ObsData out;
-    out.source = name_;
+    out.source = name();
     parse_header(out);
     while (i_ < lines_.size()) {
       if (trim(lines_[i_].text).empty()) {
@@ -65,30 +59,6 @@ public:
   }
 
 private:
-  [[noreturn]] void fail(int line, const std::string& what) const { throw Error(name_, line, what); }
-
-  double real(const Line& l, std::size_t col, std::size_t width, const char* what) const {
-    const std::string_view f = trim(columns(l.text, col, width));
-    if (f.empty()) return 0.0;
-    const std::optional<double> parsed = text::parse_real(f);
-    if (!parsed) {
-      fail(l.number, "unparsable number '" + std::string(f) + "' for " + what + " at column " + std::to_string(col + 1));
-    }
-    const double v = *parsed;
-    if (!std::isfinite(v)) fail(l.number, std::string("non-finite value for ") + what);
-    return v;
-  }
-
-  int integer(const Line& l, std::size_t col, std::size_t width, const char* what) const {
-    const std::string_view f = trim(columns(l.text, col, width));
-    if (f.empty()) return 0;
-    const std::optional<int> v = text::parse_int(f);
-    if (!v) {
-      fail(l.number, "unparsable integer '" + std::string(f) + "' for " + what + " at column " + std::to_string(col + 1));
-    }
-    return *v;
-  }
-
   /// The next line of a record announced at record_line, or a clear error.
   const Line& need(const char* what, int record_line) {
     if (i_ >= lines_.size()) {
@@ -101,22 +71,14 @@ private:
   // ---- header ----
 
   void parse_header(ObsData& out) {
-    if (lines_.empty()) fail(1, "empty file");
+    const text::RinexVersionLine v = text::read_rinex_version(*this, lines_);
     const Line& first = lines_[0];
-    if (label_of(first.text) != "RINEX VERSION / TYPE") fail(first.number, "first line is not 'RINEX VERSION / TYPE'");
     ObsHeader& h = out.header;
-    h.rinex_version = real(first, 0, 9, "RINEX version");
-    const char type = first.text.size() > 20 ? first.text[20] : ' ';
-    h.file_system = first.text.size() > 40 ? first.text[40] : ' ';
-    if (h.rinex_version >= 2.0 && h.rinex_version < 2.12) {
-      major_ = 2;
-      if (h.file_system == ' ') h.file_system = 'G';  // RINEX 2.11 §5.1: blank = GPS
-    } else if (h.rinex_version >= 3.0 && h.rinex_version < 3.06) {
-      major_ = 3;
-    } else {
-      fail(first.number, "unsupported RINEX version " + std::string(trim(columns(first.text, 0, 9))) +
-                             " (2.00-2.11 and 3.00-3.05 are supported)");
-    }
+    h.rinex_version = v.version;
+    const char type = v.type;
+    h.file_system = v.system;
+    major_ = v.major;
+    if (major_ == 2 && h.file_system == ' ') h.file_system = 'G';  // RINEX 2.11 §5.1: blank = GPS
     if (type != 'O') fail(first.number, std::string("not an observation file (type '") + type + "')");
     if (h.file_system != 'G' && h.file_system != 'M') {
       fail(first.number, std::string("observation file for system '") + h.file_system +
@@ -125,7 +87,7 @@ private:
     i_ = 1;
     while (i_ < lines_.size()) {
       const Line& l = lines_[i_++];
-      const std::string label = label_of(l.text);
+      const std::string label = text::rinex_label(l.text);
       if (label == "END OF HEADER") {
         if (!have_types_) fail(l.number, "no GPS observation types in the header (SYS / # / OBS TYPES or # / TYPES OF OBSERV)");
         return;
@@ -180,22 +142,41 @@ private:
     return time::GpsTime::from_calendar(c);
   }
 
-  void types_v3(const Line& l, ObsHeader& h) {
-    const char sys = l.text[0];
-    const int n = integer(l, 3, 3, "number of observation types");
+  /// Where a header record lists observation types: the count, then codes
+  /// in fixed columns, per_line to a line; continuation lines repeat label.
+  struct TypesLayout {
+    const char* label;
+    std::size_t count_col, count_width;
+    int per_line;
+    std::size_t first_col, step, width;  ///< column of the first code, spacing, code width
+  };
+  static constexpr TypesLayout kTypesV3{"SYS / # / OBS TYPES", 3, 3, 13, 7, 4, 3};  // RINEX 3.05 Table A2
+  static constexpr TypesLayout kTypesV2{"# / TYPES OF OBSERV", 0, 6, 9, 10, 6, 2};   // RINEX 2.11 Table A1
+
+  std::vector<std::string> type_codes(const Line& l, const TypesLayout& t) {
+    const int n = integer(l, t.count_col, t.count_width, "number of observation types");
     if (n < 1 || n > 99) fail(l.number, "number of observation types " + std::to_string(n) + " outside 1..99");
     std::vector<std::string> codes;
     const Line* cur = &l;
     for (int k = 0; k < n; ++k) {
-      const int slot = k % 13;
+      const int slot = k % t.per_line;
       if (k > 0 && slot == 0) {
-        cur = &need("SYS / # / OBS TYPES", l.number);
-        if (label_of(cur->text) != "SYS / # / OBS TYPES") fail(cur->number, "missing continuation of SYS / # / OBS TYPES");
+        cur = &need(t.label, l.number);
+        if (text::rinex_label(cur->text) != t.label) fail(cur->number, std::string("missing continuation of ") + t.label);
       }
-      const std::string code(trim(columns(cur->text, 7 + 4 * static_cast<std::size_t>(slot), 3)));
-      if (code.size() != 3) fail(cur->number, "observation type " + std::to_string(k + 1) + " is not a 3-character code");
-      codes.push_back(code);
+      const std::string_view code = trim(columns(cur->text, t.first_col + t.step * static_cast<std::size_t>(slot), t.width));
+      if (code.size() != t.width) {
+        fail(cur->number, "observation type " + std::to_string(k + 1) + " is not a " + std::to_string(t.width) +
+                              "-character code");
+      }
+      codes.emplace_back(code);
     }
+    return codes;
+  }
+
+  void types_v3(const Line& l, ObsHeader& h) {
+    const char sys = l.text[0];
+    std::vector<std::string> codes = type_codes(l, kTypesV3);
     if (sys == 'G') {
       h.gps_types = std::move(codes);
       have_types_ = true;
@@ -203,20 +184,8 @@ private:
   }
 
   void types_v2(const Line& l, ObsHeader& h) {
-    const int n = integer(l, 0, 6, "number of observation types");
-    if (n < 1 || n > 99) fail(l.number, "number of observation types " + std::to_string(n) + " outside 1..99");
     h.gps_types.clear();
-    const Line* cur = &l;
-    for (int k = 0; k < n; ++k) {
-      const int slot = k % 9;
-      if (k > 0 && slot == 0) {
-        cur = &need("# / TYPES OF OBSERV", l.number);
-        if (label_of(cur->text) != "# / TYPES OF OBSERV") fail(cur->number, "missing continuation of # / TYPES OF OBSERV");
-      }
-      const std::string_view code = trim(columns(cur->text, 10 + 6 * static_cast<std::size_t>(slot), 2));
-      if (code.size() != 2) fail(cur->number, "observation type " + std::to_string(k + 1) + " is not a 2-character code");
-      h.gps_types.push_back(v3_code_from_v2(code));
-    }
+    for (const std::string& code : type_codes(l, kTypesV2)) h.gps_types.push_back(v3_code_from_v2(code));
     have_types_ = true;
   }
 
@@ -228,7 +197,7 @@ private:
     for (int k = 0; k < n; ++k) {
       const Line& l = need("event record", record_line);
       if (flag == 4) {  // header information follows (RINEX 3.05 §5.3.2): keep types current
-        const std::string label = label_of(l.text);
+        const std::string label = text::rinex_label(l.text);
         if (label.empty()) fail(l.number, "event flag 4: header record without a label");
         const std::size_t before = i_;
         header_line(l, label, out.header);
@@ -261,17 +230,32 @@ private:
     return prn;
   }
 
-  void epoch_v3(ObsData& out) {
-    const Line& e = lines_[i_++];
-    if (e.text[0] != '>') fail(e.number, "expected an epoch record starting with '>'");
-    const int flag = integer(e, 31, 1, "epoch flag");
-    const int n = integer(e, 32, 3, "number of satellites");
+  struct EpochFlag {
+    int flag = 0;  ///< 0, 1 or 6 (events are consumed)
+    int n = 0;     ///< satellites announced
+  };
+
+  /// Epoch flag (column flag_col, 0-based) and satellite count (the next 3
+  /// columns) of epoch record e. An event epoch (flags 2..5) has its special
+  /// records consumed and gives nullopt.
+  std::optional<EpochFlag> epoch_flag(ObsData& out, const Line& e, std::size_t flag_col) {
+    const int flag = integer(e, flag_col, 1, "epoch flag");
+    const int n = integer(e, flag_col + 1, 3, "number of satellites");
     if (flag < 0 || flag > 6) fail(e.number, "epoch flag " + std::to_string(flag) + " outside 0..6");
     if (n < 0) fail(e.number, "negative number of satellites");
     if (flag >= 2 && flag <= 5) {
       event_records(out, n, flag, e.number);
-      return;
+      return std::nullopt;
     }
+    return EpochFlag{flag, n};
+  }
+
+  void epoch_v3(ObsData& out) {
+    const Line& e = lines_[i_++];
+    if (e.text[0] != '>') fail(e.number, "expected an epoch record starting with '>'");
+    const std::optional<EpochFlag> head = epoch_flag(out, e, 31);
+    if (!head) return;
+    const auto [flag, n] = *head;
     if (flag == 6) {  // cycle-slip records: same layout as observations, not observations
       ++out.cycle_slip_records;
       for (int k = 0; k < n; ++k) need("cycle-slip record", e.number);
@@ -323,14 +307,9 @@ private:
 
   void epoch_v2(ObsData& out) {
     const Line& e = lines_[i_++];
-    const int flag = integer(e, 28, 1, "epoch flag");
-    const int n = integer(e, 29, 3, "number of satellites");
-    if (flag < 0 || flag > 6) fail(e.number, "epoch flag " + std::to_string(flag) + " outside 0..6");
-    if (n < 0) fail(e.number, "negative number of satellites");
-    if (flag >= 2 && flag <= 5) {
-      event_records(out, n, flag, e.number);
-      return;
-    }
+    const std::optional<EpochFlag> head = epoch_flag(out, e, 28);
+    if (!head) return;
+    const auto [flag, n] = *head;
     // Satellite list: 12 per line, continuation lines from column 33.
     std::vector<std::pair<char, int>> sats;
     const Line* cur = &e;
@@ -379,23 +358,10 @@ private:
   }
 
   std::vector<Line> lines_;
-  std::string name_;
   std::size_t i_ = 0;
   int major_ = 0;
   bool have_types_ = false;
 };
-
-std::vector<Line> read_lines(std::istream& in) {
-  std::vector<Line> lines;
-  std::string s;
-  int n = 0;
-  while (std::getline(in, s)) {
-    ++n;
-    if (!s.empty() && s.back() == '\r') s.pop_back();
-    lines.push_back({std::move(s), n});
-  }
-  return lines;
-}
 
 /// Whole gzip file as text (zlib; also reads a plain file unchanged).
 std::string read_gzip(const std::string& path) {
@@ -419,7 +385,7 @@ std::string read_gzip(const std::string& path) {
 }  // namespace
 
 ObsData read_rinex_obs(std::istream& in, const std::string& name) {
-  return Parser(read_lines(in), name).parse();
+  return Parser(text::read_lines(in), name).parse();
 }
 
 ObsData read_rinex_obs(const std::string& path) {

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <fstream>
-#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -17,67 +16,12 @@ namespace {
 // RINEX 2.11 §6.7 / 3.04 §8: transmission time 0.9999e9 = not known.
 constexpr double kUnknownTransmitTime_s = 0.9999e9;
 
-struct Line {
-  std::string text;
-  int number = 0;  // 1-based
-};
-
 using text::columns;
+using text::Line;
 using text::trim;
-
-class Parser {
-public:
-  explicit Parser(const std::string& name) : name_(name) {}
-
-  [[noreturn]] void fail(int line, const std::string& what) const { throw Error(name_, line, what); }
-
-  /// Fixed-column floating field (Fortran D/E exponent); blank = 0.
-  double real(const Line& l, std::size_t col, std::size_t width, const char* what) const {
-    const std::string_view f = trim(columns(l.text, col, width));
-    if (f.empty()) return 0.0;
-    const std::optional<double> parsed = text::parse_real(f);
-    if (!parsed) {
-      fail(l.number, "unparsable number '" + std::string(f) + "' for " + what + " at column " + std::to_string(col + 1));
-    }
-    const double v = *parsed;
-    if (!std::isfinite(v)) fail(l.number, std::string("non-finite value for ") + what);
-    return v;
-  }
-
-  /// Fixed-column integer field; blank = 0.
-  int integer(const Line& l, std::size_t col, std::size_t width, const char* what) const {
-    const std::string_view f = trim(columns(l.text, col, width));
-    if (f.empty()) return 0;
-    const std::optional<int> v = text::parse_int(f);
-    if (!v) {
-      fail(l.number, "unparsable integer '" + std::string(f) + "' for " + what + " at column " + std::to_string(col + 1));
-    }
-    return *v;
-  }
-
-  const std::string& name() const { return name_; }
-
-private:
-  std::string name_;
-};
-
-std::vector<Line> read_lines(std::istream& in) {
-  std::vector<Line> lines;
-  std::string s;
-  int n = 0;
-  while (std::getline(in, s)) {
-    ++n;
-    if (!s.empty() && s.back() == '\r') s.pop_back();
-    lines.push_back({std::move(s), n});
-  }
-  return lines;
-}
+using Parser = text::ColumnReader;
 
 bool blank(const std::string& s) { return trim(s).empty(); }
-
-std::string label_of(const std::string& line) {
-  return std::string(trim(columns(line, 60, 20)));
-}
 
 /// Lines per record for a RINEX 3 system letter, 0 = unknown. version_x100:
 /// 300..305. RINEX 3.04 Tables A6-A19: G/E/C/J/I 8 lines, R/S 4; RINEX 3.05
@@ -100,36 +44,27 @@ struct Header {
 
 Header parse_header(const Parser& p, const std::vector<Line>& lines, NavData& out) {
   Header h;
-  if (lines.empty()) p.fail(1, "empty file");
+  const text::RinexVersionLine v = text::read_rinex_version(p, lines);
   const Line& first = lines[0];
-  if (label_of(first.text) != "RINEX VERSION / TYPE") {
-    p.fail(first.number, "first line is not 'RINEX VERSION / TYPE'");
-  }
-  h.version = p.real(first, 0, 9, "RINEX version");
+  h.version = v.version;
   h.version_x100 = static_cast<int>(std::lround(h.version * 100.0));
-  const char type = first.text.size() > 20 ? first.text[20] : ' ';
-  const char sys = first.text.size() > 40 ? first.text[40] : ' ';
-  if (h.version >= 2.0 && h.version < 2.12) {
-    h.major = 2;
-    if (type != 'N') {
-      p.fail(first.number, std::string("not a RINEX 2 GPS navigation file (type '") + type + "')");
-    }
-  } else if (h.version >= 3.0 && h.version < 3.06) {
-    h.major = 3;
-    if (type != 'N') p.fail(first.number, std::string("not a navigation file (type '") + type + "')");
-    if (sys != 'G' && sys != 'M') {
-      p.fail(first.number, std::string("navigation file for system '") + sys + "', need GPS (G) or mixed (M)");
+  h.major = v.major;
+  if (h.major == 2) {
+    if (v.type != 'N') {
+      p.fail(first.number, std::string("not a RINEX 2 GPS navigation file (type '") + v.type + "')");
     }
   } else {
-    p.fail(first.number, "unsupported RINEX version " + std::string(trim(columns(first.text, 0, 9))) +
-                             " (2.00-2.11 and 3.00-3.05 are supported)");
+    if (v.type != 'N') p.fail(first.number, std::string("not a navigation file (type '") + v.type + "')");
+    if (v.system != 'G' && v.system != 'M') {
+      p.fail(first.number, std::string("navigation file for system '") + v.system + "', need GPS (G) or mixed (M)");
+    }
   }
   out.rinex_version = h.version;
 
   bool have_alpha = false, have_beta = false;
   for (std::size_t i = 1; i < lines.size(); ++i) {
     const Line& l = lines[i];
-    const std::string label = label_of(l.text);
+    const std::string label = text::rinex_label(l.text);
     if (label == "END OF HEADER") {
       h.first_record = i + 1;
       out.klobuchar.valid = have_alpha && have_beta;
@@ -277,7 +212,7 @@ Ephemeris parse_gps_record(const Parser& p, const std::vector<Line>& lines, std:
 
 NavData read_rinex_nav(std::istream& in, const std::string& name) {
   const Parser p(name);
-  const std::vector<Line> lines = read_lines(in);
+  const std::vector<Line> lines = text::read_lines(in);
   if (in.bad()) p.fail(0, "read error");
   NavData out;
   out.source = name;

@@ -1,7 +1,7 @@
 #pragma once
 // Propagation stage of the world (DESIGN.md §1, step 3): what happens to one
 // satellite's signal between the satellite and the antenna. The atmosphere
-// fills it now; a scene (buildings) adds its own delay / loss / blockage to
+// fills it; a scene (buildings) adds its own delay / loss / blockage to
 // the same PathEffects. Construction validates and may throw; evaluation
 // never throws and never allocates.
 #include <array>

@@ -114,7 +114,7 @@ struct AtmosphereConfig {
 /// Signal stage: link budget -> C/N0, tracking, code noise.
 struct SignalConfig {
   /// false: no link budget; C/N0 = nominal_cn0_dbhz - 10 (1 - sin el)^2
-  /// (the pre-issue-3 placeholder) and every satellite above the mask is tracked.
+  /// (elevation only) and every satellite above the mask is tracked.
   bool enabled = true;
   signal::LinkBudgetConfig link;         ///< EIRP, antenna, noise figure, environment noise rise
   signal::TrackingThresholds tracking;   ///< acquire 30 / lose 25 dB-Hz

@@ -1,6 +1,6 @@
 #pragma once
 // Embree device lifetime. The scene module (buildings, multipath) builds on
-// this; for now it proves the Embree link and reports the library version.
+// this; embree_version() proves the Embree link and names the library version.
 #include <string>
 
 namespace gnssemu::scene {

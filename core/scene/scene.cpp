@@ -12,7 +12,7 @@ namespace gnssemu::scene {
 
 namespace {
 
-constexpr double kDefaultLoss_db = 3.0;  // half the power per reflection (issue 4)
+constexpr double kDefaultLoss_db = 3.0;  // half the power per reflection (DESIGN.md §1: -3 dB per bounce)
 constexpr std::size_t kStreamChunk = 64;
 
 float to_f(double v) { return static_cast<float>(v); }

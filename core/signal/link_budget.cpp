@@ -19,7 +19,7 @@ struct NoisePreset {
   double rise_db;
 };
 // Engineering defaults ⚠ (no measured climatology at L1); "jamming" keeps the
-// issue's literal 40 dB.
+// literal 40 dB of that scale's industrial end (docs/models.md).
 constexpr NoisePreset kNoisePresets[] = {
     {"countryside", 1.0}, {"suburban", 3.0}, {"urban", 6.0}, {"industrial", 20.0}, {"jamming", 40.0},
 };

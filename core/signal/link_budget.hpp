@@ -30,7 +30,7 @@ struct AntennaPattern {
 double antenna_gain_dbi(const AntennaPattern& p, double el_rad) noexcept;
 
 /// Environment noise-floor rise presets, dB (see docs/models.md for
-/// the mapping from the "countryside 1 dB ... industrial 40 dB").
+/// the mapping from a "countryside 1 dB ... industrial 40 dB" scale).
 /// "countryside" 1, "suburban" 3, "urban" 6, "industrial" 20, "jamming" 40.
 /// Throws gnssemu::Error naming the known presets for an unknown name.
 double environment_noise_rise_db(std::string_view preset);

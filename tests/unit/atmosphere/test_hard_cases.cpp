@@ -1,4 +1,4 @@
-// Sweep over the hard cases: no NaN, no negative delay or loss, and no
+// Sweep over the hard cases (DESIGN.md §5): no NaN, no negative delay or loss, and no
 // heap allocation while evaluating.
 #include <gtest/gtest.h>
 

@@ -57,9 +57,9 @@ TEST(Spp, Nya1AllEpochsNearTheStation) {
 }
 
 TEST(Spp, LarmWithBrdcSmokeTest) {
-  // With the default sigma model (a = 1.2 m) the chi-square test failed the
+  // With the default sigma model (a = 1.2 m) the chi-square test fails the
   // first (cold, uncorrected) solution of these epochs (brdc residuals of
-  // 2-3 m), so spp had no fix; fault exclusion now rescues that first
+  // 2-3 m), which alone leaves spp without a fix; fault exclusion rescues that first
   // solution and the refined passes keep >= 5 satellites and metre errors.
   const CliResult strict = run({"spp", "--obs", obs_path("LARM0010.22O"), "--nav", nav_path("brdc0010.22n"),
                                 "--station", "4549397.1706,1874003.1392,4045167.6109"});

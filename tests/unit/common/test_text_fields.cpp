@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 
+#include "core/common/error.hpp"
 #include "core/common/text_fields.hpp"
 
 using namespace gnssemu;
@@ -35,4 +37,61 @@ TEST(TextFields, Integers) {
   EXPECT_FALSE(text::parse_int("4.5").has_value());
   EXPECT_FALSE(text::parse_int("").has_value());
   EXPECT_FALSE(text::parse_int("99999999999").has_value());
+}
+
+TEST(TextFields, NumberedLinesWithoutLineEnds) {
+  std::istringstream in("first\r\n\nthird");
+  const std::vector<text::Line> lines = text::read_lines(in);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[0].text, "first");
+  EXPECT_EQ(lines[0].number, 1);
+  EXPECT_EQ(lines[1].text, "");
+  EXPECT_EQ(lines[2].text, "third");
+  EXPECT_EQ(lines[2].number, 3);
+}
+
+TEST(TextFields, ColumnReaderBlankIsZeroErrorsNameFileLineAndColumn) {
+  const text::ColumnReader r("brdc.n");
+  const text::Line l{"  1.5D+01     42        x  inf", 7};
+  EXPECT_DOUBLE_EQ(r.real(l, 0, 10, "a"), 15.0);
+  EXPECT_EQ(r.integer(l, 10, 6, "b"), 42);
+  EXPECT_DOUBLE_EQ(r.real(l, 16, 6, "blank"), 0.0);
+  EXPECT_EQ(r.integer(l, 16, 6, "blank"), 0);
+  EXPECT_EQ(r.integer(l, 100, 6, "past the end"), 0);
+  const auto message = [](auto&& f) {
+    try {
+      f();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message([&] { r.real(l, 22, 5, "c"); }), "brdc.n:7: unparsable number 'x' for c at column 23");
+  EXPECT_EQ(message([&] { r.integer(l, 0, 10, "d"); }), "brdc.n:7: unparsable integer '1.5D+01' for d at column 1");
+  EXPECT_EQ(message([&] { r.real(l, 26, 5, "e"); }), "brdc.n:7: non-finite value for e");
+  EXPECT_EQ(message([&] { r.fail(0, "f"); }), "brdc.n: f");
+}
+
+TEST(TextFields, RinexVersionLine) {
+  const text::ColumnReader r("x.rnx");
+  // Columns 1-60 hold the data, 61-80 the label (RINEX 3.05 §5.2).
+  const auto first_line = [](std::string data) {
+    data.resize(60, ' ');
+    return std::vector<text::Line>{{data + "RINEX VERSION / TYPE", 1}};
+  };
+  const text::RinexVersionLine v3 = text::read_rinex_version(r, first_line("     3.04           N: GNSS NAV DATA    M"));
+  EXPECT_DOUBLE_EQ(v3.version, 3.04);
+  EXPECT_EQ(v3.major, 3);
+  EXPECT_EQ(v3.type, 'N');
+  EXPECT_EQ(v3.system, 'M');
+  const text::RinexVersionLine v2 = text::read_rinex_version(r, first_line("     2.11           O"));
+  EXPECT_EQ(v2.major, 2);
+  EXPECT_EQ(v2.type, 'O');
+  EXPECT_EQ(v2.system, ' ');
+  EXPECT_EQ(text::rinex_label(first_line("")[0].text + "  "), "RINEX VERSION / TYPE");
+  EXPECT_THROW(text::read_rinex_version(r, {}), Error);
+  EXPECT_THROW(text::read_rinex_version(r, {{"     3.04           N", 1}}), Error);
+  EXPECT_THROW(text::read_rinex_version(r, first_line("     4.00           N")), Error);
+  EXPECT_THROW(text::read_rinex_version(r, first_line("     3.06           N")), Error);
+  EXPECT_THROW(text::read_rinex_version(r, first_line("     1.99           N")), Error);
 }

@@ -86,7 +86,7 @@ TEST(EphemerisStore, UnhealthySkipped) {
 }
 
 // Healthy at toe 0, flagged unhealthy in the set at toe +2 h: from +2 h on
-// the satellite is not used (before: the toe-0 set was used up to +2 h).
+// the satellite is not used (not even the toe-0 set, still inside its window).
 TEST(EphemerisStore, NewlyUnhealthyNotUsed) {
   const EphemerisStore s({at(10, 2000, 0, 1), at(10, 2000, 7200, 2, 1)});
   EXPECT_EQ(iode_at(s, 10, time::GpsTime(2000, 0)), 1);

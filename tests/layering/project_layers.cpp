@@ -1,0 +1,73 @@
+#include "project_layers.hpp"
+
+namespace gnssemu::layering {
+
+namespace {
+
+/// tests/unit/<folder>: the tests of one layer, with the allocation counter.
+Layer tests_of(const std::string& folder, const std::string& layer) {
+  return {"tests/unit/" + folder, "tests/unit/" + folder, {layer, "support"}, {}};
+}
+
+}  // namespace
+
+Rules project_rules() {
+  Rules r;
+  // A layer may include its own folder, the layers it uses and everything
+  // those may include. Adding a module is one row here (and one for its tests).
+  r.layers = {
+      {"common", "core/common", {}, {}},
+      {"time", "core/time", {"common"}, {}},
+      {"orbit", "core/orbit", {"time"}, {}},
+      {"observation", "core/observation", {"time"}, {}},
+      {"geo", "core/geo", {"time"}, {}},
+      {"atmosphere", "core/atmosphere", {"orbit", "geo"}, {}},  // Klobuchar coefficients are nav data
+      {"scene", "core/scene", {"geo"}, {}},
+      {"signal", "core/signal", {"atmosphere"}, {}},
+      {"world", "core/world", {"signal", "scene"}, {}},
+      {"receiver", "core/receiver", {"world"}, {}},
+      // The encoders read the Fix struct only, not the receiver that fills it.
+      {"nmea", "core/protocol/nmea", {"time"}, {"core/receiver/fix.hpp"}},
+      {"ubx", "core/protocol/ubx", {"nmea"}, {}},
+      {"config", "config", {"receiver", "ubx", "observation"}, {}},
+      {"daemon", "daemon", {"config"}, {}},
+      {"tools", "tools", {"daemon"}, {}},
+      {"support", "tests/support", {}, {}},
+      {"bench", "bench", {"tools", "support"}, {}},
+      {"layering", "tests/layering", {}, {}},
+      tests_of("common", "common"),
+      tests_of("time", "time"),
+      tests_of("orbit", "orbit"),
+      tests_of("observation", "observation"),
+      tests_of("geo", "geo"),
+      tests_of("atmosphere", "atmosphere"),
+      tests_of("scene", "scene"),
+      tests_of("signal", "signal"),
+      tests_of("world", "world"),
+      tests_of("receiver", "receiver"),
+      tests_of("nmea", "nmea"),
+      tests_of("ubx", "ubx"),
+      tests_of("config", "config"),
+      tests_of("daemon", "daemon"),
+      tests_of("cli", "tools"),
+      tests_of("senders", "tools"),
+  };
+  // core/ is pure computation (DESIGN.md §2-3): no I/O framework, logging,
+  // formatting or configuration libraries. Embree and GeographicLib each
+  // stay inside the one module that wraps them.
+  const std::vector<std::string> above_core{"config", "daemon", "tools", "bench", "tests"};
+  for (const char* prefix : {"asio", "boost/", "spdlog/", "fmt/", "toml++/", "toml.hpp", "nlohmann/", "CLI/"}) {
+    r.externals.push_back({prefix, above_core});
+  }
+  r.externals.push_back({"embree", {"core/scene"}});
+  r.externals.push_back({"GeographicLib/", {"core/geo"}});
+  r.exceptions = {
+      {"core/scene/footprint_reader.cpp", "toml++/toml.h",
+       "building footprints are a TOML mesh format (docs/scene.md) that read_mesh() dispatches to by "
+       "extension; moving the parser above core needs a reader hook in core/scene"},
+  };
+  r.skipped = {"tests/data", "tests/golden"};
+  return r;
+}
+
+}  // namespace gnssemu::layering
