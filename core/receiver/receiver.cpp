@@ -237,7 +237,7 @@ void Receiver::propagation_stage(const time::GpsTime& t, const Lla& rx_lla, cons
     cache_height_m_ = rx_lla.height_m;
   }
   const double tow_s = t.tow_s();
-  const double doy = atmosphere_.tropo_on() ? t.day_of_year() + std::fmod(tow_s, kSecondsPerDay) / kSecondsPerDay : 1.0;
+  const double doy = atmosphere_.tropo_on() ? t.fractional_day_of_year() : 1.0;
   for (int i = 0; i < n_above_; ++i) {
     const int p = above_[i];
     const SkySat& s = sky_[p - 1];
@@ -330,7 +330,7 @@ void Receiver::observables_stage(const time::GpsTime& t, uint64_t epoch) noexcep
   const double rx_drift_s_s = clock_.drift_s_s();
   const bool dll = config_.errors.thermal_model == ThermalModel::kDll;
   in_.t_rx_local = t + rx_clock_s;
-  in_.doy = in_.t_rx_local.day_of_year() + std::fmod(in_.t_rx_local.tow_s(), kSecondsPerDay) / kSecondsPerDay;
+  in_.doy = in_.t_rx_local.fractional_day_of_year();
   in_.num_meas = 0;
   for (int p = 1; p <= kMaxGpsPrn; ++p) {
     if (!in_sky_[p - 1]) continue;

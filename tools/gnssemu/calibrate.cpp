@@ -32,10 +32,6 @@ constexpr double kMaxLag_s = 3600.0;    // autocovariance lags fitted (1 h)
 constexpr double kOutlier_m = 30.0;     // |residual| beyond this: not a model error (blunder)
 
 
-double day_of_year(const time::GpsTime& t) {
-  return t.day_of_year() + std::fmod(t.tow_s(), kSecondsPerDay) / kSecondsPerDay;
-}
-
 double grid_step_s(const observation::ObsData& obs) {
   if (obs.header.interval_s > 0.0) return obs.header.interval_s;
   std::vector<double> d;
@@ -82,8 +78,8 @@ std::vector<Residual> station_residuals(const CalibrationInput& in, const orbit:
       r.range_m = rho;
       r.klobuchar_m = receiver_correction_m(in.nav->klobuchar, lla, look.az_rad, look.el_rad, e.t) -
                       atmosphere::standard_troposphere_correction_m(lla.lat_rad, lla.height_m, look.el_rad,
-                                                                    day_of_year(e.t));
-      r.nmf_wet = atmosphere::niell_mapping(look.el_rad, lla.lat_rad, lla.height_m, day_of_year(e.t)).wet;
+                                                                    e.t.fractional_day_of_year());
+      r.nmf_wet = atmosphere::niell_mapping(look.el_rad, lla.lat_rad, lla.height_m, e.t.fractional_day_of_year()).wet;
       // Local time as the receiver's gradient and Klobuchar (IS-GPS-200 20.3.3.5.2.5) take it.
       r.local_time_rad = 2.0 * kPi * (e.t.tow_s() / kSecondsPerDay) + lla.lon_rad;
       r.value_m = pr->value - (rho - kSpeedOfLight_m_s * (st.clk_bias_s - eph->tgd_s) +
@@ -653,7 +649,7 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
   // plus the fitted beta (one value for the site; the common ZWD process is
   // not observable once the epoch clock is removed, so it stays off).
   const Lla site = c.origin;
-  const double doy = day_of_year(in.obs->epochs.front().t);
+  const double doy = in.obs->epochs.front().t.fractional_day_of_year();
   atmosphere::TroposphereConfig& tr = c.receiver.atmosphere.troposphere;
   tr.enabled = true;
   tr.zhd_model = atmosphere::ZhdModel::kSaastamoinen;

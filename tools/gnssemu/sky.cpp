@@ -45,7 +45,7 @@ int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::os
   const receiver::ReceiverConfig defaults;
   const receiver::AtmospherePropagation world(defaults.atmosphere);
   const signal::LinkBudgetModel link(defaults.signal.link);
-  const double doy = req.t.day_of_year() + std::fmod(req.t.tow_s(), kSecondsPerDay) / kSecondsPerDay;
+  const double doy = req.t.fractional_day_of_year();
   const double zhd_m = atmosphere::receiver_zhd_m(req.rx_lla.lat_rad, req.rx_lla.height_m);
   const geo::LocalFrame frame(req.scene_origin);
   std::optional<scene::Propagator> prop;

@@ -14,7 +14,7 @@ namespace gnssemu::cli {
 
 double receiver_correction_m(const orbit::KlobucharParams& k, const Lla& rx, double az_rad, double el_rad,
                              const time::GpsTime& t, const receiver::SolverConfig& solver) {
-  const double doy = t.day_of_year() + std::fmod(t.tow_s(), kSecondsPerDay) / kSecondsPerDay;
+  const double doy = t.fractional_day_of_year();
   const double iono_m = solver.iono == atmosphere::IonoCorrection::kKlobuchar
                             ? atmosphere::receiver_iono_delay_m(k, rx.lat_rad, rx.lon_rad, az_rad, el_rad, t.tow_s())
                             : 0.0;
