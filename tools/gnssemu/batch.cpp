@@ -16,34 +16,13 @@
 #include "core/protocol/nmea/nmea_encoder.hpp"
 #include "core/protocol/ubx/ubx_responder.hpp"
 #include "core/receiver/receiver.hpp"
+#include "core/statistics/statistics.hpp"
 
 namespace gnssemu::cli {
 
 namespace {
 
 constexpr double kGridTolerance_s = 1e-6;
-
-/// Nearest-rank percentile (p in (0, 1]) of unsorted values; NaN when empty.
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(v.size())));
-  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
-}
-
-double rms(const std::vector<double>& v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  double s = 0.0;
-  for (double x : v) s += x * x;
-  return std::sqrt(s / static_cast<double>(v.size()));
-}
-
-double max_abs(const std::vector<double>& v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  double m = 0.0;
-  for (double x : v) m = std::max(m, std::fabs(x));
-  return m;
-}
 
 protocol::nmea::NmeaConfig nmea_config_of(const config::Config& config) {
   if (!config.outputs.empty()) return config.outputs.front().nmea;
@@ -116,8 +95,7 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
             << (sum.scene ? ",nvisible,ntracked,nlos,nblocked,nlos_delay_mean_m\n" : "\n");
   }
   long visible_sum = 0, nlos_sum = 0, blocked_sum = 0;
-  std::vector<double> h_err, v_err;
-  double se = 0.0, sn = 0.0, su = 0.0;
+  std::vector<double> e_err, n_err, h_err, v_err;
   for (double k = k0;; k += 1.0) {
     const time::GpsTime t(week, k / rate_hz);
     if (t - track.last() > kGridTolerance_s) break;
@@ -144,11 +122,10 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
       d = geo::ecef_to_enu_vector(fix.pos_m - truth.pos_m, truth_lla.lat_rad, truth_lla.lon_rad);
       ++sum.fixes;
       if (fix.type == receiver::FixType::k3D) ++sum.fixes_3d;
+      e_err.push_back(d.x);
+      n_err.push_back(d.y);
       h_err.push_back(std::hypot(d.x, d.y));
       v_err.push_back(d.z);
-      se += d.x;
-      sn += d.y;
-      su += d.z;
     }
     if (errors) {
       row.clear();
@@ -191,17 +168,16 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
     sum.mean_nlos = static_cast<double>(nlos_sum) / sum.epochs;
     sum.mean_blocked = static_cast<double>(blocked_sum) / sum.epochs;
   }
-  sum.h_rms_m = rms(h_err);
-  sum.h_95_m = percentile(h_err, 0.95);
-  sum.h_max_m = max_abs(h_err);
-  sum.v_rms_m = rms(v_err);
+  sum.h_rms_m = statistics::rms(h_err);
+  sum.h_95_m = statistics::percentile_nearest_rank(h_err, 0.95);
+  sum.h_max_m = statistics::max_abs(h_err);
+  sum.v_rms_m = statistics::rms(v_err);
+  sum.mean_e_m = statistics::mean(e_err);
+  sum.mean_n_m = statistics::mean(n_err);
+  sum.mean_u_m = statistics::mean(v_err);
   for (double& v : v_err) v = std::fabs(v);
-  sum.v_95_m = percentile(v_err, 0.95);
-  sum.v_max_m = max_abs(v_err);
-  const double n = sum.fixes > 0 ? static_cast<double>(sum.fixes) : std::numeric_limits<double>::quiet_NaN();
-  sum.mean_e_m = se / n;
-  sum.mean_n_m = sn / n;
-  sum.mean_u_m = su / n;
+  sum.v_95_m = statistics::percentile_nearest_rank(v_err, 0.95);
+  sum.v_max_m = statistics::max_abs(v_err);
   return sum;
 }
 

@@ -22,6 +22,7 @@
 #include "core/scene/procedural_city.hpp"
 #include "core/scene/propagator.hpp"
 #include "core/scene/scene.hpp"
+#include "core/statistics/statistics.hpp"
 
 namespace gnssemu::cli {
 
@@ -74,12 +75,6 @@ double thread_cpu_us() {
   timespec ts{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) * 1e6 + static_cast<double>(ts.tv_nsec) * 1e-3;
-}
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<std::size_t>(p * static_cast<double>(v.size())))];
 }
 
 receiver::ReceiverConfig clean_receiver(double mask_rad) {
@@ -327,8 +322,8 @@ void run_bench_multipath(const BenchMultipathArgs& a, std::ostream& out, std::os
     }
     out << fmt::format("{},{},{},{},{},{:.1f},{:.1f},{:.1f},{:.0f},{},{:.2f},{:.3f},{:.3f},{:.3f},{:.3f}\n",
                        st.azimuth_rays, st.rays,
-                       st.bounces, st.reuse_m, st.reuse_deg, mean_us, percentile(all_us, 0.95),
-                       percentile(all_us, 1.0), rays_total / n_ep, mis, 100.0 * mis / std::max(1, total),
+                       st.bounces, st.reuse_m, st.reuse_deg, mean_us, statistics::percentile_nearest_rank(all_us, 0.95),
+                       statistics::max_abs(all_us), rays_total / n_ep, mis, 100.0 * mis / std::max(1, total),
                        both_nlos > 0 ? std::sqrt(d2 / both_nlos) : 0.0, dmax, pn > 0 ? std::sqrt(p2 / pn) : 0.0, pmax);
     out.flush();
   }

@@ -307,7 +307,7 @@ TEST(Calibrate, ErrorStatsAndGaussMarkovFit) {
     z = phi * z + 2.0 * q * gauss();
     s.emplace_back(x, y, z);
   }
-  const cli::ErrorStats st = cli::error_stats(s, 1.0);
+  const statistics::PositionErrorStats st = statistics::position_error_stats(s, 1.0);
   EXPECT_EQ(st.n, 20000);
   EXPECT_NEAR(st.sigma_e_m, 1.0, 0.1);
   EXPECT_NEAR(st.sigma_u_m, 2.0, 0.2);
