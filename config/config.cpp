@@ -130,7 +130,7 @@ TimeConfig read_time(TableReader& t) {
   return out;
 }
 
-void read_gauss_markov(TableReader& t, receiver::GaussMarkovConfig& gm) {
+void read_gauss_markov(TableReader& t, world::GaussMarkovConfig& gm) {
   gm.sigma_m = t.number("sigma_m", gm.sigma_m, Range{0.0, 100.0, "m"});
   gm.tau_s = t.number("tau_s", gm.tau_s, Range{0.0, 1.0e6, "s", true});
   t.finish();
@@ -158,17 +158,18 @@ void read_solver(TableReader& t, receiver::SolverConfig& s) {
 
 void read_receiver(TableReader& t, Config& c) {
   receiver::ReceiverConfig& r = c.receiver;
+  world::WorldConfig& w = c.world;
   c.rate_hz = t.number("rate_hz", c.rate_hz, Range{1.0, 10.0, "Hz"});
   r.elevation_mask_rad =
       t.number("elevation_mask_deg", r.elevation_mask_rad * kRadToDeg, Range{0.0, 90.0, "deg", false, true}) *
       kDegToRad;
-  r.seed = static_cast<uint64_t>(
-      t.integer("seed", static_cast<int64_t>(r.seed), 0, std::numeric_limits<int64_t>::max()));
-  r.nominal_cn0_dbhz = t.number("nominal_cn0_dbhz", r.nominal_cn0_dbhz, Range{10.0, 60.0, "dB-Hz"});
+  w.seed = static_cast<uint64_t>(
+      t.integer("seed", static_cast<int64_t>(w.seed), 0, std::numeric_limits<int64_t>::max()));
+  w.nominal_cn0_dbhz = t.number("nominal_cn0_dbhz", w.nominal_cn0_dbhz, Range{10.0, 60.0, "dB-Hz"});
   r.max_pdop = t.number("max_pdop", r.max_pdop, Range{1.0, 1000.0, ""});
   r.max_channels = static_cast<int>(t.integer("max_channels", r.max_channels, 4, 64));
   if (auto e = t.table("errors", false)) {
-    receiver::ErrorModelConfig& em = r.errors;
+    world::ErrorModelConfig& em = w.errors;
     detail::read_thermal_model(*e, em);
     em.thermal_sigma_m = e->number("thermal_sigma_m", em.thermal_sigma_m, Range{0.0, 100.0, "m"});
     em.doppler_sigma_m_s = e->number("doppler_sigma_m_s", em.doppler_sigma_m_s, Range{0.0, 10.0, "m/s"});
@@ -187,7 +188,7 @@ void read_receiver(TableReader& t, Config& c) {
     e->finish();
   }
   if (auto k = t.table("clock", false)) {
-    receiver::ClockConfig& ck = r.clock;
+    world::ClockConfig& ck = w.clock;
     // u-blox receivers steer their clock to within 1 ms; TCXO drift within 10 ppm.
     ck.bias_s = k->number("bias_s", ck.bias_s, Range{-1.0e-2, 1.0e-2, "s"});
     ck.drift_s_s = k->number("drift_s_s", ck.drift_s_s, Range{-1.0e-5, 1.0e-5, "s/s"});
@@ -620,10 +621,10 @@ Config read_config(const toml::table& doc, const std::string& name, const std::s
   if (auto t = root.table("receiver", false)) read_receiver(*t, c);
   {
     std::optional<TableReader> atm = root.table("atmosphere", false);
-    if (atm) detail::read_atmosphere(*atm, c.receiver);
+    if (atm) detail::read_atmosphere(*atm, c.world);
     std::optional<TableReader> sig = root.table("signal", false);
-    if (sig) detail::read_signal(*sig, c.receiver);
-    detail::check_models(atm ? *atm : sig ? *sig : root, c.receiver);
+    if (sig) detail::read_signal(*sig, c.world, c.receiver);
+    detail::check_models(atm ? *atm : sig ? *sig : root, c.world, c.receiver);
   }
   if (auto t = root.table("truth", false)) c.truth = read_truth(*t);
   if (auto t = root.table("demo", false)) c.demo = read_demo(*t);

@@ -7,7 +7,7 @@
 
 #include "core/atmosphere/clouds_rain.hpp"
 #include "core/common/error.hpp"
-#include "core/receiver/propagation.hpp"
+#include "core/world/propagation.hpp"
 #include "core/signal/link_budget.hpp"
 
 namespace gnssemu::config::detail {
@@ -44,8 +44,8 @@ constexpr std::array<Choice<ZhdModel>, 2> kZhdModels{
     {{"exponential", ZhdModel::kExponential}, {"saastamoinen", ZhdModel::kSaastamoinen}}};
 constexpr std::array<Choice<ZwdModel>, 2> kZwdModels{
     {{"fixed", ZwdModel::kFixed}, {"saastamoinen", ZwdModel::kSaastamoinen}}};
-constexpr std::array<Choice<receiver::ThermalModel>, 2> kThermalModels{
-    {{"dll", receiver::ThermalModel::kDll}, {"fixed", receiver::ThermalModel::kFixed}}};
+constexpr std::array<Choice<world::ThermalModel>, 2> kThermalModels{
+    {{"dll", world::ThermalModel::kDll}, {"fixed", world::ThermalModel::kFixed}}};
 constexpr std::array<Choice<signal::DllDiscriminator>, 2> kDiscriminators{
     {{"early_minus_late_power", signal::DllDiscriminator::kEarlyMinusLatePower},
      {"dot_product", signal::DllDiscriminator::kDotProduct}}};
@@ -82,7 +82,7 @@ std::string reason_of(const Error& e) {
 
 std::string quoted(std::string_view s) { return "\"" + std::string(s) + "\""; }
 
-void read_gm(TableReader& t, receiver::GaussMarkovConfig& gm, std::string_view sigma_key, std::string_view unit,
+void read_gm(TableReader& t, world::GaussMarkovConfig& gm, std::string_view sigma_key, std::string_view unit,
              double sigma_max) {
   gm.sigma_m = t.number(sigma_key, gm.sigma_m, Range{0.0, sigma_max, unit});
   gm.tau_s = t.number("tau_s", gm.tau_s, Range{0.0, 1.0e6, "s", true});
@@ -99,14 +99,14 @@ void read_ionosphere(TableReader& t, atmosphere::IonosphereConfig& c) {
   c.obliquity_pivot_deg = t.number("obliquity_pivot_deg", c.obliquity_pivot_deg, Range{90.0, 100.0, "deg"});
   c.shell_height_m = t.number("shell_height_m", c.shell_height_m, Range{50.0e3, 2000.0e3, "m"});
   if (auto p = t.table("perturbation", false)) {
-    receiver::GaussMarkovConfig gm{c.perturbation.sigma, c.perturbation.tau_s};
+    world::GaussMarkovConfig gm{c.perturbation.sigma, c.perturbation.tau_s};
     read_gm(*p, gm, "sigma_tecu", "TECU", 100.0);
     c.perturbation = {gm.sigma_m, gm.tau_s};
   }
   t.finish();
 }
 
-void read_troposphere(TableReader& t, receiver::AtmosphereConfig& a) {
+void read_troposphere(TableReader& t, world::AtmosphereConfig& a) {
   atmosphere::TroposphereConfig& c = a.troposphere;
   c.enabled = t.boolean("enabled", c.enabled);
   c.zhd_model = choice(t, "zhd_model", kZhdModels, c.zhd_model);
@@ -189,7 +189,7 @@ atmosphere::CloudLayer read_cloud(TableReader& t) {
 
 }  // namespace
 
-void read_thermal_model(TableReader& errors, receiver::ErrorModelConfig& e) {
+void read_thermal_model(TableReader& errors, world::ErrorModelConfig& e) {
   e.thermal_model = choice(errors, "thermal_model", kThermalModels, e.thermal_model);
 }
 
@@ -199,8 +199,8 @@ void read_corrections(TableReader& t, receiver::SolverConfig& s) {
   t.finish();
 }
 
-void read_atmosphere(TableReader& t, receiver::ReceiverConfig& r) {
-  receiver::AtmosphereConfig& a = r.atmosphere;
+void read_atmosphere(TableReader& t, world::WorldConfig& w) {
+  world::AtmosphereConfig& a = w.atmosphere;
   a.cache_refresh_s = t.number("cache_refresh_s", a.cache_refresh_s, Range{0.0, 3600.0, "s"});
   a.cache_mode = choice(t, "cache_mode", kCacheModes, a.cache_mode);
   a.gases = t.boolean("gases", a.gases);
@@ -231,8 +231,9 @@ void read_atmosphere(TableReader& t, receiver::ReceiverConfig& r) {
   t.finish();
 }
 
-void read_signal(TableReader& t, receiver::ReceiverConfig& r) {
-  receiver::SignalConfig& s = r.signal;
+void read_signal(TableReader& t, world::WorldConfig& w, receiver::ReceiverConfig& r) {
+  world::SignalConfig& s = w.signal;
+  signal::TrackingThresholds& tracking = r.tracking;
   signal::LinkBudgetConfig& l = s.link;
   s.enabled = t.boolean("enabled", s.enabled);
   const toml::node* env = t.find("environment");
@@ -254,13 +255,13 @@ void read_signal(TableReader& t, receiver::ReceiverConfig& r) {
   l.noise_figure_db = t.number("noise_figure_db", l.noise_figure_db, Range{0.0, 30.0, "dB"});
   l.noise_temperature_k = temperature(t, "noise_temperature_k", l.noise_temperature_k);
   l.implementation_loss_db = t.number("implementation_loss_db", l.implementation_loss_db, Range{0.0, 30.0, "dB"});
-  s.tracking.acquire_dbhz = t.number("acquire_dbhz", s.tracking.acquire_dbhz, Range{0.0, 60.0, "dB-Hz"});
-  s.tracking.lose_dbhz = t.number("lose_dbhz", s.tracking.lose_dbhz, Range{0.0, 60.0, "dB-Hz"});
-  if (s.tracking.lose_dbhz > s.tracking.acquire_dbhz) {
+  tracking.acquire_dbhz = t.number("acquire_dbhz", tracking.acquire_dbhz, Range{0.0, 60.0, "dB-Hz"});
+  tracking.lose_dbhz = t.number("lose_dbhz", tracking.lose_dbhz, Range{0.0, 60.0, "dB-Hz"});
+  if (tracking.lose_dbhz > tracking.acquire_dbhz) {
     const toml::node* n = t.find("lose_dbhz");
     if (n == nullptr) n = t.find("acquire_dbhz");
-    t.fail(*n, t.path() + ": lose_dbhz " + format_number(s.tracking.lose_dbhz) + " exceeds acquire_dbhz " +
-                   format_number(s.tracking.acquire_dbhz) + " (hysteresis needs lose <= acquire)");
+    t.fail(*n, t.path() + ": lose_dbhz " + format_number(tracking.lose_dbhz) + " exceeds acquire_dbhz " +
+                   format_number(tracking.acquire_dbhz) + " (hysteresis needs lose <= acquire)");
   }
   if (auto a = t.table("antenna", false)) {
     signal::AntennaPattern& p = l.antenna;
@@ -287,19 +288,19 @@ void read_signal(TableReader& t, receiver::ReceiverConfig& r) {
   t.finish();
 }
 
-void check_models(const TableReader& at, const receiver::ReceiverConfig& r) {
+void check_models(const TableReader& at, const world::WorldConfig& w, const receiver::ReceiverConfig& r) {
   try {
-    const receiver::AtmospherePropagation atmosphere(r.atmosphere);
-    const signal::LinkBudgetModel link(r.signal.link);
-    signal::validate(r.signal.tracking);
-    signal::validate(r.signal.dll);
-    const atmosphere::SlowTermCache<1> cache(r.atmosphere.cache_refresh_s);
+    const world::AtmospherePropagation atmosphere(w.atmosphere);
+    const signal::LinkBudgetModel link(w.signal.link);
+    signal::validate(r.tracking);
+    signal::validate(w.signal.dll);
+    const atmosphere::SlowTermCache<1> cache(w.atmosphere.cache_refresh_s);
   } catch (const Error& e) {
     throw Error(at.file(), at.line(), reason_of(e));
   }
 }
 
-std::string thermal_model_name(receiver::ThermalModel m) { return name_of(m, kThermalModels); }
+std::string thermal_model_name(world::ThermalModel m) { return name_of(m, kThermalModels); }
 
 std::string corrections_toml(const receiver::SolverConfig& s, std::string (*)(double)) {
   std::string o = "\n[receiver.corrections]  # what the receiver subtracts (broadcast models)\n";
@@ -308,8 +309,8 @@ std::string corrections_toml(const receiver::SolverConfig& s, std::string (*)(do
   return o;
 }
 
-std::string atmosphere_toml(const receiver::ReceiverConfig& r, std::string (*number)(double)) {
-  const receiver::AtmosphereConfig& a = r.atmosphere;
+std::string atmosphere_toml(const world::WorldConfig& w, std::string (*number)(double)) {
+  const world::AtmosphereConfig& a = w.atmosphere;
   const auto b = [](bool v) { return std::string(v ? "true" : "false"); };
   std::string o = "\n[atmosphere]  # what the world does to the signal\n";
   o += "cache_refresh_s = " + number(a.cache_refresh_s) + "\n";
@@ -368,8 +369,8 @@ std::string atmosphere_toml(const receiver::ReceiverConfig& r, std::string (*num
   return o;
 }
 
-std::string signal_toml(const receiver::ReceiverConfig& r, std::string (*number)(double)) {
-  const receiver::SignalConfig& s = r.signal;
+std::string signal_toml(const world::WorldConfig& w, const receiver::ReceiverConfig& r, std::string (*number)(double)) {
+  const world::SignalConfig& s = w.signal;
   const signal::LinkBudgetConfig& l = s.link;
   std::string o = "\n[signal]  # link budget -> C/N0, tracking\n";
   o += std::string("enabled = ") + (s.enabled ? "true" : "false") + "\n";
@@ -378,8 +379,8 @@ std::string signal_toml(const receiver::ReceiverConfig& r, std::string (*number)
   o += "noise_figure_db = " + number(l.noise_figure_db) + "\n";
   o += "noise_temperature_k = " + number(l.noise_temperature_k) + "\n";
   o += "implementation_loss_db = " + number(l.implementation_loss_db) + "\n";
-  o += "acquire_dbhz = " + number(s.tracking.acquire_dbhz) + "\n";
-  o += "lose_dbhz = " + number(s.tracking.lose_dbhz) + "\n";
+  o += "acquire_dbhz = " + number(r.tracking.acquire_dbhz) + "\n";
+  o += "lose_dbhz = " + number(r.tracking.lose_dbhz) + "\n";
   o += "\n[signal.antenna]\n";
   o += "zenith_gain_dbi = " + number(l.antenna.zenith_gain_dbi) + "\n";
   o += "horizon_gain_dbi = " + number(l.antenna.horizon_gain_dbi) + "\n";

@@ -66,9 +66,9 @@ TruthRouter::Ingest TruthRouter::ingest(const TruthSample& sample, const time::G
   return r;
 }
 
-receiver::Truth TruthRouter::truth_at(const time::GpsTime& t, double now_s) const noexcept {
+world::Truth TruthRouter::truth_at(const time::GpsTime& t, double now_s) const noexcept {
   if (driver_ < 0) {
-    receiver::Truth none;
+    world::Truth none;
     none.t = t;
     return none;
   }

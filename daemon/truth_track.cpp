@@ -38,9 +38,9 @@ Ecef TruthTrack::velocity_at_end(bool newest_end) const noexcept {
   return Ecef((b.pos_m - a.pos_m) / (b.t - a.t));
 }
 
-receiver::Truth TruthTrack::truth_at(const time::GpsTime& t, double now_s,
+world::Truth TruthTrack::truth_at(const time::GpsTime& t, double now_s,
                                      const TrackParams& params) const noexcept {
-  receiver::Truth out;
+  world::Truth out;
   out.t = t;
   if (count_ == 0 || !fresh(now_s, params)) return out;
 

@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "core/common/vec3.hpp"
-#include "core/receiver/receiver.hpp"
+#include "core/world/truth.hpp"
 #include "core/time/gps_time.hpp"
 
 namespace gnssemu::daemon {
@@ -54,7 +54,7 @@ public:
   /// empty, timed out, or t is more than max_extrapolation_s before the oldest sample.
   /// Past the newest sample, extrapolation stops at max_extrapolation_s; then
   /// the position is held there with zero velocity until the timeout.
-  receiver::Truth truth_at(const time::GpsTime& t, double now_s, const TrackParams& params) const noexcept;
+  world::Truth truth_at(const time::GpsTime& t, double now_s, const TrackParams& params) const noexcept;
 
   /// A packet arrived within timeout_s of now_s.
   bool fresh(double now_s, const TrackParams& params) const noexcept;

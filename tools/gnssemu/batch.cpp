@@ -5,17 +5,18 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "config/message_names.hpp"
+#include "config/pipeline_setup.hpp"
 #include "config/scene_loader.hpp"
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/protocol/nmea/nmea_encoder.hpp"
 #include "core/protocol/ubx/ubx_responder.hpp"
-#include "core/receiver/receiver.hpp"
 #include "core/statistics/statistics.hpp"
 
 namespace gnssemu::cli {
@@ -73,10 +74,8 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
   const orbit::EphemerisStore store(nav.ephemerides);
   scene::MeshStats mesh_stats;
   const std::unique_ptr<scene::Scene> buildings = config::load_scene(config, &mesh_stats);
-  receiver::Receiver rx(store, config.receiver);
-  if (nav.leap_seconds) rx.set_leap_seconds(*nav.leap_seconds);
-  rx.set_klobuchar(nav.klobuchar);
-  config::attach_scene(rx, config, buildings.get());
+  const std::unique_ptr<pipeline::Pipeline> rx =
+      config::make_pipeline(config, store, pipeline::broadcast_of(nav), buildings.get());
   protocol::nmea::NmeaConfig nmea_cfg = nmea_config_of(config);
   protocol::ubx::ConfigResponder device({});
   configure_port(device, config);
@@ -99,8 +98,8 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
   for (double k = k0;; k += 1.0) {
     const time::GpsTime t(week, k / rate_hz);
     if (t - track.last() > kGridTolerance_s) break;
-    const receiver::Truth truth = track.at(t);
-    const receiver::Fix& fix = rx.step(t, truth);
+    const world::Truth truth = track.at(t);
+    const receiver::Fix& fix = rx->step(t, truth);
     if (sum.epochs == 0) power_on = t;
     ++sum.epochs;
     device.on_epoch(fix, t - power_on);

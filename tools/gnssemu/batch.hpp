@@ -1,6 +1,6 @@
 #pragma once
 // `gnssemu batch`: the daemon's code path (config -> ephemeris store ->
-// Receiver -> NmeaEncoder) run over a truth trajectory faster than real time.
+// make_pipeline -> encoders) run over a truth trajectory faster than real time.
 #include <string>
 #include <ostream>
 

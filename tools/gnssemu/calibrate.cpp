@@ -19,7 +19,7 @@
 #include "core/atmosphere/ionosphere.hpp"
 #include "core/atmosphere/receiver_corrections.hpp"
 #include "core/atmosphere/troposphere.hpp"
-#include "core/receiver/sky.hpp"
+#include "core/world/sky.hpp"
 #include "core/signal/link_budget.hpp"
 #include "tools/gnssemu/spp.hpp"
 
@@ -67,7 +67,7 @@ std::vector<Residual> station_residuals(const CalibrationInput& in, const orbit:
       double rho = (st.pos_m - in.station_m).norm();
       Ecef p = st.pos_m;
       for (int it = 0; it < 2; ++it) {  // Sagnac: rotate by the flight time
-        p = receiver::rotate_earth(st.pos_m, kOmegaEarth_rad_s * rho / kSpeedOfLight_m_s);
+        p = world::rotate_earth(st.pos_m, kOmegaEarth_rad_s * rho / kSpeedOfLight_m_s);
         rho = (p - in.station_m).norm();
       }
       const geo::LookAngles look = geo::look_angles(in.station_m, lla, p);
@@ -515,7 +515,7 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
   const int max_lag = static_cast<int>(std::lround(kMaxLag_s / step_s));
   r.range_noise = fit_gauss_markov(pooled_autocovariance(res, max_lag), step_s);
 
-  const Cn0Fit cn0 = fit_cn0(res, base.receiver.signal.link);
+  const Cn0Fit cn0 = fit_cn0(res, base.world.signal.link);
   r.cn0_rms_db = cn0.rms_db;
   r.cn0_zenith_dbhz = cn0.zenith_dbhz;
   r.cn0_slope_db = cn0.slope_db;
@@ -527,9 +527,9 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
   r.bias = fit_atmosphere_bias(res, span_s >= kMinDiurnalSpan_s);
   std::vector<Residual> rest = res;
   const std::vector<GradientEpoch> grads = remove_common_terms(rest, r.bias);
-  signal::LinkBudgetConfig link = base.receiver.signal.link;
+  signal::LinkBudgetConfig link = base.world.signal.link;
   if (cn0.n >= 10) link.antenna = cn0.antenna;
-  r.processes = fit_processes(rest, link, base.receiver.signal.dll, step_s);
+  r.processes = fit_processes(rest, link, base.world.signal.dll, step_s);
   fit_gradient_process(grads, res, r.processes, step_s, r.bias);
 
   // The data's own single-point errors through the receiver's solver.
@@ -558,25 +558,25 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
   c.nav_file = in.nav_path;
   c.time.start.reset();
   c.receiver.elevation_mask_rad = in.mask_rad;
-  if (cn0.n >= 10) c.receiver.nominal_cn0_dbhz = cn0.zenith_dbhz;
-  if (cn0.n >= 10) c.receiver.signal.link.antenna = cn0.antenna;
+  if (cn0.n >= 10) c.world.nominal_cn0_dbhz = cn0.zenith_dbhz;
+  if (cn0.n >= 10) c.world.signal.link.antenna = cn0.antenna;
   const ProcessFit& p = r.processes;
-  receiver::ErrorModelConfig& em = c.receiver.errors;
+  world::ErrorModelConfig& em = c.world.errors;
   em.orbit_clock = {p.orbit_clock_sigma_m, p.orbit_clock_tau_s};
   em.multipath = {p.multipath_sigma_m, p.multipath_tau_s};
   // White noise: DLL jitter from the link budget's C/N0 with the fitted loop
   // bandwidth (the config range is (0, 50] Hz; none fitted -> fixed 0).
   if (p.dll_bandwidth_hz > 1e-6) {
-    em.thermal_model = receiver::ThermalModel::kDll;
-    c.receiver.signal.dll.loop_bandwidth_hz = std::min(p.dll_bandwidth_hz, 50.0);
+    em.thermal_model = world::ThermalModel::kDll;
+    c.world.signal.dll.loop_bandwidth_hz = std::min(p.dll_bandwidth_hz, 50.0);
   } else {
-    em.thermal_model = receiver::ThermalModel::kFixed;
+    em.thermal_model = world::ThermalModel::kFixed;
     em.thermal_sigma_m = 0.0;
   }
   // World ionosphere: Klobuchar shape x (1 + alpha) with the broadcast
   // obliquity (what the receiver removes is 1 x the same), plus the fitted
   // per-line-of-sight TEC process.
-  atmosphere::IonosphereConfig& io = c.receiver.atmosphere.ionosphere;
+  atmosphere::IonosphereConfig& io = c.world.atmosphere.ionosphere;
   io.enabled = true;
   io.source = atmosphere::VtecSource::kKlobucharShape;
   io.klobuchar_scale = std::max(1.0 + r.bias.klobuchar_alpha, 0.0);
@@ -588,7 +588,7 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
   // not observable once the epoch clock is removed, so it stays off).
   const Lla site = c.origin;
   const double doy = in.obs->epochs.front().t.fractional_day_of_year();
-  atmosphere::TroposphereConfig& tr = c.receiver.atmosphere.troposphere;
+  atmosphere::TroposphereConfig& tr = c.world.atmosphere.troposphere;
   tr.enabled = true;
   tr.zhd_model = atmosphere::ZhdModel::kSaastamoinen;
   tr.zwd_model = atmosphere::ZwdModel::kFixed;
@@ -596,7 +596,7 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
                           atmosphere::receiver_zhd_m(site.lat_rad, site.height_m);
   tr.zwd_m = std::clamp((zwd_rx_m + r.bias.zwd_beta_m) * std::exp(std::max(site.height_m, 0.0) / tr.zwd_scale_height_m),
                         0.0, 1.0);
-  c.receiver.atmosphere.zwd_perturbation.sigma_m = 0.0;
+  c.world.atmosphere.zwd_perturbation.sigma_m = 0.0;
   em.gradient.north_m = r.bias.gradient_north_m;
   em.gradient.east_m = r.bias.gradient_east_m;
   // a cos LT + b sin LT = A cos(LT - peak): amplitude and local time of the maximum.
@@ -661,7 +661,7 @@ void write_calibration_report(const CalibrationResult& r, std::ostream& out) {
                        {"gm_tau", r.range_noise.gm_tau_s, "s"}, {"white_sigma", r.range_noise.white_sigma_m, "m"},
                        {"klobuchar_scale", 1.0 + r.bias.klobuchar_alpha, ""}, {"zwd_residual", r.bias.zwd_beta_m, "m"},
                        {"bias_regressor_correlation", r.bias.correlation, ""}});
-  const receiver::ErrorModelConfig::Gradient& g = r.config.receiver.errors.gradient;
+  const world::ErrorModelConfig::Gradient& g = r.config.world.errors.gradient;
   write_rows(out, "gradient_", {{"north", r.bias.gradient_north_m, "m"}, {"east", r.bias.gradient_east_m, "m"},
                                 {"north_diurnal", g.north_diurnal_m, "m"}, {"north_peak", g.north_peak_h, "h"},
                                 {"east_diurnal", g.east_diurnal_m, "m"}, {"east_peak", g.east_peak_h, "h"},

@@ -8,7 +8,7 @@
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/geo/local_frame.hpp"
-#include "core/receiver/sky.hpp"
+#include "core/world/sky.hpp"
 
 namespace gnssemu::cli {
 
@@ -52,7 +52,7 @@ bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
     if (eph == nullptr) continue;
     double corr_m = 0.0;
     if (site != nullptr) {
-      const receiver::SkySat sky = receiver::sky_sat(*eph, epoch.t, *site, site_lla, Ecef{});
+      const world::SkySat sky = world::sky_sat(*eph, epoch.t, *site, site_lla, Ecef{});
       if (!(sky.el_rad >= opt_.mask_rad)) continue;
       corr_m = receiver_correction_m(klobuchar_, site_lla, sky.az_rad, sky.el_rad, epoch.t, opt_.solver);
     }
@@ -108,7 +108,7 @@ const SppEpoch& SppEngine::solve(const observation::ObsEpoch& epoch) {
     if (out_.excluded[k]) continue;
     result_.prn[n] = meas_prn_[k];
     result_.residual_m[n] = out_.residual_m[k];
-    result_.el_rad[n] = receiver::sky_sat(*in_.meas[k].eph, epoch.t, out_.pos_m, lla, Ecef{}).el_rad;
+    result_.el_rad[n] = world::sky_sat(*in_.meas[k].eph, epoch.t, out_.pos_m, lla, Ecef{}).el_rad;
     ++n;
   }
   last_pos_m_ = out_.pos_m;

@@ -12,8 +12,8 @@ constexpr double kEndTolerance_s = 1e-6;
 
 TruthTrack::TruthTrack(std::vector<TruthSample> samples) : samples_(std::move(samples)) {}
 
-receiver::Truth TruthTrack::at(const time::GpsTime& t) const noexcept {
-  receiver::Truth out;
+world::Truth TruthTrack::at(const time::GpsTime& t) const noexcept {
+  world::Truth out;
   out.t = t;
   if (samples_.empty()) return out;
   const double from_first_s = t - samples_.front().t;

@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/receiver/receiver.hpp"
+#include "core/world/truth.hpp"
 #include "tools/gnssemu/truth_csv.hpp"
 
 namespace gnssemu::cli {
@@ -17,7 +17,7 @@ public:
   /// linear when the samples carry it, else the segment's mean velocity (zero
   /// for a single sample). valid == false outside [first, last], and inside a
   /// segment with a no-truth end (TruthSample::valid) except at a valid end itself.
-  receiver::Truth at(const time::GpsTime& t) const noexcept;
+  world::Truth at(const time::GpsTime& t) const noexcept;
 
   const time::GpsTime& first() const noexcept { return samples_.front().t; }
   const time::GpsTime& last() const noexcept { return samples_.back().t; }

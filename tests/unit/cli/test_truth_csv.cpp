@@ -105,7 +105,7 @@ TEST(TruthTrack, LinearInterpolationAndEnds) {
       "2190,604799,6378137,0,0\n"
       "2191,1,6378157,40,0\n");  // across the week boundary, 2 s apart
   const TruthTrack track(s);
-  const receiver::Truth mid = track.at(time::GpsTime(2191, 0.5));
+  const world::Truth mid = track.at(time::GpsTime(2191, 0.5));
   ASSERT_TRUE(mid.valid);
   EXPECT_NEAR(mid.pos_m.x, 6378152.0, 1e-6);
   EXPECT_NEAR(mid.pos_m.y, 30.0, 1e-9);
@@ -135,7 +135,7 @@ TEST(TruthCsv, ValidColumnMarksRowsWithoutTruth) {
   EXPECT_FALSE(track.at(time::GpsTime(2190, 10.5)).valid);  // towards the no-truth row
   EXPECT_FALSE(track.at(time::GpsTime(2190, 11.0)).valid);
   EXPECT_FALSE(track.at(time::GpsTime(2190, 14.9)).valid);
-  const receiver::Truth back = track.at(time::GpsTime(2190, 15.0));
+  const world::Truth back = track.at(time::GpsTime(2190, 15.0));
   EXPECT_TRUE(back.valid);
   EXPECT_EQ(back.pos_m.x, s[2].pos_m.x);
   EXPECT_TRUE(track.at(time::GpsTime(2190, 15.5)).valid);

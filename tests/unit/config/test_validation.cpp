@@ -192,7 +192,7 @@ TEST(ConfigValidation, NegativeSigmas) {
   EXPECT_EQ(error_of(kBase + "[receiver.clock]\ndrift_noise_s_s_sqrt_s = -1e-12\n"),
             "t.toml:8: receiver.clock.drift_noise_s_s_sqrt_s: -1e-12 is out of range [0, 1e-06] s/s/sqrt(s)");
   // Zero disables a process and is allowed.
-  EXPECT_EQ(parse(kBase + "[receiver.errors]\nthermal_sigma_m = 0\n").receiver.errors.thermal_sigma_m, 0.0);
+  EXPECT_EQ(parse(kBase + "[receiver.errors]\nthermal_sigma_m = 0\n").world.errors.thermal_sigma_m, 0.0);
 }
 
 TEST(ConfigValidation, TauNotPositive) {

@@ -33,7 +33,7 @@ TEST(TruthTrack, EmptyIsInvalid) {
 
 TEST(TruthTrack, InterpolatesPositionAndDerivesVelocity) {
   const TruthTrack tr = moving_track(5, 0.1);
-  const receiver::Truth t = tr.truth_at(kT0 + 0.25, 0.4, kParams);
+  const world::Truth t = tr.truth_at(kT0 + 0.25, 0.4, kParams);
   ASSERT_TRUE(t.valid);
   EXPECT_NEAR(t.pos_m.x, 1002.5, 1e-9);
   EXPECT_NEAR(t.vel_m_s.x, 10.0, 1e-6);
@@ -48,7 +48,7 @@ TEST(TruthTrack, InterpolatesGivenVelocity) {
   TruthTrack tr;
   tr.add(0.0, kT0, Ecef(0, 0, 0), Ecef(0, 0, 0), 0.0);
   tr.add(1.0, kT0 + 1.0, Ecef(5, 0, 0), Ecef(10, 0, 0), 1.0);
-  const receiver::Truth t = tr.truth_at(kT0 + 0.75, 1.0, kParams);
+  const world::Truth t = tr.truth_at(kT0 + 0.75, 1.0, kParams);
   ASSERT_TRUE(t.valid);
   EXPECT_NEAR(t.pos_m.x, 3.75, 1e-12);
   EXPECT_NEAR(t.vel_m_s.x, 7.5, 1e-12);
@@ -56,7 +56,7 @@ TEST(TruthTrack, InterpolatesGivenVelocity) {
 
 TEST(TruthTrack, ExtrapolatesBrieflyThenHolds) {
   const TruthTrack tr = moving_track(5, 0.1);  // newest at +0.4 s, x = 1004
-  receiver::Truth t = tr.truth_at(kT0 + 0.7, 0.8, kParams);
+  world::Truth t = tr.truth_at(kT0 + 0.7, 0.8, kParams);
   ASSERT_TRUE(t.valid);
   EXPECT_NEAR(t.pos_m.x, 1007.0, 1e-6);  // 0.3 s at 10 m/s
   EXPECT_NEAR(t.vel_m_s.x, 10.0, 1e-6);
@@ -80,7 +80,7 @@ TEST(TruthTrack, ExtrapolatesBrieflyThenHolds) {
 
 TEST(TruthTrack, BeforeFirstSample) {
   const TruthTrack tr = moving_track(3, 0.1);
-  receiver::Truth t = tr.truth_at(kT0 - 0.2, 0.3, kParams);
+  world::Truth t = tr.truth_at(kT0 - 0.2, 0.3, kParams);
   ASSERT_TRUE(t.valid);
   EXPECT_NEAR(t.pos_m.x, 998.0, 1e-6);
   EXPECT_FALSE(tr.truth_at(kT0 - 0.6, 0.3, kParams).valid);
@@ -120,7 +120,7 @@ TEST(TruthTrack, RingKeepsNewestSamples) {
   EXPECT_NEAR(tr.newest().pos_m.x, 1000.0 + 10.0 * 9.9, 1e-9);
   EXPECT_NEAR(tr.sample(0).pos_m.x, 1000.0 + 10.0 * 6.8, 1e-9);
   // Interpolation deep inside the ring.
-  const receiver::Truth t = tr.truth_at(kT0 + 8.05, 9.9, kParams);
+  const world::Truth t = tr.truth_at(kT0 + 8.05, 9.9, kParams);
   ASSERT_TRUE(t.valid);
   EXPECT_NEAR(t.pos_m.x, 1080.5, 1e-6);
   // Older than the ring (and beyond extrapolation): invalid.
