@@ -9,7 +9,7 @@
 #include "config/config.hpp"
 #include "daemon/time_mapping.hpp"
 #include "daemon/truth_packet.hpp"
-#include "daemon/truth_track.hpp"
+#include "daemon/vehicle_track.hpp"
 
 namespace gnssemu::daemon {
 
@@ -56,7 +56,7 @@ public:
 private:
   struct Vehicle {
     std::string id;
-    TruthTrack track;
+    VehicleTrack track;
     SimClockMap clock;
   };
 

@@ -56,7 +56,7 @@ void configure_port(protocol::ubx::ConfigResponder& r, const config::Config& con
 
 }  // namespace
 
-BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const TruthTrack& track,
+BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const world::TruthTrack& track,
                        std::ostream* nmea, std::ostream* errors, std::ostream* ubx) {
   if (!(config.rate_hz > 0.0) || !std::isfinite(config.rate_hz)) {
     throw Error(config.source, 0, "rate_hz must be positive");

@@ -145,7 +145,7 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
     throw Error("--nmea, --ubx, --errors: two outputs cannot both be '-' (stdout)");
   }
   const config::Config cfg = config::load_config(a.config_path);
-  const TruthTrack track(read_truth_csv(a.truth_path));
+  const world::TruthTrack track(read_truth_csv(a.truth_path));
   std::error_code ec;
   if (!std::filesystem::is_regular_file(cfg.nav_file, ec)) {
     throw Error(a.config_path, 0, "nav file not found: " + cfg.nav_file);
