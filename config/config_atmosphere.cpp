@@ -2,6 +2,7 @@
 #include "config/config_atmosphere.hpp"
 
 #include <array>
+#include <limits>
 #include <string_view>
 #include <utility>
 
@@ -72,56 +73,41 @@ std::string name_of(E value, const std::array<Choice<E>, N>& choices) {
   return std::string(choices[0].name);
 }
 
-// The reason of a core error without its "what:line: " prefix.
-std::string reason_of(const Error& e) {
-  const std::string w = e.what();
-  if (e.file().empty()) return w;
-  const std::size_t p = w.find(": ", e.file().size());
-  return p == std::string::npos ? w : w.substr(p + 2);
-}
-
 std::string quoted(std::string_view s) { return "\"" + std::string(s) + "\""; }
 
-void read_gm(TableReader& t, world::GaussMarkovConfig& gm, std::string_view sigma_key, std::string_view unit,
-             double sigma_max) {
-  gm.sigma_m = t.number(sigma_key, gm.sigma_m, Range{0.0, sigma_max, unit});
-  gm.tau_s = t.number("tau_s", gm.tau_s, Range{0.0, 1.0e6, "s", true});
-  t.finish();
-}
-
 void read_ionosphere(TableReader& t, atmosphere::IonosphereConfig& c) {
+  using R = atmosphere::IonosphereRanges;
   c.enabled = t.boolean("enabled", c.enabled);
   c.source = choice(t, "vtec_source", kVtecSources, c.source);
-  // 300 TECU is beyond the largest storm-time values observed (~250).
-  c.vtec_tecu = t.number("vtec_tecu", c.vtec_tecu, Range{0.0, 1000.0, "TECU"});
-  c.klobuchar_scale = t.number("klobuchar_scale", c.klobuchar_scale, Range{0.0, 20.0, ""});
+  c.vtec_tecu = t.number("vtec_tecu", c.vtec_tecu, R::vtec_tecu);
+  c.klobuchar_scale = t.number("klobuchar_scale", c.klobuchar_scale, R::klobuchar_scale);
   c.mapping = choice(t, "mapping", kIonoMappings, c.mapping);
-  c.obliquity_pivot_deg = t.number("obliquity_pivot_deg", c.obliquity_pivot_deg, Range{90.0, 100.0, "deg"});
-  c.shell_height_m = t.number("shell_height_m", c.shell_height_m, Range{50.0e3, 2000.0e3, "m"});
+  c.obliquity_pivot_deg = t.number("obliquity_pivot_deg", c.obliquity_pivot_deg, R::obliquity_pivot_deg);
+  c.shell_height_m = t.number("shell_height_m", c.shell_height_m, R::shell_height_m);
   if (auto p = t.table("perturbation", false)) {
     world::GaussMarkovConfig gm{c.perturbation.sigma, c.perturbation.tau_s};
-    read_gm(*p, gm, "sigma_tecu", "TECU", 100.0);
+    read_gauss_markov(*p, gm, "sigma_tecu", R::perturbation_sigma_tecu, R::perturbation_tau_s);
     c.perturbation = {gm.sigma_m, gm.tau_s};
   }
   t.finish();
 }
 
 void read_troposphere(TableReader& t, world::AtmosphereConfig& a) {
+  using R = atmosphere::TroposphereRanges;
   atmosphere::TroposphereConfig& c = a.troposphere;
   c.enabled = t.boolean("enabled", c.enabled);
   c.zhd_model = choice(t, "zhd_model", kZhdModels, c.zhd_model);
-  c.zhd_a_m = t.number("zhd_a_m", c.zhd_a_m, Range{0.0, 10.0, "m"});
-  c.zhd_b_per_m = t.number("zhd_b_per_m", c.zhd_b_per_m, Range{0.0, 1.0e-2, "1/m", false, true});
+  c.zhd_a_m = t.number("zhd_a_m", c.zhd_a_m, R::zhd_a_m);
+  c.zhd_b_per_m = t.number("zhd_b_per_m", c.zhd_b_per_m, R::zhd_b_per_m);
   c.zwd_model = choice(t, "zwd_model", kZwdModels, c.zwd_model);
-  c.zwd_m = t.number("zwd_m", c.zwd_m, Range{0.0, 1.0, "m"});
-  c.zwd_scale_height_m = t.number("zwd_scale_height_m", c.zwd_scale_height_m, Range{0.0, 20000.0, "m", true});
-  c.rel_humidity = t.number("rel_humidity", c.rel_humidity, Range{0.0, 1.0, ""});
-  if (auto p = t.table("zwd_perturbation", false)) read_gm(*p, a.zwd_perturbation, "sigma_m", "m", 1.0);
+  c.zwd_m = t.number("zwd_m", c.zwd_m, R::zwd_m);
+  c.zwd_scale_height_m = t.number("zwd_scale_height_m", c.zwd_scale_height_m, R::zwd_scale_height_m);
+  c.rel_humidity = t.number("rel_humidity", c.rel_humidity, R::rel_humidity);
+  if (auto p = t.table("zwd_perturbation", false)) {
+    read_gauss_markov(*p, a.zwd_perturbation, "sigma_m", world::AtmosphereRanges::zwd_perturbation_sigma_m,
+                      world::AtmosphereRanges::zwd_perturbation_tau_s);
+  }
   t.finish();
-}
-
-double temperature(TableReader& t, std::string_view key, double def) {
-  return t.number(key, def, Range{0.0, 5000.0, "K", true});
 }
 
 void read_shells(TableReader& t, atmosphere::ShellsConfig& c) {
@@ -130,15 +116,15 @@ void read_shells(TableReader& t, atmosphere::ShellsConfig& c) {
     if (!s) continue;
     atmosphere::Shell& sh = c.shells[i];
     sh.enabled = s->boolean("enabled", sh.enabled);
-    sh.bottom_m = s->number("bottom_m", sh.bottom_m, Range{-1000.0, 5.0e6, "m"});
-    sh.top_m = s->number("top_m", sh.top_m, Range{-1000.0, 5.0e6, "m"});
+    sh.bottom_m = s->number("bottom_m", sh.bottom_m, atmosphere::ShellRanges::bottom_m);
+    sh.top_m = s->number("top_m", sh.top_m, atmosphere::ShellRanges::top_m);
     if (sh.top_m < sh.bottom_m) {
       const toml::node* n = s->find("top_m");
       if (n == nullptr) n = s->find("bottom_m");
       s->fail(*n, s->path() + ": negative thickness (top_m " + format_number(sh.top_m) + " m < bottom_m " +
                       format_number(sh.bottom_m) + " m)");
     }
-    sh.temperature_k = temperature(*s, "temperature_k", sh.temperature_k);
+    sh.temperature_k = s->number("temperature_k", sh.temperature_k, atmosphere::ShellRanges::temperature_k);
     sh.gas_absorption = s->boolean("gas_absorption", sh.gas_absorption);
     s->finish();
   }
@@ -175,14 +161,17 @@ atmosphere::CloudLayer read_cloud(TableReader& t) {
     t.fail_missing(t.find("thickness_m") == nullptr ? "thickness_m" : "liquid_water_g_m3",
                    "key (or a preset)");
   }
-  l.base_m = t.number("base_m", l.base_m, Range{-1000.0, 30000.0, "m"});
+  using R = atmosphere::CloudLayerRanges;
+  l.base_m = t.number("base_m", l.base_m, R::base_m);
   if (const toml::node* n = t.find("thickness_m")) {
-    const double v = t.number("thickness_m", std::nullopt, Range{-1.0e9, 30000.0, "m"});
+    // A negative thickness gets its own message before the range's.
+    constexpr double kBig = std::numeric_limits<double>::max();
+    const double v = t.number("thickness_m", std::nullopt, Range{-kBig, kBig, R::thickness_m.unit});
     if (v < 0.0) t.fail(*n, t.full_name("thickness_m") + ": negative thickness " + format_number(v) + " m");
-    l.thickness_m = v;
+    l.thickness_m = t.number("thickness_m", std::nullopt, R::thickness_m);
   }
-  l.liquid_water_g_m3 = t.number("liquid_water_g_m3", l.liquid_water_g_m3, Range{0.0, 20.0, "g/m^3"});
-  l.temperature_k = temperature(t, "temperature_k", l.temperature_k);
+  l.liquid_water_g_m3 = t.number("liquid_water_g_m3", l.liquid_water_g_m3, R::liquid_water_g_m3);
+  l.temperature_k = t.number("temperature_k", l.temperature_k, R::temperature_k);
   t.finish();
   return l;
 }
@@ -193,6 +182,20 @@ void read_thermal_model(TableReader& errors, world::ErrorModelConfig& e) {
   e.thermal_model = choice(errors, "thermal_model", kThermalModels, e.thermal_model);
 }
 
+void read_gauss_markov(TableReader& t, world::GaussMarkovConfig& gm, std::string_view sigma_key,
+                       const gnssemu::Range& sigma, const gnssemu::Range& tau) {
+  gm.sigma_m = t.number(sigma_key, gm.sigma_m, sigma);
+  gm.tau_s = t.number("tau_s", gm.tau_s, tau);
+  t.finish();
+}
+
+std::string reason_of(const Error& e) {
+  const std::string w = e.what();
+  if (e.file().empty()) return w;
+  const std::size_t p = w.find(": ", e.file().size());
+  return p == std::string::npos ? w : w.substr(p + 2);
+}
+
 void read_corrections(TableReader& t, receiver::SolverConfig& s) {
   s.iono = choice(t, "ionosphere", kIonoCorrections, s.iono);
   s.tropo = choice(t, "troposphere", kTropoCorrections, s.tropo);
@@ -201,13 +204,14 @@ void read_corrections(TableReader& t, receiver::SolverConfig& s) {
 
 void read_atmosphere(TableReader& t, world::WorldConfig& w) {
   world::AtmosphereConfig& a = w.atmosphere;
-  a.cache_refresh_s = t.number("cache_refresh_s", a.cache_refresh_s, Range{0.0, 3600.0, "s"});
+  a.cache_refresh_s = t.number("cache_refresh_s", a.cache_refresh_s, world::AtmosphereRanges::cache_refresh_s);
   a.cache_mode = choice(t, "cache_mode", kCacheModes, a.cache_mode);
   a.gases = t.boolean("gases", a.gases);
-  a.shells.gas.water_vapour_density_g_m3 =
-      t.number("water_vapour_density_g_m3", a.shells.gas.water_vapour_density_g_m3, Range{0.0, 50.0, "g/m^3"});
-  a.shells.gas.water_vapour_scale_height_m = t.number(
-      "water_vapour_scale_height_m", a.shells.gas.water_vapour_scale_height_m, Range{0.0, 20000.0, "m", true});
+  atmosphere::GasConfig& gas = a.shells.gas;
+  gas.water_vapour_density_g_m3 = t.number("water_vapour_density_g_m3", gas.water_vapour_density_g_m3,
+                                           atmosphere::GasRanges::water_vapour_density_g_m3);
+  gas.water_vapour_scale_height_m = t.number("water_vapour_scale_height_m", gas.water_vapour_scale_height_m,
+                                             atmosphere::GasRanges::water_vapour_scale_height_m);
   if (auto s = t.table("ionosphere", false)) read_ionosphere(*s, a.ionosphere);
   if (auto s = t.table("troposphere", false)) read_troposphere(*s, a);
   if (auto s = t.table("shells", false)) read_shells(*s, a.shells);
@@ -221,11 +225,12 @@ void read_atmosphere(TableReader& t, world::WorldConfig& w) {
   a.clouds_rain.layer_count = clouds.size();
   for (std::size_t i = 0; i < clouds.size(); ++i) a.clouds_rain.layers[i] = read_cloud(clouds[i]);
   if (auto s = t.table("rain", false)) {
+    using R = atmosphere::RainRanges;
     atmosphere::RainConfig& rain = a.clouds_rain.rain;
-    rain.rate_mm_h = s->number("rate_mm_h", rain.rate_mm_h, Range{0.0, 500.0, "mm/h"});
-    rain.rain_height_m = s->number("rain_height_m", rain.rain_height_m, Range{0.0, 10000.0, "m"});
-    rain.k = s->number("k", rain.k, Range{0.0, 1.0, ""});
-    rain.alpha = s->number("alpha", rain.alpha, Range{0.0, 5.0, "", true});
+    rain.rate_mm_h = s->number("rate_mm_h", rain.rate_mm_h, R::rate_mm_h);
+    rain.rain_height_m = s->number("rain_height_m", rain.rain_height_m, R::rain_height_m);
+    rain.k = s->number("k", rain.k, R::k);
+    rain.alpha = s->number("alpha", rain.alpha, R::alpha);
     s->finish();
   }
   t.finish();
@@ -249,14 +254,14 @@ void read_signal(TableReader& t, world::WorldConfig& w, receiver::ReceiverConfig
       t.fail(*env, t.full_name("environment") + ": " + reason_of(e));
     }
   }
-  l.environment_noise_rise_db =
-      t.number("noise_rise_db", l.environment_noise_rise_db, Range{0.0, 60.0, "dB"});
-  l.eirp_dbw = t.number("eirp_dbw", l.eirp_dbw, Range{0.0, 60.0, "dBW", true, true});
-  l.noise_figure_db = t.number("noise_figure_db", l.noise_figure_db, Range{0.0, 30.0, "dB"});
-  l.noise_temperature_k = temperature(t, "noise_temperature_k", l.noise_temperature_k);
-  l.implementation_loss_db = t.number("implementation_loss_db", l.implementation_loss_db, Range{0.0, 30.0, "dB"});
-  tracking.acquire_dbhz = t.number("acquire_dbhz", tracking.acquire_dbhz, Range{0.0, 60.0, "dB-Hz"});
-  tracking.lose_dbhz = t.number("lose_dbhz", tracking.lose_dbhz, Range{0.0, 60.0, "dB-Hz"});
+  using L = signal::LinkBudgetRanges;
+  l.environment_noise_rise_db = t.number("noise_rise_db", l.environment_noise_rise_db, L::environment_noise_rise_db);
+  l.eirp_dbw = t.number("eirp_dbw", l.eirp_dbw, L::eirp_dbw);
+  l.noise_figure_db = t.number("noise_figure_db", l.noise_figure_db, L::noise_figure_db);
+  l.noise_temperature_k = t.number("noise_temperature_k", l.noise_temperature_k, L::noise_temperature_k);
+  l.implementation_loss_db = t.number("implementation_loss_db", l.implementation_loss_db, L::implementation_loss_db);
+  tracking.acquire_dbhz = t.number("acquire_dbhz", tracking.acquire_dbhz, signal::TrackingRanges::acquire_dbhz);
+  tracking.lose_dbhz = t.number("lose_dbhz", tracking.lose_dbhz, signal::TrackingRanges::lose_dbhz);
   if (tracking.lose_dbhz > tracking.acquire_dbhz) {
     const toml::node* n = t.find("lose_dbhz");
     if (n == nullptr) n = t.find("acquire_dbhz");
@@ -264,9 +269,10 @@ void read_signal(TableReader& t, world::WorldConfig& w, receiver::ReceiverConfig
                    format_number(tracking.acquire_dbhz) + " (hysteresis needs lose <= acquire)");
   }
   if (auto a = t.table("antenna", false)) {
+    using A = signal::AntennaRanges;
     signal::AntennaPattern& p = l.antenna;
-    p.zenith_gain_dbi = a->number("zenith_gain_dbi", p.zenith_gain_dbi, Range{-30.0, 30.0, "dBic"});
-    p.horizon_gain_dbi = a->number("horizon_gain_dbi", p.horizon_gain_dbi, Range{-40.0, 30.0, "dBic"});
+    p.zenith_gain_dbi = a->number("zenith_gain_dbi", p.zenith_gain_dbi, A::zenith_gain_dbi);
+    p.horizon_gain_dbi = a->number("horizon_gain_dbi", p.horizon_gain_dbi, A::horizon_gain_dbi);
     if (p.horizon_gain_dbi > p.zenith_gain_dbi) {
       const toml::node* n = a->find("horizon_gain_dbi");
       if (n == nullptr) n = a->find("zenith_gain_dbi");
@@ -274,14 +280,15 @@ void read_signal(TableReader& t, world::WorldConfig& w, receiver::ReceiverConfig
                       " exceeds zenith_gain_dbi " + format_number(p.zenith_gain_dbi));
     }
     p.below_horizon_slope_db_per_deg =
-        a->number("below_horizon_slope_db_per_deg", p.below_horizon_slope_db_per_deg, Range{0.0, 10.0, "dB/deg"});
+        a->number("below_horizon_slope_db_per_deg", p.below_horizon_slope_db_per_deg, A::below_horizon_slope_db_per_deg);
     a->finish();
   }
   if (auto d = t.table("dll", false)) {
+    using D = signal::DllRanges;
     signal::DllParams& p = s.dll;
-    p.loop_bandwidth_hz = d->number("loop_bandwidth_hz", p.loop_bandwidth_hz, Range{0.0, 50.0, "Hz", true});
-    p.integration_s = d->number("integration_s", p.integration_s, Range{0.0, 1.0, "s", true});
-    p.spacing_chips = d->number("spacing_chips", p.spacing_chips, Range{0.0, 1.0, "chips", true});
+    p.loop_bandwidth_hz = d->number("loop_bandwidth_hz", p.loop_bandwidth_hz, D::loop_bandwidth_hz);
+    p.integration_s = d->number("integration_s", p.integration_s, D::integration_s);
+    p.spacing_chips = d->number("spacing_chips", p.spacing_chips, D::spacing_chips);
     p.discriminator = choice(*d, "discriminator", kDiscriminators, p.discriminator);
     d->finish();
   }
@@ -289,15 +296,10 @@ void read_signal(TableReader& t, world::WorldConfig& w, receiver::ReceiverConfig
 }
 
 void check_models(const TableReader& at, const world::WorldConfig& w, const receiver::ReceiverConfig& r) {
-  try {
-    const world::AtmospherePropagation atmosphere(w.atmosphere);
-    const signal::LinkBudgetModel link(w.signal.link);
-    signal::validate(r.tracking);
-    signal::validate(w.signal.dll);
-    const atmosphere::SlowTermCache<1> cache(w.atmosphere.cache_refresh_s);
-  } catch (const Error& e) {
-    throw Error(at.file(), at.line(), reason_of(e));
-  }
+  validate_at(at, [&] {
+    world::validate(w);
+    receiver::validate(r);
+  });
 }
 
 std::string thermal_model_name(world::ThermalModel m) { return name_of(m, kThermalModels); }

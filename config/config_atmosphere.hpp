@@ -3,8 +3,10 @@
 // and signal models and the receiver's own corrections. Internal to the
 // config module (config.cpp reads, config_writer.cpp writes).
 #include <string>
+#include <string_view>
 
 #include "config/toml_reader.hpp"
+#include "core/common/error.hpp"
 #include "core/receiver/receiver_config.hpp"
 #include "core/world/world_config.hpp"
 
@@ -18,6 +20,24 @@ void read_signal(TableReader& t, world::WorldConfig& w, receiver::ReceiverConfig
 void read_corrections(TableReader& t, receiver::SolverConfig& s);
 /// Keys of [receiver.errors] added by the signal model.
 void read_thermal_model(TableReader& errors, world::ErrorModelConfig& e);
+
+/// A Gauss–Markov table: sigma under sigma_key, and tau_s, with their core ranges.
+void read_gauss_markov(TableReader& t, world::GaussMarkovConfig& gm, std::string_view sigma_key,
+                       const gnssemu::Range& sigma, const gnssemu::Range& tau);
+
+/// The reason of a core error without its "what: " prefix.
+std::string reason_of(const Error& e);
+
+/// Runs validate (a core validator); its gnssemu::Error is re-thrown at the
+/// line of at (the table's header).
+template <class Validate>
+void validate_at(const TableReader& at, Validate&& validate) {
+  try {
+    validate();
+  } catch (const Error& e) {
+    throw Error(at.file(), at.line(), reason_of(e));
+  }
+}
 
 /// Checks the assembled models the way the world and the receiver will
 /// (e.g. antenna gains, thresholds); a failure is reported at the line of at

@@ -5,6 +5,7 @@
 // models. All values SI.
 #include "core/atmosphere/receiver_corrections.hpp"
 #include "core/common/constants.hpp"
+#include "core/common/range.hpp"
 #include "core/signal/tracking.hpp"
 
 namespace gnssemu::receiver {
@@ -40,6 +41,25 @@ struct SolverConfig {
   int max_iterations = 15;             ///< Gauss–Newton iterations at most
 };
 
+/// Valid values of SolverConfig's numbers. Besides: a and b not both 0, and
+/// a residual test false-alarm probability below 0.5 (a test that fails
+/// more often than not cannot detect).
+struct SolverRanges {
+  static constexpr Range sigma_a_m{0.0, 100.0, "m"};
+  static constexpr Range sigma_b_m{0.0, 100.0, "m"};
+  static constexpr Range sigma_c_m_sqrt_hz{0.0, 10000.0, "m sqrt(Hz)"};
+  static constexpr Range iono_model_fraction{0.0, 10.0, ""};
+  static constexpr Range tropo_model_sigma_m{0.0, 100.0, "m"};
+  static constexpr Range sigma_range_rate_m_s{0.0, 10.0, "m/s", true};
+  static constexpr Range height_hold_sigma_m{0.0, 1000.0, "m", true};
+  static constexpr Range residual_test_pfa{0.0, 1.0, "", false, true};
+  static constexpr Range max_exclusions{0.0, 32.0, ""};  ///< integer
+  static constexpr Range max_iterations{1.0, 100.0, ""};  ///< integer
+};
+
+/// Throws gnssemu::Error for an invalid solver config (SolverRanges).
+void validate(const SolverConfig& s);
+
 struct ReceiverConfig {
   double elevation_mask_rad = 5.0 * kDegToRad;  ///< [0, pi/2)
   double max_pdop = 20.0;          ///< above this the fix is reported as none
@@ -48,7 +68,16 @@ struct ReceiverConfig {
   SolverConfig solver;
 };
 
-/// Throws gnssemu::Error ("receiver config: ...") for an invalid config.
+/// Valid values of ReceiverConfig's own numbers (the mask in degrees, as
+/// configured; max_channels an integer of at least 4, the satellites of a
+/// 3D fix, and at most one channel per GPS PRN).
+struct ReceiverRanges {
+  static constexpr Range elevation_mask_deg{0.0, 90.0, "deg", false, true};
+  static constexpr Range max_pdop{1.0, 1000.0, ""};
+  static constexpr Range max_channels{4.0, static_cast<double>(kMaxGpsPrn), ""};
+};
+
+/// Throws gnssemu::Error for a value out of its range anywhere in c.
 void validate(const ReceiverConfig& c);
 
 }  // namespace gnssemu::receiver

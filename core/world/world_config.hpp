@@ -10,6 +10,7 @@
 #include "core/atmosphere/shells.hpp"
 #include "core/atmosphere/term_cache.hpp"
 #include "core/atmosphere/troposphere.hpp"
+#include "core/common/range.hpp"
 #include "core/signal/dll_jitter.hpp"
 #include "core/signal/link_budget.hpp"
 
@@ -19,6 +20,12 @@ namespace gnssemu::world {
 struct GaussMarkovConfig {
   double sigma_m = 0.0;     ///< steady-state 1-sigma, m (>= 0; 0 disables)
   double tau_s = 1800.0;    ///< correlation time, s (> 0)
+};
+
+/// Valid values of a GaussMarkovConfig of the error model.
+struct GaussMarkovRanges {
+  static constexpr Range sigma_m{0.0, 100.0, "m"};
+  static constexpr Range tau_s{0.0, 1.0e6, "s", true};
 };
 
 /// Where the white pseudorange noise sigma comes from.
@@ -54,6 +61,19 @@ struct ErrorModelConfig {
   } gradient;
 };
 
+/// Valid values of ErrorModelConfig's own numbers and of its gradient's
+/// (orbit_clock, multipath and gradient.process: GaussMarkovRanges).
+struct ErrorModelRanges {
+  static constexpr Range thermal_sigma_m{0.0, 100.0, "m"};
+  static constexpr Range doppler_sigma_m_s{0.0, 10.0, "m/s"};
+  static constexpr Range gradient_north_m{-100.0, 100.0, "m"};
+  static constexpr Range gradient_east_m{-100.0, 100.0, "m"};
+  static constexpr Range gradient_north_diurnal_m{0.0, 100.0, "m"};
+  static constexpr Range gradient_north_peak_h{0.0, 24.0, "h", false, true};
+  static constexpr Range gradient_east_diurnal_m{0.0, 100.0, "m"};
+  static constexpr Range gradient_east_peak_h{0.0, 24.0, "h", false, true};
+};
+
 /// The receiver's oscillator as it really runs (the receiver estimates it).
 struct ClockConfig {
   double bias_s = 1.0e-4;            ///< initial receiver clock bias, s
@@ -62,6 +82,15 @@ struct ClockConfig {
   /// |bias| above this makes the receiver step its clock by a whole multiple of
   /// it (millisecond jumps of unsteered receivers), s; 0 disables.
   double jump_threshold_s = 1.0e-3;
+};
+
+/// Valid values of ClockConfig's fields: u-blox receivers steer their clock
+/// to within 1 ms; TCXO drift stays within 10 ppm.
+struct ClockRanges {
+  static constexpr Range bias_s{-1.0e-2, 1.0e-2, "s"};
+  static constexpr Range drift_s_s{-1.0e-5, 1.0e-5, "s/s"};
+  static constexpr Range drift_noise_s_s_sqrt_s{0.0, 1.0e-6, "s/s/sqrt(s)"};
+  static constexpr Range jump_threshold_s{0.0, 1.0e-2, "s"};
 };
 
 /// The atmosphere the world applies to the signal (the receiver does not know
@@ -79,6 +108,15 @@ struct AtmosphereConfig {
   /// without their perturbations, attenuation), s; 0 = every epoch.
   double cache_refresh_s = 5.0;
   atmosphere::CacheMode cache_mode = atmosphere::CacheMode::kLinear;
+};
+
+/// Valid values of AtmosphereConfig's own numbers (its models have theirs:
+/// IonosphereRanges, TroposphereRanges, ShellRanges, GasRanges,
+/// CloudLayerRanges, RainRanges).
+struct AtmosphereRanges {
+  static constexpr Range zwd_perturbation_sigma_m{0.0, 1.0, "m"};
+  static constexpr Range zwd_perturbation_tau_s{0.0, 1.0e6, "s", true};
+  static constexpr Range cache_refresh_s{0.0, 3600.0, "s"};
 };
 
 /// Signal stage: link budget -> C/N0, code noise.
@@ -99,7 +137,13 @@ struct WorldConfig {
   SignalConfig signal;
 };
 
-/// Throws gnssemu::Error ("world config: ...") for an invalid config.
+/// Valid values of WorldConfig's own numbers (seed: any).
+struct WorldRanges {
+  static constexpr Range nominal_cn0_dbhz{10.0, 60.0, "dB-Hz"};
+};
+
+/// Throws gnssemu::Error for a value out of its range anywhere in c (its
+/// models' validators included).
 void validate(const WorldConfig& c);
 
 }  // namespace gnssemu::world

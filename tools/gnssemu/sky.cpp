@@ -27,7 +27,7 @@ pipeline::PipelineConfig geometry_config(double mask_rad) {
   c.world.errors.doppler_sigma_m_s = 0.0;
   c.world.clock.drift_noise_s_s_sqrt_s = 0.0;
   c.receiver.max_channels = kMaxGpsPrn;
-  c.receiver.max_pdop = 1.0e6;               // report poor geometry instead of dropping the fix
+  c.receiver.max_pdop = receiver::ReceiverRanges::max_pdop.max;  // report poor geometry rather than drop the fix
   c.receiver.solver.residual_test_pfa = 0.0;  // nothing to detect without errors
   return c;
 }
