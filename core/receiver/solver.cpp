@@ -7,6 +7,7 @@
 #include "core/geo/geodesy.hpp"
 #include "core/world/sky.hpp"
 #include "core/receiver/small_matrix.hpp"
+#include "core/receiver/transmit_state.hpp"
 
 namespace gnssemu::receiver {
 
@@ -314,12 +315,9 @@ Solver::Outcome Solver::solve_all(const SolverInput& in, SolverOutput& out) noex
       n_ = 0;  // malformed input: no fix rather than a guess
       break;
     }
-    // Transmit time from the code phase: t = t_sv - (dt_sv - TGD), dt_sv at
-    // t (IS-GPS-200 §20.3.3.3.3.1-2); one refinement pass suffices.
-    const time::GpsTime t_sv = in.t_rx_local - m.pseudorange_m / kSpeedOfLight_m_s;
-    const double dt0_s = orbit::sat_state(*m.eph, t_sv).clk_bias_s - m.eph->tgd_s;
-    const time::GpsTime t_tx = t_sv - dt0_s;
-    const orbit::SatState st = orbit::sat_state(*m.eph, t_tx);
+    const TransmitState tx = transmit_state(*m.eph, in.t_rx_local, m.pseudorange_m);
+    const time::GpsTime& t_tx = tx.t_tx;
+    const orbit::SatState& st = tx.state;
     s.pos_m = st.pos_m;
     s.vel_m_s = st.vel_m_s;
     s.clk_m = kSpeedOfLight_m_s * (st.clk_bias_s - m.eph->tgd_s);

@@ -19,6 +19,7 @@
 #include "core/atmosphere/ionosphere.hpp"
 #include "core/atmosphere/receiver_corrections.hpp"
 #include "core/atmosphere/troposphere.hpp"
+#include "core/receiver/transmit_state.hpp"
 #include "core/world/sky.hpp"
 #include "core/signal/link_budget.hpp"
 #include "tools/gnssemu/spp.hpp"
@@ -60,13 +61,12 @@ std::vector<Residual> station_residuals(const CalibrationInput& in, const orbit:
       if (pr == nullptr) continue;
       const orbit::Ephemeris* eph = store.select(s.prn, e.t);
       if (eph == nullptr) continue;
-      // Transmit time from the code phase, as receiver::Solver does.
-      const time::GpsTime t_sv = e.t - pr->value / kSpeedOfLight_m_s;
-      const double dt0 = orbit::sat_state(*eph, t_sv).clk_bias_s - eph->tgd_s;
-      const orbit::SatState st = orbit::sat_state(*eph, t_sv - dt0);
+      const orbit::SatState st = receiver::transmit_state(*eph, e.t, pr->value).state;
+      // Sagnac at the known station: rotate by the geometric flight time (the
+      // solver's flight time holds its clock estimate, which is not known here).
       double rho = (st.pos_m - in.station_m).norm();
       Ecef p = st.pos_m;
-      for (int it = 0; it < 2; ++it) {  // Sagnac: rotate by the flight time
+      for (int it = 0; it < 2; ++it) {
         p = world::rotate_earth(st.pos_m, kOmegaEarth_rad_s * rho / kSpeedOfLight_m_s);
         rho = (p - in.station_m).norm();
       }
@@ -533,11 +533,9 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
   fit_gradient_process(grads, res, r.processes, step_s, r.bias);
 
   // The data's own single-point errors through the receiver's solver.
-  SppOptions opt;
-  opt.solver = base.receiver.solver;
-  opt.max_pdop = base.receiver.max_pdop;
-  opt.mask_rad = in.mask_rad;
-  SppEngine engine(*in.nav, store, in.obs->header, opt);
+  receiver::ReceiverConfig rx = base.receiver;
+  rx.elevation_mask_rad = in.mask_rad;
+  SppEngine engine(*in.nav, store, in.obs->header, rx);
   const geo::LocalFrame frame(geo::lla_from_ecef(in.station_m));
   const time::GpsTime t0 = in.obs->epochs.front().t;
   const int n_grid = static_cast<int>(std::lround((in.obs->epochs.back().t - t0) / step_s)) + 1;

@@ -219,12 +219,10 @@ int run_spp_command(const ObsArgs& a, std::ostream& out, std::ostream& err) {
   std::optional<Ecef> station;
   if (!a.station.empty()) station = parse_station(a.station);
   const auto [obs, nav] = load_obs_nav(a);
-  SppOptions opt;
   const config::Config base = a.config_path.empty() ? config::Config{} : config::load_config(a.config_path);
-  opt.solver = base.receiver.solver;
-  opt.max_pdop = base.receiver.max_pdop;
-  opt.mask_rad = a.mask_deg * kDegToRad;
-  const SppSummary sum = write_spp(obs, nav, opt, station, out);
+  receiver::ReceiverConfig rx = base.receiver;
+  rx.elevation_mask_rad = a.mask_deg * kDegToRad;
+  const SppSummary sum = write_spp(obs, nav, rx, station, out);
   err << fmt::format("gnssemu spp: {} epochs, {} with a fix\n", sum.epochs, sum.fixes);
   return kExitOk;
 }
