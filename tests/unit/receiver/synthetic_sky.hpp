@@ -11,6 +11,7 @@
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris.hpp"
 #include "core/receiver/fix.hpp"
+#include "core/world/truth.hpp"
 #include "core/pipeline/pipeline.hpp"
 
 namespace gnssemu::receiver::test {
@@ -97,6 +98,16 @@ inline PipelineConfig gm_white_world(PipelineConfig c = {}) {
   c.receiver.solver.sigma_c_m_sqrt_hz = 0.0;
   c.world.errors.thermal_model = world::ThermalModel::kFixed;
   return c;
+}
+
+/// Valid truth at t: antenna at pos (ECEF m) moving at vel (ECEF m/s).
+inline world::Truth truth_at(const Ecef& pos, const time::GpsTime& t, const Ecef& vel = {}) {
+  world::Truth tr;
+  tr.t = t;
+  tr.pos_m = pos;
+  tr.vel_m_s = vel;
+  tr.valid = true;
+  return tr;
 }
 
 /// Deterministic world (no random processes, no clock noise) with the

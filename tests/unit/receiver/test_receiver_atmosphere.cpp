@@ -19,6 +19,7 @@
 namespace gnssemu::receiver {
 namespace {
 
+using test::truth_at;
 using pipeline::Pipeline;
 using pipeline::PipelineConfig;
 using test::noiseless;
@@ -29,14 +30,6 @@ using test::expect_consistent;
 
 const time::GpsTime kToe(2190, 200000.0);
 const Lla kSite{45.0 * kDegToRad, 7.0 * kDegToRad, 300.0};
-
-Truth truth_at(const Ecef& pos, const time::GpsTime& t) {
-  Truth tr;
-  tr.t = t;
-  tr.pos_m = pos;
-  tr.valid = true;
-  return tr;
-}
 
 
 /// A world whose atmosphere is exactly what the receiver models: Klobuchar

@@ -14,20 +14,13 @@
 namespace gnssemu::receiver {
 namespace {
 
+using test::truth_at;
 using pipeline::Pipeline;
 using pipeline::PipelineConfig;
 using world::Truth;
 
 const time::GpsTime kToe(2190, 200000.0);
 const Lla kSite{45.0 * kDegToRad, 7.0 * kDegToRad, 300.0};
-
-Truth truth_at(const Ecef& pos, const time::GpsTime& t) {
-  Truth tr;
-  tr.t = t;
-  tr.pos_m = pos;
-  tr.valid = true;
-  return tr;
-}
 
 /// No random process, no clock noise: pseudoranges differ only by what a test switches on.
 PipelineConfig quiet() { return test::noiseless(); }

@@ -14,6 +14,7 @@
 namespace gnssemu::receiver {
 namespace {
 
+using test::truth_at;
 using pipeline::Pipeline;
 using pipeline::PipelineConfig;
 using world::Truth;
@@ -22,15 +23,6 @@ using test::errors_off_config;
 using test::expect_consistent;
 
 const time::GpsTime kToe(2190, 300000.0);
-
-Truth truth_at(const Ecef& pos, const time::GpsTime& t, const Ecef& vel = {}) {
-  Truth tr;
-  tr.t = t;
-  tr.pos_m = pos;
-  tr.vel_m_s = vel;
-  tr.valid = true;
-  return tr;
-}
 
 struct Site {
   const char* name;

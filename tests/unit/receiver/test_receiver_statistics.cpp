@@ -13,21 +13,13 @@
 namespace gnssemu::receiver {
 namespace {
 
+using test::truth_at;
 using pipeline::Pipeline;
 using pipeline::PipelineConfig;
 using world::Truth;
 
 const time::GpsTime kToe(2190, 200000.0);
 const Lla kSite{52.0 * kDegToRad, 4.4 * kDegToRad, 30.0};
-
-Truth truth_at(const Ecef& pos, const Ecef& vel, const time::GpsTime& t) {
-  Truth tr;
-  tr.t = t;
-  tr.pos_m = pos;
-  tr.vel_m_s = vel;
-  tr.valid = true;
-  return tr;
-}
 
 Enu error_enu(const Fix& f, const Ecef& truth) {
   return geo::ecef_to_enu_vector(f.pos_m - truth, kSite.lat_rad, kSite.lon_rad);
@@ -50,7 +42,7 @@ Ensemble run_ensemble(const orbit::EphemerisStore& store, PipelineConfig cfg, in
   for (int s = 0; s < seeds; ++s) {
     cfg.world.seed = 1000 + static_cast<uint64_t>(s);
     Pipeline rx(store, cfg);
-    const Fix& f = rx.step(kToe, truth_at(truth, {}, kToe));
+    const Fix& f = rx.step(kToe, truth_at(truth, kToe));
     test::expect_consistent(f);
     if (f.type != FixType::k3D) {
       ++e.no_fix;
@@ -117,7 +109,7 @@ TEST(ReceiverStatistics, ErrorIsTimeCorrelatedNotWhite) {
     double prev_e = 0.0;
     for (int k = 0; k < 300; ++k) {
       const time::GpsTime t = kToe + static_cast<double>(k);
-      const Fix& f = rx.step(t, truth_at(truth, {}, t));
+      const Fix& f = rx.step(t, truth_at(truth, t));
       ASSERT_EQ(f.type, FixType::k3D);
       const double e = error_enu(f, truth).x;
       sum_xx += e * e;
@@ -154,7 +146,7 @@ TEST(ReceiverStatistics, MovingReceiverVelocityWithinSigma) {
     const double dt = 0.5 * k;
     const time::GpsTime t = kToe + dt;
     const Ecef pos(p0 + v_ecef * dt);
-    const Fix& f = rx.step(t, truth_at(pos, Ecef(v_ecef), t));
+    const Fix& f = rx.step(t, truth_at(pos, t, Ecef(v_ecef)));
     ASSERT_EQ(f.type, FixType::k3D);
     test::expect_consistent(f);
     const double err = (f.vel_m_s - v_ecef).norm();
@@ -186,14 +178,14 @@ TEST(ReceiverStatistics, ResidualTestRejectsInconsistentMeasurements) {
   int none = 0, excluded = 0;
   for (int k = 0; k < 100; ++k) {
     const time::GpsTime t = kToe + static_cast<double>(k);
-    const Fix& f = rx.step(t, truth_at(truth, {}, t));
+    const Fix& f = rx.step(t, truth_at(truth, t));
     test::expect_consistent(f);
     none += f.type == FixType::kNone;
     if (f.type != FixType::kNone && f.num_used < f.num_tracked) {
       ++excluded;
       EXPECT_GE(f.num_used, Solver::kMinSatsAfterExclusion);
     }
-    const Fix& u = unchecked.step(t, truth_at(truth, {}, t));
+    const Fix& u = unchecked.step(t, truth_at(truth, t));
     EXPECT_EQ(u.type, FixType::k3D);
     EXPECT_EQ(u.num_used, u.num_tracked);
   }
