@@ -17,7 +17,6 @@ namespace {
 using test::truth_at;
 using pipeline::Pipeline;
 using pipeline::PipelineConfig;
-using world::Truth;
 
 const time::GpsTime kToe(2190, 200000.0);
 const Lla kSite{45.0 * kDegToRad, 7.0 * kDegToRad, 300.0};

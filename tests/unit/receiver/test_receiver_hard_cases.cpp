@@ -17,7 +17,6 @@ namespace {
 using test::truth_at;
 using pipeline::Pipeline;
 using pipeline::PipelineConfig;
-using world::Truth;
 
 using test::errors_off_config;
 using test::expect_consistent;

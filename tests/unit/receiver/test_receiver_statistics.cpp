@@ -16,7 +16,6 @@ namespace {
 using test::truth_at;
 using pipeline::Pipeline;
 using pipeline::PipelineConfig;
-using world::Truth;
 
 const time::GpsTime kToe(2190, 200000.0);
 const Lla kSite{52.0 * kDegToRad, 4.4 * kDegToRad, 30.0};
