@@ -1,4 +1,4 @@
-// atmosphere_bench: per-epoch cost of Receiver::step() with each world stage
+// atmosphere_bench: per-epoch cost of Pipeline::step() with each world stage
 // on or off and each slow-term cache interval, next to the position change it
 // causes against the all-on, no-cache reference (same seed, so the noise is
 // identical and the difference is the stage's or the cache's doing).
@@ -17,12 +17,12 @@
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
-#include "core/receiver/receiver.hpp"
+#include "core/pipeline/pipeline.hpp"
 
 namespace {
 
 using namespace gnssemu;
-using receiver::ReceiverConfig;
+using pipeline::PipelineConfig;
 
 const Lla kSite{39.6 * kDegToRad, 22.4 * kDegToRad, 100.0};
 
@@ -33,10 +33,9 @@ struct Run {
   long evaluations = 0;
 };
 
-Run run(const orbit::NavData& nav, const ReceiverConfig& cfg, const time::GpsTime& t0, int epochs) {
+Run run(const orbit::NavData& nav, const PipelineConfig& cfg, const time::GpsTime& t0, int epochs) {
   const orbit::EphemerisStore store(nav.ephemerides);
-  receiver::Receiver rx(store, cfg);
-  rx.set_klobuchar(nav.klobuchar);
+  pipeline::Pipeline rx(store, cfg, {.klobuchar = nav.klobuchar});
   const Ecef p = geo::ecef_from_lla(kSite);
   Run r;
   std::vector<double> us;
@@ -44,7 +43,7 @@ Run run(const orbit::NavData& nav, const ReceiverConfig& cfg, const time::GpsTim
   double h2 = 0, v2 = 0;
   int n = 0;
   for (int k = 0; k < epochs; ++k) {
-    receiver::Truth tr;
+    world::Truth tr;
     tr.t = t0 + 1.0 * k;
     tr.pos_m = p;
     tr.valid = true;
@@ -69,7 +68,7 @@ Run run(const orbit::NavData& nav, const ReceiverConfig& cfg, const time::GpsTim
   r.median_us = us[us.size() / 2];
   r.h_rms_truth_m = std::sqrt(h2 / std::max(n, 1));
   r.v_rms_truth_m = std::sqrt(v2 / std::max(n, 1));
-  r.evaluations = rx.atmosphere_refreshes();
+  r.evaluations = rx.world().atmosphere_refreshes();
   return r;
 }
 
@@ -97,44 +96,44 @@ int main(int argc, char** argv) {
     const orbit::NavData nav = orbit::read_rinex_nav(nav_path);
     const time::GpsTime t0 = nav.ephemerides.front().toe + 3600.0;
 
-    ReceiverConfig ref;
-    ref.atmosphere.cache_refresh_s = 0.0;
+    PipelineConfig ref;
+    ref.world.atmosphere.cache_refresh_s = 0.0;
     struct Variant {
       std::string name;
-      std::function<void(ReceiverConfig&)> tweak;
+      std::function<void(PipelineConfig&)> tweak;
     };
     const auto cache = [](double s, atmosphere::CacheMode m) {
-      return [s, m](ReceiverConfig& c) {
-        c.atmosphere.cache_refresh_s = s;
-        c.atmosphere.cache_mode = m;
+      return [s, m](PipelineConfig& c) {
+        c.world.atmosphere.cache_refresh_s = s;
+        c.world.atmosphere.cache_mode = m;
       };
     };
     std::vector<Variant> variants{
-        {"all on, no cache (reference)", [](ReceiverConfig&) {}},
-        {"ionosphere off (world)", [](ReceiverConfig& c) { c.atmosphere.ionosphere.enabled = false; }},
-        {"iono perturbation off", [](ReceiverConfig& c) { c.atmosphere.ionosphere.perturbation.sigma = 0.0; }},
-        {"troposphere off (world)", [](ReceiverConfig& c) { c.atmosphere.troposphere.enabled = false; }},
-        {"gases off", [](ReceiverConfig& c) { c.atmosphere.gases = false; }},
+        {"all on, no cache (reference)", [](PipelineConfig&) {}},
+        {"ionosphere off (world)", [](PipelineConfig& c) { c.world.atmosphere.ionosphere.enabled = false; }},
+        {"iono perturbation off", [](PipelineConfig& c) { c.world.atmosphere.ionosphere.perturbation.sigma = 0.0; }},
+        {"troposphere off (world)", [](PipelineConfig& c) { c.world.atmosphere.troposphere.enabled = false; }},
+        {"gases off", [](PipelineConfig& c) { c.world.atmosphere.gases = false; }},
         {"+ thunderstorm + 100 mm/h rain",
-         [](ReceiverConfig& c) {
-           c.atmosphere.clouds_rain.layers[0] = atmosphere::cloud_preset("thunderstorm");
-           c.atmosphere.clouds_rain.layer_count = 1;
-           c.atmosphere.clouds_rain.rain.rate_mm_h = 100.0;
+         [](PipelineConfig& c) {
+           c.world.atmosphere.clouds_rain.layers[0] = atmosphere::cloud_preset("thunderstorm");
+           c.world.atmosphere.clouds_rain.layer_count = 1;
+           c.world.atmosphere.clouds_rain.rain.rate_mm_h = 100.0;
          }},
-        {"signal off (fixed C/N0 curve)", [](ReceiverConfig& c) { c.signal.enabled = false; }},
-        {"thermal fixed 0.3 m (no DLL)", [](ReceiverConfig& c) {
-           c.errors.thermal_model = receiver::ThermalModel::kFixed;
+        {"signal off (fixed C/N0 curve)", [](PipelineConfig& c) { c.world.signal.enabled = false; }},
+        {"thermal fixed 0.3 m (no DLL)", [](PipelineConfig& c) {
+           c.world.errors.thermal_model = world::ThermalModel::kFixed;
          }},
-        {"receiver corrections off", [](ReceiverConfig& c) {
-           c.solver.iono = atmosphere::IonoCorrection::kNone;
-           c.solver.tropo = atmosphere::TropoCorrection::kNone;
+        {"receiver corrections off", [](PipelineConfig& c) {
+           c.receiver.solver.iono = atmosphere::IonoCorrection::kNone;
+           c.receiver.solver.tropo = atmosphere::TropoCorrection::kNone;
          }},
-        {"atmosphere + corrections off", [](ReceiverConfig& c) {
-           c.atmosphere.ionosphere.enabled = false;
-           c.atmosphere.troposphere.enabled = false;
-           c.atmosphere.gases = false;
-           c.solver.iono = atmosphere::IonoCorrection::kNone;
-           c.solver.tropo = atmosphere::TropoCorrection::kNone;
+        {"atmosphere + corrections off", [](PipelineConfig& c) {
+           c.world.atmosphere.ionosphere.enabled = false;
+           c.world.atmosphere.troposphere.enabled = false;
+           c.world.atmosphere.gases = false;
+           c.receiver.solver.iono = atmosphere::IonoCorrection::kNone;
+           c.receiver.solver.tropo = atmosphere::TropoCorrection::kNone;
          }},
         {"cache 1 s hold", cache(1, atmosphere::CacheMode::kHold)},
         {"cache 5 s hold", cache(5, atmosphere::CacheMode::kHold)},
@@ -151,7 +150,7 @@ int main(int argc, char** argv) {
     std::printf("|---|---|---|---|---|---|---|---|\n");
     Run reference;
     for (const Variant& v : variants) {
-      ReceiverConfig c = ref;
+      PipelineConfig c = ref;
       v.tweak(c);
       // Best of three timings (shared machine); positions are identical each time.
       Run best = run(nav, c, t0, epochs);

@@ -14,11 +14,11 @@
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
-#include "core/receiver/receiver.hpp"
+#include "core/pipeline/pipeline.hpp"
 
 int main(int argc, char** argv) {
   using namespace gnssemu;
-  using receiver::ReceiverConfig;
+  using pipeline::PipelineConfig;
   try {
     const std::string nav_path =
         argc > 1 ? argv[1] : std::string(GNSSEMU_SOURCE_DIR) + "/tests/data/nav/brdc0010.22n";
@@ -32,20 +32,19 @@ int main(int argc, char** argv) {
                 "reported sqrt(hAcc^2+vAcc^2) rms m |\n|---|---|---|---|---|---|---|\n");
     for (double fraction : {0.0, 0.5}) {
       for (double tec : {-1.0, 30.0, 50.0, 75.0, 100.0, 150.0, 200.0, 300.0}) {
-        ReceiverConfig c;
-        c.solver.iono_model_fraction = fraction;
-        c.solver.tropo_model_sigma_m = fraction > 0.0 ? 0.3 : 0.0;
+        PipelineConfig c;
+        c.receiver.solver.iono_model_fraction = fraction;
+        c.receiver.solver.tropo_model_sigma_m = fraction > 0.0 ? 0.3 : 0.0;
         if (tec >= 0.0) {
-          c.atmosphere.ionosphere.source = atmosphere::VtecSource::kFixed;
-          c.atmosphere.ionosphere.vtec_tecu = tec;
+          c.world.atmosphere.ionosphere.source = atmosphere::VtecSource::kFixed;
+          c.world.atmosphere.ionosphere.vtec_tecu = tec;
         }
-        receiver::Receiver rx(store, c);
-        rx.set_klobuchar(nav.klobuchar);
+        pipeline::Pipeline rx(store, c, {.klobuchar = nav.klobuchar});
         int fixes = 0, beyond = 0;
         double worst = 0.0, e2 = 0.0, a2 = 0.0;
         for (int k = 0; k < kEpochs; ++k) {
           const time::GpsTime t = t0 + 15.0 * k;
-          receiver::Truth tr;
+          world::Truth tr;
           tr.t = t;
           tr.pos_m = pos;
           tr.valid = true;

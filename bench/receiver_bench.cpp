@@ -1,4 +1,4 @@
-// receiver_bench: per-epoch cost of Receiver::step() on real broadcast
+// receiver_bench: per-epoch cost of Pipeline::step() (world + receiver) on real broadcast
 // ephemerides, static and moving (100 m/s) receivers, and heap allocations
 // per epoch after warm-up. Prints figures; not a test.
 //   receiver_bench [nav_file] [epochs]
@@ -13,7 +13,7 @@
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
-#include "core/receiver/receiver.hpp"
+#include "core/pipeline/pipeline.hpp"
 #include "tests/support/alloc_counter.hpp"
 
 
@@ -27,7 +27,7 @@ struct Result {
 };
 
 Result run(const orbit::EphemerisStore& store, const time::GpsTime& t0, double speed_m_s, int epochs) {
-  receiver::Receiver rx(store, receiver::ReceiverConfig{});
+  pipeline::Pipeline rx(store, pipeline::PipelineConfig{});
   const Lla site{39.6 * kDegToRad, 22.4 * kDegToRad, 100.0};
   const Ecef p0 = geo::ecef_from_lla(site);
   const Vec3 v = geo::enu_to_ecef_vector(Enu(speed_m_s * 0.6, speed_m_s * 0.8, 0.0), site.lat_rad, site.lon_rad);
@@ -38,7 +38,7 @@ Result run(const orbit::EphemerisStore& store, const time::GpsTime& t0, double s
   int fixes = 0;
   for (int k = -warm_up; k < epochs; ++k) {
     const double dt = 0.1 * (k + warm_up);  // 10 Hz
-    receiver::Truth tr;
+    world::Truth tr;
     tr.t = t0 + dt;
     tr.pos_m = Ecef(p0 + v * dt);
     tr.vel_m_s = Ecef(v);
@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
   try {
     const orbit::NavData nav = orbit::read_rinex_nav(nav_path);
     const orbit::EphemerisStore store(nav.ephemerides);
-    std::printf("receiver_bench: %s, %d epochs at 10 Hz per case, default ReceiverConfig, 39.6N 22.4E\n",
+    std::printf("receiver_bench: %s, %d epochs at 10 Hz per case, default PipelineConfig, 39.6N 22.4E\n",
                 nav_path.c_str(), epochs);
     std::printf("%-8s %7s %9s %9s %9s %9s %12s %8s %9s %10s\n", "case", "start_h", "mean_us", "median_us", "p99_us",
                 "max_us", "allocs/ep", "fix", "sats_used", "h_err_m");

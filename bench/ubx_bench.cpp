@@ -15,8 +15,8 @@
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
 #include "core/protocol/ubx/ubx_decoder.hpp"
+#include "core/pipeline/pipeline.hpp"
 #include "core/protocol/ubx/ubx_device.hpp"
-#include "core/receiver/receiver.hpp"
 #include "tests/support/alloc_counter.hpp"
 
 namespace {
@@ -51,13 +51,13 @@ int main(int argc, char** argv) {
   try {
     const orbit::NavData nav = orbit::read_rinex_nav(nav_path);
     const orbit::EphemerisStore store(nav.ephemerides);
-    receiver::Receiver rx(store, receiver::ReceiverConfig{});
+    pipeline::Pipeline rx(store, pipeline::PipelineConfig{});
     const Lla site{39.6 * kDegToRad, 22.4 * kDegToRad, 100.0};
     const Ecef p0 = geo::ecef_from_lla(site);
     const time::GpsTime t0 = store.first_valid() + 8 * 3600.0;
     std::vector<receiver::Fix> fixes;
     for (int k = 0; k < epochs; ++k) {
-      receiver::Truth tr;
+      world::Truth tr;
       tr.t = t0 + 0.2 * k;
       tr.pos_m = p0;
       tr.valid = true;

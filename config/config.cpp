@@ -128,75 +128,82 @@ TimeConfig read_time(TableReader& t) {
   return out;
 }
 
-void read_gauss_markov(TableReader& t, receiver::GaussMarkovConfig& gm) {
-  gm.sigma_m = t.number("sigma_m", gm.sigma_m, Range{0.0, 100.0, "m"});
-  gm.tau_s = t.number("tau_s", gm.tau_s, Range{0.0, 1.0e6, "s", true});
-  t.finish();
+// An integer key whose range is a core Range of whole numbers.
+int integer_in(TableReader& t, std::string_view key, int def, const gnssemu::Range& r) {
+  return static_cast<int>(t.integer(key, def, static_cast<int64_t>(r.min), static_cast<int64_t>(r.max)));
 }
 
 void read_solver(TableReader& t, receiver::SolverConfig& s) {
-  s.sigma_a_m = t.number("sigma_a_m", s.sigma_a_m, Range{0.0, 100.0, "m"});
-  s.sigma_b_m = t.number("sigma_b_m", s.sigma_b_m, Range{0.0, 100.0, "m"});
+  using R = receiver::SolverRanges;
+  s.sigma_a_m = t.number("sigma_a_m", s.sigma_a_m, R::sigma_a_m);
+  s.sigma_b_m = t.number("sigma_b_m", s.sigma_b_m, R::sigma_b_m);
   if (s.sigma_a_m == 0.0 && s.sigma_b_m == 0.0) {
     const toml::node* n = t.find("sigma_a_m");
     if (n == nullptr) n = t.find("sigma_b_m");
     t.fail(*n, t.path() + ": sigma_a_m and sigma_b_m are both 0 (the solver's weights would be infinite)");
   }
-  s.sigma_c_m_sqrt_hz = t.number("sigma_c_m_sqrt_hz", s.sigma_c_m_sqrt_hz, Range{0.0, 10000.0, "m sqrt(Hz)"});
-  s.iono_model_fraction = t.number("iono_model_fraction", s.iono_model_fraction, Range{0.0, 10.0, ""});
-  s.tropo_model_sigma_m = t.number("tropo_model_sigma_m", s.tropo_model_sigma_m, Range{0.0, 100.0, "m"});
-  s.sigma_range_rate_m_s =
-      t.number("sigma_range_rate_m_s", s.sigma_range_rate_m_s, Range{0.0, 10.0, "m/s", true});
-  s.height_hold_sigma_m = t.number("height_hold_sigma_m", s.height_hold_sigma_m, Range{0.0, 1000.0, "m", true});
-  s.residual_test_pfa = t.number("residual_test_pfa", s.residual_test_pfa, Range{0.0, 1.0, "", false, true});
-  s.max_exclusions = static_cast<int>(t.integer("max_exclusions", s.max_exclusions, 0, 32));
-  s.max_iterations = static_cast<int>(t.integer("max_iterations", s.max_iterations, 1, 100));
+  s.sigma_c_m_sqrt_hz = t.number("sigma_c_m_sqrt_hz", s.sigma_c_m_sqrt_hz, R::sigma_c_m_sqrt_hz);
+  s.iono_model_fraction = t.number("iono_model_fraction", s.iono_model_fraction, R::iono_model_fraction);
+  s.tropo_model_sigma_m = t.number("tropo_model_sigma_m", s.tropo_model_sigma_m, R::tropo_model_sigma_m);
+  s.sigma_range_rate_m_s = t.number("sigma_range_rate_m_s", s.sigma_range_rate_m_s, R::sigma_range_rate_m_s);
+  s.height_hold_sigma_m = t.number("height_hold_sigma_m", s.height_hold_sigma_m, R::height_hold_sigma_m);
+  s.residual_test_pfa = t.number("residual_test_pfa", s.residual_test_pfa, R::residual_test_pfa);
+  s.max_exclusions = integer_in(t, "max_exclusions", s.max_exclusions, R::max_exclusions);
+  s.max_iterations = integer_in(t, "max_iterations", s.max_iterations, R::max_iterations);
+  t.finish();
+  detail::validate_at(t, [&] { receiver::validate(s); });
+}
+
+void read_errors(TableReader& t, world::ErrorModelConfig& em) {
+  using R = world::ErrorModelRanges;
+  using Gm = world::GaussMarkovRanges;
+  detail::read_thermal_model(t, em);
+  em.thermal_sigma_m = t.number("thermal_sigma_m", em.thermal_sigma_m, R::thermal_sigma_m);
+  em.doppler_sigma_m_s = t.number("doppler_sigma_m_s", em.doppler_sigma_m_s, R::doppler_sigma_m_s);
+  if (auto oc = t.table("orbit_clock", false)) {
+    detail::read_gauss_markov(*oc, em.orbit_clock, "sigma_m", Gm::sigma_m, Gm::tau_s);
+  }
+  if (auto mp = t.table("multipath", false)) detail::read_gauss_markov(*mp, em.multipath, "sigma_m", Gm::sigma_m, Gm::tau_s);
+  if (auto g = t.table("gradient", false)) {
+    world::ErrorModelConfig::Gradient& gr = em.gradient;
+    gr.north_m = g->number("north_m", gr.north_m, R::gradient_north_m);
+    gr.east_m = g->number("east_m", gr.east_m, R::gradient_east_m);
+    gr.north_diurnal_m = g->number("north_diurnal_m", gr.north_diurnal_m, R::gradient_north_diurnal_m);
+    gr.north_peak_h = g->number("north_peak_h", gr.north_peak_h, R::gradient_north_peak_h);
+    gr.east_diurnal_m = g->number("east_diurnal_m", gr.east_diurnal_m, R::gradient_east_diurnal_m);
+    gr.east_peak_h = g->number("east_peak_h", gr.east_peak_h, R::gradient_east_peak_h);
+    detail::read_gauss_markov(*g, gr.process, "sigma_m", Gm::sigma_m, Gm::tau_s);
+  }
+  t.finish();
+}
+
+void read_clock(TableReader& t, world::ClockConfig& ck) {
+  using R = world::ClockRanges;
+  ck.bias_s = t.number("bias_s", ck.bias_s, R::bias_s);
+  ck.drift_s_s = t.number("drift_s_s", ck.drift_s_s, R::drift_s_s);
+  ck.drift_noise_s_s_sqrt_s = t.number("drift_noise_s_s_sqrt_s", ck.drift_noise_s_s_sqrt_s, R::drift_noise_s_s_sqrt_s);
+  ck.jump_threshold_s = t.number("jump_threshold_s", ck.jump_threshold_s, R::jump_threshold_s);
   t.finish();
 }
 
 void read_receiver(TableReader& t, Config& c) {
+  using R = receiver::ReceiverRanges;
   receiver::ReceiverConfig& r = c.receiver;
+  world::WorldConfig& w = c.world;
   c.rate_hz = t.number("rate_hz", c.rate_hz, Range{1.0, 10.0, "Hz"});
-  r.elevation_mask_rad =
-      t.number("elevation_mask_deg", r.elevation_mask_rad * kRadToDeg, Range{0.0, 90.0, "deg", false, true}) *
-      kDegToRad;
-  r.seed = static_cast<uint64_t>(
-      t.integer("seed", static_cast<int64_t>(r.seed), 0, std::numeric_limits<int64_t>::max()));
-  r.nominal_cn0_dbhz = t.number("nominal_cn0_dbhz", r.nominal_cn0_dbhz, Range{10.0, 60.0, "dB-Hz"});
-  r.max_pdop = t.number("max_pdop", r.max_pdop, Range{1.0, 1000.0, ""});
-  r.max_channels = static_cast<int>(t.integer("max_channels", r.max_channels, 4, 64));
-  if (auto e = t.table("errors", false)) {
-    receiver::ErrorModelConfig& em = r.errors;
-    detail::read_thermal_model(*e, em);
-    em.thermal_sigma_m = e->number("thermal_sigma_m", em.thermal_sigma_m, Range{0.0, 100.0, "m"});
-    em.doppler_sigma_m_s = e->number("doppler_sigma_m_s", em.doppler_sigma_m_s, Range{0.0, 10.0, "m/s"});
-    if (auto oc = e->table("orbit_clock", false)) read_gauss_markov(*oc, em.orbit_clock);
-    if (auto mp = e->table("multipath", false)) read_gauss_markov(*mp, em.multipath);
-    if (auto g = e->table("gradient", false)) {
-      em.gradient.north_m = g->number("north_m", em.gradient.north_m, Range{-100.0, 100.0, "m"});
-      em.gradient.east_m = g->number("east_m", em.gradient.east_m, Range{-100.0, 100.0, "m"});
-      em.gradient.north_diurnal_m = g->number("north_diurnal_m", em.gradient.north_diurnal_m, Range{0.0, 100.0, "m"});
-      em.gradient.north_peak_h =
-          g->number("north_peak_h", em.gradient.north_peak_h, Range{0.0, 24.0, "h", false, true});
-      em.gradient.east_diurnal_m = g->number("east_diurnal_m", em.gradient.east_diurnal_m, Range{0.0, 100.0, "m"});
-      em.gradient.east_peak_h = g->number("east_peak_h", em.gradient.east_peak_h, Range{0.0, 24.0, "h", false, true});
-      read_gauss_markov(*g, em.gradient.process);
-    }
-    e->finish();
-  }
-  if (auto k = t.table("clock", false)) {
-    receiver::ClockConfig& ck = r.clock;
-    // u-blox receivers steer their clock to within 1 ms; TCXO drift within 10 ppm.
-    ck.bias_s = k->number("bias_s", ck.bias_s, Range{-1.0e-2, 1.0e-2, "s"});
-    ck.drift_s_s = k->number("drift_s_s", ck.drift_s_s, Range{-1.0e-5, 1.0e-5, "s/s"});
-    ck.drift_noise_s_s_sqrt_s =
-        k->number("drift_noise_s_s_sqrt_s", ck.drift_noise_s_s_sqrt_s, Range{0.0, 1.0e-6, "s/s/sqrt(s)"});
-    ck.jump_threshold_s = k->number("jump_threshold_s", ck.jump_threshold_s, Range{0.0, 1.0e-2, "s"});
-    k->finish();
-  }
+  r.elevation_mask_rad = t.number("elevation_mask_deg", r.elevation_mask_rad * kRadToDeg, R::elevation_mask_deg) * kDegToRad;
+  // Any 64-bit seed is valid; TOML integers stop at 2^63 - 1.
+  w.seed = static_cast<uint64_t>(
+      t.integer("seed", static_cast<int64_t>(w.seed), 0, std::numeric_limits<int64_t>::max()));
+  w.nominal_cn0_dbhz = t.number("nominal_cn0_dbhz", w.nominal_cn0_dbhz, world::WorldRanges::nominal_cn0_dbhz);
+  r.max_pdop = t.number("max_pdop", r.max_pdop, R::max_pdop);
+  r.max_channels = integer_in(t, "max_channels", r.max_channels, R::max_channels);
+  if (auto e = t.table("errors", false)) read_errors(*e, w.errors);
+  if (auto k = t.table("clock", false)) read_clock(*k, w.clock);
   if (auto s = t.table("solver", false)) read_solver(*s, r.solver);
   if (auto s = t.table("corrections", false)) detail::read_corrections(*s, r.solver);
   t.finish();
+  detail::validate_at(t, [&] { receiver::validate(r); });
 }
 
 TruthInputConfig read_truth(TableReader& t) {
@@ -622,10 +629,10 @@ Config read_config(const toml::table& doc, const std::string& name, const std::s
   if (auto t = root.table("receiver", false)) read_receiver(*t, c);
   {
     std::optional<TableReader> atm = root.table("atmosphere", false);
-    if (atm) detail::read_atmosphere(*atm, c.receiver);
+    if (atm) detail::read_atmosphere(*atm, c.world);
     std::optional<TableReader> sig = root.table("signal", false);
-    if (sig) detail::read_signal(*sig, c.receiver);
-    detail::check_models(atm ? *atm : sig ? *sig : root, c.receiver);
+    if (sig) detail::read_signal(*sig, c.world, c.receiver);
+    detail::check_models(atm ? *atm : sig ? *sig : root, c.world, c.receiver);
   }
   if (auto t = root.table("truth", false)) c.truth = read_truth(*t);
   if (auto t = root.table("demo", false)) c.demo = read_demo(*t);

@@ -16,6 +16,7 @@
 #include "core/scene/mesh.hpp"
 #include "core/scene/propagator.hpp"
 #include "core/time/gps_time.hpp"
+#include "core/world/world_config.hpp"
 
 namespace gnssemu::config {
 
@@ -146,7 +147,8 @@ struct Config {
   std::string nav_file;           ///< absolute, or relative to the config file's folder (resolved)
   double rate_hz = 1.0;           ///< epoch rate, 1..10 Hz
   TimeConfig time;
-  receiver::ReceiverConfig receiver;
+  world::WorldConfig world;       ///< what happens to the signals ([receiver.errors], [receiver.clock], [atmosphere], [signal] ...)
+  receiver::ReceiverConfig receiver;  ///< the receiver's own settings ([receiver], [receiver.solver], [receiver.corrections] ...)
   TruthInputConfig truth;
   DemoConfig demo;
   std::vector<OutputPortConfig> outputs;

@@ -2,12 +2,13 @@
 #include "config/config_atmosphere.hpp"
 
 #include <array>
+#include <limits>
 #include <string_view>
 #include <utility>
 
 #include "core/atmosphere/clouds_rain.hpp"
 #include "core/common/error.hpp"
-#include "core/receiver/propagation.hpp"
+#include "core/world/propagation.hpp"
 #include "core/signal/link_budget.hpp"
 
 namespace gnssemu::config::detail {
@@ -44,8 +45,8 @@ constexpr std::array<Choice<ZhdModel>, 2> kZhdModels{
     {{"exponential", ZhdModel::kExponential}, {"saastamoinen", ZhdModel::kSaastamoinen}}};
 constexpr std::array<Choice<ZwdModel>, 2> kZwdModels{
     {{"fixed", ZwdModel::kFixed}, {"saastamoinen", ZwdModel::kSaastamoinen}}};
-constexpr std::array<Choice<receiver::ThermalModel>, 2> kThermalModels{
-    {{"dll", receiver::ThermalModel::kDll}, {"fixed", receiver::ThermalModel::kFixed}}};
+constexpr std::array<Choice<world::ThermalModel>, 2> kThermalModels{
+    {{"dll", world::ThermalModel::kDll}, {"fixed", world::ThermalModel::kFixed}}};
 constexpr std::array<Choice<signal::DllDiscriminator>, 2> kDiscriminators{
     {{"early_minus_late_power", signal::DllDiscriminator::kEarlyMinusLatePower},
      {"dot_product", signal::DllDiscriminator::kDotProduct}}};
@@ -72,56 +73,41 @@ std::string name_of(E value, const std::array<Choice<E>, N>& choices) {
   return std::string(choices[0].name);
 }
 
-// The reason of a core error without its "what:line: " prefix.
-std::string reason_of(const Error& e) {
-  const std::string w = e.what();
-  if (e.file().empty()) return w;
-  const std::size_t p = w.find(": ", e.file().size());
-  return p == std::string::npos ? w : w.substr(p + 2);
-}
-
 std::string quoted(std::string_view s) { return "\"" + std::string(s) + "\""; }
 
-void read_gm(TableReader& t, receiver::GaussMarkovConfig& gm, std::string_view sigma_key, std::string_view unit,
-             double sigma_max) {
-  gm.sigma_m = t.number(sigma_key, gm.sigma_m, Range{0.0, sigma_max, unit});
-  gm.tau_s = t.number("tau_s", gm.tau_s, Range{0.0, 1.0e6, "s", true});
-  t.finish();
-}
-
 void read_ionosphere(TableReader& t, atmosphere::IonosphereConfig& c) {
+  using R = atmosphere::IonosphereRanges;
   c.enabled = t.boolean("enabled", c.enabled);
   c.source = choice(t, "vtec_source", kVtecSources, c.source);
-  // 300 TECU is beyond the largest storm-time values observed (~250).
-  c.vtec_tecu = t.number("vtec_tecu", c.vtec_tecu, Range{0.0, 1000.0, "TECU"});
-  c.klobuchar_scale = t.number("klobuchar_scale", c.klobuchar_scale, Range{0.0, 20.0, ""});
+  c.vtec_tecu = t.number("vtec_tecu", c.vtec_tecu, R::vtec_tecu);
+  c.klobuchar_scale = t.number("klobuchar_scale", c.klobuchar_scale, R::klobuchar_scale);
   c.mapping = choice(t, "mapping", kIonoMappings, c.mapping);
-  c.obliquity_pivot_deg = t.number("obliquity_pivot_deg", c.obliquity_pivot_deg, Range{90.0, 100.0, "deg"});
-  c.shell_height_m = t.number("shell_height_m", c.shell_height_m, Range{50.0e3, 2000.0e3, "m"});
+  c.obliquity_pivot_deg = t.number("obliquity_pivot_deg", c.obliquity_pivot_deg, R::obliquity_pivot_deg);
+  c.shell_height_m = t.number("shell_height_m", c.shell_height_m, R::shell_height_m);
   if (auto p = t.table("perturbation", false)) {
-    receiver::GaussMarkovConfig gm{c.perturbation.sigma, c.perturbation.tau_s};
-    read_gm(*p, gm, "sigma_tecu", "TECU", 100.0);
+    world::GaussMarkovConfig gm{c.perturbation.sigma, c.perturbation.tau_s};
+    read_gauss_markov(*p, gm, "sigma_tecu", R::perturbation_sigma_tecu, R::perturbation_tau_s);
     c.perturbation = {gm.sigma_m, gm.tau_s};
   }
   t.finish();
 }
 
-void read_troposphere(TableReader& t, receiver::AtmosphereConfig& a) {
+void read_troposphere(TableReader& t, world::AtmosphereConfig& a) {
+  using R = atmosphere::TroposphereRanges;
   atmosphere::TroposphereConfig& c = a.troposphere;
   c.enabled = t.boolean("enabled", c.enabled);
   c.zhd_model = choice(t, "zhd_model", kZhdModels, c.zhd_model);
-  c.zhd_a_m = t.number("zhd_a_m", c.zhd_a_m, Range{0.0, 10.0, "m"});
-  c.zhd_b_per_m = t.number("zhd_b_per_m", c.zhd_b_per_m, Range{0.0, 1.0e-2, "1/m", false, true});
+  c.zhd_a_m = t.number("zhd_a_m", c.zhd_a_m, R::zhd_a_m);
+  c.zhd_b_per_m = t.number("zhd_b_per_m", c.zhd_b_per_m, R::zhd_b_per_m);
   c.zwd_model = choice(t, "zwd_model", kZwdModels, c.zwd_model);
-  c.zwd_m = t.number("zwd_m", c.zwd_m, Range{0.0, 1.0, "m"});
-  c.zwd_scale_height_m = t.number("zwd_scale_height_m", c.zwd_scale_height_m, Range{0.0, 20000.0, "m", true});
-  c.rel_humidity = t.number("rel_humidity", c.rel_humidity, Range{0.0, 1.0, ""});
-  if (auto p = t.table("zwd_perturbation", false)) read_gm(*p, a.zwd_perturbation, "sigma_m", "m", 1.0);
+  c.zwd_m = t.number("zwd_m", c.zwd_m, R::zwd_m);
+  c.zwd_scale_height_m = t.number("zwd_scale_height_m", c.zwd_scale_height_m, R::zwd_scale_height_m);
+  c.rel_humidity = t.number("rel_humidity", c.rel_humidity, R::rel_humidity);
+  if (auto p = t.table("zwd_perturbation", false)) {
+    read_gauss_markov(*p, a.zwd_perturbation, "sigma_m", world::AtmosphereRanges::zwd_perturbation_sigma_m,
+                      world::AtmosphereRanges::zwd_perturbation_tau_s);
+  }
   t.finish();
-}
-
-double temperature(TableReader& t, std::string_view key, double def) {
-  return t.number(key, def, Range{0.0, 5000.0, "K", true});
 }
 
 void read_shells(TableReader& t, atmosphere::ShellsConfig& c) {
@@ -130,15 +116,15 @@ void read_shells(TableReader& t, atmosphere::ShellsConfig& c) {
     if (!s) continue;
     atmosphere::Shell& sh = c.shells[i];
     sh.enabled = s->boolean("enabled", sh.enabled);
-    sh.bottom_m = s->number("bottom_m", sh.bottom_m, Range{-1000.0, 5.0e6, "m"});
-    sh.top_m = s->number("top_m", sh.top_m, Range{-1000.0, 5.0e6, "m"});
+    sh.bottom_m = s->number("bottom_m", sh.bottom_m, atmosphere::ShellRanges::bottom_m);
+    sh.top_m = s->number("top_m", sh.top_m, atmosphere::ShellRanges::top_m);
     if (sh.top_m < sh.bottom_m) {
       const toml::node* n = s->find("top_m");
       if (n == nullptr) n = s->find("bottom_m");
       s->fail(*n, s->path() + ": negative thickness (top_m " + format_number(sh.top_m) + " m < bottom_m " +
                       format_number(sh.bottom_m) + " m)");
     }
-    sh.temperature_k = temperature(*s, "temperature_k", sh.temperature_k);
+    sh.temperature_k = s->number("temperature_k", sh.temperature_k, atmosphere::ShellRanges::temperature_k);
     sh.gas_absorption = s->boolean("gas_absorption", sh.gas_absorption);
     s->finish();
   }
@@ -175,22 +161,39 @@ atmosphere::CloudLayer read_cloud(TableReader& t) {
     t.fail_missing(t.find("thickness_m") == nullptr ? "thickness_m" : "liquid_water_g_m3",
                    "key (or a preset)");
   }
-  l.base_m = t.number("base_m", l.base_m, Range{-1000.0, 30000.0, "m"});
+  using R = atmosphere::CloudLayerRanges;
+  l.base_m = t.number("base_m", l.base_m, R::base_m);
   if (const toml::node* n = t.find("thickness_m")) {
-    const double v = t.number("thickness_m", std::nullopt, Range{-1.0e9, 30000.0, "m"});
+    // A negative thickness gets its own message before the range's.
+    constexpr double kBig = std::numeric_limits<double>::max();
+    const double v = t.number("thickness_m", std::nullopt, Range{-kBig, kBig, R::thickness_m.unit});
     if (v < 0.0) t.fail(*n, t.full_name("thickness_m") + ": negative thickness " + format_number(v) + " m");
-    l.thickness_m = v;
+    l.thickness_m = t.number("thickness_m", std::nullopt, R::thickness_m);
   }
-  l.liquid_water_g_m3 = t.number("liquid_water_g_m3", l.liquid_water_g_m3, Range{0.0, 20.0, "g/m^3"});
-  l.temperature_k = temperature(t, "temperature_k", l.temperature_k);
+  l.liquid_water_g_m3 = t.number("liquid_water_g_m3", l.liquid_water_g_m3, R::liquid_water_g_m3);
+  l.temperature_k = t.number("temperature_k", l.temperature_k, R::temperature_k);
   t.finish();
   return l;
 }
 
 }  // namespace
 
-void read_thermal_model(TableReader& errors, receiver::ErrorModelConfig& e) {
+void read_thermal_model(TableReader& errors, world::ErrorModelConfig& e) {
   e.thermal_model = choice(errors, "thermal_model", kThermalModels, e.thermal_model);
+}
+
+void read_gauss_markov(TableReader& t, world::GaussMarkovConfig& gm, std::string_view sigma_key,
+                       const gnssemu::Range& sigma, const gnssemu::Range& tau) {
+  gm.sigma_m = t.number(sigma_key, gm.sigma_m, sigma);
+  gm.tau_s = t.number("tau_s", gm.tau_s, tau);
+  t.finish();
+}
+
+std::string reason_of(const Error& e) {
+  const std::string w = e.what();
+  if (e.file().empty()) return w;
+  const std::size_t p = w.find(": ", e.file().size());
+  return p == std::string::npos ? w : w.substr(p + 2);
 }
 
 void read_corrections(TableReader& t, receiver::SolverConfig& s) {
@@ -199,15 +202,16 @@ void read_corrections(TableReader& t, receiver::SolverConfig& s) {
   t.finish();
 }
 
-void read_atmosphere(TableReader& t, receiver::ReceiverConfig& r) {
-  receiver::AtmosphereConfig& a = r.atmosphere;
-  a.cache_refresh_s = t.number("cache_refresh_s", a.cache_refresh_s, Range{0.0, 3600.0, "s"});
+void read_atmosphere(TableReader& t, world::WorldConfig& w) {
+  world::AtmosphereConfig& a = w.atmosphere;
+  a.cache_refresh_s = t.number("cache_refresh_s", a.cache_refresh_s, world::AtmosphereRanges::cache_refresh_s);
   a.cache_mode = choice(t, "cache_mode", kCacheModes, a.cache_mode);
   a.gases = t.boolean("gases", a.gases);
-  a.shells.gas.water_vapour_density_g_m3 =
-      t.number("water_vapour_density_g_m3", a.shells.gas.water_vapour_density_g_m3, Range{0.0, 50.0, "g/m^3"});
-  a.shells.gas.water_vapour_scale_height_m = t.number(
-      "water_vapour_scale_height_m", a.shells.gas.water_vapour_scale_height_m, Range{0.0, 20000.0, "m", true});
+  atmosphere::GasConfig& gas = a.shells.gas;
+  gas.water_vapour_density_g_m3 = t.number("water_vapour_density_g_m3", gas.water_vapour_density_g_m3,
+                                           atmosphere::GasRanges::water_vapour_density_g_m3);
+  gas.water_vapour_scale_height_m = t.number("water_vapour_scale_height_m", gas.water_vapour_scale_height_m,
+                                             atmosphere::GasRanges::water_vapour_scale_height_m);
   if (auto s = t.table("ionosphere", false)) read_ionosphere(*s, a.ionosphere);
   if (auto s = t.table("troposphere", false)) read_troposphere(*s, a);
   if (auto s = t.table("shells", false)) read_shells(*s, a.shells);
@@ -221,18 +225,20 @@ void read_atmosphere(TableReader& t, receiver::ReceiverConfig& r) {
   a.clouds_rain.layer_count = clouds.size();
   for (std::size_t i = 0; i < clouds.size(); ++i) a.clouds_rain.layers[i] = read_cloud(clouds[i]);
   if (auto s = t.table("rain", false)) {
+    using R = atmosphere::RainRanges;
     atmosphere::RainConfig& rain = a.clouds_rain.rain;
-    rain.rate_mm_h = s->number("rate_mm_h", rain.rate_mm_h, Range{0.0, 500.0, "mm/h"});
-    rain.rain_height_m = s->number("rain_height_m", rain.rain_height_m, Range{0.0, 10000.0, "m"});
-    rain.k = s->number("k", rain.k, Range{0.0, 1.0, ""});
-    rain.alpha = s->number("alpha", rain.alpha, Range{0.0, 5.0, "", true});
+    rain.rate_mm_h = s->number("rate_mm_h", rain.rate_mm_h, R::rate_mm_h);
+    rain.rain_height_m = s->number("rain_height_m", rain.rain_height_m, R::rain_height_m);
+    rain.k = s->number("k", rain.k, R::k);
+    rain.alpha = s->number("alpha", rain.alpha, R::alpha);
     s->finish();
   }
   t.finish();
 }
 
-void read_signal(TableReader& t, receiver::ReceiverConfig& r) {
-  receiver::SignalConfig& s = r.signal;
+void read_signal(TableReader& t, world::WorldConfig& w, receiver::ReceiverConfig& r) {
+  world::SignalConfig& s = w.signal;
+  signal::TrackingThresholds& tracking = r.tracking;
   signal::LinkBudgetConfig& l = s.link;
   s.enabled = t.boolean("enabled", s.enabled);
   const toml::node* env = t.find("environment");
@@ -248,24 +254,25 @@ void read_signal(TableReader& t, receiver::ReceiverConfig& r) {
       t.fail(*env, t.full_name("environment") + ": " + reason_of(e));
     }
   }
-  l.environment_noise_rise_db =
-      t.number("noise_rise_db", l.environment_noise_rise_db, Range{0.0, 60.0, "dB"});
-  l.eirp_dbw = t.number("eirp_dbw", l.eirp_dbw, Range{0.0, 60.0, "dBW", true, true});
-  l.noise_figure_db = t.number("noise_figure_db", l.noise_figure_db, Range{0.0, 30.0, "dB"});
-  l.noise_temperature_k = temperature(t, "noise_temperature_k", l.noise_temperature_k);
-  l.implementation_loss_db = t.number("implementation_loss_db", l.implementation_loss_db, Range{0.0, 30.0, "dB"});
-  s.tracking.acquire_dbhz = t.number("acquire_dbhz", s.tracking.acquire_dbhz, Range{0.0, 60.0, "dB-Hz"});
-  s.tracking.lose_dbhz = t.number("lose_dbhz", s.tracking.lose_dbhz, Range{0.0, 60.0, "dB-Hz"});
-  if (s.tracking.lose_dbhz > s.tracking.acquire_dbhz) {
+  using L = signal::LinkBudgetRanges;
+  l.environment_noise_rise_db = t.number("noise_rise_db", l.environment_noise_rise_db, L::environment_noise_rise_db);
+  l.eirp_dbw = t.number("eirp_dbw", l.eirp_dbw, L::eirp_dbw);
+  l.noise_figure_db = t.number("noise_figure_db", l.noise_figure_db, L::noise_figure_db);
+  l.noise_temperature_k = t.number("noise_temperature_k", l.noise_temperature_k, L::noise_temperature_k);
+  l.implementation_loss_db = t.number("implementation_loss_db", l.implementation_loss_db, L::implementation_loss_db);
+  tracking.acquire_dbhz = t.number("acquire_dbhz", tracking.acquire_dbhz, signal::TrackingRanges::acquire_dbhz);
+  tracking.lose_dbhz = t.number("lose_dbhz", tracking.lose_dbhz, signal::TrackingRanges::lose_dbhz);
+  if (tracking.lose_dbhz > tracking.acquire_dbhz) {
     const toml::node* n = t.find("lose_dbhz");
     if (n == nullptr) n = t.find("acquire_dbhz");
-    t.fail(*n, t.path() + ": lose_dbhz " + format_number(s.tracking.lose_dbhz) + " exceeds acquire_dbhz " +
-                   format_number(s.tracking.acquire_dbhz) + " (hysteresis needs lose <= acquire)");
+    t.fail(*n, t.path() + ": lose_dbhz " + format_number(tracking.lose_dbhz) + " exceeds acquire_dbhz " +
+                   format_number(tracking.acquire_dbhz) + " (hysteresis needs lose <= acquire)");
   }
   if (auto a = t.table("antenna", false)) {
+    using A = signal::AntennaRanges;
     signal::AntennaPattern& p = l.antenna;
-    p.zenith_gain_dbi = a->number("zenith_gain_dbi", p.zenith_gain_dbi, Range{-30.0, 30.0, "dBic"});
-    p.horizon_gain_dbi = a->number("horizon_gain_dbi", p.horizon_gain_dbi, Range{-40.0, 30.0, "dBic"});
+    p.zenith_gain_dbi = a->number("zenith_gain_dbi", p.zenith_gain_dbi, A::zenith_gain_dbi);
+    p.horizon_gain_dbi = a->number("horizon_gain_dbi", p.horizon_gain_dbi, A::horizon_gain_dbi);
     if (p.horizon_gain_dbi > p.zenith_gain_dbi) {
       const toml::node* n = a->find("horizon_gain_dbi");
       if (n == nullptr) n = a->find("zenith_gain_dbi");
@@ -273,33 +280,29 @@ void read_signal(TableReader& t, receiver::ReceiverConfig& r) {
                       " exceeds zenith_gain_dbi " + format_number(p.zenith_gain_dbi));
     }
     p.below_horizon_slope_db_per_deg =
-        a->number("below_horizon_slope_db_per_deg", p.below_horizon_slope_db_per_deg, Range{0.0, 10.0, "dB/deg"});
+        a->number("below_horizon_slope_db_per_deg", p.below_horizon_slope_db_per_deg, A::below_horizon_slope_db_per_deg);
     a->finish();
   }
   if (auto d = t.table("dll", false)) {
+    using D = signal::DllRanges;
     signal::DllParams& p = s.dll;
-    p.loop_bandwidth_hz = d->number("loop_bandwidth_hz", p.loop_bandwidth_hz, Range{0.0, 50.0, "Hz", true});
-    p.integration_s = d->number("integration_s", p.integration_s, Range{0.0, 1.0, "s", true});
-    p.spacing_chips = d->number("spacing_chips", p.spacing_chips, Range{0.0, 1.0, "chips", true});
+    p.loop_bandwidth_hz = d->number("loop_bandwidth_hz", p.loop_bandwidth_hz, D::loop_bandwidth_hz);
+    p.integration_s = d->number("integration_s", p.integration_s, D::integration_s);
+    p.spacing_chips = d->number("spacing_chips", p.spacing_chips, D::spacing_chips);
     p.discriminator = choice(*d, "discriminator", kDiscriminators, p.discriminator);
     d->finish();
   }
   t.finish();
 }
 
-void check_models(const TableReader& at, const receiver::ReceiverConfig& r) {
-  try {
-    const receiver::AtmospherePropagation atmosphere(r.atmosphere);
-    const signal::LinkBudgetModel link(r.signal.link);
-    signal::validate(r.signal.tracking);
-    signal::validate(r.signal.dll);
-    const atmosphere::SlowTermCache<1> cache(r.atmosphere.cache_refresh_s);
-  } catch (const Error& e) {
-    throw Error(at.file(), at.line(), reason_of(e));
-  }
+void check_models(const TableReader& at, const world::WorldConfig& w, const receiver::ReceiverConfig& r) {
+  validate_at(at, [&] {
+    world::validate(w);
+    receiver::validate(r);
+  });
 }
 
-std::string thermal_model_name(receiver::ThermalModel m) { return name_of(m, kThermalModels); }
+std::string thermal_model_name(world::ThermalModel m) { return name_of(m, kThermalModels); }
 
 std::string corrections_toml(const receiver::SolverConfig& s, std::string (*)(double)) {
   std::string o = "\n[receiver.corrections]  # what the receiver subtracts (broadcast models)\n";
@@ -308,8 +311,8 @@ std::string corrections_toml(const receiver::SolverConfig& s, std::string (*)(do
   return o;
 }
 
-std::string atmosphere_toml(const receiver::ReceiverConfig& r, std::string (*number)(double)) {
-  const receiver::AtmosphereConfig& a = r.atmosphere;
+std::string atmosphere_toml(const world::WorldConfig& w, std::string (*number)(double)) {
+  const world::AtmosphereConfig& a = w.atmosphere;
   const auto b = [](bool v) { return std::string(v ? "true" : "false"); };
   std::string o = "\n[atmosphere]  # what the world does to the signal\n";
   o += "cache_refresh_s = " + number(a.cache_refresh_s) + "\n";
@@ -368,8 +371,8 @@ std::string atmosphere_toml(const receiver::ReceiverConfig& r, std::string (*num
   return o;
 }
 
-std::string signal_toml(const receiver::ReceiverConfig& r, std::string (*number)(double)) {
-  const receiver::SignalConfig& s = r.signal;
+std::string signal_toml(const world::WorldConfig& w, const receiver::ReceiverConfig& r, std::string (*number)(double)) {
+  const world::SignalConfig& s = w.signal;
   const signal::LinkBudgetConfig& l = s.link;
   std::string o = "\n[signal]  # link budget -> C/N0, tracking\n";
   o += std::string("enabled = ") + (s.enabled ? "true" : "false") + "\n";
@@ -378,8 +381,8 @@ std::string signal_toml(const receiver::ReceiverConfig& r, std::string (*number)
   o += "noise_figure_db = " + number(l.noise_figure_db) + "\n";
   o += "noise_temperature_k = " + number(l.noise_temperature_k) + "\n";
   o += "implementation_loss_db = " + number(l.implementation_loss_db) + "\n";
-  o += "acquire_dbhz = " + number(s.tracking.acquire_dbhz) + "\n";
-  o += "lose_dbhz = " + number(s.tracking.lose_dbhz) + "\n";
+  o += "acquire_dbhz = " + number(r.tracking.acquire_dbhz) + "\n";
+  o += "lose_dbhz = " + number(r.tracking.lose_dbhz) + "\n";
   o += "\n[signal.antenna]\n";
   o += "zenith_gain_dbi = " + number(l.antenna.zenith_gain_dbi) + "\n";
   o += "horizon_gain_dbi = " + number(l.antenna.horizon_gain_dbi) + "\n";

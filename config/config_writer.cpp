@@ -153,8 +153,9 @@ std::string rates(const OutputPortConfig& p) {
 
 std::string to_toml(const Config& c, const std::string& relative_to) {
   const receiver::ReceiverConfig& r = c.receiver;
-  if (r.seed > static_cast<uint64_t>(std::numeric_limits<int64_t>::max())) {
-    throw Error("receiver.seed " + std::to_string(r.seed) + " does not fit a TOML integer (max 2^63 - 1)");
+  const world::WorldConfig& w = c.world;
+  if (w.seed > static_cast<uint64_t>(std::numeric_limits<int64_t>::max())) {
+    throw Error("receiver.seed " + std::to_string(w.seed) + " does not fit a TOML integer (max 2^63 - 1)");
   }
   std::string o;
   o += "# gnssemu configuration. Keys, units and ranges: docs/configuration.md\n";
@@ -174,35 +175,35 @@ std::string to_toml(const Config& c, const std::string& relative_to) {
   o += "\n[receiver]\n";
   o += "rate_hz = " + number(c.rate_hz) + "\n";
   o += "elevation_mask_deg = " + degrees(r.elevation_mask_rad) + "\n";
-  o += "seed = " + std::to_string(r.seed) + "\n";
-  o += "nominal_cn0_dbhz = " + number(r.nominal_cn0_dbhz) + "\n";
+  o += "seed = " + std::to_string(w.seed) + "\n";
+  o += "nominal_cn0_dbhz = " + number(w.nominal_cn0_dbhz) + "\n";
   o += "max_pdop = " + number(r.max_pdop) + "\n";
   o += "max_channels = " + std::to_string(r.max_channels) + "\n";
   o += "\n[receiver.errors]\n";
-  o += "thermal_model = \"" + detail::thermal_model_name(r.errors.thermal_model) + "\"\n";
-  o += "thermal_sigma_m = " + number(r.errors.thermal_sigma_m) + "\n";
-  o += "doppler_sigma_m_s = " + number(r.errors.doppler_sigma_m_s) + "\n";
+  o += "thermal_model = \"" + detail::thermal_model_name(w.errors.thermal_model) + "\"\n";
+  o += "thermal_sigma_m = " + number(w.errors.thermal_sigma_m) + "\n";
+  o += "doppler_sigma_m_s = " + number(w.errors.doppler_sigma_m_s) + "\n";
   o += "\n[receiver.errors.orbit_clock]  # first-order Gauss-Markov\n";
-  o += "sigma_m = " + number(r.errors.orbit_clock.sigma_m) + "\n";
-  o += "tau_s = " + number(r.errors.orbit_clock.tau_s) + "\n";
+  o += "sigma_m = " + number(w.errors.orbit_clock.sigma_m) + "\n";
+  o += "tau_s = " + number(w.errors.orbit_clock.tau_s) + "\n";
   o += "\n[receiver.errors.multipath]  # unit Gauss-Markov x sigma_m / sin(el); sigma_m 0 = off\n";
-  o += "sigma_m = " + number(r.errors.multipath.sigma_m) + "\n";
-  o += "tau_s = " + number(r.errors.multipath.tau_s) + "\n";
+  o += "sigma_m = " + number(w.errors.multipath.sigma_m) + "\n";
+  o += "tau_s = " + number(w.errors.multipath.tau_s) + "\n";
   o += "\n[receiver.errors.gradient]  # delay += G_N cos(az) + G_E sin(az); G_N = north_m + "
        "north_diurnal_m cos(2 pi (LT - north_peak_h) / 24 h) + g_N (E alike); g: Gauss-Markov\n";
-  o += "north_m = " + number(r.errors.gradient.north_m) + "\n";
-  o += "east_m = " + number(r.errors.gradient.east_m) + "\n";
-  o += "north_diurnal_m = " + number(r.errors.gradient.north_diurnal_m) + "\n";
-  o += "north_peak_h = " + number(r.errors.gradient.north_peak_h) + "\n";
-  o += "east_diurnal_m = " + number(r.errors.gradient.east_diurnal_m) + "\n";
-  o += "east_peak_h = " + number(r.errors.gradient.east_peak_h) + "\n";
-  o += "sigma_m = " + number(r.errors.gradient.process.sigma_m) + "\n";
-  o += "tau_s = " + number(r.errors.gradient.process.tau_s) + "\n";
+  o += "north_m = " + number(w.errors.gradient.north_m) + "\n";
+  o += "east_m = " + number(w.errors.gradient.east_m) + "\n";
+  o += "north_diurnal_m = " + number(w.errors.gradient.north_diurnal_m) + "\n";
+  o += "north_peak_h = " + number(w.errors.gradient.north_peak_h) + "\n";
+  o += "east_diurnal_m = " + number(w.errors.gradient.east_diurnal_m) + "\n";
+  o += "east_peak_h = " + number(w.errors.gradient.east_peak_h) + "\n";
+  o += "sigma_m = " + number(w.errors.gradient.process.sigma_m) + "\n";
+  o += "tau_s = " + number(w.errors.gradient.process.tau_s) + "\n";
   o += "\n[receiver.clock]\n";
-  o += "bias_s = " + number(r.clock.bias_s) + "\n";
-  o += "drift_s_s = " + number(r.clock.drift_s_s) + "\n";
-  o += "drift_noise_s_s_sqrt_s = " + number(r.clock.drift_noise_s_s_sqrt_s) + "\n";
-  o += "jump_threshold_s = " + number(r.clock.jump_threshold_s) + "\n";
+  o += "bias_s = " + number(w.clock.bias_s) + "\n";
+  o += "drift_s_s = " + number(w.clock.drift_s_s) + "\n";
+  o += "drift_noise_s_s_sqrt_s = " + number(w.clock.drift_noise_s_s_sqrt_s) + "\n";
+  o += "jump_threshold_s = " + number(w.clock.jump_threshold_s) + "\n";
   o += "\n[receiver.solver]  # what the receiver's own solver assumes\n";
   o += "sigma_a_m = " + number(r.solver.sigma_a_m) + "\n";
   o += "sigma_b_m = " + number(r.solver.sigma_b_m) + "\n";
@@ -215,8 +216,8 @@ std::string to_toml(const Config& c, const std::string& relative_to) {
   o += "max_exclusions = " + std::to_string(r.solver.max_exclusions) + "\n";
   o += "max_iterations = " + std::to_string(r.solver.max_iterations) + "\n";
   o += detail::corrections_toml(r.solver, number);
-  o += detail::atmosphere_toml(r, number);
-  o += detail::signal_toml(r, number);
+  o += detail::atmosphere_toml(w, number);
+  o += detail::signal_toml(w, r, number);
 
   o += "\n[truth]  # UDP truth input\n";
   o += "bind = " + quoted(c.truth.bind_address) + "\n";

@@ -25,9 +25,4 @@ std::unique_ptr<scene::Scene> load_scene(const Config& c, scene::MeshStats* stat
   return out;
 }
 
-void attach_scene(receiver::Receiver& rx, const Config& c, const scene::Scene* scene) {
-  if (scene == nullptr || !c.scene) return;
-  rx.attach_scene(*scene, c.origin, c.scene->search);
-}
-
 }  // namespace gnssemu::config

@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "config/device_setup.hpp"
+#include "config/pipeline_setup.hpp"
 #include "config/scene_loader.hpp"
 #include "core/common/error.hpp"
 #include "core/time/unix_time.hpp"
@@ -71,10 +72,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
 void Daemon::restart_receiver() {
   // A fresh receiver (start-up, or GPS time going back) with the nav header's
   // leap seconds and Klobuchar coefficients.
-  receiver_ = std::make_unique<receiver::Receiver>(store_, cfg_.receiver);
-  if (nav_leap_s_) receiver_->set_leap_seconds(*nav_leap_s_);
-  receiver_->set_klobuchar(nav_klobuchar_);
-  config::attach_scene(*receiver_, cfg_, scene_.get());
+  receiver_ = config::make_pipeline(cfg_, store_, pipeline::Broadcast{nav_klobuchar_, nav_leap_s_}, scene_.get());
 }
 
 void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& result) {
@@ -212,9 +210,9 @@ void Daemon::note_clock_wrap(int64_t wraps) {
   restart_receiver();
 }
 
-receiver::Truth Daemon::fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept {
+world::Truth Daemon::fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept {
   if (!router_.has_driver() && cfg_.demo.enabled) return demo_.truth(t, demo_elapsed_s);
-  receiver::Truth none;
+  world::Truth none;
   none.t = t;
   return none;
 }
@@ -226,7 +224,7 @@ void Daemon::on_timer(const boost::system::error_code& ec) {
     const double offset_s = sched_base_s_ + epoch_offset_s(index_, rate_hz_);
     const EpochTime e = realtime_gps_time(coverage_, offset_s);
     note_clock_wrap(e.wraps);
-    const receiver::Truth truth =
+    const world::Truth truth =
         router_.has_driver() ? router_.truth_at(e.t, now) : fallback_truth(e.t, offset_s);
     emit_epoch(e.t, truth);
   } else if (!router_.driver_fresh(now)) {
@@ -262,7 +260,7 @@ void Daemon::lockstep_advance(const time::GpsTime& stamp) {
   }
 }
 
-void Daemon::emit_epoch(const time::GpsTime& t, const receiver::Truth& truth) {
+void Daemon::emit_epoch(const time::GpsTime& t, const world::Truth& truth) {
   const receiver::Fix& fix = receiver_->step(t, truth);
   ++epochs_;
   device_.on_epoch(fix, now_s());

@@ -15,7 +15,7 @@
 #include "core/geo/local_frame.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/nav_data.hpp"
-#include "core/receiver/receiver.hpp"
+#include "core/pipeline/pipeline.hpp"
 #include "core/scene/scene.hpp"
 #include "daemon/demo_trajectory.hpp"
 #include "daemon/drop_stats.hpp"
@@ -57,8 +57,8 @@ private:
   void on_datagram(std::size_t n);
   void lockstep_advance(const time::GpsTime& stamp);
   void align_to_packet_time(const time::GpsTime& stamp);
-  void emit_epoch(const time::GpsTime& t, const receiver::Truth& truth);
-  receiver::Truth fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept;
+  void emit_epoch(const time::GpsTime& t, const world::Truth& truth);
+  world::Truth fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept;
   void note_clock_wrap(int64_t wraps);
   /// The device's epoch period may have changed (CFG-RATE, a reset or a
   /// configuration load from channel src): run at it.
@@ -72,7 +72,7 @@ private:
   orbit::EphemerisStore store_;
   geo::LocalFrame frame_;
   std::unique_ptr<scene::Scene> scene_;  ///< buildings ([scene]); outlives receiver_
-  std::unique_ptr<receiver::Receiver> receiver_;
+  std::unique_ptr<pipeline::Pipeline> receiver_;  ///< the emulated receiver in its world
   DemoTrajectory demo_;
   TruthRouter router_;
   DropStats drops_;

@@ -22,8 +22,8 @@ Enu DemoTrajectory::velocity_enu(double elapsed_s) const noexcept {
   return Enu(-v * std::sin(a), v * std::cos(a), 0.0);
 }
 
-receiver::Truth DemoTrajectory::truth(const time::GpsTime& t, double elapsed_s) const noexcept {
-  receiver::Truth out;
+world::Truth DemoTrajectory::truth(const time::GpsTime& t, double elapsed_s) const noexcept {
+  world::Truth out;
   out.t = t;
   out.pos_m = frame_.to_ecef(position_enu(elapsed_s));
   out.vel_m_s = Ecef(frame_.vector_to_ecef(velocity_enu(elapsed_s)));

@@ -2,7 +2,7 @@
 // Built-in demo: a circle around the configured origin, counter-clockwise
 // seen from above, starting due east. Drives the receiver while no simulator sends.
 #include "core/geo/local_frame.hpp"
-#include "core/receiver/receiver.hpp"
+#include "core/world/truth.hpp"
 
 namespace gnssemu::daemon {
 
@@ -15,7 +15,7 @@ public:
   Enu position_enu(double elapsed_s) const noexcept;
   Enu velocity_enu(double elapsed_s) const noexcept;
   /// Valid truth at GPS time t, elapsed_s (s) after the demo began.
-  receiver::Truth truth(const time::GpsTime& t, double elapsed_s) const noexcept;
+  world::Truth truth(const time::GpsTime& t, double elapsed_s) const noexcept;
 
 private:
   const geo::LocalFrame& frame_;

@@ -19,7 +19,7 @@ TruthRouter::Ingest TruthRouter::ingest(const TruthSample& sample, const time::G
       r.reason = DropReason::kTooManyVehicles;
       return r;
     }
-    vehicles_.push_back(Vehicle{sample.vehicle, TruthTrack{}, SimClockMap{}});
+    vehicles_.push_back(Vehicle{sample.vehicle, VehicleTrack{}, SimClockMap{}});
     idx = static_cast<int>(vehicles_.size() - 1);
     r.new_vehicle = true;
   }
@@ -51,11 +51,11 @@ TruthRouter::Ingest TruthRouter::ingest(const TruthSample& sample, const time::G
   }
 
   const auto added = v.track.add(sample.sim_time_s, r.stamp, sample.pos_m, sample.vel_m_s, now_s);
-  if (added == TruthTrack::AddResult::kSimTimeBackwards) {
+  if (added == VehicleTrack::AddResult::kSimTimeBackwards) {
     r.reason = DropReason::kSimTimeBackwards;
     return r;
   }
-  r.restarted = added == TruthTrack::AddResult::kRestarted;
+  r.restarted = added == VehicleTrack::AddResult::kRestarted;
   r.accepted = true;
 
   if (driver_ < 0 && (driving_id_.empty() || driving_id_ == v.id)) {
@@ -66,9 +66,9 @@ TruthRouter::Ingest TruthRouter::ingest(const TruthSample& sample, const time::G
   return r;
 }
 
-receiver::Truth TruthRouter::truth_at(const time::GpsTime& t, double now_s) const noexcept {
+world::Truth TruthRouter::truth_at(const time::GpsTime& t, double now_s) const noexcept {
   if (driver_ < 0) {
-    receiver::Truth none;
+    world::Truth none;
     none.t = t;
     return none;
   }
@@ -81,7 +81,7 @@ bool TruthRouter::driver_fresh(double now_s) const noexcept {
 
 std::optional<time::GpsTime> TruthRouter::driver_newest() const noexcept {
   if (driver_ < 0) return std::nullopt;
-  const TruthTrack& tr = vehicles_[static_cast<std::size_t>(driver_)].track;
+  const VehicleTrack& tr = vehicles_[static_cast<std::size_t>(driver_)].track;
   if (tr.size() == 0) return std::nullopt;
   return tr.newest().t;
 }

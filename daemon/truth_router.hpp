@@ -9,7 +9,7 @@
 #include "config/config.hpp"
 #include "daemon/time_mapping.hpp"
 #include "daemon/truth_packet.hpp"
-#include "daemon/truth_track.hpp"
+#include "daemon/vehicle_track.hpp"
 
 namespace gnssemu::daemon {
 
@@ -36,7 +36,7 @@ public:
   Ingest ingest(const TruthSample& sample, const time::GpsTime& clock_gps, double now_s);
 
   /// Truth of the driving vehicle at GPS time t (invalid when none or timed out).
-  receiver::Truth truth_at(const time::GpsTime& t, double now_s) const noexcept;
+  world::Truth truth_at(const time::GpsTime& t, double now_s) const noexcept;
 
   /// Whether any sample of the driving vehicle was ever accepted (after this,
   /// the demo never drives the receiver again).
@@ -56,7 +56,7 @@ public:
 private:
   struct Vehicle {
     std::string id;
-    TruthTrack track;
+    VehicleTrack track;
     SimClockMap clock;
   };
 

@@ -63,28 +63,32 @@ double rain_specific_attenuation_db_km(double rate_mm_h, double k, double alpha)
   return k * std::pow(rate_mm_h, alpha);
 }
 
-CloudsRain::CloudsRain(const CloudsRainConfig& cfg) : cfg_(cfg) {
+void validate(const CloudsRainConfig& cfg) {
+  const std::string what = "clouds/rain config";
   require(cfg.layer_count <= kMaxCloudLayers,
           "at most " + std::to_string(kMaxCloudLayers) + " cloud layers, got " + std::to_string(cfg.layer_count));
-  require(std::isfinite(cfg.freq_hz) && cfg.freq_hz > 0.0, "freq_hz must be > 0 Hz");
+  check_range(cfg.freq_hz, CloudsRainRanges::freq_hz, what, "freq_hz");
   for (std::size_t i = 0; i < cfg.layer_count; ++i) {
     const CloudLayer& l = cfg.layers[i];
     const std::string n = "cloud layer " + std::to_string(i + 1);
-    require(std::isfinite(l.base_m) && l.base_m >= -1000.0, n + ": base must be >= -1000 m");
-    require(std::isfinite(l.thickness_m) && l.thickness_m >= 0.0,
-            n + ": negative thickness " + std::to_string(l.thickness_m) + " m");
-    require(std::isfinite(l.liquid_water_g_m3) && l.liquid_water_g_m3 >= 0.0 && l.liquid_water_g_m3 <= 20.0,
-            n + ": liquid water density must be in [0, 20] g/m^3");
-    require(std::isfinite(l.temperature_k) && l.temperature_k > 0.0,
-            n + ": temperature must be > 0 K, got " + std::to_string(l.temperature_k));
+    using L = CloudLayerRanges;
+    check_ranges(what, {{l.base_m, L::base_m, n + " base_m"}, {l.thickness_m, L::thickness_m, n + " thickness_m"},
+                        {l.liquid_water_g_m3, L::liquid_water_g_m3, n + " liquid_water_g_m3"},
+                        {l.temperature_k, L::temperature_k, n + " temperature_k"}});
+  }
+  using R = RainRanges;
+  const RainConfig& r = cfg.rain;
+  check_ranges(what, {{r.rate_mm_h, R::rate_mm_h, "rain.rate_mm_h"}, {r.rain_height_m, R::rain_height_m, "rain.rain_height_m"},
+                      {r.k, R::k, "rain.k"}, {r.alpha, R::alpha, "rain.alpha"}});
+}
+
+CloudsRain::CloudsRain(const CloudsRainConfig& cfg) : cfg_(cfg) {
+  validate(cfg);
+  for (std::size_t i = 0; i < cfg.layer_count; ++i) {
+    const CloudLayer& l = cfg.layers[i];
     gamma_db_m_[i] = cloud_specific_attenuation_coeff(cfg.freq_hz, l.temperature_k) * l.liquid_water_g_m3 * 1e-3;
   }
   const RainConfig& r = cfg.rain;
-  require(std::isfinite(r.rate_mm_h) && r.rate_mm_h >= 0.0 && r.rate_mm_h <= 500.0,
-          "rain rate must be in [0, 500] mm/h, got " + std::to_string(r.rate_mm_h));
-  require(std::isfinite(r.rain_height_m) && r.rain_height_m >= 0.0, "rain height must be >= 0 m");
-  require(std::isfinite(r.k) && r.k >= 0.0 && std::isfinite(r.alpha) && r.alpha > 0.0,
-          "rain coefficients must be k >= 0, alpha > 0");
   rain_gamma_db_m_ = rain_specific_attenuation_db_km(r.rate_mm_h, r.k, r.alpha) * 1e-3;
 }
 

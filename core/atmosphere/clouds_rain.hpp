@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <string_view>
 
+#include "core/common/range.hpp"
+
 namespace gnssemu::atmosphere {
 
 /// P.840 specific attenuation coefficient of cloud liquid water,
@@ -56,8 +58,28 @@ struct CloudsRainAttenuation {
   double rain_db = 0.0;
 };
 
-/// Validated clouds and rain. Throws gnssemu::Error for negative thickness,
-/// negative density or rate, temperature <= 0 K, more than kMaxCloudLayers.
+/// Valid values of CloudLayer's, RainConfig's and CloudsRainConfig's fields.
+struct CloudLayerRanges {
+  static constexpr Range base_m{-1000.0, 30000.0, "m"};
+  static constexpr Range thickness_m{0.0, 30000.0, "m"};
+  static constexpr Range liquid_water_g_m3{0.0, 20.0, "g/m^3"};
+  static constexpr Range temperature_k{0.0, 5000.0, "K", true};
+};
+struct RainRanges {
+  static constexpr Range rate_mm_h{0.0, 500.0, "mm/h"};
+  static constexpr Range rain_height_m{0.0, 10000.0, "m"};
+  static constexpr Range k{0.0, 1.0, ""};
+  static constexpr Range alpha{0.0, 5.0, "", true};
+};
+struct CloudsRainRanges {
+  static constexpr Range freq_hz{0.0, 1.0e12, "Hz", true};
+};
+
+/// Throws gnssemu::Error for a value out of its range or more than
+/// kMaxCloudLayers layers.
+void validate(const CloudsRainConfig& cfg);
+
+/// Validated clouds and rain. Throws gnssemu::Error on bad values (validate).
 class CloudsRain {
 public:
   explicit CloudsRain(const CloudsRainConfig& cfg);

@@ -40,20 +40,20 @@ double iono_thin_shell_mapping(double el_rad, double shell_height_m, double eart
   return 1.0 / std::sqrt(std::max(1.0 - s * s, 1e-12));
 }
 
-Ionosphere::Ionosphere(const IonosphereConfig& cfg) : cfg_(cfg) {
-  require(std::isfinite(cfg.vtec_tecu) && cfg.vtec_tecu >= 0.0,
-          "vtec_tecu must be >= 0 TECU, got " + std::to_string(cfg.vtec_tecu));
-  require(std::isfinite(cfg.klobuchar_scale) && cfg.klobuchar_scale >= 0.0,
-          "klobuchar_scale must be >= 0, got " + std::to_string(cfg.klobuchar_scale));
-  require(std::isfinite(cfg.obliquity_pivot_deg) && cfg.obliquity_pivot_deg >= 90.0 &&
-              cfg.obliquity_pivot_deg <= 100.0,
-          "obliquity_pivot_deg must be in [90, 100], got " + std::to_string(cfg.obliquity_pivot_deg));
-  require(std::isfinite(cfg.shell_height_m) && cfg.shell_height_m > 0.0,
-          "shell_height_m must be > 0 m, got " + std::to_string(cfg.shell_height_m));
-  require(std::isfinite(cfg.freq_hz) && cfg.freq_hz > 0.0, "freq_hz must be > 0 Hz");
+void validate(const IonosphereConfig& cfg) {
+  using R = IonosphereRanges;
+  check_ranges("ionosphere config",
+               {{cfg.vtec_tecu, R::vtec_tecu, "vtec_tecu"}, {cfg.klobuchar_scale, R::klobuchar_scale, "klobuchar_scale"},
+                {cfg.obliquity_pivot_deg, R::obliquity_pivot_deg, "obliquity_pivot_deg"},
+                {cfg.shell_height_m, R::shell_height_m, "shell_height_m"}, {cfg.freq_hz, R::freq_hz, "freq_hz"},
+                {cfg.perturbation.sigma, R::perturbation_sigma_tecu, "perturbation.sigma_tecu"},
+                {cfg.perturbation.tau_s, R::perturbation_tau_s, "perturbation.tau_s"}});
   for (double v : cfg.shape.alpha) require(std::isfinite(v), "Klobuchar alpha must be finite");
   for (double v : cfg.shape.beta) require(std::isfinite(v), "Klobuchar beta must be finite");
-  GaussMarkov check(cfg.perturbation);  // validates sigma / tau
+}
+
+Ionosphere::Ionosphere(const IonosphereConfig& cfg) : cfg_(cfg) {
+  validate(cfg);
   if (!cfg_.shape.valid) cfg_.shape = rtklib_default_klobuchar();
   m_per_tecu_ = iono_m_per_tecu(cfg.freq_hz);
 }

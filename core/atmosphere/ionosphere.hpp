@@ -3,6 +3,7 @@
 // knows its broadcast Klobuchar model). Vertical TEC from a configured value
 // or the Klobuchar daily shape scaled by a factor, an obliquity factor, the
 // first-order 40.3 TEC / f^2 group delay, and a slow Gauss–Markov perturbation.
+#include "core/common/range.hpp"
 #include "core/orbit/nav_data.hpp"
 
 namespace gnssemu::atmosphere {
@@ -53,8 +54,24 @@ struct IonosphereConfig {
   GaussMarkovParams perturbation{1.0, 1800.0};
 };
 
+/// Valid values of IonosphereConfig's fields (300 TECU is beyond the largest
+/// storm-time values observed, ~250).
+struct IonosphereRanges {
+  static constexpr Range vtec_tecu{0.0, 1000.0, "TECU"};
+  static constexpr Range klobuchar_scale{0.0, 20.0, ""};
+  static constexpr Range obliquity_pivot_deg{90.0, 100.0, "deg"};
+  static constexpr Range shell_height_m{50.0e3, 2000.0e3, "m"};
+  static constexpr Range freq_hz{0.0, 1.0e12, "Hz", true};
+  static constexpr Range perturbation_sigma_tecu{0.0, 100.0, "TECU"};
+  static constexpr Range perturbation_tau_s{0.0, 1.0e6, "s", true};
+};
+
+/// Throws gnssemu::Error for a value out of its range or a non-finite
+/// Klobuchar coefficient.
+void validate(const IonosphereConfig& cfg);
+
 /// Validated world ionosphere. Construction throws gnssemu::Error on bad
-/// values (negative TEC or scale, non-positive tau or shell height, NaN);
+/// values (validate);
 /// evaluation is noexcept and allocation-free.
 class Ionosphere {
 public:

@@ -117,24 +117,26 @@ double water_vapour_specific_attenuation_db_km(double f, double rho) noexcept {
          rho * 1e-4;
 }
 
-AtmosphereShells::AtmosphereShells(const ShellsConfig& cfg) : cfg_(cfg) {
+void validate(const ShellsConfig& cfg) {
+  const std::string what = "atmosphere shells config";
   for (std::size_t i = 0; i < kShellCount; ++i) {
     const Shell& s = cfg.shells[i];
     const std::string n = shell_name(i);
-    require(std::isfinite(s.bottom_m) && std::isfinite(s.top_m), n + ": heights must be finite");
+    check_ranges(what, {{s.bottom_m, ShellRanges::bottom_m, n + ".bottom_m"}, {s.top_m, ShellRanges::top_m, n + ".top_m"}});
     require(s.top_m >= s.bottom_m, n + ": negative thickness (bottom " + std::to_string(s.bottom_m) + " m, top " +
                                        std::to_string(s.top_m) + " m)");
-    require(s.bottom_m >= kMinHeight_m, n + ": bottom below -1000 m");
-    require(std::isfinite(s.temperature_k) && s.temperature_k > 0.0,
-            n + ": temperature must be > 0 K, got " + std::to_string(s.temperature_k));
+    check_range(s.temperature_k, ShellRanges::temperature_k, what, n + ".temperature_k");
   }
   const GasConfig& g = cfg.gas;
-  require(std::isfinite(g.freq_hz) && g.freq_hz > 0.0 && g.freq_hz < 350e9, "gas: freq_hz must be in (0, 350 GHz)");
-  require(std::isfinite(g.water_vapour_density_g_m3) && g.water_vapour_density_g_m3 >= 0.0,
-          "gas: water_vapour_density_g_m3 must be >= 0");
-  require(std::isfinite(g.water_vapour_scale_height_m) && g.water_vapour_scale_height_m > 0.0,
-          "gas: water_vapour_scale_height_m must be > 0 m");
+  check_ranges(what, {{g.freq_hz, GasRanges::freq_hz, "gas.freq_hz"},
+                      {g.water_vapour_density_g_m3, GasRanges::water_vapour_density_g_m3, "gas.water_vapour_density_g_m3"},
+                      {g.water_vapour_scale_height_m, GasRanges::water_vapour_scale_height_m,
+                       "gas.water_vapour_scale_height_m"}});
+}
 
+AtmosphereShells::AtmosphereShells(const ShellsConfig& cfg) : cfg_(cfg) {
+  validate(cfg);
+  const GasConfig& g = cfg.gas;
   const double f_ghz = g.freq_hz * 1e-9;
   gamma_o_db_m_ = oxygen_specific_attenuation_db_km(f_ghz) * 1e-3;
   gamma_w_db_m_ = water_vapour_specific_attenuation_db_km(f_ghz, g.water_vapour_density_g_m3) * 1e-3;

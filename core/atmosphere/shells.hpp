@@ -5,6 +5,8 @@
 #include <array>
 #include <cstddef>
 
+#include "core/common/range.hpp"
+
 namespace gnssemu::atmosphere {
 
 /// Mean Earth radius R1 (IUGG), m; the spherical Earth of the shell model.
@@ -76,8 +78,23 @@ struct ShellAttenuation {
   double total_db = 0.0;
 };
 
-/// Validated shell model. Construction throws gnssemu::Error for negative
-/// thickness, bottom < -1000 m, temperature <= 0 K, bad gas values.
+/// Valid values of Shell's and GasConfig's fields (and top >= bottom).
+struct ShellRanges {
+  static constexpr Range bottom_m{-1000.0, 5.0e6, "m"};
+  static constexpr Range top_m{-1000.0, 5.0e6, "m"};
+  static constexpr Range temperature_k{0.0, 5000.0, "K", true};
+};
+struct GasRanges {
+  static constexpr Range freq_hz{0.0, 350.0e9, "Hz", true, true};
+  static constexpr Range water_vapour_density_g_m3{0.0, 50.0, "g/m^3"};
+  static constexpr Range water_vapour_scale_height_m{0.0, 20000.0, "m", true};
+};
+
+/// Throws gnssemu::Error for a value out of its range or a shell with
+/// negative thickness.
+void validate(const ShellsConfig& cfg);
+
+/// Validated shell model. Construction throws gnssemu::Error on bad values (validate).
 class AtmosphereShells {
 public:
   explicit AtmosphereShells(const ShellsConfig& cfg);

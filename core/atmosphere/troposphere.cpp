@@ -6,7 +6,6 @@
 #include <string>
 
 #include "core/common/constants.hpp"
-#include "core/common/error.hpp"
 
 namespace gnssemu::atmosphere {
 namespace {
@@ -58,10 +57,6 @@ double interp_row(const std::array<double, 5>& row, double abs_lat_deg) noexcept
 
 double marini(double sin_el, double a, double b, double c) noexcept {
   return (1.0 + a / (1.0 + b / (1.0 + c))) / (sin_el + a / (sin_el + b / (sin_el + c)));
-}
-
-void require(bool ok, const std::string& what) {
-  if (!ok) throw Error("troposphere config", 0, what);
 }
 
 }  // namespace
@@ -122,17 +117,15 @@ NiellMapping niell_mapping(double el_rad, double lat_rad, double height_m, doubl
   return m;
 }
 
-Troposphere::Troposphere(const TroposphereConfig& cfg) : cfg_(cfg) {
-  require(std::isfinite(cfg.zhd_a_m) && cfg.zhd_a_m >= 0.0,
-          "zhd_a_m must be >= 0 m, got " + std::to_string(cfg.zhd_a_m));
-  require(std::isfinite(cfg.zhd_b_per_m) && cfg.zhd_b_per_m >= 0.0 && cfg.zhd_b_per_m < 1e-2,
-          "zhd_b_per_m must be in [0, 0.01) 1/m, got " + std::to_string(cfg.zhd_b_per_m));
-  require(std::isfinite(cfg.zwd_m) && cfg.zwd_m >= 0.0, "zwd_m must be >= 0 m, got " + std::to_string(cfg.zwd_m));
-  require(std::isfinite(cfg.zwd_scale_height_m) && cfg.zwd_scale_height_m > 0.0,
-          "zwd_scale_height_m must be > 0 m, got " + std::to_string(cfg.zwd_scale_height_m));
-  require(std::isfinite(cfg.rel_humidity) && cfg.rel_humidity >= 0.0 && cfg.rel_humidity <= 1.0,
-          "rel_humidity must be in [0, 1], got " + std::to_string(cfg.rel_humidity));
+void validate(const TroposphereConfig& cfg) {
+  using R = TroposphereRanges;
+  check_ranges("troposphere config",
+               {{cfg.zhd_a_m, R::zhd_a_m, "zhd_a_m"}, {cfg.zhd_b_per_m, R::zhd_b_per_m, "zhd_b_per_m"},
+                {cfg.zwd_m, R::zwd_m, "zwd_m"}, {cfg.zwd_scale_height_m, R::zwd_scale_height_m, "zwd_scale_height_m"},
+                {cfg.rel_humidity, R::rel_humidity, "rel_humidity"}});
 }
+
+Troposphere::Troposphere(const TroposphereConfig& cfg) : cfg_(cfg) { validate(cfg); }
 
 double Troposphere::zhd_m(double lat_rad, double height_m) const noexcept {
   if (cfg_.zhd_model == ZhdModel::kExponential) return exponential_zhd_m(height_m, cfg_.zhd_a_m, cfg_.zhd_b_per_m);

@@ -2,6 +2,8 @@
 // Tropospheric delay: standard atmosphere, Saastamoinen zenith delays, the
 // seed's exponential zenith hydrostatic delay, and the Niell (1996) mapping
 // functions. Reference: shared/reference/atmosphere.md §2.
+#include "core/common/range.hpp"
+
 namespace gnssemu::atmosphere {
 
 /// Surface meteorology of a standard atmosphere at a height.
@@ -68,6 +70,18 @@ struct TroposphereConfig {
   double zwd_scale_height_m = 2000.0;  ///< kFixed: water vapour scale height, m (> 0)
   double rel_humidity = 0.7;     ///< kSaastamoinen: [0, 1]
 };
+
+/// Valid values of TroposphereConfig's fields.
+struct TroposphereRanges {
+  static constexpr Range zhd_a_m{0.0, 10.0, "m"};
+  static constexpr Range zhd_b_per_m{0.0, 1.0e-2, "1/m", false, true};
+  static constexpr Range zwd_m{0.0, 1.0, "m"};
+  static constexpr Range zwd_scale_height_m{0.0, 20000.0, "m", true};
+  static constexpr Range rel_humidity{0.0, 1.0, ""};
+};
+
+/// Throws gnssemu::Error for a value out of its range.
+void validate(const TroposphereConfig& cfg);
 
 /// Validated world troposphere. Construction throws gnssemu::Error on bad values.
 class Troposphere {

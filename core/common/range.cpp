@@ -3,6 +3,8 @@
 #include <charconv>
 #include <cmath>
 
+#include "core/common/error.hpp"
+
 namespace gnssemu {
 
 std::string format_number(double v) {
@@ -23,6 +25,15 @@ std::string format_range(const Range& r) {
     s += r.unit;
   }
   return s;
+}
+
+void check_range(double v, const Range& r, const std::string& context, std::string_view name) {
+  if (r.contains(v)) return;
+  throw Error(context, 0, std::string(name) + ": " + format_number(v) + " is out of range " + format_range(r));
+}
+
+void check_ranges(const std::string& context, std::initializer_list<RangeCheck> settings) {
+  for (const RangeCheck& c : settings) check_range(c.value, c.range, context, c.name);
 }
 
 }  // namespace gnssemu

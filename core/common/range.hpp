@@ -3,6 +3,7 @@
 // core validator of a setting checks against it and the config layer reads,
 // writes and documents the key with the same object, so each range is
 // written once (next to the setting it bounds).
+#include <initializer_list>
 #include <string>
 #include <string_view>
 
@@ -29,5 +30,18 @@ struct Range {
 std::string format_number(double v);
 /// "[0, 100] m", "(0, 1000000] s", "[0, 1)".
 std::string format_range(const Range& r);
+
+/// Throws gnssemu::Error(context, 0, "<name>: <v> is out of range <r>")
+/// unless r contains v: what a core validator says of one setting.
+void check_range(double v, const Range& r, const std::string& context, std::string_view name);
+
+/// One setting for check_ranges.
+struct RangeCheck {
+  double value;
+  const Range& range;
+  std::string_view name;
+};
+/// check_range of every setting, in order.
+void check_ranges(const std::string& context, std::initializer_list<RangeCheck> settings);
 
 }  // namespace gnssemu

@@ -1,67 +1,14 @@
 #pragma once
-// ReceiverConfig: error model and solver settings. All values SI.
-#include <cstdint>
-
-#include "core/atmosphere/clouds_rain.hpp"
-#include "core/atmosphere/ionosphere.hpp"
+// ReceiverConfig: what the emulated receiver itself is set to: its mask,
+// channels, tracking thresholds and its own solver with its broadcast
+// corrections (DESIGN.md §1, steps 7-9). It knows nothing of the world's
+// models. All values SI.
 #include "core/atmosphere/receiver_corrections.hpp"
-#include "core/atmosphere/shells.hpp"
-#include "core/atmosphere/term_cache.hpp"
-#include "core/atmosphere/troposphere.hpp"
 #include "core/common/constants.hpp"
-#include "core/signal/dll_jitter.hpp"
-#include "core/signal/link_budget.hpp"
+#include "core/common/range.hpp"
 #include "core/signal/tracking.hpp"
 
 namespace gnssemu::receiver {
-
-/// First-order Gauss–Markov process: steady-state sigma and correlation time.
-struct GaussMarkovConfig {
-  double sigma_m = 0.0;     ///< steady-state 1-sigma, m (>= 0; 0 disables)
-  double tau_s = 1800.0;    ///< correlation time, s (> 0)
-};
-
-/// Where the white pseudorange noise sigma comes from.
-enum class ThermalModel {
-  kFixed,  ///< errors.thermal_sigma_m for every satellite
-  kDll,    ///< DLL thermal jitter at the satellite's C/N0 (signal.dll)
-};
-
-struct ErrorModelConfig {
-  ThermalModel thermal_model = ThermalModel::kDll;
-  double thermal_sigma_m = 0.3;                  ///< kFixed: white pseudorange noise, m
-  GaussMarkovConfig orbit_clock{1.2, 1800.0};    ///< broadcast orbit/clock residual per satellite
-  double doppler_sigma_m_s = 0.03;               ///< white range-rate noise, m/s
-  /// Multipath-like residual per satellite: a unit Gauss–Markov process (tau_s)
-  /// times sigma_m / sin(el) (el held at >= 5 deg), so sigma_m is the zenith
-  /// 1-sigma, m; sigma_m 0 disables (the default).
-  GaussMarkovConfig multipath{0.0, 60.0};
-  /// Azimuthal delay pattern common to all satellites (an unmodelled
-  /// horizontal gradient): delay += G_N cos(az) + G_E sin(az), m, with
-  /// G_N = north_m + north_diurnal_m cos(2 pi (LT - north_peak_h) / 24 h) + g_N(t)
-  /// (E alike), LT the local mean solar time at the receiver from GPS time and
-  /// longitude (IS-GPS-200 20.3.3.5.2.5 convention), and g_N, g_E two
-  /// independent Gauss–Markov processes (sigma_m, tau_s). Fitted by
-  /// `gnssemu calibrate`; all zero (the default) disables it.
-  struct Gradient {
-    double north_m = 0.0;          ///< mean north component, m
-    double east_m = 0.0;           ///< mean east component, m
-    double north_diurnal_m = 0.0;  ///< amplitude of the daily cycle of G_N, m (>= 0)
-    double north_peak_h = 0.0;     ///< local time of its maximum, h [0, 24)
-    double east_diurnal_m = 0.0;   ///< amplitude of the daily cycle of G_E, m (>= 0)
-    double east_peak_h = 0.0;      ///< local time of its maximum, h [0, 24)
-    GaussMarkovConfig process{0.0, 3600.0};
-  } gradient;
-};
-
-struct ClockConfig {
-  double bias_s = 1.0e-4;            ///< initial receiver clock bias, s
-  double drift_s_s = 5.0e-8;         ///< initial clock drift, s/s (TCXO-like)
-  double drift_noise_s_s_sqrt_s = 1.0e-10;  ///< drift random walk density, s/s/sqrt(s)
-  /// |bias| above this makes the receiver step its clock by a whole multiple of
-  /// it (millisecond jumps of unsteered receivers), s; 0 disables.
-  double jump_threshold_s = 1.0e-3;
-};
 
 /// What the receiver's own solver assumes (it does not know the world model).
 struct SolverConfig {
@@ -77,7 +24,7 @@ struct SolverConfig {
   /// s: zenith troposphere model sigma, m (>= 0); 0 leaves the term out.
   double iono_model_fraction = 0.0;
   double tropo_model_sigma_m = 0.0;
-  /// The receiver's own propagation corrections (DESIGN.md §1, step 7).
+  /// The receiver's own propagation corrections (DESIGN.md §1, step 8).
   atmosphere::IonoCorrection iono = atmosphere::IonoCorrection::kKlobuchar;
   atmosphere::TropoCorrection tropo = atmosphere::TropoCorrection::kSaastamoinenNiell;
   double sigma_range_rate_m_s = 0.05;  ///< Doppler range-rate 1-sigma, m/s
@@ -94,44 +41,43 @@ struct SolverConfig {
   int max_iterations = 15;             ///< Gauss–Newton iterations at most
 };
 
-/// The atmosphere the WORLD applies to the signal (the receiver does not know
-/// it). A stage whose switch is off costs nothing per epoch.
-struct AtmosphereConfig {
-  atmosphere::IonosphereConfig ionosphere;    ///< enabled; Klobuchar shape x 1 + GM 1 TECU / 1800 s
-  atmosphere::TroposphereConfig troposphere;  ///< enabled; 2.31 exp(-1.2e-4 h) + 0.10 m wet, Niell
-  /// Slow Gauss–Markov variation of the zenith wet delay (one process for the
-  /// site, mapped with the Niell wet function), m; sigma 0 disables.
-  GaussMarkovConfig zwd_perturbation{0.02, 3600.0};
-  bool gases = true;                          ///< oxygen + water vapour over the shells
-  atmosphere::ShellsConfig shells;
-  atmosphere::CloudsRainConfig clouds_rain;   ///< no clouds, no rain
-  /// Per-satellite refresh interval of the slow terms (iono and tropo delay
-  /// without their perturbations, attenuation), s; 0 = every epoch.
-  double cache_refresh_s = 5.0;
-  atmosphere::CacheMode cache_mode = atmosphere::CacheMode::kLinear;
+/// Valid values of SolverConfig's numbers. Besides: a and b not both 0, and
+/// a residual test false-alarm probability below 0.5 (a test that fails
+/// more often than not cannot detect).
+struct SolverRanges {
+  static constexpr Range sigma_a_m{0.0, 100.0, "m"};
+  static constexpr Range sigma_b_m{0.0, 100.0, "m"};
+  static constexpr Range sigma_c_m_sqrt_hz{0.0, 10000.0, "m sqrt(Hz)"};
+  static constexpr Range iono_model_fraction{0.0, 10.0, ""};
+  static constexpr Range tropo_model_sigma_m{0.0, 100.0, "m"};
+  static constexpr Range sigma_range_rate_m_s{0.0, 10.0, "m/s", true};
+  static constexpr Range height_hold_sigma_m{0.0, 1000.0, "m", true};
+  static constexpr Range residual_test_pfa{0.0, 1.0, "", false, true};
+  static constexpr Range max_exclusions{0.0, 32.0, ""};  ///< integer
+  static constexpr Range max_iterations{1.0, 100.0, ""};  ///< integer
 };
 
-/// Signal stage: link budget -> C/N0, tracking, code noise.
-struct SignalConfig {
-  /// false: no link budget; C/N0 = nominal_cn0_dbhz - 10 (1 - sin el)^2
-  /// (elevation only) and every satellite above the mask is tracked.
-  bool enabled = true;
-  signal::LinkBudgetConfig link;         ///< EIRP, antenna, noise figure, environment noise rise
-  signal::TrackingThresholds tracking;   ///< acquire 30 / lose 25 dB-Hz
-  signal::DllParams dll;                 ///< thermal jitter when errors.thermal_model = kDll
-};
+/// Throws gnssemu::Error for an invalid solver config (SolverRanges).
+void validate(const SolverConfig& s);
 
 struct ReceiverConfig {
   double elevation_mask_rad = 5.0 * kDegToRad;  ///< [0, pi/2)
-  uint64_t seed = 1;                            ///< error-process seed (deterministic)
-  ErrorModelConfig errors;
-  ClockConfig clock;
-  double nominal_cn0_dbhz = 45.0;  ///< zenith C/N0 when signal.enabled is false, dB-Hz
   double max_pdop = 20.0;          ///< above this the fix is reported as none
   int max_channels = 16;           ///< satellites tracked at most (highest first)
+  signal::TrackingThresholds tracking;  ///< acquire 30 / lose 25 dB-Hz
   SolverConfig solver;
-  AtmosphereConfig atmosphere;
-  SignalConfig signal;
 };
+
+/// Valid values of ReceiverConfig's own numbers (the mask in degrees, as
+/// configured; max_channels an integer of at least 4, the satellites of a
+/// 3D fix, and at most one channel per GPS PRN).
+struct ReceiverRanges {
+  static constexpr Range elevation_mask_deg{0.0, 90.0, "deg", false, true};
+  static constexpr Range max_pdop{1.0, 1000.0, ""};
+  static constexpr Range max_channels{4.0, static_cast<double>(kMaxGpsPrn), ""};
+};
+
+/// Throws gnssemu::Error for a value out of its range anywhere in c.
+void validate(const ReceiverConfig& c);
 
 }  // namespace gnssemu::receiver

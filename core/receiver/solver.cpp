@@ -5,8 +5,9 @@
 
 #include "core/atmosphere/receiver_corrections.hpp"
 #include "core/geo/geodesy.hpp"
-#include "core/receiver/sky.hpp"
+#include "core/world/sky.hpp"
 #include "core/receiver/small_matrix.hpp"
+#include "core/receiver/transmit_state.hpp"
 
 namespace gnssemu::receiver {
 
@@ -88,7 +89,7 @@ void Solver::update_corrections(const SolverInput& in, const Ecef& pos, const Ll
   const Vec3 north = up.cross(east);
   for (int i = 0; i < n_; ++i) {
     Sat& s = sats_[i];
-    const Vec3 d = rotate_earth(s.pos_m, kOmegaEarth_rad_s * s.since_tx_s) - pos;
+    const Vec3 d = world::rotate_earth(s.pos_m, kOmegaEarth_rad_s * s.since_tx_s) - pos;
     const double e = d.dot(east), n = d.dot(north), u = d.dot(up);
     const double el = std::atan2(u, std::hypot(e, n));
     double az = std::atan2(e, n);
@@ -122,8 +123,8 @@ void Solver::linearise(const SolverInput& in, const Ecef& pos, double clock_m, c
     // Flight time from the receiver's clock estimate; exact at convergence.
     const double tau_s = std::clamp(s.since_tx_s - clock_m / kSpeedOfLight_m_s, 0.0, kMaxLightTime_s);
     const double angle = kOmegaEarth_rad_s * tau_s;
-    const Ecef p = rotate_earth(s.pos_m, angle);
-    s.vel_rx_frame_m_s = rotate_earth(s.vel_m_s, angle);
+    const Ecef p = world::rotate_earth(s.pos_m, angle);
+    s.vel_rx_frame_m_s = world::rotate_earth(s.vel_m_s, angle);
     const Vec3 d = p - pos;
     const double rho = d.norm();
     s.los = rho > 0.0 ? d / rho : Vec3{0.0, 0.0, 1.0};
@@ -314,12 +315,9 @@ Solver::Outcome Solver::solve_all(const SolverInput& in, SolverOutput& out) noex
       n_ = 0;  // malformed input: no fix rather than a guess
       break;
     }
-    // Transmit time from the code phase: t = t_sv - (dt_sv - TGD), dt_sv at
-    // t (IS-GPS-200 §20.3.3.3.3.1-2); one refinement pass suffices.
-    const time::GpsTime t_sv = in.t_rx_local - m.pseudorange_m / kSpeedOfLight_m_s;
-    const double dt0_s = orbit::sat_state(*m.eph, t_sv).clk_bias_s - m.eph->tgd_s;
-    const time::GpsTime t_tx = t_sv - dt0_s;
-    const orbit::SatState st = orbit::sat_state(*m.eph, t_tx);
+    const TransmitState tx = transmit_state(*m.eph, in.t_rx_local, m.pseudorange_m);
+    const time::GpsTime& t_tx = tx.t_tx;
+    const orbit::SatState& st = tx.state;
     s.pos_m = st.pos_m;
     s.vel_m_s = st.vel_m_s;
     s.clk_m = kSpeedOfLight_m_s * (st.clk_bias_s - m.eph->tgd_s);

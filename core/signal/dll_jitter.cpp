@@ -9,14 +9,10 @@
 namespace gnssemu::signal {
 
 void validate(const DllParams& p) {
-  const auto bad = [](const std::string& what) { throw Error("DLL config", 0, what); };
-  if (!(std::isfinite(p.loop_bandwidth_hz) && p.loop_bandwidth_hz > 0.0 && p.loop_bandwidth_hz <= 50.0))
-    bad("loop_bandwidth_hz must be in (0, 50] Hz, got " + std::to_string(p.loop_bandwidth_hz));
-  if (!(std::isfinite(p.integration_s) && p.integration_s > 0.0 && p.integration_s <= 1.0))
-    bad("integration_s must be in (0, 1] s, got " + std::to_string(p.integration_s));
-  if (!(std::isfinite(p.spacing_chips) && p.spacing_chips > 0.0 && p.spacing_chips <= 1.0))
-    bad("spacing_chips must be in (0, 1], got " + std::to_string(p.spacing_chips));
-  if (!(std::isfinite(p.chip_m) && p.chip_m > 0.0)) bad("chip_m must be > 0 m");
+  using R = DllRanges;
+  check_ranges("DLL config", {{p.loop_bandwidth_hz, R::loop_bandwidth_hz, "loop_bandwidth_hz"},
+                              {p.integration_s, R::integration_s, "integration_s"},
+                              {p.spacing_chips, R::spacing_chips, "spacing_chips"}, {p.chip_m, R::chip_m, "chip_m"}});
 }
 
 double dll_thermal_sigma_m(double cn0_dbhz, const DllParams& p) noexcept {

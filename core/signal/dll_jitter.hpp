@@ -2,6 +2,7 @@
 // Code-tracking thermal noise of a delay lock loop, and the pseudorange
 // weight a receiver derives from C/N0 and elevation.
 #include "core/common/constants.hpp"
+#include "core/common/range.hpp"
 
 namespace gnssemu::signal {
 
@@ -19,6 +20,14 @@ struct DllParams {
   double spacing_chips = 0.5;       ///< early-late spacing d, chips (0 < d <= 1)
   double chip_m = kCaChip_m;        ///< chip length, m
   DllDiscriminator discriminator = DllDiscriminator::kEarlyMinusLatePower;
+};
+
+/// Valid values of DllParams' fields.
+struct DllRanges {
+  static constexpr Range loop_bandwidth_hz{0.0, 50.0, "Hz", true};
+  static constexpr Range integration_s{0.0, 1.0, "s", true};
+  static constexpr Range spacing_chips{0.0, 1.0, "chips", true};
+  static constexpr Range chip_m{0.0, 1.0e4, "m", true};  ///< any GNSS code (C/A 293 m, GLONASS 587 m)
 };
 
 /// Throws gnssemu::Error for out-of-range parameters.

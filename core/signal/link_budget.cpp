@@ -51,25 +51,25 @@ double environment_noise_rise_db(std::string_view preset) {
                                            "' (known: " + known + ")");
 }
 
-LinkBudgetModel::LinkBudgetModel(const LinkBudgetConfig& cfg) : cfg_(cfg) {
-  require(std::isfinite(cfg.eirp_dbw) && cfg.eirp_dbw > 0.0 && cfg.eirp_dbw < 60.0,
-          "eirp_dbw must be in (0, 60) dBW, got " + std::to_string(cfg.eirp_dbw));
-  require(std::isfinite(cfg.freq_hz) && cfg.freq_hz > 0.0, "freq_hz must be > 0 Hz");
-  require(std::isfinite(cfg.noise_temperature_k) && cfg.noise_temperature_k > 0.0,
-          "noise_temperature_k must be > 0 K, got " + std::to_string(cfg.noise_temperature_k));
-  require(std::isfinite(cfg.noise_figure_db) && cfg.noise_figure_db >= 0.0 && cfg.noise_figure_db <= 30.0,
-          "noise_figure_db must be in [0, 30] dB");
-  require(std::isfinite(cfg.environment_noise_rise_db) && cfg.environment_noise_rise_db >= 0.0 &&
-              cfg.environment_noise_rise_db <= 60.0,
-          "environment_noise_rise_db must be in [0, 60] dB, got " + std::to_string(cfg.environment_noise_rise_db));
-  require(std::isfinite(cfg.implementation_loss_db) && cfg.implementation_loss_db >= 0.0,
-          "implementation_loss_db must be >= 0 dB");
+void validate(const LinkBudgetConfig& cfg) {
+  using L = LinkBudgetRanges;
+  using A = AntennaRanges;
   const AntennaPattern& a = cfg.antenna;
-  require(std::isfinite(a.zenith_gain_dbi) && std::isfinite(a.horizon_gain_dbi) &&
-              a.horizon_gain_dbi <= a.zenith_gain_dbi,
-          "antenna: horizon gain must be finite and <= zenith gain");
-  require(std::isfinite(a.below_horizon_slope_db_per_deg) && a.below_horizon_slope_db_per_deg >= 0.0,
-          "antenna: below_horizon_slope_db_per_deg must be >= 0");
+  check_ranges("link budget config",
+               {{cfg.eirp_dbw, L::eirp_dbw, "eirp_dbw"}, {cfg.freq_hz, L::freq_hz, "freq_hz"},
+                {cfg.noise_temperature_k, L::noise_temperature_k, "noise_temperature_k"},
+                {cfg.noise_figure_db, L::noise_figure_db, "noise_figure_db"},
+                {cfg.environment_noise_rise_db, L::environment_noise_rise_db, "environment_noise_rise_db"},
+                {cfg.implementation_loss_db, L::implementation_loss_db, "implementation_loss_db"},
+                {a.zenith_gain_dbi, A::zenith_gain_dbi, "antenna.zenith_gain_dbi"},
+                {a.horizon_gain_dbi, A::horizon_gain_dbi, "antenna.horizon_gain_dbi"},
+                {a.below_horizon_slope_db_per_deg, A::below_horizon_slope_db_per_deg,
+                 "antenna.below_horizon_slope_db_per_deg"}});
+  require(a.horizon_gain_dbi <= a.zenith_gain_dbi, "antenna: horizon gain must be <= zenith gain");
+}
+
+LinkBudgetModel::LinkBudgetModel(const LinkBudgetConfig& cfg) : cfg_(cfg) {
+  validate(cfg);
   noise_density_dbw_hz_ =
       thermal_noise_density_dbw_hz(cfg.noise_temperature_k) + cfg.noise_figure_db + cfg.environment_noise_rise_db;
 }

@@ -5,6 +5,8 @@
 // Reference: shared/reference/atmosphere.md §4.
 #include <string_view>
 
+#include "core/common/range.hpp"
+
 namespace gnssemu::signal {
 
 /// Boltzmann constant, J/K (SI 2019 exact).
@@ -53,6 +55,27 @@ struct LinkBudget {
   double noise_density_dbw_hz = 0.0;  ///< thermal + noise figure + environment rise
   double cn0_dbhz = 0.0;
 };
+
+/// Valid values of AntennaPattern's fields (and horizon <= zenith).
+struct AntennaRanges {
+  static constexpr Range zenith_gain_dbi{-30.0, 30.0, "dBic"};
+  static constexpr Range horizon_gain_dbi{-40.0, 30.0, "dBic"};
+  static constexpr Range below_horizon_slope_db_per_deg{0.0, 10.0, "dB/deg"};
+};
+
+/// Valid values of LinkBudgetConfig's fields.
+struct LinkBudgetRanges {
+  static constexpr Range eirp_dbw{0.0, 60.0, "dBW", true, true};
+  static constexpr Range freq_hz{0.0, 1.0e12, "Hz", true};
+  static constexpr Range noise_temperature_k{0.0, 5000.0, "K", true};
+  static constexpr Range noise_figure_db{0.0, 30.0, "dB"};
+  static constexpr Range environment_noise_rise_db{0.0, 60.0, "dB"};
+  static constexpr Range implementation_loss_db{0.0, 30.0, "dB"};
+};
+
+/// Throws gnssemu::Error for a value out of its range or horizon gain above
+/// zenith gain.
+void validate(const LinkBudgetConfig& cfg);
 
 /// Validated link budget. Construction throws gnssemu::Error on bad values.
 class LinkBudgetModel {

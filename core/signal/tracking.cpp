@@ -1,6 +1,5 @@
 #include "core/signal/tracking.hpp"
 
-#include <cmath>
 #include <string>
 
 #include "core/common/error.hpp"
@@ -8,7 +7,9 @@
 namespace gnssemu::signal {
 
 void validate(const TrackingThresholds& t) {
-  if (!std::isfinite(t.acquire_dbhz) || !std::isfinite(t.lose_dbhz) || t.lose_dbhz > t.acquire_dbhz)
+  check_ranges("tracking config", {{t.acquire_dbhz, TrackingRanges::acquire_dbhz, "acquire_dbhz"},
+                                   {t.lose_dbhz, TrackingRanges::lose_dbhz, "lose_dbhz"}});
+  if (t.lose_dbhz > t.acquire_dbhz)
     throw Error("tracking config", 0,
                 "thresholds must be finite with lose <= acquire (acquire " + std::to_string(t.acquire_dbhz) +
                     " dB-Hz, lose " + std::to_string(t.lose_dbhz) + " dB-Hz)");

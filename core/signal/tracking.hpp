@@ -3,6 +3,8 @@
 // acquired once C/N0 >= acquire_dbhz and kept until C/N0 < lose_dbhz.
 // Defaults are engineering values (reference atmosphere.md §4.1 ⚠; MITRE
 // quotes 28.7 dB-Hz at the correlator for aviation acquisition).
+#include "core/common/range.hpp"
+
 namespace gnssemu::signal {
 
 struct TrackingThresholds {
@@ -10,7 +12,13 @@ struct TrackingThresholds {
   double lose_dbhz = 25.0;     ///< below this, lock is lost, dB-Hz (<= acquire_dbhz)
 };
 
-/// Throws gnssemu::Error unless both are finite and lose <= acquire.
+/// Valid values of TrackingThresholds' fields.
+struct TrackingRanges {
+  static constexpr Range acquire_dbhz{0.0, 60.0, "dB-Hz"};
+  static constexpr Range lose_dbhz{0.0, 60.0, "dB-Hz"};
+};
+
+/// Throws gnssemu::Error unless both are in range and lose <= acquire.
 void validate(const TrackingThresholds& t);
 
 /// Next tracking state from the current one and this epoch's C/N0 (dB-Hz).

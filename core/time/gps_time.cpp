@@ -92,6 +92,10 @@ int GpsTime::day_of_year() const {
   return static_cast<int>(days_from_civil(c.year, c.month, c.day) - days_from_civil(c.year, 1, 1) + 1);
 }
 
+double GpsTime::fractional_day_of_year() const {
+  return day_of_year() + std::fmod(tow_s_, kSecondsPerDay) / kSecondsPerDay;
+}
+
 int32_t resolve_week_nearest(int32_t truncated_week, int32_t reference_week, int32_t modulus) {
   const int32_t base = reference_week - (reference_week % modulus);
   int32_t best = base + (truncated_week % modulus);

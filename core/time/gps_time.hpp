@@ -47,6 +47,10 @@ public:
   CalendarTime to_calendar() const;
   /// Day of year 1..366 of this instant in the GPS time scale.
   int day_of_year() const;
+  /// Day of year with the fraction of the day (GPS time scale): 1.0 at
+  /// midnight of 1 January, up to 366.99...; what the seasonal terms of the
+  /// Niell mapping take.
+  double fractional_day_of_year() const;
 
 private:
   int32_t week_ = 0;

@@ -17,6 +17,7 @@ Rules project_rules() {
   // those may include. Adding a module is one row here (and one for its tests).
   r.layers = {
       {"common", "core/common", {}, {}},
+      {"statistics", "core/statistics", {"common"}, {}},
       {"time", "core/time", {"common"}, {}},
       {"orbit", "core/orbit", {"time"}, {}},
       {"observation", "core/observation", {"time"}, {}},
@@ -26,16 +27,18 @@ Rules project_rules() {
       {"signal", "core/signal", {"atmosphere"}, {}},
       {"world", "core/world", {"signal", "scene"}, {}},
       {"receiver", "core/receiver", {"world"}, {}},
+      {"pipeline", "core/pipeline", {"receiver"}, {}},
       // The encoders read the Fix struct only, not the receiver that fills it.
       {"nmea", "core/protocol/nmea", {"time"}, {"core/receiver/fix.hpp"}},
       {"ubx", "core/protocol/ubx", {"nmea"}, {}},
-      {"config", "config", {"receiver", "ubx", "observation"}, {}},
+      {"config", "config", {"pipeline", "ubx", "observation"}, {}},
       {"daemon", "daemon", {"config"}, {}},
-      {"tools", "tools", {"daemon"}, {}},
+      {"tools", "tools", {"daemon", "statistics"}, {}},
       {"support", "tests/support", {}, {}},
       {"bench", "bench", {"tools", "support"}, {}},
       {"layering", "tests/layering", {}, {}},
       tests_of("common", "common"),
+      tests_of("statistics", "statistics"),
       tests_of("time", "time"),
       tests_of("orbit", "orbit"),
       tests_of("observation", "observation"),
@@ -44,7 +47,8 @@ Rules project_rules() {
       tests_of("scene", "scene"),
       tests_of("signal", "signal"),
       tests_of("world", "world"),
-      tests_of("receiver", "receiver"),
+      tests_of("receiver", "pipeline"),  // receiver tests assemble world + receiver
+      tests_of("pipeline", "pipeline"),
       tests_of("nmea", "nmea"),
       tests_of("ubx", "ubx"),
       tests_of("config", "config"),

@@ -5,16 +5,18 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "config/device_setup.hpp"
+#include "config/pipeline_setup.hpp"
 #include "config/scene_loader.hpp"
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/protocol/ubx/ubx_device.hpp"
-#include "core/receiver/receiver.hpp"
+#include "core/statistics/statistics.hpp"
 
 namespace gnssemu::cli {
 
@@ -22,31 +24,9 @@ namespace {
 
 constexpr double kGridTolerance_s = 1e-6;
 
-/// Nearest-rank percentile (p in (0, 1]) of unsorted values; NaN when empty.
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(v.size())));
-  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
-}
-
-double rms(const std::vector<double>& v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  double s = 0.0;
-  for (double x : v) s += x * x;
-  return std::sqrt(s / static_cast<double>(v.size()));
-}
-
-double max_abs(const std::vector<double>& v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  double m = 0.0;
-  for (double x : v) m = std::max(m, std::fabs(x));
-  return m;
-}
-
 }  // namespace
 
-BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const TruthTrack& track,
+BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const world::TruthTrack& track,
                        std::ostream* nmea, std::ostream* errors, std::ostream* ubx) {
   if (!(config.rate_hz > 0.0) || !std::isfinite(config.rate_hz)) {
     throw Error(config.source, 0, "rate_hz must be positive");
@@ -64,10 +44,8 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
   const orbit::EphemerisStore store(nav.ephemerides);
   scene::MeshStats mesh_stats;
   const std::unique_ptr<scene::Scene> buildings = config::load_scene(config, &mesh_stats);
-  receiver::Receiver rx(store, config.receiver);
-  if (nav.leap_seconds) rx.set_leap_seconds(*nav.leap_seconds);
-  rx.set_klobuchar(nav.klobuchar);
-  config::attach_scene(rx, config, buildings.get());
+  const std::unique_ptr<pipeline::Pipeline> rx =
+      config::make_pipeline(config, store, pipeline::broadcast_of(nav), buildings.get());
   // The daemon's emulated u-blox; its first output (a factory UART1 when
   // there is none) writes the NMEA and UBX logs. It powers on at the first epoch.
   protocol::ubx::Device device(config::device_setup(config));
@@ -84,13 +62,12 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
             << (sum.scene ? ",nvisible,ntracked,nlos,nblocked,nlos_delay_mean_m\n" : "\n");
   }
   long visible_sum = 0, nlos_sum = 0, blocked_sum = 0;
-  std::vector<double> h_err, v_err;
-  double se = 0.0, sn = 0.0, su = 0.0;
+  std::vector<double> e_err, n_err, h_err, v_err;
   for (double k = k0;; k += 1.0) {
     const time::GpsTime t(week, k / rate_hz);
     if (t - track.last() > kGridTolerance_s) break;
-    const receiver::Truth truth = track.at(t);
-    const receiver::Fix& fix = rx.step(t, truth);
+    const world::Truth truth = track.at(t);
+    const receiver::Fix& fix = rx->step(t, truth);
     if (sum.epochs == 0) power_on = t;
     ++sum.epochs;
     device.on_epoch(fix, t - power_on);
@@ -107,11 +84,10 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
       d = geo::ecef_to_enu_vector(fix.pos_m - truth.pos_m, truth_lla.lat_rad, truth_lla.lon_rad);
       ++sum.fixes;
       if (fix.type == receiver::FixType::k3D) ++sum.fixes_3d;
+      e_err.push_back(d.x);
+      n_err.push_back(d.y);
       h_err.push_back(std::hypot(d.x, d.y));
       v_err.push_back(d.z);
-      se += d.x;
-      sn += d.y;
-      su += d.z;
     }
     if (errors) {
       row.clear();
@@ -154,17 +130,16 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
     sum.mean_nlos = static_cast<double>(nlos_sum) / sum.epochs;
     sum.mean_blocked = static_cast<double>(blocked_sum) / sum.epochs;
   }
-  sum.h_rms_m = rms(h_err);
-  sum.h_95_m = percentile(h_err, 0.95);
-  sum.h_max_m = max_abs(h_err);
-  sum.v_rms_m = rms(v_err);
+  sum.h_rms_m = statistics::rms(h_err);
+  sum.h_95_m = statistics::percentile_nearest_rank(h_err, 0.95);
+  sum.h_max_m = statistics::max_abs(h_err);
+  sum.v_rms_m = statistics::rms(v_err);
+  sum.mean_e_m = statistics::mean(e_err);
+  sum.mean_n_m = statistics::mean(n_err);
+  sum.mean_u_m = statistics::mean(v_err);
   for (double& v : v_err) v = std::fabs(v);
-  sum.v_95_m = percentile(v_err, 0.95);
-  sum.v_max_m = max_abs(v_err);
-  const double n = sum.fixes > 0 ? static_cast<double>(sum.fixes) : std::numeric_limits<double>::quiet_NaN();
-  sum.mean_e_m = se / n;
-  sum.mean_n_m = sn / n;
-  sum.mean_u_m = su / n;
+  sum.v_95_m = statistics::percentile_nearest_rank(v_err, 0.95);
+  sum.v_max_m = statistics::max_abs(v_err);
   return sum;
 }
 

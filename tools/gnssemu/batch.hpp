@@ -1,12 +1,12 @@
 #pragma once
 // `gnssemu batch`: the daemon's code path (config -> ephemeris store ->
-// Receiver -> NmeaEncoder) run over a truth trajectory faster than real time.
+// make_pipeline -> encoders) run over a truth trajectory faster than real time.
 #include <string>
 #include <ostream>
 
 #include "config/config.hpp"
 #include "core/orbit/nav_data.hpp"
-#include "tools/gnssemu/truth_track.hpp"
+#include "core/world/truth_track.hpp"
 
 namespace gnssemu::cli {
 
@@ -36,7 +36,7 @@ struct BatchSummary {
 /// the emulated receiver powers on at the first epoch. errors: CSV `gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop`, plus
 /// `nvisible,ntracked,nlos,nblocked,nlos_delay_mean_m` when the config has a [scene].
 /// Either may be null. Throws gnssemu::Error when the truth spans no epoch.
-BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const TruthTrack& track,
+BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const world::TruthTrack& track,
                        std::ostream* nmea, std::ostream* errors, std::ostream* ubx = nullptr);
 
 /// Human-readable summary (for stderr).

@@ -17,11 +17,13 @@
 #include "core/geo/local_frame.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
-#include "core/receiver/receiver.hpp"
-#include "core/receiver/sky.hpp"
+#include "core/pipeline/pipeline.hpp"
+#include "core/world/sky.hpp"
 #include "core/scene/procedural_city.hpp"
 #include "core/scene/propagator.hpp"
 #include "core/scene/scene.hpp"
+#include "core/statistics/statistics.hpp"
+#include "tools/gnssemu/sky.hpp"
 
 namespace gnssemu::cli {
 
@@ -76,25 +78,6 @@ double thread_cpu_us() {
   return static_cast<double>(ts.tv_sec) * 1e6 + static_cast<double>(ts.tv_nsec) * 1e-3;
 }
 
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<std::size_t>(p * static_cast<double>(v.size())))];
-}
-
-receiver::ReceiverConfig clean_receiver(double mask_rad) {
-  receiver::ReceiverConfig c;
-  c.elevation_mask_rad = mask_rad;
-  c.errors.thermal_sigma_m = 0.0;
-  c.errors.orbit_clock.sigma_m = 0.0;
-  c.errors.doppler_sigma_m_s = 0.0;
-  c.clock.drift_noise_s_s_sqrt_s = 0.0;
-  c.max_channels = kMaxGpsPrn;
-  c.max_pdop = 1.0e6;
-  c.solver.residual_test_pfa = 0.0;  // keep every fix so positions can be compared
-  return c;
-}
-
 struct FixTrace {
   std::vector<Ecef> pos;
   std::vector<bool> ok;
@@ -104,11 +87,11 @@ struct FixTrace {
 
 FixTrace run_receiver(const orbit::EphemerisStore& store, const std::vector<Epoch>& epochs, const scene::Scene& s,
                       const Lla& origin, const scene::SearchConfig& search, double mask_rad) {
-  receiver::Receiver rx(store, clean_receiver(mask_rad));
-  rx.attach_scene(s, origin, search);
+  // Every fix kept (no residual test) so positions can be compared.
+  pipeline::Pipeline rx(store, geometry_config(mask_rad), {}, world::SceneSetup{&s, origin, search});
   FixTrace tr;
   for (const Epoch& e : epochs) {
-    receiver::Truth truth;
+    world::Truth truth;
     truth.t = e.t;
     truth.pos_m = e.rx_ecef;
     truth.valid = true;
@@ -194,7 +177,7 @@ void run_bench_multipath(const BenchMultipathArgs& a, std::ostream& out, std::os
     for (int p = 1; p <= kMaxGpsPrn; ++p) {
       const orbit::Ephemeris* eph = store.select(p, e.t);
       if (eph == nullptr) continue;
-      const receiver::SkySat s = receiver::sky_sat(*eph, e.t, e.rx_ecef, lla, Ecef());
+      const world::SkySat s = world::sky_sat(*eph, e.t, e.rx_ecef, lla, Ecef());
       if (!(s.el_rad >= mask_rad)) continue;
       e.sats.push_back({p, frame.vector_to_enu((s.pos_m - e.rx_ecef) / s.range_m)});
     }
@@ -327,8 +310,8 @@ void run_bench_multipath(const BenchMultipathArgs& a, std::ostream& out, std::os
     }
     out << fmt::format("{},{},{},{},{},{:.1f},{:.1f},{:.1f},{:.0f},{},{:.2f},{:.3f},{:.3f},{:.3f},{:.3f}\n",
                        st.azimuth_rays, st.rays,
-                       st.bounces, st.reuse_m, st.reuse_deg, mean_us, percentile(all_us, 0.95),
-                       percentile(all_us, 1.0), rays_total / n_ep, mis, 100.0 * mis / std::max(1, total),
+                       st.bounces, st.reuse_m, st.reuse_deg, mean_us, statistics::percentile_nearest_rank(all_us, 0.95),
+                       statistics::max_abs(all_us), rays_total / n_ep, mis, 100.0 * mis / std::max(1, total),
                        both_nlos > 0 ? std::sqrt(d2 / both_nlos) : 0.0, dmax, pn > 0 ? std::sqrt(p2 / pn) : 0.0, pmax);
     out.flush();
   }

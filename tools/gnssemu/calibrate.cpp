@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <sstream>
+#include <string_view>
 
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
@@ -17,7 +19,8 @@
 #include "core/atmosphere/ionosphere.hpp"
 #include "core/atmosphere/receiver_corrections.hpp"
 #include "core/atmosphere/troposphere.hpp"
-#include "core/receiver/sky.hpp"
+#include "core/receiver/transmit_state.hpp"
+#include "core/world/sky.hpp"
 #include "core/signal/link_budget.hpp"
 #include "tools/gnssemu/spp.hpp"
 
@@ -31,10 +34,6 @@ constexpr int kMinEpochs = 100;
 constexpr double kMaxLag_s = 3600.0;    // autocovariance lags fitted (1 h)
 constexpr double kOutlier_m = 30.0;     // |residual| beyond this: not a model error (blunder)
 
-
-double day_of_year(const time::GpsTime& t) {
-  return t.day_of_year() + std::fmod(t.tow_s(), kSecondsPerDay) / kSecondsPerDay;
-}
 
 double grid_step_s(const observation::ObsData& obs) {
   if (obs.header.interval_s > 0.0) return obs.header.interval_s;
@@ -62,14 +61,13 @@ std::vector<Residual> station_residuals(const CalibrationInput& in, const orbit:
       if (pr == nullptr) continue;
       const orbit::Ephemeris* eph = store.select(s.prn, e.t);
       if (eph == nullptr) continue;
-      // Transmit time from the code phase, as receiver::Solver does.
-      const time::GpsTime t_sv = e.t - pr->value / kSpeedOfLight_m_s;
-      const double dt0 = orbit::sat_state(*eph, t_sv).clk_bias_s - eph->tgd_s;
-      const orbit::SatState st = orbit::sat_state(*eph, t_sv - dt0);
+      const orbit::SatState st = receiver::transmit_state(*eph, e.t, pr->value).state;
+      // Sagnac at the known station: rotate by the geometric flight time (the
+      // solver's flight time holds its clock estimate, which is not known here).
       double rho = (st.pos_m - in.station_m).norm();
       Ecef p = st.pos_m;
-      for (int it = 0; it < 2; ++it) {  // Sagnac: rotate by the flight time
-        p = receiver::rotate_earth(st.pos_m, kOmegaEarth_rad_s * rho / kSpeedOfLight_m_s);
+      for (int it = 0; it < 2; ++it) {
+        p = world::rotate_earth(st.pos_m, kOmegaEarth_rad_s * rho / kSpeedOfLight_m_s);
         rho = (p - in.station_m).norm();
       }
       const geo::LookAngles look = geo::look_angles(in.station_m, lla, p);
@@ -82,8 +80,8 @@ std::vector<Residual> station_residuals(const CalibrationInput& in, const orbit:
       r.range_m = rho;
       r.klobuchar_m = receiver_correction_m(in.nav->klobuchar, lla, look.az_rad, look.el_rad, e.t) -
                       atmosphere::standard_troposphere_correction_m(lla.lat_rad, lla.height_m, look.el_rad,
-                                                                    day_of_year(e.t));
-      r.nmf_wet = atmosphere::niell_mapping(look.el_rad, lla.lat_rad, lla.height_m, day_of_year(e.t)).wet;
+                                                                    e.t.fractional_day_of_year());
+      r.nmf_wet = atmosphere::niell_mapping(look.el_rad, lla.lat_rad, lla.height_m, e.t.fractional_day_of_year()).wet;
       // Local time as the receiver's gradient and Klobuchar (IS-GPS-200 20.3.3.5.2.5) take it.
       r.local_time_rad = 2.0 * kPi * (e.t.tow_s() / kSecondsPerDay) + lla.lon_rad;
       r.value_m = pr->value - (rho - kSpeedOfLight_m_s * (st.clk_bias_s - eph->tgd_s) +
@@ -467,15 +465,6 @@ void fit_gradient_process(const std::vector<GradientEpoch>& grads, const std::ve
   out.gradient_tau_s = f.gm_tau_s;
 }
 
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return kNaN;
-  std::sort(v.begin(), v.end());
-  const double pos = q * static_cast<double>(v.size() - 1);
-  const std::size_t i = static_cast<std::size_t>(pos);
-  const double frac = pos - static_cast<double>(i);
-  return i + 1 < v.size() ? v[i] * (1.0 - frac) + v[i + 1] * frac : v[i];
-}
-
 }  // namespace
 
 NoiseFit fit_gauss_markov(const std::vector<double>& acov, double step_s) {
@@ -506,61 +495,6 @@ NoiseFit fit_gauss_markov(const std::vector<double>& acov, double step_s) {
   return f;
 }
 
-ErrorStats error_stats(const std::vector<Enu>& errors, double step_s) {
-  ErrorStats s;
-  std::vector<double> h;
-  double se = 0, sn = 0, su = 0;
-  for (const Enu& d : errors) {
-    if (!d.finite()) continue;
-    se += d.x, sn += d.y, su += d.z;
-    ++s.n;
-  }
-  if (s.n == 0) return s;
-  s.mean_e_m = se / s.n, s.mean_n_m = sn / s.n, s.mean_u_m = su / s.n;
-  double ve = 0, vn = 0, vu = 0;
-  for (const Enu& d : errors) {
-    if (!d.finite()) continue;
-    ve += (d.x - s.mean_e_m) * (d.x - s.mean_e_m);
-    vn += (d.y - s.mean_n_m) * (d.y - s.mean_n_m);
-    vu += (d.z - s.mean_u_m) * (d.z - s.mean_u_m);
-    h.push_back(std::hypot(d.x, d.y));
-  }
-  s.sigma_e_m = std::sqrt(ve / s.n), s.sigma_n_m = std::sqrt(vn / s.n), s.sigma_u_m = std::sqrt(vu / s.n);
-  s.cep50_m = quantile(h, 0.5);
-  s.cep95_m = quantile(h, 0.95);
-  // Mean normalised autocorrelation of the three components.
-  const std::size_t n = errors.size();
-  const double mean[3] = {s.mean_e_m, s.mean_n_m, s.mean_u_m};
-  const double var[3] = {ve / s.n, vn / s.n, vu / s.n};
-  double prev = 1.0;
-  for (std::size_t k = 1; k < n; ++k) {
-    double rho = 0.0;
-    for (int c = 0; c < 3; ++c) {
-      double acc = 0.0;
-      int cnt = 0;
-      for (std::size_t i = 0; i + k < n; ++i) {
-        const Enu& a = errors[i];
-        const Enu& b = errors[i + k];
-        if (!a.finite() || !b.finite()) continue;
-        const double va = c == 0 ? a.x : c == 1 ? a.y : a.z;
-        const double vb = c == 0 ? b.x : c == 1 ? b.y : b.z;
-        acc += (va - mean[c]) * (vb - mean[c]);
-        ++cnt;
-      }
-      rho += cnt > 0 && var[c] > 0.0 ? acc / cnt / var[c] / 3.0 : 0.0;
-    }
-    const double target = std::exp(-1.0);
-    if (rho < target) {
-      const double frac = (prev - target) / (prev - rho);
-      s.corr_time_s = (static_cast<double>(k - 1) + frac) * step_s;
-      return s;
-    }
-    prev = rho;
-  }
-  s.corr_time_s = static_cast<double>(n) * step_s;  // never decorrelated within the span
-  return s;
-}
-
 CalibrationResult calibrate(const CalibrationInput& in, const config::Config& base) {
   if (in.obs == nullptr || in.nav == nullptr) throw Error("calibrate: no data");
   const orbit::EphemerisStore store(in.nav->ephemerides);
@@ -574,14 +508,14 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
   }
   r.residuals = static_cast<int>(res.size());
   r.residual_rows = res;
-  double ss = 0.0;
-  for (const Residual& x : res) ss += x.value_m * x.value_m;
-  r.residual_rms_m = std::sqrt(ss / r.residuals);
+  std::vector<double> values;
+  for (const Residual& x : res) values.push_back(x.value_m);
+  r.residual_rms_m = statistics::rms(values);
 
   const int max_lag = static_cast<int>(std::lround(kMaxLag_s / step_s));
   r.range_noise = fit_gauss_markov(pooled_autocovariance(res, max_lag), step_s);
 
-  const Cn0Fit cn0 = fit_cn0(res, base.receiver.signal.link);
+  const Cn0Fit cn0 = fit_cn0(res, base.world.signal.link);
   r.cn0_rms_db = cn0.rms_db;
   r.cn0_zenith_dbhz = cn0.zenith_dbhz;
   r.cn0_slope_db = cn0.slope_db;
@@ -593,17 +527,15 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
   r.bias = fit_atmosphere_bias(res, span_s >= kMinDiurnalSpan_s);
   std::vector<Residual> rest = res;
   const std::vector<GradientEpoch> grads = remove_common_terms(rest, r.bias);
-  signal::LinkBudgetConfig link = base.receiver.signal.link;
+  signal::LinkBudgetConfig link = base.world.signal.link;
   if (cn0.n >= 10) link.antenna = cn0.antenna;
-  r.processes = fit_processes(rest, link, base.receiver.signal.dll, step_s);
+  r.processes = fit_processes(rest, link, base.world.signal.dll, step_s);
   fit_gradient_process(grads, res, r.processes, step_s, r.bias);
 
   // The data's own single-point errors through the receiver's solver.
-  SppOptions opt;
-  opt.solver = base.receiver.solver;
-  opt.max_pdop = base.receiver.max_pdop;
-  opt.mask_rad = in.mask_rad;
-  SppEngine engine(*in.nav, store, in.obs->header, opt);
+  receiver::ReceiverConfig rx = base.receiver;
+  rx.elevation_mask_rad = in.mask_rad;
+  SppEngine engine(*in.nav, store, in.obs->header, rx);
   const geo::LocalFrame frame(geo::lla_from_ecef(in.station_m));
   const time::GpsTime t0 = in.obs->epochs.front().t;
   const int n_grid = static_cast<int>(std::lround((in.obs->epochs.back().t - t0) / step_s)) + 1;
@@ -615,7 +547,7 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
     const long g = std::lround((e.t - t0) / step_s);
     if (g >= 0 && g < n_grid) err[static_cast<std::size_t>(g)] = frame.to_enu(s.pos_m);
   }
-  r.spp = error_stats(err, step_s);
+  r.spp = statistics::position_error_stats(err, step_s);
 
   // The fitted configuration.
   config::Config c = base;
@@ -624,25 +556,25 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
   c.nav_file = in.nav_path;
   c.time.start.reset();
   c.receiver.elevation_mask_rad = in.mask_rad;
-  if (cn0.n >= 10) c.receiver.nominal_cn0_dbhz = cn0.zenith_dbhz;
-  if (cn0.n >= 10) c.receiver.signal.link.antenna = cn0.antenna;
+  if (cn0.n >= 10) c.world.nominal_cn0_dbhz = cn0.zenith_dbhz;
+  if (cn0.n >= 10) c.world.signal.link.antenna = cn0.antenna;
   const ProcessFit& p = r.processes;
-  receiver::ErrorModelConfig& em = c.receiver.errors;
+  world::ErrorModelConfig& em = c.world.errors;
   em.orbit_clock = {p.orbit_clock_sigma_m, p.orbit_clock_tau_s};
   em.multipath = {p.multipath_sigma_m, p.multipath_tau_s};
   // White noise: DLL jitter from the link budget's C/N0 with the fitted loop
   // bandwidth (the config range is (0, 50] Hz; none fitted -> fixed 0).
   if (p.dll_bandwidth_hz > 1e-6) {
-    em.thermal_model = receiver::ThermalModel::kDll;
-    c.receiver.signal.dll.loop_bandwidth_hz = std::min(p.dll_bandwidth_hz, 50.0);
+    em.thermal_model = world::ThermalModel::kDll;
+    c.world.signal.dll.loop_bandwidth_hz = std::min(p.dll_bandwidth_hz, 50.0);
   } else {
-    em.thermal_model = receiver::ThermalModel::kFixed;
+    em.thermal_model = world::ThermalModel::kFixed;
     em.thermal_sigma_m = 0.0;
   }
   // World ionosphere: Klobuchar shape x (1 + alpha) with the broadcast
   // obliquity (what the receiver removes is 1 x the same), plus the fitted
   // per-line-of-sight TEC process.
-  atmosphere::IonosphereConfig& io = c.receiver.atmosphere.ionosphere;
+  atmosphere::IonosphereConfig& io = c.world.atmosphere.ionosphere;
   io.enabled = true;
   io.source = atmosphere::VtecSource::kKlobucharShape;
   io.klobuchar_scale = std::max(1.0 + r.bias.klobuchar_alpha, 0.0);
@@ -653,8 +585,8 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
   // plus the fitted beta (one value for the site; the common ZWD process is
   // not observable once the epoch clock is removed, so it stays off).
   const Lla site = c.origin;
-  const double doy = day_of_year(in.obs->epochs.front().t);
-  atmosphere::TroposphereConfig& tr = c.receiver.atmosphere.troposphere;
+  const double doy = in.obs->epochs.front().t.fractional_day_of_year();
+  atmosphere::TroposphereConfig& tr = c.world.atmosphere.troposphere;
   tr.enabled = true;
   tr.zhd_model = atmosphere::ZhdModel::kSaastamoinen;
   tr.zwd_model = atmosphere::ZwdModel::kFixed;
@@ -662,7 +594,7 @@ CalibrationResult calibrate(const CalibrationInput& in, const config::Config& ba
                           atmosphere::receiver_zhd_m(site.lat_rad, site.height_m);
   tr.zwd_m = std::clamp((zwd_rx_m + r.bias.zwd_beta_m) * std::exp(std::max(site.height_m, 0.0) / tr.zwd_scale_height_m),
                         0.0, 1.0);
-  c.receiver.atmosphere.zwd_perturbation.sigma_m = 0.0;
+  c.world.atmosphere.zwd_perturbation.sigma_m = 0.0;
   em.gradient.north_m = r.bias.gradient_north_m;
   em.gradient.east_m = r.bias.gradient_east_m;
   // a cos LT + b sin LT = A cos(LT - peak): amplitude and local time of the maximum.
@@ -704,51 +636,47 @@ void write_residuals_csv(const CalibrationResult& r, std::ostream& out) {
   }
 }
 
+namespace {
+
+struct ReportRow {
+  const char* name;
+  double value;
+  const char* unit;
+};
+
+/// `prefix + name,value,unit` lines.
+void write_rows(std::ostream& out, std::string_view prefix, std::initializer_list<ReportRow> rows) {
+  for (const ReportRow& x : rows) out << fmt::format("{}{},{:.6g},{}\n", prefix, x.name, x.value, x.unit);
+}
+
+}  // namespace
+
 void write_calibration_report(const CalibrationResult& r, std::ostream& out) {
   out << "parameter,value,unit\n";
-  const auto row = [&](const char* name, double v, const char* unit) {
-    out << fmt::format("{},{:.6g},{}\n", name, v, unit);
-  };
-  row("epochs", r.epochs, "");
-  row("residuals", r.residuals, "");
-  row("residual_rms", r.residual_rms_m, "m");
-  row("gm_sigma", r.range_noise.gm_sigma_m, "m");
-  row("gm_tau", r.range_noise.gm_tau_s, "s");
-  row("white_sigma", r.range_noise.white_sigma_m, "m");
-  row("klobuchar_scale", 1.0 + r.bias.klobuchar_alpha, "");
-  row("zwd_residual", r.bias.zwd_beta_m, "m");
-  row("bias_regressor_correlation", r.bias.correlation, "");
-  row("gradient_north", r.bias.gradient_north_m, "m");
-  row("gradient_east", r.bias.gradient_east_m, "m");
-  const receiver::ErrorModelConfig::Gradient& g = r.config.receiver.errors.gradient;
-  row("gradient_north_diurnal", g.north_diurnal_m, "m");
-  row("gradient_north_peak", g.north_peak_h, "h");
-  row("gradient_east_diurnal", g.east_diurnal_m, "m");
-  row("gradient_east_peak", g.east_peak_h, "h");
-  row("gradient_sigma", r.bias.gradient_sigma_m, "m");
-  row("gradient_tau", r.bias.gradient_tau_s, "s");
-  row("gradient_leak", r.bias.gradient_leak_m, "m");
-  row("dll_bandwidth", r.processes.dll_bandwidth_hz, "Hz");
-  row("multipath_sigma_zenith", r.processes.multipath_sigma_m, "m");
-  row("multipath_tau", r.processes.multipath_tau_s, "s");
-  row("orbit_clock_sigma", r.processes.orbit_clock_sigma_m, "m");
-  row("orbit_clock_tau", r.processes.orbit_clock_tau_s, "s");
-  row("iono_sigma", r.processes.iono_sigma_tecu, "TECU");
-  row("iono_tau", r.processes.iono_tau_s, "s");
-  row("cn0_samples", r.cn0_samples, "");
-  row("cn0_zenith", r.cn0_zenith_dbhz, "dB-Hz");
-  row("cn0_zenith_to_horizon", r.cn0_slope_db, "dB");
-  row("cn0_rms", r.cn0_rms_db, "dB-Hz");
-  row("spp_fixes", r.spp_fixes, "");
-  row("spp_mean_e", r.spp.mean_e_m, "m");
-  row("spp_mean_n", r.spp.mean_n_m, "m");
-  row("spp_mean_u", r.spp.mean_u_m, "m");
-  row("spp_sigma_e", r.spp.sigma_e_m, "m");
-  row("spp_sigma_n", r.spp.sigma_n_m, "m");
-  row("spp_sigma_u", r.spp.sigma_u_m, "m");
-  row("spp_cep50", r.spp.cep50_m, "m");
-  row("spp_cep95", r.spp.cep95_m, "m");
-  row("spp_corr_time", r.spp.corr_time_s, "s");
+  const auto count = [](auto n) { return static_cast<double>(n); };
+  write_rows(out, "", {{"epochs", count(r.epochs), ""}, {"residuals", count(r.residuals), ""},
+                       {"residual_rms", r.residual_rms_m, "m"}, {"gm_sigma", r.range_noise.gm_sigma_m, "m"},
+                       {"gm_tau", r.range_noise.gm_tau_s, "s"}, {"white_sigma", r.range_noise.white_sigma_m, "m"},
+                       {"klobuchar_scale", 1.0 + r.bias.klobuchar_alpha, ""}, {"zwd_residual", r.bias.zwd_beta_m, "m"},
+                       {"bias_regressor_correlation", r.bias.correlation, ""}});
+  const world::ErrorModelConfig::Gradient& g = r.config.world.errors.gradient;
+  write_rows(out, "gradient_", {{"north", r.bias.gradient_north_m, "m"}, {"east", r.bias.gradient_east_m, "m"},
+                                {"north_diurnal", g.north_diurnal_m, "m"}, {"north_peak", g.north_peak_h, "h"},
+                                {"east_diurnal", g.east_diurnal_m, "m"}, {"east_peak", g.east_peak_h, "h"},
+                                {"sigma", r.bias.gradient_sigma_m, "m"}, {"tau", r.bias.gradient_tau_s, "s"},
+                                {"leak", r.bias.gradient_leak_m, "m"}});
+  const ProcessFit& p = r.processes;
+  write_rows(out, "", {{"dll_bandwidth", p.dll_bandwidth_hz, "Hz"}, {"multipath_sigma_zenith", p.multipath_sigma_m, "m"},
+                       {"multipath_tau", p.multipath_tau_s, "s"}, {"orbit_clock_sigma", p.orbit_clock_sigma_m, "m"},
+                       {"orbit_clock_tau", p.orbit_clock_tau_s, "s"}, {"iono_sigma", p.iono_sigma_tecu, "TECU"},
+                       {"iono_tau", p.iono_tau_s, "s"}});
+  write_rows(out, "cn0_", {{"samples", count(r.cn0_samples), ""}, {"zenith", r.cn0_zenith_dbhz, "dB-Hz"},
+                           {"zenith_to_horizon", r.cn0_slope_db, "dB"}, {"rms", r.cn0_rms_db, "dB-Hz"}});
+  const statistics::PositionErrorStats& e = r.spp;
+  write_rows(out, "spp_", {{"fixes", count(r.spp_fixes), ""}, {"mean_e", e.mean_e_m, "m"}, {"mean_n", e.mean_n_m, "m"},
+                           {"mean_u", e.mean_u_m, "m"}, {"sigma_e", e.sigma_e_m, "m"}, {"sigma_n", e.sigma_n_m, "m"},
+                           {"sigma_u", e.sigma_u_m, "m"}, {"cep50", e.cep50_m, "m"}, {"cep95", e.cep95_m, "m"},
+                           {"corr_time", e.corr_time_s, "s"}});
 }
 
 }  // namespace gnssemu::cli

@@ -14,6 +14,7 @@
 #include "core/common/vec3.hpp"
 #include "core/observation/obs_data.hpp"
 #include "core/orbit/nav_data.hpp"
+#include "core/statistics/statistics.hpp"
 
 namespace gnssemu::cli {
 
@@ -47,20 +48,6 @@ struct NoiseFit {
   double gm_tau_s = 0.0;     ///< its correlation time, s
   double white_sigma_m = 0.0;///< white part, m
 };
-
-/// Statistics of a position-error series (fix minus truth, local ENU).
-struct ErrorStats {
-  int n = 0;
-  double mean_e_m = 0.0, mean_n_m = 0.0, mean_u_m = 0.0;
-  double sigma_e_m = 0.0, sigma_n_m = 0.0, sigma_u_m = 0.0;  ///< standard deviations
-  double cep50_m = 0.0, cep95_m = 0.0;  ///< 50 % / 95 % quantiles of hypot(e, n)
-  /// Lag at which the mean autocorrelation of e, n, u (about their means)
-  /// first falls below 1/e, s (linear interpolation between lags).
-  double corr_time_s = 0.0;
-};
-
-/// e, n, u series on a regular grid of step_s seconds (gaps are not allowed).
-ErrorStats error_stats(const std::vector<Enu>& errors, double step_s);
 
 /// Fit sigma^2 exp(-lag/tau) to autocovariance lags 1..K (least squares,
 /// tau on a log grid 30 s..6 h) and the white part from lag 0.
@@ -128,7 +115,7 @@ struct CalibrationResult {
   double cn0_slope_db = 0.0;    ///< fitted antenna gain change zenith -> horizon, dB
   int cn0_samples = 0;
   std::vector<Residual> residual_rows;  ///< every residual used by the fit
-  ErrorStats spp;               ///< the data's own single-point errors (receiver solver)
+  statistics::PositionErrorStats spp;  ///< the data's own single-point errors (receiver solver)
   int spp_fixes = 0;
 };
 

@@ -145,7 +145,7 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
     throw Error("--nmea, --ubx, --errors: two outputs cannot both be '-' (stdout)");
   }
   const config::Config cfg = config::load_config(a.config_path);
-  const TruthTrack track(read_truth_csv(a.truth_path));
+  const world::TruthTrack track(read_truth_csv(a.truth_path));
   std::error_code ec;
   if (!std::filesystem::is_regular_file(cfg.nav_file, ec)) {
     throw Error(a.config_path, 0, "nav file not found: " + cfg.nav_file);
@@ -219,12 +219,10 @@ int run_spp_command(const ObsArgs& a, std::ostream& out, std::ostream& err) {
   std::optional<Ecef> station;
   if (!a.station.empty()) station = parse_station(a.station);
   const auto [obs, nav] = load_obs_nav(a);
-  SppOptions opt;
   const config::Config base = a.config_path.empty() ? config::Config{} : config::load_config(a.config_path);
-  opt.solver = base.receiver.solver;
-  opt.max_pdop = base.receiver.max_pdop;
-  opt.mask_rad = a.mask_deg * kDegToRad;
-  const SppSummary sum = write_spp(obs, nav, opt, station, out);
+  receiver::ReceiverConfig rx = base.receiver;
+  rx.elevation_mask_rad = a.mask_deg * kDegToRad;
+  const SppSummary sum = write_spp(obs, nav, rx, station, out);
   err << fmt::format("gnssemu spp: {} epochs, {} with a fix\n", sum.epochs, sum.fixes);
   return kExitOk;
 }

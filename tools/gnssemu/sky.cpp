@@ -10,42 +10,36 @@
 #include "core/common/constants.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/geo/local_frame.hpp"
-#include "core/receiver/receiver.hpp"
-#include "core/receiver/propagation.hpp"
-#include "core/receiver/sky.hpp"
 #include "core/atmosphere/receiver_corrections.hpp"
 #include "core/atmosphere/troposphere.hpp"
+#include "core/pipeline/pipeline.hpp"
 #include "core/signal/link_budget.hpp"
+#include "core/world/propagation.hpp"
+#include "core/world/sky.hpp"
 
 namespace gnssemu::cli {
 
-namespace {
-
-/// An error-free receiver that tracks every satellite above the mask, so its
-/// fix sits on the site and its DOP is the geometry's.
-receiver::ReceiverConfig geometry_receiver_config(double mask_rad) {
-  receiver::ReceiverConfig c;
-  c.elevation_mask_rad = mask_rad;
-  c.errors.thermal_sigma_m = 0.0;
-  c.errors.orbit_clock.sigma_m = 0.0;
-  c.errors.doppler_sigma_m_s = 0.0;
-  c.clock.drift_noise_s_s_sqrt_s = 0.0;
-  c.max_channels = kMaxGpsPrn;
-  c.max_pdop = 1.0e6;               // report poor geometry instead of dropping the fix
-  c.solver.residual_test_pfa = 0.0;  // nothing to detect without errors
+pipeline::PipelineConfig geometry_config(double mask_rad) {
+  pipeline::PipelineConfig c;
+  c.receiver.elevation_mask_rad = mask_rad;
+  c.world.errors.thermal_sigma_m = 0.0;
+  c.world.errors.orbit_clock.sigma_m = 0.0;
+  c.world.errors.doppler_sigma_m_s = 0.0;
+  c.world.clock.drift_noise_s_s_sqrt_s = 0.0;
+  c.receiver.max_channels = kMaxGpsPrn;
+  c.receiver.max_pdop = receiver::ReceiverRanges::max_pdop.max;  // report poor geometry rather than drop the fix
+  c.receiver.solver.residual_test_pfa = 0.0;  // nothing to detect without errors
   return c;
 }
-
-}  // namespace
 
 int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out) {
   out << "prn,az_deg,el_deg,range_m,iono_klobuchar_m,tropo_zhd_m,nmf_hydro,nmf_wet,atten_db,cn0_dbhz"
       << (req.scene ? ",los,bounces,nlos_delay_m,path_loss_db\n" : "\n");
   const Ecef rx = geo::ecef_from_lla(req.rx_lla);
-  const receiver::ReceiverConfig defaults;
-  const receiver::AtmospherePropagation world(defaults.atmosphere);
+  const world::WorldConfig defaults;
+  const world::AtmospherePropagation world(defaults.atmosphere);
   const signal::LinkBudgetModel link(defaults.signal.link);
-  const double doy = req.t.day_of_year() + std::fmod(req.t.tow_s(), kSecondsPerDay) / kSecondsPerDay;
+  const double doy = req.t.fractional_day_of_year();
   const double zhd_m = atmosphere::receiver_zhd_m(req.rx_lla.lat_rad, req.rx_lla.height_m);
   const geo::LocalFrame frame(req.scene_origin);
   std::optional<scene::Propagator> prop;
@@ -55,14 +49,14 @@ int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::os
   for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
     const orbit::Ephemeris* eph = store.select(prn, req.t);
     if (eph == nullptr) continue;
-    const receiver::SkySat s = receiver::sky_sat(*eph, req.t, rx, req.rx_lla, Ecef());
+    const world::SkySat s = world::sky_sat(*eph, req.t, rx, req.rx_lla, Ecef());
     if (!(s.el_rad >= req.mask_rad)) continue;
     const double iono_m = atmosphere::receiver_iono_delay_m(req.klobuchar, req.rx_lla.lat_rad, req.rx_lla.lon_rad,
                                                             s.az_rad, s.el_rad, req.t.tow_s());
     const atmosphere::NiellMapping nmf =
         atmosphere::niell_mapping(s.el_rad, req.rx_lla.lat_rad, req.rx_lla.height_m, doy);
     const double atten_db =
-        world.slow_terms(req.rx_lla, s.az_rad, s.el_rad, req.t.tow_s(), doy)[receiver::kAttenDb];
+        world.slow_terms(req.rx_lla, s.az_rad, s.el_rad, req.t.tow_s(), doy)[world::kAttenDb];
     buf.clear();
     fmt::format_to(std::back_inserter(buf), "{},{:.6f},{:.6f},{:.4f},{:.4f},{:.4f},{:.5f},{:.5f},{:.4f},{:.2f}", prn,
                    s.az_rad * kRadToDeg, s.el_rad * kRadToDeg, s.range_m, iono_m, zhd_m, nmf.hydro, nmf.wet, atten_db,
@@ -87,8 +81,8 @@ int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::os
 
 DopResult write_dop(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out) {
   out << "gdop,pdop,hdop,vdop,tdop,nsat\n";
-  receiver::Receiver rx(store, geometry_receiver_config(req.mask_rad));
-  receiver::Truth truth;
+  pipeline::Pipeline rx(store, geometry_config(req.mask_rad));
+  world::Truth truth;
   truth.t = req.t;
   truth.pos_m = geo::ecef_from_lla(req.rx_lla);
   truth.valid = true;

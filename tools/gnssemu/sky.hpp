@@ -6,6 +6,7 @@
 #include "core/common/vec3.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/nav_data.hpp"
+#include "core/pipeline/pipeline.hpp"
 #include "core/scene/propagator.hpp"
 #include "core/time/gps_time.hpp"
 
@@ -34,6 +35,11 @@ struct SkyRequest {
 /// and loss: not received).
 /// Returns the number of rows.
 int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out);
+
+/// An error-free receiver that tracks every satellite at or above mask_rad
+/// (rad), so its fix sits on the truth and its DOP is the geometry's (the
+/// world's atmosphere and the receiver's corrections stay at their defaults).
+pipeline::PipelineConfig geometry_config(double mask_rad);
 
 struct DopResult {
   int nsat = 0;          ///< satellites at or above the mask

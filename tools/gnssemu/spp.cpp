@@ -8,13 +8,13 @@
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/geo/local_frame.hpp"
-#include "core/receiver/sky.hpp"
+#include "core/world/sky.hpp"
 
 namespace gnssemu::cli {
 
 double receiver_correction_m(const orbit::KlobucharParams& k, const Lla& rx, double az_rad, double el_rad,
                              const time::GpsTime& t, const receiver::SolverConfig& solver) {
-  const double doy = t.day_of_year() + std::fmod(t.tow_s(), kSecondsPerDay) / kSecondsPerDay;
+  const double doy = t.fractional_day_of_year();
   const double iono_m = solver.iono == atmosphere::IonoCorrection::kKlobuchar
                             ? atmosphere::receiver_iono_delay_m(k, rx.lat_rad, rx.lon_rad, az_rad, el_rad, t.tow_s())
                             : 0.0;
@@ -32,8 +32,12 @@ receiver::SolverConfig precorrected(receiver::SolverConfig s) {
 }  // namespace
 
 SppEngine::SppEngine(const orbit::NavData& nav, const orbit::EphemerisStore& store,
-                     const observation::ObsHeader& header, const SppOptions& options)
-    : store_(store), klobuchar_(nav.klobuchar), opt_(options), solver_(precorrected(options.solver), options.max_pdop) {
+                     const observation::ObsHeader& header, const receiver::ReceiverConfig& receiver)
+    : store_(store),
+      klobuchar_(nav.klobuchar),
+      rx_(receiver),
+      solver_(precorrected(receiver.solver), receiver.max_pdop) {
+  receiver::validate(rx_);
   c1c_ = header.type_index("C1C");
   s1c_ = header.type_index("S1C");
   if (c1c_ < 0) throw Error("observation file has no GPS C1C (RINEX 2: C1) pseudoranges");
@@ -52,9 +56,9 @@ bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
     if (eph == nullptr) continue;
     double corr_m = 0.0;
     if (site != nullptr) {
-      const receiver::SkySat sky = receiver::sky_sat(*eph, epoch.t, *site, site_lla, Ecef{});
-      if (!(sky.el_rad >= opt_.mask_rad)) continue;
-      corr_m = receiver_correction_m(klobuchar_, site_lla, sky.az_rad, sky.el_rad, epoch.t, opt_.solver);
+      const world::SkySat sky = world::sky_sat(*eph, epoch.t, *site, site_lla, Ecef{});
+      if (!(sky.el_rad >= rx_.elevation_mask_rad)) continue;
+      corr_m = receiver_correction_m(klobuchar_, site_lla, sky.az_rad, sky.el_rad, epoch.t, rx_.solver);
     }
     receiver::Measurement& m = in_.meas[static_cast<std::size_t>(in_.num_meas)];
     m.eph = eph;
@@ -108,7 +112,7 @@ const SppEpoch& SppEngine::solve(const observation::ObsEpoch& epoch) {
     if (out_.excluded[k]) continue;
     result_.prn[n] = meas_prn_[k];
     result_.residual_m[n] = out_.residual_m[k];
-    result_.el_rad[n] = receiver::sky_sat(*in_.meas[k].eph, epoch.t, out_.pos_m, lla, Ecef{}).el_rad;
+    result_.el_rad[n] = world::sky_sat(*in_.meas[k].eph, epoch.t, out_.pos_m, lla, Ecef{}).el_rad;
     ++n;
   }
   last_pos_m_ = out_.pos_m;
@@ -116,11 +120,11 @@ const SppEpoch& SppEngine::solve(const observation::ObsEpoch& epoch) {
   return result_;
 }
 
-SppSummary write_spp(const observation::ObsData& obs, const orbit::NavData& nav, const SppOptions& options,
-                     const std::optional<Ecef>& station, std::ostream& out) {
+SppSummary write_spp(const observation::ObsData& obs, const orbit::NavData& nav,
+                     const receiver::ReceiverConfig& receiver, const std::optional<Ecef>& station, std::ostream& out) {
   const orbit::EphemerisStore store(nav.ephemerides);
   if (store.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the file");
-  SppEngine engine(nav, store, obs.header, options);
+  SppEngine engine(nav, store, obs.header, receiver);
   std::optional<geo::LocalFrame> frame;
   if (station) frame.emplace(geo::lla_from_ecef(*station));
   out << "gps_week,tow_s,x_m,y_m,z_m,nsat,pdop" << (station ? ",e_m,n_m,u_m" : "") << '\n';

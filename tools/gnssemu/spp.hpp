@@ -25,12 +25,6 @@ namespace gnssemu::cli {
 double receiver_correction_m(const orbit::KlobucharParams& k, const Lla& rx, double az_rad, double el_rad,
                              const time::GpsTime& t, const receiver::SolverConfig& solver = {});
 
-struct SppOptions {
-  double mask_rad = 5.0 * kDegToRad;  ///< elevation mask, rad [0, pi/2)
-  receiver::SolverConfig solver;      ///< weights, corrections, residual test
-  double max_pdop = 20.0;
-};
-
 /// One epoch's solution.
 struct SppEpoch {
   time::GpsTime t;
@@ -47,10 +41,13 @@ struct SppEpoch {
 /// Single-point solutions epoch by epoch (warm start from the previous fix).
 class SppEngine {
 public:
-  /// nav and store must outlive the engine; header gives the C1C/S1C columns.
-  /// Throws gnssemu::Error when the file has no C1C (or RINEX 2 C1) type.
+  /// nav and store must outlive the engine; header gives the C1C/S1C
+  /// columns. The receiver's own settings, as the live receiver takes them:
+  /// its mask, max_pdop and solver (weights, corrections, residual test).
+  /// Throws gnssemu::Error when the file has no C1C (or RINEX 2 C1) type or
+  /// on an invalid setting.
   SppEngine(const orbit::NavData& nav, const orbit::EphemerisStore& store, const observation::ObsHeader& header,
-            const SppOptions& options);
+            const receiver::ReceiverConfig& receiver);
 
   /// Solve one epoch. The mask is applied at the previous fix (or, without
   /// one, after a first unmasked solution) and re-checked at the result.
@@ -61,7 +58,7 @@ private:
 
   const orbit::EphemerisStore& store_;
   orbit::KlobucharParams klobuchar_;
-  SppOptions opt_;
+  receiver::ReceiverConfig rx_;
   int c1c_ = -1, s1c_ = -1;
   receiver::Solver solver_;
   receiver::SolverInput in_;
@@ -79,7 +76,7 @@ struct SppSummary {
 
 /// Writes `gps_week,tow_s,x_m,y_m,z_m,nsat,pdop` per epoch with a fix, plus
 /// `e_m,n_m,u_m` (fix minus station in local ENU) when station is given.
-SppSummary write_spp(const observation::ObsData& obs, const orbit::NavData& nav, const SppOptions& options,
-                     const std::optional<Ecef>& station, std::ostream& out);
+SppSummary write_spp(const observation::ObsData& obs, const orbit::NavData& nav,
+                     const receiver::ReceiverConfig& receiver, const std::optional<Ecef>& station, std::ostream& out);
 
 }  // namespace gnssemu::cli

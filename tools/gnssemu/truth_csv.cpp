@@ -167,8 +167,8 @@ private:
 
 }  // namespace
 
-std::vector<TruthSample> read_truth_csv(std::istream& in, const std::string& name) {
-  std::vector<TruthSample> out;
+std::vector<world::TruthSample> read_truth_csv(std::istream& in, const std::string& name) {
+  std::vector<world::TruthSample> out;
   std::string line;
   int line_no = 0;
   std::optional<Columns> cols;
@@ -192,7 +192,7 @@ std::vector<TruthSample> read_truth_csv(std::istream& in, const std::string& nam
     const int week = p.integer(cols->week);
     if (week < 0 || week > kMaxWeek) p.fail(cols->week, std::to_string(week) + " outside [0, 9999]");
     const double tow_s = p.in_range(cols->tow, 0.0, kSecondsPerWeek, true);
-    TruthSample s;
+    world::TruthSample s;
     s.t = time::GpsTime(week, tow_s);
     if (cols->valid >= 0) {
       const int v = p.integer(cols->valid);
@@ -237,7 +237,7 @@ std::vector<TruthSample> read_truth_csv(std::istream& in, const std::string& nam
   return out;
 }
 
-std::vector<TruthSample> read_truth_csv(const std::string& path) {
+std::vector<world::TruthSample> read_truth_csv(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw Error(path, 0, "truth file not found (or not a regular file)");
   std::ifstream in(path);

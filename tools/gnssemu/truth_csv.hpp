@@ -9,24 +9,15 @@
 
 #include "core/common/vec3.hpp"
 #include "core/time/gps_time.hpp"
+#include "core/world/truth_track.hpp"
 
 namespace gnssemu::cli {
 
-/// One truth row, converted to ECEF.
-struct TruthSample {
-  time::GpsTime t;     ///< GPS time of the sample
-  Ecef pos_m;          ///< antenna position, ECEF m
-  Ecef vel_m_s;        ///< antenna velocity, ECEF m/s (valid when has_vel)
-  bool has_vel = false;
-  /// false: no truth from this row until the next valid one (antenna lost);
-  /// pos_m and vel_m_s are then unset.
-  bool valid = true;
-};
-
-/// Read a truth CSV file. Rows are strictly increasing in time. Throws
+/// Read a truth CSV file, one sample per row converted to ECEF (a `valid` 0
+/// row is a no-truth sample). Rows are strictly increasing in time. Throws
 /// gnssemu::Error("file:line: column 'name': reason") on any bad input.
-std::vector<TruthSample> read_truth_csv(const std::string& path);
+std::vector<world::TruthSample> read_truth_csv(const std::string& path);
 /// Same, from a stream; name is used in error messages.
-std::vector<TruthSample> read_truth_csv(std::istream& in, const std::string& name);
+std::vector<world::TruthSample> read_truth_csv(std::istream& in, const std::string& name);
 
 }  // namespace gnssemu::cli

@@ -76,7 +76,7 @@ def split_day(path, tmp):
 
 
 def stats(series):
-    """series: dict grid index -> (e, n, u). Same definitions as cli::error_stats."""
+    """series: dict grid index -> (e, n, u). Same definitions as statistics::position_error_stats."""
     keys = sorted(series)
     vals = [series[k] for k in keys]
     n = len(vals)

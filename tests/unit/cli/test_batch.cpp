@@ -16,6 +16,7 @@
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/rinex_nav.hpp"
 #include "tools/gnssemu/batch.hpp"
+#include "tools/gnssemu/truth_csv.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::cli::test;
@@ -162,7 +163,7 @@ TEST(Batch, SummaryMatchesTheErrorsFile) {
   const std::string nav = nav_path("brdc0010.22n");
   config::Config cfg = config::parse_config(config_text(nav), "c.toml", dir.file(""));
   std::istringstream truth_in(static_truth(300.0));
-  const cli::TruthTrack track(cli::read_truth_csv(truth_in, "truth.csv"));
+  const world::TruthTrack track(cli::read_truth_csv(truth_in, "truth.csv"));
   std::ostringstream errors;
   const cli::BatchSummary sum = cli::run_batch(cfg, orbit::read_rinex_nav(nav), track, nullptr, &errors);
   const ErrorStats s = error_stats(parse_csv(errors.str()));

@@ -17,7 +17,6 @@
 #include "core/orbit/rinex_nav.hpp"
 #include "tools/gnssemu/batch.hpp"
 #include "tools/gnssemu/truth_csv.hpp"
-#include "tools/gnssemu/truth_track.hpp"
 
 namespace gnssemu::cli {
 namespace {
@@ -112,7 +111,7 @@ TEST_P(PipelineGolden, MatchesByteForByte) {
   const fs::path dir = golden_dir() / GetParam();
   const config::Config cfg = config::load_config((dir / "config.toml").string());
   const orbit::NavData nav = orbit::read_rinex_nav(cfg.nav_file);
-  const TruthTrack track(read_truth_csv((dir / "truth.csv").string()));
+  const world::TruthTrack track(read_truth_csv((dir / "truth.csv").string()));
   std::ostringstream nmea, ubx, errors, summary;
   const BatchSummary sum = run_batch(cfg, nav, track, &nmea, &errors, &ubx);
   write_summary(sum, summary);

@@ -167,7 +167,7 @@ TEST(Calibrate, FitsNya1DayAndWritesALoadableConfig) {
 
   // The config loads as is and holds the fit, and batch runs it at the station.
   const config::Config c = config::load_config(out);
-  const receiver::ReceiverConfig& rc = c.receiver;
+  const world::WorldConfig& rc = c.world;
   EXPECT_NEAR(rc.errors.orbit_clock.sigma_m, v["orbit_clock_sigma"], 1e-5);
   EXPECT_NEAR(rc.errors.orbit_clock.tau_s, v["orbit_clock_tau"], 1e-5 * v["orbit_clock_tau"]);
   EXPECT_NEAR(rc.errors.multipath.sigma_m, v["multipath_sigma_zenith"], 1e-5);
@@ -178,7 +178,7 @@ TEST(Calibrate, FitsNya1DayAndWritesALoadableConfig) {
   EXPECT_NEAR(rc.errors.gradient.north_peak_h, v["gradient_north_peak"], 1e-4);
   EXPECT_NEAR(rc.errors.gradient.east_diurnal_m, v["gradient_east_diurnal"], 1e-5);
   EXPECT_NEAR(rc.errors.gradient.east_peak_h, v["gradient_east_peak"], 1e-4);
-  EXPECT_EQ(rc.errors.thermal_model, receiver::ThermalModel::kDll);
+  EXPECT_EQ(rc.errors.thermal_model, world::ThermalModel::kDll);
   EXPECT_NEAR(rc.signal.dll.loop_bandwidth_hz, v["dll_bandwidth"], 1e-5);
   EXPECT_NEAR(rc.atmosphere.ionosphere.klobuchar_scale, v["klobuchar_scale"], 1e-5);
   EXPECT_NEAR(rc.atmosphere.ionosphere.perturbation.sigma, v["iono_sigma"], 1e-5);
@@ -307,7 +307,7 @@ TEST(Calibrate, ErrorStatsAndGaussMarkovFit) {
     z = phi * z + 2.0 * q * gauss();
     s.emplace_back(x, y, z);
   }
-  const cli::ErrorStats st = cli::error_stats(s, 1.0);
+  const statistics::PositionErrorStats st = statistics::position_error_stats(s, 1.0);
   EXPECT_EQ(st.n, 20000);
   EXPECT_NEAR(st.sigma_e_m, 1.0, 0.1);
   EXPECT_NEAR(st.sigma_u_m, 2.0, 0.2);

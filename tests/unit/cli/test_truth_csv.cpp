@@ -6,15 +6,15 @@
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
+#include "core/world/truth_track.hpp"
 #include "tools/gnssemu/truth_csv.hpp"
-#include "tools/gnssemu/truth_track.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::cli;
 
 namespace {
 
-std::vector<TruthSample> read(const std::string& text) {
+std::vector<world::TruthSample> read(const std::string& text) {
   std::istringstream in(text);
   return read_truth_csv(in, "t.csv");
 }
@@ -104,8 +104,8 @@ TEST(TruthTrack, LinearInterpolationAndEnds) {
       "gps_week,tow_s,x_m,y_m,z_m\n"
       "2190,604799,6378137,0,0\n"
       "2191,1,6378157,40,0\n");  // across the week boundary, 2 s apart
-  const TruthTrack track(s);
-  const receiver::Truth mid = track.at(time::GpsTime(2191, 0.5));
+  const world::TruthTrack track(s);
+  const world::Truth mid = track.at(time::GpsTime(2191, 0.5));
   ASSERT_TRUE(mid.valid);
   EXPECT_NEAR(mid.pos_m.x, 6378152.0, 1e-6);
   EXPECT_NEAR(mid.pos_m.y, 30.0, 1e-9);
@@ -130,12 +130,12 @@ TEST(TruthCsv, ValidColumnMarksRowsWithoutTruth) {
   ASSERT_EQ(s.size(), 4u);
   EXPECT_TRUE(s[0].valid);
   EXPECT_FALSE(s[1].valid);
-  const TruthTrack track(s);
+  const world::TruthTrack track(s);
   EXPECT_TRUE(track.at(time::GpsTime(2190, 10.0)).valid);   // valid end of a segment
   EXPECT_FALSE(track.at(time::GpsTime(2190, 10.5)).valid);  // towards the no-truth row
   EXPECT_FALSE(track.at(time::GpsTime(2190, 11.0)).valid);
   EXPECT_FALSE(track.at(time::GpsTime(2190, 14.9)).valid);
-  const receiver::Truth back = track.at(time::GpsTime(2190, 15.0));
+  const world::Truth back = track.at(time::GpsTime(2190, 15.0));
   EXPECT_TRUE(back.valid);
   EXPECT_EQ(back.pos_m.x, s[2].pos_m.x);
   EXPECT_TRUE(track.at(time::GpsTime(2190, 15.5)).valid);

@@ -95,12 +95,12 @@ spacing_chips = 0.1
 discriminator = "dot_product"
 )";
 
-void expect_same_models(const receiver::ReceiverConfig& a, const receiver::ReceiverConfig& b) {
-  EXPECT_EQ(a.errors.thermal_model, b.errors.thermal_model);
-  EXPECT_EQ(a.solver.sigma_c_m_sqrt_hz, b.solver.sigma_c_m_sqrt_hz);
-  EXPECT_EQ(a.solver.iono, b.solver.iono);
-  EXPECT_EQ(a.solver.tropo, b.solver.tropo);
-  const receiver::AtmosphereConfig &x = a.atmosphere, &y = b.atmosphere;
+void expect_same_models(const Config& a, const Config& b) {
+  EXPECT_EQ(a.world.errors.thermal_model, b.world.errors.thermal_model);
+  EXPECT_EQ(a.receiver.solver.sigma_c_m_sqrt_hz, b.receiver.solver.sigma_c_m_sqrt_hz);
+  EXPECT_EQ(a.receiver.solver.iono, b.receiver.solver.iono);
+  EXPECT_EQ(a.receiver.solver.tropo, b.receiver.solver.tropo);
+  const world::AtmosphereConfig &x = a.world.atmosphere, &y = b.world.atmosphere;
   EXPECT_EQ(x.cache_refresh_s, y.cache_refresh_s);
   EXPECT_EQ(x.cache_mode, y.cache_mode);
   EXPECT_EQ(x.gases, y.gases);
@@ -145,15 +145,15 @@ void expect_same_models(const receiver::ReceiverConfig& a, const receiver::Recei
   EXPECT_EQ(x.clouds_rain.rain.rain_height_m, y.clouds_rain.rain.rain_height_m);
   EXPECT_EQ(x.clouds_rain.rain.k, y.clouds_rain.rain.k);
   EXPECT_EQ(x.clouds_rain.rain.alpha, y.clouds_rain.rain.alpha);
-  const receiver::SignalConfig &s = a.signal, &t = b.signal;
+  const world::SignalConfig &s = a.world.signal, &t = b.world.signal;
   EXPECT_EQ(s.enabled, t.enabled);
   EXPECT_EQ(s.link.environment_noise_rise_db, t.link.environment_noise_rise_db);
   EXPECT_EQ(s.link.eirp_dbw, t.link.eirp_dbw);
   EXPECT_EQ(s.link.noise_figure_db, t.link.noise_figure_db);
   EXPECT_EQ(s.link.noise_temperature_k, t.link.noise_temperature_k);
   EXPECT_EQ(s.link.implementation_loss_db, t.link.implementation_loss_db);
-  EXPECT_EQ(s.tracking.acquire_dbhz, t.tracking.acquire_dbhz);
-  EXPECT_EQ(s.tracking.lose_dbhz, t.tracking.lose_dbhz);
+  EXPECT_EQ(a.receiver.tracking.acquire_dbhz, b.receiver.tracking.acquire_dbhz);
+  EXPECT_EQ(a.receiver.tracking.lose_dbhz, b.receiver.tracking.lose_dbhz);
   EXPECT_EQ(s.link.antenna.zenith_gain_dbi, t.link.antenna.zenith_gain_dbi);
   EXPECT_EQ(s.link.antenna.horizon_gain_dbi, t.link.antenna.horizon_gain_dbi);
   EXPECT_EQ(s.link.antenna.below_horizon_slope_db_per_deg, t.link.antenna.below_horizon_slope_db_per_deg);
@@ -164,47 +164,49 @@ void expect_same_models(const receiver::ReceiverConfig& a, const receiver::Recei
 }
 
 TEST(AtmosphereConfig, EveryKeyParsed) {
-  const receiver::ReceiverConfig r = parse(kAll).receiver;
-  EXPECT_EQ(r.errors.thermal_model, receiver::ThermalModel::kFixed);
+  const Config c = parse(kAll);
+  const world::WorldConfig& w = c.world;
+  const receiver::ReceiverConfig& r = c.receiver;
+  EXPECT_EQ(w.errors.thermal_model, world::ThermalModel::kFixed);
   EXPECT_EQ(r.solver.tropo, atmosphere::TropoCorrection::kZhdNiell);
-  EXPECT_EQ(r.atmosphere.cache_mode, atmosphere::CacheMode::kHold);
-  EXPECT_EQ(r.atmosphere.ionosphere.mapping, atmosphere::IonoMapping::kThinShell);
-  EXPECT_EQ(r.atmosphere.ionosphere.perturbation.sigma, 2.5);
-  EXPECT_EQ(r.atmosphere.zwd_perturbation.tau_s, 7200.0);
-  EXPECT_EQ(r.atmosphere.shells.shells[1].top_m, 48000.0);
-  EXPECT_EQ(r.atmosphere.shells.shells[0].top_m, 12000.0);  // untouched shell keeps its default
-  ASSERT_EQ(r.atmosphere.clouds_rain.layer_count, 2u);
+  EXPECT_EQ(w.atmosphere.cache_mode, atmosphere::CacheMode::kHold);
+  EXPECT_EQ(w.atmosphere.ionosphere.mapping, atmosphere::IonoMapping::kThinShell);
+  EXPECT_EQ(w.atmosphere.ionosphere.perturbation.sigma, 2.5);
+  EXPECT_EQ(w.atmosphere.zwd_perturbation.tau_s, 7200.0);
+  EXPECT_EQ(w.atmosphere.shells.shells[1].top_m, 48000.0);
+  EXPECT_EQ(w.atmosphere.shells.shells[0].top_m, 12000.0);  // untouched shell keeps its default
+  ASSERT_EQ(w.atmosphere.clouds_rain.layer_count, 2u);
   // The cumulus preset (1 km + 1.5 km, 1 g/m^3) with its temperature overridden.
-  EXPECT_EQ(r.atmosphere.clouds_rain.layers[0].base_m, 1000.0);
-  EXPECT_EQ(r.atmosphere.clouds_rain.layers[0].thickness_m, 1500.0);
-  EXPECT_EQ(r.atmosphere.clouds_rain.layers[0].liquid_water_g_m3, 1.0);
-  EXPECT_EQ(r.atmosphere.clouds_rain.layers[0].temperature_k, 270.5);
-  EXPECT_EQ(r.atmosphere.clouds_rain.layers[1].thickness_m, 350.5);
-  EXPECT_EQ(r.atmosphere.clouds_rain.rain.rate_mm_h, 100.0);
-  EXPECT_EQ(r.signal.link.environment_noise_rise_db, 6.0);  // "urban"
-  EXPECT_EQ(r.signal.tracking.lose_dbhz, 28.5);
-  EXPECT_EQ(r.signal.link.antenna.horizon_gain_dbi, -8.5);
-  EXPECT_EQ(r.signal.dll.discriminator, signal::DllDiscriminator::kDotProduct);
-  EXPECT_FALSE(r.signal.enabled);
+  EXPECT_EQ(w.atmosphere.clouds_rain.layers[0].base_m, 1000.0);
+  EXPECT_EQ(w.atmosphere.clouds_rain.layers[0].thickness_m, 1500.0);
+  EXPECT_EQ(w.atmosphere.clouds_rain.layers[0].liquid_water_g_m3, 1.0);
+  EXPECT_EQ(w.atmosphere.clouds_rain.layers[0].temperature_k, 270.5);
+  EXPECT_EQ(w.atmosphere.clouds_rain.layers[1].thickness_m, 350.5);
+  EXPECT_EQ(w.atmosphere.clouds_rain.rain.rate_mm_h, 100.0);
+  EXPECT_EQ(w.signal.link.environment_noise_rise_db, 6.0);  // "urban"
+  EXPECT_EQ(r.tracking.lose_dbhz, 28.5);
+  EXPECT_EQ(w.signal.link.antenna.horizon_gain_dbi, -8.5);
+  EXPECT_EQ(w.signal.dll.discriminator, signal::DllDiscriminator::kDotProduct);
+  EXPECT_FALSE(w.signal.enabled);
 }
 
 TEST(AtmosphereConfig, RoundTripIsExact) {
   const Config c = parse(kAll);
   const std::string text = to_toml(c, kData);
   const Config back = parse_config(text, "written.toml", kData);
-  expect_same_models(c.receiver, back.receiver);
+  expect_same_models(c, back);
   EXPECT_EQ(to_toml(back, kData), text);
   // The struct defaults too.
   const Config d = parse(kBase);
-  expect_same_models(d.receiver, parse(to_toml(d, kData)).receiver);
+  expect_same_models(d, parse(to_toml(d, kData)));
 }
 
 TEST(AtmosphereConfig, ShellsMovedTogetherDoNotOverlap) {
   // Checked after every shell is read: a boundary moved in both shells is fine.
   const Config c = parse(kBase + "[atmosphere.shells.stratosphere]\ntop_m = 60000\n"
                                  "[atmosphere.shells.mesosphere]\nbottom_m = 60000\n");
-  EXPECT_EQ(c.receiver.atmosphere.shells.shells[1].top_m, 60000.0);
-  EXPECT_EQ(c.receiver.atmosphere.shells.shells[2].bottom_m, 60000.0);
+  EXPECT_EQ(c.world.atmosphere.shells.shells[1].top_m, 60000.0);
+  EXPECT_EQ(c.world.atmosphere.shells.shells[2].bottom_m, 60000.0);
   // A disabled shell overlaps nothing.
   EXPECT_NO_THROW(parse(kBase + "[atmosphere.shells.stratosphere]\ntop_m = 60000\n"
                                 "[atmosphere.shells.mesosphere]\nenabled = false\n"));
@@ -212,7 +214,7 @@ TEST(AtmosphereConfig, ShellsMovedTogetherDoNotOverlap) {
 
 TEST(AtmosphereConfig, DefaultTomlIsTheStructDefaults) {
   const Config shipped = load_config(kSource + "/config/default.toml");
-  expect_same_models(shipped.receiver, receiver::ReceiverConfig{});
+  expect_same_models(shipped, Config{});
 }
 
 struct Bad {

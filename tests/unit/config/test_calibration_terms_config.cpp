@@ -7,13 +7,13 @@ namespace {
 
 TEST(ConfigCalibrationTerms, DefaultsAreOff) {
   const Config c = parse(kBase);
-  EXPECT_EQ(c.receiver.errors.multipath.sigma_m, 0.0);
-  EXPECT_EQ(c.receiver.errors.multipath.tau_s, 60.0);
-  EXPECT_EQ(c.receiver.errors.gradient.north_m, 0.0);
-  EXPECT_EQ(c.receiver.errors.gradient.east_m, 0.0);
-  EXPECT_EQ(c.receiver.errors.gradient.process.sigma_m, 0.0);
-  EXPECT_EQ(c.receiver.errors.gradient.north_diurnal_m, 0.0);
-  EXPECT_EQ(c.receiver.errors.gradient.east_diurnal_m, 0.0);
+  EXPECT_EQ(c.world.errors.multipath.sigma_m, 0.0);
+  EXPECT_EQ(c.world.errors.multipath.tau_s, 60.0);
+  EXPECT_EQ(c.world.errors.gradient.north_m, 0.0);
+  EXPECT_EQ(c.world.errors.gradient.east_m, 0.0);
+  EXPECT_EQ(c.world.errors.gradient.process.sigma_m, 0.0);
+  EXPECT_EQ(c.world.errors.gradient.north_diurnal_m, 0.0);
+  EXPECT_EQ(c.world.errors.gradient.east_diurnal_m, 0.0);
 }
 
 TEST(ConfigCalibrationTerms, BadValuesNameFileAndLine) {

@@ -192,7 +192,7 @@ TEST(ConfigValidation, NegativeSigmas) {
   EXPECT_EQ(error_of(kBase + "[receiver.clock]\ndrift_noise_s_s_sqrt_s = -1e-12\n"),
             "t.toml:8: receiver.clock.drift_noise_s_s_sqrt_s: -1e-12 is out of range [0, 1e-06] s/s/sqrt(s)");
   // Zero disables a process and is allowed.
-  EXPECT_EQ(parse(kBase + "[receiver.errors]\nthermal_sigma_m = 0\n").receiver.errors.thermal_sigma_m, 0.0);
+  EXPECT_EQ(parse(kBase + "[receiver.errors]\nthermal_sigma_m = 0\n").world.errors.thermal_sigma_m, 0.0);
 }
 
 TEST(ConfigValidation, TauNotPositive) {
@@ -234,13 +234,24 @@ TEST(ConfigValidation, ClockOutOfRange) {
 
 TEST(ConfigValidation, ReceiverLimits) {
   EXPECT_EQ(error_of(kBase + "[receiver]\nmax_channels = 3\n"),
-            "t.toml:8: receiver.max_channels: 3 is out of range [4, 64]");
+            "t.toml:8: receiver.max_channels: 3 is out of range [4, 32]");
   EXPECT_EQ(error_of(kBase + "[receiver]\nseed = -1\n"),
             "t.toml:8: receiver.seed: -1 is out of range [0, 9223372036854775807]");
   EXPECT_EQ(error_of(kBase + "[receiver]\nmax_pdop = 0.5\n"),
             "t.toml:8: receiver.max_pdop: 0.5 is out of range [1, 1000]");
   EXPECT_EQ(error_of(kBase + "[receiver]\nnominal_cn0_dbhz = 70\n"),
             "t.toml:8: receiver.nominal_cn0_dbhz: 70 is out of range [10, 60] dB-Hz");
+}
+
+TEST(ConfigValidation, CoreRangesAreTheConfigRanges) {
+  // One range per setting, owned by the core: what the file accepts, the
+  // receiver accepts; what the receiver rejects is named at its file:line.
+  EXPECT_EQ(error_of(kBase + "[receiver]\nmax_channels = 40\n"),
+            "t.toml:8: receiver.max_channels: 40 is out of range [4, 32]");
+  EXPECT_EQ(parse(kBase + "[receiver]\nmax_channels = 32\n").receiver.max_channels, 32);
+  EXPECT_EQ(error_of(kBase + "[receiver.solver]\nresidual_test_pfa = 0.7\n"),
+            "t.toml:7: solver: residual_test_pfa 0.7 must be below 0.5 (a test that fails more often than not "
+            "detects nothing)");
 }
 
 TEST(ConfigValidation, PortOutside16Bits) {

@@ -41,7 +41,7 @@ TEST(TruthRouter, FirstVehicleDrives) {
   in = r.ingest(sample("car", 50.1, 2.0), kT0 + 0.12, 0.12);
   EXPECT_FALSE(in.reanchored);
   EXPECT_NEAR(in.stamp - kT0, 0.1, 1e-9);  // sim spacing, not arrival jitter
-  const receiver::Truth t = r.truth_at(kT0 + 0.05, 0.12);
+  const world::Truth t = r.truth_at(kT0 + 0.05, 0.12);
   ASSERT_TRUE(t.valid);
   EXPECT_NEAR(t.pos_m.x, 1.5, 1e-9);
 }
@@ -131,7 +131,7 @@ TEST(DemoTrajectory, CircleAroundOrigin) {
   const Enu v = demo.velocity_enu(quarter_s);
   EXPECT_NEAR(v.x, -5.0, 1e-9);
   EXPECT_NEAR(v.y, 0.0, 1e-9);
-  const receiver::Truth t = demo.truth(time::GpsTime(2190, 1.0), 123.0);
+  const world::Truth t = demo.truth(time::GpsTime(2190, 1.0), 123.0);
   ASSERT_TRUE(t.valid);
   const Enu back = frame.to_enu(t.pos_m);
   EXPECT_NEAR(std::hypot(back.x, back.y), 50.0, 1e-6);

@@ -11,9 +11,12 @@
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris.hpp"
 #include "core/receiver/fix.hpp"
-#include "core/receiver/receiver_config.hpp"
+#include "core/world/truth.hpp"
+#include "core/pipeline/pipeline.hpp"
 
 namespace gnssemu::receiver::test {
+
+using pipeline::PipelineConfig;
 
 inline constexpr double kGpsSqrtA_sqrtm = 5153.7;  // A = 26 561.7 km (GPS nominal)
 
@@ -86,24 +89,48 @@ inline Ecef sat_position_at(const Ecef& rx, const Lla& rx_lla, double az_rad, do
 /// The pre-atmosphere world: no atmosphere, no receiver corrections, white
 /// code noise of a fixed sigma (errors.thermal_sigma_m) and elevation-only
 /// solver weights. The error is then exactly GM orbit/clock + white noise.
-inline ReceiverConfig gm_white_world(ReceiverConfig c = {}) {
-  c.atmosphere.ionosphere.enabled = false;
-  c.atmosphere.troposphere.enabled = false;
-  c.atmosphere.gases = false;
-  c.solver.iono = atmosphere::IonoCorrection::kNone;
-  c.solver.tropo = atmosphere::TropoCorrection::kNone;
-  c.solver.sigma_c_m_sqrt_hz = 0.0;
-  c.errors.thermal_model = ThermalModel::kFixed;
+inline PipelineConfig gm_white_world(PipelineConfig c = {}) {
+  c.world.atmosphere.ionosphere.enabled = false;
+  c.world.atmosphere.troposphere.enabled = false;
+  c.world.atmosphere.gases = false;
+  c.receiver.solver.iono = atmosphere::IonoCorrection::kNone;
+  c.receiver.solver.tropo = atmosphere::TropoCorrection::kNone;
+  c.receiver.solver.sigma_c_m_sqrt_hz = 0.0;
+  c.world.errors.thermal_model = world::ThermalModel::kFixed;
+  return c;
+}
+
+/// Valid truth at t: antenna at pos (ECEF m) moving at vel (ECEF m/s).
+inline world::Truth truth_at(const Ecef& pos, const time::GpsTime& t, const Ecef& vel = {}) {
+  world::Truth tr;
+  tr.t = t;
+  tr.pos_m = pos;
+  tr.vel_m_s = vel;
+  tr.valid = true;
+  return tr;
+}
+
+/// Deterministic world (no random processes, no clock noise) with the
+/// atmosphere of c, computed every epoch (no slow-term cache).
+inline PipelineConfig noiseless(PipelineConfig c = {}) {
+  c.world.errors.orbit_clock.sigma_m = 0.0;
+  c.world.errors.thermal_model = world::ThermalModel::kFixed;
+  c.world.errors.thermal_sigma_m = 0.0;
+  c.world.errors.doppler_sigma_m_s = 0.0;
+  c.world.clock.drift_noise_s_s_sqrt_s = 0.0;
+  c.world.atmosphere.ionosphere.perturbation.sigma = 0.0;
+  c.world.atmosphere.zwd_perturbation.sigma_m = 0.0;
+  c.world.atmosphere.cache_refresh_s = 0.0;
   return c;
 }
 
 /// Error model off, clock without noise: the fix must equal the truth.
-inline ReceiverConfig errors_off_config() {
-  ReceiverConfig c = gm_white_world();
-  c.errors.thermal_sigma_m = 0.0;
-  c.errors.orbit_clock.sigma_m = 0.0;
-  c.errors.doppler_sigma_m_s = 0.0;
-  c.clock.drift_noise_s_s_sqrt_s = 0.0;
+inline PipelineConfig errors_off_config() {
+  PipelineConfig c = gm_white_world();
+  c.world.errors.thermal_sigma_m = 0.0;
+  c.world.errors.orbit_clock.sigma_m = 0.0;
+  c.world.errors.doppler_sigma_m_s = 0.0;
+  c.world.clock.drift_noise_s_s_sqrt_s = 0.0;
   return c;
 }
 

@@ -7,7 +7,7 @@
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
-#include "core/receiver/receiver.hpp"
+#include "core/pipeline/pipeline.hpp"
 #include "tests/support/alloc_counter.hpp"
 #include "synthetic_sky.hpp"
 
@@ -15,10 +15,14 @@
 namespace gnssemu::receiver {
 namespace {
 
+using pipeline::Pipeline;
+using pipeline::PipelineConfig;
+using world::Truth;
+
 TEST(ReceiverAlloc, StepDoesNotAllocateAfterWarmUp) {
   const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
   const orbit::EphemerisStore store(nav.ephemerides);
-  Receiver rx(store, ReceiverConfig{});
+  Pipeline rx(store, PipelineConfig{});
   const Lla site{39.6 * kDegToRad, 22.4 * kDegToRad, 100.0};
   const Ecef p0 = geo::ecef_from_lla(site);
   const Vec3 v = geo::enu_to_ecef_vector(Enu(20.0, 15.0, 0.0), site.lat_rad, site.lon_rad);

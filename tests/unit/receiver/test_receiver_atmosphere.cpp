@@ -11,7 +11,7 @@
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
-#include "core/receiver/receiver.hpp"
+#include "core/pipeline/pipeline.hpp"
 #include "core/signal/link_budget.hpp"
 #include "synthetic_sky.hpp"
 #include "tests/support/alloc_counter.hpp"
@@ -19,68 +19,53 @@
 namespace gnssemu::receiver {
 namespace {
 
+using test::truth_at;
+using pipeline::Pipeline;
+using pipeline::PipelineConfig;
+using test::noiseless;
+using world::Truth;
+using world::PathEffects;
+
 using test::expect_consistent;
 
 const time::GpsTime kToe(2190, 200000.0);
 const Lla kSite{45.0 * kDegToRad, 7.0 * kDegToRad, 300.0};
 
-Truth truth_at(const Ecef& pos, const time::GpsTime& t) {
-  Truth tr;
-  tr.t = t;
-  tr.pos_m = pos;
-  tr.valid = true;
-  return tr;
-}
-
-/// Deterministic world (no random processes) with the given atmosphere.
-ReceiverConfig noiseless(ReceiverConfig c = {}) {
-  c.errors.orbit_clock.sigma_m = 0.0;
-  c.errors.thermal_model = ThermalModel::kFixed;
-  c.errors.thermal_sigma_m = 0.0;
-  c.errors.doppler_sigma_m_s = 0.0;
-  c.clock.drift_noise_s_s_sqrt_s = 0.0;
-  c.atmosphere.ionosphere.perturbation.sigma = 0.0;
-  c.atmosphere.zwd_perturbation.sigma_m = 0.0;
-  c.atmosphere.cache_refresh_s = 0.0;
-  return c;
-}
 
 /// A world whose atmosphere is exactly what the receiver models: Klobuchar
 /// shape x 1 with Klobuchar's own slant factor, Saastamoinen ZHD + ZWD.
-ReceiverConfig world_equals_receiver_models() {
-  ReceiverConfig c = noiseless();
-  c.atmosphere.troposphere.zhd_model = atmosphere::ZhdModel::kSaastamoinen;
-  c.atmosphere.troposphere.zwd_model = atmosphere::ZwdModel::kSaastamoinen;
-  c.atmosphere.troposphere.rel_humidity = 0.7;
+PipelineConfig world_equals_receiver_models() {
+  PipelineConfig c = noiseless();
+  c.world.atmosphere.troposphere.zhd_model = atmosphere::ZhdModel::kSaastamoinen;
+  c.world.atmosphere.troposphere.zwd_model = atmosphere::ZwdModel::kSaastamoinen;
+  c.world.atmosphere.troposphere.rel_humidity = 0.7;
   return c;
 }
 
-double doy_of(const time::GpsTime& t) { return t.day_of_year() + std::fmod(t.tow_s(), 86400.0) / 86400.0; }
-
 TEST(ReceiverAtmosphere, WorldDelaysAreTheConfiguredModels) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig cfg = noiseless();
-  cfg.atmosphere.ionosphere.source = atmosphere::VtecSource::kFixed;
-  cfg.atmosphere.ionosphere.vtec_tecu = 25.0;
-  Receiver rx(store, cfg);
+  PipelineConfig cfg = noiseless();
+  cfg.world.atmosphere.ionosphere.source = atmosphere::VtecSource::kFixed;
+  cfg.world.atmosphere.ionosphere.vtec_tecu = 25.0;
+  Pipeline rx(store, cfg);
   const Ecef pos = geo::ecef_from_lla(kSite);
   const Fix& f = rx.step(kToe, truth_at(pos, kToe));
   ASSERT_EQ(f.type, FixType::k3D);
-  const atmosphere::Troposphere tropo(cfg.atmosphere.troposphere);
-  const signal::LinkBudgetModel link(cfg.signal.link);
+  const atmosphere::Troposphere tropo(cfg.world.atmosphere.troposphere);
+  const signal::LinkBudgetModel link(cfg.world.signal.link);
   int checked = 0;
   for (int i = 0; i < f.num_sats; ++i) {
     const SatInfo& s = f.sats[i];
     if (!s.tracked) continue;
-    const PathEffects& e = rx.path_effects(s.prn);
+    const PathEffects& e = rx.world().path_effects(s.prn);
     // 25 TECU x 0.16237 m/TECU x (1 + 16 (0.53 - E)^3).
     EXPECT_NEAR(e.iono_m, 25.0 * 0.1623718 * atmosphere::klobuchar_slant_factor(s.el_rad), 1e-4);
-    EXPECT_NEAR(e.tropo_m, tropo.slant_delay_m(kSite.lat_rad, kSite.height_m, s.el_rad, doy_of(kToe)), 1e-9);
+    EXPECT_NEAR(e.tropo_m, tropo.slant_delay_m(kSite.lat_rad, kSite.height_m, s.el_rad, kToe.fractional_day_of_year()), 1e-9);
     EXPECT_NEAR(e.delay_m, e.iono_m + e.tropo_m, 1e-12);
     EXPECT_GT(e.loss_db, 0.04);  // gases: 0.046 dB at the zenith, more lower down
     EXPECT_LT(e.loss_db, 0.6);
     EXPECT_GT(e.tropo_m, 2.2);
-    EXPECT_NEAR(s.cn0_dbhz, link.cn0_dbhz((s.pseudorange_m - e.delay_m - kSpeedOfLight_m_s * rx.true_clock_bias_s()), s.el_rad, e.loss_db), 0.01);
+    EXPECT_NEAR(s.cn0_dbhz, link.cn0_dbhz((s.pseudorange_m - e.delay_m - kSpeedOfLight_m_s * rx.world().true_clock_bias_s()), s.el_rad, e.loss_db), 0.01);
     ++checked;
   }
   EXPECT_GE(checked, 6);
@@ -89,8 +74,7 @@ TEST(ReceiverAtmosphere, WorldDelaysAreTheConfiguredModels) {
 TEST(ReceiverAtmosphere, ExactWhenTheWorldIsTheReceiversModel) {
   const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
   const orbit::EphemerisStore store(nav.ephemerides);
-  Receiver rx(store, world_equals_receiver_models());
-  rx.set_klobuchar(nav.klobuchar);
+  Pipeline rx(store, world_equals_receiver_models(), {.klobuchar = nav.klobuchar});
   const Ecef larm(4549397.1706, 1874003.1392, 4045167.6109);
   const time::GpsTime t0 = time::GpsTime::from_calendar({2022, 1, 1, 10, 0, 0.0});
   for (int k = 0; k < 12; ++k) {
@@ -103,7 +87,7 @@ TEST(ReceiverAtmosphere, ExactWhenTheWorldIsTheReceiversModel) {
     EXPECT_LT((f.pos_m - larm).norm(), 0.02) << k;
     double max_delay = 0.0;
     for (int i = 0; i < f.num_sats; ++i)
-      if (f.sats[i].used) max_delay = std::max(max_delay, rx.path_effects(f.sats[i].prn).delay_m);
+      if (f.sats[i].used) max_delay = std::max(max_delay, rx.world().path_effects(f.sats[i].prn).delay_m);
     EXPECT_GT(max_delay, 10.0);
   }
 }
@@ -111,13 +95,11 @@ TEST(ReceiverAtmosphere, ExactWhenTheWorldIsTheReceiversModel) {
 TEST(ReceiverAtmosphere, CorrectionsRemoveMostOfTheDelay) {
   const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
   const orbit::EphemerisStore store(nav.ephemerides);
-  ReceiverConfig with = noiseless();
-  ReceiverConfig without = with;
-  without.solver.iono = atmosphere::IonoCorrection::kNone;
-  without.solver.tropo = atmosphere::TropoCorrection::kNone;
-  Receiver a(store, with), b(store, without);
-  a.set_klobuchar(nav.klobuchar);
-  b.set_klobuchar(nav.klobuchar);
+  PipelineConfig with = noiseless();
+  PipelineConfig without = with;
+  without.receiver.solver.iono = atmosphere::IonoCorrection::kNone;
+  without.receiver.solver.tropo = atmosphere::TropoCorrection::kNone;
+  Pipeline a(store, with, {.klobuchar = nav.klobuchar}), b(store, without, {.klobuchar = nav.klobuchar});
   const Ecef larm(4549397.1706, 1874003.1392, 4045167.6109);
   const time::GpsTime t0 = time::GpsTime::from_calendar({2022, 1, 1, 12, 0, 0.0});
   double sum_a = 0.0, sum_b = 0.0;
@@ -137,11 +119,11 @@ TEST(ReceiverAtmosphere, CorrectionsRemoveMostOfTheDelay) {
 
 TEST(ReceiverAtmosphere, TrackingThresholdsAndHysteresis) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig cfg;
-  cfg.signal.tracking.acquire_dbhz = 44.0;
-  cfg.signal.tracking.lose_dbhz = 20.0;
-  cfg.elevation_mask_rad = 0.0;
-  Receiver rx(store, cfg);
+  PipelineConfig cfg;
+  cfg.receiver.tracking.acquire_dbhz = 44.0;
+  cfg.receiver.tracking.lose_dbhz = 20.0;
+  cfg.receiver.elevation_mask_rad = 0.0;
+  Pipeline rx(store, cfg);
   const Ecef pos = geo::ecef_from_lla(kSite);
   std::array<bool, kMaxGpsPrn + 1> was_tracked{};
   int kept_below_acquire = 0;
@@ -171,11 +153,11 @@ TEST(ReceiverAtmosphere, TrackingThresholdsAndHysteresis) {
 TEST(ReceiverAtmosphere, NoiseRiseDropsLowSatellitesThenEverything) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
   const Ecef pos = geo::ecef_from_lla(kSite);
-  ReceiverConfig suburban_low;
-  suburban_low.signal.link.environment_noise_rise_db = 15.0;
-  ReceiverConfig industrial;
-  industrial.signal.link.environment_noise_rise_db = signal::environment_noise_rise_db("industrial");
-  Receiver a(store, ReceiverConfig{}), b(store, suburban_low), c(store, industrial);
+  PipelineConfig suburban_low;
+  suburban_low.world.signal.link.environment_noise_rise_db = 15.0;
+  PipelineConfig industrial;
+  industrial.world.signal.link.environment_noise_rise_db = signal::environment_noise_rise_db("industrial");
+  Pipeline a(store, PipelineConfig{}), b(store, suburban_low), c(store, industrial);
   for (int k = 0; k < 10; ++k) {
     const time::GpsTime t = kToe + 60.0 * k;
     const Fix& fa = a.step(t, truth_at(pos, t));
@@ -195,14 +177,14 @@ TEST(ReceiverAtmosphere, NoiseRiseDropsLowSatellitesThenEverything) {
     EXPECT_EQ(fc.num_visible, fa.num_visible);
     EXPECT_EQ(fc.dop.pdop, Dop::kNoDop);
     // The fix carries the world's noise floor (MON-HW jamInd / AGC read it).
-    EXPECT_EQ(fa.noise_rise_db, ReceiverConfig{}.signal.link.environment_noise_rise_db);
+    EXPECT_EQ(fa.noise_rise_db, PipelineConfig{}.world.signal.link.environment_noise_rise_db);
     EXPECT_EQ(fb.noise_rise_db, 15.0);
     EXPECT_EQ(fc.noise_rise_db, 20.0);
   }
   // With the signal stage off the C/N0 curve is fixed: a quiet sky.
-  ReceiverConfig off = industrial;
-  off.signal.enabled = false;
-  Receiver d(store, off);
+  PipelineConfig off = industrial;
+  off.world.signal.enabled = false;
+  Pipeline d(store, off);
   EXPECT_EQ(d.step(kToe, truth_at(pos, kToe)).noise_rise_db, Fix{}.noise_rise_db);
 }
 
@@ -211,26 +193,26 @@ TEST(ReceiverAtmosphere, ModelErrorVarianceWidensTheAccuracyOnlyWhenCorrecting) 
   // geometry re-weighted, its hAcc/vAcc grow; without corrections nothing changes.
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
   const Ecef pos = geo::ecef_from_lla(kSite);
-  ReceiverConfig base;  // default world and corrections
-  ASSERT_NE(base.solver.iono, atmosphere::IonoCorrection::kNone);
-  ASSERT_NE(base.solver.tropo, atmosphere::TropoCorrection::kNone);
-  ReceiverConfig wide = base;
-  wide.solver.iono_model_fraction = 0.5;
-  wide.solver.tropo_model_sigma_m = 0.3;
-  Receiver a(store, base), b(store, wide);
+  PipelineConfig base;  // default world and corrections
+  ASSERT_NE(base.receiver.solver.iono, atmosphere::IonoCorrection::kNone);
+  ASSERT_NE(base.receiver.solver.tropo, atmosphere::TropoCorrection::kNone);
+  PipelineConfig wide = base;
+  wide.receiver.solver.iono_model_fraction = 0.5;
+  wide.receiver.solver.tropo_model_sigma_m = 0.3;
+  Pipeline a(store, base), b(store, wide);
   const Fix fa = a.step(kToe, truth_at(pos, kToe));
   const Fix& fb = b.step(kToe, truth_at(pos, kToe));
   ASSERT_EQ(fa.type, FixType::k3D);
   ASSERT_EQ(fb.type, FixType::k3D);
   EXPECT_GT(fb.h_acc_m, 1.05 * fa.h_acc_m);
   EXPECT_GT(fb.v_acc_m, 1.05 * fa.v_acc_m);
-  ReceiverConfig none = base;
-  none.solver.iono = atmosphere::IonoCorrection::kNone;
-  none.solver.tropo = atmosphere::TropoCorrection::kNone;
-  ReceiverConfig none_wide = none;
-  none_wide.solver.iono_model_fraction = 0.5;
-  none_wide.solver.tropo_model_sigma_m = 0.3;
-  Receiver c(store, none), d(store, none_wide);
+  PipelineConfig none = base;
+  none.receiver.solver.iono = atmosphere::IonoCorrection::kNone;
+  none.receiver.solver.tropo = atmosphere::TropoCorrection::kNone;
+  PipelineConfig none_wide = none;
+  none_wide.receiver.solver.iono_model_fraction = 0.5;
+  none_wide.receiver.solver.tropo_model_sigma_m = 0.3;
+  Pipeline c(store, none), d(store, none_wide);
   const Fix fc = c.step(kToe, truth_at(pos, kToe));
   const Fix& fd = d.step(kToe, truth_at(pos, kToe));
   EXPECT_EQ(fc.h_acc_m, fd.h_acc_m);
@@ -239,28 +221,28 @@ TEST(ReceiverAtmosphere, ModelErrorVarianceWidensTheAccuracyOnlyWhenCorrecting) 
 
 TEST(ReceiverAtmosphere, AllStagesOffIsExactAndCostsNothing) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig cfg = test::errors_off_config();
-  EXPECT_FALSE(cfg.atmosphere.ionosphere.enabled || cfg.atmosphere.troposphere.enabled || cfg.atmosphere.gases);
-  Receiver rx(store, cfg);
+  PipelineConfig cfg = test::errors_off_config();
+  EXPECT_FALSE(cfg.world.atmosphere.ionosphere.enabled || cfg.world.atmosphere.troposphere.enabled || cfg.world.atmosphere.gases);
+  Pipeline rx(store, cfg);
   const Ecef pos = geo::ecef_from_lla(kSite);
   for (int k = 0; k < 30; ++k) {
     const time::GpsTime t = kToe + 10.0 * k;
     const Fix& f = rx.step(t, truth_at(pos, t));
     ASSERT_EQ(f.type, FixType::k3D);
     EXPECT_LT((f.pos_m - pos).norm(), 1e-3);
-    for (int i = 0; i < f.num_sats; ++i) EXPECT_EQ(rx.path_effects(f.sats[i].prn).delay_m, 0.0);
+    for (int i = 0; i < f.num_sats; ++i) EXPECT_EQ(rx.world().path_effects(f.sats[i].prn).delay_m, 0.0);
   }
-  EXPECT_EQ(rx.atmosphere_refreshes(), 0);
+  EXPECT_EQ(rx.world().atmosphere_refreshes(), 0);
 }
 
 TEST(ReceiverAtmosphere, CacheRefreshesOnScheduleWithSmallError) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
   const Ecef pos = geo::ecef_from_lla(kSite);
-  ReceiverConfig ref = noiseless();
-  ReceiverConfig cached = ref;
-  cached.atmosphere.cache_refresh_s = 30.0;
-  cached.atmosphere.cache_mode = atmosphere::CacheMode::kLinear;
-  Receiver a(store, ref), b(store, cached);
+  PipelineConfig ref = noiseless();
+  PipelineConfig cached = ref;
+  cached.world.atmosphere.cache_refresh_s = 30.0;
+  cached.world.atmosphere.cache_mode = atmosphere::CacheMode::kLinear;
+  Pipeline a(store, ref), b(store, cached);
   double max_diff = 0.0;
   long sat_epochs = 0;
   for (int k = 0; k < 600; ++k) {
@@ -272,24 +254,24 @@ TEST(ReceiverAtmosphere, CacheRefreshesOnScheduleWithSmallError) {
     max_diff = std::max(max_diff, (fa.pos_m - fb.pos_m).norm());
     sat_epochs += fa.num_visible;
   }
-  EXPECT_EQ(a.atmosphere_refreshes(), sat_epochs);  // no cache: every satellite, every epoch
+  EXPECT_EQ(a.world().atmosphere_refreshes(), sat_epochs);  // no cache: every satellite, every epoch
   // 30 s refresh plus one bootstrap refresh per satellite for the slope.
-  EXPECT_LT(b.atmosphere_refreshes(), sat_epochs / 10);
-  EXPECT_GT(b.atmosphere_refreshes(), sat_epochs / 31);
+  EXPECT_LT(b.world().atmosphere_refreshes(), sat_epochs / 10);
+  EXPECT_GT(b.world().atmosphere_refreshes(), sat_epochs / 31);
   EXPECT_LT(max_diff, 0.05);
 }
 
 TEST(ReceiverAtmosphere, DeterministicWithEveryStageOn) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig cfg;
-  cfg.atmosphere.clouds_rain.layers[0] = atmosphere::cloud_preset("thunderstorm");
-  cfg.atmosphere.clouds_rain.layers[1] = atmosphere::cloud_preset("fog");
-  cfg.atmosphere.clouds_rain.layer_count = 2;
-  cfg.atmosphere.clouds_rain.rain.rate_mm_h = 100.0;
-  cfg.seed = 99;
-  Receiver a(store, cfg), b(store, cfg);
-  cfg.seed = 100;
-  Receiver c(store, cfg);
+  PipelineConfig cfg;
+  cfg.world.atmosphere.clouds_rain.layers[0] = atmosphere::cloud_preset("thunderstorm");
+  cfg.world.atmosphere.clouds_rain.layers[1] = atmosphere::cloud_preset("fog");
+  cfg.world.atmosphere.clouds_rain.layer_count = 2;
+  cfg.world.atmosphere.clouds_rain.rain.rate_mm_h = 100.0;
+  cfg.world.seed = 99;
+  Pipeline a(store, cfg), b(store, cfg);
+  cfg.world.seed = 100;
+  Pipeline c(store, cfg);
   const Ecef pos = geo::ecef_from_lla(kSite);
   int differ = 0;
   for (int k = 0; k < 50; ++k) {
@@ -308,11 +290,11 @@ TEST(ReceiverAtmosphere, DeterministicWithEveryStageOn) {
 
 TEST(ReceiverAtmosphere, RainAndThunderstormCostDecibelsNotTracking) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig wet = noiseless();
-  wet.atmosphere.clouds_rain.layers[0] = atmosphere::cloud_preset("thunderstorm");
-  wet.atmosphere.clouds_rain.layer_count = 1;
-  wet.atmosphere.clouds_rain.rain.rate_mm_h = 100.0;
-  Receiver dry_rx(store, noiseless()), wet_rx(store, wet);
+  PipelineConfig wet = noiseless();
+  wet.world.atmosphere.clouds_rain.layers[0] = atmosphere::cloud_preset("thunderstorm");
+  wet.world.atmosphere.clouds_rain.layer_count = 1;
+  wet.world.atmosphere.clouds_rain.rain.rate_mm_h = 100.0;
+  Pipeline dry_rx(store, noiseless()), wet_rx(store, wet);
   const Ecef pos = geo::ecef_from_lla(kSite);
   const Fix dry = dry_rx.step(kToe, truth_at(pos, kToe));
   const Fix& f = wet_rx.step(kToe, truth_at(pos, kToe));
@@ -330,14 +312,13 @@ TEST(ReceiverAtmosphere, RainAndThunderstormCostDecibelsNotTracking) {
 TEST(ReceiverAtmosphere, NoAllocationWithEveryStageAndTheCache) {
   const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
   const orbit::EphemerisStore store(nav.ephemerides);
-  ReceiverConfig cfg;
-  cfg.atmosphere.clouds_rain.layers[0] = atmosphere::cloud_preset("cumulus");
-  cfg.atmosphere.clouds_rain.layer_count = 1;
-  cfg.atmosphere.clouds_rain.rain.rate_mm_h = 20.0;
-  cfg.atmosphere.cache_refresh_s = 5.0;
-  cfg.signal.link.environment_noise_rise_db = 6.0;
-  Receiver rx(store, cfg);
-  rx.set_klobuchar(nav.klobuchar);
+  PipelineConfig cfg;
+  cfg.world.atmosphere.clouds_rain.layers[0] = atmosphere::cloud_preset("cumulus");
+  cfg.world.atmosphere.clouds_rain.layer_count = 1;
+  cfg.world.atmosphere.clouds_rain.rain.rate_mm_h = 20.0;
+  cfg.world.atmosphere.cache_refresh_s = 5.0;
+  cfg.world.signal.link.environment_noise_rise_db = 6.0;
+  Pipeline rx(store, cfg, {.klobuchar = nav.klobuchar});
   const Lla site{39.6 * kDegToRad, 22.4 * kDegToRad, 100.0};
   const Ecef p0 = geo::ecef_from_lla(site);
   const Vec3 v = geo::enu_to_ecef_vector(Enu(20.0, 15.0, 3.0), site.lat_rad, site.lon_rad);

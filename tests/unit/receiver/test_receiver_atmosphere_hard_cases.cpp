@@ -8,11 +8,16 @@
 
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
-#include "core/receiver/receiver.hpp"
+#include "core/pipeline/pipeline.hpp"
 #include "synthetic_sky.hpp"
 
 namespace gnssemu::receiver {
 namespace {
+
+using pipeline::Pipeline;
+using pipeline::PipelineConfig;
+using world::Truth;
+using world::PathEffects;
 
 using test::expect_consistent;
 
@@ -20,35 +25,35 @@ struct Case {
   const char* name;
   Lla lla;
   time::CalendarTime when;
-  void (*tweak)(ReceiverConfig&);
+  void (*tweak)(PipelineConfig&);
 };
 
-void none(ReceiverConfig&) {}
-void zero_tec(ReceiverConfig& c) {
-  c.atmosphere.ionosphere.source = atmosphere::VtecSource::kFixed;
-  c.atmosphere.ionosphere.vtec_tecu = 0.0;
+void none(PipelineConfig&) {}
+void zero_tec(PipelineConfig& c) {
+  c.world.atmosphere.ionosphere.source = atmosphere::VtecSource::kFixed;
+  c.world.atmosphere.ionosphere.vtec_tecu = 0.0;
 }
-void tec_300(ReceiverConfig& c) {
-  c.atmosphere.ionosphere.source = atmosphere::VtecSource::kFixed;
-  c.atmosphere.ionosphere.vtec_tecu = 300.0;
+void tec_300(PipelineConfig& c) {
+  c.world.atmosphere.ionosphere.source = atmosphere::VtecSource::kFixed;
+  c.world.atmosphere.ionosphere.vtec_tecu = 300.0;
 }
 // A world without atmosphere, and a receiver told so. (With its corrections
 // on, the receiver would subtract ~2.3 m zenith troposphere and the Klobuchar
 // delay that are not there: a biased fix, as a real receiver in vacuum.)
-void all_layers_off(ReceiverConfig& c) {
-  c.solver.iono = atmosphere::IonoCorrection::kNone;
-  c.solver.tropo = atmosphere::TropoCorrection::kNone;
-  c.atmosphere.ionosphere.enabled = false;
-  c.atmosphere.troposphere.enabled = false;
-  c.atmosphere.gases = false;
-  for (atmosphere::Shell& s : c.atmosphere.shells.shells) s.enabled = false;
+void all_layers_off(PipelineConfig& c) {
+  c.receiver.solver.iono = atmosphere::IonoCorrection::kNone;
+  c.receiver.solver.tropo = atmosphere::TropoCorrection::kNone;
+  c.world.atmosphere.ionosphere.enabled = false;
+  c.world.atmosphere.troposphere.enabled = false;
+  c.world.atmosphere.gases = false;
+  for (atmosphere::Shell& s : c.world.atmosphere.shells.shells) s.enabled = false;
 }
-void storm(ReceiverConfig& c) {
-  c.atmosphere.clouds_rain.layers[0] = atmosphere::cloud_preset("thunderstorm");
-  c.atmosphere.clouds_rain.layer_count = 1;
-  c.atmosphere.clouds_rain.rain.rate_mm_h = 100.0;
+void storm(PipelineConfig& c) {
+  c.world.atmosphere.clouds_rain.layers[0] = atmosphere::cloud_preset("thunderstorm");
+  c.world.atmosphere.clouds_rain.layer_count = 1;
+  c.world.atmosphere.clouds_rain.rain.rate_mm_h = 100.0;
 }
-void mask_15(ReceiverConfig& c) { c.elevation_mask_rad = 15.0 * kDegToRad; }
+void mask_15(PipelineConfig& c) { c.receiver.elevation_mask_rad = 15.0 * kDegToRad; }
 
 const time::CalendarTime kDay{2022, 5, 3, 11, 0, 0.0};
 
@@ -58,9 +63,9 @@ TEST_P(AtmosphereHardCases, NoNanNoConfidentWrongFix) {
   const Case& c = GetParam();
   const time::GpsTime t0 = time::GpsTime::from_calendar(c.when);
   const orbit::EphemerisStore store(test::nominal_constellation(t0, 5));
-  ReceiverConfig cfg;
+  PipelineConfig cfg;
   c.tweak(cfg);
-  Receiver rx(store, cfg);
+  Pipeline rx(store, cfg);
   const Ecef pos = geo::ecef_from_lla(c.lla);
   int fixes = 0, worst_k = -1, excluded_fixes = 0;
   double worst_ratio = 0.0;
@@ -73,7 +78,7 @@ TEST_P(AtmosphereHardCases, NoNanNoConfidentWrongFix) {
     const Fix& f = rx.step(t, tr);
     expect_consistent(f);
     for (int i = 0; i < f.num_sats; ++i) {
-      const PathEffects& e = rx.path_effects(f.sats[i].prn);
+      const PathEffects& e = rx.world().path_effects(f.sats[i].prn);
       ASSERT_TRUE(std::isfinite(e.delay_m) && std::isfinite(e.loss_db)) << k;
       EXPECT_GE(e.delay_m, 0.0);
       EXPECT_GE(e.loss_db, 0.0);
@@ -137,9 +142,9 @@ TEST(AtmosphereHardCases, SatellitesAtTheMaskAndAtZenith) {
     ephs.push_back(test::placed_eph(i + 1, t, t - 0.07, sat));
   }
   const orbit::EphemerisStore store(ephs);
-  ReceiverConfig cfg;
-  cfg.elevation_mask_rad = 9.99 * kDegToRad;  // placement is exact to ~0.001 deg
-  Receiver rx(store, cfg);
+  PipelineConfig cfg;
+  cfg.receiver.elevation_mask_rad = 9.99 * kDegToRad;  // placement is exact to ~0.001 deg
+  Pipeline rx(store, cfg);
   Truth tr;
   tr.t = t;
   tr.pos_m = rx_pos;
@@ -150,7 +155,7 @@ TEST(AtmosphereHardCases, SatellitesAtTheMaskAndAtZenith) {
   for (int i = 0; i < f.num_sats; ++i) {
     EXPECT_NEAR(f.sats[i].el_rad * kRadToDeg, el_deg[i], 0.005);
     EXPECT_TRUE(f.sats[i].tracked) << f.sats[i].prn;
-    const PathEffects& e = rx.path_effects(f.sats[i].prn);
+    const PathEffects& e = rx.world().path_effects(f.sats[i].prn);
     EXPECT_GT(e.tropo_m, 2.2);
     EXPECT_LT(e.tropo_m, 14.0);
   }

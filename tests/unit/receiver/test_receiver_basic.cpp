@@ -9,11 +9,15 @@
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
-#include "core/receiver/receiver.hpp"
+#include "core/pipeline/pipeline.hpp"
 #include "synthetic_sky.hpp"
 
 namespace gnssemu::receiver {
 namespace {
+
+using pipeline::Pipeline;
+using pipeline::PipelineConfig;
+using world::Truth;
 
 using test::errors_off_config;
 using test::expect_consistent;
@@ -30,8 +34,8 @@ Truth static_truth(const Lla& lla, const time::GpsTime& t) {
 
 TEST(ReceiverBasic, ErrorsOffRecoversTruthAndClock) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  const ReceiverConfig cfg = errors_off_config();
-  Receiver rx(store, cfg);
+  const PipelineConfig cfg = errors_off_config();
+  Pipeline rx(store, cfg);
   const Lla lla{48.15 * kDegToRad, 11.58 * kDegToRad, 520.0};
   for (int k = 0; k < 20; ++k) {
     const time::GpsTime t = kToe + 60.0 * k;
@@ -42,21 +46,21 @@ TEST(ReceiverBasic, ErrorsOffRecoversTruthAndClock) {
     EXPECT_GE(f.num_used, 6);
     EXPECT_LT((f.pos_m - tr.pos_m).norm(), 1e-3) << k;
     // Clock bias: 1 mm of range is 3.3e-12 s.
-    EXPECT_NEAR(f.clock_bias_s, rx.true_clock_bias_s(), 3.4e-12) << k;
-    EXPECT_NEAR(f.clock_drift_s_s, rx.true_clock_drift_s_s(), 1e-13) << k;
+    EXPECT_NEAR(f.clock_bias_s, rx.world().true_clock_bias_s(), 3.4e-12) << k;
+    EXPECT_NEAR(f.clock_drift_s_s, rx.world().true_clock_drift_s_s(), 1e-13) << k;
     EXPECT_LT(f.vel_m_s.norm(), 1e-3);
     EXPECT_NEAR(f.lla.height_m, 520.0, 1e-3);
     EXPECT_LT(f.range_rms_m, 1e-3);
     // Without noise the clock is bias + drift * elapsed (ReceiverClockConfig defaults).
-    EXPECT_NEAR(rx.true_clock_bias_s(), cfg.clock.bias_s + cfg.clock.drift_s_s * 60.0 * k, 1e-15);
+    EXPECT_NEAR(rx.world().true_clock_bias_s(), cfg.world.clock.bias_s + cfg.world.clock.drift_s_s * 60.0 * k, 1e-15);
   }
 }
 
 TEST(ReceiverBasic, RealBroadcastEphemerisErrorsOffWithin1mm) {
   const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
   const orbit::EphemerisStore store(nav.ephemerides);
-  Receiver rx(store, errors_off_config());
-  rx.set_leap_seconds(nav.leap_seconds.value_or(18));
+  Pipeline rx(store, errors_off_config());
+  rx.receiver().set_leap_seconds(nav.leap_seconds.value_or(18));
   // Station LARM (obs/LARM0010.22O header), 2022-01-01 over two hours.
   const Ecef larm(4549397.1706, 1874003.1392, 4045167.6109);
   const time::GpsTime t0 = time::GpsTime::from_calendar({2022, 1, 1, 0, 0, 0.0});
@@ -69,7 +73,7 @@ TEST(ReceiverBasic, RealBroadcastEphemerisErrorsOffWithin1mm) {
     ASSERT_EQ(f.type, FixType::k3D);
     expect_consistent(f);
     EXPECT_LT((f.pos_m - larm).norm(), 1e-3) << k;
-    EXPECT_NEAR(f.clock_bias_s, rx.true_clock_bias_s(), 3.4e-12);
+    EXPECT_NEAR(f.clock_bias_s, rx.world().true_clock_bias_s(), 3.4e-12);
     EXPECT_GE(f.num_visible, 6);
     EXPECT_LE(f.num_visible, 14);
     EXPECT_GT(f.dop.pdop, 1.0);
@@ -81,7 +85,7 @@ TEST(ReceiverBasic, RealBroadcastEphemerisErrorsOffWithin1mm) {
 TEST(ReceiverBasic, DefaultErrorsGiveMetreLevelFixWithRealData) {
   const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
   const orbit::EphemerisStore store(nav.ephemerides);
-  Receiver rx(store, ReceiverConfig{});
+  Pipeline rx(store, PipelineConfig{});
   const Ecef larm(4549397.1706, 1874003.1392, 4045167.6109);
   const time::GpsTime t0 = time::GpsTime::from_calendar({2022, 1, 1, 6, 0, 0.0});
   double worst_m = 0.0;
@@ -95,7 +99,7 @@ TEST(ReceiverBasic, DefaultErrorsGiveMetreLevelFixWithRealData) {
     worst_m = std::max(worst_m, (f.pos_m - larm).norm());
     // Default sigma_uere ~1.24 m with PDOP < 4: beyond 20 m would be a bug.
     EXPECT_GT(f.sigma_uere_m, 1.2);
-    EXPECT_NEAR(f.clock_bias_s, rx.true_clock_bias_s(), 30.0 / kSpeedOfLight_m_s);
+    EXPECT_NEAR(f.clock_bias_s, rx.world().true_clock_bias_s(), 30.0 / kSpeedOfLight_m_s);
   }
   EXPECT_LT(worst_m, 20.0);
   EXPECT_GT(worst_m, 0.05);  // the error model is on
@@ -103,11 +107,11 @@ TEST(ReceiverBasic, DefaultErrorsGiveMetreLevelFixWithRealData) {
 
 TEST(ReceiverBasic, SameSeedIdenticalDifferentSeedDiffers) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig cfg;
-  cfg.seed = 42;
-  Receiver a(store, cfg), b(store, cfg);
-  cfg.seed = 43;
-  Receiver c(store, cfg);
+  PipelineConfig cfg;
+  cfg.world.seed = 42;
+  Pipeline a(store, cfg), b(store, cfg);
+  cfg.world.seed = 43;
+  Pipeline c(store, cfg);
   const Lla lla{-33.9 * kDegToRad, 151.2 * kDegToRad, 40.0};
   int differing = 0;
   for (int k = 0; k < 50; ++k) {
@@ -131,10 +135,10 @@ TEST(ReceiverBasic, SameSeedIdenticalDifferentSeedDiffers) {
 
 TEST(ReceiverBasic, NoiseOfOneSatelliteDoesNotDependOnOthersVisible) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig low, high;
-  low.seed = high.seed = 7;
-  high.elevation_mask_rad = 35.0 * kDegToRad;
-  Receiver a(store, low), b(store, high);
+  PipelineConfig low, high;
+  low.world.seed = high.world.seed = 7;
+  high.receiver.elevation_mask_rad = 35.0 * kDegToRad;
+  Pipeline a(store, low), b(store, high);
   const Lla lla{10.0 * kDegToRad, -70.0 * kDegToRad, 0.0};
   int compared = 0;
   for (int k = 0; k < 5; ++k) {
@@ -157,7 +161,7 @@ TEST(ReceiverBasic, NoiseOfOneSatelliteDoesNotDependOnOthersVisible) {
 
 TEST(ReceiverBasic, NoTruthGivesNoFixAndKeepsTime) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  Receiver rx(store, ReceiverConfig{});
+  Pipeline rx(store, PipelineConfig{});
   const Lla lla{0.5, 0.3, 100.0};
   Truth lost;  // valid == false
   const Fix& f0 = rx.step(kToe, lost);
@@ -185,36 +189,36 @@ TEST(ReceiverBasic, NoTruthGivesNoFixAndKeepsTime) {
 
 TEST(ReceiverBasic, LeapSecondsFromTableOrOverride) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  Receiver rx(store, ReceiverConfig{});
+  Pipeline rx(store, PipelineConfig{});
   Truth lost;
   EXPECT_EQ(rx.step(kToe, lost).leap_seconds, 18);
   const time::GpsTime t2010 = time::GpsTime::from_calendar({2010, 6, 1, 0, 0, 0.0});
   EXPECT_EQ(rx.step(t2010, lost).leap_seconds, 15);
-  rx.set_leap_seconds(17);
+  rx.receiver().set_leap_seconds(17);
   EXPECT_EQ(rx.step(kToe, lost).leap_seconds, 17);
 }
 
 TEST(ReceiverBasic, InvalidConfigThrows) {
   const orbit::EphemerisStore store;
   auto bad = [&](auto mutate) {
-    ReceiverConfig c;
+    PipelineConfig c;
     mutate(c);
-    EXPECT_THROW(Receiver(store, c), Error);
+    EXPECT_THROW(Pipeline(store, c), Error);
   };
-  bad([](ReceiverConfig& c) { c.elevation_mask_rad = kPi / 2.0; });
-  bad([](ReceiverConfig& c) { c.elevation_mask_rad = -0.1; });
-  bad([](ReceiverConfig& c) { c.errors.thermal_sigma_m = -1.0; });
-  bad([](ReceiverConfig& c) { c.errors.orbit_clock.tau_s = 0.0; });
-  bad([](ReceiverConfig& c) { c.errors.orbit_clock.sigma_m = std::nan(""); });
-  bad([](ReceiverConfig& c) { c.max_channels = 0; });
-  bad([](ReceiverConfig& c) { c.max_channels = 33; });
-  bad([](ReceiverConfig& c) { c.max_pdop = 0.0; });
-  bad([](ReceiverConfig& c) { c.solver.sigma_a_m = 0.0, c.solver.sigma_b_m = 0.0; });
-  bad([](ReceiverConfig& c) { c.solver.residual_test_pfa = 0.7; });
-  bad([](ReceiverConfig& c) { c.clock.bias_s = 2.0; });
-  EXPECT_NO_THROW(Receiver(store, ReceiverConfig{}));
+  bad([](PipelineConfig& c) { c.receiver.elevation_mask_rad = kPi / 2.0; });
+  bad([](PipelineConfig& c) { c.receiver.elevation_mask_rad = -0.1; });
+  bad([](PipelineConfig& c) { c.world.errors.thermal_sigma_m = -1.0; });
+  bad([](PipelineConfig& c) { c.world.errors.orbit_clock.tau_s = 0.0; });
+  bad([](PipelineConfig& c) { c.world.errors.orbit_clock.sigma_m = std::nan(""); });
+  bad([](PipelineConfig& c) { c.receiver.max_channels = 0; });
+  bad([](PipelineConfig& c) { c.receiver.max_channels = 33; });
+  bad([](PipelineConfig& c) { c.receiver.max_pdop = 0.0; });
+  bad([](PipelineConfig& c) { c.receiver.solver.sigma_a_m = 0.0, c.receiver.solver.sigma_b_m = 0.0; });
+  bad([](PipelineConfig& c) { c.receiver.solver.residual_test_pfa = 0.7; });
+  bad([](PipelineConfig& c) { c.world.clock.bias_s = 2.0; });
+  EXPECT_NO_THROW(Pipeline(store, PipelineConfig{}));
   // An empty store is not an error: no satellites, no fix.
-  Receiver rx(store, ReceiverConfig{});
+  Pipeline rx(store, PipelineConfig{});
   const Fix& f = rx.step(kToe, static_truth({0.1, 0.2, 0.0}, kToe));
   EXPECT_EQ(f.type, FixType::kNone);
   EXPECT_TRUE(f.time_valid);

@@ -8,43 +8,28 @@
 
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
-#include "core/receiver/receiver.hpp"
+#include "core/pipeline/pipeline.hpp"
 #include "synthetic_sky.hpp"
 
 namespace gnssemu::receiver {
 namespace {
 
+using test::truth_at;
+using pipeline::Pipeline;
+using pipeline::PipelineConfig;
+
 const time::GpsTime kToe(2190, 200000.0);
 const Lla kSite{45.0 * kDegToRad, 7.0 * kDegToRad, 300.0};
 
-Truth truth_at(const Ecef& pos, const time::GpsTime& t) {
-  Truth tr;
-  tr.t = t;
-  tr.pos_m = pos;
-  tr.valid = true;
-  return tr;
-}
-
 /// No random process, no clock noise: pseudoranges differ only by what a test switches on.
-ReceiverConfig quiet() {
-  ReceiverConfig c;
-  c.errors.orbit_clock.sigma_m = 0.0;
-  c.errors.thermal_model = ThermalModel::kFixed;
-  c.errors.thermal_sigma_m = 0.0;
-  c.errors.doppler_sigma_m_s = 0.0;
-  c.clock.drift_noise_s_s_sqrt_s = 0.0;
-  c.atmosphere.ionosphere.perturbation.sigma = 0.0;
-  c.atmosphere.zwd_perturbation.sigma_m = 0.0;
-  c.atmosphere.cache_refresh_s = 0.0;
-  return c;
-}
+PipelineConfig quiet() { return test::noiseless(); }
 
 TEST(ReceiverCalibrationTerms, ConstantGradientIsNorthCosAzPlusEastSinAz) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig with = quiet();
-  with.errors.gradient.north_m = 0.7;
-  with.errors.gradient.east_m = -0.4;
-  Receiver a(store, quiet()), b(store, with);
+  PipelineConfig with = quiet();
+  with.world.errors.gradient.north_m = 0.7;
+  with.world.errors.gradient.east_m = -0.4;
+  Pipeline a(store, quiet()), b(store, with);
   const Ecef pos = geo::ecef_from_lla(kSite);
   const Fix fa = a.step(kToe, truth_at(pos, kToe));
   const Fix& fb = b.step(kToe, truth_at(pos, kToe));
@@ -67,16 +52,16 @@ TEST(ReceiverCalibrationTerms, DiurnalGradientFollowsLocalSolarTime) {
   // G_N = 0.1 + 0.6 cos(2 pi (LT - 15 h) / 24 h), G_E = 0.4 cos(2 pi (LT - 3 h) / 24 h),
   // LT = GPS time of day + longitude / 15 deg per hour (7 deg E: 28 min).
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig with = quiet();
-  with.errors.gradient.north_m = 0.1;
-  with.errors.gradient.north_diurnal_m = 0.6;
-  with.errors.gradient.north_peak_h = 15.0;
-  with.errors.gradient.east_diurnal_m = 0.4;
-  with.errors.gradient.east_peak_h = 3.0;
+  PipelineConfig with = quiet();
+  with.world.errors.gradient.north_m = 0.1;
+  with.world.errors.gradient.north_diurnal_m = 0.6;
+  with.world.errors.gradient.north_peak_h = 15.0;
+  with.world.errors.gradient.east_diurnal_m = 0.4;
+  with.world.errors.gradient.east_peak_h = 3.0;
   const Ecef pos = geo::ecef_from_lla(kSite);
   int checked = 0;
   for (double dt_s : {0.0, 3600.0, 5.0 * 3600.0, 11.0 * 3600.0}) {
-    Receiver a(store, quiet()), b(store, with);
+    Pipeline a(store, quiet()), b(store, with);
     const time::GpsTime t = kToe + dt_s;
     const Fix fa = a.step(t, truth_at(pos, t));
     const Fix& fb = b.step(t, truth_at(pos, t));
@@ -96,9 +81,9 @@ TEST(ReceiverCalibrationTerms, DiurnalGradientFollowsLocalSolarTime) {
 
 TEST(ReceiverCalibrationTerms, MultipathScalesWithOneOverSinElevationAndDecorrelates) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig with = quiet();
-  with.errors.multipath = {0.2, 60.0};
-  Receiver a(store, quiet()), b(store, with);
+  PipelineConfig with = quiet();
+  with.world.errors.multipath = {0.2, 60.0};
+  Pipeline a(store, quiet()), b(store, with);
   const Ecef pos = geo::ecef_from_lla(kSite);
   // Normalised value d sin(el) / sigma is a unit Gauss–Markov with tau 60 s.
   std::vector<std::vector<double>> z(33);
@@ -127,9 +112,9 @@ TEST(ReceiverCalibrationTerms, MultipathScalesWithOneOverSinElevationAndDecorrel
 
 TEST(ReceiverCalibrationTerms, GradientProcessHasItsSigmaAndIsDeterministic) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig with = quiet();
-  with.errors.gradient.process = {0.3, 30.0};
-  Receiver a(store, quiet()), b(store, with), c(store, with);
+  PipelineConfig with = quiet();
+  with.world.errors.gradient.process = {0.3, 30.0};
+  Pipeline a(store, quiet()), b(store, with), c(store, with);
   const Ecef pos = geo::ecef_from_lla(kSite);
   double ss = 0.0;
   int n = 0;
@@ -160,24 +145,24 @@ TEST(ReceiverCalibrationTerms, GradientProcessHasItsSigmaAndIsDeterministic) {
 
 TEST(ReceiverCalibrationTerms, BadValuesAreRejected) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig c = quiet();
-  c.errors.multipath = {-0.1, 60.0};
-  EXPECT_THROW(Receiver(store, c), Error);
+  PipelineConfig c = quiet();
+  c.world.errors.multipath = {-0.1, 60.0};
+  EXPECT_THROW(Pipeline(store, c), Error);
   c = quiet();
-  c.errors.multipath = {0.1, 0.0};
-  EXPECT_THROW(Receiver(store, c), Error);
+  c.world.errors.multipath = {0.1, 0.0};
+  EXPECT_THROW(Pipeline(store, c), Error);
   c = quiet();
-  c.errors.gradient.north_m = std::nan("");
-  EXPECT_THROW(Receiver(store, c), Error);
+  c.world.errors.gradient.north_m = std::nan("");
+  EXPECT_THROW(Pipeline(store, c), Error);
   c = quiet();
-  c.errors.gradient.process = {0.1, -1.0};
-  EXPECT_THROW(Receiver(store, c), Error);
+  c.world.errors.gradient.process = {0.1, -1.0};
+  EXPECT_THROW(Pipeline(store, c), Error);
   c = quiet();
-  c.errors.gradient.north_diurnal_m = -0.1;
-  EXPECT_THROW(Receiver(store, c), Error);
+  c.world.errors.gradient.north_diurnal_m = -0.1;
+  EXPECT_THROW(Pipeline(store, c), Error);
   c = quiet();
-  c.errors.gradient.east_peak_h = 24.0;
-  EXPECT_THROW(Receiver(store, c), Error);
+  c.world.errors.gradient.east_peak_h = 24.0;
+  EXPECT_THROW(Pipeline(store, c), Error);
 }
 
 }  // namespace

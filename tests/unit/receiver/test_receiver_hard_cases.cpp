@@ -8,25 +8,20 @@
 
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
-#include "core/receiver/receiver.hpp"
+#include "core/pipeline/pipeline.hpp"
 #include "synthetic_sky.hpp"
 
 namespace gnssemu::receiver {
 namespace {
 
+using test::truth_at;
+using pipeline::Pipeline;
+using pipeline::PipelineConfig;
+
 using test::errors_off_config;
 using test::expect_consistent;
 
 const time::GpsTime kToe(2190, 300000.0);
-
-Truth truth_at(const Ecef& pos, const time::GpsTime& t, const Ecef& vel = {}) {
-  Truth tr;
-  tr.t = t;
-  tr.pos_m = pos;
-  tr.vel_m_s = vel;
-  tr.valid = true;
-  return tr;
-}
 
 struct Site {
   const char* name;
@@ -38,8 +33,8 @@ class HardSites : public ::testing::TestWithParam<Site> {};
 TEST_P(HardSites, ExactWithErrorsOffAndSaneWithDefaults) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
   const Ecef pos = geo::ecef_from_lla(GetParam().lla);
-  Receiver exact(store, errors_off_config());
-  Receiver noisy(store, ReceiverConfig{});
+  Pipeline exact(store, errors_off_config());
+  Pipeline noisy(store, PipelineConfig{});
   for (int k = 0; k < 24; ++k) {
     const time::GpsTime t = kToe + 600.0 * k - 7200.0;
     const Fix& f = exact.step(t, truth_at(pos, t));
@@ -66,7 +61,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(ReceiverHardCases, CrossingTheAntimeridianAt100MetresPerSecond) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  Receiver rx(store, errors_off_config());
+  Pipeline rx(store, errors_off_config());
   const Lla start{20.0 * kDegToRad, (180.0 - 0.005) * kDegToRad, 50.0};
   const Ecef p0 = geo::ecef_from_lla(start);
   const Vec3 v = geo::enu_to_ecef_vector(Enu(100.0, 0.0, 0.0), start.lat_rad, start.lon_rad);
@@ -103,7 +98,7 @@ const Lla kSite{40.0 * kDegToRad, -3.7 * kDegToRad, 650.0};
 
 TEST(ReceiverHardCases, PlacedSatellitesAppearWhereRequested) {
   const orbit::EphemerisStore store(placed(kSite, kToe, {{30.0, 60.0}, {200.0, 10.0}}));
-  Receiver rx(store, ReceiverConfig{});
+  Pipeline rx(store, PipelineConfig{});
   const Fix& f = rx.step(kToe, truth_at(geo::ecef_from_lla(kSite), kToe));
   ASSERT_EQ(f.num_sats, 2);
   EXPECT_NEAR(f.sats[0].az_rad * kRadToDeg, 30.0, 0.05);
@@ -116,9 +111,9 @@ TEST(ReceiverHardCases, PlacedSatellitesAppearWhereRequested) {
 TEST(ReceiverHardCases, FourSatellitesInOneSkyPatchGiveNoFix) {
   const orbit::EphemerisStore store(placed(kSite, kToe, {{10.0, 45.0}, {11.0, 45.5}, {12.0, 44.5}, {13.0, 45.2}}));
   for (uint64_t seed = 1; seed <= 20; ++seed) {
-    ReceiverConfig cfg;
-    cfg.seed = seed;
-    Receiver rx(store, cfg);
+    PipelineConfig cfg;
+    cfg.world.seed = seed;
+    Pipeline rx(store, cfg);
     const Ecef pos = geo::ecef_from_lla(kSite);
     for (int k = 0; k < 3; ++k) {
       const Fix& f = rx.step(kToe + k, truth_at(pos, kToe + k));
@@ -136,14 +131,14 @@ TEST(ReceiverHardCases, PoorGeometryIsRejectedOrHonestAboutIt) {
   int fixes_default = 0, fixes_lenient = 0;
   double worst_ratio = 0.0, pdop = 0.0;
   for (uint64_t seed = 1; seed <= 100; ++seed) {
-    ReceiverConfig cfg;
-    cfg.seed = seed;
-    Receiver rx(store, cfg);
+    PipelineConfig cfg;
+    cfg.world.seed = seed;
+    Pipeline rx(store, cfg);
     const Fix& f = rx.step(kToe, truth_at(pos, kToe));
     expect_consistent(f);
     fixes_default += f.type != FixType::kNone;
-    cfg.max_pdop = 1e6;  // accept anything the algebra allows
-    Receiver lenient(store, cfg);
+    cfg.receiver.max_pdop = receiver::ReceiverRanges::max_pdop.max;  // accept all the receiver can
+    Pipeline lenient(store, cfg);
     const Fix& g = lenient.step(kToe, truth_at(pos, kToe));
     expect_consistent(g);
     if (g.type == FixType::kNone) continue;
@@ -171,7 +166,7 @@ TEST(ReceiverHardCases, ThreeSatellitesGive2DOnlyAfterA3DFix) {
   ephs.push_back(short_lived);
   const orbit::EphemerisStore store(ephs);
 
-  Receiver rx(store, errors_off_config());
+  Pipeline rx(store, errors_off_config());
   const Fix& f0 = rx.step(kToe, truth_at(rx_pos, kToe));
   ASSERT_EQ(f0.type, FixType::k3D);
   EXPECT_EQ(f0.num_used, 4);
@@ -183,11 +178,11 @@ TEST(ReceiverHardCases, ThreeSatellitesGive2DOnlyAfterA3DFix) {
     EXPECT_EQ(f.num_used, 3);
     EXPECT_LT((f.pos_m - rx_pos).norm(), 1e-3);  // height held = true height here
     EXPECT_NEAR(f.lla.height_m, 650.0, 1e-3);
-    EXPECT_NEAR(f.clock_bias_s, rx.true_clock_bias_s(), 3.4e-12);
+    EXPECT_NEAR(f.clock_bias_s, rx.world().true_clock_bias_s(), 3.4e-12);
   }
 
   // Same sky, but the receiver starts after the fourth set expired: none.
-  Receiver late(store, errors_off_config());
+  Pipeline late(store, errors_off_config());
   for (int k = 1; k <= 5; ++k) {
     const Fix& f = late.step(kToe + 20.0 * k, truth_at(rx_pos, kToe + 20.0 * k));
     EXPECT_EQ(f.num_tracked, 3);
@@ -196,7 +191,7 @@ TEST(ReceiverHardCases, ThreeSatellitesGive2DOnlyAfterA3DFix) {
   }
 
   // 2D with errors: horizontal error stays metre-level, height stays held.
-  Receiver noisy(store, ReceiverConfig{});
+  Pipeline noisy(store, PipelineConfig{});
   ASSERT_EQ(noisy.step(kToe, truth_at(rx_pos, kToe)).type, FixType::k3D);
   const double held_h = noisy.last_fix().lla.height_m;
   const Fix& f2 = noisy.step(kToe + 30.0, truth_at(rx_pos, kToe + 30.0));
@@ -215,7 +210,7 @@ TEST(ReceiverHardCases, TwoDFixDopFromSatelliteGeometryOnly) {
   short_lived.fit_interval_h = 0.0;
   ephs.push_back(short_lived);
   const orbit::EphemerisStore store(ephs);
-  Receiver rx(store, errors_off_config());
+  Pipeline rx(store, errors_off_config());
   ASSERT_EQ(rx.step(kToe, truth_at(rx_pos, kToe)).type, FixType::k3D);
   const Fix& f = rx.step(kToe + 20.0, truth_at(rx_pos, kToe + 20.0));
   ASSERT_EQ(f.type, FixType::k2D);
@@ -247,9 +242,9 @@ TEST(ReceiverHardCases, TwoDFixDopFromSatelliteGeometryOnly) {
 
 TEST(ReceiverHardCases, MaskNearZenithGivesNoFix) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig cfg;
-  cfg.elevation_mask_rad = kPi / 2.0 - 1e-9;
-  Receiver rx(store, cfg);
+  PipelineConfig cfg;
+  cfg.receiver.elevation_mask_rad = kPi / 2.0 - 1e-9;
+  Pipeline rx(store, cfg);
   const Fix& f = rx.step(kToe, truth_at(geo::ecef_from_lla(kSite), kToe));
   EXPECT_EQ(f.type, FixType::kNone);
   EXPECT_EQ(f.num_tracked, 0);
@@ -260,9 +255,9 @@ TEST(ReceiverHardCases, MaskNearZenithGivesNoFix) {
 
 TEST(ReceiverHardCases, ChannelLimitKeepsHighestSatellites) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig cfg;
-  cfg.max_channels = 5;
-  Receiver rx(store, cfg);
+  PipelineConfig cfg;
+  cfg.receiver.max_channels = 5;
+  Pipeline rx(store, cfg);
   const Fix& f = rx.step(kToe, truth_at(geo::ecef_from_lla(kSite), kToe));
   ASSERT_GT(f.num_visible, 5);
   EXPECT_EQ(f.num_tracked, 5);
@@ -282,10 +277,10 @@ TEST(ReceiverHardCases, ChannelLimitKeepsHighestSatellites) {
 TEST(ReceiverHardCases, EpochsStraddlingTheGpsWeekBoundary) {
   const time::GpsTime toe(2190, kSecondsPerWeek - 300.0);
   const orbit::EphemerisStore store(test::nominal_constellation(toe, 5));
-  ReceiverConfig gm_only = test::gm_white_world();  // GM residuals only: steps across the boundary must be tiny
-  gm_only.errors.thermal_sigma_m = 0.0;
-  gm_only.errors.doppler_sigma_m_s = 0.0;
-  Receiver exact(store, errors_off_config()), gm(store, gm_only);
+  PipelineConfig gm_only = test::gm_white_world();  // GM residuals only: steps across the boundary must be tiny
+  gm_only.world.errors.thermal_sigma_m = 0.0;
+  gm_only.world.errors.doppler_sigma_m_s = 0.0;
+  Pipeline exact(store, errors_off_config()), gm(store, gm_only);
   const Ecef pos = geo::ecef_from_lla(kSite);
   Ecef prev;
   for (int k = 0; k < 40; ++k) {
@@ -308,28 +303,28 @@ TEST(ReceiverHardCases, EpochsStraddlingTheGpsWeekBoundary) {
 
 TEST(ReceiverHardCases, ClockMillisecondJumpsAreHarmless) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig cfg = errors_off_config();
-  cfg.clock.drift_s_s = 1.0e-6;  // crosses 1 ms after 900 s
-  Receiver rx(store, cfg);
+  PipelineConfig cfg = errors_off_config();
+  cfg.world.clock.drift_s_s = 1.0e-6;  // crosses 1 ms after 900 s
+  Pipeline rx(store, cfg);
   const Ecef pos = geo::ecef_from_lla(kSite);
   int jumps = 0;
-  double prev_bias = rx.true_clock_bias_s();
+  double prev_bias = rx.world().true_clock_bias_s();
   for (int k = 0; k < 40; ++k) {
     const time::GpsTime t = kToe + 60.0 * k;
     const Fix& f = rx.step(t, truth_at(pos, t));
     ASSERT_EQ(f.type, FixType::k3D);
     EXPECT_LT((f.pos_m - pos).norm(), 1e-3) << k;
-    EXPECT_LE(std::fabs(rx.true_clock_bias_s()), 1.0e-3);
-    EXPECT_NEAR(f.clock_bias_s, rx.true_clock_bias_s(), 3.4e-12);
-    jumps += rx.true_clock_bias_s() < prev_bias;
-    prev_bias = rx.true_clock_bias_s();
+    EXPECT_LE(std::fabs(rx.world().true_clock_bias_s()), 1.0e-3);
+    EXPECT_NEAR(f.clock_bias_s, rx.world().true_clock_bias_s(), 3.4e-12);
+    jumps += rx.world().true_clock_bias_s() < prev_bias;
+    prev_bias = rx.world().true_clock_bias_s();
   }
   EXPECT_EQ(jumps, 2);  // 1e-4 + 40*60*1e-6 = 2.5 ms
 }
 
 TEST(ReceiverHardCases, TeleportedReceiverReconverges) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  Receiver rx(store, errors_off_config());
+  Pipeline rx(store, errors_off_config());
   const Ecef a = geo::ecef_from_lla(kSite);
   const Ecef b = geo::ecef_from_lla({-35.0 * kDegToRad, 140.0 * kDegToRad, 0.0});
   ASSERT_EQ(rx.step(kToe, truth_at(a, kToe)).type, FixType::k3D);

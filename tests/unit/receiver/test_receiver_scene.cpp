@@ -7,13 +7,17 @@
 #include "core/geo/local_frame.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
-#include "core/receiver/receiver.hpp"
+#include "core/pipeline/pipeline.hpp"
 #include "core/scene/mesh.hpp"
 #include "core/scene/scene.hpp"
 #include "tests/support/alloc_counter.hpp"
 
 namespace gnssemu::receiver {
 namespace {
+
+using pipeline::Pipeline;
+using pipeline::PipelineConfig;
+using world::Truth;
 
 const std::string kData = GNSSEMU_TEST_DATA;
 const Lla kOrigin{48.8738 * kDegToRad, 2.2950 * kDegToRad, 100.0};
@@ -35,9 +39,9 @@ struct ReceiverScene : ::testing::Test {
 
 TEST_F(ReceiverScene, EmptySceneIsIdenticalToNoScene) {
   const scene::Scene empty(scene::MeshBuilder("empty", {}).finish());  // an empty mesh file is an error
-  Receiver plain(store, ReceiverConfig{});
-  Receiver with(store, ReceiverConfig{});
-  with.attach_scene(empty, kOrigin, scene::SearchConfig{});
+  Pipeline plain(store, PipelineConfig{});
+  Pipeline with(store, PipelineConfig{});
+  with.world().attach_scene({&empty, kOrigin, scene::SearchConfig{}});
   for (int k = 0; k < 120; ++k) {
     const Truth tr = truth_at(Enu(2.0 * k, -1.0 * k, 1.5), k);
     const Fix a = plain.step(tr.t, tr);
@@ -57,11 +61,11 @@ TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
   const scene::Scene canyon(scene::load_mesh(kData + "/scenes/street_canyon.toml"));
   // Fixed code noise, so the only pseudorange difference is the path (the
   // DLL model's noise follows C/N0, which the reflection loss lowers).
-  ReceiverConfig cfg;
-  cfg.errors.thermal_model = ThermalModel::kFixed;
-  Receiver plain(store, cfg);
-  Receiver with(store, cfg);
-  with.attach_scene(canyon, kOrigin, scene::SearchConfig{});
+  PipelineConfig cfg;
+  cfg.world.errors.thermal_model = world::ThermalModel::kFixed;
+  Pipeline plain(store, cfg);
+  Pipeline with(store, cfg);
+  with.world().attach_scene({&canyon, kOrigin, scene::SearchConfig{}});
   int nlos = 0, blocked = 0, weak = 0;
   for (int k = 0; k < 60; ++k) {
     const Truth tr = truth_at(Enu(3.0, -100.0 + 3.0 * k, 1.5), 30.0 * k);
@@ -80,7 +84,7 @@ TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
       } else if (sb.nlos && !sb.tracked) {
         ++weak;  // reflection loss took C/N0 below the tracking threshold
         EXPECT_GT(sb.bounces, 0);
-        EXPECT_LT(sa.cn0_dbhz - 3.0 * sb.bounces, cfg.signal.tracking.acquire_dbhz);
+        EXPECT_LT(sa.cn0_dbhz - 3.0 * sb.bounces, cfg.receiver.tracking.acquire_dbhz);
       } else if (sb.nlos) {
         EXPECT_GT(sb.nlos_delay_m, 0.0);
         EXPECT_NEAR(sb.pseudorange_m - sa.pseudorange_m, sb.nlos_delay_m, 1e-6);
@@ -102,8 +106,8 @@ TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
 // epoch; an excluded satellite is tracked but not used (GSA, NAV-SAT).
 TEST_F(ReceiverScene, FaultExclusionDropsBiasedSatellitesFromTheSolution) {
   const scene::Scene canyon(scene::load_mesh(kData + "/scenes/street_canyon.toml"));
-  Receiver rx(store, ReceiverConfig{});
-  rx.attach_scene(canyon, kOrigin, scene::SearchConfig{});
+  Pipeline rx(store, PipelineConfig{});
+  rx.world().attach_scene({&canyon, kOrigin, scene::SearchConfig{}});
   int fixes = 0, with_exclusion = 0, excluded = 0, excluded_nlos = 0;
   for (int k = 0; k < 200; ++k) {
     const Truth tr = truth_at(Enu(3.0, -100.0 + 1.0 * k, 1.5), 15.0 * k);
@@ -136,8 +140,8 @@ TEST_F(ReceiverScene, FaultExclusionDropsBiasedSatellitesFromTheSolution) {
 
 TEST_F(ReceiverScene, InsideClosedBuildingNoSatelliteNoFix) {
   const scene::Scene box(scene::load_mesh(kData + "/scenes/closed_box.obj"));
-  Receiver rx(store, ReceiverConfig{});
-  rx.attach_scene(box, kOrigin, scene::SearchConfig{});
+  Pipeline rx(store, PipelineConfig{});
+  rx.world().attach_scene({&box, kOrigin, scene::SearchConfig{}});
   for (int k = 0; k < 5; ++k) {
     const Truth tr = truth_at(Enu(1.0, 2.0, 1.5), k);
     const Fix& f = rx.step(tr.t, tr);
@@ -159,8 +163,8 @@ TEST_F(ReceiverScene, StepWithSceneDoesNotAllocate) {
   const scene::Scene canyon(scene::load_mesh(kData + "/scenes/street_canyon.toml"));
   scene::SearchConfig search;
   search.reuse_distance_m = 1.0;
-  Receiver rx(store, ReceiverConfig{});
-  rx.attach_scene(canyon, kOrigin, search);
+  Pipeline rx(store, PipelineConfig{});
+  rx.world().attach_scene({&canyon, kOrigin, search});
   rx.step(t0, truth_at(Enu(3.0, -100.0, 1.5), 0.0));
   const long before = support::allocation_count();
   int tracked = 0, nlos = 0;

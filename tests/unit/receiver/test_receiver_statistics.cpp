@@ -7,23 +7,18 @@
 
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
-#include "core/receiver/receiver.hpp"
+#include "core/pipeline/pipeline.hpp"
 #include "synthetic_sky.hpp"
 
 namespace gnssemu::receiver {
 namespace {
 
+using test::truth_at;
+using pipeline::Pipeline;
+using pipeline::PipelineConfig;
+
 const time::GpsTime kToe(2190, 200000.0);
 const Lla kSite{52.0 * kDegToRad, 4.4 * kDegToRad, 30.0};
-
-Truth truth_at(const Ecef& pos, const Ecef& vel, const time::GpsTime& t) {
-  Truth tr;
-  tr.t = t;
-  tr.pos_m = pos;
-  tr.vel_m_s = vel;
-  tr.valid = true;
-  return tr;
-}
 
 Enu error_enu(const Fix& f, const Ecef& truth) {
   return geo::ecef_to_enu_vector(f.pos_m - truth, kSite.lat_rad, kSite.lon_rad);
@@ -40,13 +35,13 @@ struct Ensemble {
 
 // One epoch per seed: every seed draws the Gauss–Markov states from their
 // stationary distribution, so the samples are independent.
-Ensemble run_ensemble(const orbit::EphemerisStore& store, ReceiverConfig cfg, int seeds) {
+Ensemble run_ensemble(const orbit::EphemerisStore& store, PipelineConfig cfg, int seeds) {
   Ensemble e;
   const Ecef truth = geo::ecef_from_lla(kSite);
   for (int s = 0; s < seeds; ++s) {
-    cfg.seed = 1000 + static_cast<uint64_t>(s);
-    Receiver rx(store, cfg);
-    const Fix& f = rx.step(kToe, truth_at(truth, {}, kToe));
+    cfg.world.seed = 1000 + static_cast<uint64_t>(s);
+    Pipeline rx(store, cfg);
+    const Fix& f = rx.step(kToe, truth_at(truth, kToe));
     test::expect_consistent(f);
     if (f.type != FixType::k3D) {
       ++e.no_fix;
@@ -70,11 +65,11 @@ Ensemble run_ensemble(const orbit::EphemerisStore& store, ReceiverConfig cfg, in
 
 TEST(ReceiverStatistics, EnsembleErrorMatchesSigmaUereTimesDop) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig cfg = test::gm_white_world();
+  PipelineConfig cfg = test::gm_white_world();
   // Solver weights equal to the world's sigma: WLS is then the BLUE and its
   // covariance sigma^2 (H'H)^-1 is exact, so rms error = sigma_UERE * DOP.
-  cfg.solver.sigma_a_m = kSigmaUere_m;
-  cfg.solver.sigma_b_m = 0.0;
+  cfg.receiver.solver.sigma_a_m = kSigmaUere_m;
+  cfg.receiver.solver.sigma_b_m = 0.0;
   const Ensemble e = run_ensemble(store, cfg, 400);
   ASSERT_GE(e.fixes, 396);  // chi-square false alarms ~ 1e-3
   EXPECT_NEAR(e.mean_h_acc_m, kSigmaUere_m * e.hdop, 1e-6);
@@ -86,7 +81,7 @@ TEST(ReceiverStatistics, EnsembleErrorMatchesSigmaUereTimesDop) {
 
 TEST(ReceiverStatistics, DefaultSolverAccuracyIsConservativeButTight) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  const Ensemble e = run_ensemble(store, ReceiverConfig{}, 400);
+  const Ensemble e = run_ensemble(store, PipelineConfig{}, 400);
   ASSERT_GE(e.fixes, 396);
   // The default solver assumes sigma^2 = 1.2^2 + 0.3^2 / sin^2(el) + 150^2 10^(-C/N0/10),
   // at least the default world's variance (GM 1.2 m, DLL noise, atmosphere
@@ -101,19 +96,19 @@ TEST(ReceiverStatistics, DefaultSolverAccuracyIsConservativeButTight) {
 
 TEST(ReceiverStatistics, ErrorIsTimeCorrelatedNotWhite) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig cfg = test::gm_white_world();
-  cfg.solver.sigma_a_m = kSigmaUere_m;
-  cfg.solver.sigma_b_m = 0.0;
+  PipelineConfig cfg = test::gm_white_world();
+  cfg.receiver.solver.sigma_a_m = kSigmaUere_m;
+  cfg.receiver.solver.sigma_b_m = 0.0;
   const Ecef truth = geo::ecef_from_lla(kSite);
   double sum_xx = 0.0, sum_x1 = 0.0, sum_dd = 0.0, sum_pred_dd = 0.0;
   int n = 0, nd = 0;
   for (int s = 0; s < 20; ++s) {
-    cfg.seed = 500 + static_cast<uint64_t>(s);
-    Receiver rx(store, cfg);
+    cfg.world.seed = 500 + static_cast<uint64_t>(s);
+    Pipeline rx(store, cfg);
     double prev_e = 0.0;
     for (int k = 0; k < 300; ++k) {
       const time::GpsTime t = kToe + static_cast<double>(k);
-      const Fix& f = rx.step(t, truth_at(truth, {}, t));
+      const Fix& f = rx.step(t, truth_at(truth, t));
       ASSERT_EQ(f.type, FixType::k3D);
       const double e = error_enu(f, truth).x;
       sum_xx += e * e;
@@ -142,7 +137,7 @@ TEST(ReceiverStatistics, ErrorIsTimeCorrelatedNotWhite) {
 
 TEST(ReceiverStatistics, MovingReceiverVelocityWithinSigma) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  Receiver rx(store, ReceiverConfig{});
+  Pipeline rx(store, PipelineConfig{});
   const Ecef p0 = geo::ecef_from_lla(kSite);
   const Vec3 v_ecef = geo::enu_to_ecef_vector(Enu(100.0, 0.0, 0.0), kSite.lat_rad, kSite.lon_rad);
   double sum_err2 = 0.0, sum_acc2 = 0.0;
@@ -150,7 +145,7 @@ TEST(ReceiverStatistics, MovingReceiverVelocityWithinSigma) {
     const double dt = 0.5 * k;
     const time::GpsTime t = kToe + dt;
     const Ecef pos(p0 + v_ecef * dt);
-    const Fix& f = rx.step(t, truth_at(pos, Ecef(v_ecef), t));
+    const Fix& f = rx.step(t, truth_at(pos, t, Ecef(v_ecef)));
     ASSERT_EQ(f.type, FixType::k3D);
     test::expect_consistent(f);
     const double err = (f.vel_m_s - v_ecef).norm();
@@ -170,11 +165,11 @@ TEST(ReceiverStatistics, MovingReceiverVelocityWithinSigma) {
 
 TEST(ReceiverStatistics, ResidualTestRejectsInconsistentMeasurements) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  ReceiverConfig cfg = test::gm_white_world();
-  cfg.errors.thermal_sigma_m = 30.0;  // far beyond what the solver assumes
-  Receiver rx(store, cfg);
-  cfg.solver.residual_test_pfa = 0.0;  // test disabled
-  Receiver unchecked(store, cfg);
+  PipelineConfig cfg = test::gm_white_world();
+  cfg.world.errors.thermal_sigma_m = 30.0;  // far beyond what the solver assumes
+  Pipeline rx(store, cfg);
+  cfg.receiver.solver.residual_test_pfa = 0.0;  // test disabled
+  Pipeline unchecked(store, cfg);
   const Ecef truth = geo::ecef_from_lla(kSite);
   // Every satellite is inconsistent with the assumed sigma: the receiver
   // never reports a fix from all of them. Fault exclusion drops the worst
@@ -182,14 +177,14 @@ TEST(ReceiverStatistics, ResidualTestRejectsInconsistentMeasurements) {
   int none = 0, excluded = 0;
   for (int k = 0; k < 100; ++k) {
     const time::GpsTime t = kToe + static_cast<double>(k);
-    const Fix& f = rx.step(t, truth_at(truth, {}, t));
+    const Fix& f = rx.step(t, truth_at(truth, t));
     test::expect_consistent(f);
     none += f.type == FixType::kNone;
     if (f.type != FixType::kNone && f.num_used < f.num_tracked) {
       ++excluded;
       EXPECT_GE(f.num_used, Solver::kMinSatsAfterExclusion);
     }
-    const Fix& u = unchecked.step(t, truth_at(truth, {}, t));
+    const Fix& u = unchecked.step(t, truth_at(truth, t));
     EXPECT_EQ(u.type, FixType::k3D);
     EXPECT_EQ(u.num_used, u.num_tracked);
   }

@@ -8,7 +8,7 @@
 
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris.hpp"
-#include "core/receiver/sky.hpp"
+#include "core/world/sky.hpp"
 #include "core/receiver/solver.hpp"
 #include "synthetic_sky.hpp"
 #include "tests/support/alloc_counter.hpp"
@@ -48,7 +48,7 @@ struct Sky {
         const double dt0 = orbit::sat_state(e, t_sv).clk_bias_s - e.tgd_s;
         const time::GpsTime t_tx = t_sv - dt0;
         const orbit::SatState st = orbit::sat_state(e, t_tx);
-        const Ecef p = rotate_earth(st.pos_m, kOmegaEarth_rad_s * (kT - t_tx));
+        const Ecef p = world::rotate_earth(st.pos_m, kOmegaEarth_rad_s * (kT - t_tx));
         pr = (p - truth).norm() - kSpeedOfLight_m_s * (st.clk_bias_s - e.tgd_s);
       }
       Measurement& m = in.meas[i];

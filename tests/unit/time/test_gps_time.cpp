@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/time/gps_time.hpp"
 
 using gnssemu::time::CalendarTime;
@@ -50,6 +52,16 @@ TEST(GpsTime, CalendarRoundTrip) {
   EXPECT_NEAR(r.second, 59.75, 1e-9);
   EXPECT_EQ(GpsTime::from_calendar({2024, 12, 31, 12, 0, 0}).day_of_year(), 366);
   EXPECT_EQ(GpsTime::from_calendar({2022, 1, 1, 0, 0, 0}).day_of_year(), 1);
+}
+
+TEST(GpsTime, FractionalDayOfYear) {
+  EXPECT_EQ(GpsTime::from_calendar({2022, 1, 1, 0, 0, 0}).fractional_day_of_year(), 1.0);
+  EXPECT_EQ(GpsTime::from_calendar({2024, 12, 31, 12, 0, 0}).fractional_day_of_year(), 366.5);
+  EXPECT_EQ(GpsTime::from_calendar({2022, 5, 3, 6, 0, 0}).fractional_day_of_year(), 123.25);
+  // The day's fraction comes from the time of week: day_of_year() + (tow mod 1 day) / 1 day.
+  const GpsTime t(2190, 521233.25);
+  EXPECT_EQ(t.fractional_day_of_year(), t.day_of_year() + std::fmod(521233.25, 86400.0) / 86400.0);
+  EXPECT_NEAR(t.fractional_day_of_year(), 1.0 + 2833.25 / 86400.0, 1e-12);  // 2022-01-01 00:47:13.25
 }
 
 TEST(GpsTime, WeekRollover) {

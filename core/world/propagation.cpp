@@ -1,8 +1,8 @@
-#include "core/receiver/propagation.hpp"
+#include "core/world/propagation.hpp"
 
 #include <cmath>
 
-namespace gnssemu::receiver {
+namespace gnssemu::world {
 
 AtmospherePropagation::AtmospherePropagation(const AtmosphereConfig& cfg)
     : cfg_(cfg),
@@ -45,4 +45,4 @@ SlowTerms AtmospherePropagation::slow_terms(const Lla& rx, double az_rad, double
   return s;
 }
 
-}  // namespace gnssemu::receiver
+}  // namespace gnssemu::world

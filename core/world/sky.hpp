@@ -6,7 +6,7 @@
 #include "core/orbit/ephemeris.hpp"
 #include "core/time/gps_time.hpp"
 
-namespace gnssemu::receiver {
+namespace gnssemu::world {
 
 /// Rotation of an ECEF vector about Z by angle_rad (Earth rotation during
 /// the signal flight: from the transmit-time frame into the receive-time frame).
@@ -32,4 +32,4 @@ struct SkySat {
 SkySat sky_sat(const orbit::Ephemeris& eph, const time::GpsTime& t_rx, const Ecef& rx_pos_m,
                const Lla& rx_lla, const Ecef& rx_vel_m_s) noexcept;
 
-}  // namespace gnssemu::receiver
+}  // namespace gnssemu::world

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "daemon/truth_track.hpp"
+#include "daemon/vehicle_track.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::daemon;
@@ -11,29 +11,29 @@ const time::GpsTime kT0(2190, 3600.0);
 const TrackParams kParams{2.0, 0.5};
 
 // Vehicle moving +x at 10 m/s from (1000, 0, 0); no velocity in the packets.
-TruthTrack moving_track(int n, double dt_s, bool with_vel = false) {
-  TruthTrack tr;
+VehicleTrack moving_track(int n, double dt_s, bool with_vel = false) {
+  VehicleTrack tr;
   for (int i = 0; i < n; ++i) {
     const double s = i * dt_s;
     std::optional<Ecef> vel;
     if (with_vel) vel = Ecef(10.0, 0.0, 0.0);
     EXPECT_EQ(tr.add(s, kT0 + s, Ecef(1000.0 + 10.0 * s, 0.0, 0.0), vel, s),
-              TruthTrack::AddResult::kAdded);
+              VehicleTrack::AddResult::kAdded);
   }
   return tr;
 }
 
 }  // namespace
 
-TEST(TruthTrack, EmptyIsInvalid) {
-  TruthTrack tr;
+TEST(VehicleTrack, EmptyIsInvalid) {
+  VehicleTrack tr;
   EXPECT_FALSE(tr.truth_at(kT0, 0.0, kParams).valid);
   EXPECT_FALSE(tr.fresh(0.0, kParams));
 }
 
-TEST(TruthTrack, InterpolatesPositionAndDerivesVelocity) {
-  const TruthTrack tr = moving_track(5, 0.1);
-  const receiver::Truth t = tr.truth_at(kT0 + 0.25, 0.4, kParams);
+TEST(VehicleTrack, InterpolatesPositionAndDerivesVelocity) {
+  const VehicleTrack tr = moving_track(5, 0.1);
+  const world::Truth t = tr.truth_at(kT0 + 0.25, 0.4, kParams);
   ASSERT_TRUE(t.valid);
   EXPECT_NEAR(t.pos_m.x, 1002.5, 1e-9);
   EXPECT_NEAR(t.vel_m_s.x, 10.0, 1e-6);
@@ -44,19 +44,19 @@ TEST(TruthTrack, InterpolatesPositionAndDerivesVelocity) {
   EXPECT_NEAR(tr.truth_at(kT0, 0.4, kParams).pos_m.x, 1000.0, 1e-9);
 }
 
-TEST(TruthTrack, InterpolatesGivenVelocity) {
-  TruthTrack tr;
+TEST(VehicleTrack, InterpolatesGivenVelocity) {
+  VehicleTrack tr;
   tr.add(0.0, kT0, Ecef(0, 0, 0), Ecef(0, 0, 0), 0.0);
   tr.add(1.0, kT0 + 1.0, Ecef(5, 0, 0), Ecef(10, 0, 0), 1.0);
-  const receiver::Truth t = tr.truth_at(kT0 + 0.75, 1.0, kParams);
+  const world::Truth t = tr.truth_at(kT0 + 0.75, 1.0, kParams);
   ASSERT_TRUE(t.valid);
   EXPECT_NEAR(t.pos_m.x, 3.75, 1e-12);
   EXPECT_NEAR(t.vel_m_s.x, 7.5, 1e-12);
 }
 
-TEST(TruthTrack, ExtrapolatesBrieflyThenHolds) {
-  const TruthTrack tr = moving_track(5, 0.1);  // newest at +0.4 s, x = 1004
-  receiver::Truth t = tr.truth_at(kT0 + 0.7, 0.8, kParams);
+TEST(VehicleTrack, ExtrapolatesBrieflyThenHolds) {
+  const VehicleTrack tr = moving_track(5, 0.1);  // newest at +0.4 s, x = 1004
+  world::Truth t = tr.truth_at(kT0 + 0.7, 0.8, kParams);
   ASSERT_TRUE(t.valid);
   EXPECT_NEAR(t.pos_m.x, 1007.0, 1e-6);  // 0.3 s at 10 m/s
   EXPECT_NEAR(t.vel_m_s.x, 10.0, 1e-6);
@@ -71,23 +71,23 @@ TEST(TruthTrack, ExtrapolatesBrieflyThenHolds) {
   EXPECT_EQ(t.vel_m_s.y, 0.0);
   EXPECT_EQ(t.vel_m_s.z, 0.0);
   // Given velocity is preferred over differences.
-  TruthTrack tv;
+  VehicleTrack tv;
   tv.add(0.0, kT0, Ecef(0, 0, 0), Ecef(0, 3, 0), 0.0);
   t = tv.truth_at(kT0 + 0.2, 0.2, kParams);
   ASSERT_TRUE(t.valid);
   EXPECT_NEAR(t.pos_m.y, 0.6, 1e-12);
 }
 
-TEST(TruthTrack, BeforeFirstSample) {
-  const TruthTrack tr = moving_track(3, 0.1);
-  receiver::Truth t = tr.truth_at(kT0 - 0.2, 0.3, kParams);
+TEST(VehicleTrack, BeforeFirstSample) {
+  const VehicleTrack tr = moving_track(3, 0.1);
+  world::Truth t = tr.truth_at(kT0 - 0.2, 0.3, kParams);
   ASSERT_TRUE(t.valid);
   EXPECT_NEAR(t.pos_m.x, 998.0, 1e-6);
   EXPECT_FALSE(tr.truth_at(kT0 - 0.6, 0.3, kParams).valid);
 }
 
-TEST(TruthTrack, TimeoutMeansNoTruthNotAFrozenPosition) {
-  const TruthTrack tr = moving_track(5, 0.1);  // last arrival at 0.4 s
+TEST(VehicleTrack, TimeoutMeansNoTruthNotAFrozenPosition) {
+  const VehicleTrack tr = moving_track(5, 0.1);  // last arrival at 0.4 s
   EXPECT_TRUE(tr.truth_at(kT0 + 2.4, 2.4, kParams).valid);
   EXPECT_TRUE(tr.fresh(2.4, kParams));
   EXPECT_FALSE(tr.truth_at(kT0 + 2.41, 2.41, kParams).valid);
@@ -96,41 +96,41 @@ TEST(TruthTrack, TimeoutMeansNoTruthNotAFrozenPosition) {
   EXPECT_FALSE(tr.truth_at(kT0 + 0.2, 10.0, kParams).valid);
 }
 
-TEST(TruthTrack, SimTimeMustIncrease) {
-  TruthTrack tr;
-  EXPECT_EQ(tr.add(5.0, kT0, Ecef(1, 0, 0), std::nullopt, 0.0), TruthTrack::AddResult::kAdded);
-  EXPECT_EQ(tr.add(5.0, kT0 + 1.0, Ecef(2, 0, 0), std::nullopt, 0.1), TruthTrack::AddResult::kSimTimeBackwards);
-  EXPECT_EQ(tr.add(4.0, kT0 + 1.0, Ecef(2, 0, 0), std::nullopt, 0.1), TruthTrack::AddResult::kSimTimeBackwards);
+TEST(VehicleTrack, SimTimeMustIncrease) {
+  VehicleTrack tr;
+  EXPECT_EQ(tr.add(5.0, kT0, Ecef(1, 0, 0), std::nullopt, 0.0), VehicleTrack::AddResult::kAdded);
+  EXPECT_EQ(tr.add(5.0, kT0 + 1.0, Ecef(2, 0, 0), std::nullopt, 0.1), VehicleTrack::AddResult::kSimTimeBackwards);
+  EXPECT_EQ(tr.add(4.0, kT0 + 1.0, Ecef(2, 0, 0), std::nullopt, 0.1), VehicleTrack::AddResult::kSimTimeBackwards);
   EXPECT_EQ(tr.size(), 1u);
   EXPECT_DOUBLE_EQ(tr.last_arrival_s(), 0.0);
   tr.reset();
-  EXPECT_EQ(tr.add(0.0, kT0 + 2.0, Ecef(3, 0, 0), std::nullopt, 2.0), TruthTrack::AddResult::kAdded);
+  EXPECT_EQ(tr.add(0.0, kT0 + 2.0, Ecef(3, 0, 0), std::nullopt, 2.0), VehicleTrack::AddResult::kAdded);
 }
 
-TEST(TruthTrack, StampNotAfterNewestRestartsHistory) {
-  TruthTrack tr = moving_track(4, 0.1);
-  EXPECT_EQ(tr.add(10.0, kT0 + 0.2, Ecef(0, 0, 0), std::nullopt, 1.0), TruthTrack::AddResult::kRestarted);
+TEST(VehicleTrack, StampNotAfterNewestRestartsHistory) {
+  VehicleTrack tr = moving_track(4, 0.1);
+  EXPECT_EQ(tr.add(10.0, kT0 + 0.2, Ecef(0, 0, 0), std::nullopt, 1.0), VehicleTrack::AddResult::kRestarted);
   EXPECT_EQ(tr.size(), 1u);
   EXPECT_NEAR(tr.truth_at(kT0 + 0.2, 1.0, kParams).pos_m.x, 0.0, 1e-12);
 }
 
-TEST(TruthTrack, RingKeepsNewestSamples) {
-  const TruthTrack tr = moving_track(100, 0.1);
-  EXPECT_EQ(tr.size(), TruthTrack::kHistory);
+TEST(VehicleTrack, RingKeepsNewestSamples) {
+  const VehicleTrack tr = moving_track(100, 0.1);
+  EXPECT_EQ(tr.size(), VehicleTrack::kHistory);
   EXPECT_NEAR(tr.newest().pos_m.x, 1000.0 + 10.0 * 9.9, 1e-9);
   EXPECT_NEAR(tr.sample(0).pos_m.x, 1000.0 + 10.0 * 6.8, 1e-9);
   // Interpolation deep inside the ring.
-  const receiver::Truth t = tr.truth_at(kT0 + 8.05, 9.9, kParams);
+  const world::Truth t = tr.truth_at(kT0 + 8.05, 9.9, kParams);
   ASSERT_TRUE(t.valid);
   EXPECT_NEAR(t.pos_m.x, 1080.5, 1e-6);
   // Older than the ring (and beyond extrapolation): invalid.
   EXPECT_FALSE(tr.truth_at(kT0 + 5.0, 9.9, kParams).valid);
 }
 
-TEST(TruthTrack, ClearSamplesKeepsOrdering) {
-  TruthTrack tr = moving_track(3, 0.1);
+TEST(VehicleTrack, ClearSamplesKeepsOrdering) {
+  VehicleTrack tr = moving_track(3, 0.1);
   tr.clear_samples();
   EXPECT_EQ(tr.size(), 0u);
   EXPECT_FALSE(tr.truth_at(kT0, 0.2, kParams).valid);
-  EXPECT_EQ(tr.add(0.1, kT0, Ecef(), std::nullopt, 0.3), TruthTrack::AddResult::kSimTimeBackwards);
+  EXPECT_EQ(tr.add(0.1, kT0, Ecef(), std::nullopt, 0.3), VehicleTrack::AddResult::kSimTimeBackwards);
 }

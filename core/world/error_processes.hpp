@@ -4,9 +4,9 @@
 // standard-normal draw supplied by the caller (random.hpp).
 #include <cmath>
 
-#include "core/receiver/receiver_config.hpp"
+#include "core/world/world_config.hpp"
 
-namespace gnssemu::receiver {
+namespace gnssemu::world {
 
 /// Stationary start of a Gauss–Markov process: sigma_m * w, w ~ N(0, 1).
 inline double gauss_markov_init(const GaussMarkovConfig& cfg, double w) noexcept {
@@ -51,4 +51,4 @@ private:
   double drift_s_s_;
 };
 
-}  // namespace gnssemu::receiver
+}  // namespace gnssemu::world

@@ -1,11 +1,11 @@
-#include "core/receiver/sky.hpp"
+#include "core/world/sky.hpp"
 
 #include <cmath>
 
 #include "core/common/constants.hpp"
 #include "core/geo/geodesy.hpp"
 
-namespace gnssemu::receiver {
+namespace gnssemu::world {
 
 SkySat sky_sat(const orbit::Ephemeris& eph, const time::GpsTime& t_rx, const Ecef& rx_pos_m,
                const Lla& rx_lla, const Ecef& rx_vel_m_s) noexcept {
@@ -42,4 +42,4 @@ SkySat sky_sat(const orbit::Ephemeris& eph, const time::GpsTime& t_rx, const Ece
   return s;
 }
 
-}  // namespace gnssemu::receiver
+}  // namespace gnssemu::world

@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "core/receiver/error_processes.hpp"
-#include "core/receiver/random.hpp"
+#include "core/world/error_processes.hpp"
+#include "core/world/random.hpp"
 
-namespace gnssemu::receiver {
+namespace gnssemu::world {
 namespace {
 
 TEST(CounterRng, StandardNormalMomentsAndKeyIndependence) {
@@ -70,4 +70,4 @@ TEST(ReceiverClock, IntegratesDriftAndJumpsByMilliseconds) {
 }
 
 }  // namespace
-}  // namespace gnssemu::receiver
+}  // namespace gnssemu::world

@@ -9,7 +9,7 @@
 
 #include "core/common/constants.hpp"
 
-namespace gnssemu::receiver {
+namespace gnssemu::world {
 
 /// What a draw is for; part of the key so streams never collide.
 enum class Purpose : uint64_t {
@@ -70,4 +70,4 @@ private:
   uint64_t seed_;
 };
 
-}  // namespace gnssemu::receiver
+}  // namespace gnssemu::world

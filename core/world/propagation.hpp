@@ -12,9 +12,9 @@
 #include "core/atmosphere/troposphere.hpp"
 #include "core/common/vec3.hpp"
 #include "core/orbit/nav_data.hpp"
-#include "core/receiver/receiver_config.hpp"
+#include "core/world/world_config.hpp"
 
-namespace gnssemu::receiver {
+namespace gnssemu::world {
 
 /// Effect of the path on one satellite's signal at one epoch.
 struct PathEffects {
@@ -69,4 +69,4 @@ private:
   bool iono_on_, tropo_on_, gases_on_, clouds_rain_on_;
 };
 
-}  // namespace gnssemu::receiver
+}  // namespace gnssemu::world

@@ -1,0 +1,16 @@
+#include "core/pipeline/pipeline.hpp"
+
+namespace gnssemu::pipeline {
+
+Broadcast broadcast_of(const orbit::NavData& nav) { return Broadcast{nav.klobuchar, nav.leap_seconds}; }
+
+Pipeline::Pipeline(const orbit::EphemerisStore& store, const PipelineConfig& config, const Broadcast& broadcast,
+                   const world::SceneSetup& scene)
+    : world_(store, config.world), receiver_(config.receiver) {
+  world_.set_klobuchar_shape(broadcast.klobuchar);
+  receiver_.set_klobuchar(broadcast.klobuchar);
+  if (broadcast.leap_seconds) receiver_.set_leap_seconds(*broadcast.leap_seconds);
+  if (scene.scene != nullptr) world_.attach_scene(scene);
+}
+
+}  // namespace gnssemu::pipeline

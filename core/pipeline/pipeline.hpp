@@ -1,0 +1,58 @@
+#pragma once
+// Pipeline: the emulated receiver in its world, as every caller runs it —
+// vehicle truth in, the receiver's Fix out. The world makes the observables
+// at the antenna; the receiver processes them (faults will edit the
+// observables in between). The one place the two are put together, with
+// what the navigation message broadcasts and the optional buildings.
+#include <optional>
+
+#include "core/orbit/ephemeris_store.hpp"
+#include "core/orbit/nav_data.hpp"
+#include "core/receiver/receiver.hpp"
+#include "core/world/world.hpp"
+
+namespace gnssemu::pipeline {
+
+struct PipelineConfig {
+  world::WorldConfig world;
+  receiver::ReceiverConfig receiver;
+};
+
+/// What the navigation message broadcasts besides the ephemerides (a nav
+/// file's header).
+struct Broadcast {
+  /// Klobuchar coefficients: the receiver's ionospheric correction, and the
+  /// shape of the world's Klobuchar-shaped ionosphere unless its config gives
+  /// one. Invalid: RTKLIB's default coefficients for both.
+  orbit::KlobucharParams klobuchar;
+  std::optional<int> leap_seconds = std::nullopt;  ///< GPS - UTC; none: the built-in table
+};
+
+/// The header part of a nav file.
+Broadcast broadcast_of(const orbit::NavData& nav);
+
+class Pipeline {
+public:
+  /// store (and scene.scene) must outlive the pipeline. Setup only
+  /// (allocates); throws gnssemu::Error on an invalid config or broadcast.
+  Pipeline(const orbit::EphemerisStore& store, const PipelineConfig& config, const Broadcast& broadcast = {},
+           const world::SceneSetup& scene = {});
+
+  /// One epoch at receive time t (GPS): the world at the receiver's mask,
+  /// then the receiver. Never throws, never allocates.
+  const receiver::Fix& step(const time::GpsTime& t, const world::Truth& truth) noexcept {
+    return receiver_.step(t, world_.step(t, truth, receiver_.config().elevation_mask_rad));
+  }
+
+  const receiver::Fix& last_fix() const noexcept { return receiver_.last_fix(); }
+  world::World& world() noexcept { return world_; }
+  const world::World& world() const noexcept { return world_; }
+  receiver::Receiver& receiver() noexcept { return receiver_; }
+  const receiver::Receiver& receiver() const noexcept { return receiver_; }
+
+private:
+  world::World world_;
+  receiver::Receiver receiver_;
+};
+
+}  // namespace gnssemu::pipeline

@@ -1,0 +1,40 @@
+#include "core/receiver/receiver_config.hpp"
+
+#include "core/common/error.hpp"
+
+namespace gnssemu::receiver {
+
+namespace {
+
+constexpr const char* kWhat = "receiver config";
+
+}  // namespace
+
+void validate(const SolverConfig& s) {
+  using R = SolverRanges;
+  check_ranges(kWhat, {{s.sigma_a_m, R::sigma_a_m, "solver.sigma_a_m"}, {s.sigma_b_m, R::sigma_b_m, "solver.sigma_b_m"},
+                       {s.sigma_c_m_sqrt_hz, R::sigma_c_m_sqrt_hz, "solver.sigma_c_m_sqrt_hz"},
+                       {s.iono_model_fraction, R::iono_model_fraction, "solver.iono_model_fraction"},
+                       {s.tropo_model_sigma_m, R::tropo_model_sigma_m, "solver.tropo_model_sigma_m"},
+                       {s.sigma_range_rate_m_s, R::sigma_range_rate_m_s, "solver.sigma_range_rate_m_s"},
+                       {s.height_hold_sigma_m, R::height_hold_sigma_m, "solver.height_hold_sigma_m"},
+                       {s.residual_test_pfa, R::residual_test_pfa, "solver.residual_test_pfa"},
+                       {static_cast<double>(s.max_exclusions), R::max_exclusions, "solver.max_exclusions"},
+                       {static_cast<double>(s.max_iterations), R::max_iterations, "solver.max_iterations"}});
+  if (!(s.sigma_a_m + s.sigma_b_m > 0.0))
+    throw Error(kWhat, 0, "solver: sigma_a_m and sigma_b_m are both 0 (the solver's weights would be infinite)");
+  if (!(s.residual_test_pfa < 0.5))
+    throw Error(kWhat, 0, "solver: residual_test_pfa " + format_number(s.residual_test_pfa) +
+                              " must be below 0.5 (a test that fails more often than not detects nothing)");
+}
+
+void validate(const ReceiverConfig& c) {
+  using R = ReceiverRanges;
+  check_ranges(kWhat, {{c.elevation_mask_rad * kRadToDeg, R::elevation_mask_deg, "elevation_mask_deg"},
+                       {c.max_pdop, R::max_pdop, "max_pdop"},
+                       {static_cast<double>(c.max_channels), R::max_channels, "max_channels"}});
+  signal::validate(c.tracking);
+  validate(c.solver);
+}
+
+}  // namespace gnssemu::receiver

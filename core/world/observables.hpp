@@ -1,0 +1,54 @@
+#pragma once
+// Observables: what the world hands the receiver at one epoch (DESIGN.md §1,
+// the line between step 6 and step 7): per satellite the geometry, the
+// signal's C/N0, code pseudorange and Doppler, plus the path truth the
+// receiver passes on for analysis only. Plain data; faults edit it between
+// the world and the receiver.
+#include <array>
+
+#include "core/common/constants.hpp"
+#include "core/orbit/ephemeris.hpp"
+#include "core/time/gps_time.hpp"
+
+namespace gnssemu::world {
+
+/// Noise-floor rise of a quiet countryside, dB.
+inline constexpr double kQuietNoiseRise_db = 1.0;
+
+/// One satellite above the horizon with a healthy ephemeris.
+struct SatObservable {
+  int prn = 0;                          ///< 1..32
+  const orbit::Ephemeris* eph = nullptr;  ///< the broadcast set it transmits (the receiver decodes the same)
+  double az_rad = 0.0;                  ///< [0, 2pi), from true north
+  double el_rad = 0.0;                  ///< (0, pi/2]
+  /// At or above the mask the world was asked to model; below it only the
+  /// geometry above is set.
+  bool above_mask = false;
+  bool received = false;                ///< a signal reaches the antenna
+  double cn0_dbhz = 0.0;                ///< carrier-to-noise density at the antenna, dB-Hz (0 when not received)
+  double pseudorange_m = 0.0;           ///< code pseudorange with every error, m (when received)
+  double doppler_hz = 0.0;              ///< L1 Doppler, Hz, positive when approaching (when received)
+  // Path truth of the scene stage (analysis only; zero without a scene).
+  bool nlos = false;                    ///< received via reflections only
+  bool blocked = false;                 ///< no signal path (not received)
+  int bounces = 0;                      ///< reflections on the received path
+  double nlos_delay_m = 0.0;            ///< extra path length in the pseudorange, m
+};
+
+struct Observables {
+  time::GpsTime t;                      ///< epoch, true GPS receive time
+  /// false: no truth (antenna lost); no satellite is listed.
+  bool antenna_connected = false;
+  /// false: C/N0 follows the fixed elevation curve of a world without a link
+  /// budget, and every received signal is strong enough to track.
+  bool signal_modelled = true;
+  /// Environment noise-floor rise above thermal at the antenna, dB (>= 0).
+  double noise_rise_db = kQuietNoiseRise_db;
+  time::GpsTime t_rx_local;             ///< the epoch on the receiver's own (biased) clock
+  double clock_bias_s = 0.0;            ///< true receiver clock bias, s (analysis)
+  double clock_drift_s_s = 0.0;         ///< true receiver clock drift, s/s (analysis)
+  std::array<SatObservable, kMaxGpsPrn> sats{};  ///< first num_sats valid, by PRN
+  int num_sats = 0;
+};
+
+}  // namespace gnssemu::world

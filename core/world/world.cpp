@@ -1,0 +1,285 @@
+#include "core/world/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <span>
+#include <string>
+
+#include "core/geo/geodesy.hpp"
+#include "core/signal/dll_jitter.hpp"
+
+namespace gnssemu::world {
+
+namespace {
+
+// C/N0 shape when the signal stage is off: nominal at zenith, about -8 dB at 5 degrees.
+constexpr double kCn0ElevationLoss_db = 10.0;
+// Cached atmospheric terms are dropped when the receiver moves this much
+// vertically or in total (m): a 5 m height change moves the 5-degree tropo
+// delay by ~1.5 cm; 5 km moves a pierce point by < 1 % of its scale.
+constexpr double kCacheMaxHeightChange_m = 5.0;
+constexpr double kCacheMaxMove_m = 5000.0;
+// Elevation floor of the multipath 1 / sin(el) scaling (ErrorModelConfig doc), rad.
+constexpr double kMultipathMinEl_rad = 5.0 * kDegToRad;
+
+const WorldConfig& validated(const WorldConfig& c) {
+  validate(c);
+  return c;
+}
+
+}  // namespace
+
+World::World(const orbit::EphemerisStore& store, const WorldConfig& config)
+    : store_(store),
+      config_(validated(config)),
+      rng_(config.seed),
+      clock_(config.clock),
+      atmosphere_(config.atmosphere),
+      cache_(config.atmosphere.cache_refresh_s, config.atmosphere.cache_mode),
+      link_(config.signal.link) {
+  obs_.signal_modelled = config.signal.enabled;
+}
+
+void World::attach_scene(const SceneSetup& setup) {
+  if (setup.scene == nullptr) {
+    propagator_.reset();
+    scene_frame_.reset();
+  } else {
+    propagator_ = std::make_unique<scene::Propagator>(*setup.scene, setup.search);
+    scene_frame_ = std::make_unique<geo::LocalFrame>(setup.origin);
+  }
+  scene_path_.fill(scene::SatPath{});
+}
+
+void World::set_klobuchar_shape(const orbit::KlobucharParams& p) {
+  atmosphere_.set_klobuchar_shape(p);
+  cache_.clear();
+}
+
+void World::advance(const time::GpsTime& t) noexcept {
+  const GaussMarkovConfig& gm = config_.errors.orbit_clock;
+  const bool iono_gm = atmosphere_.iono_on() && config_.atmosphere.ionosphere.perturbation.sigma > 0.0;
+  const GaussMarkovConfig iono_cfg{config_.atmosphere.ionosphere.perturbation.sigma,
+                                   config_.atmosphere.ionosphere.perturbation.tau_s};
+  const bool zwd_gm = atmosphere_.tropo_on() && config_.atmosphere.zwd_perturbation.sigma_m > 0.0;
+  const GaussMarkovConfig& zwd_cfg = config_.atmosphere.zwd_perturbation;
+  const bool mp = config_.errors.multipath.sigma_m > 0.0;
+  const GaussMarkovConfig mp_unit{1.0, config_.errors.multipath.tau_s};
+  const GaussMarkovConfig& grad = config_.errors.gradient.process;
+  const bool grad_gm = grad.sigma_m > 0.0;
+  if (!started_) {
+    if (grad_gm)
+      for (int c = 0; c < 2; ++c)
+        gradient_m_[c] = gauss_markov_init(grad, rng_.normal(kGradientStream + c, 0, Purpose::kGradientInit));
+    if (mp)
+      for (int p = 1; p <= kMaxGpsPrn; ++p)
+        multipath_unit_[p - 1] = gauss_markov_init(mp_unit, rng_.normal(p, 0, Purpose::kMultipathInit));
+    for (int p = 1; p <= kMaxGpsPrn; ++p)
+      orbit_clock_m_[p - 1] = gauss_markov_init(gm, rng_.normal(p, 0, Purpose::kGaussMarkovInit));
+    if (iono_gm)
+      for (int p = 1; p <= kMaxGpsPrn; ++p)
+        iono_tecu_[p - 1] = gauss_markov_init(iono_cfg, rng_.normal(p, 0, Purpose::kIonoInit));
+    if (zwd_gm) zwd_pert_m_ = gauss_markov_init(zwd_cfg, rng_.normal(kClockStream, 0, Purpose::kTropoInit));
+    started_ = true;
+  } else {
+    double dt_s = t - t_prev_;
+    if (!std::isfinite(dt_s) || dt_s < 0.0) dt_s = 0.0;  // time going back: hold the processes
+    for (int p = 1; p <= kMaxGpsPrn; ++p)
+      orbit_clock_m_[p - 1] =
+          gauss_markov_step(orbit_clock_m_[p - 1], dt_s, gm, rng_.normal(p, epoch_, Purpose::kGaussMarkovStep));
+    if (iono_gm && dt_s > 0.0)
+      for (int p = 1; p <= kMaxGpsPrn; ++p)
+        iono_tecu_[p - 1] =
+            gauss_markov_step(iono_tecu_[p - 1], dt_s, iono_cfg, rng_.normal(p, epoch_, Purpose::kIonoStep));
+    if (grad_gm && dt_s > 0.0)
+      for (int c = 0; c < 2; ++c)
+        gradient_m_[c] = gauss_markov_step(gradient_m_[c], dt_s, grad,
+                                           rng_.normal(kGradientStream + c, epoch_, Purpose::kGradientStep));
+    if (mp && dt_s > 0.0)
+      for (int p = 1; p <= kMaxGpsPrn; ++p)
+        multipath_unit_[p - 1] = gauss_markov_step(multipath_unit_[p - 1], dt_s, mp_unit,
+                                                   rng_.normal(p, epoch_, Purpose::kMultipathStep));
+    if (zwd_gm && dt_s > 0.0)
+      zwd_pert_m_ = gauss_markov_step(zwd_pert_m_, dt_s, zwd_cfg, rng_.normal(kClockStream, epoch_, Purpose::kTropoStep));
+    clock_.advance(dt_s, rng_.normal(kClockStream, epoch_, Purpose::kClockDrift));
+  }
+  t_prev_ = t;
+}
+
+void World::gradient_now(const time::GpsTime& t, double lon_rad) noexcept {
+  const ErrorModelConfig::Gradient& g = config_.errors.gradient;
+  gradient_now_m_ = {g.north_m + gradient_m_[0], g.east_m + gradient_m_[1]};
+  if (g.north_diurnal_m == 0.0 && g.east_diurnal_m == 0.0) return;
+  // Local time as in the Klobuchar model (IS-GPS-200 20.3.3.5.2.5): GPS time
+  // plus 43200 s per semicircle of longitude; 2 pi per day.
+  const double lt_rad = 2.0 * kPi * (t.tow_s() / kSecondsPerDay) + lon_rad;
+  const double h_to_rad = 2.0 * kPi / 24.0;
+  gradient_now_m_[0] += g.north_diurnal_m * std::cos(lt_rad - g.north_peak_h * h_to_rad);
+  gradient_now_m_[1] += g.east_diurnal_m * std::cos(lt_rad - g.east_peak_h * h_to_rad);
+}
+
+// Stage 1 (sky): every satellite with an ephemeris above the horizon; those
+// above the mask are listed in above_.
+void World::sky_stage(const time::GpsTime& t, const Truth& truth, const Lla& rx_lla, double mask_rad) noexcept {
+  n_above_ = 0;
+  for (int p = 1; p <= kMaxGpsPrn; ++p) {
+    const orbit::Ephemeris* eph = store_.select(p, t);
+    if (eph == nullptr) continue;
+    const SkySat s = sky_sat(*eph, t, truth.pos_m, rx_lla, truth.vel_m_s);
+    if (!(s.el_rad > 0.0)) continue;
+    sky_[p - 1] = s;
+    eph_[p - 1] = eph;
+    in_sky_[p - 1] = true;
+    if (s.el_rad >= mask_rad) above_[n_above_++] = p;
+  }
+}
+
+// Stage 3 (propagation): the configured atmosphere along each line of sight
+// above the mask. Slow terms come through the per-satellite cache; the
+// Gauss–Markov perturbations are added every epoch.
+void World::propagation_stage(const time::GpsTime& t, const Lla& rx_lla, const Ecef& rx_pos_m) noexcept {
+  for (int i = 0; i < n_above_; ++i) path_[above_[i] - 1] = PathEffects{};
+  if (!atmosphere_.any_on()) return;
+  // Cached terms belong to a place: moving far enough (height matters most,
+  // the 5-degree tropo delay changes ~3 mm per metre) starts the cache over.
+  if (!cache_pos_valid_ || std::fabs(rx_lla.height_m - cache_height_m_) > kCacheMaxHeightChange_m ||
+      (rx_pos_m - cache_pos_m_).norm() > kCacheMaxMove_m) {
+    cache_.clear();
+    cache_pos_valid_ = true;
+    cache_pos_m_ = rx_pos_m;
+    cache_height_m_ = rx_lla.height_m;
+  }
+  const double tow_s = t.tow_s();
+  const double doy = atmosphere_.tropo_on() ? t.fractional_day_of_year() : 1.0;
+  for (int i = 0; i < n_above_; ++i) {
+    const int p = above_[i];
+    const SkySat& s = sky_[p - 1];
+    const SlowTerms v =
+        cache_.get(p, t, [&] {
+          ++atmosphere_evaluations_;
+          return atmosphere_.slow_terms(rx_lla, s.az_rad, s.el_rad, tow_s, doy);
+        });
+    PathEffects& e = path_[p - 1];
+    if (atmosphere_.iono_on()) e.iono_m = std::max(v[kIonoM] + iono_tecu_[p - 1] * v[kIonoMPerTecu], 0.0);
+    if (atmosphere_.tropo_on()) e.tropo_m = std::max(v[kTropoM] + zwd_pert_m_ * v[kNmfWet], 0.0);
+    e.delay_m = e.iono_m + e.tropo_m;
+    e.loss_db = v[kAttenDb];
+  }
+}
+
+// Stage 3b (propagation, buildings): direct, reflected only (extra path
+// length and reflection loss join the atmosphere's), or not received.
+void World::scene_stage(const Ecef& rx_pos_m) noexcept {
+  scene_path_.fill(scene::SatPath{});
+  if (!propagator_) return;
+  for (int i = 0; i < n_above_; ++i) {
+    const SkySat& s = sky_[above_[i] - 1];
+    scene_query_[i] = scene::SatQuery{above_[i], scene_frame_->vector_to_enu((s.pos_m - rx_pos_m) / s.range_m)};
+  }
+  const auto n = static_cast<std::size_t>(n_above_);
+  propagator_->compute(scene_frame_->to_enu(rx_pos_m), std::span<const scene::SatQuery>(scene_query_.data(), n),
+                       std::span<scene::SatPath>(scene_out_.data(), n));
+  for (int i = 0; i < n_above_; ++i) {
+    const scene::SatPath& sp = scene_out_[i];
+    scene_path_[above_[i] - 1] = sp;
+    PathEffects& e = path_[above_[i] - 1];
+    if (sp.kind == scene::PathKind::kNone) {
+      e.received = false;
+    } else if (sp.kind == scene::PathKind::kNlos) {
+      e.delay_m += sp.extra_delay_m;
+      e.loss_db += sp.loss_db;
+    }
+  }
+}
+
+// Stage 4 (signal): C/N0 of every satellite above the mask from the link
+// budget (0 when nothing is received), or the fixed elevation curve when the
+// signal stage is off.
+void World::signal_stage() noexcept {
+  cn0_dbhz_.fill(0.0);
+  for (int i = 0; i < n_above_; ++i) {
+    const int p = above_[i];
+    const SkySat& s = sky_[p - 1];
+    const PathEffects& e = path_[p - 1];
+    double cn0 = 0.0;
+    if (!config_.signal.enabled) {
+      const double one_m_sin = 1.0 - std::sin(s.el_rad);
+      cn0 = config_.nominal_cn0_dbhz - kCn0ElevationLoss_db * one_m_sin * one_m_sin - scene_path_[p - 1].loss_db;
+    } else if (e.received) {
+      cn0 = link_.cn0_dbhz(s.range_m, s.el_rad, e.loss_db);
+    }
+    cn0_dbhz_[p - 1] = cn0;
+  }
+}
+
+// Stage 5 (observables): every satellite in view (PRN order) with its path
+// truth; pseudorange and Doppler of every received one.
+void World::observables_stage(const time::GpsTime& t, uint64_t epoch, double mask_rad) noexcept {
+  const double rx_clock_s = clock_.bias_s();
+  const double rx_drift_s_s = clock_.drift_s_s();
+  const bool dll = config_.errors.thermal_model == ThermalModel::kDll;
+  obs_.t_rx_local = t + rx_clock_s;
+  for (int p = 1; p <= kMaxGpsPrn; ++p) {
+    if (!in_sky_[p - 1]) continue;
+    const SkySat& s = sky_[p - 1];
+    SatObservable& o = obs_.sats[obs_.num_sats++];
+    o = SatObservable{};
+    o.prn = p;
+    o.eph = eph_[p - 1];
+    o.az_rad = s.az_rad;
+    o.el_rad = s.el_rad;
+    o.above_mask = s.el_rad >= mask_rad;
+    if (!o.above_mask) continue;
+    const scene::SatPath& sp = scene_path_[p - 1];
+    o.blocked = sp.kind == scene::PathKind::kNone;
+    o.nlos = sp.kind == scene::PathKind::kNlos;
+    o.bounces = o.nlos ? sp.bounces : 0;
+    o.nlos_delay_m = o.nlos ? sp.extra_delay_m : 0.0;
+    o.received = path_[p - 1].received;
+    o.cn0_dbhz = cn0_dbhz_[p - 1];
+    if (!o.received) continue;
+    const orbit::Ephemeris* eph = o.eph;
+    const double cn0 = o.cn0_dbhz;
+    const double sigma_m = dll ? signal::dll_thermal_sigma_m(cn0, config_.signal.dll) : config_.errors.thermal_sigma_m;
+    const double thermal_m = sigma_m * rng_.normal(p, epoch, Purpose::kThermal);
+    const double multipath_m =
+        config_.errors.multipath.sigma_m > 0.0
+            ? config_.errors.multipath.sigma_m / std::sin(std::max(s.el_rad, kMultipathMinEl_rad)) * multipath_unit_[p - 1]
+            : 0.0;
+    const double gradient_m = gradient_now_m_[0] * std::cos(s.az_rad) + gradient_now_m_[1] * std::sin(s.az_rad);
+    const double rr_noise_m_s = config_.errors.doppler_sigma_m_s * rng_.normal(p, epoch, Purpose::kDoppler);
+    // The satellite's actual L1 clock = broadcast (dt_sv - TGD) + residual.
+    const double pr_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - eph->tgd_s)) +
+                        orbit_clock_m_[p - 1] + path_[p - 1].delay_m + thermal_m + multipath_m + gradient_m;
+    const double rr_m_s = s.range_rate_m_s + kSpeedOfLight_m_s * (rx_drift_s_s - s.clk_drift_s_s) + rr_noise_m_s;
+    o.pseudorange_m = pr_m;
+    o.doppler_hz = -rr_m_s / kL1Wavelength_m;
+  }
+}
+
+const Observables& World::step(const time::GpsTime& t, const Truth& truth, double mask_rad) noexcept {
+  advance(t);
+  const uint64_t epoch = epoch_++;
+
+  obs_.t = t;
+  // The world's noise floor, as MON-HW reports it; with the signal stage off
+  // the C/N0 curve is fixed, so the receiver sees a quiet sky.
+  obs_.noise_rise_db = config_.signal.enabled ? config_.signal.link.environment_noise_rise_db : kQuietNoiseRise_db;
+  obs_.clock_bias_s = clock_.bias_s();
+  obs_.clock_drift_s_s = clock_.drift_s_s();
+  obs_.num_sats = 0;
+  in_sky_.fill(false);
+  obs_.antenna_connected = truth.valid && truth.pos_m.finite() && truth.vel_m_s.finite();
+  if (!obs_.antenna_connected) return obs_;
+
+  const Lla rx_lla = geo::lla_from_ecef(truth.pos_m);
+  gradient_now(t, rx_lla.lon_rad);
+  sky_stage(t, truth, rx_lla, mask_rad);
+  propagation_stage(t, rx_lla, truth.pos_m);
+  scene_stage(truth.pos_m);
+  signal_stage();
+  observables_stage(t, epoch, mask_rad);
+  return obs_;
+}
+
+}  // namespace gnssemu::world

@@ -1,0 +1,125 @@
+#pragma once
+// World: the signals at the antenna of a vehicle, for one epoch at a time
+// (DESIGN.md §1, steps 1-5): sky (ephemeris, light time, Sagnac) ->
+// propagation (atmosphere; buildings when a scene is attached) -> signal
+// (C/N0) -> observables (true range + error processes + noise). Pure and
+// deterministic for a seed; step() never throws and never allocates.
+// Satellites below the mask it is asked for get geometry only; stages the
+// config turns off are skipped.
+#include <array>
+#include <cstdint>
+#include <memory>
+
+#include "core/atmosphere/term_cache.hpp"
+#include "core/common/vec3.hpp"
+#include "core/geo/local_frame.hpp"
+#include "core/orbit/ephemeris_store.hpp"
+#include "core/orbit/nav_data.hpp"
+#include "core/scene/propagator.hpp"
+#include "core/signal/link_budget.hpp"
+#include "core/world/error_processes.hpp"
+#include "core/world/observables.hpp"
+#include "core/world/propagation.hpp"
+#include "core/world/random.hpp"
+#include "core/world/sky.hpp"
+#include "core/world/truth.hpp"
+#include "core/world/world_config.hpp"
+
+namespace gnssemu::world {
+
+/// Buildings for the propagation stage.
+struct SceneSetup {
+  const scene::Scene* scene = nullptr;  ///< built in the ENU frame of origin; null: no scene stage
+  Lla origin;                           ///< origin of the scene's local frame
+  scene::SearchConfig search;           ///< reflection search effort
+};
+
+class World {
+public:
+  /// store must outlive the world. Throws gnssemu::Error on an invalid config.
+  World(const orbit::EphemerisStore& store, const WorldConfig& config);
+
+  /// The signals at the antenna at receive time t (GPS) for truth, modelled
+  /// for the satellites at or above mask_rad (rad, [0, pi/2)). truth.valid ==
+  /// false: no signals (time and the error processes still advance).
+  const Observables& step(const time::GpsTime& t, const Truth& truth, double mask_rad) noexcept;
+
+  const Observables& observables() const noexcept { return obs_; }
+  const WorldConfig& config() const noexcept { return config_; }
+
+  /// Broadcast Klobuchar coefficients of the day (the nav header's): the
+  /// Klobuchar-shaped ionosphere takes its shape from them unless the config
+  /// gave one; invalid: kept. Throws gnssemu::Error for non-finite values of
+  /// a set it takes.
+  void set_klobuchar_shape(const orbit::KlobucharParams& p);
+
+  /// Buildings: the scene decides per satellite direct / reflected only
+  /// (extra delay and reflection loss join the PathEffects) / not received.
+  /// setup.scene must outlive the world; null detaches. Setup only (allocates).
+  void attach_scene(const SceneSetup& setup);
+  /// The scene stage (null without a scene); its stats() describe the last epoch.
+  const scene::Propagator* propagator() const noexcept { return propagator_.get(); }
+
+  /// The propagation effects on prn (1..32) at the last epoch with truth
+  /// (zero when the satellite was not above the mask).
+  const PathEffects& path_effects(int prn) const noexcept { return path_[static_cast<std::size_t>(prn - 1)]; }
+  /// Evaluations of the slow atmospheric terms so far (one per satellite and
+  /// refresh; every satellite every epoch without a cache). For benchmarks.
+  long atmosphere_refreshes() const noexcept { return atmosphere_evaluations_; }
+
+  /// Truth of the receiver oscillator at the last epoch (for error analysis).
+  double true_clock_bias_s() const noexcept { return clock_.bias_s(); }
+  double true_clock_drift_s_s() const noexcept { return clock_.drift_s_s(); }
+
+private:
+  void advance(const time::GpsTime& t) noexcept;
+  void sky_stage(const time::GpsTime& t, const Truth& truth, const Lla& rx_lla, double mask_rad) noexcept;
+  void propagation_stage(const time::GpsTime& t, const Lla& rx_lla, const Ecef& rx_pos_m) noexcept;
+  void scene_stage(const Ecef& rx_pos_m) noexcept;
+  void signal_stage() noexcept;
+  void observables_stage(const time::GpsTime& t, uint64_t epoch, double mask_rad) noexcept;
+  /// G_N, G_E of the azimuthal gradient at t for a receiver at lon_rad.
+  void gradient_now(const time::GpsTime& t, double lon_rad) noexcept;
+
+  const orbit::EphemerisStore& store_;
+  WorldConfig config_;
+  Observables obs_;
+
+  // Error processes.
+  CounterRng rng_;
+  ReceiverClock clock_;
+  std::array<double, kMaxGpsPrn> orbit_clock_m_{};  ///< Gauss–Markov state per PRN, m
+  std::array<double, kMaxGpsPrn> multipath_unit_{};  ///< unit multipath Gauss–Markov state per PRN
+  std::array<double, 2> gradient_m_{};  ///< azimuthal gradient processes g_N, g_E, m
+  std::array<double, 2> gradient_now_m_{};  ///< G_N, G_E this epoch (mean + daily cycle + process), m
+  std::array<double, kMaxGpsPrn> iono_tecu_{};      ///< vertical TEC perturbation per line of sight, TECU
+  double zwd_pert_m_ = 0.0;                         ///< zenith wet delay perturbation, m
+  uint64_t epoch_ = 0;          ///< step() calls so far (random-stream counter)
+  bool started_ = false;
+  time::GpsTime t_prev_;
+  // Sky stage.
+  std::array<SkySat, kMaxGpsPrn> sky_{};
+  std::array<const orbit::Ephemeris*, kMaxGpsPrn> eph_{};
+  std::array<bool, kMaxGpsPrn> in_sky_{};
+  std::array<int, kMaxGpsPrn> above_{};             ///< PRNs above the mask this epoch
+  int n_above_ = 0;
+  // Propagation stage.
+  AtmospherePropagation atmosphere_;
+  atmosphere::SlowTermCache<kSlowTermCount> cache_;
+  Ecef cache_pos_m_;                                ///< receiver position the cache belongs to
+  double cache_height_m_ = 0.0;
+  bool cache_pos_valid_ = false;
+  long atmosphere_evaluations_ = 0;
+  std::array<PathEffects, kMaxGpsPrn> path_{};
+  // Scene (optional part of the propagation stage).
+  std::unique_ptr<scene::Propagator> propagator_;
+  std::unique_ptr<geo::LocalFrame> scene_frame_;
+  std::array<scene::SatQuery, kMaxGpsPrn> scene_query_{};
+  std::array<scene::SatPath, kMaxGpsPrn> scene_out_{};
+  std::array<scene::SatPath, kMaxGpsPrn> scene_path_{};  ///< per PRN, this epoch
+  // Signal stage.
+  signal::LinkBudgetModel link_;
+  std::array<double, kMaxGpsPrn> cn0_dbhz_{};
+};
+
+}  // namespace gnssemu::world

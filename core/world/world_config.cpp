@@ -1,0 +1,45 @@
+#include "core/world/world_config.hpp"
+
+#include <string>
+
+namespace gnssemu::world {
+
+void validate(const WorldConfig& c) {
+  using Gm = GaussMarkovRanges;
+  using E = ErrorModelRanges;
+  using K = ClockRanges;
+  using A = AtmosphereRanges;
+  const ErrorModelConfig& e = c.errors;
+  const ErrorModelConfig::Gradient& g = e.gradient;
+  const ClockConfig& k = c.clock;
+  const AtmosphereConfig& a = c.atmosphere;
+  check_ranges(
+      "world config",
+      {{e.thermal_sigma_m, E::thermal_sigma_m, "errors.thermal_sigma_m"},
+       {e.doppler_sigma_m_s, E::doppler_sigma_m_s, "errors.doppler_sigma_m_s"},
+       {e.orbit_clock.sigma_m, Gm::sigma_m, "errors.orbit_clock.sigma_m"},
+       {e.orbit_clock.tau_s, Gm::tau_s, "errors.orbit_clock.tau_s"},
+       {e.multipath.sigma_m, Gm::sigma_m, "errors.multipath.sigma_m"},
+       {e.multipath.tau_s, Gm::tau_s, "errors.multipath.tau_s"},
+       {g.north_m, E::gradient_north_m, "errors.gradient.north_m"}, {g.east_m, E::gradient_east_m, "errors.gradient.east_m"},
+       {g.north_diurnal_m, E::gradient_north_diurnal_m, "errors.gradient.north_diurnal_m"},
+       {g.north_peak_h, E::gradient_north_peak_h, "errors.gradient.north_peak_h"},
+       {g.east_diurnal_m, E::gradient_east_diurnal_m, "errors.gradient.east_diurnal_m"},
+       {g.east_peak_h, E::gradient_east_peak_h, "errors.gradient.east_peak_h"},
+       {g.process.sigma_m, Gm::sigma_m, "errors.gradient.sigma_m"}, {g.process.tau_s, Gm::tau_s, "errors.gradient.tau_s"},
+       {k.bias_s, K::bias_s, "clock.bias_s"}, {k.drift_s_s, K::drift_s_s, "clock.drift_s_s"},
+       {k.drift_noise_s_s_sqrt_s, K::drift_noise_s_s_sqrt_s, "clock.drift_noise_s_s_sqrt_s"},
+       {k.jump_threshold_s, K::jump_threshold_s, "clock.jump_threshold_s"},
+       {c.nominal_cn0_dbhz, WorldRanges::nominal_cn0_dbhz, "nominal_cn0_dbhz"},
+       {a.zwd_perturbation.sigma_m, A::zwd_perturbation_sigma_m, "atmosphere.zwd_perturbation.sigma_m"},
+       {a.zwd_perturbation.tau_s, A::zwd_perturbation_tau_s, "atmosphere.zwd_perturbation.tau_s"},
+       {a.cache_refresh_s, A::cache_refresh_s, "atmosphere.cache_refresh_s"}});
+  atmosphere::validate(a.ionosphere);
+  atmosphere::validate(a.troposphere);
+  atmosphere::validate(a.shells);
+  atmosphere::validate(a.clouds_rain);
+  signal::validate(c.signal.link);
+  signal::validate(c.signal.dll);
+}
+
+}  // namespace gnssemu::world

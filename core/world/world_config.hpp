@@ -1,0 +1,149 @@
+#pragma once
+// WorldConfig: what happens to the signals between the satellites and the
+// antenna (DESIGN.md §1, steps 1-5): error processes, the receiver
+// oscillator's truth, the atmosphere and the signal model. The receiver does
+// not know any of it. All values SI.
+#include <cstdint>
+
+#include "core/atmosphere/clouds_rain.hpp"
+#include "core/atmosphere/ionosphere.hpp"
+#include "core/atmosphere/shells.hpp"
+#include "core/atmosphere/term_cache.hpp"
+#include "core/atmosphere/troposphere.hpp"
+#include "core/common/range.hpp"
+#include "core/signal/dll_jitter.hpp"
+#include "core/signal/link_budget.hpp"
+
+namespace gnssemu::world {
+
+/// First-order Gauss–Markov process: steady-state sigma and correlation time.
+struct GaussMarkovConfig {
+  double sigma_m = 0.0;     ///< steady-state 1-sigma, m (>= 0; 0 disables)
+  double tau_s = 1800.0;    ///< correlation time, s (> 0)
+};
+
+/// Valid values of a GaussMarkovConfig of the error model.
+struct GaussMarkovRanges {
+  static constexpr Range sigma_m{0.0, 100.0, "m"};
+  static constexpr Range tau_s{0.0, 1.0e6, "s", true};
+};
+
+/// Where the white pseudorange noise sigma comes from.
+enum class ThermalModel {
+  kFixed,  ///< errors.thermal_sigma_m for every satellite
+  kDll,    ///< DLL thermal jitter at the satellite's C/N0 (signal.dll)
+};
+
+struct ErrorModelConfig {
+  ThermalModel thermal_model = ThermalModel::kDll;
+  double thermal_sigma_m = 0.3;                  ///< kFixed: white pseudorange noise, m
+  GaussMarkovConfig orbit_clock{1.2, 1800.0};    ///< broadcast orbit/clock residual per satellite
+  double doppler_sigma_m_s = 0.03;               ///< white range-rate noise, m/s
+  /// Multipath-like residual per satellite: a unit Gauss–Markov process (tau_s)
+  /// times sigma_m / sin(el) (el held at >= 5 deg), so sigma_m is the zenith
+  /// 1-sigma, m; sigma_m 0 disables (the default).
+  GaussMarkovConfig multipath{0.0, 60.0};
+  /// Azimuthal delay pattern common to all satellites (an unmodelled
+  /// horizontal gradient): delay += G_N cos(az) + G_E sin(az), m, with
+  /// G_N = north_m + north_diurnal_m cos(2 pi (LT - north_peak_h) / 24 h) + g_N(t)
+  /// (E alike), LT the local mean solar time at the receiver from GPS time and
+  /// longitude (IS-GPS-200 20.3.3.5.2.5 convention), and g_N, g_E two
+  /// independent Gauss–Markov processes (sigma_m, tau_s). Fitted by
+  /// `gnssemu calibrate`; all zero (the default) disables it.
+  struct Gradient {
+    double north_m = 0.0;          ///< mean north component, m
+    double east_m = 0.0;           ///< mean east component, m
+    double north_diurnal_m = 0.0;  ///< amplitude of the daily cycle of G_N, m (>= 0)
+    double north_peak_h = 0.0;     ///< local time of its maximum, h [0, 24)
+    double east_diurnal_m = 0.0;   ///< amplitude of the daily cycle of G_E, m (>= 0)
+    double east_peak_h = 0.0;      ///< local time of its maximum, h [0, 24)
+    GaussMarkovConfig process{0.0, 3600.0};
+  } gradient;
+};
+
+/// Valid values of ErrorModelConfig's own numbers and of its gradient's
+/// (orbit_clock, multipath and gradient.process: GaussMarkovRanges).
+struct ErrorModelRanges {
+  static constexpr Range thermal_sigma_m{0.0, 100.0, "m"};
+  static constexpr Range doppler_sigma_m_s{0.0, 10.0, "m/s"};
+  static constexpr Range gradient_north_m{-100.0, 100.0, "m"};
+  static constexpr Range gradient_east_m{-100.0, 100.0, "m"};
+  static constexpr Range gradient_north_diurnal_m{0.0, 100.0, "m"};
+  static constexpr Range gradient_north_peak_h{0.0, 24.0, "h", false, true};
+  static constexpr Range gradient_east_diurnal_m{0.0, 100.0, "m"};
+  static constexpr Range gradient_east_peak_h{0.0, 24.0, "h", false, true};
+};
+
+/// The receiver's oscillator as it really runs (the receiver estimates it).
+struct ClockConfig {
+  double bias_s = 1.0e-4;            ///< initial receiver clock bias, s
+  double drift_s_s = 5.0e-8;         ///< initial clock drift, s/s (TCXO-like)
+  double drift_noise_s_s_sqrt_s = 1.0e-10;  ///< drift random walk density, s/s/sqrt(s)
+  /// |bias| above this makes the receiver step its clock by a whole multiple of
+  /// it (millisecond jumps of unsteered receivers), s; 0 disables.
+  double jump_threshold_s = 1.0e-3;
+};
+
+/// Valid values of ClockConfig's fields: u-blox receivers steer their clock
+/// to within 1 ms; TCXO drift stays within 10 ppm.
+struct ClockRanges {
+  static constexpr Range bias_s{-1.0e-2, 1.0e-2, "s"};
+  static constexpr Range drift_s_s{-1.0e-5, 1.0e-5, "s/s"};
+  static constexpr Range drift_noise_s_s_sqrt_s{0.0, 1.0e-6, "s/s/sqrt(s)"};
+  static constexpr Range jump_threshold_s{0.0, 1.0e-2, "s"};
+};
+
+/// The atmosphere the world applies to the signal (the receiver does not know
+/// it). A stage whose switch is off costs nothing per epoch.
+struct AtmosphereConfig {
+  atmosphere::IonosphereConfig ionosphere;    ///< enabled; Klobuchar shape x 1 + GM 1 TECU / 1800 s
+  atmosphere::TroposphereConfig troposphere;  ///< enabled; 2.31 exp(-1.2e-4 h) + 0.10 m wet, Niell
+  /// Slow Gauss–Markov variation of the zenith wet delay (one process for the
+  /// site, mapped with the Niell wet function), m; sigma 0 disables.
+  GaussMarkovConfig zwd_perturbation{0.02, 3600.0};
+  bool gases = true;                          ///< oxygen + water vapour over the shells
+  atmosphere::ShellsConfig shells;
+  atmosphere::CloudsRainConfig clouds_rain;   ///< no clouds, no rain
+  /// Per-satellite refresh interval of the slow terms (iono and tropo delay
+  /// without their perturbations, attenuation), s; 0 = every epoch.
+  double cache_refresh_s = 5.0;
+  atmosphere::CacheMode cache_mode = atmosphere::CacheMode::kLinear;
+};
+
+/// Valid values of AtmosphereConfig's own numbers (its models have theirs:
+/// IonosphereRanges, TroposphereRanges, ShellRanges, GasRanges,
+/// CloudLayerRanges, RainRanges).
+struct AtmosphereRanges {
+  static constexpr Range zwd_perturbation_sigma_m{0.0, 1.0, "m"};
+  static constexpr Range zwd_perturbation_tau_s{0.0, 1.0e6, "s", true};
+  static constexpr Range cache_refresh_s{0.0, 3600.0, "s"};
+};
+
+/// Signal stage: link budget -> C/N0, code noise.
+struct SignalConfig {
+  /// false: no link budget; C/N0 = nominal_cn0_dbhz - 10 (1 - sin el)^2 and
+  /// every received satellite is strong enough to track.
+  bool enabled = true;
+  signal::LinkBudgetConfig link;         ///< EIRP, antenna, noise figure, environment noise rise
+  signal::DllParams dll;                 ///< thermal jitter when errors.thermal_model = kDll
+};
+
+struct WorldConfig {
+  uint64_t seed = 1;               ///< seed of every random process (deterministic)
+  ErrorModelConfig errors;
+  ClockConfig clock;
+  double nominal_cn0_dbhz = 45.0;  ///< zenith C/N0 when signal.enabled is false, dB-Hz
+  AtmosphereConfig atmosphere;
+  SignalConfig signal;
+};
+
+/// Valid values of WorldConfig's own numbers (seed: any).
+struct WorldRanges {
+  static constexpr Range nominal_cn0_dbhz{10.0, 60.0, "dB-Hz"};
+};
+
+/// Throws gnssemu::Error for a value out of its range anywhere in c (its
+/// models' validators included).
+void validate(const WorldConfig& c);
+
+}  // namespace gnssemu::world
