@@ -7,18 +7,15 @@
 #include "core/common/error.hpp"
 #include "core/orbit/constellation.hpp"
 #include "core/orbit/rinex_nav.hpp"
+#include "orbit_test_data.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::orbit;
 
+using test::brdc;
+using test::kData;
+
 namespace {
-
-const std::string kData = GNSSEMU_TEST_DATA;
-
-const NavData& brdc() {
-  static const NavData d = read_rinex_nav(kData + "/nav/brdc0010.22n");
-  return d;
-}
 
 ConstellationRequest at(const time::GpsTime& start, NavMode mode = NavMode::kAuto) {
   ConstellationRequest r;

@@ -191,6 +191,9 @@ TEST(EphemerisStore, ContinuesAfterTheLastSet) {
   EXPECT_EQ(iode_at(open, 14, time::GpsTime(2000, 30000)), -1);  // a gap in the data stays a gap
   EXPECT_EQ(iode_at(open, 14, time::GpsTime(1999, 500000)), -1);  // nothing before the data
   EXPECT_EQ(iode_at(open, 15, days_later), -1);                   // last set unhealthy
+  const long before = gnssemu::support::allocation_count();
+  for (int k = 0; k < 100; ++k) (void)open.select(14, days_later + 60.0 * k);  // per-epoch path
+  EXPECT_EQ(gnssemu::support::allocation_count(), before);
   const Ephemeris* e = open.select(14, days_later);
   ASSERT_NE(e, nullptr);
   const SatState s = sat_state(*e, days_later);

@@ -6,18 +6,15 @@
 #include "core/orbit/almanac.hpp"
 #include "core/orbit/relabel.hpp"
 #include "core/orbit/rinex_nav.hpp"
+#include "orbit_test_data.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::orbit;
 
+using test::brdc;
+using test::kData;
+
 namespace {
-
-const std::string kData = GNSSEMU_TEST_DATA;
-
-const NavData& brdc() {
-  static const NavData d = read_rinex_nav(kData + "/nav/brdc0010.22n");
-  return d;
-}
 
 /// Largest position (m), velocity (m/s) and clock (s) difference between
 /// eph at t and moved at t + shift over eph's 4-hour window.
