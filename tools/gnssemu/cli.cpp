@@ -15,8 +15,11 @@
 #include "config/config.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
-#include "core/orbit/ephemeris_store.hpp"
+#include "config/nav_setup.hpp"
 #include "core/observation/rinex_obs.hpp"
+#include "core/orbit/almanac.hpp"
+#include "core/orbit/constellation.hpp"
+#include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
 #include "core/scene/scene.hpp"
 #include "tools/gnssemu/batch.hpp"
@@ -65,8 +68,16 @@ struct BatchArgs {
   std::string config_path, truth_path, nmea_path, errors_path, ubx_path;
 };
 
+/// Where satpos, sky and dop take their satellites from.
+struct NavArgs {
+  std::vector<std::string> paths;  ///< --nav, repeatable: one ephemeris store
+  std::string mode = "as_is";      ///< --nav-mode
+  std::string almanac;             ///< --almanac (mode almanac)
+};
+
 struct ObsArgs {
-  std::string obs_path, nav_path, station, out_path, config_path, residuals_path;
+  std::string obs_path, station, out_path, config_path, residuals_path;
+  std::vector<std::string> nav_paths;
   double mask_deg = 5.0;
 };
 
@@ -97,22 +108,58 @@ SkyRequest checked_site(const SiteArgs& s, const time::GpsTime& t) {
 
 std::string describe(const time::GpsTime& t) { return fmt::format("week {} tow {:.3f}", t.week(), t.tow_s()); }
 
-/// Ephemeris store of a nav file that has at least one healthy set valid at t
-/// (and, if klobuchar is given, the header's broadcast ionosphere).
-orbit::EphemerisStore load_store(const std::string& nav_path, const time::GpsTime& t,
+/// The nav files read (plain or gzip) and merged into one (several files:
+/// one ephemeris store, as the daemon's [nav] files).
+orbit::NavData load_nav_files(const std::vector<std::string>& paths) {
+  std::vector<orbit::NavData> files;
+  for (const std::string& p : paths) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec)) throw Error(p, 0, "nav file not found");
+    files.push_back(orbit::read_rinex_nav(p));
+    if (files.back().ephemerides.empty()) throw Error(p, 0, "no GPS ephemerides in the file");
+  }
+  return orbit::merge(files);
+}
+
+/// The satellites at t from --nav/--nav-mode/--almanac (a store with at least
+/// one healthy set valid at t; with klobuchar, the header's broadcast iono).
+/// as_is serves the files' own span only (RTKLIB); relabel and almanac move
+/// the data to t's date and continue past them, as the daemon does.
+orbit::EphemerisStore load_store(const NavArgs& a, const time::GpsTime& t,
                                  orbit::KlobucharParams* klobuchar = nullptr) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(nav_path, ec)) throw Error(nav_path, 0, "nav file not found");
-  const orbit::NavData nav = orbit::read_rinex_nav(nav_path);
-  if (klobuchar) *klobuchar = nav.klobuchar;
-  orbit::EphemerisStore store(nav.ephemerides);
-  if (store.size() == 0) throw Error(nav_path, 0, "no GPS ephemerides in the file");
+  const std::optional<orbit::NavMode> mode = orbit::nav_mode_from_name(a.mode);
+  if (!mode) throw Error("--nav-mode: '" + a.mode + "' is not auto, as_is, relabel or almanac");
+  if (*mode == orbit::NavMode::kAlmanac && a.almanac.empty()) throw Error("--nav-mode almanac needs --almanac FILE");
+  if (*mode != orbit::NavMode::kAlmanac && !a.almanac.empty()) throw Error("--almanac needs --nav-mode almanac");
+  if (a.paths.empty() && a.almanac.empty()) throw Error("--nav FILE is required");
+  const orbit::NavData nav = a.paths.empty() ? orbit::NavData{} : load_nav_files(a.paths);
+  orbit::ConstellationRequest req;
+  req.mode = *mode;
+  req.start = t;
+  req.continue_after_data = *mode != orbit::NavMode::kAsIs;
+  orbit::Constellation c;
+  if (*mode == orbit::NavMode::kAsIs) {
+    // The files' own span, nothing more (RTKLIB): the check below names it.
+    c.source = nav.source;
+    c.nav = nav;
+    c.continues = false;
+    c.coverage = orbit::EphemerisStore(nav.ephemerides).coverage();
+  } else if (*mode == orbit::NavMode::kAlmanac) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(a.almanac, ec)) throw Error(a.almanac, 0, "almanac file not found");
+    c = orbit::build_constellation(orbit::read_almanac(a.almanac, t.week()), a.almanac, nav, req);
+  } else {
+    c = orbit::build_constellation(nav, req);
+  }
+  if (klobuchar) *klobuchar = c.nav.klobuchar;
+  orbit::EphemerisStore store(c.nav.ephemerides, c.store_options());
   for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
     if (store.select(prn, t) != nullptr) return store;
   }
-  throw Error(nav_path, 0,
-              fmt::format("no healthy ephemeris valid at {}; the file covers {} to {}", describe(t),
-                          describe(store.first_valid()), describe(store.last_valid())));
+  throw Error(c.source, 0,
+              fmt::format("no healthy ephemeris valid at {}; the data cover {}{}", describe(t),
+                          orbit::spans_text(c.coverage),
+                          *mode == orbit::NavMode::kAsIs ? " (--nav-mode relabel moves them to that date)" : ""));
 }
 
 /// An output file, or stdout for "-".
@@ -146,23 +193,19 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
   }
   const config::Config cfg = config::load_config(a.config_path);
   const world::TruthTrack track(read_truth_csv(a.truth_path));
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(cfg.nav_file, ec)) {
-    throw Error(a.config_path, 0, "nav file not found: " + cfg.nav_file);
+  for (const std::string& p : config::nav_paths(cfg)) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec)) throw Error(a.config_path, 0, "nav file not found: " + p);
   }
-  const orbit::NavData nav = orbit::read_rinex_nav(cfg.nav_file);
-  const orbit::EphemerisStore store(nav.ephemerides);
-  if (store.size() == 0) throw Error(cfg.nav_file, 0, "no GPS ephemerides in the file");
-  if (track.first() - store.last_valid() > 0.0 || store.first_valid() - track.last() > 0.0) {
-    throw Error(a.truth_path, 0,
-                fmt::format("truth runs from {} to {}, outside the nav file {} ({} to {})", describe(track.first()),
-                            describe(track.last()), cfg.nav_file, describe(store.first_valid()),
-                            describe(store.last_valid())));
-  }
+  // The truth's own dates, with the satellites dated for them as the daemon
+  // dates them ([nav] mode; as_is: the truth must start inside the data).
+  const orbit::Constellation c = config::make_constellation(cfg, config::load_nav(cfg), track.first());
+  err << "gnssemu batch: satellites: " << c.describe() << '\n';
   OutputFile nmea(a.nmea_path, out);
   OutputFile errors(a.errors_path, out);
   OutputFile ubx(a.ubx_path, out);
-  const BatchSummary sum = run_batch(cfg, nav, track, nmea.get(), errors.get(), ubx.get());
+  const BatchSummary sum =
+      run_batch(cfg, c.nav, track, nmea.get(), errors.get(), ubx.get(), c.store_options());
   nmea.close(a.nmea_path);
   ubx.close(a.ubx_path);
   errors.close(a.errors_path);
@@ -199,17 +242,16 @@ Ecef parse_station(const std::string& text) {
 std::pair<observation::ObsData, orbit::NavData> load_obs_nav(const ObsArgs& a) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(a.obs_path, ec)) throw Error(a.obs_path, 0, "observation file not found");
-  if (!std::filesystem::is_regular_file(a.nav_path, ec)) throw Error(a.nav_path, 0, "nav file not found");
+  orbit::NavData nav = load_nav_files(a.nav_paths);
   observation::ObsData obs = observation::read_rinex_obs(a.obs_path);
-  orbit::NavData nav = orbit::read_rinex_nav(a.nav_path);
   if (obs.epochs.empty()) throw Error(a.obs_path, 0, "no GPS observation epochs");
   const orbit::EphemerisStore store(nav.ephemerides);
-  if (store.size() == 0) throw Error(a.nav_path, 0, "no GPS ephemerides in the file");
   const time::GpsTime t0 = obs.epochs.front().t, t1 = obs.epochs.back().t;
   if (t0 - store.last_valid() > 0.0 || store.first_valid() - t1 > 0.0) {
     throw Error(a.obs_path, 0,
-                fmt::format("observations run from {} to {}, outside the nav file {} ({} to {})", describe(t0),
-                            describe(t1), a.nav_path, describe(store.first_valid()), describe(store.last_valid())));
+                fmt::format("observations run from {} to {}, outside the nav file{} {} ({})", describe(t0),
+                            describe(t1), a.nav_paths.size() > 1 ? "s" : "", nav.source,
+                            orbit::spans_text(store.coverage())));
   }
   return {std::move(obs), std::move(nav)};
 }
@@ -235,7 +277,7 @@ int run_calibrate_command(const ObsArgs& a, std::ostream& out, std::ostream& err
   CalibrationInput in;
   in.obs = &obs;
   in.nav = &nav;
-  in.nav_path = a.nav_path;
+  in.nav_path = a.nav_paths.front();
   in.station_m = station;
   in.mask_rad = a.mask_deg * kDegToRad;
   const CalibrationResult r = calibrate(in, base);
@@ -265,11 +307,19 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
 
   TimeArgs time_args;
   SiteArgs site;
-  std::string nav_path;
+  NavArgs nav_args;
   BatchArgs batch;
 
   auto add_time = [&](CLI::App* sub) {
-    sub->add_option("--nav", nav_path, "RINEX 2.x/3.x navigation file")->required();
+    sub->add_option("--nav", nav_args.paths, "RINEX 2.x/3.x navigation file, plain or .gz; repeat for several")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    sub->add_option("--nav-mode", nav_args.mode,
+                    "as_is: the files' own dates; relabel: moved by whole days to --week/--tow; almanac: --almanac "
+                    "moved and propagated; auto: as_is if the files cover the time, else relabel")
+        ->check(CLI::IsMember({"auto", "as_is", "relabel", "almanac"}))
+        ->capture_default_str();
+    sub->add_option("--almanac", nav_args.almanac, "YUMA or SEM almanac (with --nav-mode almanac)");
     sub->add_option("--week", time_args.week, "GPS week (continuous, not mod 1024)")->required();
     sub->add_option("--tow", time_args.tow_s, "GPS time of week, s [0, 604800)")->required();
   };
@@ -326,14 +376,20 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   ObsArgs obs_args;
   CLI::App* spp = app.add_subcommand("spp", "single-point positions from a real RINEX observation file (C1C)");
   spp->add_option("--obs", obs_args.obs_path, "RINEX 2.11/3.x observation file (.gz read too)")->required();
-  spp->add_option("--nav", obs_args.nav_path, "RINEX 2.x/3.x navigation file")->required();
+  spp->add_option("--nav", obs_args.nav_paths, "RINEX 2.x/3.x navigation file, plain or .gz; repeat for several")
+      ->required()
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   spp->add_option("--mask", obs_args.mask_deg, "elevation mask, deg [0, 90)")->capture_default_str();
   spp->add_option("--station", obs_args.station, "known position X,Y,Z (ECEF m): adds e_m,n_m,u_m columns");
   spp->add_option("--config", obs_args.config_path, "take the solver settings (weights, corrections) from this config");
   CLI::App* calib =
       app.add_subcommand("calibrate", "fit the receiver error model to a real receiver at a known position");
   calib->add_option("--obs", obs_args.obs_path, "RINEX 2.11/3.x observation file (.gz read too)")->required();
-  calib->add_option("--nav", obs_args.nav_path, "RINEX 2.x/3.x navigation file")->required();
+  calib->add_option("--nav", obs_args.nav_paths, "RINEX 2.x/3.x navigation file, plain or .gz; repeat for several")
+      ->required()
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   calib->add_option("--station", obs_args.station, "known antenna position X,Y,Z (ECEF m)")->required();
   calib->add_option("--out", obs_args.out_path, "write the fitted TOML configuration here")->required();
   calib->add_option("--mask", obs_args.mask_deg, "elevation mask, deg [0, 90)")->capture_default_str();
@@ -349,7 +405,10 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   bench_mp->add_option("--city", bmp.city_blocks, "instead of --scene: procedural city of N x N blocks (N=10: ~160k triangles)");
   bench_mp->add_option("--write-city", bmp.write_city, "write the procedural city as OBJ");
   bench_mp->add_option("--origin", bmp.origin, "scene frame origin LAT_DEG,LON_DEG,HEIGHT_M")->delimiter(',')->expected(3)->required();
-  bench_mp->add_option("--nav", bmp.nav_path, "RINEX navigation file")->required();
+  bench_mp->add_option("--nav", bmp.nav_paths, "RINEX navigation file, plain or .gz; repeat for several")
+      ->required()
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   bench_mp->add_option("--week", bench_week, "GPS week of the first epoch (default: nav start + 2 h)");
   bench_mp->add_option("--tow", bench_tow_s, "GPS time of week of the first epoch, s");
   bench_mp->add_option("--path", bmp.path_en_m, "drive polyline E0,N0,E1,N1,... (ENU m)")->delimiter(',')->required();
@@ -388,11 +447,11 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       write_version(out);
     } else if (*satpos) {
       const time::GpsTime t = checked_time(time_args);
-      write_satpos(load_store(nav_path, t), t, out);
+      write_satpos(load_store(nav_args, t), t, out);
     } else if (*sky || *dop) {
       const time::GpsTime t = checked_time(time_args);
       SkyRequest req = checked_site(site, t);
-      const orbit::EphemerisStore store = load_store(nav_path, t, &req.klobuchar);
+      const orbit::EphemerisStore store = load_store(nav_args, t, &req.klobuchar);
       if (*sky) {
         SkyRequest sreq = req;
         std::unique_ptr<scene::Scene> buildings;
