@@ -67,6 +67,7 @@ struct BatchArgs {
 
 struct ObsArgs {
   std::string obs_path, nav_path, station, out_path, config_path, residuals_path;
+  std::string preset;  ///< spp: "rtklib" or empty
   double mask_deg = 5.0;
 };
 
@@ -222,6 +223,7 @@ int run_spp_command(const ObsArgs& a, std::ostream& out, std::ostream& err) {
   const config::Config base = a.config_path.empty() ? config::Config{} : config::load_config(a.config_path);
   receiver::ReceiverConfig rx = base.receiver;
   rx.elevation_mask_rad = a.mask_deg * kDegToRad;
+  if (a.preset == "rtklib") rx.solver = receiver::rtklib_single_point(rx.solver);
   const SppSummary sum = write_spp(obs, nav, rx, station, out);
   err << fmt::format("gnssemu spp: {} epochs, {} with a fix\n", sum.epochs, sum.fixes);
   return kExitOk;
@@ -330,6 +332,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   spp->add_option("--mask", obs_args.mask_deg, "elevation mask, deg [0, 90)")->capture_default_str();
   spp->add_option("--station", obs_args.station, "known position X,Y,Z (ECEF m): adds e_m,n_m,u_m columns");
   spp->add_option("--config", obs_args.config_path, "take the solver settings (weights, corrections) from this config");
+  spp->add_option("--preset", obs_args.preset,
+                  "rtklib: RTKLIB rnx2rtkp single-point weights, corrections and residual test (after --config)")
+      ->check(CLI::IsMember({"rtklib"}));
   CLI::App* calib =
       app.add_subcommand("calibrate", "fit the receiver error model to a real receiver at a known position");
   calib->add_option("--obs", obs_args.obs_path, "RINEX 2.11/3.x observation file (.gz read too)")->required();

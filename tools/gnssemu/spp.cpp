@@ -8,16 +8,18 @@
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/geo/local_frame.hpp"
+#include "core/receiver/weight_model.hpp"
 #include "core/world/sky.hpp"
 
 namespace gnssemu::cli {
 
 double receiver_correction_m(const orbit::KlobucharParams& k, const Lla& rx, double az_rad, double el_rad,
-                             const time::GpsTime& t, const receiver::SolverConfig& solver) {
+                             const time::GpsTime& t, const receiver::SolverConfig& solver, double* variance_m2) {
   const double doy = t.fractional_day_of_year();
   const double iono_m = solver.iono == atmosphere::IonoCorrection::kKlobuchar
                             ? atmosphere::receiver_iono_delay_m(k, rx.lat_rad, rx.lon_rad, az_rad, el_rad, t.tow_s())
                             : 0.0;
+  if (variance_m2 != nullptr) *variance_m2 = receiver::correction_variance_m2(solver, iono_m, std::sin(el_rad));
   return iono_m + atmosphere::receiver_tropo_delay_m(rx.lat_rad, rx.height_m, el_rad, doy, solver.tropo);
 }
 
@@ -29,6 +31,14 @@ receiver::SolverConfig precorrected(receiver::SolverConfig s) {
   s.tropo = atmosphere::TropoCorrection::kNone;
   return s;
 }
+// The first, unmasked and uncorrected solution of a cold start only places
+// the mask and the corrections: its residuals carry the uncorrected
+// atmosphere, so it is not tested (RTKLIB likewise corrects from its second
+// iteration on and tests only the converged, corrected solution).
+receiver::SolverConfig untested(receiver::SolverConfig s) {
+  s.residual_test_pfa = 0.0;
+  return s;
+}
 }  // namespace
 
 SppEngine::SppEngine(const orbit::NavData& nav, const orbit::EphemerisStore& store,
@@ -36,7 +46,8 @@ SppEngine::SppEngine(const orbit::NavData& nav, const orbit::EphemerisStore& sto
     : store_(store),
       klobuchar_(nav.klobuchar),
       rx_(receiver),
-      solver_(precorrected(receiver.solver), receiver.max_pdop) {
+      solver_(precorrected(receiver.solver), receiver.max_pdop),
+      cold_solver_(untested(precorrected(receiver.solver)), receiver.max_pdop) {
   receiver::validate(rx_);
   c1c_ = header.type_index("C1C");
   s1c_ = header.type_index("S1C");
@@ -54,17 +65,18 @@ bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
     if (pr == nullptr) continue;
     const orbit::Ephemeris* eph = store_.select(s.prn, epoch.t);
     if (eph == nullptr) continue;
-    double corr_m = 0.0;
+    double corr_m = 0.0, corr_var_m2 = 0.0;
     if (site != nullptr) {
       const world::SkySat sky = world::sky_sat(*eph, epoch.t, *site, site_lla, Ecef{});
       if (!(sky.el_rad >= rx_.elevation_mask_rad)) continue;
-      corr_m = receiver_correction_m(klobuchar_, site_lla, sky.az_rad, sky.el_rad, epoch.t, rx_.solver);
+      corr_m = receiver_correction_m(klobuchar_, site_lla, sky.az_rad, sky.el_rad, epoch.t, rx_.solver, &corr_var_m2);
     }
     receiver::Measurement& m = in_.meas[static_cast<std::size_t>(in_.num_meas)];
     m.eph = eph;
     // Corrections at the mask position (previous fix): the final pass is
     // within 100 m of the result, where they change by < 1 mm.
     m.pseudorange_m = pr->value - corr_m;
+    m.correction_var_m2 = corr_var_m2;
     m.doppler_hz = 0.0;  // velocity is not reported by spp
     // S1C gives the solver's C/N0 weight term, as the live receiver's tracking does.
     const observation::ObsValue* sn = s1c_ >= 0 ? s.get(s1c_) : nullptr;
@@ -76,7 +88,7 @@ bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
     in_.prior_pos_m = *last_pos_m_;
     in_.prior_clock_m = last_clock_m_;
   }
-  solver_.solve(in_, out_);
+  (site != nullptr ? solver_ : cold_solver_).solve(in_, out_);
   return out_.type == receiver::FixType::k3D;
 }
 

@@ -21,9 +21,12 @@ namespace gnssemu::cli {
 /// The receiver's own ionosphere (broadcast Klobuchar; RTKLIB defaults when
 /// k is invalid) plus troposphere correction for a satellite at (az_rad,
 /// el_rad) seen from rx at GPS time t, m, with the models chosen in solver
-/// ([receiver.corrections]; the defaults are the receiver's).
+/// ([receiver.corrections]; the defaults are the receiver's). variance_m2
+/// (optional): set to what the correction may miss as the solver weights it
+/// (receiver::correction_variance_m2), m^2.
 double receiver_correction_m(const orbit::KlobucharParams& k, const Lla& rx, double az_rad, double el_rad,
-                             const time::GpsTime& t, const receiver::SolverConfig& solver = {});
+                             const time::GpsTime& t, const receiver::SolverConfig& solver = {},
+                             double* variance_m2 = nullptr);
 
 /// One epoch's solution.
 struct SppEpoch {
@@ -61,6 +64,7 @@ private:
   receiver::ReceiverConfig rx_;
   int c1c_ = -1, s1c_ = -1;
   receiver::Solver solver_;
+  receiver::Solver cold_solver_;  ///< first solution of a cold start: no residual test
   receiver::SolverInput in_;
   receiver::SolverOutput out_;
   std::array<int, kMaxGpsPrn> meas_prn_{};
