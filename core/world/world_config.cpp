@@ -27,6 +27,8 @@ void validate(const WorldConfig& c) {
        {g.east_diurnal_m, E::gradient_east_diurnal_m, "errors.gradient.east_diurnal_m"},
        {g.east_peak_h, E::gradient_east_peak_h, "errors.gradient.east_peak_h"},
        {g.process.sigma_m, Gm::sigma_m, "errors.gradient.sigma_m"}, {g.process.tau_s, Gm::tau_s, "errors.gradient.tau_s"},
+       {e.iono_scale.sigma, E::iono_scale_sigma, "errors.iono_scale.sigma"},
+       {e.iono_scale.tau_s, E::iono_scale_tau_s, "errors.iono_scale.tau_s"},
        {k.bias_s, K::bias_s, "clock.bias_s"}, {k.drift_s_s, K::drift_s_s, "clock.drift_s_s"},
        {k.drift_noise_s_s_sqrt_s, K::drift_noise_s_s_sqrt_s, "clock.drift_noise_s_s_sqrt_s"},
        {k.jump_threshold_s, K::jump_threshold_s, "clock.jump_threshold_s"},

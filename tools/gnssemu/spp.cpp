@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/atmosphere/receiver_corrections.hpp"
 #include "core/common/error.hpp"
@@ -130,6 +132,27 @@ const SppEpoch& SppEngine::solve(const observation::ObsEpoch& epoch) {
   last_pos_m_ = out_.pos_m;
   last_clock_m_ = out_.clock_m;
   return result_;
+}
+
+std::vector<Enu> spp_error_series(const observation::ObsData& obs, const orbit::NavData& nav,
+                                  const orbit::EphemerisStore& store, const receiver::ReceiverConfig& receiver,
+                                  const Ecef& station, double step_s, int* fixes) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  if (fixes != nullptr) *fixes = 0;
+  if (obs.epochs.empty()) return {};
+  SppEngine engine(nav, store, obs.header, receiver);
+  const geo::LocalFrame frame(geo::lla_from_ecef(station));
+  const time::GpsTime t0 = obs.epochs.front().t;
+  const long n_grid = std::lround((obs.epochs.back().t - t0) / step_s) + 1;
+  std::vector<Enu> err(static_cast<std::size_t>(std::max(n_grid, 1L)), Enu(kNaN, kNaN, kNaN));
+  for (const observation::ObsEpoch& e : obs.epochs) {
+    const SppEpoch& s = engine.solve(e);
+    if (!s.fix) continue;
+    if (fixes != nullptr) ++*fixes;
+    const long g = std::lround((e.t - t0) / step_s);
+    if (g >= 0 && g < n_grid) err[static_cast<std::size_t>(g)] = frame.to_enu(s.pos_m);
+  }
+  return err;
 }
 
 SppSummary write_spp(const observation::ObsData& obs, const orbit::NavData& nav,

@@ -7,6 +7,7 @@
 #include <array>
 #include <optional>
 #include <ostream>
+#include <vector>
 
 #include "core/common/constants.hpp"
 #include "core/common/vec3.hpp"
@@ -72,6 +73,13 @@ private:
   std::optional<Ecef> last_pos_m_;
   double last_clock_m_ = 0.0;
 };
+
+/// Single-point errors of obs at a known station: fix minus station in local
+/// ENU at the station, m, one entry per step_s from the first epoch (NaN
+/// where an epoch has no fix). fixes (optional): epochs with a fix.
+std::vector<Enu> spp_error_series(const observation::ObsData& obs, const orbit::NavData& nav,
+                                  const orbit::EphemerisStore& store, const receiver::ReceiverConfig& receiver,
+                                  const Ecef& station, double step_s, int* fixes = nullptr);
 
 struct SppSummary {
   int epochs = 0;
