@@ -31,6 +31,7 @@
 #include "core/observation/rinex_obs.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
+#include "core/pipeline/receiver_profile.hpp"
 #include "core/statistics/statistics.hpp"
 #include "tools/gnssemu/calibrate.hpp"
 #include "tools/gnssemu/spp.hpp"
@@ -123,14 +124,14 @@ void switch_off(world::WorldConfig& w, const std::vector<std::string>& terms) {
 
 std::vector<std::string> g_without;  // --without terms
 
-Comparison compare(const std::string& title, const Day& d, const observation::ObsData& obs,
-                   const cli::CalibrationResult& fit, const config::Config& base, double mask_rad, int seeds) {
+/// Real against simulated: obs of day d, the world w simulated for seeds 1..seeds.
+Comparison compare(const std::string& title, const Day& d, const observation::ObsData& obs, world::WorldConfig w,
+                   const config::Config& base, double mask_rad, int seeds) {
   const double step_s = cli::grid_step_s(obs);
   const receiver::ReceiverConfig rx = comparison_receiver(base, mask_rad);
   Comparison c;
   c.title = title;
   c.real = stats_of(cli::spp_error_series(obs, d.nav, *d.store, rx, d.arp, step_s), step_s);
-  world::WorldConfig w = cli::fitted_world(fit, base.world);
   switch_off(w, g_without);
   for (int seed = 1; seed <= seeds; ++seed) {
     w.seed = static_cast<uint64_t>(seed);
@@ -227,12 +228,17 @@ int run(int argc, char** argv) {
   int seeds = 20;
   double mask_deg = 10.0;
   std::string half_day, only, csv_path;
+  bool default_world = false;
+  std::string profile;
   app.add_option("--day", day_args, "NAME,STATION,OBS,NAV (plain nav file); repeat per station-day")->required();
   app.add_option("--seeds", seeds, "simulations per day")->check(CLI::Range(1, 1000));
   app.add_option("--mask", mask_deg, "elevation mask, deg")->check(CLI::Range(0.0, 60.0));
   app.add_option("--half-day", half_day, "day NAME for the half-day-ahead check (fit 00-12 h, predict 12-24 h)");
   app.add_option("--only", only, "leave out this station only");
   app.add_option("--without", g_without, "switch a simulated term off: scale, gradient, orbit, iono, multipath, white");
+  app.add_flag("--default-world", default_world,
+               "instead: the built-in default world (no fit) against every day, as the issue measured it");
+  app.add_option("--profile", profile, "instead: this receiver profile (ublox_m8, geodetic) against every day");
   app.add_option("--csv", csv_path, "also write title,metric,real,sim_mean,sim_sd,rel_pct rows here");
   CLI11_PARSE(app, argc, argv);
   const double mask_rad = mask_deg * kDegToRad;
@@ -267,8 +273,22 @@ int run(int argc, char** argv) {
   for (const Day& d : days)
     if (std::find(stations.begin(), stations.end(), d.station) == stations.end()) stations.push_back(d.station);
 
-  out << "### Leave one station out (" << seeds << " seeds, mask " << mask_deg << " deg)\n";
   std::vector<std::pair<std::string, Summary>> summary;
+  if (default_world || !profile.empty()) {
+    const std::string what = default_world ? "the built-in default world" : "profile " + profile;
+    out << "### " << what << " (" << seeds << " seeds, mask " << mask_deg << " deg)\n";
+    for (const Day& d : days) {
+      pipeline::PipelineConfig pc{base.world, base.receiver};
+      if (!profile.empty())
+        pc = pipeline::apply_profile(pc, pipeline::receiver_profile(profile), geo::lla_from_ecef(d.arp).lat_rad);
+      const Comparison c = compare(d.name + " (" + what + ")", d, d.obs, pc.world, base, mask_rad, seeds);
+      summary.emplace_back(d.name, print(c, out, csv));
+    }
+    half_day.clear();
+    stations.clear();
+  } else {
+    out << "### Leave one station out (" << seeds << " seeds, mask " << mask_deg << " deg)\n";
+  }
   for (const std::string& held : stations) {
     if (!only.empty() && held != only) continue;
     std::vector<cli::CalibrationInput> train;
@@ -280,7 +300,8 @@ int run(int argc, char** argv) {
     print_fit(fit, out);
     for (const Day& d : days) {
       if (d.station != held) continue;
-      const Comparison c = compare(d.name + " (fit without " + held + ")", d, d.obs, fit, base, mask_rad, seeds);
+      const Comparison c = compare(d.name + " (fit without " + held + ")", d, d.obs, cli::fitted_world(fit, base.world),
+                                   base, mask_rad, seeds);
       summary.emplace_back(d.name, print(c, out, csv));
       out.flush();
     }
@@ -289,11 +310,19 @@ int run(int argc, char** argv) {
     const auto it = std::find_if(days.begin(), days.end(), [&](const Day& d) { return d.name == half_day; });
     if (it == days.end()) throw Error("--half-day: no day named " + half_day);
     const observation::ObsData first = hours(it->obs, 0.0, 12.0), second = hours(it->obs, 12.0, 24.0);
-    const cli::CalibrationResult fit = cli::calibrate(std::vector<cli::CalibrationInput>{input_of(*it, first, mask_rad)}, base);
-    out << "\n### Half day ahead: " << half_day << "\n";
-    print_fit(fit, out);
-    const Comparison c = compare(half_day + " 12-24 h (fit on 00-12 h)", *it, second, fit, base, mask_rad, seeds);
-    summary.emplace_back(half_day + " 12-24 h", print(c, out, csv));
+    // The station's morning alone, then the morning pooled with the other
+    // stations' days (what a user with more data would fit).
+    std::vector<cli::CalibrationInput> site{input_of(*it, first, mask_rad)}, pooled = site;
+    for (const Day& d : days)
+      if (d.station != it->station) pooled.push_back(input_of(d, d.obs, mask_rad));
+    for (const auto& [label, in] : {std::pair{"00-12 h", site}, std::pair{"00-12 h + the other stations", pooled}}) {
+      const cli::CalibrationResult fit = cli::calibrate(in, base);
+      out << "\n### Half day ahead: " << half_day << ", fit on " << label << "\n";
+      print_fit(fit, out);
+      const std::string title = half_day + " 12-24 h (fit on " + label + ")";
+      const Comparison c = compare(title, *it, second, cli::fitted_world(fit, base.world), base, mask_rad, seeds);
+      summary.emplace_back(title, print(c, out, csv));
+    }
   }
   out << "\n### Summary\n\n| day | mean abs rel. diff. | largest | corr. time | seed criterion mean / sd | "
          "seed-to-seed spread | perfect model |\n|---|---|---|---|---|---|---|\n";

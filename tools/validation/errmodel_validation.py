@@ -28,6 +28,8 @@ def main():
     ap.add_argument("--half-day", default="NYA1-2024-124")
     ap.add_argument("--only")
     ap.add_argument("--csv")
+    ap.add_argument("--default-world", action="store_true", help="the built-in default world against every day")
+    ap.add_argument("--profile", help="this receiver profile (ublox_m8, geodetic) against every day")
     ap.add_argument("--without", action="append", default=[], help="switch a simulated term off (error budget)")
     a = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
@@ -38,6 +40,10 @@ def main():
             argv += ["--only", a.only]
         for t in a.without:
             argv += ["--without", t]
+        if a.profile:
+            argv += ["--profile", a.profile]
+        if a.default_world:
+            argv.append("--default-world")
         if a.csv:
             argv += ["--csv", a.csv]
         return subprocess.run(argv).returncode
