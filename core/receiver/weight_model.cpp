@@ -22,12 +22,6 @@ double ura_bound_m(double ura_m) noexcept {
   return kUraBound_m.back();
 }
 
-double elevation_variance_m2(const SolverConfig& cfg, double sin_el) noexcept {
-  const double s = std::max(sin_el, kMinSinEl);
-  const double a2 = cfg.sigma_a_m * cfg.sigma_a_m, b2 = cfg.sigma_b_m * cfg.sigma_b_m;
-  return cfg.weights == WeightModel::kRtklib ? a2 + b2 / s : a2 + b2 / (s * s);
-}
-
 double satellite_variance_m2(const SolverConfig& cfg, double cn0_dbhz, double ura_m) noexcept {
   if (cfg.weights == WeightModel::kRtklib) {
     const double ura = ura_bound_m(ura_m);

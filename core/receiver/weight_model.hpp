@@ -24,8 +24,13 @@ double ura_bound_m(double ura_m) noexcept;
 double measurement_variance_m2(const SolverConfig& cfg, double sin_el, double cn0_dbhz, double ura_m) noexcept;
 
 /// The elevation part: a^2 + b^2 / s^2 (kRtklib: a^2 + b^2 / s), s = sin_el
-/// held at >= kMinSinEl, m^2.
-double elevation_variance_m2(const SolverConfig& cfg, double sin_el) noexcept;
+/// held at >= kMinSinEl, m^2. Inline: the solver evaluates it per satellite
+/// and iteration.
+inline double elevation_variance_m2(const SolverConfig& cfg, double sin_el) noexcept {
+  const double s = sin_el > kMinSinEl ? sin_el : kMinSinEl;
+  const double a2 = cfg.sigma_a_m * cfg.sigma_a_m, b2 = cfg.sigma_b_m * cfg.sigma_b_m;
+  return cfg.weights == WeightModel::kRtklib ? a2 + b2 / s : a2 + b2 / (s * s);
+}
 
 /// The part fixed for a satellite over an epoch, m^2: kElevationCn0 the
 /// C/N0 term c^2 10^(-C/N0 / 10) (0 when cn0_dbhz <= 0 or not finite; C/N0
