@@ -63,20 +63,8 @@ PipelineConfig apply_profile(PipelineConfig c, ReceiverProfile p, double lat_rad
   e.gradient.north_m = lat_rad < 0.0 ? kGradientEquatorward_m : -kGradientEquatorward_m;
   e.gradient.east_m = kGradientEast_m;
   e.gradient.process = {kGradientSigma_m, kGradientTau_s};
-  atmosphere::IonosphereConfig& io = w.atmosphere.ionosphere;
-  io.enabled = true;
-  io.source = atmosphere::VtecSource::kKlobucharShape;
-  io.klobuchar_scale = kKlobucharScale;
-  io.mapping = atmosphere::IonoMapping::kObliquityFactor;
-  io.obliquity_pivot_deg = 95.4;
-  io.perturbation = {kIonoSigma_tecu, kIonoTau_s};
-  // The troposphere the receiver corrects with (the fit gives no offset).
-  atmosphere::TroposphereConfig& tr = w.atmosphere.troposphere;
-  tr.enabled = true;
-  tr.zhd_model = atmosphere::ZhdModel::kSaastamoinen;
-  tr.zwd_model = atmosphere::ZwdModel::kSaastamoinen;
-  tr.rel_humidity = 0.7;
-  w.atmosphere.zwd_perturbation.sigma_m = 0.0;
+  world::use_klobuchar_ionosphere(w.atmosphere, kKlobucharScale, kIonoSigma_tecu, kIonoTau_s);
+  world::use_receiver_troposphere(w.atmosphere);  // the fit gives no offset
   // The device: antenna and code loop.
   e.thermal_model = world::ThermalModel::kDll;
   const bool geodetic = p == ReceiverProfile::kGeodetic;

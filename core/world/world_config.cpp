@@ -44,4 +44,23 @@ void validate(const WorldConfig& c) {
   signal::validate(c.signal.dll);
 }
 
+void use_klobuchar_ionosphere(AtmosphereConfig& a, double scale, double sigma_tecu, double tau_s) noexcept {
+  atmosphere::IonosphereConfig& io = a.ionosphere;
+  io.enabled = true;
+  io.source = atmosphere::VtecSource::kKlobucharShape;
+  io.klobuchar_scale = scale > 0.0 ? scale : 0.0;
+  io.mapping = atmosphere::IonoMapping::kObliquityFactor;
+  io.obliquity_pivot_deg = 95.4;  // IS-GPS-200 20.3.3.5.2.5: F = 1 + 16 (0.53 - E)^3, E in semicircles
+  io.perturbation = {sigma_tecu, tau_s};
+}
+
+void use_receiver_troposphere(AtmosphereConfig& a) noexcept {
+  atmosphere::TroposphereConfig& tr = a.troposphere;
+  tr.enabled = true;
+  tr.zhd_model = atmosphere::ZhdModel::kSaastamoinen;
+  tr.zwd_model = atmosphere::ZwdModel::kSaastamoinen;
+  tr.rel_humidity = 0.7;  // the receiver's standard atmosphere
+  a.zwd_perturbation.sigma_m = 0.0;
+}
+
 }  // namespace gnssemu::world

@@ -157,4 +157,15 @@ struct WorldRanges {
 /// models' validators included).
 void validate(const WorldConfig& c);
 
+/// The world's ionosphere as fitted error models have it: the broadcast
+/// Klobuchar shape x scale (>= 0) with the broadcast obliquity (what the
+/// receiver removes is 1 x the same), plus the per-line-of-sight TEC process
+/// (sigma_tecu, tau_s).
+void use_klobuchar_ionosphere(AtmosphereConfig& a, double scale, double sigma_tecu, double tau_s) noexcept;
+
+/// The world's troposphere equal to what the receiver corrects with
+/// (Saastamoinen ZHD and ZWD of the standard atmosphere at RH 0.7, no ZWD
+/// process): no tropospheric error.
+void use_receiver_troposphere(AtmosphereConfig& a) noexcept;
+
 }  // namespace gnssemu::world

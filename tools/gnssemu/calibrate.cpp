@@ -8,8 +8,6 @@
 #include <sstream>
 #include <string_view>
 
-#include "core/atmosphere/receiver_corrections.hpp"
-#include "core/atmosphere/troposphere.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
@@ -45,26 +43,14 @@ world::WorldConfig fitted_world(const CalibrationResult& r, const world::WorldCo
     em.thermal_model = world::ThermalModel::kFixed;
     em.thermal_sigma_m = 0.0;
   }
-  // World ionosphere: Klobuchar shape x (1 + alpha) with the broadcast
-  // obliquity (what the receiver removes is 1 x the same), the common
-  // relative error process and the per-line-of-sight TEC process.
-  atmosphere::IonosphereConfig& io = w.atmosphere.ionosphere;
-  io.enabled = true;
-  io.source = atmosphere::VtecSource::kKlobucharShape;
-  io.klobuchar_scale = std::max(1.0 + r.bias.klobuchar_alpha, 0.0);
-  io.mapping = atmosphere::IonoMapping::kObliquityFactor;
-  io.obliquity_pivot_deg = 95.4;
-  io.perturbation = {p.iono_sigma_tecu, p.iono_tau_s};
+  // World ionosphere: Klobuchar shape x (1 + alpha) (what the receiver
+  // removes is 1 x the same), the common relative error process and the
+  // per-line-of-sight TEC process. Troposphere: the receiver's own (beta is
+  // 0: what is common and elevation-dependent is carried by the ionosphere's
+  // terms, AtmosphereBiasFit).
+  world::use_klobuchar_ionosphere(w.atmosphere, 1.0 + r.bias.klobuchar_alpha, p.iono_sigma_tecu, p.iono_tau_s);
   em.iono_scale = {std::min(r.bias.scale_sigma, 2.0), r.bias.scale_tau_s > 0.0 ? r.bias.scale_tau_s : 3600.0};
-  // World troposphere: the receiver's own standard atmosphere (Saastamoinen
-  // ZHD and ZWD at RH 0.7 at every height; beta is 0: what is common and
-  // elevation-dependent is carried by the ionosphere's terms).
-  atmosphere::TroposphereConfig& tr = w.atmosphere.troposphere;
-  tr.enabled = true;
-  tr.zhd_model = atmosphere::ZhdModel::kSaastamoinen;
-  tr.zwd_model = atmosphere::ZwdModel::kSaastamoinen;
-  tr.rel_humidity = 0.7;
-  w.atmosphere.zwd_perturbation.sigma_m = 0.0;
+  world::use_receiver_troposphere(w.atmosphere);
   // Azimuthal gradient: the mean of the data plus a slow random process
   // (a daily cycle fitted at one site does not hold at the next).
   em.gradient.north_m = r.bias.gradient_north_m;

@@ -14,9 +14,6 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
-                                "tests", "integration"))
-import spp_vs_rtklib  # noqa: E402  (plain_copy)
 import station_days  # noqa: E402
 
 
@@ -35,7 +32,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         argv = [os.path.abspath(a.tool), "--seeds", str(a.seeds), "--half-day", a.half_day]
         for d in station_days.days(a.data):
-            argv += ["--day", f"{d.name},{d.station},{d.obs},{spp_vs_rtklib.plain_copy(d.nav, tmp)}"]
+            argv += ["--day", f"{d.name},{d.station},{d.obs},{station_days.spp_vs_rtklib.plain_copy(d.nav, tmp)}"]
         if a.only:
             argv += ["--only", a.only]
         for t in a.without:

@@ -16,10 +16,7 @@ import os
 import shutil
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(HERE)), "tests", "integration"))
-import spp_vs_rtklib  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import station_days  # noqa: E402
 
 
@@ -39,7 +36,7 @@ def main():
     print("day,solver,epochs_gnssemu,epochs_rnx2rtkp,common,nsat_differ,median_m,p95_m,max_m,rms_m")
     for d in station_days.days(a.data):
         for label, config, preset in runs:
-            r = spp_vs_rtklib.compare(os.path.abspath(a.gnssemu), rnx2rtkp, d.obs, d.nav, a.mask, config, preset, d.arp)
+            r = station_days.spp_vs_rtklib.compare(os.path.abspath(a.gnssemu), rnx2rtkp, d.obs, d.nav, a.mask, config, preset, d.arp)
             print(f"{d.name},{label},{r['ours']},{r['rtk']},{r['common']},{r.get('nsat_diff', 0)},"
                   f"{r.get('median', float('nan')):.4f},{r.get('p95', float('nan')):.4f},"
                   f"{r.get('max', float('nan')):.4f},{r.get('rms', float('nan')):.4f}", flush=True)

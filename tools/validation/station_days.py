@@ -6,9 +6,13 @@ RTKLIB check takes it)."""
 import gzip
 import math
 import os
+import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 DEFAULT_DATA = os.path.normpath(os.path.join(ROOT, "..", "shared", "data"))
+# The RTKLIB comparison of one file (and its gzip helper) is the integration test's.
+sys.path.insert(0, os.path.join(ROOT, "tests", "integration"))
+import spp_vs_rtklib  # noqa: E402,F401
 
 # name, station (held-out unit of leave-one-station-out), obs, nav
 DAYS = [
