@@ -76,8 +76,9 @@ struct NavArgs {
 };
 
 struct ObsArgs {
-  std::string obs_path, station, out_path, config_path, residuals_path;
+  std::string obs_path, station, config_path;
   std::vector<std::string> nav_paths;
+  std::string preset;  ///< spp: "rtklib" or empty
   double mask_deg = 5.0;
 };
 
@@ -264,22 +265,47 @@ int run_spp_command(const ObsArgs& a, std::ostream& out, std::ostream& err) {
   const config::Config base = a.config_path.empty() ? config::Config{} : config::load_config(a.config_path);
   receiver::ReceiverConfig rx = base.receiver;
   rx.elevation_mask_rad = a.mask_deg * kDegToRad;
+  if (a.preset == "rtklib") rx.solver = receiver::rtklib_single_point(rx.solver);
   const SppSummary sum = write_spp(obs, nav, rx, station, out);
   err << fmt::format("gnssemu spp: {} epochs, {} with a fix\n", sum.epochs, sum.fixes);
   return kExitOk;
 }
 
-int run_calibrate_command(const ObsArgs& a, std::ostream& out, std::ostream& err) {
+/// calibrate: one or several station-days (--obs, --nav, --station given as
+/// often, matched in order).
+struct CalibrateArgs {
+  std::vector<std::string> obs_paths, nav_paths, stations;
+  std::string out_path, config_path, residuals_path;
+  double mask_deg = 5.0;
+};
+
+int run_calibrate_command(const CalibrateArgs& a, std::ostream& out, std::ostream& err) {
   check_range("--mask", a.mask_deg, 0.0, 90.0, true);
-  const Ecef station = parse_station(a.station);
-  const auto [obs, nav] = load_obs_nav(a);
+  if (a.nav_paths.size() != a.obs_paths.size() || a.stations.size() != a.obs_paths.size()) {
+    throw Error(fmt::format("calibrate: {} --obs, {} --nav and {} --station: give one of each per station-day",
+                            a.obs_paths.size(), a.nav_paths.size(), a.stations.size()));
+  }
   config::Config base = a.config_path.empty() ? config::default_config() : config::load_config(a.config_path);
-  CalibrationInput in;
-  in.obs = &obs;
-  in.nav = &nav;
-  in.nav_path = a.nav_paths.front();
-  in.station_m = station;
-  in.mask_rad = a.mask_deg * kDegToRad;
+  std::vector<observation::ObsData> obs;
+  std::vector<orbit::NavData> nav;
+  std::vector<Ecef> station;
+  for (std::size_t i = 0; i < a.obs_paths.size(); ++i) {
+    station.push_back(parse_station(a.stations[i]));
+    ObsArgs one;
+    one.obs_path = a.obs_paths[i];
+    one.nav_paths = {a.nav_paths[i]};
+    auto [o, n] = load_obs_nav(one);
+    obs.push_back(std::move(o));
+    nav.push_back(std::move(n));
+  }
+  std::vector<CalibrationInput> in(obs.size());
+  for (std::size_t i = 0; i < obs.size(); ++i) {
+    in[i].obs = &obs[i];
+    in[i].nav = &nav[i];
+    in[i].nav_path = a.nav_paths[i];
+    in[i].station_m = station[i];
+    in[i].mask_rad = a.mask_deg * kDegToRad;
+  }
   const CalibrationResult r = calibrate(in, base);
   const std::string out_dir = std::filesystem::absolute(a.out_path).parent_path().string();
   std::ofstream f(a.out_path, std::ios::binary | std::ios::trunc);
@@ -383,18 +409,21 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   spp->add_option("--mask", obs_args.mask_deg, "elevation mask, deg [0, 90)")->capture_default_str();
   spp->add_option("--station", obs_args.station, "known position X,Y,Z (ECEF m): adds e_m,n_m,u_m columns");
   spp->add_option("--config", obs_args.config_path, "take the solver settings (weights, corrections) from this config");
-  CLI::App* calib =
-      app.add_subcommand("calibrate", "fit the receiver error model to a real receiver at a known position");
-  calib->add_option("--obs", obs_args.obs_path, "RINEX 2.11/3.x observation file (.gz read too)")->required();
-  calib->add_option("--nav", obs_args.nav_paths, "RINEX 2.x/3.x navigation file, plain or .gz; repeat for several")
-      ->required()
-      ->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  calib->add_option("--station", obs_args.station, "known antenna position X,Y,Z (ECEF m)")->required();
-  calib->add_option("--out", obs_args.out_path, "write the fitted TOML configuration here")->required();
-  calib->add_option("--mask", obs_args.mask_deg, "elevation mask, deg [0, 90)")->capture_default_str();
-  calib->add_option("--config", obs_args.config_path, "start from this config (default: the built-in one)");
-  calib->add_option("--residuals", obs_args.residuals_path, "also write every satellite residual used as CSV");
+  spp->add_option("--preset", obs_args.preset,
+                  "rtklib: RTKLIB rnx2rtkp single-point weights, corrections and residual test (after --config)")
+      ->check(CLI::IsMember({"rtklib"}));
+  CalibrateArgs cal;
+  CLI::App* calib = app.add_subcommand(
+      "calibrate", "fit the error model to real receivers at known positions (one or several station-days)");
+  calib->add_option("--obs", cal.obs_paths, "RINEX 2.11/3.x observation file (.gz read too); repeat per day")
+      ->required();
+  calib->add_option("--nav", cal.nav_paths, "RINEX 2.x/3.x navigation file of that day; repeat per day")->required();
+  calib->add_option("--station", cal.stations, "known antenna position X,Y,Z (ECEF m) of that day; repeat per day")
+      ->required();
+  calib->add_option("--out", cal.out_path, "write the fitted TOML configuration here")->required();
+  calib->add_option("--mask", cal.mask_deg, "elevation mask, deg [0, 90)")->capture_default_str();
+  calib->add_option("--config", cal.config_path, "start from this config (default: the built-in one)");
+  calib->add_option("--residuals", cal.residuals_path, "also write every satellite residual used as CSV");
   CLI::App* bench = app.add_subcommand("bench", "benchmarks that print time next to the error it costs");
   bench->require_subcommand(1);
   CLI::App* bench_mp = bench->add_subcommand("multipath", "scene stage: time per epoch vs error against a dense reference");
@@ -500,7 +529,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     } else if (*spp) {
       return run_spp_command(obs_args, out, err);
     } else if (*calib) {
-      return run_calibrate_command(obs_args, out, err);
+      return run_calibrate_command(cal, out, err);
     } else if (*bench_mp) {
       if (bmp.scene_path.empty() == (bmp.city_blocks <= 0)) throw Error("bench multipath: give either --scene or --city");
       if (bench_week >= 0 || bench_tow_s >= 0.0) bmp.start = checked_time(TimeArgs{bench_week, bench_tow_s});
