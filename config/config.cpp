@@ -220,7 +220,10 @@ TruthInputConfig read_truth(TableReader& t) {
   out.timeout_s = t.number("timeout_s", out.timeout_s, Range{0.0, 60.0, "s", true});
   out.max_extrapolation_s = t.number("max_extrapolation_s", out.max_extrapolation_s, Range{0.0, 10.0, "s"});
   if (out.max_extrapolation_s > out.timeout_s) {
-    t.fail(*t.find("max_extrapolation_s"), t.full_name("max_extrapolation_s") + ": " +
+    // Only timeout_s may be given (the default extrapolation exceeds it).
+    const toml::node* n = t.find("max_extrapolation_s");
+    if (n == nullptr) n = t.find("timeout_s");
+    t.fail(*n, t.full_name("max_extrapolation_s") + ": " +
                                                detail::format_number(out.max_extrapolation_s) +
                                                " s exceeds truth.timeout_s (" +
                                                detail::format_number(out.timeout_s) + " s)");

@@ -267,6 +267,15 @@ TEST(ConfigValidation, TruthTimes) {
             "t.toml:9: truth.max_extrapolation_s: 1.5 s exceeds truth.timeout_s (1 s)");
 }
 
+TEST(ConfigValidation, TimeoutBelowTheDefaultExtrapolation) {
+  // Only timeout_s given: the rule points at it (the other key is absent).
+  EXPECT_EQ(error_of(kBase + "[truth]\ntimeout_s = 0.25\n"),
+            "t.toml:8: truth.max_extrapolation_s: 0.5 s exceeds truth.timeout_s (0.25 s)");
+  EXPECT_EQ(error_of(kBase + "[truth]\n\nmax_extrapolation_s = 0.4\ntimeout_s = 0.25\n"),
+            "t.toml:9: truth.max_extrapolation_s: 0.4 s exceeds truth.timeout_s (0.25 s)");
+  EXPECT_EQ(parse(kBase + "[truth]\ntimeout_s = 0.5\n").truth.timeout_s, 0.5);
+}
+
 TEST(ConfigValidation, BindNotAnAddress) {
   EXPECT_EQ(error_of(kBase + "[truth]\nbind = \"localhost\"\n"),
             "t.toml:8: truth.bind: 'localhost' is not an IPv4 or IPv6 address");
