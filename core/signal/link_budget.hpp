@@ -3,9 +3,11 @@
 // receive antenna gain versus elevation, thermal noise density, receiver
 // noise figure and an environment noise-floor rise -> C/N0 in dB-Hz.
 // Reference: shared/reference/atmosphere.md §4.
+#include <optional>
 #include <string_view>
 
 #include "core/common/range.hpp"
+#include "core/common/violation.hpp"
 
 namespace gnssemu::signal {
 
@@ -73,8 +75,11 @@ struct LinkBudgetRanges {
   static constexpr Range implementation_loss_db{0.0, 30.0, "dB"};
 };
 
+/// The pattern falls from the zenith: horizon_gain_dbi <= zenith_gain_dbi.
+std::optional<Violation> check_gains(const AntennaPattern& a);
+
 /// Throws gnssemu::Error for a value out of its range or horizon gain above
-/// zenith gain.
+/// zenith gain (check_gains).
 void validate(const LinkBudgetConfig& cfg);
 
 /// Validated link budget. Construction throws gnssemu::Error on bad values.

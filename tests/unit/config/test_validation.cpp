@@ -217,7 +217,7 @@ TEST(ConfigValidation, SolverRanges) {
   EXPECT_EQ(error_of(kBase + "[receiver.solver]\nheight_hold_sigma_m = -1\n"),
             "t.toml:8: receiver.solver.height_hold_sigma_m: -1 is out of range (0, 1000] m");
   EXPECT_EQ(error_of(kBase + "[receiver.solver]\nresidual_test_pfa = 1\n"),
-            "t.toml:8: receiver.solver.residual_test_pfa: 1 is out of range [0, 1)");
+            "t.toml:8: receiver.solver.residual_test_pfa: 1 is out of range [0, 0.5)");
   EXPECT_EQ(error_of(kBase + "[receiver.solver]\nmax_iterations = 0\n"),
             "t.toml:8: receiver.solver.max_iterations: 0 is out of range [1, 100]");
   EXPECT_EQ(parse(kBase + "[receiver.solver]\nsigma_a_m = 0\n").receiver.solver.sigma_a_m, 0.0);
@@ -250,8 +250,7 @@ TEST(ConfigValidation, CoreRangesAreTheConfigRanges) {
             "t.toml:8: receiver.max_channels: 40 is out of range [4, 32]");
   EXPECT_EQ(parse(kBase + "[receiver]\nmax_channels = 32\n").receiver.max_channels, 32);
   EXPECT_EQ(error_of(kBase + "[receiver.solver]\nresidual_test_pfa = 0.7\n"),
-            "t.toml:7: solver: residual_test_pfa 0.7 must be below 0.5 (a test that fails more often than not "
-            "detects nothing)");
+            "t.toml:8: receiver.solver.residual_test_pfa: 0.7 is out of range [0, 0.5)");
 }
 
 TEST(ConfigValidation, PortOutside16Bits) {
