@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/common/range.hpp"
 #include "core/common/vec3.hpp"
 
 namespace gnssemu::scene {
@@ -79,6 +80,15 @@ private:
   std::vector<bool> finite_;
   Mesh mesh_;
   uint16_t current_material_ = 0;
+};
+
+/// Valid values of Placement's fields as a configuration gives them (yaw in
+/// degrees; each offset component within MeshBuilder::kMaxCoordinate_m).
+/// load_mesh itself requires a finite placement with scale > 0.
+struct PlacementRanges {
+  static constexpr Range yaw_deg{-360.0, 360.0, "deg"};
+  static constexpr Range scale{0.0, 1.0e6, "", true};
+  static constexpr Range offset_m{-MeshBuilder::kMaxCoordinate_m, MeshBuilder::kMaxCoordinate_m, "m"};
 };
 
 /// Reads a building footprint file (.toml, docs/scene.md) placed by

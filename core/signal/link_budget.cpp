@@ -58,6 +58,12 @@ std::optional<Violation> check_gains(const AntennaPattern& a) {
                        format_number(a.zenith_gain_dbi)};
 }
 
+std::vector<std::string_view> environment_preset_names() {
+  std::vector<std::string_view> out;
+  for (const NoisePreset& p : kNoisePresets) out.push_back(p.name);
+  return out;
+}
+
 void validate(const LinkBudgetConfig& cfg) {
   using L = LinkBudgetRanges;
   using A = AntennaRanges;

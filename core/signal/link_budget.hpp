@@ -5,6 +5,7 @@
 // Reference: shared/reference/atmosphere.md §4.
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "core/common/range.hpp"
 #include "core/common/violation.hpp"
@@ -38,6 +39,8 @@ double antenna_gain_dbi(const AntennaPattern& p, double el_rad) noexcept;
 /// "countryside" 1, "suburban" 3, "urban" 6, "industrial" 20, "jamming" 40.
 /// Throws gnssemu::Error naming the known presets for an unknown name.
 double environment_noise_rise_db(std::string_view preset);
+/// The names environment_noise_rise_db knows, in its order.
+std::vector<std::string_view> environment_preset_names();
 
 struct LinkBudgetConfig {
   double eirp_dbw = 26.8;              ///< satellite EIRP, dBW (CBNU 26.25, TN 27)

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "every_key.hpp"
 #include "test_helpers.hpp"
 
 namespace gnssemu::config::test {
@@ -391,6 +392,22 @@ TEST(ConfigLoad, RelativePathFromWorkingDirectory) {
   EXPECT_NO_THROW(c = load_config("default.toml"));
   fs::current_path(old);
   EXPECT_EQ(c.nav_file, kSource + "/config/nav/brdc0010.22n");
+}
+
+TEST(ConfigLoad, RoundTripEveryKeyAndTheDefaults) {
+  // to_toml writes every key (ConfigKeys.EveryKeyIsReadWrittenAndDocumented)
+  // with text that reads back to the same value, so equal texts are equal
+  // configurations.
+  for (const std::string& text : {kEveryKey, kOtherKeys, kBase}) {
+    const Config c = parse(text);
+    const std::string written = to_toml(c, kData);
+    const Config back = parse_config(written, "written.toml", kData);
+    expect_same(c, back);
+    EXPECT_EQ(to_toml(back, kData), written);
+  }
+  const Config d = default_config();
+  EXPECT_EQ(to_toml(parse_config(to_toml(d, default_config_dir()), "d.toml", default_config_dir()), default_config_dir()),
+            to_toml(d, default_config_dir()));
 }
 
 }  // namespace
