@@ -1,8 +1,10 @@
-// The key tables (config/config_keys.hpp) against what the reader reads,
-// what to_toml writes and what docs/configuration.md documents: a key that
-// is readable but not writable, writable but not readable, readable but
-// undocumented, or documented but never read fails here, and so does a
-// stale key table in the docs (GNSSEMU_REBUILD_DOCS=1 rewrites them).
+// config/config_keys: the tables of the configuration's own settings
+// ([origin], [nav], [time], [truth], [demo], [log]), and every key table
+// against what the reader reads, what to_toml writes and what
+// docs/configuration.md documents: a key that is readable but not writable,
+// writable but not readable, readable but undocumented, or documented but
+// never read fails here, and so does a stale key table in the docs
+// (GNSSEMU_REBUILD_DOCS=1 rewrites them).
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -111,6 +113,129 @@ std::string listed(const std::set<std::string>& names) {
   std::string out;
   for (const std::string& n : names) out += " " + n;
   return out;
+}
+
+// --- [origin], [nav] ------------------------------------------------------
+
+TEST(ConfigValidation, LatitudeOutsidePlusMinus90) {
+  EXPECT_EQ(error_of("[origin]\nlat_deg = 90.5\nlon_deg = 2\nheight_m = 0\n[nav]\nfile = \"nav/brdc0010.22n\"\n"),
+            "t.toml:2: origin.lat_deg: 90.5 is out of range [-90, 90] deg");
+  EXPECT_EQ(error_of("[origin]\nlat_deg = -91\nlon_deg = 2\nheight_m = 0\n[nav]\nfile = \"nav/brdc0010.22n\"\n"),
+            "t.toml:2: origin.lat_deg: -91 is out of range [-90, 90] deg");
+  const Config pole = parse("[origin]\nlat_deg = -90\nlon_deg = 0\nheight_m = 0\n[nav]\nfile = \"nav/brdc0010.22n\"\n");
+  EXPECT_EQ(pole.origin.lat_rad, -kPi / 2.0);
+}
+
+TEST(ConfigValidation, LongitudeOutsidePlusMinus180) {
+  EXPECT_EQ(error_of("[origin]\nlat_deg = 1\nlon_deg = 180.25\nheight_m = 0\n[nav]\nfile = \"nav/brdc0010.22n\"\n"),
+            "t.toml:3: origin.lon_deg: 180.25 is out of range [-180, 180] deg");
+  EXPECT_EQ(error_of("[origin]\nlat_deg = 1\nlon_deg = -181\nheight_m = 0\n[nav]\nfile = \"nav/brdc0010.22n\"\n"),
+            "t.toml:3: origin.lon_deg: -181 is out of range [-180, 180] deg");
+  // -180 is the antimeridian; Lla keeps longitude in (-pi, pi].
+  const Config c = parse("[origin]\nlat_deg = 1\nlon_deg = -180\nheight_m = 0\n[nav]\nfile = \"nav/brdc0010.22n\"\n");
+  EXPECT_EQ(c.origin.lon_rad, kPi);
+}
+
+TEST(ConfigValidation, HeightOutOfRange) {
+  EXPECT_EQ(error_of("[origin]\nlat_deg = 1\nlon_deg = 2\nheight_m = 6378137\n[nav]\nfile = \"nav/brdc0010.22n\"\n"),
+            "t.toml:4: origin.height_m: 6378137 is out of range [-1000, 50000] m");
+}
+
+TEST(ConfigValidation, NavFileNotFoundSaysWhereItLooked) {
+  EXPECT_EQ(error_of("[origin]\nlat_deg = 1\nlon_deg = 2\nheight_m = 0\n[nav]\nfile = \"nav/missing.22n\"\n"),
+            "t.toml:6: nav.file: 'nav/missing.22n' not found (tried " + kData + "/nav/missing.22n)");
+  // A folder is not a nav file.
+  EXPECT_EQ(error_of("[origin]\nlat_deg = 1\nlon_deg = 2\nheight_m = 0\n[nav]\nfile = \"nav\"\n"),
+            "t.toml:6: nav.file: 'nav' not found (tried " + kData + "/nav)");
+}
+
+// --- [time] ----------------------------------------------------------------
+
+TEST(ConfigValidation, BadDateStrings) {
+  EXPECT_EQ(error_of(kBase + "[time]\nstart = \"2022-13-01T00:00:00\"\n"),
+            "t.toml:8: time.start: bad date-time: month 13 is not 1..12");
+  EXPECT_EQ(error_of(kBase + "[time]\nstart = \"2022-02-29T00:00:00\"\n"),
+            "t.toml:8: time.start: bad date-time: day 29 does not exist in 2022-02");
+  EXPECT_EQ(error_of(kBase + "[time]\nstart = \"2022-01-01T24:00:00\"\n"),
+            "t.toml:8: time.start: bad date-time: hour 24 is not 0..23");
+  EXPECT_EQ(error_of(kBase + "[time]\nstart = \"1979-12-31T00:00:00\"\n"),
+            "t.toml:8: time.start: bad date-time: before the GPS epoch 1980-01-06");
+  EXPECT_EQ(error_of(kBase + "[time]\nstart = \"yesterday\"\n"),
+            "t.toml:8: time.start: 'yesterday' is not a GPS date-time YYYY-MM-DDTHH:MM:SS[.fff] (no time zone)");
+  EXPECT_EQ(error_of(kBase + "[time]\nstart = \"2022-01-01T12:00:00Z\"\n"),
+            "t.toml:8: time.start: '2022-01-01T12:00:00Z' is not a GPS date-time YYYY-MM-DDTHH:MM:SS[.fff] "
+            "(no time zone)");
+  EXPECT_EQ(error_of(kBase + "[time]\nstart = \"2022-01-01T12:00:00.\"\n"),
+            "t.toml:8: time.start: '2022-01-01T12:00:00.' is not a GPS date-time YYYY-MM-DDTHH:MM:SS[.fff] "
+            "(no time zone)");
+  EXPECT_EQ(error_of(kBase + "[time]\nstart = 2022-01-01T12:00:00+01:00\n"),
+            "t.toml:8: time.start: GPS time has no time zone; drop the offset");
+  EXPECT_EQ(error_of(kBase + "[time]\nstart = 2022-01-01\n"),
+            "t.toml:8: time.start: expected a date-time string \"YYYY-MM-DDTHH:MM:SS\", got a date");
+}
+
+TEST(ConfigValidation, GoodDates) {
+  const time::GpsTime noon = time::GpsTime::from_calendar({2022, 1, 1, 12, 0, 0.0});
+  EXPECT_EQ(parse(kBase + "[time]\nstart = \"2022-01-01T12:00:00\"\n").time.start, noon);
+  EXPECT_EQ(parse(kBase + "[time]\nstart = \"2022-01-01 12:00:00\"\n").time.start, noon);
+  EXPECT_EQ(parse(kBase + "[time]\nstart = 2022-01-01T12:00:00\n").time.start, noon);  // TOML local date-time
+  const auto frac = parse(kBase + "[time]\nstart = \"2022-01-01T12:00:00.25\"\n").time.start;
+  ASSERT_TRUE(frac.has_value());
+  EXPECT_EQ(frac->week(), 2190);
+  EXPECT_EQ(frac->tow_s(), 6 * 86400.0 + 12 * 3600.0 + 0.25);
+  EXPECT_EQ(parse(kBase + "[time]\nstart = \"2024-02-29T00:00:00\"\n").time.start,
+            time::GpsTime::from_calendar({2024, 2, 29, 0, 0, 0.0}));
+}
+
+TEST(ConfigValidation, BadTimeMode) {
+  EXPECT_EQ(error_of(kBase + "[time]\nmode = \"fast\"\n"),
+            "t.toml:8: time.mode: 'fast' is not \"realtime\" or \"lockstep\"");
+}
+
+TEST(ConfigValidation, StartAndWallClockExclusive) {
+  EXPECT_EQ(error_of(kBase + "[time]\nstart = \"2022-01-01T12:00:00\"\nuse_wall_clock_date = true\n"),
+            "t.toml:9: time.use_wall_clock_date: cannot be true together with time.start");
+}
+
+// --- [truth], [demo], [log] ------------------------------------------------
+
+TEST(ConfigValidation, PortOutside16Bits) {
+  EXPECT_EQ(error_of(kBase + "[truth]\nport = 65536\n"), "t.toml:8: truth.port: 65536 is out of range [0, 65535]");
+  EXPECT_EQ(error_of(kBase + "[truth]\nport = -1\n"), "t.toml:8: truth.port: -1 is out of range [0, 65535]");
+  EXPECT_EQ(parse(kBase + "[truth]\nport = 0\n").truth.port, 0);
+  EXPECT_EQ(parse(kBase + "[truth]\nport = 65535\n").truth.port, 65535);
+}
+
+TEST(ConfigValidation, TruthTimes) {
+  EXPECT_EQ(error_of(kBase + "[truth]\ntimeout_s = 0\n"), "t.toml:8: truth.timeout_s: 0 is out of range (0, 60] s");
+  EXPECT_EQ(error_of(kBase + "[truth]\ntimeout_s = 1\nmax_extrapolation_s = 1.5\n"),
+            "t.toml:9: truth.max_extrapolation_s: 1.5 s exceeds truth.timeout_s (1 s)");
+}
+
+TEST(ConfigValidation, TimeoutBelowTheDefaultExtrapolation) {
+  // Only timeout_s given: the rule points at it (the other key is absent).
+  EXPECT_EQ(error_of(kBase + "[truth]\ntimeout_s = 0.25\n"),
+            "t.toml:8: truth.max_extrapolation_s: 0.5 s exceeds truth.timeout_s (0.25 s)");
+  EXPECT_EQ(error_of(kBase + "[truth]\n\nmax_extrapolation_s = 0.4\ntimeout_s = 0.25\n"),
+            "t.toml:9: truth.max_extrapolation_s: 0.4 s exceeds truth.timeout_s (0.25 s)");
+  EXPECT_EQ(parse(kBase + "[truth]\ntimeout_s = 0.5\n").truth.timeout_s, 0.5);
+}
+
+TEST(ConfigValidation, BindNotAnAddress) {
+  EXPECT_EQ(error_of(kBase + "[truth]\nbind = \"localhost\"\n"),
+            "t.toml:8: truth.bind: 'localhost' is not an IPv4 or IPv6 address");
+  EXPECT_EQ(parse(kBase + "[truth]\nbind = \"::1\"\n").truth.bind_address, "::1");
+  EXPECT_EQ(parse(kBase + "[truth]\nbind = \"0.0.0.0\"\n").truth.bind_address, "0.0.0.0");
+}
+
+TEST(ConfigValidation, DemoRanges) {
+  EXPECT_EQ(error_of(kBase + "[demo]\nradius_m = 0\n"), "t.toml:8: demo.radius_m: 0 is out of range (0, 100000] m");
+  EXPECT_EQ(error_of(kBase + "[demo]\nspeed_m_s = -1\n"), "t.toml:8: demo.speed_m_s: -1 is out of range [0, 500] m/s");
+}
+
+TEST(ConfigValidation, UnknownLogLevel) {
+  EXPECT_EQ(error_of(kBase + "[log]\nlevel = \"verbose\"\n"),
+            "t.toml:8: log.level: 'verbose' is not one of trace, debug, info, warn, error, critical, off");
 }
 
 // --- every key table ------------------------------------------------------
