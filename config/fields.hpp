@@ -84,6 +84,9 @@ struct Field {
   std::string_view doc_range;    ///< docs, where range, bounds or names say less
   std::string (*doc_range_of)() = nullptr;  ///< docs, where the range text is computed (names of a core table)
   bool open_keys = false;        ///< docs: a table whose keys are names from the data
+  /// Plain keys: the member the key holds, of the type its kind reads (one
+  /// small function per row; the kind's read, write and docs are shared).
+  void* (*at)(T&) = nullptr;
   void (*read)(TableReader&, const Field&, T&) = nullptr;
   /// nullptr: read only, an alias the writer writes as another key.
   void (*write)(TomlWriter&, const Field&, const T&) = nullptr;
@@ -293,23 +296,60 @@ std::string range_text(const Range& r);
 /// "integer [min, max]".
 std::string integer_range_text(int64_t min, int64_t max);
 
+/// The member a plain key holds (the writer only reads it).
+template <class V, class T>
+V& value_of(const Field<T>& f, T& o) {
+  return *static_cast<V*>(f.at(o));
+}
+template <class V, class T>
+const V& value_of(const Field<T>& f, const T& o) {
+  return *static_cast<const V*>(f.at(const_cast<T&>(o)));
+}
+
+/// A plain row of key holding the member at Path.
+template <auto... Path>
+constexpr Field<OwnerOf<Path...>> plain_row(std::string_view key, std::string_view meaning) {
+  using T = OwnerOf<Path...>;
+  Field<T> row = make_field<T>(key, meaning);
+  row.at = [](T& o) -> void* { return &member<Path...>(o); };
+  return row;
+}
+
+template <class T>
+void read_number(TableReader& t, const Field<T>& f, T& o) {
+  double& v = value_of<double>(f, o);
+  v = t.number(f.key, f.required ? std::nullopt : std::optional<double>(v), f.range);
+}
+template <class T>
+void write_number(TomlWriter& w, const Field<T>& f, const T& o) {
+  w.key(f.key, number_text(value_of<double>(f, o)), f.note);
+}
+template <class T>
+void describe_number(KeyDocs& d, const Field<T>& f, const T& o) {
+  d.add(key_doc(f, o, std::string(f.range.unit), range_text(f.range)));
+}
+
 /// A number in a core Range.
 template <auto... Path>
 constexpr Field<OwnerOf<Path...>> number(std::string_view key, const Range& range, std::string_view meaning) {
   using T = OwnerOf<Path...>;
-  Field<T> row = make_field<T>(key, meaning);
+  static_assert(std::is_same_v<std::remove_cvref_t<decltype(member<Path...>(std::declval<T&>()))>, double>);
+  Field<T> row = plain_row<Path...>(key, meaning);
   row.range = range;
-  row.read = [](TableReader& t, const Field<T>& f, T& o) {
-    double& v = member<Path...>(o);
-    v = t.number(f.key, f.required ? std::nullopt : std::optional<double>(v), f.range);
-  };
-  row.write = [](TomlWriter& w, const Field<T>& f, const T& o) {
-    w.key(f.key, number_text(member<Path...>(o)), f.note);
-  };
-  row.describe = [](KeyDocs& d, const Field<T>& f, const T& o) {
-    d.add(key_doc(f, o, std::string(f.range.unit), range_text(f.range)));
-  };
+  row.read = read_number<T>;
+  row.write = write_number<T>;
+  row.describe = describe_number<T>;
   return row;
+}
+
+template <class T>
+void read_angle(TableReader& t, const Field<T>& f, T& o) {
+  double& rad = value_of<double>(f, o);
+  rad = t.number(f.key, f.required ? std::nullopt : std::optional<double>(rad * kRadToDeg), f.range) * kDegToRad;
+}
+template <class T>
+void write_angle(TomlWriter& w, const Field<T>& f, const T& o) {
+  w.key(f.key, degrees_text(value_of<double>(f, o)), f.note);
 }
 
 /// Degrees in the file, radians in the struct; range in degrees.
@@ -317,35 +357,37 @@ template <auto... Path>
 constexpr Field<OwnerOf<Path...>> angle(std::string_view key, const Range& range_deg, std::string_view meaning) {
   using T = OwnerOf<Path...>;
   Field<T> row = number<Path...>(key, range_deg, meaning);
-  row.read = [](TableReader& t, const Field<T>& f, T& o) {
-    double& rad = member<Path...>(o);
-    rad = t.number(f.key, f.required ? std::nullopt : std::optional<double>(rad * kRadToDeg), f.range) * kDegToRad;
-  };
-  row.write = [](TomlWriter& w, const Field<T>& f, const T& o) {
-    w.key(f.key, degrees_text(member<Path...>(o)), f.note);
-  };
+  row.read = read_angle<T>;
+  row.write = write_angle<T>;
   return row;
+}
+
+template <class T, class V>
+void read_integer(TableReader& t, const Field<T>& f, T& o) {
+  V& v = value_of<V>(f, o);
+  v = static_cast<V>(
+      t.integer(f.key, f.required ? std::nullopt : std::optional<int64_t>(static_cast<int64_t>(v)), f.min, f.max));
+}
+template <class T, class V>
+void write_integer(TomlWriter& w, const Field<T>& f, const T& o) {
+  w.key(f.key, std::to_string(value_of<V>(f, o)), f.note);
+}
+template <class T>
+void describe_integer(KeyDocs& d, const Field<T>& f, const T& o) {
+  d.add(key_doc(f, o, "", integer_range_text(f.min, f.max)));
 }
 
 /// An integer in [min, max] (floats rejected).
 template <auto... Path>
 constexpr Field<OwnerOf<Path...>> integer(std::string_view key, int64_t min, int64_t max, std::string_view meaning) {
   using T = OwnerOf<Path...>;
-  using V = std::remove_reference_t<decltype(member<Path...>(std::declval<T&>()))>;
-  Field<T> row = make_field<T>(key, meaning);
+  using V = std::remove_cvref_t<decltype(member<Path...>(std::declval<T&>()))>;
+  Field<T> row = plain_row<Path...>(key, meaning);
   row.min = min;
   row.max = max;
-  row.read = [](TableReader& t, const Field<T>& f, T& o) {
-    V& v = member<Path...>(o);
-    v = static_cast<V>(
-        t.integer(f.key, f.required ? std::nullopt : std::optional<int64_t>(static_cast<int64_t>(v)), f.min, f.max));
-  };
-  row.write = [](TomlWriter& w, const Field<T>& f, const T& o) {
-    w.key(f.key, std::to_string(member<Path...>(o)), f.note);
-  };
-  row.describe = [](KeyDocs& d, const Field<T>& f, const T& o) {
-    d.add(key_doc(f, o, "", integer_range_text(f.min, f.max)));
-  };
+  row.read = read_integer<T, V>;
+  row.write = write_integer<T, V>;
+  row.describe = describe_integer<T>;
   return row;
 }
 
@@ -358,16 +400,28 @@ constexpr Field<OwnerOf<Path...>> integer(std::string_view key, const Range& ran
   return row;
 }
 
+template <class T>
+void read_boolean(TableReader& t, const Field<T>& f, T& o) {
+  bool& v = value_of<bool>(f, o);
+  v = t.boolean(f.key, f.required ? std::nullopt : std::optional<bool>(v));
+}
+template <class T>
+void write_boolean(TomlWriter& w, const Field<T>& f, const T& o) {
+  w.key(f.key, bool_text(value_of<bool>(f, o)), f.note);
+}
+template <class T>
+void describe_boolean(KeyDocs& d, const Field<T>& f, const T& o) {
+  d.add(key_doc(f, o, "bool", "—"));
+}
+
 template <auto... Path>
 constexpr Field<OwnerOf<Path...>> boolean(std::string_view key, std::string_view meaning) {
   using T = OwnerOf<Path...>;
-  Field<T> row = make_field<T>(key, meaning);
-  row.read = [](TableReader& t, const Field<T>& f, T& o) {
-    bool& v = member<Path...>(o);
-    v = t.boolean(f.key, f.required ? std::nullopt : std::optional<bool>(v));
-  };
-  row.write = [](TomlWriter& w, const Field<T>& f, const T& o) { w.key(f.key, bool_text(member<Path...>(o)), f.note); };
-  row.describe = [](KeyDocs& d, const Field<T>& f, const T& o) { d.add(key_doc(f, o, "bool", "—")); };
+  static_assert(std::is_same_v<std::remove_cvref_t<decltype(member<Path...>(std::declval<T&>()))>, bool>);
+  Field<T> row = plain_row<Path...>(key, meaning);
+  row.read = read_boolean<T>;
+  row.write = write_boolean<T>;
+  row.describe = describe_boolean<T>;
   return row;
 }
 
@@ -399,34 +453,47 @@ inline constexpr auto kChoiceNames = [] {
   return n;
 }();
 
+template <class T, const auto& Names, ChoiceStyle Style>
+void read_choice(TableReader& t, const Field<T>& f, T& o) {
+  using E = decltype(Names[0].value);
+  const toml::node* n = present(t, f.key, f.required);
+  if (n == nullptr) return;
+  const std::string v = t.string(f.key, std::nullopt);
+  for (const auto& c : Names) {
+    if (c.name == v) {
+      value_of<E>(f, o) = c.value;
+      return;
+    }
+  }
+  t.fail(*n, t.full_name(f.key) + ": '" + v + "' is not " + (Style == ChoiceStyle::kOneOf ? "one of " : "") +
+                 known_names(kChoiceNames<Names>, Style));
+}
+template <class T, const auto& Names>
+void write_choice(TomlWriter& w, const Field<T>& f, const T& o) {
+  using E = decltype(Names[0].value);
+  std::string_view name = Names[0].name;
+  for (const auto& c : Names) {
+    if (c.value == value_of<E>(f, o)) {
+      name = c.name;
+      break;
+    }
+  }
+  w.key(f.key, string_text(name), f.note);
+}
+template <class T, const auto& Names>
+void describe_choice(KeyDocs& d, const Field<T>& f, const T& o) {
+  d.add(key_doc(f, o, "", names_doc(kChoiceNames<Names>)));
+}
+
 template <const auto& Names, ChoiceStyle Style, auto... Path>
 constexpr Field<OwnerOf<Path...>> choice_field(std::string_view key, std::string_view meaning) {
   using T = OwnerOf<Path...>;
-  Field<T> row = make_field<T>(key, meaning);
-  row.read = [](TableReader& t, const Field<T>& f, T& o) {
-    const toml::node* n = present(t, f.key, f.required);
-    if (n == nullptr) return;
-    const std::string v = t.string(f.key, std::nullopt);
-    for (const auto& c : Names) {
-      if (c.name == v) {
-        member<Path...>(o) = c.value;
-        return;
-      }
-    }
-    t.fail(*n, t.full_name(f.key) + ": '" + v + "' is not " + (Style == ChoiceStyle::kOneOf ? "one of " : "") +
-                   known_names(kChoiceNames<Names>, Style));
-  };
-  row.write = [](TomlWriter& w, const Field<T>& f, const T& o) {
-    std::string_view name = Names[0].name;
-    for (const auto& c : Names) {
-      if (c.value == member<Path...>(o)) {
-        name = c.name;
-        break;
-      }
-    }
-    w.key(f.key, string_text(name), f.note);
-  };
-  row.describe = [](KeyDocs& d, const Field<T>& f, const T& o) { d.add(key_doc(f, o, "", names_doc(kChoiceNames<Names>))); };
+  static_assert(std::is_same_v<std::remove_cvref_t<decltype(member<Path...>(std::declval<T&>()))>,
+                               std::remove_cv_t<decltype(Names[0].value)>>);
+  Field<T> row = plain_row<Path...>(key, meaning);
+  row.read = read_choice<T, Names, Style>;
+  row.write = write_choice<T, Names>;
+  row.describe = describe_choice<T, Names>;
   return row;
 }
 
@@ -452,45 +519,61 @@ bool is_file(const std::string& path);
 /// text is an IPv4 or IPv6 address.
 bool is_ip_address(const std::string& text);
 
+template <class T>
+void read_existing_file(TableReader& t, const Field<T>& f, T& o) {
+  const std::string given = t.string(f.key, std::nullopt);
+  const toml::node* node = t.find(f.key);
+  if (given.empty()) t.fail(*node, t.full_name(f.key) + ": must not be empty");
+  const std::string path = resolve_path(given, t.base_dir());
+  if (!is_file(path)) t.fail(*node, t.full_name(f.key) + ": '" + given + "' not found (tried " + path + ")");
+  value_of<std::string>(f, o) = path;
+}
+template <class T>
+void write_path(TomlWriter& w, const Field<T>& f, const T& o) {
+  w.key(f.key, string_text(w.path_text(value_of<std::string>(f, o))), f.note);
+}
+template <class T>
+void describe_text(KeyDocs& d, const Field<T>& f, const T& o) {
+  d.add(key_doc(f, o, "", ""));
+}
+
 /// An existing file, relative to the config file's folder; stored absolute,
 /// written relative to the folder to_toml is given when under it.
 template <auto... Path>
 constexpr Field<OwnerOf<Path...>> existing_file(std::string_view key, std::string_view meaning) {
   using T = OwnerOf<Path...>;
-  Field<T> row = make_field<T>(key, meaning);
+  Field<T> row = plain_row<Path...>(key, meaning);
   row.required = true;
   row.unit = "path";
   row.doc_range = "an existing file";
-  row.read = [](TableReader& t, const Field<T>& f, T& o) {
-    const std::string given = t.string(f.key, std::nullopt);
-    const toml::node* node = t.find(f.key);
-    if (given.empty()) t.fail(*node, t.full_name(f.key) + ": must not be empty");
-    const std::string path = resolve_path(given, t.base_dir());
-    if (!is_file(path)) t.fail(*node, t.full_name(f.key) + ": '" + given + "' not found (tried " + path + ")");
-    member<Path...>(o) = path;
-  };
-  row.write = [](TomlWriter& w, const Field<T>& f, const T& o) {
-    w.key(f.key, string_text(w.path_text(member<Path...>(o))), f.note);
-  };
-  row.describe = [](KeyDocs& d, const Field<T>& f, const T& o) { d.add(key_doc(f, o, "", "")); };
+  row.read = read_existing_file<T>;
+  row.write = write_path<T>;
+  row.describe = describe_text<T>;
   return row;
+}
+
+template <class T>
+void read_address(TableReader& t, const Field<T>& f, T& o) {
+  const toml::node* n = present(t, f.key, f.required);
+  if (n == nullptr) return;
+  const std::string a = t.string(f.key, std::nullopt);
+  if (!is_ip_address(a)) t.fail(*n, t.full_name(f.key) + ": '" + a + "' is not an IPv4 or IPv6 address");
+  value_of<std::string>(f, o) = a;
+}
+template <class T>
+void write_string(TomlWriter& w, const Field<T>& f, const T& o) {
+  w.key(f.key, string_text(value_of<std::string>(f, o)), f.note);
 }
 
 /// An IPv4 or IPv6 address (no host names).
 template <auto... Path>
 constexpr Field<OwnerOf<Path...>> address(std::string_view key, std::string_view meaning) {
   using T = OwnerOf<Path...>;
-  Field<T> row = make_field<T>(key, meaning);
+  Field<T> row = plain_row<Path...>(key, meaning);
   row.doc_range = "IPv4 or IPv6 address";
-  row.read = [](TableReader& t, const Field<T>& f, T& o) {
-    const toml::node* n = present(t, f.key, f.required);
-    if (n == nullptr) return;
-    const std::string a = t.string(f.key, std::nullopt);
-    if (!is_ip_address(a)) t.fail(*n, t.full_name(f.key) + ": '" + a + "' is not an IPv4 or IPv6 address");
-    member<Path...>(o) = a;
-  };
-  row.write = [](TomlWriter& w, const Field<T>& f, const T& o) { w.key(f.key, string_text(member<Path...>(o)), f.note); };
-  row.describe = [](KeyDocs& d, const Field<T>& f, const T& o) { d.add(key_doc(f, o, "", "")); };
+  row.read = read_address<T>;
+  row.write = write_string<T>;
+  row.describe = describe_text<T>;
   return row;
 }
 
@@ -506,7 +589,7 @@ constexpr Field<T> custom(std::string_view key, std::string_view unit, std::stri
   row.doc_range = range_text;
   row.read = read;
   row.write = write;
-  row.describe = [](KeyDocs& d, const Field<T>& f, const T& o) { d.add(key_doc(f, o, "", "")); };
+  row.describe = describe_text<T>;
   return row;
 }
 
