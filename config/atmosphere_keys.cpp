@@ -108,7 +108,8 @@ constexpr Section<Shell> kShell{kShellFields};
 // The five shells, each an optional table named after it.
 void read_shells(TableReader& t, const Field<ShellsConfig>&, ShellsConfig& c) {
   for (std::size_t i = 0; i < atmosphere::kShellCount; ++i) {
-    if (std::optional<TableReader> s = t.table(atmosphere::kShellNames[i], false)) read_section(*s, kShell, c.shells[i]);
+    std::optional<TableReader> s = t.table(atmosphere::kShellNames[i], false);
+    if (s) read_section(*s, kShell, c.shells[i]);
   }
 }
 
@@ -199,7 +200,9 @@ void read_clouds(TableReader& t, const Field<AtmosphereConfig>& f, AtmosphereCon
 
 void write_clouds(TomlWriter& w, const Field<AtmosphereConfig>& f, const AtmosphereConfig& a) {
   const std::string path = sub_table(w, f.key);
-  for (std::size_t i = 0; i < a.clouds_rain.layer_count; ++i) write_table(w, kCloud, path, {}, a.clouds_rain.layers[i], true);
+  for (std::size_t i = 0; i < a.clouds_rain.layer_count; ++i) {
+    write_table(w, kCloud, path, {}, a.clouds_rain.layers[i], true);
+  }
 }
 
 void describe_clouds(KeyDocs& d, const Field<AtmosphereConfig>& f, const AtmosphereConfig&) {

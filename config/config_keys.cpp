@@ -208,7 +208,9 @@ void read_level(TableReader& t, const Field<LogConfig>& f, LogConfig& log) {
   }
 }
 
-void write_level(TomlWriter& w, const Field<LogConfig>& f, const LogConfig& log) { w.key(f.key, string_text(log.level)); }
+void write_level(TomlWriter& w, const Field<LogConfig>& f, const LogConfig& log) {
+  w.key(f.key, string_text(log.level));
+}
 
 std::string level_names() { return names_doc(kLogLevels); }
 

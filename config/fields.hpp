@@ -306,12 +306,23 @@ const V& value_of(const Field<T>& f, const T& o) {
   return *static_cast<const V*>(f.at(const_cast<T&>(o)));
 }
 
-/// A plain row of key holding the member at Path.
-template <auto... Path>
-constexpr Field<OwnerOf<Path...>> plain_row(std::string_view key, std::string_view meaning) {
-  using T = OwnerOf<Path...>;
+/// The member at Path is a V (what a kind's functions read and write).
+template <class V, auto... Path>
+inline constexpr bool kHolds =
+    std::is_same_v<std::remove_cvref_t<decltype(member<Path...>(std::declval<OwnerOf<Path...>&>()))>, V>;
+
+/// A plain row of key holding the member at Path, read, written and
+/// documented by its kind's functions.
+template <auto... Path, class T = OwnerOf<Path...>>
+constexpr Field<T> plain_row(std::string_view key, std::string_view meaning,
+                             void (*read)(TableReader&, const Field<T>&, T&),
+                             void (*write)(TomlWriter&, const Field<T>&, const T&),
+                             void (*describe)(KeyDocs&, const Field<T>&, const T&)) {
   Field<T> row = make_field<T>(key, meaning);
   row.at = [](T& o) -> void* { return &member<Path...>(o); };
+  row.read = read;
+  row.write = write;
+  row.describe = describe;
   return row;
 }
 
@@ -333,12 +344,9 @@ void describe_number(KeyDocs& d, const Field<T>& f, const T& o) {
 template <auto... Path>
 constexpr Field<OwnerOf<Path...>> number(std::string_view key, const Range& range, std::string_view meaning) {
   using T = OwnerOf<Path...>;
-  static_assert(std::is_same_v<std::remove_cvref_t<decltype(member<Path...>(std::declval<T&>()))>, double>);
-  Field<T> row = plain_row<Path...>(key, meaning);
+  static_assert(kHolds<double, Path...>);
+  Field<T> row = plain_row<Path...>(key, meaning, read_number<T>, write_number<T>, describe_number<T>);
   row.range = range;
-  row.read = read_number<T>;
-  row.write = write_number<T>;
-  row.describe = describe_number<T>;
   return row;
 }
 
@@ -382,12 +390,9 @@ template <auto... Path>
 constexpr Field<OwnerOf<Path...>> integer(std::string_view key, int64_t min, int64_t max, std::string_view meaning) {
   using T = OwnerOf<Path...>;
   using V = std::remove_cvref_t<decltype(member<Path...>(std::declval<T&>()))>;
-  Field<T> row = plain_row<Path...>(key, meaning);
+  Field<T> row = plain_row<Path...>(key, meaning, read_integer<T, V>, write_integer<T, V>, describe_integer<T>);
   row.min = min;
   row.max = max;
-  row.read = read_integer<T, V>;
-  row.write = write_integer<T, V>;
-  row.describe = describe_integer<T>;
   return row;
 }
 
@@ -417,11 +422,8 @@ void describe_boolean(KeyDocs& d, const Field<T>& f, const T& o) {
 template <auto... Path>
 constexpr Field<OwnerOf<Path...>> boolean(std::string_view key, std::string_view meaning) {
   using T = OwnerOf<Path...>;
-  static_assert(std::is_same_v<std::remove_cvref_t<decltype(member<Path...>(std::declval<T&>()))>, bool>);
-  Field<T> row = plain_row<Path...>(key, meaning);
-  row.read = read_boolean<T>;
-  row.write = write_boolean<T>;
-  row.describe = describe_boolean<T>;
+  static_assert(kHolds<bool, Path...>);
+  Field<T> row = plain_row<Path...>(key, meaning, read_boolean<T>, write_boolean<T>, describe_boolean<T>);
   return row;
 }
 
@@ -488,12 +490,9 @@ void describe_choice(KeyDocs& d, const Field<T>& f, const T& o) {
 template <const auto& Names, ChoiceStyle Style, auto... Path>
 constexpr Field<OwnerOf<Path...>> choice_field(std::string_view key, std::string_view meaning) {
   using T = OwnerOf<Path...>;
-  static_assert(std::is_same_v<std::remove_cvref_t<decltype(member<Path...>(std::declval<T&>()))>,
-                               std::remove_cv_t<decltype(Names[0].value)>>);
-  Field<T> row = plain_row<Path...>(key, meaning);
-  row.read = read_choice<T, Names, Style>;
-  row.write = write_choice<T, Names>;
-  row.describe = describe_choice<T, Names>;
+  static_assert(kHolds<std::remove_cv_t<decltype(Names[0].value)>, Path...>);
+  Field<T> row =
+      plain_row<Path...>(key, meaning, read_choice<T, Names, Style>, write_choice<T, Names>, describe_choice<T, Names>);
   return row;
 }
 
@@ -542,13 +541,11 @@ void describe_text(KeyDocs& d, const Field<T>& f, const T& o) {
 template <auto... Path>
 constexpr Field<OwnerOf<Path...>> existing_file(std::string_view key, std::string_view meaning) {
   using T = OwnerOf<Path...>;
-  Field<T> row = plain_row<Path...>(key, meaning);
+  static_assert(kHolds<std::string, Path...>);
+  Field<T> row = plain_row<Path...>(key, meaning, read_existing_file<T>, write_path<T>, describe_text<T>);
   row.required = true;
   row.unit = "path";
   row.doc_range = "an existing file";
-  row.read = read_existing_file<T>;
-  row.write = write_path<T>;
-  row.describe = describe_text<T>;
   return row;
 }
 
@@ -569,11 +566,9 @@ void write_string(TomlWriter& w, const Field<T>& f, const T& o) {
 template <auto... Path>
 constexpr Field<OwnerOf<Path...>> address(std::string_view key, std::string_view meaning) {
   using T = OwnerOf<Path...>;
-  Field<T> row = plain_row<Path...>(key, meaning);
+  static_assert(kHolds<std::string, Path...>);
+  Field<T> row = plain_row<Path...>(key, meaning, read_address<T>, write_string<T>, describe_text<T>);
   row.doc_range = "IPv4 or IPv6 address";
-  row.read = read_address<T>;
-  row.write = write_string<T>;
-  row.describe = describe_text<T>;
   return row;
 }
 

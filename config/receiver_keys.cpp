@@ -19,8 +19,8 @@ using Gradient = ErrorModelConfig::Gradient;
 
 constexpr Choice<world::ThermalModel> kThermalModels[] = {{"dll", world::ThermalModel::kDll},
                                                           {"fixed", world::ThermalModel::kFixed}};
-constexpr Choice<atmosphere::IonoCorrection> kIonoCorrections[] = {{"klobuchar", atmosphere::IonoCorrection::kKlobuchar},
-                                                                   {"none", atmosphere::IonoCorrection::kNone}};
+constexpr Choice<atmosphere::IonoCorrection> kIonoCorrections[] = {
+    {"klobuchar", atmosphere::IonoCorrection::kKlobuchar}, {"none", atmosphere::IonoCorrection::kNone}};
 constexpr Choice<atmosphere::TropoCorrection> kTropoCorrections[] = {
     {"saastamoinen", atmosphere::TropoCorrection::kSaastamoinenNiell},
     {"zhd_niell", atmosphere::TropoCorrection::kZhdNiell},

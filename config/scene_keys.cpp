@@ -25,7 +25,9 @@ void read_offset(TableReader& t, const Field<SceneConfig>& f, SceneConfig& s) {
   double v[3];
   for (std::size_t i = 0; i < 3; ++i) {
     const auto x = a->get(i)->value<double>();
-    if (!x || !Pr::offset_m.contains(*x)) t.fail(*a->get(i), name + ": components must be finite numbers within 1000 km");
+    if (!x || !Pr::offset_m.contains(*x)) {
+      t.fail(*a->get(i), name + ": components must be finite numbers within 1000 km");
+    }
     v[i] = *x;
   }
   s.placement.offset_m = Enu(v[0], v[1], v[2]);
