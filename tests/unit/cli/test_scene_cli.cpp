@@ -105,6 +105,24 @@ TEST(SkyScene, EmptySceneAllDirectInsideABoxNothing) {
 
 std::string canyon_truth(int n);
 
+// The scene options take the ranges of the config keys they mirror (core's).
+TEST(SceneCli, OptionRangesAreTheConfigRanges) {
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--scale", "0"}, "--scale: 0 is out of range (0, 1000000]"},
+      {{"--max-loss-db", "0"}, "--max-loss-db: 0 is out of range (0, 1000] dB"},
+      {{"--yaw-deg", "400"}, "--yaw-deg: 400 is out of range [-360, 360] deg"},
+      {{"--reflection-loss-db", "101"}, "--reflection-loss-db: 101 is out of range [0, 100] dB"},
+      {{"--min-arrival-elevation-deg", "90"}, "--min-arrival-elevation-deg: 90 is out of range [-89, 89] deg"},
+  };
+  for (const auto& [extra, message] : cases) {
+    std::vector<std::string> a = sky_args(Enu(1.0, 2.0, 1.5), kScenes + "closed_box.obj");
+    a.insert(a.end(), extra.begin(), extra.end());
+    const test::CliResult r = run(a);
+    EXPECT_EQ(r.status, kExitBadInput) << extra[0];
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+  }
+}
+
 TEST(SceneCli, SkippedMeshElementsAreReportedWithTheFirstProblem) {
   // Two good triangles of a wall far east, one face with a missing vertex.
   TempDir dir;
