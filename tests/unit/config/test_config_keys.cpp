@@ -386,8 +386,6 @@ TEST(ConfigKeys, DocsKeyTablesAreTheKeyTables) {
                             << "  GNSSEMU_REBUILD_DOCS=1 build/tests/test_config --gtest_filter='ConfigKeys.Docs*'";
 }
 
-}  // namespace
-}  // namespace gnssemu::config::test
 
 // --- [truth] allow, vehicle --------------------------------------------------
 
@@ -406,3 +404,6 @@ TEST(ConfigValidation, TruthAllowListAndVehicle) {
   EXPECT_EQ(error_of(kBase + "[truth]\nvehicle = \"\"\n"),
             "t.toml:8: truth.vehicle: must not be empty (leave it out: the first vehicle)");
 }
+
+}  // namespace
+}  // namespace gnssemu::config::test
