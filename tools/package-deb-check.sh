@@ -4,7 +4,7 @@
 # --version, --check-config of the packaged /etc config and a 3 s run of the
 # packaged daemon (SIGTERM, exit 0). Prints size and contents. Usage:
 #   tools/package-deb-check.sh BUILD_DIR [--install]
-# --install also runs dpkg -i, the same checks on /usr/bin, then dpkg -r.
+# --install also runs dpkg -i, the same checks on /usr/bin, then dpkg -P.
 set -euo pipefail
 build="$1"; install="${2:-}"
 command -v cpack >/dev/null && command -v dpkg-deb >/dev/null || { echo "cpack or dpkg-deb missing: skipped"; exit 77; }
@@ -46,7 +46,7 @@ if [ "$install" = "--install" ]; then
   echo "dpkg -i:"
   dpkg -i "$deb" >/dev/null
   check_root /
-  dpkg -r gnssemu >/dev/null
-  echo "dpkg -r: removed"
+  dpkg -P gnssemu >/dev/null  # purge: the conffile goes too
+  echo "dpkg -P: removed"
 fi
 echo "1 passed, 0 failed"
