@@ -62,6 +62,7 @@ enum class DropReason : uint8_t {
   kBadVehicleId,
   kSimTimeBackwards,
   kTooManyVehicles,
+  kNotAllowed,  ///< sender not in [truth] allow
   kCount
 };
 inline constexpr std::size_t kDropReasonCount = static_cast<std::size_t>(DropReason::kCount);
