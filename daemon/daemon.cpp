@@ -14,6 +14,7 @@
 #include "core/common/error.hpp"
 #include "daemon/epoch_schedule.hpp"
 #include "daemon/scene_setup.hpp"
+#include "daemon/status_setup.hpp"
 #include "daemon/truth_packet.hpp"
 
 namespace gnssemu::daemon {
@@ -49,6 +50,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       output_delay_s_(cfg.time.output_delay_s),
       device_(config::device_setup(cfg)),
       rate_hz_(cfg.rate_hz),
+      status_(status_settings(cfg)),
       timer_(io),
       retry_timer_(io),
       socket_(io),
@@ -134,6 +136,7 @@ void Daemon::start() {
   }
   std::printf("gnssemud: truth input udp %s:%u\n", local.address().to_string().c_str(),
               static_cast<unsigned>(local.port()));
+  start_status_page();
   std::fflush(stdout);
 
   const std::optional<int>& leap = constellation_.nav.leap_seconds;
@@ -167,6 +170,7 @@ void Daemon::shutdown() {
   retry_timer_.cancel();
   socket_.close(ec);
   signals_.cancel(ec);
+  if (status_server_) status_server_->stop();
   if (!channels_.empty()) {
     for (const auto& c : channels_) {
       const PortStats& ps = c->port().stats();
@@ -274,6 +278,7 @@ void Daemon::emit_epoch(const time::GpsTime& t, const world::Truth& truth) {
   ++epochs_;
   device_.on_epoch(fix, now_s());
   for (const auto& c : channels_) c->send_epoch();
+  record_status(t, truth, fix);
   const int type = static_cast<int>(fix.type);
   if (type != last_fix_type_ || truth.valid != last_truth_valid_) {
     spdlog::info("epoch {}: truth {}, fix {} with {} satellites (PDOP {:.1f})", gps_text(t),

@@ -23,6 +23,8 @@
 #include "daemon/output_port.hpp"
 #include "daemon/port_channel.hpp"
 #include "daemon/run_plan.hpp"
+#include "daemon/status_producer.hpp"
+#include "daemon/status_server.hpp"
 #include "daemon/time_mapping.hpp"
 #include "daemon/truth_router.hpp"
 
@@ -68,6 +70,9 @@ private:
   /// configuration load from channel src): run at it.
   void on_nav_period(std::size_t src);
   void shutdown();
+  // Status page (daemon_status.cpp).
+  void start_status_page();
+  void record_status(const time::GpsTime& t, const world::Truth& truth, const receiver::Fix& fix) noexcept;
 
   asio::io_context& io_;
   config::Config cfg_;
@@ -88,6 +93,10 @@ private:
   std::vector<std::unique_ptr<PortChannel>> channels_;
   double rate_hz_;              // epoch rate now (CFG-RATE may change it)
   double sched_base_s_ = 0.0;   // realtime: elapsed time of index 0 of the current rate
+
+  StatusProducer status_;       ///< /api/status and the control socket's status
+  std::unique_ptr<StatusServer> status_server_;  ///< null: [status] port = 0
+  std::optional<time::GpsTime> status_first_t_;  ///< run time 0 of the status history
 
   asio::steady_timer timer_;
   asio::steady_timer retry_timer_;  // back-off after a socket error

@@ -17,6 +17,7 @@
 #include "core/common/error.hpp"
 #include "daemon/config_locator.hpp"
 #include "daemon/daemon.hpp"
+#include "daemon/status_setup.hpp"
 
 namespace {
 
@@ -48,6 +49,13 @@ void print_summary(const config::Config& cfg, const orbit::NavData& nav, const d
   }
   std::printf("truth:   udp %s:%u, timeout %.2f s, max extrapolation %.2f s\n", cfg.truth.bind_address.c_str(),
               static_cast<unsigned>(cfg.truth.port), cfg.truth.timeout_s, cfg.truth.max_extrapolation_s);
+  if (cfg.status.port == 0 && !cfg.status.free_port) {
+    std::printf("status:  off\n");
+  } else {
+    std::printf("status:  http://%s:%s/%s\n", cfg.status.bind.c_str(),
+                cfg.status.free_port ? "(free port)" : std::to_string(cfg.status.port).c_str(),
+                daemon::is_loopback(cfg.status.bind) ? "" : " (not loopback: reachable from other machines)");
+  }
   std::printf("demo:    %s (circle r=%.1f m, %.1f m/s)\n", cfg.demo.enabled ? "on" : "off", cfg.demo.radius_m,
               cfg.demo.speed_m_s);
   for (const auto& p : cfg.outputs) {
@@ -77,12 +85,27 @@ int main(int argc, char** argv) {
   std::string config_path;
   std::string pty_path;
   int truth_port = -1;
+  std::string status_port;
   bool verbose = false;
   bool check_only = false;
   app.add_option("-c,--config", config_path, "TOML configuration (default: the shipped default.toml)");
   app.add_option("--pty", pty_path, "path of the pty symlink of the first output (overrides the config)");
   app.add_option("--truth-port", truth_port, "UDP port of the truth input, 0: any free one (overrides the config)")
       ->check(CLI::Range(0, 65535));
+  app.add_option("--status-port", status_port,
+                 "TCP port of the status page: a number, 0: no page, free: any free port (overrides [status])")
+      ->check([](const std::string& v) -> std::string {
+        if (v == "free") return {};
+        int n = -1;
+        try {
+          std::size_t used = 0;
+          n = std::stoi(v, &used);
+          if (used != v.size()) n = -1;
+        } catch (const std::exception&) {
+          n = -1;
+        }
+        return n >= 0 && n <= 65535 ? std::string() : "a port 0..65535 or 'free'";
+      });
   app.add_flag("-v,--verbose", verbose, "debug logging");
   app.add_flag("--check-config", check_only, "load and validate the configuration, print a summary, exit");
   CLI11_PARSE(app, argc, argv);
@@ -104,6 +127,13 @@ int main(int argc, char** argv) {
       cfg.outputs.front().transport = config::PtyPortConfig{pty_path};
     }
     if (truth_port >= 0) cfg.truth.port = static_cast<uint16_t>(truth_port);
+    if (status_port == "free") {
+      cfg.status.free_port = true;
+    } else if (!status_port.empty()) {
+      cfg.status.port = static_cast<uint16_t>(std::stoi(status_port));
+      cfg.status.free_port = false;
+    }
+    daemon::validate_status(cfg);
     for (const auto& p : cfg.outputs) daemon::validate_port(p);
     const orbit::NavData nav = config::load_nav(cfg);
     // The start must be served by the nav data (as the configured mode dates
