@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 
@@ -66,7 +67,9 @@ void JsonWriter::number(double v, int decimals) noexcept {
   if (decimals < 0) decimals = 0;
   if (decimals > 9) decimals = 9;
   std::array<char, 64> buf{};
-  const auto r = fmt::format_to_n(buf.data(), buf.size(), "{:.{}f}", v, decimals);
+  // Fixed notation of a huge value would not fit: 17 significant digits.
+  const auto r = std::fabs(v) < 1e15 ? fmt::format_to_n(buf.data(), buf.size(), "{:.{}f}", v, decimals)
+                                     : fmt::format_to_n(buf.data(), buf.size(), "{:.17g}", v);
   std::string_view text(buf.data(), std::min<std::size_t>(r.size, buf.size()));
   if (text == "-0" || (text.starts_with("-0.") && text.find_first_not_of("0.", 1) == std::string_view::npos)) {
     text.remove_prefix(1);  // "-0.00" reads as a sign where there is none

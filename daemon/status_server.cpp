@@ -1,6 +1,7 @@
 #include "daemon/status_server.hpp"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <chrono>
 #include <list>
@@ -213,6 +214,20 @@ private:
       return;
     }
     write_pending();
+    watch_peer();
+  }
+
+  /// An event stream's client sends nothing more: a read that ends tells
+  /// that it went away, and keeps the session alive between events.
+  void watch_peer() {
+    stream_.socket().async_read_some(asio::buffer(sink_), [self = shared_from_this()](beast::error_code ec, std::size_t) {
+      if (self->closed_) return;
+      if (ec) {
+        self->close();
+        return;
+      }
+      self->watch_peer();  // whatever it sends is ignored
+    });
   }
 
   void write_pending() noexcept {
@@ -244,6 +259,7 @@ private:
   bool closed_ = false;
   std::string pending_;      ///< events queued while a write is in flight
   std::string writing_buf_;  ///< the bytes being written
+  std::array<char, 512> sink_{};  ///< what an event-stream client sends
 };
 
 StatusServer::StatusServer(asio::io_context& io, const StatusProducer& producer)

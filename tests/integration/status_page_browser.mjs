@@ -1,0 +1,170 @@
+// The status page in a real headless browser (Debian's chromium through
+// playwright-core): gnssemud on free ports, the page loaded once, live data
+// must arrive without a reload, and the DOM must show the same satellites and
+// fix as /api/status for the same epoch. Saves a screenshot as an artifact.
+// Usage: node status_page_browser.mjs --gnssemud PATH --artifacts DIR [--config FILE] [--chromium PATH]
+// Exit 77 (skip) without chromium or playwright-core (tools/install-deps.sh installs both).
+import { spawn } from 'node:child_process';
+import dgram from 'node:dgram';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { createRequire } from 'node:module';
+
+const args = Object.fromEntries(
+  process.argv.slice(2).reduce((acc, v, i, all) => (v.startsWith('--') ? [...acc, [v.slice(2), all[i + 1]]] : acc), []));
+const chromiumPath = args.chromium || '/usr/bin/chromium';
+const here = path.dirname(new URL(import.meta.url).pathname);
+const require = createRequire(path.join(here, 'browser', 'package.json'));
+
+function skip(why) {
+  console.log(`SKIP: ${why}`);
+  process.exit(77);
+}
+if (Number(process.versions.node.split('.')[0]) < 20) skip(`node ${process.versions.node}: playwright-core 1.65 needs node >= 20`);
+if (!fs.existsSync(chromiumPath)) skip(`${chromiumPath} not found (apt-get install chromium)`);
+let chromium;
+try {
+  ({ chromium } = require('playwright-core'));
+} catch (e) {
+  skip(`playwright-core not installed in ${path.join(here, 'browser')} (npm ci there; tools/install-deps.sh does)`);
+}
+
+const tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'gnssemu-status-'));
+const artifacts = args.artifacts || tmp;
+fs.mkdirSync(artifacts, { recursive: true });
+let daemon = null;
+let browser = null;
+let log = '';
+const deadline = Date.now() + 80000;
+
+function fail(msg) {
+  throw new Error(msg);
+}
+
+async function cleanup() {
+  if (browser) await browser.close().catch(() => {});
+  if (daemon && daemon.exitCode === null) {
+    daemon.kill('SIGTERM');
+    await new Promise((r) => { daemon.once('exit', r); setTimeout(r, 5000); });
+  }
+  fs.rmSync(tmp, { recursive: true, force: true });
+}
+
+async function startDaemon() {
+  const argv = ['--pty', path.join(tmp, 'gps0'), '--truth-port', '0', '--status-port', 'free'];
+  if (args.config) argv.push('--config', args.config);
+  daemon = spawn(args.gnssemud, argv, { stdio: ['ignore', 'pipe', 'pipe'] });
+  daemon.stderr.on('data', (d) => { log += d; });
+  let out = '';
+  return new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error(`gnssemud printed no status URL:\n${out}\n${log}`)), 20000);
+    daemon.stdout.on('data', (d) => {
+      out += d;
+      const url = /status page (http:\/\/[^\s]+)/.exec(out);
+      const truth = /truth input udp ([\d.]+):(\d+)/.exec(out);
+      if (url && truth) {
+        clearTimeout(timer);
+        resolve({ url: url[1], truthPort: Number(truth[2]) });
+      }
+    });
+    daemon.on('exit', (code) => reject(new Error(`gnssemud exited with ${code}:\n${out}\n${log}`)));
+  });
+}
+
+/** What the page shows, read from the DOM. */
+async function domState(page) {
+  return page.evaluate(() => ({
+    tow: document.body.dataset.tow,
+    epoch: Number(document.body.dataset.epoch || 0),
+    fixType: document.getElementById('fix-type').dataset.fixType,
+    numUsed: document.getElementById('num-used').textContent,
+    numTracked: document.getElementById('num-tracked').textContent,
+    lat: document.getElementById('lat').textContent,
+    lon: document.getElementById('lon').textContent,
+    hdop: document.getElementById('hdop').textContent,
+    dropped: document.getElementById('truth-dropped').textContent,
+    sats: [...document.querySelectorAll('#sat-table tbody tr')].map((tr) => ({ prn: Number(tr.dataset.prn), state: tr.dataset.state })),
+    skyPoints: Chart.getChart('sky').data.datasets.filter((d) => !d.gridLine && !d.mask)
+      .flatMap((d) => d.data.map((p) => p.prn)).sort((a, b) => a - b),
+    cn0Bars: Chart.getChart('cn0').data.labels.map(Number).sort((a, b) => a - b),
+    marker: window.__loadedOnce === true,
+    conn: document.getElementById('conn').textContent,
+  }));
+}
+
+async function main() {
+  const { url, truthPort } = await startDaemon();
+  console.log(`status page ${url}, truth port ${truthPort}`);
+  browser = await chromium.launch({
+    executablePath: chromiumPath,
+    headless: true,
+    args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
+           '--disable-component-update', '--disable-sync'],
+  });
+  const context = await browser.newContext({ viewport: { width: 1400, height: 1900 } });
+  const page = await context.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  await page.goto(url, { waitUntil: 'load' });
+  await page.evaluate(() => { window.__loadedOnce = true; });
+
+  // A malformed truth packet: the page must count it as the API does.
+  const sock = dgram.createSocket('udp4');
+  await new Promise((r) => sock.send('{"version": 1, "lla": ', truthPort, '127.0.0.1', r));
+  sock.close();
+
+  // Live data: the shown epoch advances at least three times without a reload.
+  await page.waitForFunction(() => document.getElementById('conn').textContent === 'live', null, { timeout: 15000 });
+  const first = (await domState(page)).epoch;
+  await page.waitForFunction((e0) => Number(document.body.dataset.epoch || 0) >= e0 + 3, first, { timeout: 15000 });
+  await page.waitForFunction(() => document.getElementById('fix-type').dataset.fixType === '3', null, { timeout: 15000 });
+  await page.waitForFunction(() => document.getElementById('truth-dropped').textContent !== '0', null, { timeout: 15000 });
+
+  // The DOM against /api/status of the same epoch.
+  let matched = false;
+  for (let attempt = 0; attempt < 20 && !matched && Date.now() < deadline; attempt++) {
+    const dom = await domState(page);
+    const api = await (await fetch(`${url}api/status?history=0`)).json();
+    if (String(api.epoch.tow_s) !== dom.tow) {
+      await new Promise((r) => setTimeout(r, 150));
+      continue;
+    }
+    matched = true;
+    if (!dom.marker) fail('the page was reloaded');
+    if (dom.fixType !== String(api.fix.type)) fail(`fix type: DOM ${dom.fixType}, API ${api.fix.type}`);
+    if (dom.numUsed !== String(api.fix.num_used)) fail(`used: DOM ${dom.numUsed}, API ${api.fix.num_used}`);
+    if (dom.numTracked !== String(api.fix.num_tracked)) fail(`tracked: DOM ${dom.numTracked}, API ${api.fix.num_tracked}`);
+    if (dom.lat !== `${api.fix.lat_deg.toFixed(7)}°`) fail(`lat: DOM ${dom.lat}, API ${api.fix.lat_deg}`);
+    if (dom.lon !== `${api.fix.lon_deg.toFixed(7)}°`) fail(`lon: DOM ${dom.lon}, API ${api.fix.lon_deg}`);
+    if (dom.hdop !== api.fix.dop.hdop.toFixed(2)) fail(`hdop: DOM ${dom.hdop}, API ${api.fix.dop.hdop}`);
+    if (dom.dropped !== String(api.truth.dropped)) fail(`truth drops: DOM ${dom.dropped}, API ${api.truth.dropped}`);
+    const apiSats = api.satellites.map((s) => ({ prn: s.prn, state: s.state }));
+    if (JSON.stringify(dom.sats) !== JSON.stringify(apiSats)) {
+      fail(`satellites: DOM ${JSON.stringify(dom.sats)}, API ${JSON.stringify(apiSats)}`);
+    }
+    const apiPrns = api.satellites.map((s) => s.prn).sort((a, b) => a - b);
+    if (JSON.stringify(dom.skyPoints) !== JSON.stringify(apiPrns)) fail(`sky plot PRNs ${dom.skyPoints} vs ${apiPrns}`);
+    const barPrns = api.satellites.filter((s) => s.state !== 'below_mask').map((s) => s.prn).sort((a, b) => a - b);
+    if (JSON.stringify(dom.cn0Bars) !== JSON.stringify(barPrns)) fail(`C/N0 bars ${dom.cn0Bars} vs ${barPrns}`);
+    if (api.satellites.length < 4 || api.fix.num_used < 4) fail(`too few satellites for a meaningful check: ${api.satellites.length}`);
+    console.log(`epoch tow ${dom.tow}: ${apiSats.length} satellites, fix ${api.fix.type_name} with ${api.fix.num_used} used: DOM = API`);
+  }
+  if (!matched) fail('the DOM never showed the epoch /api/status returned');
+  if (errors.length) fail(`page errors: ${errors.join('; ')}`);
+  const shot = path.join(artifacts, 'status_page.png');
+  await page.screenshot({ path: shot, fullPage: true });
+  console.log(`screenshot ${shot}`);
+}
+
+try {
+  await main();
+  await cleanup();
+  console.log('1 passed, 0 failed');
+} catch (e) {
+  console.error(`FAIL: ${e.message}`);
+  console.error(log.split('\n').slice(-20).join('\n'));
+  await cleanup();
+  process.exit(1);
+}
