@@ -150,9 +150,9 @@
     const v = hist.u_m.map((u) => (u === null ? null : Math.abs(u)));
     accuracy.data.datasets = [
       G.series('horizontal error', '#2f6fd6', hist.t_s, h),
-      G.series('hAcc (reported)', '#2f6fd6', hist.t_s, hist.h_acc_m, { borderDash: [5, 4] }),
+      G.series('hAcc (reported)', '#0b2f6b', hist.t_s, hist.h_acc_m, { borderDash: [6, 3], borderWidth: 2.5, order: -1 }),
       G.series('vertical error', '#e08a00', hist.t_s, v),
-      G.series('vAcc (reported)', '#e08a00', hist.t_s, hist.v_acc_m, { borderDash: [5, 4] }),
+      G.series('vAcc (reported)', '#7a4500', hist.t_s, hist.v_acc_m, { borderDash: [6, 3], borderWidth: 2.5, order: -1 }),
     ];
     accuracy.update('none');
     const e = s.error;
