@@ -3,6 +3,7 @@
 // must arrive without a reload, and the DOM must show the same satellites and
 // fix as /api/status for the same epoch. Saves a screenshot as an artifact.
 // Usage: node status_page_browser.mjs --gnssemud PATH --artifacts DIR [--config FILE] [--chromium PATH]
+//   [--wait-s S]: watch S seconds more before the screenshot (docs/images: a longer history)
 // Exit 77 (skip) without chromium or playwright-core (tools/install-deps.sh installs both).
 import { spawn } from 'node:child_process';
 import dgram from 'node:dgram';
@@ -36,7 +37,8 @@ fs.mkdirSync(artifacts, { recursive: true });
 let daemon = null;
 let browser = null;
 let log = '';
-const deadline = Date.now() + 80000;
+const waitS = Number(args['wait-s'] || 0);
+const deadline = Date.now() + 80000 + waitS * 1000;
 
 function fail(msg) {
   throw new Error(msg);
@@ -52,8 +54,9 @@ async function cleanup() {
 }
 
 async function startDaemon() {
-  const argv = ['--pty', path.join(tmp, 'gps0'), '--truth-port', '0', '--status-port', 'free'];
+  const argv = ['--truth-port', '0', '--status-port', 'free'];
   if (args.config) argv.push('--config', args.config);
+  else argv.push('--pty', path.join(tmp, 'gps0'));
   daemon = spawn(args.gnssemud, argv, { stdio: ['ignore', 'pipe', 'pipe'] });
   daemon.stderr.on('data', (d) => { log += d; });
   let out = '';
@@ -153,6 +156,7 @@ async function main() {
   }
   if (!matched) fail('the DOM never showed the epoch /api/status returned');
   if (errors.length) fail(`page errors: ${errors.join('; ')}`);
+  if (waitS > 0) await new Promise((r) => setTimeout(r, waitS * 1000));
   const shot = path.join(artifacts, 'status_page.png');
   await page.screenshot({ path: shot, fullPage: true });
   console.log(`screenshot ${shot}`);

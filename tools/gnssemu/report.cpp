@@ -179,6 +179,16 @@ std::string report_json(const ReportData& d) {
   w.end_array();
   w.end_object();
 
+  // Every satellite-epoch by state (the sky plot is thinned and overlaps).
+  w.key("state_counts");
+  w.begin_object();
+  for (const char* st : {"used", "nlos", "excluded", "tracked", "searching", "blocked", "below_mask"}) {
+    int64_t n = 0;
+    for (const ReportSat& x : d.sats) n += x.state == st;
+    w.field_int(st, n);
+  }
+  w.end_object();
+
   w.key("cn0_bins");
   w.begin_array();
   for (const Cn0Bin& b : cn0_bins(d)) {

@@ -122,7 +122,17 @@ const GnssCharts = (() => {
   }
 
   /** One dataset per state of the points {prn, az, el, cn0, state, used}. */
-  function skyDatasets(points, maskDeg, pointRadius) {
+  // Rarer, more telling states are drawn over the common ones.
+  const drawOrder = { excluded: 1, nlos: 2, blocked: 3, searching: 4, tracked: 5, used: 6, below_mask: 7 };
+
+  /** alpha < 1: translucent points, so overlapping states of a moving run blend. */
+  function rgba(hex, alpha) {
+    if (alpha >= 1) return hex;
+    const n = parseInt(hex.slice(1), 16);
+    return `rgba(${(n >> 16) & 255},${(n >> 8) & 255},${n & 255},${alpha})`;
+  }
+
+  function skyDatasets(points, maskDeg, pointRadius, alpha = 1) {
     const sets = gridDatasets(maskDeg);
     for (const s of states) {
       const pts = points.filter((p) => p.state === s).map((p) => ({ ...skyXY(p.az, p.el), ...p }));
@@ -130,12 +140,12 @@ const GnssCharts = (() => {
       sets.push({
         label: stateLabels[s],
         data: pts,
-        backgroundColor: pts.map((p) => (p.used === false && s === 'nlos' ? '#ffffff' : stateColors[s])),
-        borderColor: stateColors[s],
-        borderWidth: 2,
+        backgroundColor: pts.map((p) => (p.used === false && s === 'nlos' && alpha >= 1 ? '#ffffff' : rgba(stateColors[s], alpha))),
+        borderColor: rgba(stateColors[s], alpha),
+        borderWidth: alpha >= 1 ? 2 : 0,
         pointRadius,
         pointHoverRadius: pointRadius + 2,
-        order: 1,
+        order: drawOrder[s],
       });
     }
     return sets;
@@ -227,37 +237,61 @@ const GnssCharts = (() => {
     });
   }
 
+  /**
+   * An axis limit that shows the bulk of |values|: 1.2 x their 99th
+   * percentile (at least floor), so a few wild epochs do not flatten the rest.
+   * clipped: some values lie beyond it.
+   */
+  function robustLimit(values, floor = 1) {
+    const abs = values.filter((v) => Number.isFinite(v)).map(Math.abs);
+    const lim = Math.max(floor, 1.2 * percentile(abs, 0.99) || 0);
+    const max = abs.reduce((a, b) => Math.max(a, b), 0);
+    return { lim: niceCeil(lim), clipped: max > niceCeil(lim) };
+  }
+
+  function niceCeil(v) {
+    const p = Math.pow(10, Math.floor(Math.log10(v)));
+    for (const m of [1, 2, 2.5, 5, 10]) if (m * p >= v) return m * p;
+    return 10 * p;
+  }
+
   function scatterData(es, ns, cep50, cep95, latest) {
     const pts = [];
-    let lim = 1;
     for (let i = 0; i < es.length; i++) {
-      if (es[i] === null || ns[i] === null || !isFinite(es[i]) || !isFinite(ns[i])) continue;
+      if (es[i] === null || ns[i] === null || !Number.isFinite(es[i]) || !Number.isFinite(ns[i])) continue;
       pts.push({ x: es[i], y: ns[i] });
-      lim = Math.max(lim, Math.abs(es[i]), Math.abs(ns[i]));
     }
-    if (isFinite(cep95)) lim = Math.max(lim, cep95);
-    lim = Math.ceil(lim * 1.1);
+    const r = robustLimit(pts.flatMap((p) => [p.x, p.y]).concat(Number.isFinite(cep95) ? [cep95 / 1.2] : []));
+    const lim = r.lim;
     const sets = [{ label: 'fix − truth', data: pts, backgroundColor: 'rgba(47,111,214,0.45)', pointRadius: 2 }];
-    if (isFinite(cep50)) sets.push({ type: 'line', label: `CEP50 ${cep50.toFixed(2)} m`, data: circle(cep50),
+    if (Number.isFinite(cep50)) sets.push({ type: 'line', label: `CEP50 ${cep50.toFixed(2)} m`, data: circle(cep50),
                                      borderColor: '#1f9d3a', pointRadius: 0, borderWidth: 1.5 });
-    if (isFinite(cep95)) sets.push({ type: 'line', label: `CEP95 ${cep95.toFixed(2)} m`, data: circle(cep95),
+    if (Number.isFinite(cep95)) sets.push({ type: 'line', label: `CEP95 ${cep95.toFixed(2)} m`, data: circle(cep95),
                                      borderColor: '#c0392b', pointRadius: 0, borderWidth: 1.5 });
     if (latest) sets.push({ label: 'now', data: [latest], backgroundColor: '#000', pointRadius: 5, pointStyle: 'crossRot',
                             borderColor: '#000', borderWidth: 2 });
-    return { datasets: sets, lim };
+    return { datasets: sets, lim, clipped: r.clipped };
   }
 
   /** Nearest-rank percentile of finite values (q in (0, 1]). */
   function percentile(values, q) {
-    const v = values.filter((x) => x !== null && isFinite(x)).sort((a, b) => a - b);
+    const v = values.filter((x) => x !== null && Number.isFinite(x)).sort((a, b) => a - b);
     if (!v.length) return NaN;
     return v[Math.min(v.length, Math.max(1, Math.ceil(q * v.length))) - 1];
   }
 
   function fmt(v, digits, unit = '') {
-    return v === null || v === undefined || !isFinite(v) ? '—' : `${Number(v).toFixed(digits)}${unit}`;
+    return v === null || v === undefined || !Number.isFinite(v) ? '—' : `${Number(v).toFixed(digits)}${unit}`;
+  }
+
+  /** Fix a time chart's y axis to +-lim (symmetric) or [0, lim], saying when it clips. */
+  function clipY(chart, values, symmetric, title) {
+    const r = robustLimit(values);
+    chart.options.scales.y.min = symmetric ? -r.lim : 0;
+    chart.options.scales.y.max = r.lim;
+    chart.options.scales.y.title.text = r.clipped ? `${title} (axis clipped at ${r.lim} m)` : title;
   }
 
   return { stateColors, stateLabels, states, skyXY, skyChart, skyDatasets, cn0Chart, cn0Data, timeChart, series,
-           scatterChart, scatterData, circle, percentile, fmt };
+           scatterChart, scatterData, circle, percentile, robustLimit, clipY, fmt };
 })();

@@ -36,6 +36,11 @@
     ['horizontal error', `CEP50 ${G.fmt(s.cep50_m, 2, ' m')}, CEP95 ${G.fmt(s.cep95_m, 2, ' m')}, rms ${G.fmt(s.h_rms_m, 2, ' m')}, max ${G.fmt(s.h_max_m, 2, ' m')}`],
     ['vertical error', `50 % ${G.fmt(s.v50_m, 2, ' m')}, 95 % ${G.fmt(s.v95_m, 2, ' m')}, rms ${G.fmt(s.v_rms_m, 2, ' m')}`],
   ];
+  const counts = Object.entries(d.state_counts || {}).filter(([, n]) => n > 0);
+  const total = counts.reduce((a, [, n]) => a + n, 0);
+  if (total) {
+    rows.push(['satellite-epochs', counts.map(([k, n]) => `${G.stateLabels[k] || k} ${(100 * n / total).toFixed(1)} %`).join(', ')]);
+  }
   if (s.epochs) {
     root.appendChild(el('table', { class: 'kv', id: 'summary' },
       rows.map(([k, v]) => `<tr><th>${esc(k)}</th><td>${esc(v)}</td></tr>`).join('')));
@@ -51,7 +56,7 @@
     const sky = G.skyChart(panel('sky', 'Sky over the run', 'sky'));
     const pts = d.sky.t_s.map((t, i) => ({ prn: d.sky.prn[i], az: d.sky.az[i], el: d.sky.el[i], cn0: d.sky.cn0[i],
                                            state: d.sky.state[i], used: d.sky.used[i] === 1 }));
-    sky.data.datasets = G.skyDatasets(pts, isFinite(d.elevation_mask_deg) ? d.elevation_mask_deg : 0, 1.6);
+    sky.data.datasets = G.skyDatasets(pts, Number.isFinite(d.elevation_mask_deg) ? d.elevation_mask_deg : 0, 1.8, 0.4);
     sky.update();
 
     // C/N0 against elevation: this run, and a real receiver's when given.
@@ -82,7 +87,7 @@
                   data: d.cn0_bins.filter((b) => b.ref_n > 0).map((b) => ({ x: mid(b), y: b.ref_median_dbhz })),
                   borderColor: '#e08a00', backgroundColor: '#e08a00', pointRadius: 3, borderWidth: 2 });
     }
-    if (isFinite(d.acquire_dbhz)) {
+    if (Number.isFinite(d.acquire_dbhz)) {
       sets.push({ type: 'line', label: `acquire ${d.acquire_dbhz} dB-Hz`, data: [{ x: 0, y: d.acquire_dbhz }, { x: 90, y: d.acquire_dbhz }],
                   borderColor: '#1f9d3a', borderDash: [6, 3], pointRadius: 0, borderWidth: 1 });
       sets.push({ type: 'line', label: `lose lock ${d.lose_dbhz} dB-Hz`, data: [{ x: 0, y: d.lose_dbhz }, { x: 90, y: d.lose_dbhz }],
@@ -111,6 +116,7 @@
       G.series('north', '#1f9d3a', e.t_s, e.n_m),
       G.series('up', '#e08a00', e.t_s, e.u_m),
     ];
+    G.clipY(err, e.e_m.concat(e.n_m, e.u_m), true, 'error (m)');
     err.update();
 
     const h = e.e_m.map((x, i) => (x === null || e.n_m[i] === null ? null : Math.hypot(x, e.n_m[i])));
@@ -122,6 +128,7 @@
         G.series('vertical error', '#e08a00', e.t_s, e.u_m.map((u) => (u === null ? null : Math.abs(u)))),
         G.series('vAcc (reported)', '#7a4500', e.t_s, e.v_acc_m, { borderDash: [6, 3], borderWidth: 2.5, order: -1 }),
       ];
+      G.clipY(acc, h.concat(e.u_m, e.h_acc_m, e.v_acc_m), false, 'm');
       acc.update();
     }
 
@@ -131,9 +138,13 @@
       cdf.options.scales.y.max = 1;
       cdf.data.datasets = [G.series('horizontal error', '#2f6fd6', d.cdf.h_m, d.cdf.p, { stepped: true })];
       for (const [name, v, color] of [['CEP50', s.cep50_m, '#1f9d3a'], ['CEP95', s.cep95_m, '#c0392b']]) {
-        if (isFinite(v)) cdf.data.datasets.push({ label: `${name} ${v.toFixed(2)} m`, data: [{ x: v, y: 0 }, { x: v, y: 1 }],
+        if (Number.isFinite(v)) cdf.data.datasets.push({ label: `${name} ${v.toFixed(2)} m`, data: [{ x: v, y: 0 }, { x: v, y: 1 }],
                                                   borderColor: color, borderDash: [6, 3], borderWidth: 1.5 });
       }
+      const r = G.robustLimit(d.cdf.h_m);
+      cdf.options.scales.x.min = 0;
+      cdf.options.scales.x.max = r.lim;
+      if (r.clipped) cdf.options.scales.x.title.text = `horizontal error (m; axis clipped at ${r.lim} m, max ${G.fmt(s.h_max_m, 1)} m)`;
       cdf.update();
     }
 

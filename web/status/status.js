@@ -145,6 +145,7 @@
       G.series('north', '#1f9d3a', hist.t_s, hist.n_m),
       G.series('up', '#e08a00', hist.t_s, hist.u_m),
     ];
+    G.clipY(error, hist.e_m.concat(hist.n_m, hist.u_m), true, 'error (m)');
     error.update('none');
     const h = hist.e_m.map((e, i) => (e === null || hist.n_m[i] === null ? null : Math.hypot(e, hist.n_m[i])));
     const v = hist.u_m.map((u) => (u === null ? null : Math.abs(u)));
@@ -154,6 +155,7 @@
       G.series('vertical error', '#e08a00', hist.t_s, v),
       G.series('vAcc (reported)', '#7a4500', hist.t_s, hist.v_acc_m, { borderDash: [6, 3], borderWidth: 2.5, order: -1 }),
     ];
+    G.clipY(accuracy, h.concat(v, hist.h_acc_m, hist.v_acc_m), false, 'm');
     accuracy.update('none');
     const e = s.error;
     const sd = G.scatterData(hist.e_m, hist.n_m, e.cep50_m, e.cep95_m, e.valid ? { x: e.e_m, y: e.n_m } : null);
