@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "config/config.hpp"
+#include "config/footprint_file.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
 #include "config/nav_setup.hpp"
@@ -556,7 +557,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
           if (!(scene_args.scale > 0.0)) throw Error("--scale: must be > 0");
           place.scale = scene_args.scale;
           place.y_up = scene_args.up_axis == "y";
-          const scene::Mesh mesh = scene::load_mesh(scene_args.mesh_path, place);
+          const scene::Mesh mesh = config::load_mesh(scene_args.mesh_path, place);
           if (const std::string w = scene::skip_report(mesh.stats); !w.empty()) err << "gnssemu sky: " << w << '\n';
           buildings = std::make_unique<scene::Scene>(mesh);
           buildings->set_default_loss_db(scene_args.reflection_loss_db);
