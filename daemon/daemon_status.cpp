@@ -30,7 +30,6 @@ void Daemon::start_status_page() {
   status_.set_ports(std::move(ports));
   const config::StatusConfig& sc = cfg_.status;
   if (sc.port == 0 && !sc.free_port) return;
-  validate_status(cfg_);
   status_server_ = std::make_unique<StatusServer>(io_, status_);
   try {
     status_server_->start(sc.bind, sc.free_port ? 0 : sc.port);

@@ -52,7 +52,8 @@ void print_summary(const config::Config& cfg, const orbit::NavData& nav, const d
   if (cfg.status.port == 0 && !cfg.status.free_port) {
     std::printf("status:  off\n");
   } else {
-    std::printf("status:  http://%s:%s/%s\n", cfg.status.bind.c_str(),
+    const bool v6 = cfg.status.bind.find(':') != std::string::npos;
+    std::printf("status:  http://%s%s%s:%s/%s\n", v6 ? "[" : "", cfg.status.bind.c_str(), v6 ? "]" : "",
                 cfg.status.free_port ? "(free port)" : std::to_string(cfg.status.port).c_str(),
                 daemon::is_loopback(cfg.status.bind) ? "" : " (not loopback: reachable from other machines)");
   }
@@ -133,7 +134,6 @@ int main(int argc, char** argv) {
       cfg.status.port = static_cast<uint16_t>(std::stoi(status_port));
       cfg.status.free_port = false;
     }
-    daemon::validate_status(cfg);
     for (const auto& p : cfg.outputs) daemon::validate_port(p);
     const orbit::NavData nav = config::load_nav(cfg);
     // The start must be served by the nav data (as the configured mode dates

@@ -5,7 +5,6 @@
 #include <boost/asio/ip/address.hpp>
 
 #include "core/common/constants.hpp"
-#include "core/common/error.hpp"
 
 namespace gnssemu::daemon {
 
@@ -17,12 +16,6 @@ StatusSettings status_settings(const config::Config& cfg) {
   s.rate_hz = cfg.rate_hz;
   s.time_mode = cfg.time.mode == config::TimeMode::kRealtime ? "realtime" : "lockstep";
   return s;
-}
-
-void validate_status(const config::Config& cfg) {
-  boost::system::error_code ec;
-  boost::asio::ip::make_address(cfg.status.bind, ec);
-  if (ec) throw Error(cfg.source, 0, "status.bind: '" + cfg.status.bind + "' is not an IP address");
 }
 
 bool is_loopback(const std::string& bind) {

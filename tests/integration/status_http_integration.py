@@ -3,7 +3,8 @@
 (docs/status.md §Tests): while junk, huge headers, a slow sender, a stream
 that is never read and more connections than the limit hit the server, the
 epoch loop keeps its rate and /api/status keeps answering. Also: loopback by
-default, `--status-port 0` turns the page off, a taken port moves it.
+default, `--status-port 0` and `[status] port = 0` turn the page off, a taken
+port moves it, the [status] keys reach the daemon.
 
 Usage: status_http_integration.py --gnssemud PATH CASE   (CASE: abuse, ports)
 Every socket is on 127.0.0.1; each case stops by itself within 60 s."""
@@ -42,6 +43,22 @@ class Rig(RigBase):
                 raise AssertionError(f"gnssemud exited with {self.daemon.returncode}")
             time.sleep(0.05)
         raise AssertionError("gnssemud did not start")
+
+    def config(self, status_toml):
+        """A config file with the given [status] table (the rest minimal)."""
+        nav = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "nav", "brdc0010.22n")
+        path = os.path.join(self.tmp, "status.toml")
+        with open(path, "w") as f:
+            f.write(f"""[origin]
+lat_deg = 48.8738
+lon_deg = 2.2950
+height_m = 100.0
+[nav]
+file = "{os.path.abspath(nav)}"
+[status]
+{status_toml}
+""")
+        return path
 
     def log(self):
         return open(os.path.join(self.tmp, "gnssemud.log")).read()
@@ -153,9 +170,29 @@ def case_ports(rig):
     assert "serving the status page on a free port instead" in rig.log(), rig.log()
     status(host, port)
     taken.close()
+    rig.stop_all()
+    rig.procs.clear()
     # --check-config names the page.
     out = subprocess.run([rig.gnssemud, "--check-config", "--status-port", "8123"], capture_output=True, text=True)
     assert "status:  http://127.0.0.1:8123/" in out.stdout, out.stdout + out.stderr
+    # The [status] keys: another loopback address on a free port ...
+    host, port = rig.start("--config", rig.config('bind = "127.0.0.2"\nfree_port = true'))
+    assert host == "127.0.0.2", f"status page on {host}"
+    status(host, port)
+    rig.stop_all()
+    rig.procs.clear()
+    # ... an address outside loopback is named as such (checked, not bound:
+    # the tests stay on loopback) ...
+    out = subprocess.run([rig.gnssemud, "--check-config", "--config", rig.config('bind = "0.0.0.0"\nport = 8124')],
+                         capture_output=True, text=True)
+    assert "status:  http://0.0.0.0:8124/ (not loopback: reachable from other machines)" in out.stdout, out.stdout
+    # ... a bad value is an error naming file:line ...
+    bad = rig.config('bind = "localhost"')
+    out = subprocess.run([rig.gnssemud, "--check-config", "--config", bad], capture_output=True, text=True)
+    assert out.returncode != 0 and f"{bad}:8: status.bind: 'localhost' is not an IPv4 or IPv6 address" in out.stderr, \
+        out.stdout + out.stderr
+    # ... and port = 0 turns it off.
+    assert rig.start("--config", rig.config("port = 0")) is None, "status page served with port = 0"
 
 
 def main():
