@@ -2,10 +2,15 @@
 // playwright-core): gnssemud on free ports, the page loaded once, live data
 // must arrive without a reload, and the DOM must show the same satellites and
 // fix as /api/status for the same epoch. Saves a screenshot as an artifact.
+// With --gnssemu, also `gnssemu batch --report` over a static hour (or the
+// given config and truth) opened from file://: every chart drawn, no page
+// error, the summary's figures those of the run; screenshot report.png.
 // Usage: node status_page_browser.mjs --gnssemud PATH --artifacts DIR [--config FILE] [--chromium PATH]
 //   [--wait-s S]: watch S seconds more before the screenshot (docs/images: a longer history)
+//   [--gnssemu PATH [--report-config FILE --report-truth FILE] [--cn0-reference FILE]]
+//   [--sender 'ARGS']: tools/senders/send_truth.py ARGS drives the daemon (docs/images)
 // Exit 77 (skip) without chromium or playwright-core (tools/install-deps.sh installs both).
-import { spawn } from 'node:child_process';
+import { spawn, spawnSync } from 'node:child_process';
 import dgram from 'node:dgram';
 import fs from 'node:fs';
 import os from 'node:os';
@@ -35,6 +40,7 @@ const tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'gnssemu-status-'));
 const artifacts = args.artifacts || tmp;
 fs.mkdirSync(artifacts, { recursive: true });
 let daemon = null;
+let sender = null;
 let browser = null;
 let log = '';
 const waitS = Number(args['wait-s'] || 0);
@@ -45,6 +51,7 @@ function fail(msg) {
 }
 
 async function cleanup() {
+  if (sender && sender.exitCode === null) sender.kill('SIGTERM');
   if (browser) await browser.close().catch(() => {});
   if (daemon && daemon.exitCode === null) {
     daemon.kill('SIGTERM');
@@ -99,6 +106,10 @@ async function domState(page) {
 async function main() {
   const { url, truthPort } = await startDaemon();
   console.log(`status page ${url}, truth port ${truthPort}`);
+  if (args.sender) {
+    const script = path.resolve(here, '..', '..', 'tools', 'senders', 'send_truth.py');
+    sender = spawn('python3', [script, '--port', String(truthPort), ...args.sender.split(' ')], { stdio: 'ignore' });
+  }
   browser = await chromium.launch({
     executablePath: chromiumPath,
     headless: true,
@@ -162,8 +173,52 @@ async function main() {
   console.log(`screenshot ${shot}`);
 }
 
+/** gnssemu batch --report, the report in the browser, its screenshot. */
+async function checkReport() {
+  const source = path.resolve(here, '..', '..');
+  let truth = args['report-truth'];
+  if (!truth) {
+    truth = path.join(tmp, 'static.csv');
+    fs.writeFileSync(truth, 'gps_week,tow_s,lat_deg,lon_deg,height_m\n2190,522000,48.8738,2.2950,100.0\n' +
+                            '2190,525600,48.8738,2.2950,100.0\n');
+  }
+  const config = args['report-config'] || path.join(source, 'config', 'default.toml');
+  const reference = args['cn0-reference'] || path.join(source, 'tests', 'data', 'receiver-logs', 'ublox-8-excerpt.log');
+  const dir = path.join(tmp, 'report');
+  const run = spawnSync(args.gnssemu, ['batch', '--config', config, '--truth', truth, '--report', dir,
+                                       '--cn0-reference', reference], { encoding: 'utf8' });
+  if (run.status !== 0) fail(`gnssemu batch --report exited with ${run.status}: ${run.stderr}`);
+  const fixes = /fixes (\d+)/.exec(run.stderr);
+  const epochs = /epochs (\d+)/.exec(run.stderr);
+  const page = await (await browser.newContext({ viewport: { width: 1400, height: 1000 } })).newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('request', (r) => { if (!r.url().startsWith('file:') && !r.url().startsWith('data:')) errors.push(`fetched ${r.url()}`); });
+  await page.goto(`file://${path.join(dir, 'report.html')}`, { waitUntil: 'load' });
+  const shown = await page.evaluate(() => {
+    const charts = [...document.querySelectorAll('canvas')].map((c) => Chart.getChart(c)).filter((c) => c);
+    const points = charts.map((c) => c.data.datasets.reduce((n, d) => n + d.data.length, 0));
+    const kv = Object.fromEntries([...document.querySelectorAll('#summary tr')]
+      .map((tr) => [tr.querySelector('th').textContent, tr.querySelector('td').textContent]));
+    return { ids: charts.map((c) => c.canvas.id), points, kv };
+  });
+  if (errors.length) fail(`report page errors: ${errors.join('; ')}`);
+  for (const id of ['sky', 'cn0-el', 'error', 'accuracy', 'cdf', 'scatter', 'sats']) {
+    const i = shown.ids.indexOf(id);
+    if (i < 0) fail(`report: no chart '${id}' (charts: ${shown.ids})`);
+    if (shown.points[i] === 0) fail(`report: chart '${id}' is empty`);
+  }
+  if (!epochs || shown.kv.epochs !== epochs[1]) fail(`report: epochs ${shown.kv.epochs}, batch printed ${epochs && epochs[1]}`);
+  if (!fixes || !shown.kv.fixes.startsWith(`${fixes[1]} `)) fail(`report: fixes ${shown.kv.fixes}, batch printed ${fixes && fixes[1]}`);
+  const shot = path.join(artifacts, 'report.png');
+  await page.screenshot({ path: shot, fullPage: true });
+  console.log(`report: ${shown.ids.length} charts, ${shown.kv.epochs} epochs; screenshot ${shot}`);
+}
+
 try {
   await main();
+  if (args.gnssemu) await checkReport();
   await cleanup();
   console.log('1 passed, 0 failed');
 } catch (e) {

@@ -229,8 +229,9 @@ const GnssCharts = (() => {
         aspectRatio: 1,
         parsing: false,
         scales: {
-          x: { title: { display: true, text: 'east error (m)' } },
-          y: { title: { display: true, text: 'north error (m)' } },
+          // squareUpdate's limits are rarely round: no tick at them.
+          x: { title: { display: true, text: 'east error (m)' }, ticks: { includeBounds: false } },
+          y: { title: { display: true, text: 'north error (m)' }, ticks: { includeBounds: false } },
         },
         plugins: { legend: { position: 'bottom' } },
       },
@@ -263,14 +264,36 @@ const GnssCharts = (() => {
     }
     const r = robustLimit(pts.flatMap((p) => [p.x, p.y]).concat(Number.isFinite(cep95) ? [cep95 / 1.2] : []));
     const lim = r.lim;
-    const sets = [{ label: 'fix − truth', data: pts, backgroundColor: 'rgba(47,111,214,0.45)', pointRadius: 2 }];
+    // Chart.js draws lower order last: the circles and 'now' over the cloud.
+    const sets = [{ label: 'fix − truth', data: pts, backgroundColor: 'rgba(47,111,214,0.45)', pointRadius: 2, order: 3 }];
     if (Number.isFinite(cep50)) sets.push({ type: 'line', label: `CEP50 ${cep50.toFixed(2)} m`, data: circle(cep50),
-                                     borderColor: '#1f9d3a', pointRadius: 0, borderWidth: 1.5 });
+                                     borderColor: '#1f9d3a', pointRadius: 0, borderWidth: 2, order: 1 });
     if (Number.isFinite(cep95)) sets.push({ type: 'line', label: `CEP95 ${cep95.toFixed(2)} m`, data: circle(cep95),
-                                     borderColor: '#c0392b', pointRadius: 0, borderWidth: 1.5 });
-    if (latest) sets.push({ label: 'now', data: [latest], backgroundColor: '#000', pointRadius: 5, pointStyle: 'crossRot',
+                                     borderColor: '#c0392b', pointRadius: 0, borderWidth: 2, order: 1 });
+    if (latest) sets.push({ label: 'now', data: [latest], backgroundColor: '#000', pointRadius: 5, pointStyle: 'crossRot', order: 0,
                             borderColor: '#000', borderWidth: 2 });
     return { datasets: sets, lim, clipped: r.clipped };
+  }
+
+  /**
+   * Show [-lim, lim] on both axes of a scatter chart with one metre per pixel
+   * on each (circles stay round): the longer side of the plot area gets the
+   * wider range. Updates the chart (mode: Chart.js update mode).
+   */
+  function squareUpdate(chart, lim, mode) {
+    const x = chart.options.scales.x;
+    const y = chart.options.scales.y;
+    for (let pass = 0; pass < 3; pass++) {
+      const a = chart.chartArea;
+      const k = a && a.width > 0 && a.height > 0 ? a.width / a.height : 1;
+      const want = { xl: lim * Math.max(1, k), yl: lim * Math.max(1, 1 / k) };
+      if (pass > 0 && Math.abs(x.max - want.xl) <= 0.01 * lim && Math.abs(y.max - want.yl) <= 0.01 * lim) break;
+      x.min = -want.xl;
+      x.max = want.xl;
+      y.min = -want.yl;
+      y.max = want.yl;
+      chart.update(mode);
+    }
   }
 
   /** Nearest-rank percentile of finite values (q in (0, 1]). */
@@ -293,5 +316,5 @@ const GnssCharts = (() => {
   }
 
   return { stateColors, stateLabels, states, skyXY, skyChart, skyDatasets, cn0Chart, cn0Data, timeChart, series,
-           scatterChart, scatterData, circle, percentile, robustLimit, clipY, fmt };
+           scatterChart, scatterData, squareUpdate, circle, percentile, robustLimit, clipY, fmt };
 })();

@@ -56,7 +56,9 @@
     const sky = G.skyChart(panel('sky', 'Sky over the run', 'sky'));
     const pts = d.sky.t_s.map((t, i) => ({ prn: d.sky.prn[i], az: d.sky.az[i], el: d.sky.el[i], cn0: d.sky.cn0[i],
                                            state: d.sky.state[i], used: d.sky.used[i] === 1 }));
-    sky.data.datasets = G.skyDatasets(pts, Number.isFinite(d.elevation_mask_deg) ? d.elevation_mask_deg : 0, 1.8, 0.4);
+    // Short runs draw short tracks: bigger points keep them visible.
+    sky.data.datasets = G.skyDatasets(pts, Number.isFinite(d.elevation_mask_deg) ? d.elevation_mask_deg : 0,
+                                      pts.length < 8000 ? 3 : 1.8, 0.4);
     sky.update();
 
     // C/N0 against elevation: this run, and a real receiver's when given.
@@ -151,16 +153,15 @@
     const sc = G.scatterChart(panel('scatter', 'Horizontal error', 'sky'));
     const sd = G.scatterData(e.e_m, e.n_m, s.cep50_m, s.cep95_m, null);
     sc.data.datasets = sd.datasets;
-    sc.options.scales.x.min = sc.options.scales.y.min = -sd.lim;
-    sc.options.scales.x.max = sc.options.scales.y.max = sd.lim;
-    sc.update();
+    G.squareUpdate(sc, sd.lim);
 
     const n = G.timeChart(panel('sats', 'Satellites over time', 'series', true), 'satellites');
     n.options.scales.y.min = 0;
     n.data.datasets = [];
-    if (e.visible.some((x) => x !== null)) n.data.datasets.push(G.series('above the mask', '#9aa3ad', e.t_s, e.visible, { stepped: true }));
-    if (e.tracked.some((x) => x !== null)) n.data.datasets.push(G.series('tracked', '#2f6fd6', e.t_s, e.tracked, { stepped: true }));
-    n.data.datasets.push(G.series('used', '#1f9d3a', e.t_s, e.used, { stepped: true }));
+    // Often equal: wide lines under narrow ones keep each visible.
+    if (e.visible.some((x) => x !== null)) n.data.datasets.push(G.series('above the mask', '#9aa3ad', e.t_s, e.visible, { stepped: true, borderWidth: 6, order: 3 }));
+    if (e.tracked.some((x) => x !== null)) n.data.datasets.push(G.series('tracked', '#2f6fd6', e.t_s, e.tracked, { stepped: true, borderWidth: 3.5, order: 2 }));
+    n.data.datasets.push(G.series('used', '#1f9d3a', e.t_s, e.used, { stepped: true, borderWidth: 1.5, order: 1 }));
     n.data.datasets.push(G.series('fix type', '#c0392b', e.t_s, e.fix_type, { stepped: true, borderDash: [3, 3] }));
     n.update();
   }

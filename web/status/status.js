@@ -160,9 +160,7 @@
     const e = s.error;
     const sd = G.scatterData(hist.e_m, hist.n_m, e.cep50_m, e.cep95_m, e.valid ? { x: e.e_m, y: e.n_m } : null);
     scatter.data.datasets = sd.datasets;
-    scatter.options.scales.x.min = scatter.options.scales.y.min = -sd.lim;
-    scatter.options.scales.x.max = scatter.options.scales.y.max = sd.lim;
-    scatter.update('none');
+    G.squareUpdate(scatter, sd.lim, 'none');
   }
 
   function render(s) {
