@@ -11,6 +11,8 @@ PKGS=(
   gpsd gpsd-clients rtklib socat python3
   libjs-chart.js chromium fonts-dejavu-core nodejs
 )
+# The browser test installs its driver (playwright-core, from
+# tests/integration/browser/package-lock.json) into build/browser-driver.
 
 missing=()
 for p in "${PKGS[@]}"; do
@@ -21,18 +23,7 @@ done
 # npm may come with nodejs (NodeSource) or as Debian's own package.
 command -v npm >/dev/null 2>&1 || missing+=(npm)
 
-# The browser test's driver (tests/integration/browser/package-lock.json).
-install_browser_driver() {
-  local dir
-  dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tests/integration/browser"
-  if [ -f "$dir/package-lock.json" ] && [ ! -d "$dir/node_modules/playwright-core" ]; then
-    echo "install-deps: npm ci in $dir" >&2
-    (cd "$dir" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
-  fi
-}
-
 if [ ${#missing[@]} -eq 0 ]; then
-  install_browser_driver
   exit 0
 fi
 
@@ -46,4 +37,3 @@ $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 if command -v systemctl >/dev/null 2>&1 && [ -d /run/systemd/system ]; then
   $SUDO systemctl stop gpsd.socket gpsd.service >/dev/null 2>&1 || true
 fi
-install_browser_driver

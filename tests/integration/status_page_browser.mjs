@@ -9,7 +9,11 @@
 //   [--wait-s S]: watch S seconds more before the screenshot (docs/images: a longer history)
 //   [--gnssemu PATH [--report-config FILE --report-truth FILE] [--cn0-reference FILE]]
 //   [--sender 'ARGS']: tools/senders/send_truth.py ARGS drives the daemon (docs/images)
-// Exit 77 (skip) without chromium or playwright-core (tools/install-deps.sh installs both).
+//   [--driver-dir DIR]: where playwright-core is installed (npm ci from
+//   tests/integration/browser/package-lock.json when it is missing there;
+//   default: the build dir's browser-driver, as CMake passes it)
+// Exit 77 (skip) only when chromium is missing or cannot start; a driver that
+// cannot be installed is a failure.
 import { spawn, spawnSync } from 'node:child_process';
 import dgram from 'node:dgram';
 import fs from 'node:fs';
@@ -21,20 +25,40 @@ const args = Object.fromEntries(
   process.argv.slice(2).reduce((acc, v, i, all) => (v.startsWith('--') ? [...acc, [v.slice(2), all[i + 1]]] : acc), []));
 const chromiumPath = args.chromium || '/usr/bin/chromium';
 const here = path.dirname(new URL(import.meta.url).pathname);
-const require = createRequire(path.join(here, 'browser', 'package.json'));
 
 function skip(why) {
   console.log(`SKIP: ${why}`);
   process.exit(77);
 }
-if (Number(process.versions.node.split('.')[0]) < 20) skip(`node ${process.versions.node}: playwright-core 1.65 needs node >= 20`);
-if (!fs.existsSync(chromiumPath)) skip(`${chromiumPath} not found (apt-get install chromium)`);
-let chromium;
-try {
-  ({ chromium } = require('playwright-core'));
-} catch (e) {
-  skip(`playwright-core not installed in ${path.join(here, 'browser')} (npm ci there; tools/install-deps.sh does)`);
+function failNow(why) {
+  console.error(`FAIL: ${why}`);
+  process.exit(1);
 }
+if (Number(process.versions.node.split('.')[0]) < 20) {
+  failNow(`node ${process.versions.node} is too old: playwright-core 1.65 needs node >= 20`);
+}
+if (!fs.existsSync(chromiumPath)) skip(`${chromiumPath} not found: chromium cannot start (tools/install-deps.sh installs it)`);
+
+/** playwright-core from driverDir, installed there from the lock file on first use. */
+function loadDriver(driverDir) {
+  const lock = path.join(here, 'browser');
+  const require = createRequire(path.join(driverDir, 'package.json'));
+  try {
+    return require('playwright-core');
+  } catch {
+    // Not installed yet (a clean build dir).
+  }
+  fs.mkdirSync(driverDir, { recursive: true });
+  for (const f of ['package.json', 'package-lock.json']) fs.copyFileSync(path.join(lock, f), path.join(driverDir, f));
+  const t0 = Date.now();
+  const npm = spawnSync('npm', ['ci', '--no-audit', '--no-fund', '--loglevel=error'], { cwd: driverDir, encoding: 'utf8' });
+  if (npm.error || npm.status !== 0) {
+    failNow(`npm ci in ${driverDir} failed (${npm.error ? npm.error.message : `exit ${npm.status}`}): ${npm.stderr || ''}`);
+  }
+  console.log(`installed playwright-core in ${driverDir} (${((Date.now() - t0) / 1000).toFixed(1)} s)`);
+  return require('playwright-core');
+}
+const { chromium } = loadDriver(path.resolve(args['driver-dir'] || path.join(here, 'browser')));
 
 const tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'gnssemu-status-'));
 const artifacts = args.artifacts || tmp;
@@ -104,18 +128,24 @@ async function domState(page) {
 }
 
 async function main() {
+  try {
+    // playwright gives each launch a fresh --user-data-dir.
+    browser = await chromium.launch({
+      executablePath: chromiumPath,
+      headless: true,
+      args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
+             '--disable-component-update', '--disable-sync'],
+    });
+  } catch (e) {
+    await cleanup();
+    skip(`${chromiumPath} cannot start: ${e.message.split('\n')[0]}`);
+  }
   const { url, truthPort } = await startDaemon();
   console.log(`status page ${url}, truth port ${truthPort}`);
   if (args.sender) {
     const script = path.resolve(here, '..', '..', 'tools', 'senders', 'send_truth.py');
     sender = spawn('python3', [script, '--port', String(truthPort), ...args.sender.split(' ')], { stdio: 'ignore' });
   }
-  browser = await chromium.launch({
-    executablePath: chromiumPath,
-    headless: true,
-    args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
-           '--disable-component-update', '--disable-sync'],
-  });
   const context = await browser.newContext({ viewport: { width: 1400, height: 1900 } });
   const page = await context.newPage();
   const errors = [];
