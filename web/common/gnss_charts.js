@@ -90,6 +90,31 @@ const GnssCharts = (() => {
     },
   };
 
+  /**
+   * Pads the chart so its plot area is square whatever the legend and tick
+   * labels take: equal ranges on x and y then keep circles round.
+   */
+  const squarePlot = {
+    id: 'squarePlot',
+    afterLayout(chart) {
+      // A narrower area can wrap the legend: a few rounds settle it.
+      if ((chart.$squaring || 0) >= 4) return;
+      const a = chart.chartArea;
+      const p = chart.$squarePad || { l: 0, r: 0, t: 0, b: 0 };
+      const d = (a.width + p.l + p.r) - (a.height + p.t + p.b);
+      const next = d > 0 ? { l: d / 2, r: d / 2, t: 0, b: 0 } : { l: 0, r: 0, t: -d / 2, b: -d / 2 };
+      if (Math.abs(a.width - a.height) < 1 || Math.abs(next.l - p.l) + Math.abs(next.t - p.t) < 0.5) return;
+      chart.$squarePad = next;
+      chart.options.layout.padding = { left: next.l, right: next.r, top: next.t, bottom: next.b };
+      chart.$squaring = (chart.$squaring || 0) + 1;
+      try {
+        chart.update('none');
+      } finally {
+        chart.$squaring -= 1;
+      }
+    },
+  };
+
   /** A sky plot on canvas; opts.prnLabels: write PRN numbers beside points. */
   function skyChart(canvas, opts = {}) {
     return new Chart(canvas, {
@@ -117,7 +142,7 @@ const GnssCharts = (() => {
           } } },
         },
       },
-      plugins: [skyLabels],
+      plugins: [skyLabels, squarePlot],
     });
   }
 
@@ -229,12 +254,12 @@ const GnssCharts = (() => {
         aspectRatio: 1,
         parsing: false,
         scales: {
-          // squareUpdate's limits are rarely round: no tick at them.
-          x: { title: { display: true, text: 'east error (m)' }, ticks: { includeBounds: false } },
-          y: { title: { display: true, text: 'north error (m)' }, ticks: { includeBounds: false } },
+          x: { title: { display: true, text: 'east error (m)' } },
+          y: { title: { display: true, text: 'north error (m)' } },
         },
         plugins: { legend: { position: 'bottom' } },
       },
+      plugins: [squarePlot],
     });
   }
 
@@ -275,25 +300,13 @@ const GnssCharts = (() => {
     return { datasets: sets, lim, clipped: r.clipped };
   }
 
-  /**
-   * Show [-lim, lim] on both axes of a scatter chart with one metre per pixel
-   * on each (circles stay round): the longer side of the plot area gets the
-   * wider range. Updates the chart (mode: Chart.js update mode).
-   */
+  /** Show [-lim, lim] on both axes of a scatter chart (squarePlot keeps metres per pixel equal). */
   function squareUpdate(chart, lim, mode) {
     const x = chart.options.scales.x;
     const y = chart.options.scales.y;
-    for (let pass = 0; pass < 3; pass++) {
-      const a = chart.chartArea;
-      const k = a && a.width > 0 && a.height > 0 ? a.width / a.height : 1;
-      const want = { xl: lim * Math.max(1, k), yl: lim * Math.max(1, 1 / k) };
-      if (pass > 0 && Math.abs(x.max - want.xl) <= 0.01 * lim && Math.abs(y.max - want.yl) <= 0.01 * lim) break;
-      x.min = -want.xl;
-      x.max = want.xl;
-      y.min = -want.yl;
-      y.max = want.yl;
-      chart.update(mode);
-    }
+    x.min = y.min = -lim;
+    x.max = y.max = lim;
+    chart.update(mode);
   }
 
   /** Nearest-rank percentile of finite values (q in (0, 1]). */
