@@ -27,7 +27,8 @@ constexpr double kGridTolerance_s = 1e-6;
 }  // namespace
 
 BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const world::TruthTrack& track,
-                       std::ostream* nmea, std::ostream* errors, std::ostream* ubx, orbit::StoreOptions store_options) {
+                       std::ostream* nmea, std::ostream* errors, std::ostream* ubx, orbit::StoreOptions store_options,
+                       std::span<BatchObserver* const> observers) {
   if (!(config.rate_hz > 0.0) || !std::isfinite(config.rate_hz)) {
     throw Error(config.source, 0, "rate_hz must be positive");
   }
@@ -124,6 +125,7 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
       row.push_back('\n');
       errors->write(row.data(), static_cast<std::streamsize>(row.size()));
     }
+    for (BatchObserver* o : observers) o->on_epoch(t, fix, truth);
   }
   if (sum.epochs > 0) {
     sum.mean_visible = static_cast<double>(visible_sum) / sum.epochs;
