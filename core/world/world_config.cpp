@@ -40,6 +40,7 @@ void validate(const WorldConfig& c) {
   atmosphere::validate(a.clouds_rain);
   signal::validate(c.signal.link);
   signal::validate(c.signal.dll);
+  validate(c.carrier);
 }
 
 }  // namespace gnssemu::world
