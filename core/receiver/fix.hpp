@@ -32,6 +32,8 @@ struct SatInfo {
   bool above_mask = false;    ///< elevation >= mask
   bool tracked = false;       ///< signal tracked (pseudorange available)
   bool used = false;          ///< used in the navigation solution
+  bool ephemeris = true;      ///< the receiver has its broadcast ephemeris (decoded, or kept over a restart)
+  bool smoothed = false;      ///< its pseudorange is carrier-smoothed
   double pseudorange_m = 0.0; ///< measured (with all errors), m
   double doppler_hz = 0.0;    ///< measured L1 Doppler, Hz
   double residual_m = 0.0;    ///< post-fit pseudorange residual, m (used only)
@@ -46,8 +48,11 @@ struct Fix {
   time::GpsTime t;             ///< epoch, GPS time (receive time)
   int leap_seconds = 18;       ///< GPS - UTC used for UTC output, s
   bool in_leap_second = false; ///< t is in an inserted leap second: UTC 23:59:60.x (leap_seconds still the old count)
-  bool time_valid = false;     ///< receiver time known (false before first epoch with truth)
+  bool time_valid = false;     ///< receiver time known (false before the receiver has GPS time)
   FixType type = FixType::kNone;
+  /// The position is the navigation filter's prediction alone (too few
+  /// satellites for a short while); the accuracies grow until the fix is lost.
+  bool coasting = false;
 
   Ecef pos_m;                  ///< valid when type != kNone
   Lla lla;                     ///< same position, geodetic; height above ellipsoid

@@ -303,8 +303,7 @@ int Solver::worst_residual(const SolverOutput& out) const noexcept {
   return worst;
 }
 
-Solver::Outcome Solver::solve_all(const SolverInput& in, SolverOutput& out) noexcept {
-  out = SolverOutput{};
+bool Solver::prepare(const SolverInput& in) noexcept {
   n_ = std::clamp(in.num_meas, 0, kMaxGpsPrn);
   corr_valid_ = false;
   const double c2 = cfg_.sigma_c_m_sqrt_hz * cfg_.sigma_c_m_sqrt_hz;
@@ -313,7 +312,7 @@ Solver::Outcome Solver::solve_all(const SolverInput& in, SolverOutput& out) noex
     Sat& s = sats_[i];
     if (m.eph == nullptr || !std::isfinite(m.pseudorange_m) || !std::isfinite(m.doppler_hz)) {
       n_ = 0;  // malformed input: no fix rather than a guess
-      break;
+      return false;
     }
     const TransmitState tx = transmit_state(*m.eph, in.t_rx_local, m.pseudorange_m);
     const time::GpsTime& t_tx = tx.t_tx;
@@ -328,6 +327,30 @@ Solver::Outcome Solver::solve_all(const SolverInput& in, SolverOutput& out) noex
     // C/N0 weight term (Kuusniemi et al., GPS Solutions 8(2), 2004).
     s.cn0_var_m2 = c2 > 0.0 && m.cn0_dbhz > 0.0 ? c2 * std::pow(10.0, -std::min(m.cn0_dbhz, 70.0) / 10.0) : 0.0;
   }
+  return true;
+}
+
+int Solver::measurement_model(const SolverInput& in, const Ecef& pos_m, double clock_m,
+                              std::array<MeasurementRow, kMaxGpsPrn>& rows) noexcept {
+  if (!prepare(in) || !(pos_m.norm() > kSurfaceRadius_m)) return 0;
+  const Lla lla = geo::lla_from_ecef(pos_m);
+  linearise(in, pos_m, clock_m, &lla);
+  const Vec3 up = up_ecef(lla);
+  for (int i = 0; i < n_; ++i) {
+    const Sat& s = sats_[i];
+    MeasurementRow& r = rows[i];
+    r.los = s.los;
+    r.range_resid_m = s.resid_m;
+    r.sigma2_m2 = s.sigma2;
+    r.rate_obs_m_s = -kL1Wavelength_m * in.meas[i].doppler_hz - s.los.dot(s.vel_rx_frame_m_s) + s.drift_m_s;
+    r.el_rad = std::asin(std::clamp(s.los.dot(up), -1.0, 1.0));
+  }
+  return n_;
+}
+
+Solver::Outcome Solver::solve_all(const SolverInput& in, SolverOutput& out) noexcept {
+  out = SolverOutput{};
+  prepare(in);
   if (n_ < 3) return Outcome::kNoFix;
   const bool two_d = n_ == 3;
   if (two_d && !in.have_held_height) return Outcome::kNoFix;
