@@ -23,6 +23,15 @@ namespace {
 // first fix count from here, so ttff is what the emulator really took.
 const std::chrono::steady_clock::time_point kProcessStart = std::chrono::steady_clock::now();
 
+const char* start_name(receiver::StartMode m) {
+  switch (m) {
+    case receiver::StartMode::kHot: return "hot";
+    case receiver::StartMode::kWarm: return "warm";
+    case receiver::StartMode::kCold: break;
+  }
+  return "cold";
+}
+
 time::GpsTime system_clock_gps() {
   const auto now = std::chrono::system_clock::now();
   return time::gps_from_unix(std::chrono::duration<double>(now.time_since_epoch()).count());
@@ -64,19 +73,38 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       signals_(io, SIGINT, SIGTERM) {
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
   power_on_ = kProcessStart;
-  restart_receiver();
+  restart_receiver(cfg_.receiver.acquisition.start);
+  spdlog::info("receiver: {} start at power-on", start_name(cfg_.receiver.acquisition.start));
   if (scene_) spdlog::info("scene {}: {} triangles", cfg_.scene->mesh_file, scene_->triangle_count());
   lock_next_ = coverage_.start;
 }
 
-void Daemon::restart_receiver() {
-  // A fresh receiver (start-up, or GPS time going back) with the nav header's
-  // leap seconds and Klobuchar coefficients.
-  receiver_ = config::make_pipeline(cfg_, store_, pipeline::Broadcast{nav_klobuchar_, nav_leap_s_}, scene_.get());
+void Daemon::restart_receiver(receiver::StartMode start) {
+  // With the nav header's leap seconds and Klobuchar coefficients.
+  config::Config c = cfg_;
+  c.receiver.acquisition.start = start;
+  receiver_ = config::make_pipeline(c, store_, pipeline::Broadcast{nav_klobuchar_, nav_leap_s_}, scene_.get());
+  apply_nav5();
+}
+
+void Daemon::apply_nav5() {
+  // CFG-NAV5 dynModel and static hold drive the receiver as on an M8; the
+  // handler accepted only dynModels the receiver knows.
+  const protocol::ubx::wire::CfgNav5& n = device_.config().nav5;
+  receiver::Receiver& rx = receiver_->receiver();
+  if (const auto m = receiver::dynamic_model_from_ubx(n.dynModel)) rx.set_dynamic_model(*m);
+  rx.set_static_hold(0.01 * n.staticHoldThresh, n.staticHoldMaxDist);
 }
 
 void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& result) {
   if (result.nav_rate_changed || result.reset) on_nav_period(src);
+  if (result.nav_config_changed) {
+    const protocol::ubx::wire::CfgNav5& n = device_.config().nav5;
+    spdlog::info("output {}: CFG-NAV5 dynModel {}, static hold {} cm/s / {} m", cfg_.outputs[src].name,
+                 static_cast<unsigned>(n.dynModel), static_cast<unsigned>(n.staticHoldThresh),
+                 static_cast<unsigned>(n.staticHoldMaxDist));
+    apply_nav5();
+  }
   // One chip: a reset or a configuration load from any host changes the
   // other outputs' UART1s too (their bauds; a reset drops partial input).
   if (result.reset || result.ports_changed) {
@@ -85,18 +113,22 @@ void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& re
   }
   if (!result.reset) return;
   // Every reset mode but "GNSS stop" restarts navigation: the tracked
-  // satellites and the solution are gone and the fix is reacquired; the
-  // device measures the time to first fix from the reset on every port.
-  // All ports share the one receiver, so all of them see the fix drop.
+  // satellites and the solution are gone and the fix is reacquired with
+  // what navBbrMask kept (hot: about 1 s, cold: about 30 s); the device
+  // measures the time to first fix from the reset on every port. All ports
+  // share the one receiver, so all of them see the fix drop. The world
+  // (satellite errors, the oscillator) runs on.
   const protocol::ubx::Reset& reset = *result.reset;
   if (!reset.restarts_navigation()) {
     spdlog::info("output {}: CFG-RST GNSS stop: not modelled, the receiver keeps navigating",
                  cfg_.outputs[src].name);
     return;
   }
-  spdlog::info("output {}: CFG-RST {} start: the receiver restarts and reacquires", cfg_.outputs[src].name,
-               reset.start_name());
-  restart_receiver();
+  spdlog::info("output {}: CFG-RST {} start (navBbrMask 0x{:04X}): the receiver restarts and reacquires",
+               cfg_.outputs[src].name, reset.start_name(), reset.nav_bbr_mask);
+  receiver_->receiver().restart(receiver::StartState{reset.keeps_ephemeris(), reset.keeps_almanac(),
+                                                     reset.keeps_position(), reset.keeps_time()});
+  apply_nav5();  // a reboot may have loaded the saved CFG-NAV5
 }
 
 Daemon::~Daemon() { shutdown(); }
@@ -207,7 +239,7 @@ void Daemon::note_clock_wrap(int64_t wraps) {
   spdlog::warn("epoch clock reached the end of the nav file's coverage: back to {} (wrap {})",
                gps_text(coverage_.start), wraps);
   router_.on_clock_jump();
-  restart_receiver();
+  restart_receiver(receiver::StartMode::kHot);
 }
 
 world::Truth Daemon::fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept {
@@ -378,7 +410,7 @@ void Daemon::align_to_packet_time(const time::GpsTime& stamp) {
   gps_aligned_ = true;
   const double tow_epochs = std::ceil(stamp.tow_s() * rate_hz_ - 1e-9);
   const time::GpsTime first(stamp.week(), tow_epochs / rate_hz_);
-  if (first < lock_next_) restart_receiver();  // time goes back
+  if (first < lock_next_) restart_receiver(receiver::StartMode::kHot);  // time goes back
   lock_next_ = first;
   spdlog::info("lockstep: epochs follow the packets' GPS time from {}", gps_text(first));
 }

@@ -77,7 +77,9 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
       const std::string_view bytes = messages.bytes(m);
       if (log != nullptr) log->write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     }
-    const bool has_fix = fix.type != receiver::FixType::kNone;
+    // A fix without truth (the receiver coasting through an antenna loss)
+    // has nothing to be compared with.
+    const bool has_fix = fix.type != receiver::FixType::kNone && truth.valid;
     Enu d;
     if (has_fix) {
       const Lla truth_lla = geo::lla_from_ecef(truth.pos_m);

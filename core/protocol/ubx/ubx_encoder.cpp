@@ -401,7 +401,9 @@ std::size_t UbxEncoder::nav_sat(const Fix& fix, std::string& out) const {
     std::uint32_t flags = quality_ind(s);
     if (used) flags |= 1u << 3;
     flags |= (s.healthy ? 1u : 2u) << 4;  // health: 1 healthy, 2 unhealthy
-    if (s.healthy) flags |= 1u << 8 | 1u << 11 | 1u << 12;  // orbitSource ephemeris, ephAvail, almAvail
+    if (s.smoothed) flags |= 1u << 7;
+    if (s.healthy) flags |= 1u << 12;                          // almAvail
+    if (s.healthy && s.ephemeris) flags |= 1u << 8 | 1u << 11;  // orbitSource ephemeris, ephAvail
     sv.flags = flags;
     std::memcpy(buf + len, &sv, sizeof sv);
     len += sizeof sv;
@@ -429,7 +431,9 @@ std::size_t UbxEncoder::nav_svinfo(const Fix& fix, std::string& out) const {
     ch.svid = static_cast<std::uint8_t>(s.prn);
     const bool used = s.used && c.has_fix;
     std::uint8_t flags = used ? 0x01 : 0x00;
-    flags |= s.healthy ? 0x0C : 0x10;  // orbitAvail + orbitEph, or unhealthy
+    // orbitAvail + orbitEph (or orbitAlm without its ephemeris), or unhealthy; b7 smoothed
+    flags |= s.healthy ? (s.ephemeris ? 0x0C : 0x24) : 0x10;
+    if (s.smoothed) flags |= 0x80;
     ch.flags = flags;
     ch.quality = quality_ind(s);
     ch.cno = cno_u1(s);
