@@ -10,6 +10,7 @@
 #include "core/pipeline/pipeline.hpp"
 #include "core/scene/mesh.hpp"
 #include "core/scene/scene.hpp"
+#include "synthetic_sky.hpp"
 #include "tests/support/alloc_counter.hpp"
 
 namespace gnssemu::receiver {
@@ -39,8 +40,8 @@ struct ReceiverScene : ::testing::Test {
 
 TEST_F(ReceiverScene, EmptySceneIsIdenticalToNoScene) {
   const scene::Scene empty(scene::MeshBuilder("empty", {}).finish());  // an empty mesh file is an error
-  Pipeline plain(store, PipelineConfig{});
-  Pipeline with(store, PipelineConfig{});
+  Pipeline plain(store, test::snapshot());
+  Pipeline with(store, test::snapshot());
   with.world().attach_scene({&empty, kOrigin, scene::SearchConfig{}});
   for (int k = 0; k < 120; ++k) {
     const Truth tr = truth_at(Enu(2.0 * k, -1.0 * k, 1.5), k);
@@ -61,7 +62,7 @@ TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
   const scene::Scene canyon(scene::load_mesh(kData + "/scenes/street_canyon.toml"));
   // Fixed code noise, so the only pseudorange difference is the path (the
   // DLL model's noise follows C/N0, which the reflection loss lowers).
-  PipelineConfig cfg;
+  PipelineConfig cfg = test::snapshot();
   cfg.world.errors.thermal_model = world::ThermalModel::kFixed;
   Pipeline plain(store, cfg);
   Pipeline with(store, cfg);
@@ -106,7 +107,7 @@ TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
 // epoch; an excluded satellite is tracked but not used (GSA, NAV-SAT).
 TEST_F(ReceiverScene, FaultExclusionDropsBiasedSatellitesFromTheSolution) {
   const scene::Scene canyon(scene::load_mesh(kData + "/scenes/street_canyon.toml"));
-  Pipeline rx(store, PipelineConfig{});
+  Pipeline rx(store, test::snapshot());
   rx.world().attach_scene({&canyon, kOrigin, scene::SearchConfig{}});
   int fixes = 0, with_exclusion = 0, excluded = 0, excluded_nlos = 0;
   for (int k = 0; k < 200; ++k) {
@@ -140,7 +141,7 @@ TEST_F(ReceiverScene, FaultExclusionDropsBiasedSatellitesFromTheSolution) {
 
 TEST_F(ReceiverScene, InsideClosedBuildingNoSatelliteNoFix) {
   const scene::Scene box(scene::load_mesh(kData + "/scenes/closed_box.obj"));
-  Pipeline rx(store, PipelineConfig{});
+  Pipeline rx(store, test::snapshot());
   rx.world().attach_scene({&box, kOrigin, scene::SearchConfig{}});
   for (int k = 0; k < 5; ++k) {
     const Truth tr = truth_at(Enu(1.0, 2.0, 1.5), k);
@@ -163,7 +164,7 @@ TEST_F(ReceiverScene, StepWithSceneDoesNotAllocate) {
   const scene::Scene canyon(scene::load_mesh(kData + "/scenes/street_canyon.toml"));
   scene::SearchConfig search;
   search.reuse_distance_m = 1.0;
-  Pipeline rx(store, PipelineConfig{});
+  Pipeline rx(store, test::snapshot());
   rx.world().attach_scene({&canyon, kOrigin, search});
   rx.step(t0, truth_at(Enu(3.0, -100.0, 1.5), 0.0));
   const long before = support::allocation_count();
