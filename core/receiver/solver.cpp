@@ -248,6 +248,11 @@ void Solver::solve(const SolverInput& in, SolverOutput& out) noexcept {
   for (int i = 0; i < kMaxGpsPrn; ++i) idx[i] = i;
   const SolverInput* cur = &in;
   Outcome o = solve_all(*cur, out);
+  // Every measurement of in, prepared: measurement_model reuses them.
+  solved_ = {&in, in.t_rx_local, n_};
+  std::copy(sats_.begin(), sats_.begin() + n_, solved_sats_.begin());
+  solved_corr_valid_ = corr_valid_;
+  solved_corr_pos_ = corr_pos_;
   int exclusions = 0;
   while (o == Outcome::kResidualTestFailed && n_ - 1 >= kMinSatsAfterExclusion &&
          exclusions++ < cfg_.max_exclusions) {
@@ -332,7 +337,16 @@ bool Solver::prepare(const SolverInput& in) noexcept {
 
 int Solver::measurement_model(const SolverInput& in, const Ecef& pos_m, double clock_m,
                               std::array<MeasurementRow, kMaxGpsPrn>& rows) noexcept {
-  if (!prepare(in) || !(pos_m.norm() > kSurfaceRadius_m)) return 0;
+  if (solved_.in == &in && solved_.t_rx_local == in.t_rx_local && solved_.n == in.num_meas) {
+    // The epoch solve() just prepared: same satellites, same corrections.
+    n_ = solved_.n;
+    std::copy(solved_sats_.begin(), solved_sats_.begin() + n_, sats_.begin());
+    corr_valid_ = solved_corr_valid_;
+    corr_pos_ = solved_corr_pos_;
+  } else if (!prepare(in)) {
+    return 0;
+  }
+  if (!(pos_m.norm() > kSurfaceRadius_m)) return 0;
   const Lla lla = geo::lla_from_ecef(pos_m);
   linearise(in, pos_m, clock_m, &lla);
   const Vec3 up = up_ecef(lla);

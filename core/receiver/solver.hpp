@@ -144,6 +144,16 @@ private:
   double z_pfa_;  // standard-normal upper quantile of residual_test_pfa
   std::array<Sat, kMaxGpsPrn> sats_{};
   SolverInput subset_;  ///< in without the excluded measurements (fault exclusion)
+  /// The input solve() last prepared whole, its satellites and corrections
+  /// (measurement_model at the same epoch starts from them).
+  struct Solved {
+    const SolverInput* in = nullptr;
+    time::GpsTime t_rx_local;
+    int n = 0;
+  } solved_;
+  std::array<Sat, kMaxGpsPrn> solved_sats_{};
+  bool solved_corr_valid_ = false;
+  Ecef solved_corr_pos_;
   int n_ = 0;
   orbit::KlobucharParams klobuchar_;  // invalid: RTKLIB defaults
   bool corr_valid_ = false;           // corr_m computed at corr_pos_

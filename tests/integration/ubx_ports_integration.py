@@ -33,6 +33,9 @@ Cases (each bounded, every process killed and the temp dir removed on exit):
   jamming    MON-HW noisePerMS / agcCnt / jamInd with [signal] noise_rise_db
              30 dB differ from the quiet (1 dB) daemon as docs/ubx.md maps
              them
+  nav5       CFG-NAV5 dynModel drives the receiver: on the demo circle
+             (5 m/s) NAV-PVT gSpeed is ~5 m/s, exactly 0 with the stationary
+             model (velocity restricted to 0), ~5 m/s again with automotive
   cold_start gpsd (read-only, NMEA) reads the pty; after the power-on hot
              start's fix (mode 3) a host sends CFG-RST cold start: gpsd sees
              no fix (mode 1) for about the M8's cold TTFF (data sheet 29 s,
@@ -519,6 +522,37 @@ def case_gpsdecode(rig):
           f"{len(common)} epochs agree with the NMEA log")
 
 
+def case_nav5(rig):
+    path, out = pty_output(rig, extra='ubx_messages = ["NAV-PVT"]\nprotocols_out = ["ubx"]')
+    rig.start_daemon(out)
+    fd = rig.open_tty(path)
+    s = Stream(fd)
+    fix = lambda k, m: k == "ubx" and m[2:4] == b"\x01\x07" and m[6 + 21] & 1
+    gspeed = lambda m: struct.unpack_from("<i", m, 6 + 60)[0] / 1000.0
+
+    def speeds(n):
+        return [gspeed(s.wait_for(fix, 3.0, "NAV-PVT with gnssFixOK")[1]) for _ in range(n)]
+
+    def set_dyn(model):
+        nav5 = bytearray(poll_cfg(s, fd, 0x24))
+        struct.pack_into("<HB", nav5, 0, 0x0001, model)
+        set_cfg(s, fd, 0x24, bytes(nav5))
+        assert poll_cfg(s, fd, 0x24)[2] == model
+        s.msgs.clear()
+        s.wait_for(fix, 3.0, "NAV-PVT after CFG-NAV5")  # the epoch under way when it changed
+
+    before = speeds(3)
+    assert all(3.0 < v < 7.0 for v in before), f"demo circle at 5 m/s, NAV-PVT gSpeed {before}"
+    set_dyn(2)  # stationary
+    still = speeds(3)
+    assert still == [0.0, 0.0, 0.0], f"stationary model: gSpeed {still}, want 0"
+    set_dyn(4)  # automotive
+    again = speeds(3)
+    assert all(3.0 < v < 7.0 for v in again), f"automotive model: gSpeed {again}"
+    assert "CFG-NAV5 dynModel 2" in rig.daemon_log_text()
+    print(f"  nav5: gSpeed {before[0]:.2f} m/s portable, {still[0]:.2f} stationary, {again[0]:.2f} automotive")
+
+
 def case_cold_start(rig):
     path, out = pty_output(rig, extra='sentences = ["RMC", "GGA", "GSA"]')
     rig.start_daemon(out)
@@ -767,7 +801,7 @@ def case_jamming(rig):
 
 CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx, "gpsd_nmea": case_gpsd_nmea,
          "gpsdecode": case_gpsdecode, "serial": case_serial, "net": case_net, "budget": case_budget,
-         "jamming": case_jamming, "wallclock": case_wallclock, "cold_start": case_cold_start}
+         "jamming": case_jamming, "wallclock": case_wallclock, "cold_start": case_cold_start, "nav5": case_nav5}
 NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_nmea": ["gpsd", "gpspipe"], "gpsdecode": ["gpsdecode"],
          "serial": ["socat", "stty"], "cold_start": ["gpsd", "gpspipe"]}
 
