@@ -300,7 +300,8 @@ void Daemon::emit_epoch(const time::GpsTime& t, const world::Truth& truth) {
   const int type = static_cast<int>(fix.type);
   if (type != last_fix_type_ || truth.valid != last_truth_valid_) {
     spdlog::info("epoch {}: truth {}, fix {} with {} satellites (PDOP {:.1f})", gps_text(t),
-                 truth.valid ? "valid" : "none", type == 3 ? "3D" : type == 2 ? "2D" : "none", fix.num_used,
+                 truth.valid ? "valid" : "none",
+                 type == 3 ? "3D" : type == 2 ? "2D" : type == 1 ? "dead reckoning" : "none", fix.num_used,
                  fix.dop.pdop);
     last_fix_type_ = type;
     last_truth_valid_ = truth.valid;

@@ -12,6 +12,10 @@ namespace gnssemu::receiver {
 
 enum class FixType : uint8_t {
   kNone = 0,  ///< no position (too few satellites, bad geometry, no antenna)
+  /// The navigation filter's prediction alone (too few satellites for a few
+  /// seconds): the position is extrapolated, the accuracies grow, nothing is
+  /// used; u-blox "dead reckoning only" (NAV-PVT fixType 1, GGA quality 6).
+  kDeadReckoning = 1,
   k2D = 2,    ///< horizontal only; height held
   k3D = 3,
 };
@@ -50,9 +54,6 @@ struct Fix {
   bool in_leap_second = false; ///< t is in an inserted leap second: UTC 23:59:60.x (leap_seconds still the old count)
   bool time_valid = false;     ///< receiver time known (false before the receiver has GPS time)
   FixType type = FixType::kNone;
-  /// The position is the navigation filter's prediction alone (too few
-  /// satellites for a short while); the accuracies grow until the fix is lost.
-  bool coasting = false;
 
   Ecef pos_m;                  ///< valid when type != kNone
   Lla lla;                     ///< same position, geodetic; height above ellipsoid

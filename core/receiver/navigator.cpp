@@ -246,7 +246,7 @@ void Navigator::step(double dt_s, const SolverInput& in, const SolverOutput& sna
       return;
     }
     coasting_ = true;
-    fill_state(last_type_, out);
+    fill_state(FixType::kDeadReckoning, out);
     for (int i = 0; i < 4; ++i) {
       const double grown = std::max(out.cov_pos[i][i] - kf_var_at_update_[i], 0.0);
       out.cov_pos[i][i] = std::max(floor_var_[i], kf_var_at_update_[i]) + grown;

@@ -35,7 +35,8 @@ public:
   /// exclusions are indexed like in.meas.
   void step(double dt_s, const SolverInput& in, const SolverOutput& snapshot, Solver& solver, SolverOutput& out) noexcept;
 
-  /// The last output came from the prediction alone (too few satellites).
+  /// The last output came from the prediction alone (too few satellites):
+  /// reported as FixType::kDeadReckoning.
   bool coasting() const noexcept { return coasting_; }
   /// Static hold froze the last output.
   bool holding() const noexcept { return holding_; }

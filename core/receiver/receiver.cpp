@@ -70,7 +70,6 @@ void Receiver::set_static_hold(double speed_m_s, double max_dist_m) noexcept {
 
 void Receiver::no_fix_epoch() noexcept {
   fix_.type = FixType::kNone;
-  fix_.coasting = false;
   fix_.dop = Dop{};
   fix_.vel_m_s = Ecef{};
   fix_.vel_enu_m_s = Enu{};
@@ -240,7 +239,6 @@ void Receiver::fill_solution() noexcept {
   }
   Fix& f = fix_;
   f.type = out_.type;
-  f.coasting = nav_.coasting() && config_.filter.type == NavFilterType::kKalman;
   f.pos_m = out_.pos_m;
   f.lla = out_.lla;
   f.geoid_sep_m = geo::geoid_separation_m(f.lla.lat_rad, f.lla.lon_rad);
@@ -276,7 +274,7 @@ void Receiver::fill_solution() noexcept {
   for (int i = 0; i < f.num_sats && k < in_.num_meas; ++i) {
     SatInfo& si = f.sats[i];
     if (si.prn != meas_prn_[k]) continue;
-    si.used = !f.coasting && !out_.excluded[k];  // excluded by the residual test: tracked, not used
+    si.used = f.type != FixType::kDeadReckoning && !out_.excluded[k];  // excluded: tracked, not used
     si.residual_m = out_.residual_m[k++];
   }
 
@@ -287,7 +285,7 @@ void Receiver::fill_solution() noexcept {
   last_clock_m_ = out_.clock_m;
   last_drift_m_s_ = out_.drift_m_s;
   acq_.on_fix();
-  if (f.type == FixType::k3D && !f.coasting) {
+  if (f.type == FixType::k3D) {
     have_3d_ = true;
     held_pos_m_ = f.pos_m;
     held_height_m_ = f.lla.height_m;

@@ -196,7 +196,8 @@ void Device::on_epoch(const receiver::Fix& fix, double now_s) noexcept {
   // (0.34999...) from losing a ms to binary rounding.
   constexpr double kSlackMs = 1e-6;
   info_.msss_ms = static_cast<std::uint32_t>(std::min(ms + kSlackMs, 4294967295.0));
-  if (!have_fix_once_ && fix.type != receiver::FixType::kNone && fix.time_valid) {
+  const bool gnss_fix = fix.type == receiver::FixType::k2D || fix.type == receiver::FixType::k3D;
+  if (!have_fix_once_ && gnss_fix && fix.time_valid) {
     have_fix_once_ = true;
     // The uptime of this epoch (msss of the same NAV-STATUS, so ttff <= msss);
     // at least 1 ms: 0 on the wire means "no fix yet".

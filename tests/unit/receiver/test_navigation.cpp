@@ -169,7 +169,7 @@ TEST(NavFilter, ATotalOutageCoastsWithGrowingAccuracyThenLosesTheFix) {
     none.valid = false;
     const Fix& f = rx.step(none.t, none);
     if (f.type == FixType::kNone) continue;
-    EXPECT_TRUE(f.coasting);
+    EXPECT_EQ(f.type, FixType::kDeadReckoning);
     EXPECT_EQ(f.num_used, 0);
     EXPECT_GT(f.h_acc_m, prev_hacc);
     EXPECT_LT((f.pos_m - pos).norm(), 5.0);

@@ -232,6 +232,23 @@ TEST(UbxEncoder, EphemerisAndSmoothingFlagsFollowTheReceiver) {
   EXPECT_EQ(q[8 + 24 + 2] & 0x80, 0x80);        // smoothed
 }
 
+TEST(UbxEncoder, DeadReckoningIsFixType1WithoutGnssFixOk) {
+  receiver::Fix f = sample_fix();
+  f.type = receiver::FixType::kDeadReckoning;
+  const UbxEncoder enc;
+  std::string pvt, status;
+  enc.nav_pvt(f, pvt);
+  enc.nav_status(f, EpochInfo{}, status);
+  const auto pf = test::split_frames(pvt), sf = test::split_frames(status);
+  ASSERT_EQ(pf.size(), 1u);
+  ASSERT_EQ(sf.size(), 1u);
+  EXPECT_EQ(pf[0].payload[20], 1);         // fixType: dead reckoning only
+  EXPECT_EQ(pf[0].payload[21] & 1, 0);     // gnssFixOK not set
+  EXPECT_NE(test::i4(pf[0].payload, 28), 0);  // the extrapolated latitude is reported
+  EXPECT_EQ(sf[0].payload[4], 1);          // gpsFix
+  EXPECT_EQ(sf[0].payload[5] & 1, 0);      // gpsFixOk
+}
+
 TEST(UbxEncoder, NoFixIsFlaggedNotFaked) {
   receiver::Fix f = sample_fix();
   f.type = receiver::FixType::kNone;
