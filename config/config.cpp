@@ -119,7 +119,7 @@ TimeConfig read_time(TableReader& t) {
     }
   }
   out.start = read_start(t);
-  out.use_wall_clock_date = t.boolean("use_wall_clock_date", out.use_wall_clock_date);
+  out.use_wall_clock_date = t.boolean("use_wall_clock_date", !out.start.has_value());
   if (out.use_wall_clock_date && out.start) {
     t.fail(*t.find("use_wall_clock_date"),
            t.full_name("use_wall_clock_date") + ": cannot be true together with time.start");

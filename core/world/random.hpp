@@ -26,14 +26,18 @@ enum class Purpose : uint64_t {
   kMultipathStep = 11,
   kGradientInit = 12,   ///< azimuthal gradient, streams kGradientStream + 0 (N) / 1 (E)
   kGradientStep = 13,
-  kCarrierNoise = 14,      ///< carrier phase jitter per PRN
-  kCycleSlip = 15,         ///< slip draw per PRN (uniform) and its size
-  kCarrierAmbiguity = 16,  ///< integer ambiguity of a new carrier lock
-  kAcquisition = 17,       ///< the receiver's search times (streams kAcquisitionStream + PRN)
+  kIonoScaleInit = 14,  ///< common relative ionospheric error, stream kIonoScaleStream
+  kIonoScaleStep = 15,
+  kCarrierNoise = 16,      ///< carrier phase jitter per PRN
+  kCycleSlip = 17,         ///< slip draw per PRN (uniform) and its size
+  kCarrierAmbiguity = 18,  ///< integer ambiguity of a new carrier lock
+  kAcquisition = 19,       ///< the receiver's search times (streams kAcquisitionStream + PRN)
 };
 
 /// First stream of the two azimuthal-gradient processes (after the 32 PRNs).
 inline constexpr uint64_t kGradientStream = 33;
+/// Stream of the common relative ionospheric error (after the gradients).
+inline constexpr uint64_t kIonoScaleStream = 35;
 
 /// Streams of the receiver's acquisition draws: this + PRN.
 inline constexpr uint64_t kAcquisitionStream = 100;
