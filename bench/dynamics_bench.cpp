@@ -7,7 +7,7 @@
 // world without errors (the filter's own dynamics), speed error and lag also
 // in the default world. Prints tables; not a test.
 //   dynamics_bench [--nav FILE] [--seeds N] [--section static|moving|all]
-//                  [--model NAME] [--position-noise M2_S] [--smoothing S]
+//                  [--model NAME] [--profile ublox_m8|geodetic] [--position-noise M2_S] [--smoothing S]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +21,7 @@
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
 #include "core/pipeline/pipeline.hpp"
+#include "core/pipeline/receiver_profile.hpp"
 #include "core/statistics/statistics.hpp"
 
 namespace {
@@ -39,6 +40,7 @@ struct Options {
   int seeds = 5;
   std::string section = "all";
   std::string model;             // empty: every model
+  std::string profile;           // empty: the built-in default world
   double position_noise = -1.0;  // < 0: the default
   double smoothing = -1.0;
 };
@@ -52,6 +54,9 @@ PipelineConfig errorless(PipelineConfig c) {
   c.world.errors.thermal_model = world::ThermalModel::kFixed;
   c.world.errors.thermal_sigma_m = 0.0;
   c.world.errors.doppler_sigma_m_s = 0.0;
+  c.world.errors.multipath.sigma_m = 0.0;
+  c.world.errors.gradient = {};
+  c.world.errors.iono_scale.sigma = 0.0;
   c.world.carrier.doppler_model = world::DopplerModel::kFixed;
   c.world.carrier.oscillator_sigma_rad = 0.0;
   c.world.clock.drift_noise_s_s_sqrt_s = 0.0;
@@ -65,6 +70,7 @@ PipelineConfig errorless(PipelineConfig c) {
 
 PipelineConfig base(const Options& o, DynamicModel m, uint64_t seed) {
   PipelineConfig c;
+  if (!o.profile.empty()) c = pipeline::apply_profile(c, pipeline::receiver_profile(o.profile), kSite.lat_rad);
   c.world.seed = seed;
   c.receiver.filter.dynamic_model = m;
   if (o.position_noise >= 0.0) c.receiver.filter.position_noise_m2_s = o.position_noise;
@@ -251,6 +257,7 @@ int main(int argc, char** argv) {
     else if (k == "--seeds") o.seeds = std::max(1, std::atoi(argv[i + 1]));
     else if (k == "--section") o.section = argv[i + 1];
     else if (k == "--model") o.model = argv[i + 1];
+    else if (k == "--profile") o.profile = argv[i + 1];
     else if (k == "--position-noise") o.position_noise = std::atof(argv[i + 1]);
     else if (k == "--smoothing") o.smoothing = std::atof(argv[i + 1]);
     else {
@@ -261,8 +268,8 @@ int main(int argc, char** argv) {
   try {
     const orbit::NavData nav = orbit::read_rinex_nav(o.nav);
     const orbit::EphemerisStore store(nav.ephemerides);
-    std::printf("# dynamics_bench: %s, Paris (48.8738 N 2.2950 E), default PipelineConfig per dynamic model\n",
-                o.nav.c_str());
+    std::printf("# dynamics_bench: %s, Paris (48.8738 N 2.2950 E), %s per dynamic model\n", o.nav.c_str(),
+                o.profile.empty() ? "default PipelineConfig" : ("receiver profile " + o.profile).c_str());
     if (o.section == "static" || o.section == "all") static_section(o, store);
     if (o.section == "moving" || o.section == "all") moving_section(o, store);
   } catch (const std::exception& e) {

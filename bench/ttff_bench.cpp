@@ -8,7 +8,7 @@
 // through the blockage: how long the receiver dead-reckons and how its hAcc
 // grows.
 // Prints tables; not a test.
-//   ttff_bench [--nav FILE] [--trials N] [--rate HZ]
+//   ttff_bench [--nav FILE] [--trials N] [--rate HZ] [--profile ublox_m8|geodetic]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +21,7 @@
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
 #include "core/pipeline/pipeline.hpp"
+#include "core/pipeline/receiver_profile.hpp"
 #include "core/statistics/statistics.hpp"
 
 namespace {
@@ -33,6 +34,7 @@ struct Options {
   std::string nav = std::string(GNSSEMU_SOURCE_DIR) + "/tests/data/nav/brdc0010.22n";
   int trials = 40;
   double rate_hz = 1.0;
+  std::string profile;  // empty: the built-in default world
 };
 
 const Lla kSites[] = {{48.8738 * kDegToRad, 2.2950 * kDegToRad, 100.0},     // Paris
@@ -51,6 +53,14 @@ struct Trial {
   uint64_t seed;
 };
 
+/// The default receiver, or the profile's, with the trial's seed.
+PipelineConfig configured(const Options& o, const Trial& tr) {
+  PipelineConfig c;
+  if (!o.profile.empty()) c = pipeline::apply_profile(c, pipeline::receiver_profile(o.profile), geo::lla_from_ecef(tr.pos).lat_rad);
+  c.world.seed = tr.seed;
+  return c;
+}
+
 Trial trial(const orbit::EphemerisStore& store, int k) {
   // Starts 997 s apart (not a multiple of the 30-s frame) across the day.
   const time::GpsTime t0 = store.first_valid() + 3600.0 + 997.0 * k;
@@ -58,8 +68,7 @@ Trial trial(const orbit::EphemerisStore& store, int k) {
 }
 
 double ttff(const orbit::EphemerisStore& store, const Options& o, const Trial& tr, StartMode mode) {
-  PipelineConfig c;
-  c.world.seed = tr.seed;
+  PipelineConfig c = configured(o, tr);
   c.receiver.acquisition.start = mode;
   pipeline::Pipeline rx(store, c);
   world::Truth truth;
@@ -80,8 +89,7 @@ struct Blockage {
 };
 
 Blockage blockage(const orbit::EphemerisStore& store, const Options& o, const Trial& tr, double outage_s) {
-  PipelineConfig c;
-  c.world.seed = tr.seed;
+  PipelineConfig c = configured(o, tr);
   pipeline::Pipeline rx(store, c);
   world::Truth truth;
   truth.pos_m = tr.pos;
@@ -144,6 +152,7 @@ int main(int argc, char** argv) {
     if (k == "--nav") o.nav = argv[i + 1];
     else if (k == "--trials") o.trials = std::max(1, std::atoi(argv[i + 1]));
     else if (k == "--rate") o.rate_hz = std::clamp(std::atof(argv[i + 1]), 1.0, 10.0);
+    else if (k == "--profile") o.profile = argv[i + 1];
     else {
       std::fprintf(stderr, "ttff_bench: unknown option %s\n", k.c_str());
       return 2;
@@ -152,8 +161,9 @@ int main(int argc, char** argv) {
   try {
     const orbit::NavData nav = orbit::read_rinex_nav(o.nav);
     const orbit::EphemerisStore store(nav.ephemerides);
-    std::printf("# ttff_bench: %s, %d trials (4 sites, starts 997 s apart, one seed each), %g Hz epochs, "
-                "default PipelineConfig\n\n", o.nav.c_str(), o.trials, o.rate_hz);
+    std::printf("# ttff_bench: %s, %d trials (4 sites, starts 997 s apart, one seed each), %g Hz epochs, %s\n\n",
+                o.nav.c_str(), o.trials, o.rate_hz,
+                o.profile.empty() ? "default PipelineConfig" : ("receiver profile " + o.profile).c_str());
     std::printf("| start | with a fix | mean (s) | median (s) | p5 (s) | p95 (s) | max (s) | M8 data sheet |\n");
     std::printf("|---|---|---|---|---|---|---|---|\n");
     std::vector<double> cold, warm, hot;

@@ -32,7 +32,7 @@ void validate(const AcquisitionConfig& c) {
                 {c.reacq_window_s, R::reacq_window_s, "reacq_window_s"},
                 {c.strong_cn0_dbhz, R::strong_cn0_dbhz, "strong_cn0_dbhz"},
                 {c.search_spread, R::search_spread, "search_spread"},
-                {c.cold_margin_db, R::cold_margin_db, "cold_margin_db"},
+                {c.cold_acquire_dbhz, R::cold_acquire_dbhz, "cold_acquire_dbhz"},
                 {c.reacq_margin_db, R::reacq_margin_db, "reacq_margin_db"},
                 {c.aided_doppler_window_hz, R::aided_doppler_window_hz, "aided_doppler_window_hz"},
                 {c.bit_sync_s, R::bit_sync_s, "bit_sync_s"},
@@ -87,7 +87,7 @@ Acquisition::Search Acquisition::classify(int prn) const noexcept {
 
 double Acquisition::threshold_dbhz(Search s) const noexcept {
   switch (s) {
-    case Search::kCold: return thr_.acquire_dbhz + cfg_.cold_margin_db;
+    case Search::kCold: return std::max(thr_.acquire_dbhz, cfg_.cold_acquire_dbhz);
     case Search::kReacq: return std::max(thr_.acquire_dbhz - cfg_.reacq_margin_db, thr_.lose_dbhz);
     case Search::kAided: break;
   }

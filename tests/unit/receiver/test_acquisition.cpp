@@ -118,15 +118,20 @@ TEST(Acquisition, ReacquisitionAfterABlockageTakesAboutOneSecond) {
 }
 
 TEST(Acquisition, ColdSearchNeedsStrongerSignalsThanAHotOne) {
-  // A 13 dB noise rise leaves the zenith near 35 dB-Hz: enough for the aided
-  // threshold (30), not for the unaided one (39, data sheet -148 vs -157 dBm).
+  // A receiver at the M8's own thresholds (data sheet: hot start -157 dBm =
+  // 14 dB-Hz, tracking -166 dBm): a 27 dB noise rise leaves the zenith near
+  // 21 dB-Hz, enough for the aided search, not for the unaided one
+  // (-148 dBm = 23 dB-Hz).
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
   PipelineConfig c;
-  c.world.signal.link.environment_noise_rise_db = 13.0;
+  c.receiver.tracking.acquire_dbhz = 14.0;
+  c.receiver.tracking.lose_dbhz = 8.0;
+  c.world.signal.link.environment_noise_rise_db = 27.0;
   Pipeline hot(store, started(StartMode::kHot, c)), cold(store, started(StartMode::kCold, c));
   const Ecef pos = geo::ecef_from_lla(kSite);
-  EXPECT_LE(first_fix_s(hot, pos, kToe, 1.0, 20.0), 10.0);
-  EXPECT_TRUE(std::isnan(first_fix_s(cold, pos, kToe, 1.0, 120.0)));
+  // Weak signals take long to find (the dwell grows as 1 / (C/N0)).
+  EXPECT_LE(first_fix_s(hot, pos, kToe, 1.0, 200.0), 200.0);
+  EXPECT_TRUE(std::isnan(first_fix_s(cold, pos, kToe, 1.0, 200.0)));
 }
 
 TEST(Acquisition, WeakSignalsTakeLongerToFind) {
