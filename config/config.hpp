@@ -12,8 +12,10 @@
 #include "core/common/range.hpp"
 #include "core/common/vec3.hpp"
 #include "core/orbit/constellation.hpp"
+#include "core/common/violation.hpp"
 #include "core/protocol/nmea/nmea_encoder.hpp"
 #include "core/protocol/ubx/ubx_ports.hpp"
+#include "core/pipeline/receiver_profile.hpp"
 #include "core/receiver/receiver_config.hpp"
 #include "core/scene/mesh.hpp"
 #include "core/scene/propagator.hpp"
@@ -54,12 +56,21 @@ struct NavConfig {
   orbit::NavMode mode = orbit::NavMode::kAuto;
 };
 
+/// Mode almanac and an almanac file go together.
+std::optional<Violation> check_nav(const NavConfig& n);
+
+/// A start time and the wall clock's date exclude each other.
+std::optional<Violation> check_start(const TimeConfig& t);
+
 struct TruthInputConfig {
   std::string bind_address = "127.0.0.1";
   uint16_t port = 5500;           ///< 0: pick a free port (logged)
   double timeout_s = 2.0;         ///< no truth for this long -> no fix
   double max_extrapolation_s = 0.5;
 };
+
+/// Truth is extrapolated within its timeout: max_extrapolation_s <= timeout_s.
+std::optional<Violation> check_extrapolation(const TruthInputConfig& t);
 
 /// Built-in demo trajectory used while no simulator sends truth.
 struct DemoConfig {
@@ -170,6 +181,8 @@ struct Config {
   TimeConfig time;
   world::WorldConfig world;       ///< what happens to the signals ([receiver.errors], [receiver.clock], [atmosphere], [signal] ...)
   receiver::ReceiverConfig receiver;  ///< the receiver's own settings ([receiver], [receiver.solver], [receiver.corrections] ...)
+  /// [receiver] profile: the profile whose values world and receiver started from
+  std::optional<pipeline::ReceiverProfile> profile;
   TruthInputConfig truth;
   DemoConfig demo;
   std::vector<OutputPortConfig> outputs;

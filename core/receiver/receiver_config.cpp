@@ -10,6 +10,12 @@ constexpr const char* kWhat = "receiver config";
 
 }  // namespace
 
+std::optional<Violation> check_weights(const SolverConfig& s) {
+  if (s.sigma_a_m + s.sigma_b_m > 0.0) return std::nullopt;
+  return Violation{"sigma_a_m", "sigma_b_m",
+                   "sigma_a_m and sigma_b_m are both 0 (the solver's weights would be infinite)"};
+}
+
 void validate(const SolverConfig& s) {
   using R = SolverRanges;
   check_ranges(kWhat, {{s.sigma_a_m, R::sigma_a_m, "solver.sigma_a_m"}, {s.sigma_b_m, R::sigma_b_m, "solver.sigma_b_m"},
@@ -22,11 +28,7 @@ void validate(const SolverConfig& s) {
                        {s.residual_test_pfa, R::residual_test_pfa, "solver.residual_test_pfa"},
                        {static_cast<double>(s.max_exclusions), R::max_exclusions, "solver.max_exclusions"},
                        {static_cast<double>(s.max_iterations), R::max_iterations, "solver.max_iterations"}});
-  if (!(s.sigma_a_m + s.sigma_b_m > 0.0))
-    throw Error(kWhat, 0, "solver: sigma_a_m and sigma_b_m are both 0 (the solver's weights would be infinite)");
-  if (!(s.residual_test_pfa < 0.5))
-    throw Error(kWhat, 0, "solver: residual_test_pfa " + format_number(s.residual_test_pfa) +
-                              " must be below 0.5 (a test that fails more often than not detects nothing)");
+  if (const std::optional<Violation> v = check_weights(s)) throw Error(kWhat, 0, "solver: " + v->reason);
 }
 
 SolverConfig rtklib_single_point(SolverConfig base) noexcept {

@@ -3,9 +3,12 @@
 // channels, tracking thresholds and its own solver with its broadcast
 // corrections (DESIGN.md §1, steps 7-9). It knows nothing of the world's
 // models. All values SI.
+#include <optional>
+
 #include "core/atmosphere/receiver_corrections.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/range.hpp"
+#include "core/common/violation.hpp"
 #include "core/receiver/acquisition.hpp"
 #include "core/receiver/nav_filter.hpp"
 #include "core/signal/tracking.hpp"
@@ -59,9 +62,9 @@ struct SolverConfig {
   int max_iterations = 15;             ///< Gauss–Newton iterations at most
 };
 
-/// Valid values of SolverConfig's numbers. Besides: a and b not both 0, and
-/// a residual test false-alarm probability below 0.5 (a test that fails
-/// more often than not cannot detect).
+/// Valid values of SolverConfig's numbers (besides: check_weights). A
+/// residual test false-alarm probability of 0.5 or more puts the chi-square
+/// threshold below the median: a test that fails more often than not cannot detect.
 struct SolverRanges {
   static constexpr Range sigma_a_m{0.0, 100.0, "m"};
   static constexpr Range sigma_b_m{0.0, 100.0, "m"};
@@ -71,12 +74,15 @@ struct SolverRanges {
   static constexpr Range tropo_model_sigma_m{0.0, 100.0, "m"};
   static constexpr Range sigma_range_rate_m_s{0.0, 10.0, "m/s", true};
   static constexpr Range height_hold_sigma_m{0.0, 1000.0, "m", true};
-  static constexpr Range residual_test_pfa{0.0, 1.0, "", false, true};
+  static constexpr Range residual_test_pfa{0.0, 0.5, "", false, true};
   static constexpr Range max_exclusions{0.0, 32.0, ""};  ///< integer
   static constexpr Range max_iterations{1.0, 100.0, ""};  ///< integer
 };
 
-/// Throws gnssemu::Error for an invalid solver config (SolverRanges).
+/// The weights need a or b: sigma_a_m and sigma_b_m not both 0.
+std::optional<Violation> check_weights(const SolverConfig& s);
+
+/// Throws gnssemu::Error for an invalid solver config (SolverRanges, check_weights).
 void validate(const SolverConfig& s);
 
 /// RTKLIB rnx2rtkp 2.4.3 single-point settings (pntpos.c, default

@@ -11,6 +11,7 @@
 
 #include <time.h>
 
+#include "config/footprint_file.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
@@ -141,7 +142,7 @@ void run_bench_multipath(const BenchMultipathArgs& a, std::ostream& out, std::os
     scene_name = fmt::format("procedural city {}x{} blocks", a.city_blocks, a.city_blocks);
     if (!a.write_city.empty()) write_obj(mesh, a.write_city);
   } else {
-    mesh = scene::load_mesh(a.scene_path);
+    mesh = config::load_mesh(a.scene_path);
     scene_name = a.scene_path;
     if (const std::string w = scene::skip_report(mesh.stats); !w.empty()) err << w << '\n';
   }
