@@ -119,7 +119,7 @@ void static_section(const Options& o, const orbit::EphemerisStore& store) {
   std::printf("| model | rate | h step median / p95 (m) | v step median / p95 (m) | speed median / p95 (m/s) | climb p95 (m/s) |\n");
   std::printf("|---|---|---|---|---|---|\n");
   for (const DynamicModel m : kModels) {
-    if (!o.model.empty() && receiver::dynamic_model_params(m).name != o.model) continue;
+    if (!o.model.empty() && receiver::dynamic_model_name(m) != o.model) continue;
     for (const double rate : {1.0, 10.0}) {
       StaticFigures f;
       for (int s = 1; s <= o.seeds; ++s) {
@@ -127,7 +127,7 @@ void static_section(const Options& o, const orbit::EphemerisStore& store) {
         run_static(store, base(o, m, static_cast<uint64_t>(s)), t0, rate, rate > 1.0 ? 660.0 : 3660.0, f);
       }
       std::printf("| %s | %g Hz | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f | %.3f |\n",
-                  std::string(receiver::dynamic_model_params(m).name).c_str(), rate, q(f.h, 0.5), q(f.h, 0.95),
+                  std::string(receiver::dynamic_model_name(m)).c_str(), rate, q(f.h, 0.5), q(f.h, 0.95),
                   q(f.v, 0.5), q(f.v, 0.95), q(f.speed, 0.5), q(f.speed, 0.95), q(f.climb, 0.95));
     }
   }
@@ -226,7 +226,7 @@ void moving_section(const Options& o, const orbit::EphemerisStore& store) {
               "lag mean / p95 abs (s) | speed error median abs / p95 abs (m/s) |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const DynamicModel m : kModels) {
-    if (!o.model.empty() && receiver::dynamic_model_params(m).name != o.model) continue;
+    if (!o.model.empty() && receiver::dynamic_model_name(m) != o.model) continue;
     for (const double rate : {1.0, 10.0}) {
       MovingFigures clean, real;
       for (int s = 1; s <= o.seeds; ++s) {
@@ -239,7 +239,7 @@ void moving_section(const Options& o, const orbit::EphemerisStore& store) {
         return v;
       };
       std::printf("| %s | %g Hz | %.1f %% | %+.3f / %.3f | %.2f | %+.3f / %.3f | %.3f / %.3f |\n",
-                  std::string(receiver::dynamic_model_params(m).name).c_str(), rate,
+                  std::string(receiver::dynamic_model_name(m)).c_str(), rate,
                   real.epochs ? 100.0 * real.fixes / real.epochs : 0.0, statistics::mean(clean.lag_s),
                   q(abs_of(clean.lag_s), 0.95), clean.overshoot_m, statistics::mean(real.lag_s),
                   q(abs_of(real.lag_s), 0.95), q(abs_of(real.speed_err), 0.5), q(abs_of(real.speed_err), 0.95));

@@ -5,6 +5,7 @@
 // the u-blox dynamic platform table (MAX-M10M / ZED-F9 integration manuals,
 // "Dynamic platform model details"); the process noise is ours (u-blox does
 // not publish it): docs/models.md "Navigation filter".
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -24,9 +25,30 @@ enum class DynamicModel : std::uint8_t {
   kWrist = 9,
 };
 
+/// A model and its name in configuration files and tools.
+struct DynamicModelName {
+  DynamicModel model;
+  std::string_view name;
+};
+
+/// Every model with its name, in dynModel order.
+inline constexpr std::array<DynamicModelName, 9> kDynamicModelNames{{
+    {DynamicModel::kPortable, "portable"},
+    {DynamicModel::kStationary, "stationary"},
+    {DynamicModel::kPedestrian, "pedestrian"},
+    {DynamicModel::kAutomotive, "automotive"},
+    {DynamicModel::kSea, "sea"},
+    {DynamicModel::kAirborne1g, "airborne1g"},
+    {DynamicModel::kAirborne2g, "airborne2g"},
+    {DynamicModel::kAirborne4g, "airborne4g"},
+    {DynamicModel::kWrist, "wrist"},
+}};
+
+/// The name of m ("portable", ...).
+std::string_view dynamic_model_name(DynamicModel m) noexcept;
+
 /// What one model assumes and allows.
 struct DynamicModelParams {
-  std::string_view name;              ///< "portable", "stationary", ... (config value)
   /// White-acceleration power spectral density of the filter's motion model,
   /// horizontal and vertical, m^2/s^3 (>= 0): about sigma_a^2 tau_a of the
   /// vehicle's manoeuvres (acceleration sigma_a correlated over tau_a).
@@ -45,8 +67,5 @@ const DynamicModelParams& dynamic_model_params(DynamicModel m) noexcept;
 
 /// The model of a CFG-NAV5 dynModel value; nullopt for values an M8 rejects (1, > 9).
 std::optional<DynamicModel> dynamic_model_from_ubx(std::uint8_t dyn_model) noexcept;
-/// The model named name ("portable", "stationary", "pedestrian", "automotive",
-/// "sea", "airborne1g", "airborne2g", "airborne4g", "wrist"); nullopt otherwise.
-std::optional<DynamicModel> dynamic_model_from_name(std::string_view name) noexcept;
 
 }  // namespace gnssemu::receiver
