@@ -426,11 +426,13 @@ void Daemon::align_to_packet_time(const time::GpsTime& stamp) {
                                   [&](const orbit::TimeSpan& s) { return s.contains(first); }) ||
                       (constellation_.continues && !constellation_.coverage.empty() &&
                        constellation_.coverage.back().end < first);
+  // The run starts over at the packets' time: a receiver powered on there,
+  // in the state [receiver.acquisition] start configures.
   if (!served) {
     redate_constellation(first);
-    restart_receiver(receiver::StartMode::kHot);
+    restart_receiver(cfg_.receiver.acquisition.start);
   } else if (first < lock_next_) {
-    restart_receiver(receiver::StartMode::kHot);  // time goes back
+    restart_receiver(cfg_.receiver.acquisition.start);  // time goes back
   }
   lock_next_ = first;
   spdlog::info("lockstep: epochs follow the packets' GPS time from {}", gps_text(first));

@@ -63,7 +63,7 @@ import tty
 
 ORIGIN = (48.8738, 2.2950, 100.0)
 CASE_LIMIT_S = 60
-CASE_LIMITS_S = {"cold_start": 100}  # a cold TTFF (~30 s) plus gpsd's start
+CASE_LIMITS_S = {"cold_start": 100, "power_on_cold": 100}  # a cold TTFF (~30 s) plus gpsd's start
 
 # --- UBX helpers -------------------------------------------------------------
 
@@ -580,6 +580,31 @@ def case_cold_start(rig):
           f"(M8 data sheet: 29 s)")
 
 
+def case_power_on_cold(rig):
+    # [receiver.acquisition] start = "cold": the daemon powers on knowing
+    # nothing (no fix for about the cold TTFF); then a host's CFG-RST hot start
+    # keeps everything and the fix is back after about 1 s.
+    path, out = pty_output(rig, extra='sentences = ["RMC", "GGA", "GSA"]')
+    t_on = time.monotonic()
+    rig.start_daemon(out, extra_toml='[receiver.acquisition]\nstart = "cold"\n')
+    pipe = gpsd_rig(rig, path, readonly=True)
+    read_json(pipe, 20, lambda m: m.get("class") == "TPV" and m.get("mode", 0) <= 1, "TPV mode 1 after power-on")
+    read_json(pipe, 60, lambda m: m.get("class") == "TPV" and m.get("mode") == 3, "TPV mode 3 after a cold power-on")
+    t_fix = time.monotonic() - t_on
+    assert 15.0 <= t_fix <= 45.0, f"first fix {t_fix:.1f} s after a cold power-on (M8: 29 s)"
+    assert "receiver: cold start at power-on" in rig.daemon_log_text(), "no cold power-on logged"
+    fd = os.open(path, os.O_WRONLY | os.O_NOCTTY)
+    rig.fds.append(fd)
+    t_rst = time.monotonic()
+    send(fd, frame(0x06, 0x04, bytes([0x00, 0x00, 0x02, 0x00])))  # hot start, GNSS only
+    read_json(pipe, 5, lambda m: m.get("class") == "TPV" and m.get("mode", 0) <= 1, "TPV mode 1 after CFG-RST hot")
+    read_json(pipe, 10, lambda m: m.get("class") == "TPV" and m.get("mode") == 3, "TPV mode 3 after the hot start")
+    t_back = time.monotonic() - t_rst
+    assert t_back <= 5.0, f"fix back {t_back:.1f} s after a hot start (M8: 1 s)"
+    print(f"  power_on_cold: first fix {t_fix:.1f} s after a cold power-on (M8 data sheet: 29 s); "
+          f"back {t_back:.1f} s after CFG-RST hot (1 s)")
+
+
 def stty_speed(path):
     out = subprocess.run(["stty", "-F", path, "speed"], capture_output=True, text=True).stdout.strip()
     return int(out) if out.isdigit() else -1
@@ -817,9 +842,11 @@ def case_jamming(rig):
 
 CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx, "gpsd_nmea": case_gpsd_nmea,
          "gpsdecode": case_gpsdecode, "serial": case_serial, "net": case_net, "budget": case_budget,
-         "jamming": case_jamming, "wallclock": case_wallclock, "cold_start": case_cold_start, "nav5": case_nav5}
+         "jamming": case_jamming, "wallclock": case_wallclock, "cold_start": case_cold_start,
+         "power_on_cold": case_power_on_cold, "nav5": case_nav5}
 NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_nmea": ["gpsd", "gpspipe"], "gpsdecode": ["gpsdecode"],
-         "serial": ["socat", "stty"], "cold_start": ["gpsd", "gpspipe"]}
+         "serial": ["socat", "stty"], "cold_start": ["gpsd", "gpspipe"],
+         "power_on_cold": ["gpsd", "gpspipe"]}
 
 
 def on_alarm(*_):
