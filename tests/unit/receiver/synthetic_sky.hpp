@@ -20,6 +20,11 @@ using pipeline::PipelineConfig;
 
 inline constexpr double kGpsSqrtA_sqrtm = 5153.7;  // A = 26 561.7 km (GPS nominal)
 
+/// The epoch and site the acquisition, navigation and carrier tests share:
+/// a nominal constellation's toe, a mid-latitude antenna.
+inline const time::GpsTime kToe(2190, 300000.0);
+inline const Lla kSite{45.0 * kDegToRad, 7.0 * kDegToRad, 300.0};
+
 inline orbit::Ephemeris base_eph(int prn, const time::GpsTime& toe) {
   orbit::Ephemeris e;
   e.prn = prn;

@@ -16,10 +16,9 @@ namespace {
 
 using pipeline::Pipeline;
 using pipeline::PipelineConfig;
+using test::kSite;
+using test::kToe;
 using test::truth_at;
-
-const time::GpsTime kToe(2190, 300000.0);
-const Lla kSite{45.0 * kDegToRad, 7.0 * kDegToRad, 300.0};
 
 /// Seconds from the first epoch to the first fix at rate_hz; NaN when none within limit_s.
 double first_fix_s(Pipeline& rx, const Ecef& pos, const time::GpsTime& t0, double rate_hz = 1.0,

@@ -19,10 +19,9 @@ namespace {
 
 using pipeline::Pipeline;
 using pipeline::PipelineConfig;
+using test::kSite;
+using test::kToe;
 using test::truth_at;
-
-const time::GpsTime kToe(2190, 300000.0);
-const Lla kSite{45.0 * kDegToRad, 7.0 * kDegToRad, 300.0};
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());

@@ -15,10 +15,9 @@ namespace {
 
 using pipeline::Pipeline;
 using pipeline::PipelineConfig;
+using test::kSite;
+using test::kToe;
 using test::truth_at;
-
-const time::GpsTime kToe(2190, 300000.0);
-const Lla kSite{45.0 * kDegToRad, 7.0 * kDegToRad, 300.0};
 
 const world::SatObservable* find(const world::Observables& o, int prn) {
   for (int i = 0; i < o.num_sats; ++i)
