@@ -307,6 +307,9 @@ def case_px4(rig):
     while time.monotonic() < end:
         s.pump(end - time.monotonic())
     assert not any(k == "ubx" and m[2] == 0x05 for _, k, m in s.msgs), "CFG-RST was ACKed"
+    # A NAV-PVT composed before the reset may still be on the line as it is
+    # sent: only what arrives after these 0.5 s counts as the fix coming back.
+    s.msgs.clear()
     _, pvt = s.wait_for(lambda k, m: k == "ubx" and m[2:4] == b"\x01\x07" and m[6 + 21] & 1, 3.0,
                         "NAV-PVT with gnssFixOK after the reset")
     s.msgs.clear()
