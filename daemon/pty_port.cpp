@@ -1,5 +1,6 @@
 // Pseudo-terminal with a stable symlink to its slave side (docs/daemon.md).
 #include <fcntl.h>
+#include <grp.h>
 #include <pty.h>
 #include <sys/stat.h>
 #include <sys/ioctl.h>
@@ -25,6 +26,22 @@ void set_nonblocking(int fd) {
   if (flags < 0 || ::fcntl(fd, F_SETFL, flags | O_NONBLOCK) < 0) throw Error("fcntl(O_NONBLOCK): " + errno_text());
 }
 
+// A serial device on Debian is root:dialout 0660, and gpsd (user gpsd, in
+// dialout) opens its devices as that group. The slave of a pty is ours:tty
+// 0620; when this process is in dialout (the systemd unit's
+// SupplementaryGroups), it is handed to dialout 0660 so such a reader can
+// open it as it would a serial port.
+void share_with_dialout(int fd) {
+  const group* g = ::getgrnam("dialout");
+  if (g == nullptr) return;
+  bool member = ::getegid() == g->gr_gid;
+  std::array<gid_t, 256> groups{};
+  const int n = ::getgroups(static_cast<int>(groups.size()), groups.data());
+  for (int i = 0; i < n && !member; ++i) member = groups[static_cast<std::size_t>(i)] == g->gr_gid;
+  if (!member) return;
+  if (::fchown(fd, static_cast<uid_t>(-1), g->gr_gid) == 0) ::fchmod(fd, 0660);
+}
+
 // The slave stays open here too, so a reader may come and go without the pty
 // vanishing. Input the reader writes arrives on the master.
 class PtyPort final : public OutputPort {
@@ -46,6 +63,7 @@ public:
     ::fcntl(slave_, F_SETFD, FD_CLOEXEC);
     set_nonblocking(master);
     set_nonblocking(slave_);
+    share_with_dialout(slave_);
     record_baud(cfg.baud);
     make_symlink();
   }
@@ -76,6 +94,7 @@ public:
   uint32_t baud() const noexcept override { return baud_; }
 
   std::string describe() const override { return pty_.path + " (pty " + slave_name_ + ")"; }
+  int readers() const noexcept override { return reader_active_ ? 1 : 0; }
 
 protected:
   void deliver(int /*source*/, std::string_view data, std::span<const std::size_t> /*ends*/, bool epoch) noexcept override {
@@ -83,17 +102,22 @@ protected:
     int backlog = 0;
     if (epoch && ::ioctl(slave_, FIONREAD, &backlog) == 0) {
       if (backlog == 0) unread_epochs_ = 0;
-      if (backlog > kPtyMaxBacklogBytes) {
-        // Nobody is reading: discard what is queued so a reader that opens
-        // later starts with the current epoch.
+      // Nobody read a byte since the last epoch (or the queue is long): a
+      // reader that opens now must get this epoch, not a burst of old ones.
+      // A reader that is there drains each epoch within the period.
+      const bool untouched = backlog > 0 && backlog >= backlog_after_write_;
+      reader_active_ = backlog < backlog_after_write_;
+      if (untouched || backlog > kPtyMaxBacklogBytes) {
         ::tcflush(slave_, TCIFLUSH);
         stats_.epochs_dropped += unread_epochs_;
         unread_epochs_ = 0;
+        backlog = 0;
       }
     }
     const ssize_t n = ::write(master, data.data(), data.size());
     if (n == static_cast<ssize_t>(data.size())) {
       stats_.bytes_written += static_cast<uint64_t>(n);
+      if (epoch) backlog_after_write_ = backlog + static_cast<int>(n);
       if (epoch) {
         ++stats_.epochs_written;
         ++unread_epochs_;
@@ -161,6 +185,8 @@ private:
   std::string slave_name_;
   bool linked_ = false;
   uint64_t unread_epochs_ = 0;
+  int backlog_after_write_ = 0;  ///< unread bytes right after the last epoch was written
+  bool reader_active_ = false;   ///< the reader drained some of the last epoch
   uint32_t baud_ = 0;
   PortListener* listener_ = nullptr;
   std::array<uint8_t, 1024> rx_{};
