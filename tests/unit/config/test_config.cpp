@@ -345,8 +345,10 @@ TEST(ConfigLoad, DefaultTomlLoads) {
   ASSERT_EQ(c.outputs.size(), 1u);
   EXPECT_EQ(c.outputs[0].type(), PortType::kPty);
   EXPECT_EQ(std::get<PtyPortConfig>(c.outputs[0].transport).path.rfind("/tmp/gnssemu/", 0), 0u);
-  // The shipped defaults are the struct defaults (one source of truth).
-  Config d;
+  // The shipped defaults are the struct defaults and the M8 profile (one source of truth).
+  ASSERT_TRUE(c.profile.has_value());
+  EXPECT_EQ(*c.profile, pipeline::ReceiverProfile::kUbloxM8);
+  Config d = struct_defaults_as_shipped(c);
   d.origin = c.origin;
   d.nav_file = c.nav_file;
   d.outputs = c.outputs;

@@ -12,6 +12,20 @@ namespace gnssemu::config::test {
 inline const std::string kData = GNSSEMU_TEST_DATA;
 inline const std::string kSource = GNSSEMU_SOURCE_DIR;
 
+/// What the shipped default.toml must equal: the struct defaults with the
+/// file's receiver profile applied at its origin (one source of truth each).
+inline Config struct_defaults_as_shipped(const Config& shipped) {
+  Config d;
+  if (shipped.profile) {
+    const pipeline::PipelineConfig pc = pipeline::apply_profile({d.world, d.receiver}, *shipped.profile,
+                                                                shipped.origin.lat_rad);
+    d.world = pc.world;
+    d.receiver = pc.receiver;
+    d.profile = shipped.profile;
+  }
+  return d;
+}
+
 /// Six lines: [origin] and [nav]; appended text starts on line 7.
 inline const std::string kBase =
     "[origin]\n"
