@@ -2,15 +2,20 @@
 # Builds and runs the libFuzzer targets of tests/fuzz (docs/robustness.md).
 #
 #   fuzz.sh build [--build-dir DIR]                 clang build of the fuzz targets (default build/fuzz)
-#   fuzz.sh run TARGET [--seconds N] [--build-dir DIR] [--jobs J] [-- LIBFUZZER_ARGS...]
-#   fuzz.sh all [--seconds N] [--build-dir DIR]     every target in turn, a summary at the end
+#   fuzz.sh run TARGET [--seconds N] [--build-dir DIR] [--jobs J] [--smoke] [--keep-going] [-- LIBFUZZER_ARGS...]
+#   fuzz.sh all [--seconds N] [--build-dir DIR] [--keep-going]   every target in turn, a summary at the end
 #   fuzz.sh list                                    the targets
 #
 # A run starts from the target's seeds (seeds/TARGET.txt, corpus/TARGET,
 # regressions/TARGET) and the corpus it grew before (DIR/corpus/TARGET); a
-# crash, leak, timeout (10 s per input) or oracle failure leaves the input
-# in DIR/artifacts/TARGET/ and exits non-zero. Exit 77 (ctest: skipped) when
-# clang or its libFuzzer runtime is missing.
+# crash, leak, oracle failure, timeout (10 s for one input) or memory blow-up
+# (1.5 GB RSS, or 512 MB in one allocation: inputs are at most 64 KB) leaves
+# the input in DIR/artifacts/TARGET/ and exits non-zero (--keep-going:
+# runs the whole time in libFuzzer's fork mode, keeping every failing
+# input, and lists them at the end). --smoke (ctest):
+# the seeds only and a fixed random seed, so a run explores the same inputs
+# on every machine, as far as its time allows. Exit 77 (ctest: skipped)
+# when clang or its libFuzzer runtime is missing.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -62,12 +67,16 @@ fi
 build_dir="$root/build/fuzz"
 seconds=60
 jobs=1
+smoke=0
+keep_going=0
 extra=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --build-dir) build_dir="$2"; shift 2 ;;
     --seconds) seconds="$2"; shift 2 ;;
     --jobs) jobs="$2"; shift 2 ;;
+    --smoke) smoke=1; shift ;;
+    --keep-going) keep_going=1; shift ;;
     --) shift; extra=("$@"); break ;;
     *) usage ;;
   esac
@@ -97,6 +106,10 @@ run() {
     return 1
   fi
   local work="$build_dir/corpus/$t" artifacts="$build_dir/artifacts/$t/" tmp="$build_dir/tmp/$t"
+  if [ "$smoke" -eq 1 ]; then
+    work="$build_dir/smoke/$t"
+    rm -rf "$work"
+  fi
   mkdir -p "$work" "$artifacts" "$tmp"
   # Seed files as one comma-separated list (-seed_inputs=@file).
   local seeds="$build_dir/seeds-$t.txt" line p
@@ -110,19 +123,30 @@ run() {
     if [ -d "$p" ]; then find "$p" -type f | sort >>"$seeds.lines"; fi
   done
   paste -sd, "$seeds.lines" >"$seeds"
-  local args=(-max_total_time="$secs" -max_len="$(max_len "$t")" -timeout=10 -rss_limit_mb=2048
+  local args=(-max_total_time="$secs" -max_len="$(max_len "$t")" -timeout=10 -rss_limit_mb=1536 -malloc_limit_mb=512
     -error_exitcode=1 -timeout_exitcode=1
     -print_final_stats=1 -artifact_prefix="$artifacts")
   [ -s "$seeds" ] && args+=(-seed_inputs=@"$seeds")
   [ -f "$here/dict/$t.dict" ] && args+=(-dict="$here/dict/$t.dict")
-  if [ "$jobs" -gt 1 ]; then args+=(-fork="$jobs"); fi
+  if [ "$keep_going" -eq 1 ]; then
+    args+=(-fork="$jobs" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
+  elif [ "$jobs" -gt 1 ]; then
+    args+=(-fork="$jobs")
+  fi
+  if [ "$smoke" -eq 1 ]; then args+=(-seed=1); fi
   echo "fuzz: $t for ${secs} s: $bin ${args[*]} ${extra[*]} $work" >&2
-  local rc=0
+  local rc=0 marker="$build_dir/tmp/$t.start"
+  touch "$marker"
   TMPDIR="$tmp" ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}" UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}" \
     "$bin" "${args[@]}" "${extra[@]}" "$work" || rc=$?
   rm -rf "$tmp"
+  local found
+  found="$(find "$artifacts" -type f -newer "$marker" | sort)"
+  rm -f "$marker"
+  [ -z "$found" ] || rc=1
   if [ $rc -ne 0 ]; then
-    echo "fuzz: $t FAILED (exit $rc); input kept in $artifacts" >&2
+    echo "fuzz: $t FAILED (exit $rc); inputs kept:" >&2
+    echo "${found:-  (none: see the log above)}" | sed 's/^/  /' >&2
     echo "fuzz: replay it with $bin <file>, or build/tests/fuzz/fuzz_replay_$t <file> (gcc build)" >&2
   fi
   return $rc
