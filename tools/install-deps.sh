@@ -9,6 +9,8 @@ PKGS=(
   libspdlog-dev libfmt-dev libgtest-dev libgmock-dev libtomlplusplus-dev libcli11-dev
   nlohmann-json3-dev zlib1g-dev
   gpsd gpsd-clients rtklib socat python3
+  # fuzzing and sanitizers (docs/robustness.md): clang's libFuzzer, symbolized reports
+  clang libclang-rt-14-dev llvm
 )
 
 missing=()

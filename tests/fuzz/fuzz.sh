@@ -105,12 +105,14 @@ run() {
     echo "fuzz: $bin missing: run tests/fuzz/fuzz.sh build --build-dir $build_dir first" >&2
     return 1
   fi
-  local work="$build_dir/corpus/$t" artifacts="$build_dir/artifacts/$t/" tmp="$build_dir/tmp/$t"
+  local work="$build_dir/corpus/$t" artifacts="$build_dir/artifacts/$t/" tmp
   if [ "$smoke" -eq 1 ]; then
     work="$build_dir/smoke/$t"
     rm -rf "$work"
   fi
-  mkdir -p "$work" "$artifacts" "$tmp"
+  mkdir -p "$work" "$artifacts" "$build_dir/tmp"
+  # Scratch files of this run only (libFuzzer's fork mode keeps its jobs here too).
+  tmp="$(mktemp -d "$build_dir/tmp/$t.XXXXXX")"
   # Seed files as one comma-separated list (-seed_inputs=@file).
   local seeds="$build_dir/seeds-$t.txt" line p
   : >"$seeds.lines"
@@ -135,7 +137,7 @@ run() {
   fi
   if [ "$smoke" -eq 1 ]; then args+=(-seed=1); fi
   echo "fuzz: $t for ${secs} s: $bin ${args[*]} ${extra[*]} $work" >&2
-  local rc=0 marker="$build_dir/tmp/$t.start"
+  local rc=0 marker="$tmp.start"
   touch "$marker"
   TMPDIR="$tmp" ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}" UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}" \
     "$bin" "${args[@]}" "${extra[@]}" "$work" || rc=$?

@@ -2,19 +2,25 @@
 """Soak and flood runs of gnssemud (docs/robustness.md). Prints figures; not a test.
 
   soak.py soak  [--duration S] [--rate-hz 10] [--truth-hz 100] [--sample-s S]
-  soak.py flood [--duration S] [--pps 100000] [--good-fraction 0.5] [--sample-s S]
+  soak.py flood [--duration S] [--pps 100000] [--good-fraction 0.5] [--host-garbage] [--sample-s S]
   common: [--build DIR] [--keep]
 
 Both start gnssemud on a private config (free ports, a temp dir), two readers
 that hold the daemon's outputs open for the whole run -- a pty (NMEA+UBX) and
 a TCP client (NMEA+UBX) -- and sample the daemon's RSS and CPU. soak sends
 truth with build/tools/senders/send_truth (binary records on a circle);
-flood with build/tools/soak/flood_truth (good and bad packets).
+flood with build/tools/soak/flood_truth (good and bad packets), and with
+--host-garbage a third TCP client that writes, as fast as the daemon reads,
+the input that costs the port's UBX/NMEA decoder most per byte (a UBX
+header announcing 1 KiB, then '$' filler: every '$' is rescanned).
 
 Missed epochs are counted by each reader from the epoch times it receives:
 UBX NAV-PVT iTOW (an epoch is missed when iTOW advances by more than one
 period) and NMEA RMC times; the daemon's own count of late, skipped epochs
-comes from its log. Exit 0 when the run is clean: no missed or skipped
+and of epochs a port dropped comes from its log. A pty drops queued epochs
+when its reader falls over 2 kB behind (docs/daemon.md), so each reader
+also reports its longest pause between reads: a pause on one reader only
+is the reader's (a loaded machine), one on both the daemon's. Exit 0 when the run is clean: no missed or skipped
 epoch, no epoch dropped by a port, RSS growth after warm-up within
 --max-rss-growth-kb; 1 otherwise; 2 on a setup error.
 """
@@ -115,11 +121,15 @@ class Reader(threading.Thread):
         self.last_rmc = None
         self.error = None
         self.buf = bytearray()
+        self.last_read = None
+        self.max_gap_s = 0.0   # longest time between two reads that returned data
+        self.long_gaps = 0     # gaps longer than 2.5 periods: the reader (or the daemon) stalled
 
     def snapshot(self):
         with self.lock:
             return dict(bytes=self.bytes, pvt=self.pvt, pvt_fix=self.pvt_fix, pvt_missed=self.pvt_missed,
-                        rmc=self.rmc, rmc_missed=self.rmc_missed, jumps=self.jumps)
+                        rmc=self.rmc, rmc_missed=self.rmc_missed, jumps=self.jumps, max_gap_s=self.max_gap_s,
+                        long_gaps=self.long_gaps)
 
     def gap(self, last, now_ms):
         """Epochs missed between two epoch times (ms); None for a jump."""
@@ -203,8 +213,14 @@ class Reader(threading.Thread):
                     continue
                 if not data:
                     raise OSError("output closed")
+                now = time.monotonic()
                 with self.lock:
                     self.bytes += len(data)
+                    if self.last_read is not None:
+                        gap = now - self.last_read
+                        self.max_gap_s = max(self.max_gap_s, gap)
+                        self.long_gaps += gap > 2.5 * self.period_ms / 1000.0
+                    self.last_read = now
                 self.buf += data
                 self.parse()
         except OSError as e:
@@ -249,6 +265,40 @@ def tcp_opener(port, deadline):
                 return None
         return read
     return open_fn
+
+
+class GarbageHost(threading.Thread):
+    """A host on the TCP output writing worst-case input for the decoder."""
+
+    def __init__(self, port):
+        super().__init__(daemon=True)
+        self.port = port
+        self.stop = threading.Event()
+        self.sent = 0
+        self.error = None
+
+    def run(self):
+        block = (b"\xb5\x62\x06\x01\x00\x04" + b"$" * 1026) * 64
+        try:
+            s = socket.create_connection(("127.0.0.1", self.port), timeout=1.0)
+            s.settimeout(0.5)
+            while not self.stop.is_set():
+                try:
+                    self.sent += s.send(block)
+                except socket.timeout:
+                    pass
+                # Drain what the daemon sends this client so it is not dropped as a slow reader.
+                try:
+                    s.setblocking(False)
+                    while s.recv(65536):
+                        pass
+                except (BlockingIOError, OSError):
+                    pass
+                finally:
+                    s.settimeout(0.5)
+        except OSError as e:
+            if not self.stop.is_set():
+                self.error = str(e)
 
 
 def proc_stats(pid):
@@ -306,6 +356,7 @@ def main():
     ap.add_argument("--truth-hz", type=float, default=100.0, help="soak: truth rate, Hz (send_truth: up to 1000)")
     ap.add_argument("--pps", type=float, default=100000.0, help="flood: packets per second")
     ap.add_argument("--good-fraction", type=float, default=0.5, help="flood: fraction of good packets")
+    ap.add_argument("--host-garbage", action="store_true", help="flood: a TCP host writing worst-case decoder input")
     ap.add_argument("--sample-s", type=float, default=None, help="s between figure lines (default duration/12)")
     ap.add_argument("--warmup-s", type=float, default=None, help="s before RSS counts (default min(60, duration/6))")
     ap.add_argument("--max-rss-growth-kb", type=float, default=1024.0, help="allowed RSS growth after warm-up, kB")
@@ -356,6 +407,10 @@ def main():
         else:
             sender = [sender_bin, "--port", str(truth_port), "--rate", str(a.pps), "--duration", str(duration),
                       "--good-fraction", str(a.good_fraction)]
+        garbage = None
+        if a.mode == "flood" and a.host_garbage:
+            garbage = GarbageHost(tcp_port)
+            garbage.start()
         sender_out = open(os.path.join(tmp, "sender.log"), "w")
         sender_p = subprocess.Popen(sender, stdout=sender_out, stderr=subprocess.STDOUT, start_new_session=True)
         procs.append(sender_p)
@@ -405,6 +460,8 @@ def main():
         # then the daemon (its summary goes to the log).
         for r in readers:
             r.stop.set()
+        if garbage:
+            garbage.stop.set()
         for p in (sender_p, daemon):
             if p.poll() is None:
                 os.killpg(p.pid, signal.SIGTERM)
@@ -427,13 +484,15 @@ def main():
         if rss_samples:
             rss_vals = [r for _, r in rss_samples]
             growth = rss_vals[-1] - rss_vals[0]
-            print(f"RSS:        {rss_vals[0]} kB after {warmup_s:g} s warm-up, {rss_vals[-1]} kB at the end "
+            print(f"RSS:        {rss_vals[0]} kB after {warmup_s:.0f} s warm-up, {rss_vals[-1]} kB at the end "
                   f"(growth {growth:+d} kB, max {max(rss_vals)} kB, slope {slope_kb_per_h(rss_samples):+.0f} kB/h)")
         else:
             growth = 0
         for r, x in zip(readers, s):
             print(f"reader {r.name_}: {x['bytes']} bytes; NAV-PVT {x['pvt']} ({x['pvt_fix']} with gnssFixOK), "
-                  f"missed {x['pvt_missed']}; RMC {x['rmc']}, missed {x['rmc_missed']}; time jumps {x['jumps']}"
+                  f"missed {x['pvt_missed']}; RMC {x['rmc']}, missed {x['rmc_missed']}; time jumps {x['jumps']}; "
+                  f"longest pause between reads {1000 * x['max_gap_s']:.0f} ms ({x['long_gaps']} over "
+                  f"{2.5 * 1000 / a.rate_hz:.0f} ms)"
                   + (f"; error: {r.error}" if r.error else ""))
         print(f"daemon:     epochs {figures.get('epochs', 'n/a')}, skipped {figures.get('skipped', 'n/a')} "
               f"({figures['late_warnings']} 'epoch loop late' lines); truth accepted {figures.get('accepted', 'n/a')}, "
@@ -444,6 +503,9 @@ def main():
                 print(f"{k}:   {v[0]} epochs written, {v[1]} dropped")
         for line in open(os.path.join(tmp, "sender.log"), errors="replace").read().splitlines()[:40]:
             print(f"sender:     {line}")
+        if garbage:
+            print(f"host garbage: {garbage.sent / 1e6:.1f} MB written to the TCP output in {run_s:.0f} s "
+                  f"({garbage.sent / 1e6 / run_s:.2f} MB/s)" + (f"; error: {garbage.error}" if garbage.error else ""))
         port_drops = sum(v[1] for k, v in figures.items() if k.startswith("port "))
         missed = sum(x["pvt_missed"] + x["rmc_missed"] for x in s)
         clean = (missed == 0 and figures.get("skipped", 0) == 0 and port_drops == 0 and growth <= a.max_rss_growth_kb
