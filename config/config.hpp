@@ -9,7 +9,10 @@
 #include <variant>
 #include <vector>
 
+#include "core/common/range.hpp"
 #include "core/common/vec3.hpp"
+#include "core/orbit/constellation.hpp"
+#include "core/common/violation.hpp"
 #include "core/protocol/nmea/nmea_encoder.hpp"
 #include "core/protocol/ubx/ubx_ports.hpp"
 #include "core/receiver/receiver_config.hpp"
@@ -26,13 +29,37 @@ enum class TimeMode {
   kLockstep,  ///< epochs follow simulation time carried by truth packets
 };
 
+struct TimeRanges {
+  static constexpr Range output_delay_s{0.0, 0.5, "s"};
+};
+
 struct TimeConfig {
   TimeMode mode = TimeMode::kRealtime;
-  /// GPS time of the first epoch; empty: inside the nav file's coverage
-  /// (first toe + 1 h), so shipped historic nav files work at any wall-clock date.
+  /// GPS time of the first epoch; empty: today (use_wall_clock_date), or
+  /// the nav data's first toe + 1 h.
   std::optional<time::GpsTime> start;
-  bool use_wall_clock_date = false;  ///< true: GPS time = system clock (needs a current nav file)
+  /// true: GPS time = system clock, today's date (the nav data are moved to
+  /// it unless they cover it, [nav] mode); the default without start.
+  bool use_wall_clock_date = true;
+  /// Measurement epoch to the first byte on the wire, s (TimeRanges); the
+  /// daemon's realtime scheduler sends every port's epoch this much later.
+  /// A u-blox M8 starts its output about 0.1 s after the epoch (docs/daemon.md).
+  double output_delay_s = 0.1;
 };
+
+/// Where the satellites come from ([nav], docs/models.md §Orbits for any date).
+struct NavConfig {
+  std::vector<std::string> files;  ///< RINEX nav files besides Config::nav_file, absolute
+  std::string folder;              ///< every RINEX nav file in this folder is read too, absolute; "" none
+  std::string almanac_file;        ///< YUMA or SEM almanac for mode almanac, absolute; "" none
+  orbit::NavMode mode = orbit::NavMode::kAuto;
+};
+
+/// Mode almanac and an almanac file go together.
+std::optional<Violation> check_nav(const NavConfig& n);
+
+/// A start time and the wall clock's date exclude each other.
+std::optional<Violation> check_start(const TimeConfig& t);
 
 struct TruthInputConfig {
   std::string bind_address = "127.0.0.1";
@@ -40,6 +67,9 @@ struct TruthInputConfig {
   double timeout_s = 2.0;         ///< no truth for this long -> no fix
   double max_extrapolation_s = 0.5;
 };
+
+/// Truth is extrapolated within its timeout: max_extrapolation_s <= timeout_s.
+std::optional<Violation> check_extrapolation(const TruthInputConfig& t);
 
 /// Built-in demo trajectory used while no simulator sends truth.
 struct DemoConfig {
@@ -145,6 +175,7 @@ struct Config {
   std::string source;             ///< file the config came from ("" if built in)
   Lla origin;                     ///< local frame origin (lat/lon rad, height m)
   std::string nav_file;           ///< absolute, or relative to the config file's folder (resolved)
+  NavConfig nav;                  ///< more nav data and how to date them
   double rate_hz = 1.0;           ///< epoch rate, 1..10 Hz
   TimeConfig time;
   world::WorldConfig world;       ///< what happens to the signals ([receiver.errors], [receiver.clock], [atmosphere], [signal] ...)

@@ -55,4 +55,9 @@ std::string_view message_name(uint8_t msg_class, uint8_t msg_id) {
   return {};
 }
 
+bool sentence_on(const protocol::nmea::SentenceSet& sentences, uint8_t msg_id) {
+  const std::optional<protocol::nmea::Sentence> sentence = protocol::nmea::sentence_by_msg_id(msg_id);
+  return sentence && sentences.has(*sentence);
+}
+
 }  // namespace gnssemu::config

@@ -29,4 +29,7 @@ std::optional<MessageName> message_by_name(std::string_view name);
 /// Name of (class, id), or "" when it is not one of the tables' messages.
 std::string_view message_name(uint8_t msg_class, uint8_t msg_id);
 
+/// Whether the NMEA sentence of CFG-MSG id msg_id is in sentences.
+bool sentence_on(const protocol::nmea::SentenceSet& sentences, uint8_t msg_id);
+
 }  // namespace gnssemu::config

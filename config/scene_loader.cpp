@@ -1,5 +1,6 @@
 #include "config/scene_loader.hpp"
 
+#include "config/footprint_file.hpp"
 #include "core/common/error.hpp"
 
 namespace gnssemu::config {
@@ -7,7 +8,7 @@ namespace gnssemu::config {
 std::unique_ptr<scene::Scene> load_scene(const Config& c, scene::MeshStats* stats) {
   if (!c.scene) return nullptr;
   const SceneConfig& s = *c.scene;
-  const scene::Mesh mesh = scene::load_mesh(s.mesh_file, s.placement);
+  const scene::Mesh mesh = config::load_mesh(s.mesh_file, s.placement);
   if (stats != nullptr) *stats = mesh.stats;
   auto out = std::make_unique<scene::Scene>(mesh);
   out->set_default_loss_db(s.reflection_loss_db);

@@ -47,8 +47,9 @@ std::string_view type_name(const toml::node& n) {
 
 int line_of(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
 
-TableReader::TableReader(const toml::table& table, std::string path, const std::string& file)
-    : table_(&table), path_(std::move(path)), file_(&file) {}
+TableReader::TableReader(const toml::table& table, std::string path, const std::string& file,
+                         const std::string& base_dir, KeyLog* log)
+    : table_(&table), path_(std::move(path)), file_(&file), base_dir_(&base_dir), log_(log) {}
 
 std::string TableReader::full_name(std::string_view key) const {
   if (path_.empty()) return std::string(key);
@@ -68,6 +69,7 @@ void TableReader::fail_missing(std::string_view key, std::string_view what) cons
 
 const toml::node* TableReader::find(std::string_view key) {
   known_.emplace_back(key);
+  if (log_ != nullptr) log_->push_back(full_name(key));
   return table_->get(key);
 }
 
@@ -144,7 +146,7 @@ std::optional<TableReader> TableReader::table(std::string_view key, bool require
   if (t == nullptr) {
     fail(*n, full_name(key) + ": expected a table ([" + full_name(key) + "]), got " + std::string(type_name(*n)));
   }
-  return TableReader(*t, full_name(key), *file_);
+  return TableReader(*t, full_name(key), *file_, *base_dir_, log_);
 }
 
 std::vector<TableReader> TableReader::table_array(std::string_view key) {
@@ -161,7 +163,7 @@ std::vector<TableReader> TableReader::table_array(std::string_view key) {
     const auto* t = e.as_table();
     const std::string name = full_name(key) + "[" + std::to_string(i) + "]";
     if (t == nullptr) fail(e, name + ": expected a table, got " + std::string(type_name(e)));
-    out.emplace_back(*t, name, *file_);
+    out.emplace_back(*t, name, *file_, *base_dir_, log_);
   }
   return out;
 }

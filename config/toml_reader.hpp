@@ -22,11 +22,18 @@ std::string_view type_name(const toml::node& n);
 /// 1-based line of a node, 0 if toml++ has none.
 int line_of(const toml::node& n);
 
+/// Dotted names of the keys readers asked for, in order (tests compare them
+/// with the written and the documented keys).
+using KeyLog = std::vector<std::string>;
+
 class TableReader {
 public:
   /// table: the table; path: its dotted name ("" for the root, "receiver.errors",
-  /// "output[0]"); file: name used in messages.
-  TableReader(const toml::table& table, std::string path, const std::string& file);
+  /// "output[0]"); file: name used in messages; base_dir: folder relative
+  /// paths resolve against; log (optional): receives every key asked for.
+  /// file, base_dir and log must outlive the reader and its sub-readers.
+  TableReader(const toml::table& table, std::string path, const std::string& file, const std::string& base_dir,
+              KeyLog* log = nullptr);
 
   /// The node under key or nullptr; marks key as known.
   const toml::node* find(std::string_view key);
@@ -52,6 +59,7 @@ public:
   int line() const;
   const std::string& file() const noexcept { return *file_; }
   const std::string& path() const noexcept { return path_; }
+  const std::string& base_dir() const noexcept { return *base_dir_; }
 
   [[noreturn]] void fail(const toml::node& at, const std::string& reason) const;
   [[noreturn]] void fail_missing(std::string_view key, std::string_view what) const;
@@ -60,6 +68,8 @@ private:
   const toml::table* table_;
   std::string path_;
   const std::string* file_;
+  const std::string* base_dir_;
+  KeyLog* log_;
   std::vector<std::string> known_;
 };
 

@@ -1,5 +1,6 @@
 #include "daemon/daemon.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -7,10 +8,10 @@
 #include <spdlog/spdlog.h>
 
 #include "config/device_setup.hpp"
+#include "config/nav_setup.hpp"
 #include "config/pipeline_setup.hpp"
 #include "config/scene_loader.hpp"
 #include "core/common/error.hpp"
-#include "core/time/unix_time.hpp"
 #include "daemon/epoch_schedule.hpp"
 #include "daemon/scene_setup.hpp"
 #include "daemon/truth_packet.hpp"
@@ -23,11 +24,6 @@ namespace {
 // first fix count from here, so ttff is what the emulator really took.
 const std::chrono::steady_clock::time_point kProcessStart = std::chrono::steady_clock::now();
 
-time::GpsTime system_clock_gps() {
-  const auto now = std::chrono::system_clock::now();
-  return time::gps_from_unix(std::chrono::duration<double>(now.time_since_epoch()).count());
-}
-
 std::string gps_text(const time::GpsTime& t) {
   const time::CalendarTime c = t.to_calendar();
   char buf[64];
@@ -38,24 +34,19 @@ std::string gps_text(const time::GpsTime& t) {
 
 }  // namespace
 
-Coverage coverage_for(const config::Config& cfg, const orbit::NavData& nav) {
-  if (cfg.time.use_wall_clock_date) return Coverage{whole_second_start(system_clock_gps()).start, 0.0};
-  if (cfg.time.start) return coverage_from(*cfg.time.start, nav.ephemerides);
-  return default_coverage(nav.ephemerides);
-}
-
-Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::NavData& nav)
+Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::NavData& nav, const RunPlan& plan)
     : io_(io),
       cfg_(cfg),
-      nav_leap_s_(nav.leap_seconds),
-      nav_klobuchar_(nav.klobuchar),
-      store_(nav.ephemerides),
+      raw_nav_(nav),
+      constellation_(plan.constellation),
+      store_(constellation_.nav.ephemerides, constellation_.store_options()),
       frame_(cfg.origin),
       scene_(load_scene_logged(cfg)),
       demo_(frame_, cfg.demo.radius_m, cfg.demo.speed_m_s, cfg.demo.height_m),
       router_(TrackParams{cfg.truth.timeout_s, cfg.truth.max_extrapolation_s}, cfg.time.mode),
-      coverage_(coverage_for(cfg, nav)),
+      start_(plan.start),
       period_s_(1.0 / cfg.rate_hz),
+      output_delay_s_(cfg.time.output_delay_s),
       device_(config::device_setup(cfg)),
       rate_hz_(cfg.rate_hz),
       timer_(io),
@@ -63,16 +54,17 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       socket_(io),
       signals_(io, SIGINT, SIGTERM) {
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
+  check_range(output_delay_s_, config::TimeRanges::output_delay_s, cfg.source, "time.output_delay_s");
   power_on_ = kProcessStart;
   restart_receiver();
   if (scene_) spdlog::info("scene {}: {} triangles", cfg_.scene->mesh_file, scene_->triangle_count());
-  lock_next_ = coverage_.start;
+  lock_next_ = start_;
 }
 
 void Daemon::restart_receiver() {
-  // A fresh receiver (start-up, or GPS time going back) with the nav header's
-  // leap seconds and Klobuchar coefficients.
-  receiver_ = config::make_pipeline(cfg_, store_, pipeline::Broadcast{nav_klobuchar_, nav_leap_s_}, scene_.get());
+  // A fresh receiver (start-up, or GPS time going back) with the broadcast
+  // leap seconds and Klobuchar coefficients of the run's dates.
+  receiver_ = config::make_pipeline(cfg_, store_, pipeline::broadcast_of(constellation_.nav), scene_.get());
 }
 
 void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& result) {
@@ -112,7 +104,7 @@ void Daemon::start() {
     // Epoch 0 at the next whole GPS second of the wall clock, so every epoch
     // sits on a whole multiple of the period in GPS time (as a u-blox's do).
     const WholeSecondStart w = whole_second_start(system_clock_gps());
-    coverage_.start = w.start;
+    start_ = w.start;
     lock_next_ = w.start;
     t0_ += std::chrono::nanoseconds(std::llround(w.wait_s * 1e9));
   }
@@ -144,13 +136,14 @@ void Daemon::start() {
               static_cast<unsigned>(local.port()));
   std::fflush(stdout);
 
-  spdlog::info("config {}; nav {} ({} ephemerides); leap seconds {}", cfg_.source.empty() ? "(built in)" : cfg_.source,
-               cfg_.nav_file, store_.size(),
-               nav_leap_s_ ? std::to_string(*nav_leap_s_) + " (nav header)" : std::string("from the built-in table"));
+  const std::optional<int>& leap = constellation_.nav.leap_seconds;
+  spdlog::info("config {}; {} GPS ephemerides; leap seconds {}", cfg_.source.empty() ? "(built in)" : cfg_.source,
+               store_.size(), leap ? std::to_string(*leap) + " (nav header)" : std::string("from the built-in table"));
+  spdlog::info("satellites: {}", constellation_.describe());
   spdlog::info("epochs at {} Hz, {} mode, starting {}{}", cfg_.rate_hz,
-               cfg_.time.mode == config::TimeMode::kRealtime ? "realtime" : "lockstep", gps_text(coverage_.start),
-               coverage_.span_s > 0 && cfg_.time.mode == config::TimeMode::kRealtime
-                   ? fmt::format(", wrapping after {:.0f} s", coverage_.span_s)
+               cfg_.time.mode == config::TimeMode::kRealtime ? "realtime" : "lockstep", gps_text(start_),
+               cfg_.time.mode == config::TimeMode::kRealtime
+                   ? fmt::format(", output {:.0f} ms after each epoch", output_delay_s_ * 1e3)
                    : std::string());
   if (cfg_.demo.enabled) {
     spdlog::info("demo circle r={} m at {} m/s drives the receiver until a simulator sends truth", cfg_.demo.radius_m,
@@ -190,24 +183,40 @@ void Daemon::shutdown() {
   channels_.clear();  // closes ports, removes pty symlinks
 }
 
-time::GpsTime Daemon::realtime_clock_gps() noexcept {
-  const EpochTime e = realtime_gps_time(coverage_, now_s());
-  return e.t;
-}
+time::GpsTime Daemon::realtime_clock_gps() noexcept { return start_ + now_s(); }
 
 void Daemon::arm_timer() {
-  const auto base = std::chrono::nanoseconds(std::llround(sched_base_s_ * 1e9));
+  // Realtime: epoch k is measured at t0 + k / rate and leaves output_delay_s later.
+  const double delay_s = cfg_.time.mode == config::TimeMode::kRealtime ? output_delay_s_ : 0.0;
+  const auto base = std::chrono::nanoseconds(std::llround((sched_base_s_ + delay_s) * 1e9));
   timer_.expires_at(t0_ + base + std::chrono::nanoseconds(epoch_deadline_ns(index_, rate_hz_)));
   timer_.async_wait([this](const boost::system::error_code& ec) { on_timer(ec); });
 }
 
-void Daemon::note_clock_wrap(int64_t wraps) {
-  if (wraps == wraps_) return;
-  wraps_ = wraps;
-  spdlog::warn("epoch clock reached the end of the nav file's coverage: back to {} (wrap {})",
-               gps_text(coverage_.start), wraps);
-  router_.on_clock_jump();
-  restart_receiver();
+void Daemon::note_coverage(const time::GpsTime& t) noexcept {
+  const std::vector<orbit::TimeSpan>& spans = constellation_.coverage;
+  bool served = constellation_.continues && !spans.empty() && spans.back().end < t;
+  for (const orbit::TimeSpan& s : spans) served = served || s.contains(t);
+  if (served == served_) return;
+  served_ = served;
+  if (!served) {
+    spdlog::warn("epoch {}: outside the nav data ({}): no satellites until the data resume", gps_text(t),
+                 orbit::spans_text(spans));
+  } else {
+    spdlog::info("epoch {}: back inside the nav data", gps_text(t));
+  }
+}
+
+void Daemon::redate_constellation(const time::GpsTime& t) {
+  try {
+    const orbit::Constellation c = config::make_constellation(cfg_, raw_nav_, t);
+    constellation_ = c;
+    store_ = orbit::EphemerisStore(constellation_.nav.ephemerides, constellation_.store_options());
+    served_ = true;
+    spdlog::info("lockstep: satellites for the simulator's date: {}", constellation_.describe());
+  } catch (const Error& e) {
+    spdlog::error("lockstep: the simulator's GPS time {} cannot be served: {}", gps_text(t), e.what());
+  }
 }
 
 world::Truth Daemon::fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept {
@@ -222,19 +231,18 @@ void Daemon::on_timer(const boost::system::error_code& ec) {
   const double now = now_s();
   if (cfg_.time.mode == config::TimeMode::kRealtime) {
     const double offset_s = sched_base_s_ + epoch_offset_s(index_, rate_hz_);
-    const EpochTime e = realtime_gps_time(coverage_, offset_s);
-    note_clock_wrap(e.wraps);
-    const world::Truth truth =
-        router_.has_driver() ? router_.truth_at(e.t, now) : fallback_truth(e.t, offset_s);
-    emit_epoch(e.t, truth);
+    const time::GpsTime t = start_ + offset_s;
+    const world::Truth truth = router_.has_driver() ? router_.truth_at(t, now) : fallback_truth(t, offset_s);
+    emit_epoch(t, truth);
   } else if (!router_.driver_fresh(now)) {
     // Lockstep without a live simulator: keep the receiver talking at the
     // configured rate (demo before any simulator, no fix after one stopped).
-    emit_epoch(lock_next_, fallback_truth(lock_next_, lock_next_ - coverage_.start));
+    emit_epoch(lock_next_, fallback_truth(lock_next_, lock_next_ - start_));
     lock_next_ += period_s_;
   }
+  const double delay_s = cfg_.time.mode == config::TimeMode::kRealtime ? output_delay_s_ : 0.0;
   const auto now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0_).count() -
-                      std::llround(sched_base_s_ * 1e9);
+                      std::llround((sched_base_s_ + delay_s) * 1e9);
   const ScheduleStep step = next_epoch(index_, rate_hz_, now_ns);
   if (step.skipped > 0) {
     epochs_skipped_ += static_cast<uint64_t>(step.skipped);
@@ -261,6 +269,7 @@ void Daemon::lockstep_advance(const time::GpsTime& stamp) {
 }
 
 void Daemon::emit_epoch(const time::GpsTime& t, const world::Truth& truth) {
+  note_coverage(t);
   const receiver::Fix& fix = receiver_->step(t, truth);
   ++epochs_;
   device_.on_epoch(fix, now_s());
@@ -296,7 +305,9 @@ void Daemon::on_nav_period(std::size_t src) {
   if (cfg_.time.mode == config::TimeMode::kRealtime) {
     // Next epoch on a whole multiple of the new period (u-blox aligns
     // measurements to GPS time; elapsed 0 is on a whole GPS second).
-    const double elapsed = now_s();
+    // Before the first epoch (the clock waits for a whole GPS second) the
+    // schedule starts at that epoch.
+    const double elapsed = std::max(now_s(), 0.0);
     sched_base_s_ = std::ceil(elapsed / p - 1e-9) * p;
     index_ = 0;
   }
@@ -377,8 +388,17 @@ void Daemon::align_to_packet_time(const time::GpsTime& stamp) {
   if (gps_aligned_) return;
   gps_aligned_ = true;
   const double tow_epochs = std::ceil(stamp.tow_s() * rate_hz_ - 1e-9);
-  const time::GpsTime first(stamp.week(), tow_epochs / rate_hz_);
-  if (first < lock_next_) restart_receiver();  // time goes back
+  const time::GpsTime first = time::GpsTime::make(stamp.week(), tow_epochs / rate_hz_).value_or(stamp);
+  const bool served = std::any_of(constellation_.coverage.begin(), constellation_.coverage.end(),
+                                  [&](const orbit::TimeSpan& s) { return s.contains(first); }) ||
+                      (constellation_.continues && !constellation_.coverage.empty() &&
+                       constellation_.coverage.back().end < first);
+  if (!served) {
+    redate_constellation(first);
+    restart_receiver();
+  } else if (first < lock_next_) {
+    restart_receiver();  // time goes back
+  }
   lock_next_ = first;
   spdlog::info("lockstep: epochs follow the packets' GPS time from {}", gps_text(first));
 }

@@ -13,6 +13,7 @@
 
 #include "config/config.hpp"
 #include "core/geo/local_frame.hpp"
+#include "core/orbit/constellation.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/nav_data.hpp"
 #include "core/pipeline/pipeline.hpp"
@@ -21,6 +22,7 @@
 #include "daemon/drop_stats.hpp"
 #include "daemon/output_port.hpp"
 #include "daemon/port_channel.hpp"
+#include "daemon/run_plan.hpp"
 #include "daemon/time_mapping.hpp"
 #include "daemon/truth_router.hpp"
 
@@ -28,14 +30,12 @@ namespace gnssemu::daemon {
 
 namespace asio = boost::asio;
 
-/// GPS-time span of the epoch clock for a config and nav file (time.start,
-/// use_wall_clock_date, or the nav file's default coverage).
-Coverage coverage_for(const config::Config& cfg, const orbit::NavData& nav);
-
 class Daemon {
 public:
-  /// Builds receiver and encoders; throws gnssemu::Error on a bad config.
-  Daemon(asio::io_context& io, const config::Config& cfg, const orbit::NavData& nav);
+  /// nav: the configured nav data as read (kept to re-date the constellation
+  /// for a lockstep simulator's GPS time). Builds receiver and encoders;
+  /// throws gnssemu::Error on a bad config or a start the data cannot serve.
+  Daemon(asio::io_context& io, const config::Config& cfg, const orbit::NavData& nav, const RunPlan& plan);
   ~Daemon();
 
   /// Open ports and the truth socket, print where NMEA goes, start the
@@ -59,7 +59,11 @@ private:
   void align_to_packet_time(const time::GpsTime& stamp);
   void emit_epoch(const time::GpsTime& t, const world::Truth& truth);
   world::Truth fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept;
-  void note_clock_wrap(int64_t wraps);
+  /// Logs when the epoch clock leaves or re-enters what the constellation serves.
+  void note_coverage(const time::GpsTime& t) noexcept;
+  /// Lockstep: the simulator's GPS time t lies outside the constellation:
+  /// date it anew for t (auto/relabel/almanac) or say why there is no fix.
+  void redate_constellation(const time::GpsTime& t);
   /// The device's epoch period may have changed (CFG-RATE, a reset or a
   /// configuration load from channel src): run at it.
   void on_nav_period(std::size_t src);
@@ -67,8 +71,8 @@ private:
 
   asio::io_context& io_;
   config::Config cfg_;
-  std::optional<int> nav_leap_s_;
-  orbit::KlobucharParams nav_klobuchar_;  ///< broadcast iono of the nav header (invalid: RTKLIB defaults)
+  orbit::NavData raw_nav_;               ///< the nav files as read
+  orbit::Constellation constellation_;   ///< the satellites for the run's dates
   orbit::EphemerisStore store_;
   geo::LocalFrame frame_;
   std::unique_ptr<scene::Scene> scene_;  ///< buildings ([scene]); outlives receiver_
@@ -76,8 +80,9 @@ private:
   DemoTrajectory demo_;
   TruthRouter router_;
   DropStats drops_;
-  Coverage coverage_;
+  time::GpsTime start_;         ///< GPS time of elapsed 0 (realtime) / the first epoch (lockstep)
   double period_s_;
+  double output_delay_s_;       ///< realtime: epoch to first byte on the wire, s
 
   protocol::ubx::Device device_;  ///< the emulated u-blox: every output is one of its UART1s
   std::vector<std::unique_ptr<PortChannel>> channels_;
@@ -94,7 +99,7 @@ private:
   Clock::time_point power_on_;  // receiver power-on (process start): uptime (msss) and ttff count from here
   Clock::time_point t0_;
   int64_t index_ = 0;           // realtime: epoch index since t0
-  int64_t wraps_ = 0;
+  bool served_ = true;          // the last epoch had the constellation
   time::GpsTime lock_next_;     // lockstep: GPS time of the next epoch
   uint64_t epochs_ = 0;
   uint64_t epochs_skipped_ = 0;

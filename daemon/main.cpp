@@ -12,10 +12,9 @@
 #include <spdlog/spdlog.h>
 
 #include "config/config.hpp"
+#include "config/nav_setup.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
-#include "core/orbit/ephemeris_store.hpp"
-#include "core/orbit/rinex_nav.hpp"
 #include "daemon/config_locator.hpp"
 #include "daemon/daemon.hpp"
 
@@ -29,18 +28,24 @@ std::string self_exe() {
   return n > 0 ? std::string(buf.data(), static_cast<std::size_t>(n)) : std::string();
 }
 
-void print_summary(const config::Config& cfg, const orbit::NavData& nav) {
-  const orbit::EphemerisStore store(nav.ephemerides);
-  const daemon::Coverage cov = daemon::coverage_for(cfg, nav);
+void print_summary(const config::Config& cfg, const orbit::NavData& nav, const daemon::RunPlan& plan) {
+  const orbit::Constellation& c = plan.constellation;
   std::printf("config:  %s\n", cfg.source.empty() ? "(built-in default.toml)" : cfg.source.c_str());
   std::printf("origin:  lat %.7f deg, lon %.7f deg, height %.2f m\n", cfg.origin.lat_rad * kRadToDeg,
               cfg.origin.lon_rad * kRadToDeg, cfg.origin.height_m);
-  std::printf("nav:     %s (RINEX %.2f, %zu GPS ephemerides, leap seconds %s)\n", cfg.nav_file.c_str(),
-              nav.rinex_version, store.size(),
-              nav.leap_seconds ? std::to_string(*nav.leap_seconds).c_str() : "from table");
-  std::printf("epochs:  %.3g Hz, %s, start week %d tow %.1f s, wrap after %.0f s\n", cfg.rate_hz,
-              cfg.time.mode == config::TimeMode::kRealtime ? "realtime" : "lockstep", cov.start.week(),
-              cov.start.tow_s(), cov.span_s);
+  for (const std::string& p : config::nav_paths(cfg)) std::printf("nav:     %s\n", p.c_str());
+  std::printf("nav:     RINEX %.2f, %zu GPS ephemerides, covering %s\n", nav.rinex_version, nav.ephemerides.size(),
+              orbit::spans_text(orbit::EphemerisStore(nav.ephemerides).coverage()).c_str());
+  std::printf("sats:    mode %s: %s\n", std::string(orbit::nav_mode_name(cfg.nav.mode)).c_str(), c.describe().c_str());
+  std::printf("leap:    %s\n", c.nav.leap_seconds ? (std::to_string(*c.nav.leap_seconds) + " s (nav header)").c_str()
+                                                   : "from the built-in table");
+  std::printf("epochs:  %.3g Hz, %s, start %s (week %d tow %.1f s)%s\n", cfg.rate_hz,
+              cfg.time.mode == config::TimeMode::kRealtime ? "realtime" : "lockstep",
+              time::calendar_text(plan.start).c_str(), plan.start.week(), plan.start.tow_s(),
+              cfg.time.use_wall_clock_date && !cfg.time.start ? ", today (system clock)" : "");
+  if (cfg.time.mode == config::TimeMode::kRealtime) {
+    std::printf("timing:  first byte %.0f ms after each epoch\n", cfg.time.output_delay_s * 1e3);
+  }
   std::printf("truth:   udp %s:%u, timeout %.2f s, max extrapolation %.2f s\n", cfg.truth.bind_address.c_str(),
               static_cast<unsigned>(cfg.truth.port), cfg.truth.timeout_s, cfg.truth.max_extrapolation_s);
   std::printf("demo:    %s (circle r=%.1f m, %.1f m/s)\n", cfg.demo.enabled ? "on" : "off", cfg.demo.radius_m,
@@ -71,10 +76,13 @@ int main(int argc, char** argv) {
   CLI::App app{"gnssemud: GNSS receiver emulator daemon (NMEA on a pty from UDP vehicle truth)"};
   std::string config_path;
   std::string pty_path;
+  int truth_port = -1;
   bool verbose = false;
   bool check_only = false;
   app.add_option("-c,--config", config_path, "TOML configuration (default: the shipped default.toml)");
   app.add_option("--pty", pty_path, "path of the pty symlink of the first output (overrides the config)");
+  app.add_option("--truth-port", truth_port, "UDP port of the truth input, 0: any free one (overrides the config)")
+      ->check(CLI::Range(0, 65535));
   app.add_flag("-v,--verbose", verbose, "debug logging");
   app.add_flag("--check-config", check_only, "load and validate the configuration, print a summary, exit");
   CLI11_PARSE(app, argc, argv);
@@ -95,13 +103,17 @@ int main(int argc, char** argv) {
       }
       cfg.outputs.front().transport = config::PtyPortConfig{pty_path};
     }
+    if (truth_port >= 0) cfg.truth.port = static_cast<uint16_t>(truth_port);
     for (const auto& p : cfg.outputs) daemon::validate_port(p);
-    const orbit::NavData nav = orbit::read_rinex_nav(cfg.nav_file);
+    const orbit::NavData nav = config::load_nav(cfg);
+    // The start must be served by the nav data (as the configured mode dates
+    // them): an error here, not a receiver without a fix forever.
+    const daemon::RunPlan plan = daemon::plan_run(cfg, nav, daemon::system_clock_gps());
 
     if (check_only) {
       boost::asio::io_context check_io;
-      const daemon::Daemon check(check_io, cfg, nav);  // builds the receiver: validates its config
-      print_summary(cfg, nav);
+      const daemon::Daemon check(check_io, cfg, nav, plan);  // builds the receiver: validates its config
+      print_summary(cfg, nav, plan);
       std::printf("configuration OK\n");
       return 0;
     }
@@ -111,7 +123,7 @@ int main(int argc, char** argv) {
     if (cfg.outputs.empty()) spdlog::warn("no outputs configured: epochs are computed but go nowhere");
 
     boost::asio::io_context io;
-    daemon::Daemon d(io, cfg, nav);
+    daemon::Daemon d(io, cfg, nav, plan);
     d.start();
     io.run();
     return 0;

@@ -1,7 +1,7 @@
 #pragma once
 // Mapping between the clocks the daemon juggles: wall time elapsed since
-// start, GPS time of epochs (inside the nav file's coverage), and each
-// simulator's sim_time_s. Pure functions and small value types.
+// start, GPS time of epochs (the clock runs on from its start, for days on
+// end), and each simulator's sim_time_s. Pure functions and small value types.
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -11,19 +11,9 @@
 
 namespace gnssemu::daemon {
 
-/// GPS-time span the realtime clock runs over.
-struct Coverage {
-  time::GpsTime start;  ///< GPS time of elapsed 0
-  double span_s = 0.0;  ///< wrap back to start after this long (s); <= 0: never wrap
-};
-
-/// Default coverage of a nav file: from the first toe + 1 h (every satellite
-/// has had time to appear) to the last toe. Empty list -> span 0.
-Coverage default_coverage(const std::vector<orbit::Ephemeris>& ephemerides);
-
-/// Coverage starting at a configured start: runs to the last toe when that is
-/// later than start + 1 h, else never wraps.
-Coverage coverage_from(const time::GpsTime& start, const std::vector<orbit::Ephemeris>& ephemerides);
+/// The nav data's own first day: first toe + 1 h (every satellite has had
+/// time to appear). GpsTime{} for an empty list.
+time::GpsTime first_toe_plus_hour(const std::vector<orbit::Ephemeris>& ephemerides);
 
 /// Start of the epoch clock for time.use_wall_clock_date: a u-blox receiver's
 /// epochs sit on whole multiples of the measurement period in GPS time, so
@@ -34,14 +24,11 @@ struct WholeSecondStart {
 };
 WholeSecondStart whole_second_start(const time::GpsTime& now) noexcept;
 
-struct EpochTime {
-  time::GpsTime t;     ///< GPS time
-  int64_t wraps = 0;   ///< how often the clock has wrapped back to coverage.start
-};
-
-/// GPS time elapsed_s (s, >= 0) after coverage.start, wrapping back to the
-/// start every span_s.
-EpochTime realtime_gps_time(const Coverage& coverage, double elapsed_s) noexcept;
+/// GPS time of the first epoch: start when configured; else, with
+/// wall_clock, now rounded up to a whole GPS second (today's date); else the
+/// nav data's first toe + 1 h.
+time::GpsTime run_start(const std::optional<time::GpsTime>& start, bool wall_clock,
+                        const std::vector<orbit::Ephemeris>& ephemerides, const time::GpsTime& now);
 
 /// Maps a simulator's sim_time_s to GPS time: gps = anchor_gps + (sim - anchor_sim).
 /// Anchored on the first packet at its arrival time; re-anchored when the

@@ -58,6 +58,12 @@ CloudLayer cloud_preset(std::string_view name) {
   throw Error("clouds config", 0, "unknown cloud preset '" + std::string(name) + "' (known: " + known + ")");
 }
 
+std::vector<std::string_view> cloud_preset_names() {
+  std::vector<std::string_view> out;
+  for (const Preset& p : kPresets) out.push_back(p.name);
+  return out;
+}
+
 double rain_specific_attenuation_db_km(double rate_mm_h, double k, double alpha) noexcept {
   if (!(rate_mm_h > 0.0)) return 0.0;
   return k * std::pow(rate_mm_h, alpha);

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <string_view>
+#include <vector>
 
 #include "core/common/range.hpp"
 
@@ -30,6 +31,8 @@ struct CloudLayer {
 /// its alias "thunderstorm" (1000 m + 10000 m, 2.5). Throws gnssemu::Error
 /// naming the known presets for an unknown name.
 CloudLayer cloud_preset(std::string_view name);
+/// The names cloud_preset knows, in its order.
+std::vector<std::string_view> cloud_preset_names();
 
 /// Rain: uniform rate from the surface up to the rain height.
 struct RainConfig {

@@ -85,11 +85,7 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw Error("atmosphere shells config", 0, what);
 }
 
-const char* shell_name(std::size_t i) {
-  static const char* const kNames[kShellCount] = {"troposphere", "stratosphere", "mesosphere", "thermosphere",
-                                                  "ionosphere"};
-  return kNames[i];
-}
+std::string shell_name(std::size_t i) { return std::string(kShellNames[i]); }
 
 }  // namespace
 
@@ -117,13 +113,37 @@ double water_vapour_specific_attenuation_db_km(double f, double rho) noexcept {
          rho * 1e-4;
 }
 
+std::optional<Violation> check_thickness(const Shell& s) {
+  if (!(s.top_m < s.bottom_m)) return std::nullopt;
+  return Violation{"top_m", "bottom_m",
+                   "negative thickness (top_m " + format_number(s.top_m) + " m < bottom_m " + format_number(s.bottom_m) +
+                       " m)"};
+}
+
+std::optional<Violation> check_overlap(const ShellsConfig& cfg) {
+  const auto neutral = [](std::size_t i) { return static_cast<ShellKind>(i) != ShellKind::kIonosphere; };
+  for (std::size_t i = 0; i < kShellCount; ++i) {
+    for (std::size_t j = 0; j < kShellCount; ++j) {
+      const Shell& a = cfg.shells[i];
+      const Shell& b = cfg.shells[j];
+      if (i == j || !neutral(i) || !neutral(j) || !a.enabled || !b.enabled) continue;
+      if (!(a.bottom_m <= b.bottom_m && b.bottom_m < a.top_m && b.top_m > b.bottom_m)) continue;
+      return Violation{kShellNames[j], kShellNames[i],
+                       shell_name(i) + " (" + format_number(a.bottom_m) + "-" + format_number(a.top_m) + " m) and " +
+                           shell_name(j) + " (" + format_number(b.bottom_m) + "-" + format_number(b.top_m) +
+                           " m) overlap"};
+    }
+  }
+  return std::nullopt;
+}
+
 void validate(const ShellsConfig& cfg) {
   const std::string what = "atmosphere shells config";
   for (std::size_t i = 0; i < kShellCount; ++i) {
     const Shell& s = cfg.shells[i];
     const std::string n = shell_name(i);
     check_ranges(what, {{s.bottom_m, ShellRanges::bottom_m, n + ".bottom_m"}, {s.top_m, ShellRanges::top_m, n + ".top_m"}});
-    require(s.top_m >= s.bottom_m, n + ": negative thickness (bottom " + std::to_string(s.bottom_m) + " m, top " +
+    require(!check_thickness(s), n + ": negative thickness (bottom " + std::to_string(s.bottom_m) + " m, top " +
                                        std::to_string(s.top_m) + " m)");
     check_range(s.temperature_k, ShellRanges::temperature_k, what, n + ".temperature_k");
   }
@@ -132,6 +152,7 @@ void validate(const ShellsConfig& cfg) {
                       {g.water_vapour_density_g_m3, GasRanges::water_vapour_density_g_m3, "gas.water_vapour_density_g_m3"},
                       {g.water_vapour_scale_height_m, GasRanges::water_vapour_scale_height_m,
                        "gas.water_vapour_scale_height_m"}});
+  if (const std::optional<Violation> v = check_overlap(cfg)) require(false, v->reason);
 }
 
 AtmosphereShells::AtmosphereShells(const ShellsConfig& cfg) : cfg_(cfg) {

@@ -4,8 +4,11 @@
 // attenuation integrated along the slant path.
 #include <array>
 #include <cstddef>
+#include <optional>
+#include <string_view>
 
 #include "core/common/range.hpp"
+#include "core/common/violation.hpp"
 
 namespace gnssemu::atmosphere {
 
@@ -20,6 +23,9 @@ enum class ShellKind : std::size_t {
   kIonosphere,
 };
 inline constexpr std::size_t kShellCount = 5;
+/// Names of the shells in ShellKind order (config [atmosphere.shells.<name>]).
+inline constexpr std::array<std::string_view, kShellCount> kShellNames{"troposphere", "stratosphere", "mesosphere",
+                                                                       "thermosphere", "ionosphere"};
 
 /// One shell. Heights above the spherical surface, m.
 struct Shell {
@@ -90,8 +96,15 @@ struct GasRanges {
   static constexpr Range water_vapour_scale_height_m{0.0, 20000.0, "m", true};
 };
 
-/// Throws gnssemu::Error for a value out of its range or a shell with
-/// negative thickness.
+/// A shell is not upside down: top_m >= bottom_m.
+std::optional<Violation> check_thickness(const Shell& s);
+/// The enabled neutral shells stack without overlap (the ionosphere overlaps
+/// them by design): an overlap would count the gases of the common heights
+/// twice. Names the first overlapping pair, the higher-starting shell first.
+std::optional<Violation> check_overlap(const ShellsConfig& cfg);
+
+/// Throws gnssemu::Error for a value out of its range, a shell with negative
+/// thickness or overlapping shells.
 void validate(const ShellsConfig& cfg);
 
 /// Validated shell model. Construction throws gnssemu::Error on bad values (validate).

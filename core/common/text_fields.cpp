@@ -85,7 +85,10 @@ std::string rinex_label(std::string_view line) { return std::string(trim(columns
 
 RinexVersionLine read_rinex_version(const ColumnReader& r, const std::vector<Line>& lines) {
   if (lines.empty()) r.fail(1, "empty file");
-  const Line& first = lines[0];
+  return read_rinex_version_line(r, lines[0]);
+}
+
+RinexVersionLine read_rinex_version_line(const ColumnReader& r, const Line& first) {
   if (rinex_label(first.text) != "RINEX VERSION / TYPE") r.fail(first.number, "first line is not 'RINEX VERSION / TYPE'");
   RinexVersionLine v;
   v.version = r.real(first, 0, 9, "RINEX version");

@@ -74,8 +74,10 @@ struct RinexVersionLine {
   char system = ' ';     ///< column 41: 'G' GPS, 'M' mixed, ... (blank in RINEX 2 GPS files)
 };
 
-/// Reads lines[0]; throws (via r) for an empty file, a first line that is
-/// not "RINEX VERSION / TYPE" and versions outside 2.00-2.11 and 3.00-3.05.
+/// Reads a file's first line; throws (via r) for a first line that is not
+/// "RINEX VERSION / TYPE" and versions outside 2.00-2.11 and 3.00-3.05.
+RinexVersionLine read_rinex_version_line(const ColumnReader& r, const Line& first);
+/// The same on lines[0]; also throws for an empty file.
 RinexVersionLine read_rinex_version(const ColumnReader& r, const std::vector<Line>& lines);
 
 }  // namespace gnssemu::text

@@ -1,15 +1,13 @@
 #include "core/observation/rinex_obs.hpp"
 
-#include <zlib.h>
-
 #include <cctype>
-#include <fstream>
-#include <memory>
+#include <cstdint>
+#include <deque>
 #include <optional>
-#include <sstream>
 #include <string_view>
 
 #include "core/common/error.hpp"
+#include "core/common/line_source.hpp"
 #include "core/common/text_fields.hpp"
 
 namespace gnssemu::observation {
@@ -20,6 +18,9 @@ constexpr int kMaxGpsPrn = 32;
 constexpr std::size_t kFieldWidth = 16;  // F14.3 + LLI + SSI (RINEX 2.11 Table A2, 3.05 Table A3)
 constexpr int kV2SatsPerLine = 12;
 constexpr int kV2ValuesPerLine = 5;
+// A RINEX 3 observation line is 3 + 16 columns per type (99 types at most);
+// 8 GiB decompressed is far beyond a day of 1 Hz multi-GNSS data.
+constexpr text::LineLimits kObsLimits{4096, 8ull << 30};
 
 using text::columns;
 using text::Line;
@@ -36,43 +37,57 @@ std::string v3_code_from_v2(std::string_view t) {
   return std::string(t);
 }
 
+/// Reads the file line by line; the lines of the record being parsed stay in
+/// window_ (a deque: references survive reading further lines).
 class Parser : private text::ColumnReader {
 public:
-  Parser(std::vector<Line> lines, const std::string& name) : ColumnReader(name), lines_(std::move(lines)) {}
+  explicit Parser(text::LineSource& src) : ColumnReader(src.name()), src_(src) {}
 
   ObsData parse() {
     ObsData out;
     out.source = name();
     parse_header(out);
-    while (i_ < lines_.size()) {
-      if (trim(lines_[i_].text).empty()) {
-        ++i_;
-        continue;
-      }
+    for (;;) {
+      window_.clear();
+      const Line* l = take();
+      if (l == nullptr) break;
+      if (trim(l->text).empty()) continue;
       if (major_ == 3) {
-        epoch_v3(out);
+        epoch_v3(out, *l);
       } else {
-        epoch_v2(out);
+        epoch_v2(out, *l);
       }
     }
     return out;
   }
 
 private:
+  /// The next line, kept in window_ until the next record; nullptr at the end.
+  const Line* take() {
+    Line l;
+    if (!src_.next(l)) return nullptr;
+    ++consumed_;
+    window_.push_back(std::move(l));
+    return &window_.back();
+  }
+
   /// The next line of a record announced at record_line, or a clear error.
   const Line& need(const char* what, int record_line) {
-    if (i_ >= lines_.size()) {
-      fail(lines_.empty() ? 0 : lines_.back().number,
-           std::string("end of file inside ") + what + " started at line " + std::to_string(record_line));
+    const Line* l = take();
+    if (l == nullptr) {
+      fail(src_.line_number(), std::string("end of file inside ") + what + " started at line " +
+                                   std::to_string(record_line));
     }
-    return lines_[i_++];
+    return *l;
   }
 
   // ---- header ----
 
   void parse_header(ObsData& out) {
-    const text::RinexVersionLine v = text::read_rinex_version(*this, lines_);
-    const Line& first = lines_[0];
+    const Line* head = take();
+    if (head == nullptr) fail(1, "empty file");
+    const text::RinexVersionLine v = text::read_rinex_version_line(*this, *head);
+    const Line& first = *head;
     ObsHeader& h = out.header;
     h.rinex_version = v.version;
     const char type = v.type;
@@ -84,9 +99,11 @@ private:
       fail(first.number, std::string("observation file for system '") + h.file_system +
                              "', need GPS (G) or mixed (M)");
     }
-    i_ = 1;
-    while (i_ < lines_.size()) {
-      const Line& l = lines_[i_++];
+    for (;;) {
+      window_.clear();
+      const Line* next = take();
+      if (next == nullptr) break;
+      const Line& l = *next;
       const std::string label = text::rinex_label(l.text);
       if (label == "END OF HEADER") {
         if (!have_types_) fail(l.number, "no GPS observation types in the header (SYS / # / OBS TYPES or # / TYPES OF OBSERV)");
@@ -94,7 +111,7 @@ private:
       }
       header_line(l, label, h);
     }
-    fail(lines_.back().number, "end of file before END OF HEADER");
+    fail(src_.line_number(), "end of file before END OF HEADER");
   }
 
   /// One header line; also used for header records inside flag-4 events.
@@ -199,9 +216,9 @@ private:
       if (flag == 4) {  // header information follows (RINEX 3.05 §5.3.2): keep types current
         const std::string label = text::rinex_label(l.text);
         if (label.empty()) fail(l.number, "event flag 4: header record without a label");
-        const std::size_t before = i_;
+        const uint64_t before = consumed_;
         header_line(l, label, out.header);
-        k += static_cast<int>(i_ - before);  // continuation lines consumed
+        k += static_cast<int>(consumed_ - before);  // continuation lines consumed
       }
     }
   }
@@ -250,8 +267,7 @@ private:
     return EpochFlag{flag, n};
   }
 
-  void epoch_v3(ObsData& out) {
-    const Line& e = lines_[i_++];
+  void epoch_v3(ObsData& out, const Line& e) {
     if (e.text[0] != '>') fail(e.number, "expected an epoch record starting with '>'");
     const std::optional<EpochFlag> head = epoch_flag(out, e, 31);
     if (!head) return;
@@ -305,8 +321,7 @@ private:
     return ep;
   }
 
-  void epoch_v2(ObsData& out) {
-    const Line& e = lines_[i_++];
+  void epoch_v2(ObsData& out, const Line& e) {
     const std::optional<EpochFlag> head = epoch_flag(out, e, 28);
     if (!head) return;
     const auto [flag, n] = *head;
@@ -357,49 +372,23 @@ private:
     out.epochs.push_back(std::move(ep));
   }
 
-  std::vector<Line> lines_;
-  std::size_t i_ = 0;
+  text::LineSource& src_;
+  std::deque<Line> window_;
+  uint64_t consumed_ = 0;  // lines taken so far
   int major_ = 0;
   bool have_types_ = false;
 };
 
-/// Whole gzip file as text (zlib; also reads a plain file unchanged).
-std::string read_gzip(const std::string& path) {
-  gzFile f = gzopen(path.c_str(), "rb");
-  if (f == nullptr) throw Error(path, 0, "cannot open");
-  std::unique_ptr<gzFile_s, int (*)(gzFile)> guard(f, gzclose);
-  std::string text;
-  char buf[1 << 16];
-  for (;;) {
-    const int got = gzread(f, buf, sizeof buf);
-    if (got < 0) {
-      int code = 0;
-      throw Error(path, 0, std::string("gzip read error: ") + gzerror(f, &code));
-    }
-    if (got == 0) break;
-    text.append(buf, static_cast<std::size_t>(got));
-  }
-  return text;
-}
-
 }  // namespace
 
 ObsData read_rinex_obs(std::istream& in, const std::string& name) {
-  return Parser(text::read_lines(in), name).parse();
+  text::LineSource src(in, name, kObsLimits);
+  return Parser(src).parse();
 }
 
 ObsData read_rinex_obs(const std::string& path) {
-  std::ifstream probe(path, std::ios::binary);
-  if (!probe) throw Error(path, 0, "cannot open");
-  unsigned char magic[2] = {0, 0};
-  probe.read(reinterpret_cast<char*>(magic), 2);
-  if (probe.gcount() == 2 && magic[0] == 0x1f && magic[1] == 0x8b) {
-    std::istringstream text(read_gzip(path));
-    return read_rinex_obs(text, path);
-  }
-  probe.clear();
-  probe.seekg(0);
-  return read_rinex_obs(probe, path);
+  text::LineSource src(path, kObsLimits);
+  return Parser(src).parse();
 }
 
 }  // namespace gnssemu::observation

@@ -2,13 +2,13 @@
 
 #include <cctype>
 #include <cmath>
-#include <fstream>
 #include <optional>
 #include <sstream>
 #include <string_view>
 
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
+#include "core/common/line_source.hpp"
 #include "core/common/text_fields.hpp"
 
 namespace gnssemu::orbit {
@@ -49,16 +49,13 @@ void check_entry(const AlmanacEntry& a, const std::string& path, const int (&lin
   if (a.sqrt_a_sqrtm <= 0.0) throw Error(path, line[2], "sqrt(A) must be positive");
 }
 
-std::ifstream open(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path, 0, "cannot open almanac file");
-  return in;
-}
+// An almanac is ~18 kB (YUMA, 32 satellites): anything far larger is not one.
+constexpr text::LineLimits kAlmanacLimits{1024, 4u << 20};
 
 }  // namespace
 
 std::vector<AlmanacEntry> read_yuma(const std::string& path, int reference_week) {
-  std::ifstream in = open(path);
+  text::LineSource in(path, kAlmanacLimits);
   // Field labels in file order (reference gps-orbits.md §8), matched by prefix.
   static constexpr std::string_view kLabels[] = {
       "ID", "Health", "Eccentricity", "Time of Applicability", "Orbital Inclination", "Rate of Right Ascen",
@@ -66,7 +63,7 @@ std::vector<AlmanacEntry> read_yuma(const std::string& path, int reference_week)
   constexpr int kFields = 13;
 
   std::vector<AlmanacEntry> out;
-  std::string s;
+  text::Line line;
   int n = 0;
   int block_line = 0;  // header line of the block being read, 0 = none
   double v[kFields] = {};
@@ -77,6 +74,9 @@ std::vector<AlmanacEntry> read_yuma(const std::string& path, int reference_week)
     for (int k = 0; k < kFields; ++k) {
       if (!seen[k]) throw Error(path, block_line, "almanac block lacks '" + std::string(kLabels[k]) + "'");
     }
+    // Range checks before any conversion: a toa of 1e300 must not reach GpsTime.
+    if (!(v[3] >= 0.0 && v[3] < kSecondsPerWeek)) throw Error(path, at[3], "toa outside the week");
+    if (v[12] < 0.0) throw Error(path, at[12], "negative almanac week");
     AlmanacEntry a;
     a.prn = static_cast<int>(v[0]);
     a.health = static_cast<int>(v[1]);
@@ -91,16 +91,15 @@ std::vector<AlmanacEntry> read_yuma(const std::string& path, int reference_week)
     a.m0_rad = v[9];
     a.af0_s = v[10];
     a.af1_s_s = v[11];
-    if (v[3] < 0.0 || v[3] >= kSecondsPerWeek) throw Error(path, at[3], "toa outside the week");
     check_entry(a, path, {at[0], at[2], at[6]});
     out.push_back(a);
     block_line = 0;
     for (bool& b : seen) b = false;
   };
 
-  while (std::getline(in, s)) {
-    ++n;
-    const std::string_view t = trim(s);
+  while (in.next(line)) {
+    n = line.number;
+    const std::string_view t = trim(line.text);
     if (t.empty()) continue;
     if (t.front() == '*') {
       if (block_line != 0) finish();
@@ -128,18 +127,18 @@ std::vector<AlmanacEntry> read_yuma(const std::string& path, int reference_week)
 }
 
 std::vector<AlmanacEntry> read_sem(const std::string& path, int reference_week) {
-  std::ifstream in = open(path);
+  text::LineSource in(path, kAlmanacLimits);
   struct Token {
     std::string text;
     int line;
   };
   std::vector<Token> toks;
-  std::string s;
+  text::Line line;
   int n = 0;
   int last_line = 0;
-  while (std::getline(in, s)) {
-    ++n;
-    std::istringstream ls(s);
+  while (in.next(line)) {
+    n = line.number;
+    std::istringstream ls(line.text);
     std::string w;
     if (n == 1) {  // "N  name": the name may contain anything
       if (ls >> w) toks.push_back({w, n});
@@ -153,7 +152,8 @@ std::vector<AlmanacEntry> read_sem(const std::string& path, int reference_week) 
   const int week10 = parse_int(toks[1].text, path, toks[1].line, "week");
   const double toa = parse_real(toks[2].text, path, toks[2].line, "toa");
   if (count < 1 || count > 64) throw Error(path, toks[0].line, "record count out of range 1..64");
-  if (toa < 0.0 || toa >= kSecondsPerWeek) throw Error(path, toks[2].line, "toa outside the week");
+  if (!(toa >= 0.0 && toa < kSecondsPerWeek)) throw Error(path, toks[2].line, "toa outside the week");
+  if (week10 < 0) throw Error(path, toks[1].line, "negative almanac week");
   const time::GpsTime t_toa(time::resolve_week_nearest(week10 % 1024, reference_week), toa);
 
   // Per record (ICD-GPS-870 Table 30-III): PRN, SVN, URA, e, di, OMEGADOT,
@@ -187,6 +187,17 @@ std::vector<AlmanacEntry> read_sem(const std::string& path, int reference_week) 
     i += kPerRecord;
   }
   return out;
+}
+
+std::vector<AlmanacEntry> read_almanac(const std::string& path, int reference_week) {
+  text::LineSource in(path, kAlmanacLimits);
+  text::Line line;
+  while (in.next(line)) {
+    const std::string_view t = trim(line.text);
+    if (t.empty()) continue;
+    return t.front() == '*' ? read_yuma(path, reference_week) : read_sem(path, reference_week);
+  }
+  throw Error(path, in.line_number(), "empty almanac file");
 }
 
 Ephemeris to_ephemeris(const AlmanacEntry& alm) noexcept {

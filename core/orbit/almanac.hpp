@@ -27,6 +27,9 @@ struct AlmanacEntry {
 /// truncated (mod 1024) week. Throws gnssemu::Error with file:line on bad input.
 std::vector<AlmanacEntry> read_yuma(const std::string& path, int reference_week);
 std::vector<AlmanacEntry> read_sem(const std::string& path, int reference_week);
+/// YUMA or SEM, told apart by the content (a YUMA file starts with a
+/// "****" block header, a SEM file with its record count).
+std::vector<AlmanacEntry> read_almanac(const std::string& path, int reference_week);
 
 /// The almanac as an Ephemeris (zero harmonic terms) for sat_state().
 Ephemeris to_ephemeris(const AlmanacEntry& alm) noexcept;

@@ -8,12 +8,18 @@
 namespace gnssemu::orbit {
 
 namespace {
-double transmit_key(const Ephemeris& e) {
+/// Transmission time, s from toe's week start; unknown counts as earliest.
+double transmit_key(const Ephemeris& e) noexcept {
   return e.transmit_known ? e.transmit_tow_s : -std::numeric_limits<double>::infinity();
+}
+/// Transmission time comparable across sets (absolute, s from the GPS epoch's week 0).
+double transmit_key(const Ephemeris* e) noexcept {
+  return e->transmit_known ? e->toe.week() * kSecondsPerWeek + e->transmit_tow_s
+                           : -std::numeric_limits<double>::infinity();
 }
 }  // namespace
 
-EphemerisStore::EphemerisStore(const std::vector<Ephemeris>& ephemerides) {
+EphemerisStore::EphemerisStore(const std::vector<Ephemeris>& ephemerides, StoreOptions options) : options_(options) {
   for (const Ephemeris& e : ephemerides) {
     if (e.prn >= 1 && e.prn <= kMaxGpsPrn) by_prn_[static_cast<std::size_t>(e.prn)].push_back(e);
   }
@@ -51,11 +57,21 @@ const Ephemeris* EphemerisStore::select(int prn, const time::GpsTime& t) const n
   };
   const Ephemeris* first = after;
   const Ephemeris* second = before;
-  if (before != nullptr && (after == nullptr || (t - before->toe) < (after->toe - t))) {
+  if (before != nullptr && after != nullptr) {
+    const double d_before = t - before->toe, d_after = after->toe - t;
+    // Equal distance: the later transmitted, then the later toe (RTKLIB).
+    if (d_before < d_after || (d_before == d_after && transmit_key(before) > transmit_key(after))) {
+      first = before;
+      second = after;
+    }
+  } else if (before != nullptr) {
     first = before;
-    second = after;
+    second = nullptr;
   }
   const Ephemeris* chosen = valid(first) ? first : valid(second) ? second : nullptr;
+  if (chosen == nullptr && options_.continue_after_data && after == nullptr && before != nullptr) {
+    chosen = before;  // past the satellite's last set: its orbit goes on
+  }
   // A satellite flagged unhealthy in its current set is not used, even if
   // an older healthy set is still within its validity window.
   return chosen != nullptr && chosen->health == 0 ? chosen : nullptr;
@@ -96,6 +112,30 @@ time::GpsTime EphemerisStore::last_valid() const noexcept {
     }
   }
   return best;
+}
+
+}  // namespace gnssemu::orbit
+
+namespace gnssemu::orbit {
+
+std::vector<TimeSpan> EphemerisStore::coverage() const {
+  std::vector<TimeSpan> spans;
+  for (const auto& v : by_prn_) {
+    for (const Ephemeris& e : v) {
+      const double w = validity_half_window_s(e);
+      spans.push_back({e.toe - w, e.toe + w});
+    }
+  }
+  std::sort(spans.begin(), spans.end(), [](const TimeSpan& a, const TimeSpan& b) { return a.begin < b.begin; });
+  std::vector<TimeSpan> merged;
+  for (const TimeSpan& s : spans) {
+    if (!merged.empty() && !(merged.back().end < s.begin)) {
+      if (merged.back().end < s.end) merged.back().end = s.end;
+    } else {
+      merged.push_back(s);
+    }
+  }
+  return merged;
 }
 
 }  // namespace gnssemu::orbit

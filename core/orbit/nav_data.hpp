@@ -36,4 +36,10 @@ struct NavData {
   int skipped_records = 0;           ///< non-GPS records skipped (mixed files)
 };
 
+/// Several files as one: every file's ephemerides (the store sorts them and
+/// resolves duplicates); Klobuchar and GPS-UTC from the first file that has
+/// them; the leap-second count if every file that gives one agrees (else
+/// none: the built-in table decides); source names joined with " + ".
+NavData merge(const std::vector<NavData>& files);
+
 }  // namespace gnssemu::orbit

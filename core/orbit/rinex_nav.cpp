@@ -1,12 +1,12 @@
 #include "core/orbit/rinex_nav.hpp"
 
+#include <array>
 #include <cmath>
-#include <fstream>
 #include <string_view>
-#include <vector>
 
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
+#include "core/common/line_source.hpp"
 #include "core/common/text_fields.hpp"
 
 namespace gnssemu::orbit {
@@ -15,11 +15,17 @@ namespace {
 
 // RINEX 2.11 §6.7 / 3.04 §8: transmission time 0.9999e9 = not known.
 constexpr double kUnknownTransmitTime_s = 0.9999e9;
+// Nav lines are 80 columns; a year of 2-hourly sets for 32 satellites is
+// 140k ephemerides. Beyond these the file is not a nav file.
+constexpr text::LineLimits kNavLimits{1024, 512u << 20};
+constexpr std::size_t kMaxEphemerides = 500000;
+constexpr std::size_t kMaxRecordLines = 8;
 
 using text::columns;
 using text::Line;
 using text::trim;
 using Parser = text::ColumnReader;
+using Record = std::array<Line, kMaxRecordLines>;
 
 bool blank(const std::string& s) { return trim(s).empty(); }
 
@@ -39,13 +45,14 @@ struct Header {
   double version = 0.0;
   int version_x100 = 0;  // 305 for 3.05: exact comparisons on the version
   int major = 0;
-  std::size_t first_record = 0;  // index into lines
 };
 
-Header parse_header(const Parser& p, const std::vector<Line>& lines, NavData& out) {
+/// The first line is checked before anything else is read.
+Header parse_header(const Parser& p, text::LineSource& src, NavData& out) {
   Header h;
-  const text::RinexVersionLine v = text::read_rinex_version(p, lines);
-  const Line& first = lines[0];
+  Line first;
+  if (!src.next(first)) p.fail(1, "empty file");
+  const text::RinexVersionLine v = text::read_rinex_version_line(p, first);
   h.version = v.version;
   h.version_x100 = static_cast<int>(std::lround(h.version * 100.0));
   h.major = v.major;
@@ -62,11 +69,10 @@ Header parse_header(const Parser& p, const std::vector<Line>& lines, NavData& ou
   out.rinex_version = h.version;
 
   bool have_alpha = false, have_beta = false;
-  for (std::size_t i = 1; i < lines.size(); ++i) {
-    const Line& l = lines[i];
+  Line l;
+  while (src.next(l)) {
     const std::string label = text::rinex_label(l.text);
     if (label == "END OF HEADER") {
-      h.first_record = i + 1;
       out.klobuchar.valid = have_alpha && have_beta;
       return h;
     }
@@ -99,12 +105,12 @@ Header parse_header(const Parser& p, const std::vector<Line>& lines, NavData& ou
       out.leap_seconds = p.integer(l, 0, 6, "leap seconds");
     }
   }
-  p.fail(lines.back().number, "end of file before END OF HEADER");
+  p.fail(src.line_number(), "end of file before END OF HEADER");
 }
 
-/// Parse the 8 lines of a GPS record starting at lines[i]; `v3` selects the layout.
-Ephemeris parse_gps_record(const Parser& p, const std::vector<Line>& lines, std::size_t i, bool v3) {
-  const Line& e = lines[i];
+/// Parse the 8 lines of a GPS record; `v3` selects the layout.
+Ephemeris parse_gps_record(const Parser& p, const Record& lines, bool v3) {
+  const Line& e = lines[0];
   Ephemeris eph;
   time::CalendarTime c;
   std::size_t vcol = 0;  // column of the first value on every line
@@ -142,10 +148,10 @@ Ephemeris parse_gps_record(const Parser& p, const std::vector<Line>& lines, std:
 
   double o[7][4];
   for (std::size_t k = 0; k < 7; ++k) {
-    const Line& l = lines[i + 1 + k];
+    const Line& l = lines[1 + k];
     for (std::size_t f = 0; f < 4; ++f) o[k][f] = p.real(l, vcol + 19 * f, 19, "orbit field");
   }
-  auto line_no = [&](std::size_t bo) { return lines[i + bo].number; };
+  auto line_no = [&](std::size_t bo) { return lines[bo].number; };
 
   eph.iode = static_cast<int>(std::lround(o[0][0]));
   eph.crs_m = o[0][1];
@@ -210,21 +216,18 @@ Ephemeris parse_gps_record(const Parser& p, const std::vector<Line>& lines, std:
 
 }  // namespace
 
-NavData read_rinex_nav(std::istream& in, const std::string& name) {
-  const Parser p(name);
-  const std::vector<Line> lines = text::read_lines(in);
-  if (in.bad()) p.fail(0, "read error");
-  NavData out;
-  out.source = name;
-  const Header h = parse_header(p, lines, out);
+namespace {
 
-  std::size_t i = h.first_record;
-  while (i < lines.size()) {
-    const Line& l = lines[i];
-    if (blank(l.text)) {
-      ++i;
-      continue;
-    }
+NavData read_nav(text::LineSource& src) {
+  const Parser p(src.name());
+  NavData out;
+  out.source = src.name();
+  const Header h = parse_header(p, src, out);
+
+  Record rec;
+  while (src.next(rec[0])) {
+    const Line& l = rec[0];
+    if (blank(l.text)) continue;
     int n_lines = 8;
     bool gps = true;
     if (h.major == 3) {
@@ -238,32 +241,38 @@ NavData read_rinex_nav(std::istream& in, const std::string& name) {
     // Continuation lines start with blanks (RINEX 2: 3X, RINEX 3: 4X).
     const std::size_t indent = h.major == 3 ? 4 : 3;
     for (int k = 1; k < n_lines; ++k) {
-      const std::size_t j = i + static_cast<std::size_t>(k);
-      if (j >= lines.size()) {
+      Line& c = rec[static_cast<std::size_t>(k)];
+      if (!src.next(c)) {
         p.fail(l.number, "truncated record: file ends after " + std::to_string(k) + " of " +
                              std::to_string(n_lines) + " lines");
       }
-      const std::string_view head = columns(lines[j].text, 0, indent);
-      if (!trim(head).empty()) {
-        p.fail(lines[j].number, "truncated record: expected continuation line " + std::to_string(k + 1) + " of " +
-                                    std::to_string(n_lines) + " for the record at line " +
-                                    std::to_string(l.number));
+      if (!trim(columns(c.text, 0, indent)).empty()) {
+        p.fail(c.number, "truncated record: expected continuation line " + std::to_string(k + 1) + " of " +
+                             std::to_string(n_lines) + " for the record at line " + std::to_string(l.number));
       }
     }
-    if (gps) {
-      out.ephemerides.push_back(parse_gps_record(p, lines, i, h.major == 3));
-    } else {
+    if (!gps) {
       ++out.skipped_records;
+      continue;
     }
-    i += static_cast<std::size_t>(n_lines);
+    if (out.ephemerides.size() >= kMaxEphemerides) {
+      p.fail(l.number, "more than " + std::to_string(kMaxEphemerides) + " GPS ephemerides: not supported");
+    }
+    out.ephemerides.push_back(parse_gps_record(p, rec, h.major == 3));
   }
   return out;
 }
 
+}  // namespace
+
+NavData read_rinex_nav(std::istream& in, const std::string& name) {
+  text::LineSource src(in, name, kNavLimits);
+  return read_nav(src);
+}
+
 NavData read_rinex_nav(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path, 0, "cannot open navigation file");
-  return read_rinex_nav(in, path);
+  text::LineSource src(path, kNavLimits);
+  return read_nav(src);
 }
 
 }  // namespace gnssemu::orbit

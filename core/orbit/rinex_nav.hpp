@@ -9,8 +9,11 @@
 
 namespace gnssemu::orbit {
 
-/// Read a navigation file. Throws gnssemu::Error("file:line: reason") on a
-/// missing file, an unsupported version or a malformed header/record.
+/// Read a navigation file, plain or gzip, line by line: the first line is
+/// checked before the rest is read; lines over 1 KiB, files over 512 MiB
+/// (decompressed) and more than 500000 GPS ephemerides are refused. Throws
+/// gnssemu::Error("file:line: reason") on a missing file, an unsupported
+/// version, a malformed header/record or a limit.
 NavData read_rinex_nav(const std::string& path);
 /// Same, from a stream; name is used in error messages.
 NavData read_rinex_nav(std::istream& in, const std::string& name);

@@ -10,10 +10,17 @@ constexpr const char* kWhat = "receiver config";
 
 }  // namespace
 
+std::optional<Violation> check_weights(const SolverConfig& s) {
+  if (s.sigma_a_m + s.sigma_b_m > 0.0) return std::nullopt;
+  return Violation{"sigma_a_m", "sigma_b_m",
+                   "sigma_a_m and sigma_b_m are both 0 (the solver's weights would be infinite)"};
+}
+
 void validate(const SolverConfig& s) {
   using R = SolverRanges;
   check_ranges(kWhat, {{s.sigma_a_m, R::sigma_a_m, "solver.sigma_a_m"}, {s.sigma_b_m, R::sigma_b_m, "solver.sigma_b_m"},
                        {s.sigma_c_m_sqrt_hz, R::sigma_c_m_sqrt_hz, "solver.sigma_c_m_sqrt_hz"},
+                       {s.code_bias_sigma_m, R::code_bias_sigma_m, "solver.code_bias_sigma_m"},
                        {s.iono_model_fraction, R::iono_model_fraction, "solver.iono_model_fraction"},
                        {s.tropo_model_sigma_m, R::tropo_model_sigma_m, "solver.tropo_model_sigma_m"},
                        {s.sigma_range_rate_m_s, R::sigma_range_rate_m_s, "solver.sigma_range_rate_m_s"},
@@ -21,11 +28,23 @@ void validate(const SolverConfig& s) {
                        {s.residual_test_pfa, R::residual_test_pfa, "solver.residual_test_pfa"},
                        {static_cast<double>(s.max_exclusions), R::max_exclusions, "solver.max_exclusions"},
                        {static_cast<double>(s.max_iterations), R::max_iterations, "solver.max_iterations"}});
-  if (!(s.sigma_a_m + s.sigma_b_m > 0.0))
-    throw Error(kWhat, 0, "solver: sigma_a_m and sigma_b_m are both 0 (the solver's weights would be infinite)");
-  if (!(s.residual_test_pfa < 0.5))
-    throw Error(kWhat, 0, "solver: residual_test_pfa " + format_number(s.residual_test_pfa) +
-                              " must be below 0.5 (a test that fails more often than not detects nothing)");
+  if (const std::optional<Violation> v = check_weights(s)) throw Error(kWhat, 0, "solver: " + v->reason);
+}
+
+SolverConfig rtklib_single_point(SolverConfig base) noexcept {
+  base.weights = WeightModel::kRtklib;
+  base.sigma_a_m = 0.3;  // err[0] x err[1] = 100 x 0.003 m
+  base.sigma_b_m = 0.3;  // err[0] x err[2]
+  base.sigma_c_m_sqrt_hz = 0.0;
+  base.code_bias_sigma_m = 0.3;    // ERR_CBIAS
+  base.iono_model_fraction = 0.5;  // ERR_BRDCI
+  base.tropo_model_sigma_m = 0.3;  // ERR_SAAS
+  base.iono = atmosphere::IonoCorrection::kKlobuchar;
+  base.tropo = atmosphere::TropoCorrection::kSaastamoinenCosZ;
+  base.residual_test_pfa = 1.0e-3;  // chisqr[] table at alpha 0.001
+  base.max_exclusions = 0;
+  base.max_iterations = 10;         // MAXITR
+  return base;
 }
 
 void validate(const ReceiverConfig& c) {

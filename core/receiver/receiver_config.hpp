@@ -3,21 +3,40 @@
 // channels, tracking thresholds and its own solver with its broadcast
 // corrections (DESIGN.md §1, steps 7-9). It knows nothing of the world's
 // models. All values SI.
+#include <optional>
+
 #include "core/atmosphere/receiver_corrections.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/range.hpp"
+#include "core/common/violation.hpp"
 #include "core/signal/tracking.hpp"
 
 namespace gnssemu::receiver {
 
+/// Variance model of a pseudorange in the solver's weights (1 / sigma^2);
+/// formulas in weight_model.hpp and docs/models.md.
+enum class WeightModel {
+  /// a^2 + b^2 / sin^2(el) + c^2 10^(-C/N0 / 10): elevation as RTKLIB's
+  /// form, C/N0 as Kuusniemi et al. 2004 (the default).
+  kElevationCn0,
+  /// RTKLIB rnx2rtkp single point (pntpos varerr + rescode): a^2 + b^2 /
+  /// sin(el) + the broadcast URA's variance + code_bias_sigma_m^2.
+  kRtklib,
+};
+
 /// What the receiver's own solver assumes (it does not know the world model).
 struct SolverConfig {
-  /// Pseudorange 1-sigma model sigma^2 = a^2 + b^2 / sin^2(el), m (RTKLIB-style).
+  WeightModel weights = WeightModel::kElevationCn0;
+  /// Pseudorange 1-sigma model sigma^2 = a^2 + b^2 / sin^2(el) (kRtklib:
+  /// b^2 / sin(el)), m.
   double sigma_a_m = 1.2;
   double sigma_b_m = 0.3;
   /// C/N0 term: sigma^2 += c^2 10^(-C/N0 / 10), m sqrt(Hz) (Kuusniemi et al.
-  /// 2004); 0 = elevation-only weights.
+  /// 2004); 0 = elevation-only weights. kElevationCn0 only.
   double sigma_c_m_sqrt_hz = 150.0;
+  /// kRtklib: 1-sigma of the receiver's unknown code bias (RTKLIB's
+  /// ERR_CBIAS 0.3 m), m (>= 0).
+  double code_bias_sigma_m = 0.3;
   /// What the receiver's own corrections may miss, added to sigma^2 when the
   /// correction is on (RTKLIB's ERR_BRDCI and ERR_SAAS): (f I_klobuchar)^2
   /// and (s / (sin el + 0.1))^2. f: fraction of the Klobuchar delay (>= 0);
@@ -41,24 +60,38 @@ struct SolverConfig {
   int max_iterations = 15;             ///< Gauss–Newton iterations at most
 };
 
-/// Valid values of SolverConfig's numbers. Besides: a and b not both 0, and
-/// a residual test false-alarm probability below 0.5 (a test that fails
-/// more often than not cannot detect).
+/// Valid values of SolverConfig's numbers (besides: check_weights). A
+/// residual test false-alarm probability of 0.5 or more puts the chi-square
+/// threshold below the median: a test that fails more often than not cannot detect.
 struct SolverRanges {
   static constexpr Range sigma_a_m{0.0, 100.0, "m"};
   static constexpr Range sigma_b_m{0.0, 100.0, "m"};
   static constexpr Range sigma_c_m_sqrt_hz{0.0, 10000.0, "m sqrt(Hz)"};
+  static constexpr Range code_bias_sigma_m{0.0, 100.0, "m"};
   static constexpr Range iono_model_fraction{0.0, 10.0, ""};
   static constexpr Range tropo_model_sigma_m{0.0, 100.0, "m"};
   static constexpr Range sigma_range_rate_m_s{0.0, 10.0, "m/s", true};
   static constexpr Range height_hold_sigma_m{0.0, 1000.0, "m", true};
-  static constexpr Range residual_test_pfa{0.0, 1.0, "", false, true};
+  static constexpr Range residual_test_pfa{0.0, 0.5, "", false, true};
   static constexpr Range max_exclusions{0.0, 32.0, ""};  ///< integer
   static constexpr Range max_iterations{1.0, 100.0, ""};  ///< integer
 };
 
-/// Throws gnssemu::Error for an invalid solver config (SolverRanges).
+/// The weights need a or b: sigma_a_m and sigma_b_m not both 0.
+std::optional<Violation> check_weights(const SolverConfig& s);
+
+/// Throws gnssemu::Error for an invalid solver config (SolverRanges, check_weights).
 void validate(const SolverConfig& s);
+
+/// RTKLIB rnx2rtkp 2.4.3 single-point settings (pntpos.c, default
+/// prcopt_t; docs/validation.md "Our single-point solution against
+/// RTKLIB"): kRtklib weights with a = b = 0.3 m (err = 100 x 0.003 m),
+/// code bias 0.3 m, broadcast-iono variance (0.5 I)^2 and Saastamoinen
+/// variance (0.3 / (sin el + 0.1))^2; Klobuchar and Saastamoinen with the
+/// 1/cos z mapping; chi-square test at 1e-3 without fault exclusion (RTKLIB's
+/// RAIM FDE is off by default); at most 10 iterations (MAXITR). The rest of
+/// base is kept.
+SolverConfig rtklib_single_point(SolverConfig base = {}) noexcept;
 
 struct ReceiverConfig {
   double elevation_mask_rad = 5.0 * kDegToRad;  ///< [0, pi/2)

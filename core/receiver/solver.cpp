@@ -8,6 +8,7 @@
 #include "core/world/sky.hpp"
 #include "core/receiver/small_matrix.hpp"
 #include "core/receiver/transmit_state.hpp"
+#include "core/receiver/weight_model.hpp"
 
 namespace gnssemu::receiver {
 
@@ -20,7 +21,6 @@ constexpr double kMaxHeight_m = 1.0e5;
 // Below this radius (m) elevations are meaningless (cold start from the
 // Earth's centre): unit elevation factor is used for the weights.
 constexpr double kSurfaceRadius_m = 6.0e6;
-constexpr double kMinSinEl = 0.05;          // floor of sin(el) in the weight model
 constexpr double kMaxLightTime_s = 0.2;
 constexpr double kPivotTol = 1e-10;         // relative Cholesky pivot tolerance
 // Corrections are recomputed only once the estimate has moved this far (m),
@@ -94,18 +94,11 @@ void Solver::update_corrections(const SolverInput& in, const Ecef& pos, const Ll
     const double el = std::atan2(u, std::hypot(e, n));
     double az = std::atan2(e, n);
     if (az < 0.0) az += 2.0 * kPi;
-    s.corr_m = 0.0;
-    s.model_var_m2 = 0.0;
-    if (iono) {
-      const double i_m = atmosphere::receiver_iono_delay_m(klobuchar_, lla.lat_rad, lla.lon_rad, az, el, tow_s);
-      s.corr_m += i_m;
-      s.model_var_m2 += cfg_.iono_model_fraction * cfg_.iono_model_fraction * i_m * i_m;
-    }
-    if (tropo) {
-      s.corr_m += atmosphere::receiver_tropo_delay_m(lla.lat_rad, lla.height_m, el, in.doy, cfg_.tropo);
-      const double t_m = cfg_.tropo_model_sigma_m / (std::max(std::sin(el), 0.0) + 0.1);
-      s.model_var_m2 += t_m * t_m;
-    }
+    const double i_m =
+        iono ? atmosphere::receiver_iono_delay_m(klobuchar_, lla.lat_rad, lla.lon_rad, az, el, tow_s) : 0.0;
+    s.corr_m = i_m;
+    if (tropo) s.corr_m += atmosphere::receiver_tropo_delay_m(lla.lat_rad, lla.height_m, el, in.doy, cfg_.tropo);
+    s.model_var_m2 = correction_variance_m2(cfg_, i_m, std::sin(el));
   }
 }
 
@@ -117,7 +110,6 @@ void Solver::linearise(const SolverInput& in, const Ecef& pos, double clock_m, c
     corr_valid_ = false;
     for (int i = 0; i < n_; ++i) sats_[i].corr_m = sats_[i].model_var_m2 = 0.0;
   }
-  const double a2 = cfg_.sigma_a_m * cfg_.sigma_a_m, b2 = cfg_.sigma_b_m * cfg_.sigma_b_m;
   for (int i = 0; i < n_; ++i) {
     Sat& s = sats_[i];
     // Flight time from the receiver's clock estimate; exact at convergence.
@@ -129,8 +121,8 @@ void Solver::linearise(const SolverInput& in, const Ecef& pos, double clock_m, c
     const double rho = d.norm();
     s.los = rho > 0.0 ? d / rho : Vec3{0.0, 0.0, 1.0};
     s.resid_m = in.meas[i].pseudorange_m - (rho + clock_m - s.clk_m + s.corr_m);
-    const double sin_el = lla ? std::max(s.los.dot(up), kMinSinEl) : 1.0;
-    s.sigma2 = a2 + b2 / (sin_el * sin_el) + s.cn0_var_m2 + s.model_var_m2;
+    const double sin_el = lla ? s.los.dot(up) : 1.0;
+    s.sigma2 = elevation_variance_m2(cfg_, sin_el) + s.sat_var_m2 + s.model_var_m2;
     s.weight = 1.0 / s.sigma2;
   }
 }
@@ -307,7 +299,6 @@ Solver::Outcome Solver::solve_all(const SolverInput& in, SolverOutput& out) noex
   out = SolverOutput{};
   n_ = std::clamp(in.num_meas, 0, kMaxGpsPrn);
   corr_valid_ = false;
-  const double c2 = cfg_.sigma_c_m_sqrt_hz * cfg_.sigma_c_m_sqrt_hz;
   for (int i = 0; i < n_; ++i) {
     const Measurement& m = in.meas[i];
     Sat& s = sats_[i];
@@ -325,8 +316,8 @@ Solver::Outcome Solver::solve_all(const SolverInput& in, SolverOutput& out) noex
     s.since_tx_s = in.t_rx_local - t_tx;
     s.corr_m = 0.0;
     s.model_var_m2 = 0.0;
-    // C/N0 weight term (Kuusniemi et al., GPS Solutions 8(2), 2004).
-    s.cn0_var_m2 = c2 > 0.0 && m.cn0_dbhz > 0.0 ? c2 * std::pow(10.0, -std::min(m.cn0_dbhz, 70.0) / 10.0) : 0.0;
+    s.sat_var_m2 = satellite_variance_m2(cfg_, m.cn0_dbhz, m.eph->sv_accuracy_m) +
+                   (m.correction_var_m2 > 0.0 ? m.correction_var_m2 : 0.0);
   }
   if (n_ < 3) return Outcome::kNoFix;
   const bool two_d = n_ == 3;

@@ -22,6 +22,9 @@ struct Measurement {
   double pseudorange_m = 0.0;
   double doppler_hz = 0.0;  ///< L1 carrier Doppler, Hz (positive when approaching)
   double cn0_dbhz = 0.0;    ///< receiver's C/N0 estimate, dB-Hz; <= 0: unknown (no C/N0 weight term)
+  /// Variance of corrections already applied to pseudorange_m by the caller
+  /// (`gnssemu spp` corrects before the solver; correction_variance_m2), m^2.
+  double correction_var_m2 = 0.0;
 };
 
 struct SolverInput {
@@ -95,7 +98,7 @@ private:
     double clk_m = 0.0;    // c * (broadcast clock - TGD), m
     double drift_m_s = 0.0;
     double since_tx_s = 0.0;  // t_rx_local - t_tx, s
-    double cn0_var_m2 = 0.0;  // C/N0 term of the assumed variance, m^2
+    double sat_var_m2 = 0.0;  // satellite_variance_m2 + the caller's correction variance, m^2
     double corr_m = 0.0;      // receiver's iono + tropo correction, m
     double model_var_m2 = 0.0;  // variance of what those corrections miss, m^2
     // Per-iteration linearisation.

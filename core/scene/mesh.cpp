@@ -130,7 +130,7 @@ Mesh MeshBuilder::finish() && {
   return std::move(mesh_);
 }
 
-Mesh load_mesh(const std::string& path, const Placement& placement) {
+Mesh load_mesh(const std::string& path, const Placement& placement, FootprintReader read_footprints) {
   if (!(placement.scale > 0.0) || !std::isfinite(placement.scale)) throw Error(path, 0, "placement scale must be > 0");
   if (!placement.offset_m.finite() || !std::isfinite(placement.yaw_rad)) {
     throw Error(path, 0, "placement offset and yaw must be finite");
@@ -144,6 +144,7 @@ Mesh load_mesh(const std::string& path, const Placement& placement) {
   } else if (ext == ".ply") {
     m = read_ply(path, placement);
   } else if (ext == ".toml") {
+    if (read_footprints == nullptr) throw Error(path, 0, "footprint files (.toml) need a footprint reader");
     m = read_footprints(path, placement);
   } else {
     throw Error(path, 0, "unknown mesh format '" + ext + "' (expected .obj, .ply or .toml footprints)");

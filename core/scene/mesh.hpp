@@ -1,6 +1,7 @@
 #pragma once
 // Triangle mesh in the local ENU frame of the configured origin, and the
-// readers that produce it (Wavefront OBJ, PLY ascii/binary, TOML footprints).
+// readers that produce it (Wavefront OBJ, PLY ascii/binary; building
+// footprints are extruded by footprints.hpp from a file read above core).
 // Bad input: a gnssemu::Error naming file:line, or the element skipped and
 // counted in MeshStats (never a crash, never a NaN vertex in the mesh).
 #include <array>
@@ -8,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/common/range.hpp"
 #include "core/common/vec3.hpp"
 
 namespace gnssemu::scene {
@@ -80,10 +82,25 @@ private:
   uint16_t current_material_ = 0;
 };
 
-/// Reads a mesh by extension: .obj, .ply, .toml (footprints). Throws
+/// Valid values of Placement's fields as a configuration gives them (yaw in
+/// degrees; each offset component within MeshBuilder::kMaxCoordinate_m).
+/// load_mesh itself requires a finite placement with scale > 0.
+struct PlacementRanges {
+  static constexpr Range yaw_deg{-360.0, 360.0, "deg"};
+  static constexpr Range scale{0.0, 1.0e6, "", true};
+  static constexpr Range offset_m{-MeshBuilder::kMaxCoordinate_m, MeshBuilder::kMaxCoordinate_m, "m"};
+};
+
+/// Reads a building footprint file (.toml, docs/scene.md) placed by
+/// placement. Its text format is parsed above core (config::read_footprints);
+/// the geometry is FootprintBuilder's.
+using FootprintReader = Mesh (*)(const std::string& path, const Placement& placement);
+
+/// Reads a mesh by extension: .obj, .ply, and .toml footprints through
+/// read_footprints (without one, a .toml file is an error). Throws
 /// gnssemu::Error (file:line: reason) on a missing file, unreadable syntax,
 /// or a file that gives no triangle at all (e.g. not a mesh).
-Mesh load_mesh(const std::string& path, const Placement& placement = {});
+Mesh load_mesh(const std::string& path, const Placement& placement = {}, FootprintReader read_footprints = nullptr);
 
 /// Wavefront OBJ: v, f (v, v/t, v//n, v/t/n, negative = relative), usemtl;
 /// other statements ignored. Polygons are fan-triangulated.
@@ -93,11 +110,5 @@ Mesh read_obj(const std::string& path, const Placement& placement = {});
 /// with x, y, z, element face with a list of vertex indices; other elements
 /// and properties skipped.
 Mesh read_ply(const std::string& path, const Placement& placement = {});
-
-/// Extruded building footprints (docs/scene.md):
-///   [[building]] footprint = [[e, n], ...] (m, >= 3 points), height_m, base_m (0), material ("")
-///   [ground] half_size_m, height_m (0), material ("")  -- optional square ground plane
-/// Each building is closed (walls, roof, floor).
-Mesh read_footprints(const std::string& path, const Placement& placement = {});
 
 }  // namespace gnssemu::scene

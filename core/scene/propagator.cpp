@@ -48,11 +48,11 @@ void require(bool ok, const std::string& what) {
 }  // namespace
 
 void validate(const SearchConfig& c) {
-  require(c.rays >= 16 && c.rays <= 4'000'000, "rays must be in [16, 4000000]");
-  require(c.azimuth_rays >= 0 && c.azimuth_rays <= 100000, "azimuth_rays must be in [0, 100000]");
-  require(c.max_bounces >= 1 && c.max_bounces <= Propagator::kMaxBounces, "max_bounces must be in [1, 32]");
-  require(std::isfinite(c.match_factor) && c.match_factor > 0.0 && c.match_factor <= 20.0,
-          "match_factor must be in (0, 20]");
+  using R = SearchRanges;
+  require(R::rays.contains(c.rays), "rays must be in " + format_range(R::rays));
+  require(R::azimuth_rays.contains(c.azimuth_rays), "azimuth_rays must be in " + format_range(R::azimuth_rays));
+  require(R::max_bounces.contains(c.max_bounces), "max_bounces must be in " + format_range(R::max_bounces));
+  require(R::match_factor.contains(c.match_factor), "match_factor must be in " + format_range(R::match_factor));
   require(std::isfinite(c.reuse_distance_m) && c.reuse_distance_m >= 0.0, "reuse_distance_m must be >= 0");
   require(std::isfinite(c.reuse_angle_rad) && c.reuse_angle_rad >= 0.0, "reuse_angle_rad must be >= 0");
   require(std::isfinite(c.min_arrival_el_rad) && c.min_arrival_el_rad > -kPi / 2.0 && c.min_arrival_el_rad < kPi / 2.0,

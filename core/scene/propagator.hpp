@@ -15,6 +15,7 @@
 #include <span>
 #include <vector>
 
+#include "core/common/range.hpp"
 #include "core/common/vec3.hpp"
 #include "core/scene/scene.hpp"
 
@@ -68,7 +69,7 @@ struct SearchConfig {
   double max_loss_db = 21.0;
 };
 
-/// Throws gnssemu::Error naming the first bad field.
+/// Throws gnssemu::Error naming the first bad field (SearchRanges).
 void validate(const SearchConfig& c);
 
 /// Work done by the last compute() call.
@@ -142,6 +143,21 @@ private:
   std::array<Blocked, kMaxIds> blocked_{};
   std::array<Cached, kMaxIds> cache_{};
   PropagatorStats stats_;
+};
+
+/// Valid values of SearchConfig's fields as a configuration gives them
+/// (angles in degrees). validate() checks rays, azimuth_rays, max_bounces and
+/// match_factor against them and only the sign of the others, which
+/// programs may set wider than a configuration does.
+struct SearchRanges {
+  static constexpr Range rays{16.0, 4.0e6, ""};                  ///< integer
+  static constexpr Range azimuth_rays{0.0, 100000.0, ""};        ///< integer
+  static constexpr Range max_bounces{1.0, Propagator::kMaxBounces, ""};  ///< integer
+  static constexpr Range match_factor{0.0, 20.0, "", true};
+  static constexpr Range reuse_distance_m{0.0, 1000.0, "m"};
+  static constexpr Range reuse_angle_deg{0.0, 90.0, "deg"};
+  static constexpr Range min_arrival_elevation_deg{-89.0, 89.0, "deg"};
+  static constexpr Range max_loss_db{0.0, 1000.0, "dB", true};
 };
 
 }  // namespace gnssemu::scene

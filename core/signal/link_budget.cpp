@@ -51,6 +51,19 @@ double environment_noise_rise_db(std::string_view preset) {
                                            "' (known: " + known + ")");
 }
 
+std::optional<Violation> check_gains(const AntennaPattern& a) {
+  if (!(a.horizon_gain_dbi > a.zenith_gain_dbi)) return std::nullopt;
+  return Violation{"horizon_gain_dbi", "zenith_gain_dbi",
+                   "horizon_gain_dbi " + format_number(a.horizon_gain_dbi) + " exceeds zenith_gain_dbi " +
+                       format_number(a.zenith_gain_dbi)};
+}
+
+std::vector<std::string_view> environment_preset_names() {
+  std::vector<std::string_view> out;
+  for (const NoisePreset& p : kNoisePresets) out.push_back(p.name);
+  return out;
+}
+
 void validate(const LinkBudgetConfig& cfg) {
   using L = LinkBudgetRanges;
   using A = AntennaRanges;
@@ -65,7 +78,7 @@ void validate(const LinkBudgetConfig& cfg) {
                 {a.horizon_gain_dbi, A::horizon_gain_dbi, "antenna.horizon_gain_dbi"},
                 {a.below_horizon_slope_db_per_deg, A::below_horizon_slope_db_per_deg,
                  "antenna.below_horizon_slope_db_per_deg"}});
-  require(a.horizon_gain_dbi <= a.zenith_gain_dbi, "antenna: horizon gain must be <= zenith gain");
+  require(!check_gains(a), "antenna: horizon gain must be <= zenith gain");
 }
 
 LinkBudgetModel::LinkBudgetModel(const LinkBudgetConfig& cfg) : cfg_(cfg) {

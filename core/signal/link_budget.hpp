@@ -3,9 +3,12 @@
 // receive antenna gain versus elevation, thermal noise density, receiver
 // noise figure and an environment noise-floor rise -> C/N0 in dB-Hz.
 // Reference: shared/reference/atmosphere.md §4.
+#include <optional>
 #include <string_view>
+#include <vector>
 
 #include "core/common/range.hpp"
+#include "core/common/violation.hpp"
 
 namespace gnssemu::signal {
 
@@ -36,6 +39,8 @@ double antenna_gain_dbi(const AntennaPattern& p, double el_rad) noexcept;
 /// "countryside" 1, "suburban" 3, "urban" 6, "industrial" 20, "jamming" 40.
 /// Throws gnssemu::Error naming the known presets for an unknown name.
 double environment_noise_rise_db(std::string_view preset);
+/// The names environment_noise_rise_db knows, in its order.
+std::vector<std::string_view> environment_preset_names();
 
 struct LinkBudgetConfig {
   double eirp_dbw = 26.8;              ///< satellite EIRP, dBW (CBNU 26.25, TN 27)
@@ -73,8 +78,11 @@ struct LinkBudgetRanges {
   static constexpr Range implementation_loss_db{0.0, 30.0, "dB"};
 };
 
+/// The pattern falls from the zenith: horizon_gain_dbi <= zenith_gain_dbi.
+std::optional<Violation> check_gains(const AntennaPattern& a);
+
 /// Throws gnssemu::Error for a value out of its range or horizon gain above
-/// zenith gain.
+/// zenith gain (check_gains).
 void validate(const LinkBudgetConfig& cfg);
 
 /// Validated link budget. Construction throws gnssemu::Error on bad values.

@@ -3,7 +3,10 @@
 // acquired once C/N0 >= acquire_dbhz and kept until C/N0 < lose_dbhz.
 // Defaults are engineering values (reference atmosphere.md §4.1 ⚠; MITRE
 // quotes 28.7 dB-Hz at the correlator for aviation acquisition).
+#include <optional>
+
 #include "core/common/range.hpp"
+#include "core/common/violation.hpp"
 
 namespace gnssemu::signal {
 
@@ -17,6 +20,9 @@ struct TrackingRanges {
   static constexpr Range acquire_dbhz{0.0, 60.0, "dB-Hz"};
   static constexpr Range lose_dbhz{0.0, 60.0, "dB-Hz"};
 };
+
+/// Hysteresis: lose_dbhz <= acquire_dbhz.
+std::optional<Violation> check_hysteresis(const TrackingThresholds& t);
 
 /// Throws gnssemu::Error unless both are in range and lose <= acquire.
 void validate(const TrackingThresholds& t);

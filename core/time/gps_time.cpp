@@ -1,37 +1,78 @@
 #include "core/time/gps_time.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <initializer_list>
 
+#include <string>
+
 #include "core/common/constants.hpp"
+#include "core/common/error.hpp"
 
 namespace gnssemu::time {
 
 namespace {
 constexpr int64_t kGpsEpochDays = 3657;  // 1980-01-06 minus 1970-01-01
+
+/// Outcome of normalising (week, tow) into tow in [0, 604800).
+enum class Fit { kOk, kNotFinite, kBelow, kAbove };
+
+/// week_d: a whole number of weeks as a double (exact below 2^53), so the
+/// week shift is checked before any conversion to int.
+Fit normalise(double week_d, double tow_s, int32_t& week, double& tow) noexcept {
+  if (!std::isfinite(tow_s)) return Fit::kNotFinite;
+  const double w = std::floor(tow_s / kSecondsPerWeek);
+  double full = week_d + w;
+  if (!(full >= -kMaxWeek)) return Fit::kBelow;
+  if (!(full <= kMaxWeek)) return Fit::kAbove;
+  tow = tow_s - w * kSecondsPerWeek;
+  if (tow >= kSecondsPerWeek) {  // rounding at the edge
+    tow -= kSecondsPerWeek;
+    full += 1.0;
+    if (full > kMaxWeek) return Fit::kAbove;
+  }
+  if (tow < 0.0) tow = 0.0;
+  week = static_cast<int32_t>(full);
+  return Fit::kOk;
+}
+}  // namespace
+
+GpsTime::GpsTime(int32_t week, double tow_s) {
+  switch (normalise(week, tow_s, week_, tow_s_)) {
+    case Fit::kOk: return;
+    case Fit::kNotFinite: throw Error("GPS time: time of week " + std::to_string(tow_s) + " s is not finite");
+    case Fit::kBelow:
+    case Fit::kAbove:
+      throw Error("GPS time: week " + std::to_string(week) + " + " + std::to_string(tow_s) +
+                  " s lies outside the supported weeks -" + std::to_string(kMaxWeek) + " .. " +
+                  std::to_string(kMaxWeek));
+  }
 }
 
-GpsTime::GpsTime(int32_t week, double tow_s) : week_(week), tow_s_(tow_s) {
-  if (!std::isfinite(tow_s_)) {
-    tow_s_ = 0.0;
-    return;
-  }
-  if (tow_s_ >= kSecondsPerWeek || tow_s_ < 0.0) {
-    const double w = std::floor(tow_s_ / kSecondsPerWeek);
-    week_ += static_cast<int32_t>(w);
-    tow_s_ -= w * kSecondsPerWeek;
-    if (tow_s_ >= kSecondsPerWeek) {  // rounding at the edge
-      tow_s_ -= kSecondsPerWeek;
-      ++week_;
-    }
-    if (tow_s_ < 0.0) tow_s_ = 0.0;
-  }
+std::optional<GpsTime> GpsTime::make(int32_t week, double tow_s) noexcept {
+  int32_t w = 0;
+  double tow = 0.0;
+  if (normalise(week, tow_s, w, tow) != Fit::kOk) return std::nullopt;
+  return GpsTime(w, tow, Normalised{});
 }
 
 double GpsTime::total_s() const noexcept { return week_ * kSecondsPerWeek + tow_s_; }
 
-GpsTime GpsTime::operator+(double dt_s) const { return GpsTime(week_, tow_s_ + dt_s); }
+GpsTime GpsTime::operator+(double dt_s) const noexcept {
+  if (!std::isfinite(dt_s)) return *this;
+  int32_t w = 0;
+  double tow = 0.0;
+  switch (normalise(week_, tow_s_ + dt_s, w, tow)) {
+    case Fit::kOk: return GpsTime(w, tow, Normalised{});
+    case Fit::kBelow: return GpsTime(-kMaxWeek, 0.0, Normalised{});
+    case Fit::kAbove:
+    case Fit::kNotFinite:  // tow_s_ + dt_s overflowed: dt_s is huge and positive or negative
+      break;
+  }
+  if (dt_s < 0.0) return GpsTime(-kMaxWeek, 0.0, Normalised{});
+  return GpsTime(kMaxWeek, std::nextafter(kSecondsPerWeek, 0.0), Normalised{});
+}
 
 double GpsTime::operator-(const GpsTime& o) const noexcept {
   return (week_ - o.week_) * kSecondsPerWeek + (tow_s_ - o.tow_s_);
@@ -70,6 +111,10 @@ void civil_from_days(int64_t z, int& year, int& month, int& day) noexcept {
 GpsTime GpsTime::from_calendar(const CalendarTime& c) {
   const int64_t days = days_from_civil(c.year, c.month, c.day) - kGpsEpochDays;
   const int64_t week = days >= 0 ? days / 7 : -((-days + 6) / 7);
+  if (week < -kMaxWeek || week > kMaxWeek) {
+    throw Error("GPS time: year " + std::to_string(c.year) + " lies outside the supported weeks -" +
+                std::to_string(kMaxWeek) + " .. " + std::to_string(kMaxWeek));
+  }
   const int64_t dow = days - week * 7;
   const double tow = static_cast<double>(dow) * kSecondsPerDay + c.hour * 3600.0 + c.minute * 60.0 + c.second;
   return GpsTime(static_cast<int32_t>(week), tow);
@@ -85,6 +130,14 @@ CalendarTime GpsTime::to_calendar() const {
   c.minute = static_cast<int>(sod / 60.0);
   c.second = sod - c.minute * 60.0;
   return c;
+}
+
+std::string calendar_text(const GpsTime& t) {
+  const CalendarTime c = t.to_calendar();
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%04d-%02d-%02d %02d:%02d:%02d GPST", c.year, c.month, c.day, c.hour, c.minute,
+                static_cast<int>(std::floor(c.second)));
+  return buf;
 }
 
 int GpsTime::day_of_year() const {

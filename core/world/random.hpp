@@ -26,10 +26,14 @@ enum class Purpose : uint64_t {
   kMultipathStep = 11,
   kGradientInit = 12,   ///< azimuthal gradient, streams kGradientStream + 0 (N) / 1 (E)
   kGradientStep = 13,
+  kIonoScaleInit = 14,  ///< common relative ionospheric error, stream kIonoScaleStream
+  kIonoScaleStep = 15,
 };
 
 /// First stream of the two azimuthal-gradient processes (after the 32 PRNs).
 inline constexpr uint64_t kGradientStream = 33;
+/// Stream of the common relative ionospheric error (after the gradients).
+inline constexpr uint64_t kIonoScaleStream = 35;
 
 /// Stream id of the receiver clock (satellites use their PRN 1..32).
 inline constexpr uint64_t kClockStream = 0;

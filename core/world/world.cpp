@@ -67,7 +67,12 @@ void World::advance(const time::GpsTime& t) noexcept {
   const GaussMarkovConfig mp_unit{1.0, config_.errors.multipath.tau_s};
   const GaussMarkovConfig& grad = config_.errors.gradient.process;
   const bool grad_gm = grad.sigma_m > 0.0;
+  const bool iono_scale = atmosphere_.iono_on() && config_.errors.iono_scale.sigma > 0.0;
+  const GaussMarkovConfig iono_scale_unit{1.0, config_.errors.iono_scale.tau_s};
   if (!started_) {
+    if (iono_scale)
+      iono_scale_unit_ =
+          gauss_markov_init(iono_scale_unit, rng_.normal(kIonoScaleStream, 0, Purpose::kIonoScaleInit));
     if (grad_gm)
       for (int c = 0; c < 2; ++c)
         gradient_m_[c] = gauss_markov_init(grad, rng_.normal(kGradientStream + c, 0, Purpose::kGradientInit));
@@ -95,6 +100,9 @@ void World::advance(const time::GpsTime& t) noexcept {
       for (int c = 0; c < 2; ++c)
         gradient_m_[c] = gauss_markov_step(gradient_m_[c], dt_s, grad,
                                            rng_.normal(kGradientStream + c, epoch_, Purpose::kGradientStep));
+    if (iono_scale && dt_s > 0.0)
+      iono_scale_unit_ = gauss_markov_step(iono_scale_unit_, dt_s, iono_scale_unit,
+                                           rng_.normal(kIonoScaleStream, epoch_, Purpose::kIonoScaleStep));
     if (mp && dt_s > 0.0)
       for (int p = 1; p <= kMaxGpsPrn; ++p)
         multipath_unit_[p - 1] = gauss_markov_step(multipath_unit_[p - 1], dt_s, mp_unit,
@@ -151,6 +159,7 @@ void World::propagation_stage(const time::GpsTime& t, const Lla& rx_lla, const E
   }
   const double tow_s = t.tow_s();
   const double doy = atmosphere_.tropo_on() ? t.fractional_day_of_year() : 1.0;
+  const double iono_factor = 1.0 + config_.errors.iono_scale.sigma * iono_scale_unit_;
   for (int i = 0; i < n_above_; ++i) {
     const int p = above_[i];
     const SkySat& s = sky_[p - 1];
@@ -160,7 +169,8 @@ void World::propagation_stage(const time::GpsTime& t, const Lla& rx_lla, const E
           return atmosphere_.slow_terms(rx_lla, s.az_rad, s.el_rad, tow_s, doy);
         });
     PathEffects& e = path_[p - 1];
-    if (atmosphere_.iono_on()) e.iono_m = std::max(v[kIonoM] + iono_tecu_[p - 1] * v[kIonoMPerTecu], 0.0);
+    if (atmosphere_.iono_on())
+      e.iono_m = std::max(v[kIonoM] * iono_factor + iono_tecu_[p - 1] * v[kIonoMPerTecu], 0.0);
     if (atmosphere_.tropo_on()) e.tropo_m = std::max(v[kTropoM] + zwd_pert_m_ * v[kNmfWet], 0.0);
     e.delay_m = e.iono_m + e.tropo_m;
     e.loss_db = v[kAttenDb];

@@ -93,6 +93,7 @@ private:
   std::array<double, 2> gradient_m_{};  ///< azimuthal gradient processes g_N, g_E, m
   std::array<double, 2> gradient_now_m_{};  ///< G_N, G_E this epoch (mean + daily cycle + process), m
   std::array<double, kMaxGpsPrn> iono_tecu_{};      ///< vertical TEC perturbation per line of sight, TECU
+  double iono_scale_unit_ = 0.0;                    ///< unit process of the common relative iono error
   double zwd_pert_m_ = 0.0;                         ///< zenith wet delay perturbation, m
   uint64_t epoch_ = 0;          ///< step() calls so far (random-stream counter)
   bool started_ = false;

@@ -27,6 +27,8 @@ void validate(const WorldConfig& c) {
        {g.east_diurnal_m, E::gradient_east_diurnal_m, "errors.gradient.east_diurnal_m"},
        {g.east_peak_h, E::gradient_east_peak_h, "errors.gradient.east_peak_h"},
        {g.process.sigma_m, Gm::sigma_m, "errors.gradient.sigma_m"}, {g.process.tau_s, Gm::tau_s, "errors.gradient.tau_s"},
+       {e.iono_scale.sigma, E::iono_scale_sigma, "errors.iono_scale.sigma"},
+       {e.iono_scale.tau_s, E::iono_scale_tau_s, "errors.iono_scale.tau_s"},
        {k.bias_s, K::bias_s, "clock.bias_s"}, {k.drift_s_s, K::drift_s_s, "clock.drift_s_s"},
        {k.drift_noise_s_s_sqrt_s, K::drift_noise_s_s_sqrt_s, "clock.drift_noise_s_s_sqrt_s"},
        {k.jump_threshold_s, K::jump_threshold_s, "clock.jump_threshold_s"},
@@ -40,6 +42,25 @@ void validate(const WorldConfig& c) {
   atmosphere::validate(a.clouds_rain);
   signal::validate(c.signal.link);
   signal::validate(c.signal.dll);
+}
+
+void use_klobuchar_ionosphere(AtmosphereConfig& a, double scale, double sigma_tecu, double tau_s) noexcept {
+  atmosphere::IonosphereConfig& io = a.ionosphere;
+  io.enabled = true;
+  io.source = atmosphere::VtecSource::kKlobucharShape;
+  io.klobuchar_scale = scale > 0.0 ? scale : 0.0;
+  io.mapping = atmosphere::IonoMapping::kObliquityFactor;
+  io.obliquity_pivot_deg = 95.4;  // IS-GPS-200 20.3.3.5.2.5: F = 1 + 16 (0.53 - E)^3, E in semicircles
+  io.perturbation = {sigma_tecu, tau_s};
+}
+
+void use_receiver_troposphere(AtmosphereConfig& a) noexcept {
+  atmosphere::TroposphereConfig& tr = a.troposphere;
+  tr.enabled = true;
+  tr.zhd_model = atmosphere::ZhdModel::kSaastamoinen;
+  tr.zwd_model = atmosphere::ZwdModel::kSaastamoinen;
+  tr.rel_humidity = 0.7;  // the receiver's standard atmosphere
+  a.zwd_perturbation.sigma_m = 0.0;
 }
 
 }  // namespace gnssemu::world

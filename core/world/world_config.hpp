@@ -59,6 +59,15 @@ struct ErrorModelConfig {
     double east_peak_h = 0.0;      ///< local time of its maximum, h [0, 24)
     GaussMarkovConfig process{0.0, 3600.0};
   } gradient;
+  /// What the broadcast ionosphere gets wrong for the whole sky at once: the
+  /// world's ionospheric delay of every line of sight is multiplied by
+  /// 1 + sigma x(t), x a unit Gauss–Markov process (tau_s). Fitted by
+  /// `gnssemu calibrate` from the per-epoch Klobuchar scale; sigma 0 (the
+  /// default) disables it.
+  struct IonoScale {
+    double sigma = 0.0;     ///< steady-state 1-sigma of the relative error (>= 0; 0.2 = 20 %)
+    double tau_s = 3600.0;  ///< correlation time, s (> 0)
+  } iono_scale;
 };
 
 /// Valid values of ErrorModelConfig's own numbers and of its gradient's
@@ -72,6 +81,8 @@ struct ErrorModelRanges {
   static constexpr Range gradient_north_peak_h{0.0, 24.0, "h", false, true};
   static constexpr Range gradient_east_diurnal_m{0.0, 100.0, "m"};
   static constexpr Range gradient_east_peak_h{0.0, 24.0, "h", false, true};
+  static constexpr Range iono_scale_sigma{0.0, 2.0, ""};
+  static constexpr Range iono_scale_tau_s{0.0, 1.0e7, "s", true};
 };
 
 /// The receiver's oscillator as it really runs (the receiver estimates it).
@@ -145,5 +156,16 @@ struct WorldRanges {
 /// Throws gnssemu::Error for a value out of its range anywhere in c (its
 /// models' validators included).
 void validate(const WorldConfig& c);
+
+/// The world's ionosphere as fitted error models have it: the broadcast
+/// Klobuchar shape x scale (>= 0) with the broadcast obliquity (what the
+/// receiver removes is 1 x the same), plus the per-line-of-sight TEC process
+/// (sigma_tecu, tau_s).
+void use_klobuchar_ionosphere(AtmosphereConfig& a, double scale, double sigma_tecu, double tau_s) noexcept;
+
+/// The world's troposphere equal to what the receiver corrects with
+/// (Saastamoinen ZHD and ZWD of the standard atmosphere at RH 0.7, no ZWD
+/// process): no tropospheric error.
+void use_receiver_troposphere(AtmosphereConfig& a) noexcept;
 
 }  // namespace gnssemu::world

@@ -8,6 +8,8 @@ loopback only, read-only -b), and reads gpspipe -w. Cases:
   static - the Python sender sends a static point: TPV mode 3 within 20 m of it
   loss   - static, then the sender stops: within timeout + 2 s gpsd reports
            mode <= 1 (the receiver lost its antenna; no frozen fix)
+  today  - the default daemon (no --config: the shipped default.toml with its
+           2022 nav file): TPV time within 2 s of the system clock, mode 3
 Every process is killed and the temp dir removed on exit, also on failure.
 
 usage: gpsd_integration.py --gnssemud PATH --nav FILE --sender PATH CASE
@@ -72,7 +74,7 @@ class Rig(RigBase):
         self.gpsd_port = free_port(socket.SOCK_STREAM)
         self.pty = os.path.join(self.tmp, "gps0")
 
-    def start(self):
+    def start(self, default_config=False):
         cfg = os.path.join(self.tmp, "it.toml")
         with open(cfg, "w") as f:
             f.write(f"""
@@ -103,7 +105,10 @@ path = "{self.pty}"
 level = "info"
 """)
         self.daemon_log = open(os.path.join(self.tmp, "gnssemud.log"), "w")
-        self.daemon = self.spawn([self.args.gnssemud, "--config", cfg], stdout=subprocess.PIPE,
+        # The default daemon keeps its built-in configuration; only the pty
+        # and the truth port move to this test's own.
+        argv = ["--pty", self.pty, "--truth-port", str(self.udp_port)] if default_config else ["--config", cfg]
+        self.daemon = self.spawn([self.args.gnssemud, *argv], stdout=subprocess.PIPE,
                                  stderr=self.daemon_log, text=True)
         banner = self.daemon.stdout.readline()
         if "NMEA on " + self.pty not in banner:
@@ -240,11 +245,37 @@ def case_loss(rig):
         assert item[1].get("mode", 0) <= 1, f"fix came back without truth: {item[1]}"
 
 
+def tpv_unix_s(tpv_time):
+    """Unix seconds of a TPV time string ("2026-11-24T10:33:28.000Z")."""
+    utc = datetime.datetime.strptime(tpv_time[:19], "%Y-%m-%dT%H:%M:%S").replace(tzinfo=datetime.timezone.utc)
+    frac = float("0" + tpv_time[19:].rstrip("Z")) if len(tpv_time) > 20 else 0.0
+    return utc.timestamp() + frac
+
+
+def case_today(rig):
+    _, m = wait_for(rig, 20, lambda x: x.get("mode") == 3 and "time" in x, "mode-3 TPV from the default daemon")
+    worst = 0.0
+    for _ in range(5):
+        _, m = wait_for(rig, 5, lambda x: x.get("mode") == 3 and "time" in x, "mode-3 TPV")
+        off = tpv_unix_s(m["time"]) - time.time()
+        worst = max(worst, abs(off))
+        assert abs(off) <= 2.0, f"gpsd time {m['time']} is {off:+.2f} s from the system clock"
+    today = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d")
+    assert m["time"][:10] in (today, (datetime.datetime.now(datetime.timezone.utc) -
+                                      datetime.timedelta(seconds=5)).strftime("%Y-%m-%d")), m["time"]
+    if "leapseconds" in m:
+        assert m["leapseconds"] == 18, f"leap seconds {m['leapseconds']}"
+    with open(rig.daemon_log.name) as f:
+        log = f.read()
+    assert "nav data moved" in log, "the daemon did not say it moved the 2022 nav data to today"
+    print(f"  today: mode 3, gpsd time {m['time']}, at most {worst:.2f} s from the system clock")
+
+
 def on_alarm(*_):
     raise AssertionError(f"case exceeded {CASE_LIMIT_S:.0f} s")
 
 
-CASES = {"demo": case_demo, "static": case_static, "loss": case_loss}
+CASES = {"demo": case_demo, "static": case_static, "loss": case_loss, "today": case_today}
 
 
 def main():
@@ -266,7 +297,7 @@ def main():
         ok = False
         try:
             print(f"case {name}:")
-            rig.start()
+            rig.start(default_config=name == "today")
             CASES[name](rig)
             ok = True
         except AssertionError as e:

@@ -35,6 +35,7 @@ Cases (each bounded, every process killed and the temp dir removed on exit):
 usage: ubx_ports_integration.py --gnssemud PATH --nav FILE CASE
 """
 import argparse
+import datetime
 import json
 import os
 import re
@@ -260,7 +261,9 @@ def case_px4(rig):
         t, m = s.wait_for(is_ack_for(cls, mid), 1.0, f"reply to {cls:02X}-{mid:02X} {payload.hex()}")
         assert m == ack(cls, mid), f"{cls:02X}-{mid:02X} {payload.hex()}: got {m.hex()}"
         assert t - t0 < 0.25, f"ACK after {t - t0:.3f} s"
-    # 5. NAV-PVT at 5 Hz with gnssFixOK; NMEA is off (PX4's CFG-PRT).
+    # 5. NAV-PVT at 5 Hz with gnssFixOK; NMEA is off (PX4's CFG-PRT). The
+    # first epoch waits for a whole GPS second (time.use_wall_clock_date).
+    s.wait_for(lambda k, m: k == "ubx" and m[2:4] == b"\x01\x07", 2.0, "the first NAV-PVT")
     s.msgs.clear()
     end = time.monotonic() + 3.0
     while time.monotonic() < end:
@@ -372,6 +375,9 @@ def case_ardupilot(rig):
     mv = s.frame_of(0x0A, 0x04)
     assert mv[6 + 30:6 + 38] == b"00080000", mv[36:46]
     # NAV-SVINFO poll: ArduPilot reads globalFlags & 7 as the chip generation (4 = u-blox 8 / M8).
+    # Satellites are listed once the receiver has had an epoch (the first
+    # waits for a whole GPS second).
+    s.wait_for(lambda k, m: k == "ubx" and m[2:4] == b"\x01\x07", 2.0, "the first NAV-PVT")
     send(fd, frame(0x01, 0x30))
     sv = s.frame_of(0x01, 0x30)
     num_ch = sv[6 + 4]
@@ -670,8 +676,7 @@ def case_budget(rig):
 
 def case_wallclock(rig):
     # A u-blox's epochs sit on whole multiples of the measurement period in
-    # GPS time, whatever instant the daemon started at. (No fix: the nav file
-    # is from 2022; NAV-PVT still carries the receiver's time.)
+    # GPS time, whatever instant the daemon started at.
     path, out = pty_output(rig, extra='protocols_out = ["ubx"]\nubx_messages = ["NAV-PVT"]')
     rig.start_daemon(out, extra_toml="[time]\nuse_wall_clock_date = true\n")
     fd = rig.open_tty(path)
@@ -687,11 +692,23 @@ def case_wallclock(rig):
     one_hz = itows(2.5)
     assert len(one_hz) >= 2, f"{len(one_hz)} NAV-PVT in 2.5 s at 1 Hz"
     assert all(t % 1000 == 0 for t in one_hz), f"iTOW not on whole seconds: {one_hz}"
+    # Time of output: the first byte of an epoch leaves [time] output_delay_s
+    # (default 0.1 s, as a u-blox M8) after the measurement epoch it reports.
+    lags = []
+    wall_minus_mono = time.time() - time.monotonic()
+    for _ in range(3):
+        t, m = s.wait_for(lambda k, m: k == "ubx" and m[2:4] == b"\x01\x07", 2.0, "NAV-PVT")
+        year, month, day, hour, minute, sec = struct.unpack_from("<HBBBBB", m, 6 + 4)
+        nano = struct.unpack_from("<i", m, 6 + 16)[0]
+        epoch = datetime.datetime(year, month, day, hour, minute, sec, tzinfo=datetime.timezone.utc).timestamp()
+        lags.append(t + wall_minus_mono - (epoch + nano * 1e-9))
+    assert all(0.095 <= lag <= 0.2 for lag in lags), f"first byte {lags} s after the epoch, want ~0.1 s"
     set_cfg(s, fd, 0x08, struct.pack("<HHH", 200, 1, 0))
     five_hz = itows(2.0)[1:]
     assert len(five_hz) >= 7, f"{len(five_hz)} NAV-PVT in 2 s at 5 Hz"
     assert all(t % 200 == 0 for t in five_hz), f"iTOW not on 200 ms boundaries: {five_hz}"
-    print(f"  wallclock: iTOW {one_hz[-1]} ... at 1 Hz, {five_hz[:3]} ... at 5 Hz")
+    print(f"  wallclock: iTOW {one_hz[-1]} ... at 1 Hz, {five_hz[:3]} ... at 5 Hz; output "
+          f"{min(lags) * 1e3:.0f}..{max(lags) * 1e3:.0f} ms after the epoch")
 
 
 class Skip(Exception):

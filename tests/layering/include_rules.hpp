@@ -28,7 +28,7 @@ struct ExternalRule {
 
 /// One include of one file that the rules would reject, allowed on purpose.
 struct Exception {
-  std::string file;     ///< from the project root, e.g. "core/scene/footprint_reader.cpp"
+  std::string file;     ///< from the project root, e.g. "core/scene/mesh.cpp"
   std::string include;  ///< the include path as written, e.g. "toml++/toml.h"
   std::string why;      ///< why it is allowed, kept with the table
 };

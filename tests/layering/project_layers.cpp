@@ -66,11 +66,6 @@ Rules project_rules() {
   }
   r.externals.push_back({"embree", {"core/scene"}});
   r.externals.push_back({"GeographicLib/", {"core/geo"}});
-  r.exceptions = {
-      {"core/scene/footprint_reader.cpp", "toml++/toml.h",
-       "building footprints are a TOML mesh format (docs/scene.md) that read_mesh() dispatches to by "
-       "extension; moving the parser above core needs a reader hook in core/scene"},
-  };
   r.skipped = {"tests/data", "tests/golden"};
   return r;
 }

@@ -27,7 +27,7 @@ constexpr double kGridTolerance_s = 1e-6;
 }  // namespace
 
 BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const world::TruthTrack& track,
-                       std::ostream* nmea, std::ostream* errors, std::ostream* ubx) {
+                       std::ostream* nmea, std::ostream* errors, std::ostream* ubx, orbit::StoreOptions store_options) {
   if (!(config.rate_hz > 0.0) || !std::isfinite(config.rate_hz)) {
     throw Error(config.source, 0, "rate_hz must be positive");
   }
@@ -41,7 +41,7 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
                             rate_hz, first.week(), first.tow_s(), track.last().week(), track.last().tow_s()));
   }
 
-  const orbit::EphemerisStore store(nav.ephemerides);
+  const orbit::EphemerisStore store(nav.ephemerides, store_options);
   scene::MeshStats mesh_stats;
   const std::unique_ptr<scene::Scene> buildings = config::load_scene(config, &mesh_stats);
   const std::unique_ptr<pipeline::Pipeline> rx =

@@ -5,6 +5,7 @@
 #include <ostream>
 
 #include "config/config.hpp"
+#include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/nav_data.hpp"
 #include "core/world/truth_track.hpp"
 
@@ -36,8 +37,11 @@ struct BatchSummary {
 /// the emulated receiver powers on at the first epoch. errors: CSV `gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop`, plus
 /// `nvisible,ntracked,nlos,nblocked,nlos_delay_mean_m` when the config has a [scene].
 /// Either may be null. Throws gnssemu::Error when the truth spans no epoch.
+/// store: how the ephemeris store treats times past the data (the daemon's
+/// constellation continues the orbits; orbit::Constellation::store_options).
 BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const world::TruthTrack& track,
-                       std::ostream* nmea, std::ostream* errors, std::ostream* ubx = nullptr);
+                       std::ostream* nmea, std::ostream* errors, std::ostream* ubx = nullptr,
+                       orbit::StoreOptions store = {});
 
 /// Human-readable summary (for stderr).
 void write_summary(const BatchSummary& summary, std::ostream& out);

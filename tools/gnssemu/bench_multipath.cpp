@@ -11,6 +11,7 @@
 
 #include <time.h>
 
+#include "config/footprint_file.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
@@ -141,7 +142,7 @@ void run_bench_multipath(const BenchMultipathArgs& a, std::ostream& out, std::os
     scene_name = fmt::format("procedural city {}x{} blocks", a.city_blocks, a.city_blocks);
     if (!a.write_city.empty()) write_obj(mesh, a.write_city);
   } else {
-    mesh = scene::load_mesh(a.scene_path);
+    mesh = config::load_mesh(a.scene_path);
     scene_name = a.scene_path;
     if (const std::string w = scene::skip_report(mesh.stats); !w.empty()) err << w << '\n';
   }
@@ -149,9 +150,11 @@ void run_bench_multipath(const BenchMultipathArgs& a, std::ostream& out, std::os
   const scene::Scene buildings(mesh);
   const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - build0).count();
   // Drive.
-  const orbit::NavData nav = orbit::read_rinex_nav(a.nav_path);
+  std::vector<orbit::NavData> files;
+  for (const std::string& p : a.nav_paths) files.push_back(orbit::read_rinex_nav(p));
+  const orbit::NavData nav = orbit::merge(files);
   const orbit::EphemerisStore store(nav.ephemerides);
-  if (store.size() == 0) throw Error(a.nav_path, 0, "no GPS ephemerides");
+  if (store.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides");
   const time::GpsTime t0 = a.start ? *a.start : store.first_valid() + 7200.0;
   const geo::LocalFrame frame(origin);
   std::vector<Epoch> epochs;

@@ -19,7 +19,7 @@ struct BenchMultipathArgs {
   int city_blocks = 0;              ///< > 0: procedural city of city_blocks^2 blocks instead
   std::string write_city;           ///< write the generated city here as OBJ (optional)
   std::vector<double> origin;       ///< lat_deg, lon_deg, height_m of the scene frame
-  std::string nav_path;             ///< RINEX nav file
+  std::vector<std::string> nav_paths;  ///< RINEX nav files (one store)
   std::optional<time::GpsTime> start;  ///< first epoch; default: nav coverage start + 2 h
   std::vector<double> path_en_m;    ///< drive polyline e0,n0,e1,n1,... (ENU m)
   double speed_m_s = 10.0;

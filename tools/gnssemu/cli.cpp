@@ -13,10 +13,14 @@
 #include <vector>
 
 #include "config/config.hpp"
+#include "config/footprint_file.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
-#include "core/orbit/ephemeris_store.hpp"
+#include "config/nav_setup.hpp"
 #include "core/observation/rinex_obs.hpp"
+#include "core/orbit/almanac.hpp"
+#include "core/orbit/constellation.hpp"
+#include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
 #include "core/scene/scene.hpp"
 #include "tools/gnssemu/batch.hpp"
@@ -65,8 +69,17 @@ struct BatchArgs {
   std::string config_path, truth_path, nmea_path, errors_path, ubx_path;
 };
 
+/// Where satpos, sky and dop take their satellites from.
+struct NavArgs {
+  std::vector<std::string> paths;  ///< --nav, repeatable: one ephemeris store
+  std::string mode = "as_is";      ///< --nav-mode
+  std::string almanac;             ///< --almanac (mode almanac)
+};
+
 struct ObsArgs {
-  std::string obs_path, nav_path, station, out_path, config_path, residuals_path;
+  std::string obs_path, station, config_path;
+  std::vector<std::string> nav_paths;
+  std::string preset;  ///< spp: "rtklib" or empty
   double mask_deg = 5.0;
 };
 
@@ -97,22 +110,58 @@ SkyRequest checked_site(const SiteArgs& s, const time::GpsTime& t) {
 
 std::string describe(const time::GpsTime& t) { return fmt::format("week {} tow {:.3f}", t.week(), t.tow_s()); }
 
-/// Ephemeris store of a nav file that has at least one healthy set valid at t
-/// (and, if klobuchar is given, the header's broadcast ionosphere).
-orbit::EphemerisStore load_store(const std::string& nav_path, const time::GpsTime& t,
+/// The nav files read (plain or gzip) and merged into one (several files:
+/// one ephemeris store, as the daemon's [nav] files).
+orbit::NavData load_nav_files(const std::vector<std::string>& paths) {
+  std::vector<orbit::NavData> files;
+  for (const std::string& p : paths) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec)) throw Error(p, 0, "nav file not found");
+    files.push_back(orbit::read_rinex_nav(p));
+    if (files.back().ephemerides.empty()) throw Error(p, 0, "no GPS ephemerides in the file");
+  }
+  return orbit::merge(files);
+}
+
+/// The satellites at t from --nav/--nav-mode/--almanac (a store with at least
+/// one healthy set valid at t; with klobuchar, the header's broadcast iono).
+/// as_is serves the files' own span only (RTKLIB); relabel and almanac move
+/// the data to t's date and continue past them, as the daemon does.
+orbit::EphemerisStore load_store(const NavArgs& a, const time::GpsTime& t,
                                  orbit::KlobucharParams* klobuchar = nullptr) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(nav_path, ec)) throw Error(nav_path, 0, "nav file not found");
-  const orbit::NavData nav = orbit::read_rinex_nav(nav_path);
-  if (klobuchar) *klobuchar = nav.klobuchar;
-  orbit::EphemerisStore store(nav.ephemerides);
-  if (store.size() == 0) throw Error(nav_path, 0, "no GPS ephemerides in the file");
+  const std::optional<orbit::NavMode> mode = orbit::nav_mode_from_name(a.mode);
+  if (!mode) throw Error("--nav-mode: '" + a.mode + "' is not auto, as_is, relabel or almanac");
+  if (*mode == orbit::NavMode::kAlmanac && a.almanac.empty()) throw Error("--nav-mode almanac needs --almanac FILE");
+  if (*mode != orbit::NavMode::kAlmanac && !a.almanac.empty()) throw Error("--almanac needs --nav-mode almanac");
+  if (a.paths.empty() && a.almanac.empty()) throw Error("--nav FILE is required");
+  const orbit::NavData nav = a.paths.empty() ? orbit::NavData{} : load_nav_files(a.paths);
+  orbit::ConstellationRequest req;
+  req.mode = *mode;
+  req.start = t;
+  req.continue_after_data = *mode != orbit::NavMode::kAsIs;
+  orbit::Constellation c;
+  if (*mode == orbit::NavMode::kAsIs) {
+    // The files' own span, nothing more (RTKLIB): the check below names it.
+    c.source = nav.source;
+    c.nav = nav;
+    c.continues = false;
+    c.coverage = orbit::EphemerisStore(nav.ephemerides).coverage();
+  } else if (*mode == orbit::NavMode::kAlmanac) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(a.almanac, ec)) throw Error(a.almanac, 0, "almanac file not found");
+    c = orbit::build_constellation(orbit::read_almanac(a.almanac, t.week()), a.almanac, nav, req);
+  } else {
+    c = orbit::build_constellation(nav, req);
+  }
+  if (klobuchar) *klobuchar = c.nav.klobuchar;
+  orbit::EphemerisStore store(c.nav.ephemerides, c.store_options());
   for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
     if (store.select(prn, t) != nullptr) return store;
   }
-  throw Error(nav_path, 0,
-              fmt::format("no healthy ephemeris valid at {}; the file covers {} to {}", describe(t),
-                          describe(store.first_valid()), describe(store.last_valid())));
+  throw Error(c.source, 0,
+              fmt::format("no healthy ephemeris valid at {}; the data cover {}{}", describe(t),
+                          orbit::spans_text(c.coverage),
+                          *mode == orbit::NavMode::kAsIs ? " (--nav-mode relabel moves them to that date)" : ""));
 }
 
 /// An output file, or stdout for "-".
@@ -146,23 +195,19 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
   }
   const config::Config cfg = config::load_config(a.config_path);
   const world::TruthTrack track(read_truth_csv(a.truth_path));
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(cfg.nav_file, ec)) {
-    throw Error(a.config_path, 0, "nav file not found: " + cfg.nav_file);
+  for (const std::string& p : config::nav_paths(cfg)) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec)) throw Error(a.config_path, 0, "nav file not found: " + p);
   }
-  const orbit::NavData nav = orbit::read_rinex_nav(cfg.nav_file);
-  const orbit::EphemerisStore store(nav.ephemerides);
-  if (store.size() == 0) throw Error(cfg.nav_file, 0, "no GPS ephemerides in the file");
-  if (track.first() - store.last_valid() > 0.0 || store.first_valid() - track.last() > 0.0) {
-    throw Error(a.truth_path, 0,
-                fmt::format("truth runs from {} to {}, outside the nav file {} ({} to {})", describe(track.first()),
-                            describe(track.last()), cfg.nav_file, describe(store.first_valid()),
-                            describe(store.last_valid())));
-  }
+  // The truth's own dates, with the satellites dated for them as the daemon
+  // dates them ([nav] mode; as_is: the truth must start inside the data).
+  const orbit::Constellation c = config::make_constellation(cfg, config::load_nav(cfg), track.first());
+  err << "gnssemu batch: satellites: " << c.describe() << '\n';
   OutputFile nmea(a.nmea_path, out);
   OutputFile errors(a.errors_path, out);
   OutputFile ubx(a.ubx_path, out);
-  const BatchSummary sum = run_batch(cfg, nav, track, nmea.get(), errors.get(), ubx.get());
+  const BatchSummary sum =
+      run_batch(cfg, c.nav, track, nmea.get(), errors.get(), ubx.get(), c.store_options());
   nmea.close(a.nmea_path);
   ubx.close(a.ubx_path);
   errors.close(a.errors_path);
@@ -199,17 +244,16 @@ Ecef parse_station(const std::string& text) {
 std::pair<observation::ObsData, orbit::NavData> load_obs_nav(const ObsArgs& a) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(a.obs_path, ec)) throw Error(a.obs_path, 0, "observation file not found");
-  if (!std::filesystem::is_regular_file(a.nav_path, ec)) throw Error(a.nav_path, 0, "nav file not found");
+  orbit::NavData nav = load_nav_files(a.nav_paths);
   observation::ObsData obs = observation::read_rinex_obs(a.obs_path);
-  orbit::NavData nav = orbit::read_rinex_nav(a.nav_path);
   if (obs.epochs.empty()) throw Error(a.obs_path, 0, "no GPS observation epochs");
   const orbit::EphemerisStore store(nav.ephemerides);
-  if (store.size() == 0) throw Error(a.nav_path, 0, "no GPS ephemerides in the file");
   const time::GpsTime t0 = obs.epochs.front().t, t1 = obs.epochs.back().t;
   if (t0 - store.last_valid() > 0.0 || store.first_valid() - t1 > 0.0) {
     throw Error(a.obs_path, 0,
-                fmt::format("observations run from {} to {}, outside the nav file {} ({} to {})", describe(t0),
-                            describe(t1), a.nav_path, describe(store.first_valid()), describe(store.last_valid())));
+                fmt::format("observations run from {} to {}, outside the nav file{} {} ({})", describe(t0),
+                            describe(t1), a.nav_paths.size() > 1 ? "s" : "", nav.source,
+                            orbit::spans_text(store.coverage())));
   }
   return {std::move(obs), std::move(nav)};
 }
@@ -222,22 +266,47 @@ int run_spp_command(const ObsArgs& a, std::ostream& out, std::ostream& err) {
   const config::Config base = a.config_path.empty() ? config::Config{} : config::load_config(a.config_path);
   receiver::ReceiverConfig rx = base.receiver;
   rx.elevation_mask_rad = a.mask_deg * kDegToRad;
+  if (a.preset == "rtklib") rx.solver = receiver::rtklib_single_point(rx.solver);
   const SppSummary sum = write_spp(obs, nav, rx, station, out);
   err << fmt::format("gnssemu spp: {} epochs, {} with a fix\n", sum.epochs, sum.fixes);
   return kExitOk;
 }
 
-int run_calibrate_command(const ObsArgs& a, std::ostream& out, std::ostream& err) {
+/// calibrate: one or several station-days (--obs, --nav, --station given as
+/// often, matched in order).
+struct CalibrateArgs {
+  std::vector<std::string> obs_paths, nav_paths, stations;
+  std::string out_path, config_path, residuals_path;
+  double mask_deg = 5.0;
+};
+
+int run_calibrate_command(const CalibrateArgs& a, std::ostream& out, std::ostream& err) {
   check_range("--mask", a.mask_deg, 0.0, 90.0, true);
-  const Ecef station = parse_station(a.station);
-  const auto [obs, nav] = load_obs_nav(a);
+  if (a.nav_paths.size() != a.obs_paths.size() || a.stations.size() != a.obs_paths.size()) {
+    throw Error(fmt::format("calibrate: {} --obs, {} --nav and {} --station: give one of each per station-day",
+                            a.obs_paths.size(), a.nav_paths.size(), a.stations.size()));
+  }
   config::Config base = a.config_path.empty() ? config::default_config() : config::load_config(a.config_path);
-  CalibrationInput in;
-  in.obs = &obs;
-  in.nav = &nav;
-  in.nav_path = a.nav_path;
-  in.station_m = station;
-  in.mask_rad = a.mask_deg * kDegToRad;
+  std::vector<observation::ObsData> obs;
+  std::vector<orbit::NavData> nav;
+  std::vector<Ecef> station;
+  for (std::size_t i = 0; i < a.obs_paths.size(); ++i) {
+    station.push_back(parse_station(a.stations[i]));
+    ObsArgs one;
+    one.obs_path = a.obs_paths[i];
+    one.nav_paths = {a.nav_paths[i]};
+    auto [o, n] = load_obs_nav(one);
+    obs.push_back(std::move(o));
+    nav.push_back(std::move(n));
+  }
+  std::vector<CalibrationInput> in(obs.size());
+  for (std::size_t i = 0; i < obs.size(); ++i) {
+    in[i].obs = &obs[i];
+    in[i].nav = &nav[i];
+    in[i].nav_path = a.nav_paths[i];
+    in[i].station_m = station[i];
+    in[i].mask_rad = a.mask_deg * kDegToRad;
+  }
   const CalibrationResult r = calibrate(in, base);
   const std::string out_dir = std::filesystem::absolute(a.out_path).parent_path().string();
   std::ofstream f(a.out_path, std::ios::binary | std::ios::trunc);
@@ -265,11 +334,19 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
 
   TimeArgs time_args;
   SiteArgs site;
-  std::string nav_path;
+  NavArgs nav_args;
   BatchArgs batch;
 
   auto add_time = [&](CLI::App* sub) {
-    sub->add_option("--nav", nav_path, "RINEX 2.x/3.x navigation file")->required();
+    sub->add_option("--nav", nav_args.paths, "RINEX 2.x/3.x navigation file, plain or .gz; repeat for several")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    sub->add_option("--nav-mode", nav_args.mode,
+                    "as_is: the files' own dates; relabel: moved by whole days to --week/--tow; almanac: --almanac "
+                    "moved and propagated; auto: as_is if the files cover the time, else relabel")
+        ->check(CLI::IsMember({"auto", "as_is", "relabel", "almanac"}))
+        ->capture_default_str();
+    sub->add_option("--almanac", nav_args.almanac, "YUMA or SEM almanac (with --nav-mode almanac)");
     sub->add_option("--week", time_args.week, "GPS week (continuous, not mod 1024)")->required();
     sub->add_option("--tow", time_args.tow_s, "GPS time of week, s [0, 604800)")->required();
   };
@@ -326,19 +403,28 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   ObsArgs obs_args;
   CLI::App* spp = app.add_subcommand("spp", "single-point positions from a real RINEX observation file (C1C)");
   spp->add_option("--obs", obs_args.obs_path, "RINEX 2.11/3.x observation file (.gz read too)")->required();
-  spp->add_option("--nav", obs_args.nav_path, "RINEX 2.x/3.x navigation file")->required();
+  spp->add_option("--nav", obs_args.nav_paths, "RINEX 2.x/3.x navigation file, plain or .gz; repeat for several")
+      ->required()
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   spp->add_option("--mask", obs_args.mask_deg, "elevation mask, deg [0, 90)")->capture_default_str();
   spp->add_option("--station", obs_args.station, "known position X,Y,Z (ECEF m): adds e_m,n_m,u_m columns");
   spp->add_option("--config", obs_args.config_path, "take the solver settings (weights, corrections) from this config");
-  CLI::App* calib =
-      app.add_subcommand("calibrate", "fit the receiver error model to a real receiver at a known position");
-  calib->add_option("--obs", obs_args.obs_path, "RINEX 2.11/3.x observation file (.gz read too)")->required();
-  calib->add_option("--nav", obs_args.nav_path, "RINEX 2.x/3.x navigation file")->required();
-  calib->add_option("--station", obs_args.station, "known antenna position X,Y,Z (ECEF m)")->required();
-  calib->add_option("--out", obs_args.out_path, "write the fitted TOML configuration here")->required();
-  calib->add_option("--mask", obs_args.mask_deg, "elevation mask, deg [0, 90)")->capture_default_str();
-  calib->add_option("--config", obs_args.config_path, "start from this config (default: the built-in one)");
-  calib->add_option("--residuals", obs_args.residuals_path, "also write every satellite residual used as CSV");
+  spp->add_option("--preset", obs_args.preset,
+                  "rtklib: RTKLIB rnx2rtkp single-point weights, corrections and residual test (after --config)")
+      ->check(CLI::IsMember({"rtklib"}));
+  CalibrateArgs cal;
+  CLI::App* calib = app.add_subcommand(
+      "calibrate", "fit the error model to real receivers at known positions (one or several station-days)");
+  calib->add_option("--obs", cal.obs_paths, "RINEX 2.11/3.x observation file (.gz read too); repeat per day")
+      ->required();
+  calib->add_option("--nav", cal.nav_paths, "RINEX 2.x/3.x navigation file of that day; repeat per day")->required();
+  calib->add_option("--station", cal.stations, "known antenna position X,Y,Z (ECEF m) of that day; repeat per day")
+      ->required();
+  calib->add_option("--out", cal.out_path, "write the fitted TOML configuration here")->required();
+  calib->add_option("--mask", cal.mask_deg, "elevation mask, deg [0, 90)")->capture_default_str();
+  calib->add_option("--config", cal.config_path, "start from this config (default: the built-in one)");
+  calib->add_option("--residuals", cal.residuals_path, "also write every satellite residual used as CSV");
   CLI::App* bench = app.add_subcommand("bench", "benchmarks that print time next to the error it costs");
   bench->require_subcommand(1);
   CLI::App* bench_mp = bench->add_subcommand("multipath", "scene stage: time per epoch vs error against a dense reference");
@@ -349,7 +435,10 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   bench_mp->add_option("--city", bmp.city_blocks, "instead of --scene: procedural city of N x N blocks (N=10: ~160k triangles)");
   bench_mp->add_option("--write-city", bmp.write_city, "write the procedural city as OBJ");
   bench_mp->add_option("--origin", bmp.origin, "scene frame origin LAT_DEG,LON_DEG,HEIGHT_M")->delimiter(',')->expected(3)->required();
-  bench_mp->add_option("--nav", bmp.nav_path, "RINEX navigation file")->required();
+  bench_mp->add_option("--nav", bmp.nav_paths, "RINEX navigation file, plain or .gz; repeat for several")
+      ->required()
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   bench_mp->add_option("--week", bench_week, "GPS week of the first epoch (default: nav start + 2 h)");
   bench_mp->add_option("--tow", bench_tow_s, "GPS time of week of the first epoch, s");
   bench_mp->add_option("--path", bmp.path_en_m, "drive polyline E0,N0,E1,N1,... (ENU m)")->delimiter(',')->required();
@@ -388,11 +477,11 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       write_version(out);
     } else if (*satpos) {
       const time::GpsTime t = checked_time(time_args);
-      write_satpos(load_store(nav_path, t), t, out);
+      write_satpos(load_store(nav_args, t), t, out);
     } else if (*sky || *dop) {
       const time::GpsTime t = checked_time(time_args);
       SkyRequest req = checked_site(site, t);
-      const orbit::EphemerisStore store = load_store(nav_path, t, &req.klobuchar);
+      const orbit::EphemerisStore store = load_store(nav_args, t, &req.klobuchar);
       if (*sky) {
         SkyRequest sreq = req;
         std::unique_ptr<scene::Scene> buildings;
@@ -425,7 +514,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
           if (!(scene_args.scale > 0.0)) throw Error("--scale: must be > 0");
           place.scale = scene_args.scale;
           place.y_up = scene_args.up_axis == "y";
-          const scene::Mesh mesh = scene::load_mesh(scene_args.mesh_path, place);
+          const scene::Mesh mesh = config::load_mesh(scene_args.mesh_path, place);
           if (const std::string w = scene::skip_report(mesh.stats); !w.empty()) err << "gnssemu sky: " << w << '\n';
           buildings = std::make_unique<scene::Scene>(mesh);
           buildings->set_default_loss_db(scene_args.reflection_loss_db);
@@ -441,7 +530,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     } else if (*spp) {
       return run_spp_command(obs_args, out, err);
     } else if (*calib) {
-      return run_calibrate_command(obs_args, out, err);
+      return run_calibrate_command(cal, out, err);
     } else if (*bench_mp) {
       if (bmp.scene_path.empty() == (bmp.city_blocks <= 0)) throw Error("bench multipath: give either --scene or --city");
       if (bench_week >= 0 || bench_tow_s >= 0.0) bmp.start = checked_time(TimeArgs{bench_week, bench_tow_s});

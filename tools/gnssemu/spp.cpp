@@ -2,22 +2,26 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/atmosphere/receiver_corrections.hpp"
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/geo/local_frame.hpp"
+#include "core/receiver/weight_model.hpp"
 #include "core/world/sky.hpp"
 
 namespace gnssemu::cli {
 
 double receiver_correction_m(const orbit::KlobucharParams& k, const Lla& rx, double az_rad, double el_rad,
-                             const time::GpsTime& t, const receiver::SolverConfig& solver) {
+                             const time::GpsTime& t, const receiver::SolverConfig& solver, double* variance_m2) {
   const double doy = t.fractional_day_of_year();
   const double iono_m = solver.iono == atmosphere::IonoCorrection::kKlobuchar
                             ? atmosphere::receiver_iono_delay_m(k, rx.lat_rad, rx.lon_rad, az_rad, el_rad, t.tow_s())
                             : 0.0;
+  if (variance_m2 != nullptr) *variance_m2 = receiver::correction_variance_m2(solver, iono_m, std::sin(el_rad));
   return iono_m + atmosphere::receiver_tropo_delay_m(rx.lat_rad, rx.height_m, el_rad, doy, solver.tropo);
 }
 
@@ -29,6 +33,14 @@ receiver::SolverConfig precorrected(receiver::SolverConfig s) {
   s.tropo = atmosphere::TropoCorrection::kNone;
   return s;
 }
+// The first, unmasked and uncorrected solution of a cold start only places
+// the mask and the corrections: its residuals carry the uncorrected
+// atmosphere, so it is not tested (RTKLIB likewise corrects from its second
+// iteration on and tests only the converged, corrected solution).
+receiver::SolverConfig untested(receiver::SolverConfig s) {
+  s.residual_test_pfa = 0.0;
+  return s;
+}
 }  // namespace
 
 SppEngine::SppEngine(const orbit::NavData& nav, const orbit::EphemerisStore& store,
@@ -36,7 +48,8 @@ SppEngine::SppEngine(const orbit::NavData& nav, const orbit::EphemerisStore& sto
     : store_(store),
       klobuchar_(nav.klobuchar),
       rx_(receiver),
-      solver_(precorrected(receiver.solver), receiver.max_pdop) {
+      solver_(precorrected(receiver.solver), receiver.max_pdop),
+      cold_solver_(untested(precorrected(receiver.solver)), receiver.max_pdop) {
   receiver::validate(rx_);
   c1c_ = header.type_index("C1C");
   s1c_ = header.type_index("S1C");
@@ -54,17 +67,18 @@ bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
     if (pr == nullptr) continue;
     const orbit::Ephemeris* eph = store_.select(s.prn, epoch.t);
     if (eph == nullptr) continue;
-    double corr_m = 0.0;
+    double corr_m = 0.0, corr_var_m2 = 0.0;
     if (site != nullptr) {
       const world::SkySat sky = world::sky_sat(*eph, epoch.t, *site, site_lla, Ecef{});
       if (!(sky.el_rad >= rx_.elevation_mask_rad)) continue;
-      corr_m = receiver_correction_m(klobuchar_, site_lla, sky.az_rad, sky.el_rad, epoch.t, rx_.solver);
+      corr_m = receiver_correction_m(klobuchar_, site_lla, sky.az_rad, sky.el_rad, epoch.t, rx_.solver, &corr_var_m2);
     }
     receiver::Measurement& m = in_.meas[static_cast<std::size_t>(in_.num_meas)];
     m.eph = eph;
     // Corrections at the mask position (previous fix): the final pass is
     // within 100 m of the result, where they change by < 1 mm.
     m.pseudorange_m = pr->value - corr_m;
+    m.correction_var_m2 = corr_var_m2;
     m.doppler_hz = 0.0;  // velocity is not reported by spp
     // S1C gives the solver's C/N0 weight term, as the live receiver's tracking does.
     const observation::ObsValue* sn = s1c_ >= 0 ? s.get(s1c_) : nullptr;
@@ -76,7 +90,7 @@ bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
     in_.prior_pos_m = *last_pos_m_;
     in_.prior_clock_m = last_clock_m_;
   }
-  solver_.solve(in_, out_);
+  (site != nullptr ? solver_ : cold_solver_).solve(in_, out_);
   return out_.type == receiver::FixType::k3D;
 }
 
@@ -118,6 +132,27 @@ const SppEpoch& SppEngine::solve(const observation::ObsEpoch& epoch) {
   last_pos_m_ = out_.pos_m;
   last_clock_m_ = out_.clock_m;
   return result_;
+}
+
+std::vector<Enu> spp_error_series(const observation::ObsData& obs, const orbit::NavData& nav,
+                                  const orbit::EphemerisStore& store, const receiver::ReceiverConfig& receiver,
+                                  const Ecef& station, double step_s, int* fixes) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  if (fixes != nullptr) *fixes = 0;
+  if (obs.epochs.empty()) return {};
+  SppEngine engine(nav, store, obs.header, receiver);
+  const geo::LocalFrame frame(geo::lla_from_ecef(station));
+  const time::GpsTime t0 = obs.epochs.front().t;
+  const long n_grid = std::lround((obs.epochs.back().t - t0) / step_s) + 1;
+  std::vector<Enu> err(static_cast<std::size_t>(std::max(n_grid, 1L)), Enu(kNaN, kNaN, kNaN));
+  for (const observation::ObsEpoch& e : obs.epochs) {
+    const SppEpoch& s = engine.solve(e);
+    if (!s.fix) continue;
+    if (fixes != nullptr) ++*fixes;
+    const long g = std::lround((e.t - t0) / step_s);
+    if (g >= 0 && g < n_grid) err[static_cast<std::size_t>(g)] = frame.to_enu(s.pos_m);
+  }
+  return err;
 }
 
 SppSummary write_spp(const observation::ObsData& obs, const orbit::NavData& nav,

@@ -7,6 +7,7 @@
 #include <array>
 #include <optional>
 #include <ostream>
+#include <vector>
 
 #include "core/common/constants.hpp"
 #include "core/common/vec3.hpp"
@@ -21,9 +22,12 @@ namespace gnssemu::cli {
 /// The receiver's own ionosphere (broadcast Klobuchar; RTKLIB defaults when
 /// k is invalid) plus troposphere correction for a satellite at (az_rad,
 /// el_rad) seen from rx at GPS time t, m, with the models chosen in solver
-/// ([receiver.corrections]; the defaults are the receiver's).
+/// ([receiver.corrections]; the defaults are the receiver's). variance_m2
+/// (optional): set to what the correction may miss as the solver weights it
+/// (receiver::correction_variance_m2), m^2.
 double receiver_correction_m(const orbit::KlobucharParams& k, const Lla& rx, double az_rad, double el_rad,
-                             const time::GpsTime& t, const receiver::SolverConfig& solver = {});
+                             const time::GpsTime& t, const receiver::SolverConfig& solver = {},
+                             double* variance_m2 = nullptr);
 
 /// One epoch's solution.
 struct SppEpoch {
@@ -61,6 +65,7 @@ private:
   receiver::ReceiverConfig rx_;
   int c1c_ = -1, s1c_ = -1;
   receiver::Solver solver_;
+  receiver::Solver cold_solver_;  ///< first solution of a cold start: no residual test
   receiver::SolverInput in_;
   receiver::SolverOutput out_;
   std::array<int, kMaxGpsPrn> meas_prn_{};
@@ -68,6 +73,13 @@ private:
   std::optional<Ecef> last_pos_m_;
   double last_clock_m_ = 0.0;
 };
+
+/// Single-point errors of obs at a known station: fix minus station in local
+/// ENU at the station, m, one entry per step_s from the first epoch (NaN
+/// where an epoch has no fix). fixes (optional): epochs with a fix.
+std::vector<Enu> spp_error_series(const observation::ObsData& obs, const orbit::NavData& nav,
+                                  const orbit::EphemerisStore& store, const receiver::ReceiverConfig& receiver,
+                                  const Ecef& station, double step_s, int* fixes = nullptr);
 
 struct SppSummary {
   int epochs = 0;

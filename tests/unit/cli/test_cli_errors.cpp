@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include "cli_test_util.hpp"
+#include "config/nav_setup.hpp"
+#include "core/common/error.hpp"
 
+using namespace gnssemu;
 using namespace gnssemu::cli;
 using namespace gnssemu::cli::test;
 
@@ -116,11 +119,27 @@ TEST(CliErrors, BatchMalformedTruthNamesFileLineAndColumn) {
   expect_fails(r, kExitBadInput, truth + ":3: column 'lon_deg': 'two' is not a number");
 }
 
+// [nav] mode auto: truth outside the nav data runs on the data moved to its
+// date, and says so; as_is refuses it, naming the data's coverage.
 TEST(CliErrors, BatchTruthOutsideNavCoverage) {
   TempDir dir;
   const std::string cfg = dir.write("c.toml", config_text(nav_path("brdc0010.22n")));
   const std::string truth = dir.write("t.csv", "gps_week,tow_s,x_m,y_m,z_m\n2100,0,4194423,162183,4780188\n");
-  expect_fails(run({"batch", "--config", cfg, "--truth", truth}), kExitBadInput, "outside the nav file");
+  const CliResult r = run({"batch", "--config", cfg, "--truth", truth});
+  EXPECT_EQ(r.status, kExitOk) << r.err;
+  EXPECT_NE(r.err.find("nav data moved -636 days"), std::string::npos) << r.err;
+  config::Config c = config::load_config(cfg);
+  c.nav.mode = orbit::NavMode::kAsIs;
+  try {
+    config::make_constellation(c, config::load_nav(c), time::GpsTime(2100, 0.0));
+    ADD_FAILURE() << "as_is served a time outside its data";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("brdc0010.22n: start 2020-04-05 00:00:00 GPST lies outside the nav data "
+                        "(2021-12-31 22:00:00 GPST to 2022-01-02 01:59:44 GPST)"),
+              std::string::npos)
+        << what;
+  }
 }
 
 TEST(CliErrors, BatchUnwritableOutput) {

@@ -7,46 +7,25 @@
 using namespace gnssemu;
 using namespace gnssemu::daemon;
 
-TEST(TimeMapping, DefaultCoverageOfBrdc) {
+TEST(TimeMapping, FirstToePlusHourOfBrdc) {
   const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
-  const Coverage c = default_coverage(nav.ephemerides);
   // First toe 2022-01-01 00:00 GPST = week 2190, tow 518400 (Saturday); +1 h.
-  EXPECT_EQ(c.start.week(), 2190);
-  EXPECT_DOUBLE_EQ(c.start.tow_s(), 518400.0 + 3600.0);
-  // Last toe is 2022-01-02 00:00 (toe of the 23:59:44 records) at the latest.
-  EXPECT_GT(c.span_s, 20.0 * 3600.0);
-  EXPECT_LE(c.span_s, 23.0 * 3600.0);
+  const time::GpsTime t = first_toe_plus_hour(nav.ephemerides);
+  EXPECT_EQ(t.week(), 2190);
+  EXPECT_DOUBLE_EQ(t.tow_s(), 518400.0 + 3600.0);
+  EXPECT_EQ(first_toe_plus_hour({}), time::GpsTime());
 }
 
-TEST(TimeMapping, CoverageFromConfiguredStart) {
+TEST(TimeMapping, RunStartChoices) {
   std::vector<orbit::Ephemeris> ephs(2);
-  ephs[0].toe = time::GpsTime(2190, 0.0);
-  ephs[1].toe = time::GpsTime(2190, 86400.0);
-  Coverage c = coverage_from(time::GpsTime(2190, 7200.0), ephs);
-  EXPECT_DOUBLE_EQ(c.span_s, 86400.0 - 7200.0);
-  c = coverage_from(time::GpsTime(2190, 86000.0), ephs);  // too close to the end: no wrap
-  EXPECT_DOUBLE_EQ(c.span_s, 0.0);
-  EXPECT_DOUBLE_EQ(default_coverage({}).span_s, 0.0);
-}
-
-TEST(TimeMapping, RealtimeClockWraps) {
-  const Coverage c{time::GpsTime(2190, 604000.0), 1000.0};
-  EpochTime e = realtime_gps_time(c, 0.0);
-  EXPECT_EQ(e.t, c.start);
-  EXPECT_EQ(e.wraps, 0);
-  e = realtime_gps_time(c, 999.5);  // crosses the week boundary
-  EXPECT_EQ(e.t.week(), 2191);
-  EXPECT_NEAR(e.t.tow_s(), 199.5, 1e-9);
-  e = realtime_gps_time(c, 1000.0);
-  EXPECT_EQ(e.wraps, 1);
-  EXPECT_EQ(e.t, c.start);
-  e = realtime_gps_time(c, 2503.25);
-  EXPECT_EQ(e.wraps, 2);
-  EXPECT_NEAR(e.t - c.start, 503.25, 1e-9);
-  const Coverage no_wrap{time::GpsTime(2190, 0.0), 0.0};
-  e = realtime_gps_time(no_wrap, 1e6);
-  EXPECT_EQ(e.wraps, 0);
-  EXPECT_NEAR(e.t - no_wrap.start, 1e6, 1e-6);
+  ephs[0].toe = time::GpsTime(2190, 86400.0);
+  ephs[1].toe = time::GpsTime(2190, 7200.0);
+  const time::GpsTime now(2446, 210807.25);
+  const time::GpsTime configured(2300, 1000.0);
+  // A configured start wins; then today (the next whole second); then the data's first day.
+  EXPECT_EQ(run_start(configured, true, ephs, now), configured);
+  EXPECT_EQ(run_start(std::nullopt, true, ephs, now), time::GpsTime(2446, 210808.0));
+  EXPECT_EQ(run_start(std::nullopt, false, ephs, now), time::GpsTime(2190, 7200.0 + 3600.0));
 }
 
 TEST(TimeMapping, SimClockAnchorsAndFollows) {
@@ -90,8 +69,8 @@ TEST(TimeMapping, WallClockStartIsOnAWholeGpsSecond) {
   EXPECT_DOUBLE_EQ(w.start.tow_s(), 345601.0);
   EXPECT_NEAR(w.wait_s, 0.545, 1e-9);
   for (int k = 0; k < 10; ++k) {  // 5 Hz from there: every iTOW a multiple of 200 ms
-    const EpochTime e = realtime_gps_time(Coverage{w.start, 0.0}, epoch_offset_s(k, 5.0));
-    const auto itow_ms = std::llround(e.t.tow_s() * 1000.0);
+    const time::GpsTime t = w.start + epoch_offset_s(k, 5.0);
+    const auto itow_ms = std::llround(t.tow_s() * 1000.0);
     EXPECT_EQ(itow_ms % 200, 0) << k;
   }
   const WholeSecondStart exact = whole_second_start(time::GpsTime(2390, 17.0));

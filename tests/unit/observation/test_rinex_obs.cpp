@@ -2,8 +2,12 @@
 // full day) and LARM (3.02) files, RINEX 2.11 variants derived from NYA1
 // (tests/data/obs/make_variants.py), event and cycle-slip records, bad files.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <unistd.h>
+#include <zlib.h>
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <string>
 
@@ -248,4 +252,26 @@ TEST(RinexObs, MissingFileAndEmptyStream) {
   EXPECT_NE(error_of(obs("no_such_file.rnx")).find("no_such_file.rnx: cannot open"), std::string::npos);
   std::istringstream empty("");
   EXPECT_THROW(read_rinex_obs(empty, "empty"), Error);
+}
+
+// Issue 13: a gzip of newlines was read whole and split before its first
+// line was checked (1.3 GB RSS). The reader streams and checks line 1 first.
+TEST(RinexObs, GzipOfNewlinesIsRefusedAtTheFirstLine) {
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("gnssemu-obs-" + std::to_string(::getpid()) + "-bomb.rnx.gz"))
+                               .string();
+  gzFile f = gzopen(path.c_str(), "wb9");
+  const std::string chunk(1u << 20, '\n');
+  for (int i = 0; i < 20; ++i) gzwrite(f, chunk.data(), static_cast<unsigned>(chunk.size()));
+  gzclose(f);
+  try {
+    (void)read_rinex_obs(path);
+    ADD_FAILURE() << "no throw";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), path + ":1: first line is not 'RINEX VERSION / TYPE'");
+  }
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  EXPECT_LT(u.ru_maxrss / 1024, 200);  // MB
+  std::filesystem::remove(path);
 }

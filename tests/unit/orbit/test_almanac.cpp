@@ -188,12 +188,22 @@ TEST_P(AlmanacBad, ErrorNamesFileAndLine) {
 INSTANTIATE_TEST_SUITE_P(Files, AlmanacBad,
                          ::testing::Values(BadAlm{"yuma_missing_field.alm", false, 1, "Mean Anom"},
                                            BadAlm{"yuma_bad_number.alm", false, 4, "unparsable number"},
+                                           // toa 1e300: refused before it becomes a GpsTime (issue 13, UBSan)
+                                           BadAlm{"yuma_toa_1e300.alm", false, 5, "toa outside the week"},
                                            BadAlm{"sem_truncated.al3", true, 26, "truncated SEM file: 2 of 31"},
                                            BadAlm{"sem_bad_eccentricity.al3", true, 7, "eccentricity"}),
                          [](const ::testing::TestParamInfo<BadAlm>& p) {
                            std::string n = p.param.file;
                            return n.substr(0, n.find('.'));
                          });
+
+TEST(Almanac, ReadAlmanacTellsYumaFromSem) {
+  const std::vector<AlmanacEntry> y = read_almanac(kYuma, 1886), s = read_almanac(kSem, 1886);
+  ASSERT_EQ(y.size(), s.size());
+  EXPECT_EQ(y.front().prn, s.front().prn);
+  EXPECT_EQ(y.front().toa, s.front().toa);
+  EXPECT_EQ(y.size(), read_yuma(kYuma, 1886).size());
+}
 
 TEST(Almanac, MissingFile) {
   EXPECT_THROW((void)read_yuma(kData + "/almanac/none.alm", 1886), Error);

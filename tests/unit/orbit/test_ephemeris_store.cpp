@@ -154,3 +154,95 @@ TEST(EphemerisStore, RealFileAndNoAllocation) {
   EXPECT_EQ(s.first_valid(), time::GpsTime(2190, 518400 - 7200));
   EXPECT_EQ(s.last_valid(), time::GpsTime(2191, 7184));
 }
+
+// RTKLIB's tie (src/rtkcmn.c uniqeph sorts by transmission time, then toe;
+// src/ephemeris.c seleph keeps the last set at the smallest |t - toe|): at
+// equal distance the set transmitted later wins, whatever its toe.
+TEST(EphemerisStore, TieGoesToTheLaterTransmission) {
+  Ephemeris early_toe = at(12, 2000, 0, 1);
+  Ephemeris late_toe = at(12, 2000, 7200, 2);
+  early_toe.transmit_tow_s = 3000.0;  // a re-upload of the toe-0 set, sent after the toe-7200 one
+  late_toe.transmit_tow_s = 100.0;
+  EXPECT_EQ(iode_at(EphemerisStore({early_toe, late_toe}), 12, time::GpsTime(2000, 3600)), 1);
+  EXPECT_EQ(iode_at(EphemerisStore({early_toe, late_toe}), 12, time::GpsTime(2000, 3599)), 1);
+  EXPECT_EQ(iode_at(EphemerisStore({early_toe, late_toe}), 12, time::GpsTime(2000, 3601)), 2);
+  // Transmission unknown for both: the later toe.
+  early_toe.transmit_known = late_toe.transmit_known = false;
+  EXPECT_EQ(iode_at(EphemerisStore({early_toe, late_toe}), 12, time::GpsTime(2000, 3600)), 2);
+  // Across weeks the transmission times compare as instants, not as times of week.
+  Ephemeris sat = at(13, 2190, 604800 - 3600, 7);  // sent 2 h before its toe (week 2190)
+  Ephemeris sun = at(13, 2191, 3600, 8);           // sent 2 h before its toe (week 2191, tow -3600)
+  EXPECT_EQ(iode_at(EphemerisStore({sat, sun}), 13, time::GpsTime(2191, 0)), 8);
+}
+
+// Past a satellite's last set: with continue_after_data that set goes on
+// (its orbit propagated); without, nothing (RTKLIB). Gaps inside the data
+// stay gaps, and an unhealthy last set keeps the satellite out.
+TEST(EphemerisStore, ContinuesAfterTheLastSet) {
+  const std::vector<Ephemeris> sets{at(14, 2000, 0, 1), at(14, 2000, 7200, 2), at(14, 2000, 50000, 3),
+                                    at(15, 2000, 7200, 4, 1)};
+  const EphemerisStore strict(sets), open(sets, StoreOptions{true});
+  EXPECT_FALSE(strict.continues_after_data());
+  EXPECT_TRUE(open.continues_after_data());
+  const time::GpsTime days_later(2001, 100000);
+  EXPECT_EQ(iode_at(strict, 14, days_later), -1);
+  EXPECT_EQ(iode_at(open, 14, days_later), 3);
+  EXPECT_EQ(iode_at(open, 14, time::GpsTime(2000, 50000 + 7201)), 3);
+  EXPECT_EQ(iode_at(open, 14, time::GpsTime(2000, 30000)), -1);  // a gap in the data stays a gap
+  EXPECT_EQ(iode_at(open, 14, time::GpsTime(1999, 500000)), -1);  // nothing before the data
+  EXPECT_EQ(iode_at(open, 15, days_later), -1);                   // last set unhealthy
+  const long before = gnssemu::support::allocation_count();
+  for (int k = 0; k < 100; ++k) (void)open.select(14, days_later + 60.0 * k);  // per-epoch path
+  EXPECT_EQ(gnssemu::support::allocation_count(), before);
+  const Ephemeris* e = open.select(14, days_later);
+  ASSERT_NE(e, nullptr);
+  const SatState s = sat_state(*e, days_later);
+  EXPECT_NEAR(s.pos_m.norm(), 26.56e6, 0.4e6);  // still a GPS orbit a week on (e ~ 0.01: +-0.27e6)
+}
+
+TEST(EphemerisStore, CoverageShowsGaps) {
+  const EphemerisStore s({at(16, 2000, 0, 1), at(17, 2000, 7200, 2), at(16, 2000, 100000, 3)});
+  const std::vector<TimeSpan> c = s.coverage();
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_EQ(c[0].begin, time::GpsTime(2000, 0) - 7200.0);
+  EXPECT_EQ(c[0].end, time::GpsTime(2000, 14400));
+  EXPECT_EQ(c[1].begin, time::GpsTime(2000, 100000 - 7200));
+  EXPECT_EQ(c[1].end, time::GpsTime(2000, 100000 + 7200));
+  EXPECT_TRUE(c[0].contains(time::GpsTime(2000, 14400)));
+  EXPECT_FALSE(c[0].contains(time::GpsTime(2000, 14401)));
+  EXPECT_TRUE(EphemerisStore().coverage().empty());
+}
+
+// Two files into one store: a daily file cut at noon into two reads back as
+// the whole file at every time, overlap included.
+TEST(EphemerisStore, MergedFilesActAsOne) {
+  const NavData whole = read_rinex_nav(kNav + "brdc0010.22n");
+  NavData am = whole, pm = whole;
+  am.ephemerides.clear();
+  pm.ephemerides.clear();
+  const time::GpsTime noon(2190, 518400 + 43200);
+  for (const Ephemeris& e : whole.ephemerides) (e.toc < noon ? am : pm).ephemerides.push_back(e);
+  am.source = "am";
+  pm.source = "pm";
+  ASSERT_FALSE(am.ephemerides.empty());
+  ASSERT_FALSE(pm.ephemerides.empty());
+  const NavData both = merge({pm, am});
+  EXPECT_EQ(both.source, "pm + am");
+  EXPECT_EQ(both.leap_seconds, whole.leap_seconds);
+  EXPECT_TRUE(both.klobuchar.valid);
+  const EphemerisStore one(whole.ephemerides), two(both.ephemerides);
+  for (double tow = 518400 - 7200; tow <= 518400 + 86400 + 7200; tow += 450) {
+    for (int prn = 1; prn <= 32; ++prn) {
+      const Ephemeris* a = one.select(prn, time::GpsTime(2190, tow));
+      const Ephemeris* b = two.select(prn, time::GpsTime(2190, tow));
+      ASSERT_EQ(a == nullptr, b == nullptr) << prn << " " << tow;
+      if (a) {
+        EXPECT_EQ(a->iode, b->iode) << prn << " " << tow;
+      }
+    }
+  }
+  // Leap-second counts that disagree leave the decision to the table.
+  NavData other = pm;
+  other.leap_seconds = 17;
+  EXPECT_FALSE(merge({am, other}).leap_seconds.has_value());
+}

@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <unistd.h>
+#include <zlib.h>
 
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -349,5 +353,76 @@ TEST(RinexNav, MissingFile) {
   } catch (const Error& e) {
     EXPECT_EQ(e.line(), 0);
     EXPECT_NE(std::string(e.what()).find("does_not_exist.n: cannot open"), std::string::npos) << e.what();
+  }
+}
+
+namespace {
+
+std::string temp_gz(const std::string& name, const std::string& head, std::size_t newlines) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("gnssemu-nav-" + std::to_string(::getpid()) + "-" + name)).string();
+  gzFile f = gzopen(path.c_str(), "wb9");
+  gzwrite(f, head.data(), static_cast<unsigned>(head.size()));
+  const std::string chunk(1u << 20, '\n');
+  for (std::size_t left = newlines; left > 0;) {
+    const std::size_t n = std::min(left, chunk.size());
+    gzwrite(f, chunk.data(), static_cast<unsigned>(n));
+    left -= n;
+  }
+  gzclose(f);
+  return path;
+}
+
+long peak_rss_mb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024;  // Linux: kB
+}
+
+}  // namespace
+
+// Issue 13: a ~20 kB gzip of 20 M newlines was read and split whole before
+// its first line was looked at (1.3 GB RSS, then std::bad_alloc). Now the
+// first line is refused at once, and blank lines are streamed, never kept.
+TEST(RinexNav, GzipOfNewlinesIsRefusedAtTheFirstLine) {
+  const std::string bomb = temp_gz("bomb.rnx.gz", "", 20u << 20);
+  EXPECT_LT(std::filesystem::file_size(bomb), 64u << 10);
+  try {
+    (void)read_rinex_nav(bomb);
+    ADD_FAILURE() << "no throw";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), bomb + ":1: first line is not 'RINEX VERSION / TYPE'");
+  }
+  // A valid header followed by the newlines: read through, nothing kept.
+  const std::string padded = temp_gz("padded.rnx.gz", kV2Header, 20u << 20);
+  const NavData d = read_rinex_nav(padded);
+  EXPECT_TRUE(d.ephemerides.empty());
+  EXPECT_LT(peak_rss_mb(), 200);
+  std::filesystem::remove(bomb);
+  std::filesystem::remove(padded);
+}
+
+TEST(RinexNav, GzipFileReadsAsThePlainOne) {
+  std::ifstream in(kNav + "brdc0010.22n", std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string gz = temp_gz("brdc0010.22n.gz", text.str(), 0);
+  const NavData a = read_rinex_nav(kNav + "brdc0010.22n"), b = read_rinex_nav(gz);
+  ASSERT_EQ(a.ephemerides.size(), b.ephemerides.size());
+  for (std::size_t i = 0; i < a.ephemerides.size(); ++i) {
+    EXPECT_EQ(a.ephemerides[i].toe, b.ephemerides[i].toe);
+    EXPECT_EQ(a.ephemerides[i].m0_rad, b.ephemerides[i].m0_rad);
+  }
+  EXPECT_EQ(a.leap_seconds, b.leap_seconds);
+  std::filesystem::remove(gz);
+}
+
+TEST(RinexNav, OverlongLineIsRefused) {
+  std::istringstream in(std::string(kV2Header) + std::string(5000, '1') + "\n");
+  try {
+    (void)read_rinex_nav(in, "long.n");
+    ADD_FAILURE() << "no throw";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "long.n:3: line longer than 1024 bytes: not a file of this kind");
   }
 }

@@ -19,10 +19,23 @@ using pipeline::Pipeline;
 using pipeline::PipelineConfig;
 using world::Truth;
 
-TEST(ReceiverAlloc, StepDoesNotAllocateAfterWarmUp) {
+/// The default, and every error process and the RTKLIB weights on.
+std::vector<PipelineConfig> configs() {
+  PipelineConfig all;
+  all.world.errors.multipath = {0.05, 600.0};
+  all.world.errors.gradient.north_m = -0.3;
+  all.world.errors.gradient.process = {0.4, 10000.0};
+  all.world.errors.iono_scale = {0.3, 20000.0};
+  all.receiver.solver = rtklib_single_point(all.receiver.solver);
+  return {PipelineConfig{}, all};
+}
+
+class ReceiverAlloc : public ::testing::TestWithParam<int> {};
+
+TEST_P(ReceiverAlloc, StepDoesNotAllocateAfterWarmUp) {
   const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
   const orbit::EphemerisStore store(nav.ephemerides);
-  Pipeline rx(store, PipelineConfig{});
+  Pipeline rx(store, configs()[static_cast<std::size_t>(GetParam())]);
   const Lla site{39.6 * kDegToRad, 22.4 * kDegToRad, 100.0};
   const Ecef p0 = geo::ecef_from_lla(site);
   const Vec3 v = geo::enu_to_ecef_vector(Enu(20.0, 15.0, 0.0), site.lat_rad, site.lon_rad);
@@ -53,6 +66,8 @@ TEST(ReceiverAlloc, StepDoesNotAllocateAfterWarmUp) {
   delete probe;
   EXPECT_GE(gnssemu::support::allocation_count() - after, 2);
 }
+
+INSTANTIATE_TEST_SUITE_P(DefaultAndEveryErrorProcess, ReceiverAlloc, ::testing::Values(0, 1));
 
 }  // namespace
 }  // namespace gnssemu::receiver

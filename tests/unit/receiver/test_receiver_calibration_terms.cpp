@@ -1,6 +1,7 @@
 // The error terms `gnssemu calibrate` fits beyond the original model: the
-// per-satellite multipath process sigma / sin(el) and the azimuthal delay
-// gradient common to all satellites (docs/models.md).
+// per-satellite multipath process sigma / sin(el), the azimuthal delay
+// gradient common to all satellites and the common relative error of the
+// ionosphere (docs/models.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -143,6 +144,64 @@ TEST(ReceiverCalibrationTerms, GradientProcessHasItsSigmaAndIsDeterministic) {
   EXPECT_NEAR(std::sqrt(ss / n), 0.3, 0.03);
 }
 
+TEST(ReceiverCalibrationTerms, IonoScaleIsOneFactorForTheWholeSky) {
+  // World ionosphere x (1 + 0.3 x(t)), x a unit Gauss-Markov process of 600 s.
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  PipelineConfig with = quiet();
+  with.world.errors.iono_scale = {0.3, 600.0};
+  Pipeline a(store, quiet()), b(store, with), c(store, with);
+  const Ecef pos = geo::ecef_from_lla(kSite);
+  std::vector<double> x;
+  for (int k = 0; k < 20000; k += 10) {
+    const time::GpsTime t = kToe + static_cast<double>(k);
+    a.step(t, truth_at(pos, t));
+    const Fix& fb = b.step(t, truth_at(pos, t));
+    const Fix& fc = c.step(t, truth_at(pos, t));
+    double factor = 0.0;
+    int n = 0;
+    for (int i = 0; i < fb.num_sats; ++i) {
+      if (!fb.sats[i].tracked) continue;
+      const int prn = fb.sats[i].prn;
+      const double base_m = a.world().path_effects(prn).iono_m;
+      ASSERT_GT(base_m, 0.5);
+      const double f = b.world().path_effects(prn).iono_m / base_m - 1.0;
+      if (n > 0) {
+        EXPECT_NEAR(f, factor, 1e-9) << "one factor for every line of sight";
+      }
+      factor = f;
+      ++n;
+      EXPECT_EQ(fb.sats[i].pseudorange_m, fc.sats[i].pseudorange_m);  // same seed, same world
+    }
+    ASSERT_GE(n, 6);
+    x.push_back(factor);
+  }
+  double s0 = 0.0, s60 = 0.0;  // lag 60 s = 6 samples
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    s0 += x[i] * x[i];
+    if (i + 6 < x.size()) s60 += x[i] * x[i + 6];
+  }
+  s0 /= static_cast<double>(x.size());
+  s60 /= static_cast<double>(x.size() - 6);
+  // 2000 samples over 33 correlation times: sigma within 20 %, rho(60 s) = 0.905.
+  EXPECT_NEAR(std::sqrt(s0), 0.3, 0.06);
+  EXPECT_NEAR(s60 / s0, std::exp(-60.0 / 600.0), 0.05);
+}
+
+TEST(ReceiverCalibrationTerms, IonoScaleOffChangesNothing) {
+  // sigma 0: not a draw, not a bit of the pseudoranges changes.
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  PipelineConfig with = quiet();
+  with.world.errors.iono_scale = {0.0, 123.0};
+  Pipeline a(store, quiet()), b(store, with);
+  const Ecef pos = geo::ecef_from_lla(kSite);
+  for (int k = 0; k < 100; ++k) {
+    const time::GpsTime t = kToe + static_cast<double>(k);
+    const Fix fa = a.step(t, truth_at(pos, t));
+    const Fix& fb = b.step(t, truth_at(pos, t));
+    for (int i = 0; i < fb.num_sats; ++i) EXPECT_EQ(fa.sats[i].pseudorange_m, fb.sats[i].pseudorange_m);
+  }
+}
+
 TEST(ReceiverCalibrationTerms, BadValuesAreRejected) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
   PipelineConfig c = quiet();
@@ -162,6 +221,12 @@ TEST(ReceiverCalibrationTerms, BadValuesAreRejected) {
   EXPECT_THROW(Pipeline(store, c), Error);
   c = quiet();
   c.world.errors.gradient.east_peak_h = 24.0;
+  EXPECT_THROW(Pipeline(store, c), Error);
+  c = quiet();
+  c.world.errors.iono_scale = {-0.1, 600.0};
+  EXPECT_THROW(Pipeline(store, c), Error);
+  c = quiet();
+  c.world.errors.iono_scale = {0.2, 0.0};
   EXPECT_THROW(Pipeline(store, c), Error);
 }
 

@@ -8,6 +8,7 @@
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
 #include "core/pipeline/pipeline.hpp"
+#include "core/scene/footprints.hpp"
 #include "core/scene/mesh.hpp"
 #include "core/scene/scene.hpp"
 #include "tests/support/alloc_counter.hpp"
@@ -21,6 +22,18 @@ using world::Truth;
 
 const std::string kData = GNSSEMU_TEST_DATA;
 const Lla kOrigin{48.8738 * kDegToRad, 2.2950 * kDegToRad, 100.0};
+
+// The canyon of tests/data/scenes/street_canyon.toml (whose TOML is read
+// above core): two 30 m blocks either side of a 20 m street, on a ground plane.
+scene::Mesh street_canyon() {
+  scene::FootprintBuilder b(kData + "/scenes/street_canyon.toml", {});
+  b.add_ground(400.0, 0.0, "concrete", 3);
+  b.add_building(b.outline({{-60, -150}, {-10, -150}, {-10, 150}, {-60, 150}}, 8, "building[0]"), 0.0, 30.0,
+                 "concrete", 8, 7, "building[0]");
+  b.add_building(b.outline({{10, -150}, {60, -150}, {60, 150}, {10, 150}}, 13, "building[1]"), 0.0, 30.0, "glass",
+                 13, 12, "building[1]");
+  return std::move(b).finish();
+}
 
 struct ReceiverScene : ::testing::Test {
   orbit::NavData nav = orbit::read_rinex_nav(kData + "/nav/brdc0010.22n");
@@ -58,7 +71,7 @@ TEST_F(ReceiverScene, EmptySceneIsIdenticalToNoScene) {
 }
 
 TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
-  const scene::Scene canyon(scene::load_mesh(kData + "/scenes/street_canyon.toml"));
+  const scene::Scene canyon(street_canyon());
   // Fixed code noise, so the only pseudorange difference is the path (the
   // DLL model's noise follows C/N0, which the reflection loss lowers).
   PipelineConfig cfg;
@@ -105,7 +118,7 @@ TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
 // satellites (largest normalised residual first) instead of dropping the
 // epoch; an excluded satellite is tracked but not used (GSA, NAV-SAT).
 TEST_F(ReceiverScene, FaultExclusionDropsBiasedSatellitesFromTheSolution) {
-  const scene::Scene canyon(scene::load_mesh(kData + "/scenes/street_canyon.toml"));
+  const scene::Scene canyon(street_canyon());
   Pipeline rx(store, PipelineConfig{});
   rx.world().attach_scene({&canyon, kOrigin, scene::SearchConfig{}});
   int fixes = 0, with_exclusion = 0, excluded = 0, excluded_nlos = 0;
@@ -160,7 +173,7 @@ TEST_F(ReceiverScene, InsideClosedBuildingNoSatelliteNoFix) {
 }
 
 TEST_F(ReceiverScene, StepWithSceneDoesNotAllocate) {
-  const scene::Scene canyon(scene::load_mesh(kData + "/scenes/street_canyon.toml"));
+  const scene::Scene canyon(street_canyon());
   scene::SearchConfig search;
   search.reuse_distance_m = 1.0;
   Pipeline rx(store, PipelineConfig{});

@@ -1,5 +1,6 @@
-// Mesh readers: OBJ, PLY (ascii and binary), TOML footprints; placement;
-// bad input -> file:line error or skipped-and-counted, never a crash.
+// Mesh readers: OBJ, PLY (ascii and binary); placement; bad input ->
+// file:line error or skipped-and-counted, never a crash. Footprint files
+// are read above core: tests/unit/config/test_footprint_file.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -172,50 +173,6 @@ TEST(PlyReader, SionnaStreetCanyon) {
   EXPECT_EQ(obj.triangles.size(), 74u);
 }
 
-TEST(Footprints, ExtrudedClosedBuildingsAndGround) {
-  const std::string p = temp_file("fp.toml",
-                                  "[ground]\nhalf_size_m = 500\nmaterial = \"concrete\"\n"
-                                  "[[building]]\nfootprint = [[0, 0], [10, 0], [10, 20], [0, 20]]\nheight_m = 15\n"
-                                  "material = \"glass\"\n"
-                                  "[[building]]  # L-shaped, clockwise, concave\n"
-                                  "footprint = [[30, 0], [30, 20], [35, 20], [35, 5], [50, 5], [50, 0]]\n"
-                                  "height_m = 30\nbase_m = 2\n");
-  const Mesh m = load_mesh(p);
-  EXPECT_EQ(m.stats.skipped(), 0);
-  // ground 2 + box (4 walls x 2 + roof 2 + floor 2) + L (6 walls x 2 + roof 4 + floor 4)
-  EXPECT_EQ(m.triangles.size(), 2u + 12u + 20u);
-  const Scene s(m);
-  EXPECT_DOUBLE_EQ(s.bounds_max_m().z, 32.0);
-  // Closed: a point inside the concave part is enclosed; the notch is open.
-  EXPECT_TRUE(s.occluded(Ray{Vec3(32.0, 10.0, 10.0), Vec3(0, 0, 1), 0.0, 1e30}));
-  EXPECT_TRUE(s.occluded(Ray{Vec3(32.0, 10.0, 10.0), Vec3(0, 0, -1), 0.0, 1e30}));
-  EXPECT_FALSE(s.occluded(Ray{Vec3(45.0, 15.0, 10.0), Vec3(0, 0, 1), 0.0, 1e30}));
-}
-
-TEST(Footprints, ErrorsNameFileAndLine) {
-  expect_error([] { load_mesh(temp_file("f1.toml", "[[building]]\nfootprint = [[0, 0], [1, 0]]\nheight_m = 5\n")); },
-               {"f1.toml:2:", "at least 3"});
-  expect_error([] { load_mesh(temp_file("f2.toml", "[[building]]\nfootprint = [[0,0],[1,0],[0,1]]\nheight_m = -5\n")); },
-               {"f2.toml:3:", "height_m"});
-  expect_error([] { load_mesh(temp_file("f3.toml", "[[building]]\nfootprint = [[0,0],[1,0],[0,1]]\nhieght_m = 5\n")); },
-               {"f3.toml:3:", "unknown key 'hieght_m'"});
-  expect_error([] {
-    load_mesh(temp_file("f4.toml", "[[building]]\nfootprint = [[0,0],[4,4],[4,0],[0,3]]\nheight_m = 5\n"));
-  }, {"f4.toml:2:", "self-intersecting"});
-  expect_error([] { load_mesh(temp_file("f5.toml", "[[building]]\nfootprint = [[0,0],[1,0],[0,\n")); },
-               {"f5.toml:", "TOML syntax"});
-}
-
-TEST(Footprints, RepeatedPointIsDroppedNotSelfIntersecting) {
-  // A point entered twice (consecutively, or closing the ring) adds no edge.
-  const Mesh m = load_mesh(temp_file(
-      "dup.toml", "[[building]]\nfootprint = [[0,0],[10,0],[10,0],[10,20],[0,20],[0,0]]\nheight_m = 5\n"));
-  EXPECT_EQ(m.triangles.size(), 12u);  // 4 walls + roof + floor
-  EXPECT_EQ(m.stats.skipped(), 0);
-  expect_error([] { load_mesh(temp_file("dup2.toml", "[[building]]\nfootprint = [[0,0],[1,0],[1,0],[0,0]]\nheight_m = 5\n")); },
-               {"dup2.toml:2:", "at least 3 distinct points"});
-}
-
 TEST(MeshLoad, NoTrianglesIsAnErrorNamingTheFile) {
   std::string garbage(4096, '\0');
   for (std::size_t i = 0; i < garbage.size(); ++i) garbage[i] = static_cast<char>((i * 131 + 7) % 256);
@@ -239,12 +196,6 @@ TEST(MeshLoad, CoordinatesBeyondFloat32RangeAreRejected) {
                                    "property float z\nend_header\n6378137 0 0\n"));
   }, {"far.ply:8:", "beyond 1e6 m"});
   EXPECT_EQ(load_mesh(temp_file("near.obj", "v 999999 0 0\nv 999999 1 0\nv 999998 0 5\nf 1 2 3\n")).triangles.size(), 1u);
-  // Footprints and the ground name their own lines too.
-  expect_error([] {
-    load_mesh(temp_file("farfp.toml", "[[building]]\nheight_m = 5\nfootprint = [[2000000, 0], [2000010, 0], [2000000, 10]]\n"));
-  }, {"farfp.toml:3:", "beyond 1e6 m"});
-  expect_error([] { load_mesh(temp_file("farground.toml", "\n[ground]\nhalf_size_m = 3000000\n")); },
-               {"farground.toml:2:", "beyond 1e6 m"});
 }
 
 TEST(PlyReader, HugeOrFractionalIndexAndBadCountAreErrors) {

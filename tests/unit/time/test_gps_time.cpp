@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/common/error.hpp"
 #include "core/time/gps_time.hpp"
 
 using gnssemu::time::CalendarTime;
@@ -74,4 +75,48 @@ TEST(GpsTime, WeekRollover) {
   EXPECT_EQ(resolve_week_at_or_after(1000, 2048), 3048);
   EXPECT_EQ(gnssemu::time::year_from_two_digits(99), 1999);
   EXPECT_EQ(gnssemu::time::year_from_two_digits(22), 2022);
+}
+
+// Load time rejects a week shift that does not fit (a YUMA toa of 1e300
+// once reached a float->int conversion); the per-epoch arithmetic saturates.
+TEST(GpsTime, RejectsWeekShiftsThatDoNotFit) {
+  using gnssemu::time::kMaxWeek;
+  EXPECT_THROW(GpsTime(2190, 1e300), gnssemu::Error);
+  EXPECT_THROW(GpsTime(2190, -1e300), gnssemu::Error);
+  EXPECT_THROW(GpsTime(2190, std::nan("")), gnssemu::Error);
+  EXPECT_THROW(GpsTime(2190, HUGE_VAL), gnssemu::Error);
+  EXPECT_THROW(GpsTime(kMaxWeek, 604800.0), gnssemu::Error);  // carries into week kMaxWeek + 1
+  EXPECT_THROW(GpsTime(2000000000, 0.0), gnssemu::Error);
+  EXPECT_THROW(GpsTime::from_calendar({40000, 1, 1, 0, 0, 0.0}), gnssemu::Error);
+  EXPECT_NO_THROW(GpsTime(kMaxWeek, 604799.0));
+  EXPECT_NO_THROW(GpsTime(-kMaxWeek, 0.0));
+  try {
+    GpsTime(862, 1e300);
+    ADD_FAILURE() << "no throw";
+  } catch (const gnssemu::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("outside the supported weeks"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(GpsTime::make(2190, 1e300).has_value());
+  EXPECT_FALSE(GpsTime::make(2190, std::nan("")).has_value());
+  ASSERT_TRUE(GpsTime::make(2190, 604800.5).has_value());
+  EXPECT_EQ(*GpsTime::make(2190, 604800.5), GpsTime(2191, 0.5));
+}
+
+TEST(GpsTime, ArithmeticNeverThrowsAndSaturates) {
+  using gnssemu::time::kMaxWeek;
+  const GpsTime t(2190, 1000.0);
+  static_assert(noexcept(t + 1.0) && noexcept(t - 1.0) && noexcept(t - t));
+  EXPECT_EQ(t + std::nan(""), t);  // a non-finite shift leaves the time
+  EXPECT_EQ(t + HUGE_VAL, t);
+  const GpsTime hi = t + 1e300;
+  EXPECT_EQ(hi.week(), kMaxWeek);
+  EXPECT_LT(hi.tow_s(), 604800.0);
+  const GpsTime lo = t - 1e300;
+  EXPECT_EQ(lo, GpsTime(-kMaxWeek, 0.0));
+  EXPECT_EQ((t + 1e18).week(), kMaxWeek);  // finite but past the end
+  EXPECT_NEAR((t + 86400.0 * 365.0 * 100.0) - t, 86400.0 * 365.0 * 100.0, 1e-6);  // a century still exact
+}
+
+TEST(GpsTime, CalendarText) {
+  EXPECT_EQ(gnssemu::time::calendar_text(GpsTime(2190, 518400.0 + 3723.9)), "2022-01-01 01:02:03 GPST");
 }

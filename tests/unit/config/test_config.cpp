@@ -1,14 +1,21 @@
-// Shipped configs load; defaults; every field round-trips through TOML.
+// parse_config, load_config, default_config and to_toml (config/config):
+// shipped configs load, defaults, every key round-trips through TOML,
+// syntax and file errors, and damaged text gives only located errors.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 
+#include "every_key.hpp"
 #include "test_helpers.hpp"
 
 namespace gnssemu::config::test {
 namespace {
 
 namespace fs = std::filesystem;
+
+bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
 
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -391,6 +398,115 @@ TEST(ConfigLoad, RelativePathFromWorkingDirectory) {
   EXPECT_NO_THROW(c = load_config("default.toml"));
   fs::current_path(old);
   EXPECT_EQ(c.nav_file, kSource + "/config/nav/brdc0010.22n");
+}
+
+TEST(ConfigLoad, RoundTripEveryKeyAndTheDefaults) {
+  // to_toml writes every key (ConfigKeys.EveryKeyIsReadWrittenAndDocumented)
+  // with text that reads back to the same value, so equal texts are equal
+  // configurations.
+  for (const std::string& text : {kEveryKey, kOtherKeys, kBase}) {
+    const Config c = parse(text);
+    const std::string written = to_toml(c, kData);
+    const Config back = parse_config(written, "written.toml", kData);
+    expect_same(c, back);
+    EXPECT_EQ(to_toml(back, kData), written);
+  }
+  const Config d = default_config();
+  EXPECT_EQ(to_toml(parse_config(to_toml(d, default_config_dir()), "d.toml", default_config_dir()), default_config_dir()),
+            to_toml(d, default_config_dir()));
+}
+
+TEST(ConfigValidation, BaseLoads) {
+  const Config c = parse(kBase);
+  EXPECT_EQ(c.source, "t.toml");
+  EXPECT_NEAR(c.origin.lat_rad * kRadToDeg, 48.8738, 1e-12);
+  EXPECT_NEAR(c.origin.lon_rad * kRadToDeg, 2.2950, 1e-12);
+  EXPECT_EQ(c.origin.height_m, 100.0);
+  EXPECT_EQ(c.nav_file, kData + "/nav/brdc0010.22n");
+}
+
+TEST(ConfigValidation, SyntaxErrorNamesLine) {
+  const std::string msg = error_of(kBase + "[receiver]\nrate_hz = = 1\n");
+  EXPECT_TRUE(starts_with(msg, "t.toml:8: TOML syntax error: ")) << msg;
+}
+
+TEST(ConfigValidation, DuplicateKeyIsSyntaxError) {
+  const std::string msg = error_of(kBase + "[receiver]\nseed = 1\nseed = 2\n");
+  EXPECT_TRUE(starts_with(msg, "t.toml:9: TOML syntax error: ")) << msg;
+}
+
+TEST(ConfigValidation, UnterminatedStringIsSyntaxError) {
+  const std::string msg = error_of("[origin]\nlat_deg = 1\nlon_deg = 2\nheight_m = 0\n[nav]\nfile = \"nav/x\n");
+  EXPECT_TRUE(starts_with(msg, "t.toml:6: TOML syntax error: ")) << msg;
+}
+
+TEST(ConfigValidation, EmptyText) {
+  EXPECT_EQ(error_of(""), "t.toml: missing required table 'origin' at top level");
+}
+
+TEST(ConfigValidation, ByteOrderMarkAccepted) {
+  EXPECT_NO_THROW(parse("\xEF\xBB\xBF" + kBase));
+}
+
+TEST(ConfigValidation, BadUtf8IsSyntaxError) {
+  const std::string msg = error_of(kBase + "[log]\nlevel = \"\xFF\"\n");
+  EXPECT_TRUE(starts_with(msg, "t.toml:8: TOML syntax error: ")) << msg;
+}
+
+TEST(ConfigValidation, LoadMissingFile) {
+  try {
+    load_config("/nonexistent/gnssemu.toml");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "/nonexistent/gnssemu.toml: cannot open config file");
+  }
+}
+
+TEST(ConfigValidation, LoadFolder) {
+  try {
+    load_config(kData);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), kData + ": is a folder, not a config file");
+  }
+}
+
+TEST(ConfigMutations, OnlyLocatedErrors) {
+  std::ifstream in(kSource + "/config/default.toml");
+  std::ostringstream s;
+  s << in.rdbuf();
+  const std::string original = s.str();
+  // Relative nav path must resolve: parse against the config/ folder.
+  const std::string dir = kSource + "/config";
+  const std::string alphabet = "=[]\"'.,#\n 0123456789-+eE_abcxyz{}";
+  std::mt19937_64 rng(12345);
+  int loaded = 0;
+  int errors = 0;
+  for (int iter = 0; iter < 3000; ++iter) {
+    std::string text = original;
+    const int edits = 1 + static_cast<int>(rng() % 3);
+    for (int k = 0; k < edits; ++k) {
+      const std::size_t pos = rng() % text.size();
+      switch (rng() % 3) {
+        case 0: text.erase(pos, 1 + rng() % 4); break;
+        case 1: text.insert(pos, 1, alphabet[rng() % alphabet.size()]); break;
+        default: text[pos] = alphabet[rng() % alphabet.size()]; break;
+      }
+    }
+    const int lines = static_cast<int>(std::count(text.begin(), text.end(), '\n')) + 1;
+    try {
+      parse_config(text, "t.toml", dir);
+      ++loaded;
+    } catch (const Error& e) {
+      ++errors;
+      ASSERT_EQ(e.file(), "t.toml") << e.what();
+      ASSERT_LE(e.line(), lines) << e.what() << "\n" << text;
+      ASSERT_EQ(std::string(e.what()).rfind("t.toml", 0), 0u);
+    }
+  }
+  // Most single-character damage is caught; comments and values absorb some.
+  EXPECT_GT(errors, 1000);
+  EXPECT_GT(loaded, 100);
 }
 
 }  // namespace

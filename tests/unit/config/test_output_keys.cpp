@@ -1,5 +1,6 @@
-// [[output]] port types, protocols, message sets and rates: parsing, exact
-// file:line errors and the to_toml round trip.
+// [[output]] (config/output_keys): port types and their own keys,
+// protocols, message sets and rates; exact file:line errors, cross-port
+// uniqueness and the to_toml round trip.
 #include "config/message_names.hpp"
 #include "test_helpers.hpp"
 
@@ -105,15 +106,6 @@ TEST(ConfigPorts, RoundTrip) {
   EXPECT_EQ(to_toml(back, kData), to_toml(c, kData));
 }
 
-TEST(ConfigPorts, MessageNames) {
-  EXPECT_EQ(message_name(0x01, 0x07), "NAV-PVT");
-  EXPECT_EQ(message_name(kNmeaClass, 0x03), "GSV");
-  EXPECT_EQ(message_name(0x7F, 0x7F), "");
-  ASSERT_TRUE(message_by_name("MON-HW").has_value());
-  EXPECT_EQ(message_by_name("MON-HW")->msg_id, 0x09);
-  EXPECT_FALSE(message_by_name("nav-pvt").has_value());
-}
-
 std::string port(const std::string& body) { return kBase + "[[output]]\nname = \"a\"\n" + body; }
 
 TEST(ConfigPorts, Errors) {
@@ -177,6 +169,76 @@ TEST(ConfigPorts, TwoTcpPortsOnAnyPortAreFine) {
   const Config c = parse(kBase + "[[output]]\nname = \"a\"\ntype = \"tcp\"\n[[output]]\nname = \"b\"\ntype = \"tcp\"\n");
   EXPECT_EQ(std::get<TcpPortConfig>(c.outputs.at(0).transport).port, 0);
   EXPECT_EQ(std::get<TcpPortConfig>(c.outputs.at(1).transport).port, 0);
+}
+
+TEST(ConfigValidation, SentencesNotAnArray) {
+  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"a\"\npath = \"/tmp/a\"\nsentences = \"GGA\"\n"),
+            "t.toml:10: output[0].sentences: expected an array of strings, got a string");
+}
+
+TEST(ConfigValidation, BaudNotStandard) {
+  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"a\"\npath = \"/tmp/a\"\nbaud = 9601\n"),
+            "t.toml:10: output[0].baud: 9601 is not a standard rate "
+            "(4800 9600 19200 38400 57600 115200 230400 460800 921600)");
+  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"a\"\npath = \"/tmp/a\"\nbaud = 0\n"),
+            "t.toml:10: output[0].baud: 0 is out of range [1, 4294967295]");
+  EXPECT_EQ(parse(kBase + "[[output]]\nname = \"a\"\npath = \"/tmp/a\"\nbaud = 115200\n").outputs.at(0).baud, 115200u);
+}
+
+TEST(ConfigValidation, UnknownSentence) {
+  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"a\"\npath = \"/tmp/a\"\nsentences = [\"GGA\",\n  \"GGX\"]\n"),
+            "t.toml:11: output[0].sentences: unknown sentence 'GGX' (known: GGA RMC GSA GSV VTG GLL GST ZDA)");
+}
+
+TEST(ConfigValidation, SentenceListedTwiceOrEmpty) {
+  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"a\"\npath = \"/tmp/a\"\nsentences = [\"GGA\", \"GGA\"]\n"),
+            "t.toml:10: output[0].sentences: 'GGA' listed twice");
+  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"a\"\npath = \"/tmp/a\"\nsentences = []\n"),
+            "t.toml:10: output[0].sentences: must name at least one sentence");
+}
+
+TEST(ConfigValidation, UnknownNmeaVersion) {
+  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"a\"\npath = \"/tmp/a\"\nnmea_version = \"4.0\"\n"),
+            "t.toml:10: output[0].nmea_version: '4.0' is not one of \"2.3\", \"4.10\", \"4.11\"");
+}
+
+TEST(ConfigValidation, UnknownPortType) {
+  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"a\"\ntype = \"usb\"\npath = \"/tmp/a\"\n"),
+            "t.toml:9: output[0].type: 'usb' is not one of \"pty\", \"serial\", \"tcp\", \"udp\", \"file\"");
+}
+
+TEST(ConfigValidation, DuplicateOutputName) {
+  const std::string text = kBase +
+                           "[[output]]\nname = \"gps0\"\npath = \"/tmp/gnssemu/a\"\n"  // 7-9
+                           "[[output]]\nname = \"gps0\"\npath = \"/tmp/gnssemu/b\"\n";  // 10-12
+  EXPECT_EQ(error_of(text), "t.toml:11: output[1].name: 'gps0' is used twice");
+}
+
+TEST(ConfigValidation, DuplicateOutputPath) {
+  const std::string text = kBase +
+                           "[[output]]\nname = \"a\"\npath = \"/tmp/gnssemu/gps0\"\n"  // 7-9
+                           "[[output]]\nname = \"b\"\npath = \"/tmp/gnssemu/gps0\"\n";  // 10-12
+  EXPECT_EQ(error_of(text), "t.toml:12: output[1].path: '/tmp/gnssemu/gps0' is already used by output 'a'");
+}
+
+TEST(ConfigValidation, DuplicateFilePathAfterResolution) {
+  const std::string text = kBase +
+                           "[[output]]\nname = \"a\"\ntype = \"file\"\npath = \"out/x.nmea\"\n"         // 7-10
+                           "[[output]]\nname = \"b\"\ntype = \"file\"\npath = \"out/../out/x.nmea\"\n";  // 11-14
+  EXPECT_EQ(error_of(text),
+            "t.toml:14: output[1].path: '" + kData + "/out/x.nmea' is already used by output 'a'");
+}
+
+TEST(ConfigValidation, RelativePtyPathRejected) {
+  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"a\"\npath = \"gps0\"\n"),
+            "t.toml:9: output[0].path: pty path 'gps0' must be absolute");
+}
+
+TEST(ConfigValidation, OutputNameChecks) {
+  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"\"\npath = \"/tmp/a\"\n"),
+            "t.toml:8: output[0].name: must not be empty");
+  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"gps 0\"\npath = \"/tmp/a\"\n"),
+            "t.toml:8: output[0].name: 'gps 0' contains a space or control character");
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
-// [scene]: mesh path relative to the config file, placement, search effort,
-// material losses; file:line errors; round trip through to_toml.
+// [scene] (config/scene_keys): mesh path relative to the config file,
+// placement, search effort, material losses; file:line errors; round trip
+// through to_toml.
 #include <gtest/gtest.h>
 
-#include "config/scene_loader.hpp"
 #include "test_helpers.hpp"
 
 namespace gnssemu::config {
@@ -50,21 +50,6 @@ TEST(ConfigScene, EveryKeyParsed) {
   EXPECT_EQ(s.material_loss_db[0].name, "glass");
   EXPECT_EQ(s.material_loss_db[0].loss_db, 1.5);
   EXPECT_EQ(s.material_loss_db[0].line, 22);
-  // The scene loads, placed: the 400 m ground turned 90 deg and offset.
-  scene::MeshStats stats;
-  const auto sc = load_scene(c, &stats);
-  ASSERT_NE(sc, nullptr);
-  EXPECT_EQ(stats.skipped(), 0);
-  EXPECT_EQ(sc->triangle_count(), 2u + 12u + 12u);
-  EXPECT_NEAR(sc->bounds_min_m().y, -5.5 - 400.0, 1e-3);
-  EXPECT_NEAR(sc->bounds_max_m().x, 10.0 + 400.0, 1e-3);
-  EXPECT_NEAR(sc->bounds_max_m().z, 30.25, 1e-3);
-}
-
-TEST(ConfigScene, NoSceneSectionNoScene) {
-  const Config c = parse(kBase);
-  EXPECT_FALSE(c.scene.has_value());
-  EXPECT_EQ(load_scene(c), nullptr);
 }
 
 TEST(ConfigScene, ErrorsNameFileAndLine) {
@@ -79,15 +64,6 @@ TEST(ConfigScene, ErrorsNameFileAndLine) {
             std::string::npos);
   EXPECT_NE(error_of(kBase + "[scene]\nmesh = \"scenes/empty.obj\"\nscale = 0\n").find("t.toml:9:"), std::string::npos);
   EXPECT_NE(error_of(kBase + "[scene]\noffset_m = [0, 0, 0]\n").find("t.toml:7:"), std::string::npos);
-  // A material the mesh does not have: config file and line.
-  const Config c = parse(kBase + "[scene]\nmesh = \"scenes/street_canyon.toml\"\n[scene.material_loss_db]\nmarble = 2\n");
-  try {
-    load_scene(c);
-    ADD_FAILURE() << "no error";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("t.toml:10: scene.material_loss_db.marble"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("concrete, glass"), std::string::npos) << e.what();
-  }
 }
 
 TEST(ConfigScene, RoundTrip) {

@@ -1,6 +1,6 @@
-// [atmosphere], [signal], [receiver.corrections]: every key parsed, exact
-// round trip through to_toml, default.toml equal to the struct defaults, and
-// every bad value an error naming file:line.
+// [atmosphere] and its sub-tables (config/atmosphere_keys): every key
+// parsed, exact round trip through to_toml, default.toml equal to the struct
+// defaults, and every bad value an error naming file:line.
 #include <string>
 
 #include "test_helpers.hpp"
@@ -8,16 +8,8 @@
 namespace gnssemu::config::test {
 namespace {
 
-// Every new key, each different from its default; kBase is lines 1-6.
-const std::string kAll = kBase + R"(
-[receiver.errors]
-thermal_model = "fixed"
-[receiver.solver]
-sigma_c_m_sqrt_hz = 95.5
-[receiver.corrections]
-ionosphere = "none"
-troposphere = "zhd_niell"
-
+// Every key, each different from its default; kBase is lines 1-6.
+const std::string kAtmosphere = kBase + R"(
 [atmosphere]
 cache_refresh_s = 30
 cache_mode = "hold"
@@ -73,33 +65,9 @@ rain_height_m = 4200
 k = 6.0e-5
 alpha = 0.95
 
-[signal]
-enabled = false
-environment = "urban"
-eirp_dbw = 27.5
-noise_figure_db = 1.5
-noise_temperature_k = 300
-implementation_loss_db = 1.25
-acquire_dbhz = 33
-lose_dbhz = 28.5
-
-[signal.antenna]
-zenith_gain_dbi = 5.5
-horizon_gain_dbi = -8.5
-below_horizon_slope_db_per_deg = 0.5
-
-[signal.dll]
-loop_bandwidth_hz = 1.0
-integration_s = 0.005
-spacing_chips = 0.1
-discriminator = "dot_product"
 )";
 
-void expect_same_models(const Config& a, const Config& b) {
-  EXPECT_EQ(a.world.errors.thermal_model, b.world.errors.thermal_model);
-  EXPECT_EQ(a.receiver.solver.sigma_c_m_sqrt_hz, b.receiver.solver.sigma_c_m_sqrt_hz);
-  EXPECT_EQ(a.receiver.solver.iono, b.receiver.solver.iono);
-  EXPECT_EQ(a.receiver.solver.tropo, b.receiver.solver.tropo);
+void expect_same_atmosphere(const Config& a, const Config& b) {
   const world::AtmosphereConfig &x = a.world.atmosphere, &y = b.world.atmosphere;
   EXPECT_EQ(x.cache_refresh_s, y.cache_refresh_s);
   EXPECT_EQ(x.cache_mode, y.cache_mode);
@@ -145,30 +113,11 @@ void expect_same_models(const Config& a, const Config& b) {
   EXPECT_EQ(x.clouds_rain.rain.rain_height_m, y.clouds_rain.rain.rain_height_m);
   EXPECT_EQ(x.clouds_rain.rain.k, y.clouds_rain.rain.k);
   EXPECT_EQ(x.clouds_rain.rain.alpha, y.clouds_rain.rain.alpha);
-  const world::SignalConfig &s = a.world.signal, &t = b.world.signal;
-  EXPECT_EQ(s.enabled, t.enabled);
-  EXPECT_EQ(s.link.environment_noise_rise_db, t.link.environment_noise_rise_db);
-  EXPECT_EQ(s.link.eirp_dbw, t.link.eirp_dbw);
-  EXPECT_EQ(s.link.noise_figure_db, t.link.noise_figure_db);
-  EXPECT_EQ(s.link.noise_temperature_k, t.link.noise_temperature_k);
-  EXPECT_EQ(s.link.implementation_loss_db, t.link.implementation_loss_db);
-  EXPECT_EQ(a.receiver.tracking.acquire_dbhz, b.receiver.tracking.acquire_dbhz);
-  EXPECT_EQ(a.receiver.tracking.lose_dbhz, b.receiver.tracking.lose_dbhz);
-  EXPECT_EQ(s.link.antenna.zenith_gain_dbi, t.link.antenna.zenith_gain_dbi);
-  EXPECT_EQ(s.link.antenna.horizon_gain_dbi, t.link.antenna.horizon_gain_dbi);
-  EXPECT_EQ(s.link.antenna.below_horizon_slope_db_per_deg, t.link.antenna.below_horizon_slope_db_per_deg);
-  EXPECT_EQ(s.dll.loop_bandwidth_hz, t.dll.loop_bandwidth_hz);
-  EXPECT_EQ(s.dll.integration_s, t.dll.integration_s);
-  EXPECT_EQ(s.dll.spacing_chips, t.dll.spacing_chips);
-  EXPECT_EQ(s.dll.discriminator, t.dll.discriminator);
 }
 
 TEST(AtmosphereConfig, EveryKeyParsed) {
-  const Config c = parse(kAll);
+  const Config c = parse(kAtmosphere);
   const world::WorldConfig& w = c.world;
-  const receiver::ReceiverConfig& r = c.receiver;
-  EXPECT_EQ(w.errors.thermal_model, world::ThermalModel::kFixed);
-  EXPECT_EQ(r.solver.tropo, atmosphere::TropoCorrection::kZhdNiell);
   EXPECT_EQ(w.atmosphere.cache_mode, atmosphere::CacheMode::kHold);
   EXPECT_EQ(w.atmosphere.ionosphere.mapping, atmosphere::IonoMapping::kThinShell);
   EXPECT_EQ(w.atmosphere.ionosphere.perturbation.sigma, 2.5);
@@ -183,22 +132,22 @@ TEST(AtmosphereConfig, EveryKeyParsed) {
   EXPECT_EQ(w.atmosphere.clouds_rain.layers[0].temperature_k, 270.5);
   EXPECT_EQ(w.atmosphere.clouds_rain.layers[1].thickness_m, 350.5);
   EXPECT_EQ(w.atmosphere.clouds_rain.rain.rate_mm_h, 100.0);
-  EXPECT_EQ(w.signal.link.environment_noise_rise_db, 6.0);  // "urban"
-  EXPECT_EQ(r.tracking.lose_dbhz, 28.5);
-  EXPECT_EQ(w.signal.link.antenna.horizon_gain_dbi, -8.5);
-  EXPECT_EQ(w.signal.dll.discriminator, signal::DllDiscriminator::kDotProduct);
-  EXPECT_FALSE(w.signal.enabled);
 }
 
 TEST(AtmosphereConfig, RoundTripIsExact) {
-  const Config c = parse(kAll);
+  const Config c = parse(kAtmosphere);
   const std::string text = to_toml(c, kData);
   const Config back = parse_config(text, "written.toml", kData);
-  expect_same_models(c, back);
+  expect_same_atmosphere(c, back);
   EXPECT_EQ(to_toml(back, kData), text);
   // The struct defaults too.
   const Config d = parse(kBase);
-  expect_same_models(d, parse(to_toml(d, kData)));
+  expect_same_atmosphere(d, parse(to_toml(d, kData)));
+}
+
+TEST(AtmosphereConfig, DefaultTomlIsTheStructDefaults) {
+  const Config shipped = load_config(kSource + "/config/default.toml");
+  expect_same_atmosphere(shipped, Config{});
 }
 
 TEST(AtmosphereConfig, ShellsMovedTogetherDoNotOverlap) {
@@ -210,11 +159,6 @@ TEST(AtmosphereConfig, ShellsMovedTogetherDoNotOverlap) {
   // A disabled shell overlaps nothing.
   EXPECT_NO_THROW(parse(kBase + "[atmosphere.shells.stratosphere]\ntop_m = 60000\n"
                                 "[atmosphere.shells.mesosphere]\nenabled = false\n"));
-}
-
-TEST(AtmosphereConfig, DefaultTomlIsTheStructDefaults) {
-  const Config shipped = load_config(kSource + "/config/default.toml");
-  expect_same_models(shipped, Config{});
 }
 
 struct Bad {
@@ -234,33 +178,21 @@ TEST(AtmosphereConfig, BadValuesNameFileAndLine) {
        "t.toml:8: atmosphere.shells.troposphere.temperature_k: 0 is out of range (0, 5000] K"},
       {"[[atmosphere.clouds]]\npreset = \"fog\"\ntemperature_k = -3\n",
        "t.toml:9: atmosphere.clouds[0].temperature_k: -3 is out of range (0, 5000] K"},
-      {"[signal]\nnoise_temperature_k = 0.0\n", "t.toml:8: signal.noise_temperature_k: 0 is out of range (0, 5000] K"},
       {"[[atmosphere.clouds]]\npreset = \"nimbus\"\n",
        "t.toml:8: atmosphere.clouds[0].preset: unknown cloud preset 'nimbus' (known: fog, thick_fog, stratus, "
        "cumulus, cumulonimbus, thunderstorm)"},
-      {"[signal]\nenvironment = \"desert\"\n",
-       "t.toml:8: signal.environment: unknown environment noise preset 'desert' (known: countryside, suburban, "
-       "urban, industrial, jamming)"},
-      {"[signal]\nenvironment = \"urban\"\nnoise_rise_db = 3\n",
-       "t.toml:9: signal.noise_rise_db: give either environment or noise_rise_db, not both"},
-      {"[signal]\nacquire_dbhz = 28\nlose_dbhz = 30\n",
-       "t.toml:9: signal: lose_dbhz 30 exceeds acquire_dbhz 28 (hysteresis needs lose <= acquire)"},
-      {"[signal.antenna]\nzenith_gain_dbi = -2\nhorizon_gain_dbi = 1\n",
-       "t.toml:9: signal.antenna: horizon_gain_dbi 1 exceeds zenith_gain_dbi -2"},
       {"[atmosphere.ionosphere]\nmapping = \"flat\"\n",
        "t.toml:8: atmosphere.ionosphere.mapping: 'flat' is not one of \"obliquity\", \"thin_shell\""},
-      {"[receiver.corrections]\ntroposphere = \"hopfield\"\n",
-       "t.toml:8: receiver.corrections.troposphere: 'hopfield' is not one of \"saastamoinen\", \"zhd_niell\", \"saastamoinen_cosz\", \"none\""},
       {"[atmosphere.ionosphere]\nvtec_tecu = -1\n", "t.toml:8: atmosphere.ionosphere.vtec_tecu: -1 is out of range"},
       {"[atmosphere.rain]\nrate_mm_h = 600\n", "t.toml:8: atmosphere.rain.rate_mm_h: 600 is out of range [0, 500] mm/h"},
       {"[atmosphere]\ncache_refresh_s = -1\n", "t.toml:8: atmosphere.cache_refresh_s: -1 is out of range"},
       {"[atmosphere.troposphere.zwd_perturbation]\ntau_s = 0\n",
        "t.toml:8: atmosphere.troposphere.zwd_perturbation.tau_s: 0 is out of range"},
-      {"[signal.dll]\nspacing_chips = 1.5\n", "t.toml:8: signal.dll.spacing_chips: 1.5 is out of range (0, 1] chips"},
       {"[[atmosphere.clouds]]\nbase_m = 100\n",
        "t.toml:7: missing required key (or a preset) 'atmosphere.clouds[0].thickness_m'"},
       {"[atmosphere.ionosphere]\nenabeld = true\n",
        "t.toml:8: unknown key 'atmosphere.ionosphere.enabeld' (did you mean 'enabled'?)"},
+
   };
   for (const Bad& b : cases) {
     const std::string err = error_of(kBase + b.text);

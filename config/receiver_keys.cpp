@@ -1,0 +1,178 @@
+// [receiver] and its sub-tables: the receiver's own settings and the
+// world's error processes and oscillator. Ranges: the core's.
+#include <limits>
+
+#include "config/config_keys.hpp"
+
+namespace gnssemu::config::detail {
+
+namespace {
+
+using receiver::ReceiverConfig;
+using receiver::SolverConfig;
+using world::ClockConfig;
+using world::ErrorModelConfig;
+using world::GaussMarkovConfig;
+using world::WorldConfig;
+using Gm = world::GaussMarkovRanges;
+using Gradient = ErrorModelConfig::Gradient;
+
+constexpr Choice<world::ThermalModel> kThermalModels[] = {{"dll", world::ThermalModel::kDll},
+                                                          {"fixed", world::ThermalModel::kFixed}};
+constexpr Choice<atmosphere::IonoCorrection> kIonoCorrections[] = {
+    {"klobuchar", atmosphere::IonoCorrection::kKlobuchar}, {"none", atmosphere::IonoCorrection::kNone}};
+constexpr Choice<atmosphere::TropoCorrection> kTropoCorrections[] = {
+    {"saastamoinen", atmosphere::TropoCorrection::kSaastamoinenNiell},
+    {"zhd_niell", atmosphere::TropoCorrection::kZhdNiell},
+    {"saastamoinen_cosz", atmosphere::TropoCorrection::kSaastamoinenCosZ},
+    {"none", atmosphere::TropoCorrection::kNone}};
+
+// --- [receiver.errors.*] ---------------------------------------------------
+
+constexpr Field<GaussMarkovConfig> kOrbitClockFields[] = {
+    number<&GaussMarkovConfig::sigma_m>("sigma_m", Gm::sigma_m, "steady-state 1 sigma; 0 disables"),
+    number<&GaussMarkovConfig::tau_s>("tau_s", Gm::tau_s, "correlation time"),
+};
+constexpr Section<GaussMarkovConfig> kOrbitClock{kOrbitClockFields};
+
+constexpr Field<GaussMarkovConfig> kMultipathFields[] = {
+    number<&GaussMarkovConfig::sigma_m>("sigma_m", Gm::sigma_m, "1 sigma at the zenith; 0 disables"),
+    number<&GaussMarkovConfig::tau_s>("tau_s", Gm::tau_s, "correlation time"),
+};
+constexpr Section<GaussMarkovConfig> kMultipath{kMultipathFields};
+
+constexpr Field<Gradient> kGradientFields[] = {
+    number<&Gradient::north_m>("north_m", world::ErrorModelRanges::gradient_north_m, "mean north component"),
+    number<&Gradient::east_m>("east_m", world::ErrorModelRanges::gradient_east_m, "mean east component"),
+    number<&Gradient::north_diurnal_m>("north_diurnal_m", world::ErrorModelRanges::gradient_north_diurnal_m,
+                                       "amplitude of the daily cycle of the north component"),
+    number<&Gradient::north_peak_h>("north_peak_h", world::ErrorModelRanges::gradient_north_peak_h,
+                                    "local time of its maximum"),
+    number<&Gradient::east_diurnal_m>("east_diurnal_m", world::ErrorModelRanges::gradient_east_diurnal_m,
+                                      "amplitude of the daily cycle of the east component"),
+    number<&Gradient::east_peak_h>("east_peak_h", world::ErrorModelRanges::gradient_east_peak_h,
+                                   "local time of its maximum"),
+    number<&Gradient::process, &GaussMarkovConfig::sigma_m>("sigma_m", Gm::sigma_m,
+                                                            "1 sigma of g_N and of g_E; 0 disables"),
+    number<&Gradient::process, &GaussMarkovConfig::tau_s>("tau_s", Gm::tau_s, "correlation time"),
+};
+constexpr Section<Gradient> kGradient{kGradientFields};
+
+constexpr Field<ErrorModelConfig> kErrorsFields[] = {
+    choice<kThermalModels, &ErrorModelConfig::thermal_model>(
+        "thermal_model", "white code noise σ: DLL thermal jitter at each satellite's C/N0 (`[signal.dll]`), or "
+                         "`thermal_sigma_m`"),
+    number<&ErrorModelConfig::thermal_sigma_m>("thermal_sigma_m", world::ErrorModelRanges::thermal_sigma_m,
+                                               "white pseudorange noise, 1 sigma (`thermal_model = \"fixed\"`)"),
+    number<&ErrorModelConfig::doppler_sigma_m_s>("doppler_sigma_m_s", world::ErrorModelRanges::doppler_sigma_m_s,
+                                                 "white range-rate noise, 1 sigma"),
+    table<kOrbitClock, &ErrorModelConfig::orbit_clock>("orbit_clock", "first-order Gauss-Markov"),
+    table<kMultipath, &ErrorModelConfig::multipath>("multipath",
+                                                    "unit Gauss-Markov x sigma_m / sin(el); sigma_m 0 = off"),
+    table<kGradient, &ErrorModelConfig::gradient>(
+        "gradient", "delay += G_N cos(az) + G_E sin(az); G_N = north_m + north_diurnal_m cos(2 pi (LT - north_peak_h) "
+                    "/ 24 h) + g_N (E alike); g: Gauss-Markov"),
+};
+constexpr Section<ErrorModelConfig> kErrors{kErrorsFields};
+
+// --- [receiver.clock] ------------------------------------------------------
+
+constexpr Field<ClockConfig> kClockFields[] = {
+    number<&ClockConfig::bias_s>("bias_s", world::ClockRanges::bias_s, "initial clock bias"),
+    number<&ClockConfig::drift_s_s>("drift_s_s", world::ClockRanges::drift_s_s,
+                                    "initial drift (10 ppm covers any TCXO)"),
+    number<&ClockConfig::drift_noise_s_s_sqrt_s>("drift_noise_s_s_sqrt_s", world::ClockRanges::drift_noise_s_s_sqrt_s,
+                                                 "drift random-walk density"),
+    number<&ClockConfig::jump_threshold_s>("jump_threshold_s", world::ClockRanges::jump_threshold_s,
+                                           "when \\|bias\\| exceeds this, the clock steps by whole multiples of it "
+                                           "(millisecond jumps); 0 disables"),
+};
+constexpr Section<ClockConfig> kClock{kClockFields};
+
+// --- [receiver.solver], [receiver.corrections] -----------------------------
+
+using Sr = receiver::SolverRanges;
+constexpr Field<SolverConfig> kSolverFields[] = {
+    number<&SolverConfig::sigma_a_m>("sigma_a_m", Sr::sigma_a_m,
+                                     "pseudorange weight model σ² = a² + b²/sin²(el) + c²·10^(−C/N0/10)"),
+    number<&SolverConfig::sigma_b_m>("sigma_b_m", Sr::sigma_b_m, "(a and b may not both be 0)"),
+    rule<SolverConfig, receiver::check_weights>(),
+    number<&SolverConfig::sigma_c_m_sqrt_hz>("sigma_c_m_sqrt_hz", Sr::sigma_c_m_sqrt_hz,
+                                             "C/N0 term of the weights; 0: elevation only"),
+    number<&SolverConfig::iono_model_fraction>(
+        "iono_model_fraction", Sr::iono_model_fraction,
+        "adds (f·I_Klobuchar)² to σ² when the receiver corrects the ionosphere (RTKLIB ERR_BRDCI = 0.5); 0: left out"),
+    number<&SolverConfig::tropo_model_sigma_m>("tropo_model_sigma_m", Sr::tropo_model_sigma_m,
+                                               "adds (s / (sin el + 0.1))² to σ² when the receiver corrects the "
+                                               "troposphere (RTKLIB ERR_SAAS = 0.3 m); 0: left out"),
+    number<&SolverConfig::sigma_range_rate_m_s>("sigma_range_rate_m_s", Sr::sigma_range_rate_m_s,
+                                                "Doppler range-rate 1 sigma"),
+    number<&SolverConfig::height_hold_sigma_m>("height_hold_sigma_m", Sr::height_hold_sigma_m,
+                                               "1 sigma of the held height in 2D fixes"),
+    number<&SolverConfig::residual_test_pfa>(
+        "residual_test_pfa", Sr::residual_test_pfa,
+        "false-alarm probability of the chi-square test on post-fit residuals (fails → the worst satellite is "
+        "excluded and the epoch re-solved while ≥ 5 remain and at most `max_exclusions` are out, else no fix; "
+        "docs/models.md); below 0.5, where the threshold would fall below the median; 0 disables"),
+    integer<&SolverConfig::max_exclusions>(
+        "max_exclusions", Sr::max_exclusions,
+        "satellites fault exclusion may remove per epoch: 1 = RAIM's single-fault assumption (DO-229, RTKLIB "
+        "`raim_fde`); more keeps fixes in canyons with several NLOS satellites but also keeps wrong fixes when every "
+        "satellite is biased (an ionospheric storm); 0 = detection only"),
+    integer<&SolverConfig::max_iterations>("max_iterations", Sr::max_iterations, "Gauss–Newton iterations at most"),
+};
+constexpr Section<SolverConfig> kSolver{kSolverFields, [](const SolverConfig& s) { receiver::validate(s); }};
+
+constexpr Field<SolverConfig> kCorrectionsFields[] = {
+    choice<kIonoCorrections, &SolverConfig::iono>(
+        "ionosphere", "broadcast Klobuchar at L1 with the nav header's ION ALPHA/BETA (RINEX 2) or GPSA/GPSB "
+                      "(RINEX 3); a file without them: RTKLIB's default coefficients"),
+    choice<kTropoCorrections, &SolverConfig::tropo>(
+        "troposphere", "Saastamoinen ZHD + ZWD of the standard atmosphere (RH 0.7) × Niell; or 2.31·e^(−1.2e-4 h) × "
+                       "Niell hydrostatic; or the Saastamoinen zenith delays × 1/sin(el) as RTKLIB's `tropmodel` (to "
+                       "compare with rnx2rtkp)"),
+};
+constexpr Section<SolverConfig> kCorrections{kCorrectionsFields};
+
+// --- [receiver] ------------------------------------------------------------
+
+// Any 64-bit seed is valid; TOML integers stop at 2^63 - 1.
+constexpr Field<Config> seed_field() {
+  Field<Config> row = integer<&Config::world, &WorldConfig::seed>(
+      "seed", 0, std::numeric_limits<int64_t>::max(),
+      "seed of every random process; same seed and inputs, same output");
+  row.write = [](TomlWriter& w, const Field<Config>& f, const Config& c) {
+    if (c.world.seed > static_cast<uint64_t>(std::numeric_limits<int64_t>::max())) {
+      throw Error("receiver.seed " + std::to_string(c.world.seed) + " does not fit a TOML integer (max 2^63 - 1)");
+    }
+    w.key(f.key, std::to_string(c.world.seed), f.note);
+  };
+  return row;
+}
+
+using Rr = receiver::ReceiverRanges;
+constexpr Field<Config> kReceiverFields[] = {
+    number<&Config::rate_hz>("rate_hz", Range{1.0, 10.0, "Hz"},
+                             "navigation epoch rate (u-blox M8 GPS-only maximum 10 Hz)"),
+    angle<&Config::receiver, &ReceiverConfig::elevation_mask_rad>("elevation_mask_deg", Rr::elevation_mask_deg,
+                                                                  "satellites below are not used"),
+    seed_field(),
+    number<&Config::world, &WorldConfig::nominal_cn0_dbhz>(
+        "nominal_cn0_dbhz", world::WorldRanges::nominal_cn0_dbhz,
+        "zenith C/N0 when `[signal] enabled = false` (then C/N0 = nominal − 10·(1 − sin el)²)"),
+    number<&Config::receiver, &ReceiverConfig::max_pdop>("max_pdop", Rr::max_pdop,
+                                                         "above this PDOP the fix is reported as none"),
+    integer<&Config::receiver, &ReceiverConfig::max_channels>("max_channels", Rr::max_channels,
+                                                              "satellites tracked at most (highest first)"),
+    table<kErrors, &Config::world, &WorldConfig::errors>("errors"),
+    table<kClock, &Config::world, &WorldConfig::clock>("clock"),
+    table<kSolver, &Config::receiver, &ReceiverConfig::solver>("solver", "what the receiver's own solver assumes"),
+    table<kCorrections, &Config::receiver, &ReceiverConfig::solver>(
+        "corrections", "what the receiver subtracts (broadcast models)"),
+};
+
+}  // namespace
+
+constexpr Section<Config> kReceiverKeys{kReceiverFields, [](const Config& c) { receiver::validate(c.receiver); }};
+
+}  // namespace gnssemu::config::detail

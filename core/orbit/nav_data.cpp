@@ -1,0 +1,25 @@
+#include "core/orbit/nav_data.hpp"
+
+namespace gnssemu::orbit {
+
+NavData merge(const std::vector<NavData>& files) {
+  if (files.size() == 1) return files.front();
+  NavData out;
+  bool leap_conflict = false;
+  for (const NavData& f : files) {
+    out.source += (out.source.empty() ? "" : " + ") + f.source;
+    if (out.rinex_version == 0.0) out.rinex_version = f.rinex_version;
+    out.ephemerides.insert(out.ephemerides.end(), f.ephemerides.begin(), f.ephemerides.end());
+    if (!out.klobuchar.valid && f.klobuchar.valid) out.klobuchar = f.klobuchar;
+    if (!out.utc.valid && f.utc.valid) out.utc = f.utc;
+    if (f.leap_seconds) {
+      if (out.leap_seconds && *out.leap_seconds != *f.leap_seconds) leap_conflict = true;
+      if (!out.leap_seconds) out.leap_seconds = f.leap_seconds;
+    }
+    out.skipped_records += f.skipped_records;
+  }
+  if (leap_conflict) out.leap_seconds.reset();
+  return out;
+}
+
+}  // namespace gnssemu::orbit

@@ -1,0 +1,188 @@
+// [receiver] and its sub-tables (config/receiver_keys): ranges from the
+// core, the solver's and the receiver's rules, the receiver's own
+// corrections and error models; each assertion pins "file:line: reason".
+#include <string>
+
+#include "test_helpers.hpp"
+
+namespace gnssemu::config::test {
+namespace {
+
+TEST(ConfigValidation, RateOutsideOneToTenHz) {
+  EXPECT_EQ(error_of(kBase + "[receiver]\nrate_hz = 0.5\n"),
+            "t.toml:8: receiver.rate_hz: 0.5 is out of range [1, 10] Hz");
+  EXPECT_EQ(error_of(kBase + "[receiver]\nrate_hz = 10.5\n"),
+            "t.toml:8: receiver.rate_hz: 10.5 is out of range [1, 10] Hz");
+  EXPECT_EQ(parse(kBase + "[receiver]\nrate_hz = 10\n").rate_hz, 10.0);
+  EXPECT_EQ(parse(kBase + "[receiver]\nrate_hz = 1\n").rate_hz, 1.0);
+}
+
+TEST(ConfigValidation, MaskOutsideZeroToNinety) {
+  EXPECT_EQ(error_of(kBase + "[receiver]\nelevation_mask_deg = -1\n"),
+            "t.toml:8: receiver.elevation_mask_deg: -1 is out of range [0, 90) deg");
+  EXPECT_EQ(error_of(kBase + "[receiver]\nelevation_mask_deg = 90\n"),
+            "t.toml:8: receiver.elevation_mask_deg: 90 is out of range [0, 90) deg");
+  EXPECT_EQ(parse(kBase + "[receiver]\nelevation_mask_deg = 0\n").receiver.elevation_mask_rad, 0.0);
+}
+
+TEST(ConfigValidation, NegativeSigmas) {
+  EXPECT_EQ(error_of(kBase + "[receiver.errors]\nthermal_sigma_m = -0.1\n"),
+            "t.toml:8: receiver.errors.thermal_sigma_m: -0.1 is out of range [0, 100] m");
+  EXPECT_EQ(error_of(kBase + "[receiver.errors]\ndoppler_sigma_m_s = -1\n"),
+            "t.toml:8: receiver.errors.doppler_sigma_m_s: -1 is out of range [0, 10] m/s");
+  EXPECT_EQ(error_of(kBase + "[receiver.errors.orbit_clock]\nsigma_m = -2\n"),
+            "t.toml:8: receiver.errors.orbit_clock.sigma_m: -2 is out of range [0, 100] m");
+  EXPECT_EQ(error_of(kBase + "[receiver.clock]\ndrift_noise_s_s_sqrt_s = -1e-12\n"),
+            "t.toml:8: receiver.clock.drift_noise_s_s_sqrt_s: -1e-12 is out of range [0, 1e-06] s/s/sqrt(s)");
+  // Zero disables a process and is allowed.
+  EXPECT_EQ(parse(kBase + "[receiver.errors]\nthermal_sigma_m = 0\n").world.errors.thermal_sigma_m, 0.0);
+}
+
+TEST(ConfigValidation, TauNotPositive) {
+  EXPECT_EQ(error_of(kBase + "[receiver.errors.orbit_clock]\ntau_s = 0\n"),
+            "t.toml:8: receiver.errors.orbit_clock.tau_s: 0 is out of range (0, 1000000] s");
+  EXPECT_EQ(error_of(kBase + "[receiver.errors.orbit_clock]\nsigma_m = 1\ntau_s = -60\n"),
+            "t.toml:9: receiver.errors.orbit_clock.tau_s: -60 is out of range (0, 1000000] s");
+}
+
+TEST(ConfigValidation, SolverRanges) {
+  EXPECT_EQ(error_of(kBase + "[receiver.solver]\nsigma_b_m = -0.3\n"),
+            "t.toml:8: receiver.solver.sigma_b_m: -0.3 is out of range [0, 100] m");
+  EXPECT_EQ(error_of(kBase + "[receiver.solver]\nsigma_a_m = 0\nsigma_b_m = 0\n"),
+            "t.toml:8: receiver.solver: sigma_a_m and sigma_b_m are both 0 (the solver's weights would be infinite)");
+  EXPECT_EQ(error_of(kBase + "[receiver.solver]\nsigma_range_rate_m_s = 0\n"),
+            "t.toml:8: receiver.solver.sigma_range_rate_m_s: 0 is out of range (0, 10] m/s");
+  EXPECT_EQ(error_of(kBase + "[receiver.solver]\nheight_hold_sigma_m = -1\n"),
+            "t.toml:8: receiver.solver.height_hold_sigma_m: -1 is out of range (0, 1000] m");
+  EXPECT_EQ(error_of(kBase + "[receiver.solver]\nresidual_test_pfa = 1\n"),
+            "t.toml:8: receiver.solver.residual_test_pfa: 1 is out of range [0, 0.5)");
+  EXPECT_EQ(error_of(kBase + "[receiver.solver]\nmax_iterations = 0\n"),
+            "t.toml:8: receiver.solver.max_iterations: 0 is out of range [1, 100]");
+  EXPECT_EQ(parse(kBase + "[receiver.solver]\nsigma_a_m = 0\n").receiver.solver.sigma_a_m, 0.0);
+}
+
+TEST(ConfigValidation, ClockOutOfRange) {
+  EXPECT_EQ(error_of(kBase + "[receiver.clock]\nbias_s = 0.5\n"),
+            "t.toml:8: receiver.clock.bias_s: 0.5 is out of range [-0.01, 0.01] s");
+  EXPECT_EQ(error_of(kBase + "[receiver.clock]\njump_threshold_s = -1e-3\n"),
+            "t.toml:8: receiver.clock.jump_threshold_s: -0.001 is out of range [0, 0.01] s");
+  EXPECT_EQ(error_of(kBase + "[receiver.clock]\ndrift_s_s = 1e-3\n"),
+            "t.toml:8: receiver.clock.drift_s_s: 0.001 is out of range [-1e-05, 1e-05] s/s");
+}
+
+TEST(ConfigValidation, ReceiverLimits) {
+  EXPECT_EQ(error_of(kBase + "[receiver]\nmax_channels = 3\n"),
+            "t.toml:8: receiver.max_channels: 3 is out of range [4, 32]");
+  EXPECT_EQ(error_of(kBase + "[receiver]\nseed = -1\n"),
+            "t.toml:8: receiver.seed: -1 is out of range [0, 9223372036854775807]");
+  EXPECT_EQ(error_of(kBase + "[receiver]\nmax_pdop = 0.5\n"),
+            "t.toml:8: receiver.max_pdop: 0.5 is out of range [1, 1000]");
+  EXPECT_EQ(error_of(kBase + "[receiver]\nnominal_cn0_dbhz = 70\n"),
+            "t.toml:8: receiver.nominal_cn0_dbhz: 70 is out of range [10, 60] dB-Hz");
+}
+
+TEST(ConfigValidation, CoreRangesAreTheConfigRanges) {
+  // One range per setting, owned by the core: what the file accepts, the
+  // receiver accepts; what the receiver rejects is named at its file:line.
+  EXPECT_EQ(error_of(kBase + "[receiver]\nmax_channels = 40\n"),
+            "t.toml:8: receiver.max_channels: 40 is out of range [4, 32]");
+  EXPECT_EQ(parse(kBase + "[receiver]\nmax_channels = 32\n").receiver.max_channels, 32);
+  EXPECT_EQ(error_of(kBase + "[receiver.solver]\nresidual_test_pfa = 0.7\n"),
+            "t.toml:8: receiver.solver.residual_test_pfa: 0.7 is out of range [0, 0.5)");
+}
+
+// [receiver.errors.multipath] and [receiver.errors.gradient]: the terms
+// `gnssemu calibrate` fits; bad values name file:line, defaults are off.
+
+TEST(ConfigCalibrationTerms, DefaultsAreOff) {
+  const Config c = parse(kBase);
+  EXPECT_EQ(c.world.errors.multipath.sigma_m, 0.0);
+  EXPECT_EQ(c.world.errors.multipath.tau_s, 60.0);
+  EXPECT_EQ(c.world.errors.gradient.north_m, 0.0);
+  EXPECT_EQ(c.world.errors.gradient.east_m, 0.0);
+  EXPECT_EQ(c.world.errors.gradient.process.sigma_m, 0.0);
+  EXPECT_EQ(c.world.errors.gradient.north_diurnal_m, 0.0);
+  EXPECT_EQ(c.world.errors.gradient.east_diurnal_m, 0.0);
+}
+
+TEST(ConfigCalibrationTerms, BadValuesNameFileAndLine) {
+  EXPECT_EQ(error_of(kBase + "[receiver.errors.multipath]\nsigma_m = -0.1\n"),
+            "t.toml:8: receiver.errors.multipath.sigma_m: -0.1 is out of range [0, 100] m");
+  EXPECT_EQ(error_of(kBase + "[receiver.errors.multipath]\nsigma_m = 0.1\ntau_s = 0\n"),
+            "t.toml:9: receiver.errors.multipath.tau_s: 0 is out of range (0, 1000000] s");
+  EXPECT_EQ(error_of(kBase + "[receiver.errors.gradient]\nnorth_m = 200\n"),
+            "t.toml:8: receiver.errors.gradient.north_m: 200 is out of range [-100, 100] m");
+  EXPECT_EQ(error_of(kBase + "[receiver.errors.gradient]\neast_m = nan\n"),
+            "t.toml:8: receiver.errors.gradient.east_m: must be a finite number, got nan");
+  EXPECT_EQ(error_of(kBase + "[receiver.errors.gradient]\nsigma_m = 0.3\ntau_s = -5\n"),
+            "t.toml:9: receiver.errors.gradient.tau_s: -5 is out of range (0, 1000000] s");
+  EXPECT_EQ(error_of(kBase + "[receiver.errors.gradient]\nnorth_diurnal_m = -0.2\n"),
+            "t.toml:8: receiver.errors.gradient.north_diurnal_m: -0.2 is out of range [0, 100] m");
+  EXPECT_EQ(error_of(kBase + "[receiver.errors.gradient]\neast_peak_h = 24\n"),
+            "t.toml:8: receiver.errors.gradient.east_peak_h: 24 is out of range [0, 24) h");
+  EXPECT_EQ(error_of(kBase + "[receiver.errors.gradient]\nnorth = 1\n"),
+            "t.toml:8: unknown key 'receiver.errors.gradient.north' (did you mean 'north_m'?)");
+}
+
+// [receiver.errors] thermal_model, [receiver.solver] sigma_c_m_sqrt_hz and
+// [receiver.corrections], each different from its default; kBase is lines 1-6.
+const std::string kModels = kBase + R"(
+[receiver.errors]
+thermal_model = "fixed"
+[receiver.solver]
+sigma_c_m_sqrt_hz = 95.5
+[receiver.corrections]
+ionosphere = "none"
+troposphere = "zhd_niell"
+
+)";
+
+void expect_same_models(const Config& a, const Config& b) {
+  EXPECT_EQ(a.world.errors.thermal_model, b.world.errors.thermal_model);
+  EXPECT_EQ(a.receiver.solver.sigma_c_m_sqrt_hz, b.receiver.solver.sigma_c_m_sqrt_hz);
+  EXPECT_EQ(a.receiver.solver.iono, b.receiver.solver.iono);
+  EXPECT_EQ(a.receiver.solver.tropo, b.receiver.solver.tropo);
+}
+
+TEST(ReceiverModelsConfig, EveryKeyParsed) {
+  const Config c = parse(kModels);
+  const world::WorldConfig& w = c.world;
+  const receiver::ReceiverConfig& r = c.receiver;
+  EXPECT_EQ(w.errors.thermal_model, world::ThermalModel::kFixed);
+  EXPECT_EQ(r.solver.tropo, atmosphere::TropoCorrection::kZhdNiell);
+}
+
+TEST(ReceiverModelsConfig, RoundTripIsExact) {
+  const Config c = parse(kModels);
+  const std::string text = to_toml(c, kData);
+  const Config back = parse_config(text, "written.toml", kData);
+  expect_same_models(c, back);
+  EXPECT_EQ(to_toml(back, kData), text);
+  // The struct defaults too.
+  const Config d = parse(kBase);
+  expect_same_models(d, parse(to_toml(d, kData)));
+}
+
+TEST(ReceiverModelsConfig, DefaultTomlIsTheStructDefaults) {
+  const Config shipped = load_config(kSource + "/config/default.toml");
+  expect_same_models(shipped, Config{});
+}
+
+struct Bad {
+  std::string text;
+  std::string message;  // expected substring, starting with "t.toml:LINE:"
+};
+
+TEST(ReceiverModelsConfig, BadValuesNameFileAndLine) {
+  const Bad cases[] = {
+      {"[receiver.corrections]\ntroposphere = \"hopfield\"\n",
+       "t.toml:8: receiver.corrections.troposphere: 'hopfield' is not one of \"saastamoinen\", \"zhd_niell\", \"saastamoinen_cosz\", \"none\""},
+  };
+  for (const Bad& b : cases) {
+    const std::string err = error_of(kBase + b.text);
+    EXPECT_NE(err.find(b.message), std::string::npos) << b.text << "\n got: " << err;
+  }
+}
+
+}  // namespace
+}  // namespace gnssemu::config::test
