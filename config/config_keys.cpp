@@ -244,9 +244,8 @@ constexpr Field<TimeConfig> start_field() {
       "start", "GPS time", "1980-01-06 .. 2200",
       "GPS time of the first epoch, `\"YYYY-MM-DDTHH:MM:SS[.fff]\"` (`T` or space), or a TOML local date-time "
       "`2022-01-01T12:00:00`. GPS time scale: no time zone, no `Z`, no leap seconds. Month, day (leap years), hour, "
-      "minute and "
-      "second are checked. Unset: today (`use_wall_clock_date`). The daemon checks it against the nav data's coverage in "
-      "the configured `[nav] mode`: with `as_is` a start outside it is an error at `--check-config` and start-up "
+      "minute and second are checked. Unset: today (`use_wall_clock_date`). The daemon checks it against the nav "
+      "data's coverage in the configured `[nav] mode`: with `as_is` a start outside it is an error at `--check-config` and start-up "
       "naming the coverage; `auto` moves the data to it",
       read_start, write_start);
   row.note = "GPS time scale";

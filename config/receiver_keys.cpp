@@ -58,6 +58,14 @@ constexpr Field<Gradient> kGradientFields[] = {
 };
 constexpr Section<Gradient> kGradient{kGradientFields};
 
+using IonoScale = ErrorModelConfig::IonoScale;
+constexpr Field<IonoScale> kIonoScaleFields[] = {
+    number<&IonoScale::sigma>("sigma", world::ErrorModelRanges::iono_scale_sigma,
+                              "steady-state 1 sigma of the relative error (0.2 = 20 %); 0 disables"),
+    number<&IonoScale::tau_s>("tau_s", world::ErrorModelRanges::iono_scale_tau_s, "correlation time"),
+};
+constexpr Section<IonoScale> kIonoScale{kIonoScaleFields};
+
 constexpr Field<ErrorModelConfig> kErrorsFields[] = {
     choice<kThermalModels, &ErrorModelConfig::thermal_model>(
         "thermal_model", "white code noise σ: DLL thermal jitter at each satellite's C/N0 (`[signal.dll]`), or "
@@ -72,6 +80,9 @@ constexpr Field<ErrorModelConfig> kErrorsFields[] = {
     table<kGradient, &ErrorModelConfig::gradient>(
         "gradient", "delay += G_N cos(az) + G_E sin(az); G_N = north_m + north_diurnal_m cos(2 pi (LT - north_peak_h) "
                     "/ 24 h) + g_N (E alike); g: Gauss-Markov"),
+    table<kIonoScale, &ErrorModelConfig::iono_scale>(
+        "iono_scale", "what the broadcast ionosphere gets wrong for the whole sky at once: every ionospheric delay "
+                      "× (1 + sigma·x(t)), x a unit Gauss-Markov process; fitted by `gnssemu calibrate`"),
 };
 constexpr Section<ErrorModelConfig> kErrors{kErrorsFields};
 
@@ -92,13 +103,22 @@ constexpr Section<ClockConfig> kClock{kClockFields};
 // --- [receiver.solver], [receiver.corrections] -----------------------------
 
 using Sr = receiver::SolverRanges;
+constexpr Choice<receiver::WeightModel> kWeightModels[] = {{"elevation_cn0", receiver::WeightModel::kElevationCn0},
+                                                           {"rtklib", receiver::WeightModel::kRtklib}};
 constexpr Field<SolverConfig> kSolverFields[] = {
+    either<kWeightModels, &SolverConfig::weights>(
+        "weights", "pseudorange variance model: a² + b²/sin²(el) + c²·10^(−C/N0/10) (elevation as RTKLIB, C/N0 as "
+                   "Kuusniemi et al. 2004); or RTKLIB rnx2rtkp's single point: a² + b²/sin(el) + the broadcast "
+                   "URA's variance + `code_bias_sigma_m`² (docs/models.md)"),
     number<&SolverConfig::sigma_a_m>("sigma_a_m", Sr::sigma_a_m,
                                      "pseudorange weight model σ² = a² + b²/sin²(el) + c²·10^(−C/N0/10)"),
     number<&SolverConfig::sigma_b_m>("sigma_b_m", Sr::sigma_b_m, "(a and b may not both be 0)"),
     rule<SolverConfig, receiver::check_weights>(),
     number<&SolverConfig::sigma_c_m_sqrt_hz>("sigma_c_m_sqrt_hz", Sr::sigma_c_m_sqrt_hz,
                                              "C/N0 term of the weights; 0: elevation only"),
+    number<&SolverConfig::code_bias_sigma_m>("code_bias_sigma_m", Sr::code_bias_sigma_m,
+                                             "`weights = \"rtklib\"`: 1 sigma of the receiver's unknown code bias "
+                                             "(RTKLIB ERR_CBIAS 0.3 m)"),
     number<&SolverConfig::iono_model_fraction>(
         "iono_model_fraction", Sr::iono_model_fraction,
         "adds (f·I_Klobuchar)² to σ² when the receiver corrects the ionosphere (RTKLIB ERR_BRDCI = 0.5); 0: left out"),
@@ -150,8 +170,44 @@ constexpr Field<Config> seed_field() {
   return row;
 }
 
+// A profile sets the defaults of the keys read after it ([receiver.*],
+// [atmosphere], [signal]); keys the file gives override it.
+void read_profile(TableReader& t, const Field<Config>& f, Config& c) {
+  const toml::node* n = t.find(f.key);
+  if (n == nullptr) return;
+  const std::string name = t.string(f.key, std::nullopt);
+  pipeline::ReceiverProfile p{};
+  try {
+    p = pipeline::receiver_profile(name);
+  } catch (const Error&) {
+    t.fail(*n, t.full_name(f.key) + ": '" + name + "' is not one of \"ublox_m8\", \"geodetic\"");
+  }
+  const pipeline::PipelineConfig pc = pipeline::apply_profile({c.world, c.receiver}, p, c.origin.lat_rad);
+  c.world = pc.world;
+  c.receiver = pc.receiver;
+  c.profile = p;
+}
+
+void write_profile(TomlWriter& w, const Field<Config>& f, const Config& c) {
+  if (c.profile) w.key(f.key, string_text(pipeline::profile_name(*c.profile)), f.note);
+}
+
+constexpr Field<Config> profile_field() {
+  Field<Config> row = custom<Config>(
+      "profile", "", "`\"ublox_m8\"`, `\"geodetic\"`",
+      "the fitted error model of one kind of receiver as the defaults of every key after it (docs/models.md "
+      "\"Receiver profiles\"): the sky's orbit/clock, ionosphere and gradient processes pooled from five real "
+      "station-days, and the device's antenna and code loop — `ublox_m8` a u-blox M8 with a patch antenna, "
+      "`geodetic` a station receiver with a choke ring. Keys the file gives override it. Unset: the "
+      "unfitted defaults below",
+      read_profile, write_profile);
+  row.doc_default = "unset";
+  return row;
+}
+
 using Rr = receiver::ReceiverRanges;
 constexpr Field<Config> kReceiverFields[] = {
+    profile_field(),
     number<&Config::rate_hz>("rate_hz", Range{1.0, 10.0, "Hz"},
                              "navigation epoch rate (u-blox M8 GPS-only maximum 10 Hz)"),
     angle<&Config::receiver, &ReceiverConfig::elevation_mask_rad>("elevation_mask_deg", Rr::elevation_mask_deg,

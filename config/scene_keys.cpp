@@ -12,7 +12,7 @@ using Pr = scene::PlacementRanges;
 using Sr = scene::SearchRanges;
 
 // dB per reflection, every material and each named one.
-constexpr Range kReflectionLoss{0.0, 100.0, "dB"};
+constexpr Range kReflectionLoss = scene::SceneRanges::reflection_loss_db;
 
 constexpr Choice<bool> kUpAxes[] = {{"z", false}, {"y", true}};
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/common/range.hpp"
 #include "core/common/vec3.hpp"
 #include "core/scene/mesh.hpp"
 
@@ -81,6 +82,11 @@ private:
   std::vector<double> loss_db_;
   Vec3 lo_, hi_;
   bool vertical_horizontal_ = true;
+};
+
+/// Valid loss of one reflection as a configuration gives it.
+struct SceneRanges {
+  static constexpr Range reflection_loss_db{0.0, 100.0, "dB"};
 };
 
 }  // namespace gnssemu::scene

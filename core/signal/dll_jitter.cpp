@@ -26,26 +26,4 @@ double dll_thermal_sigma_m(double cn0_dbhz, const DllParams& p) noexcept {
   return std::sqrt(var_chips2) * p.chip_m;
 }
 
-void validate(const WeightModel& w) {
-  if (!(std::isfinite(w.a_m) && w.a_m >= 0.0 && std::isfinite(w.b_m) && w.b_m >= 0.0 &&
-        std::isfinite(w.c_m_sqrt_hz) && w.c_m_sqrt_hz >= 0.0))
-    throw Error("weight model config", 0, "coefficients a, b, c must be finite and >= 0");
-  if (!(std::isfinite(w.min_el_rad) && w.min_el_rad > 0.0 && w.min_el_rad < 1.5707963267948966))
-    throw Error("weight model config", 0, "min_el_rad must be in (0, pi/2)");
-}
-
-double pseudorange_sigma_m(double cn0_dbhz, double el_rad, const WeightModel& w) noexcept {
-  const double el = std::isfinite(el_rad) ? std::max(el_rad, w.min_el_rad) : w.min_el_rad;
-  const double s = std::sin(std::min(el, 1.5707963267948966));
-  const double cn0_db = std::isfinite(cn0_dbhz) ? std::clamp(cn0_dbhz, 0.0, 70.0) : 0.0;
-  const double var = w.a_m * w.a_m + w.b_m * w.b_m / (s * s) +
-                     w.c_m_sqrt_hz * w.c_m_sqrt_hz * std::pow(10.0, -cn0_db / 10.0);
-  return std::sqrt(var);
-}
-
-double pseudorange_weight(double cn0_dbhz, double el_rad, const WeightModel& w) noexcept {
-  const double s = pseudorange_sigma_m(cn0_dbhz, el_rad, w);
-  return s > 0.0 ? 1.0 / (s * s) : 0.0;
-}
-
 }  // namespace gnssemu::signal

@@ -1,6 +1,5 @@
 #pragma once
-// Code-tracking thermal noise of a delay lock loop, and the pseudorange
-// weight a receiver derives from C/N0 and elevation.
+// Code-tracking thermal noise of a delay lock loop.
 #include "core/common/constants.hpp"
 #include "core/common/range.hpp"
 
@@ -40,24 +39,5 @@ void validate(const DllParams& p);
 ///   DP:   sigma^2 = B_L d / (2 C/N0) [1 + 1 / (T C/N0)]           chips^2
 /// cn0_dbhz is clamped to [0, 70] (NaN -> 0) so the result is finite.
 double dll_thermal_sigma_m(double cn0_dbhz, const DllParams& p) noexcept;
-
-/// Receiver pseudorange error model used to weight the solution:
-///   sigma^2 = a^2 + b^2 / sin^2(el) + c^2 10^(-C/N0 / 10)
-/// (elevation term as RTKLIB's; C/N0 term as Kuusniemi et al., GPS
-/// Solutions 2004, "sigma^2 = a + b 10^(-C/N0/10)").
-struct WeightModel {
-  double a_m = 0.3;            ///< constant part, m
-  double b_m = 0.3;            ///< elevation part, m
-  double c_m_sqrt_hz = 150.0;  ///< C/N0 part, m sqrt(Hz)
-  double min_el_rad = 0.0175;  ///< elevation floor for 1 / sin(el), rad (> 0; 1 deg)
-};
-
-/// Throws gnssemu::Error for negative or non-finite coefficients.
-void validate(const WeightModel& w);
-
-/// Modelled pseudorange 1-sigma, m (> 0 unless all coefficients are 0).
-double pseudorange_sigma_m(double cn0_dbhz, double el_rad, const WeightModel& w) noexcept;
-/// Least-squares weight 1 / sigma^2, 1/m^2 (0 if sigma is 0).
-double pseudorange_weight(double cn0_dbhz, double el_rad, const WeightModel& w) noexcept;
 
 }  // namespace gnssemu::signal

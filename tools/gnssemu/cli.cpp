@@ -83,6 +83,12 @@ struct ObsArgs {
   double mask_deg = 5.0;
 };
 
+/// v within the core's range r, else "<option>: <v> is out of range <r>".
+void check_range(const char* option, double v, const Range& r) {
+  if (!std::isfinite(v)) throw Error(fmt::format("{}: {} is not a finite number", option, v));
+  if (!r.contains(v)) throw Error(fmt::format("{}: {} is out of range {}", option, format_number(v), format_range(r)));
+}
+
 void check_range(const char* option, double v, double lo, double hi, bool hi_open = false) {
   if (!std::isfinite(v)) throw Error(fmt::format("{}: {} is not a finite number", option, v));
   if (v < lo || v > hi || (hi_open && v == hi)) {
@@ -490,28 +496,28 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
           if (!scene_args.origin.empty()) {
             check_range("--scene-origin latitude", scene_args.origin[0], -90.0, 90.0);
             check_range("--scene-origin longitude", scene_args.origin[1], -180.0, 180.0);
-            check_range("--scene-origin height", scene_args.origin[2], -1.0e4, 1.0e6);
+            check_range("--scene-origin height", scene_args.origin[2], -1.0e4, 1.0e6);  // as --height
             sreq.scene_origin = Lla{scene_args.origin[0] * kDegToRad, scene_args.origin[1] * kDegToRad, scene_args.origin[2]};
           }
           sreq.search.rays = scene_args.rays;
           sreq.search.azimuth_rays = scene_args.azimuth_rays;
           sreq.search.max_bounces = scene_args.bounces;
           sreq.search.match_factor = scene_args.match_factor;
-          check_range("--min-arrival-elevation-deg", scene_args.min_arrival_elevation_deg, -89.0, 89.0);
+          check_range("--min-arrival-elevation-deg", scene_args.min_arrival_elevation_deg,
+                      scene::SearchRanges::min_arrival_elevation_deg);
           sreq.search.min_arrival_el_rad = scene_args.min_arrival_elevation_deg * kDegToRad;
-          check_range("--max-loss-db", scene_args.max_loss_db, 0.0, 1000.0);
+          check_range("--max-loss-db", scene_args.max_loss_db, scene::SearchRanges::max_loss_db);
           sreq.search.max_loss_db = scene_args.max_loss_db;
           scene::validate(sreq.search);
-          check_range("--reflection-loss-db", scene_args.reflection_loss_db, 0.0, 100.0);
+          check_range("--reflection-loss-db", scene_args.reflection_loss_db, scene::SceneRanges::reflection_loss_db);
           scene::Placement place;
           if (!scene_args.offset_m.empty()) {
-            for (const double v : scene_args.offset_m) check_range("--offset-m", v, -1.0e6, 1.0e6);
+            for (const double v : scene_args.offset_m) check_range("--offset-m", v, scene::PlacementRanges::offset_m);
             place.offset_m = Enu(scene_args.offset_m[0], scene_args.offset_m[1], scene_args.offset_m[2]);
           }
-          check_range("--yaw-deg", scene_args.yaw_deg, -360.0, 360.0);
+          check_range("--yaw-deg", scene_args.yaw_deg, scene::PlacementRanges::yaw_deg);
           place.yaw_rad = scene_args.yaw_deg * kDegToRad;
-          check_range("--scale", scene_args.scale, 0.0, 1.0e6);
-          if (!(scene_args.scale > 0.0)) throw Error("--scale: must be > 0");
+          check_range("--scale", scene_args.scale, scene::PlacementRanges::scale);
           place.scale = scene_args.scale;
           place.y_up = scene_args.up_axis == "y";
           const scene::Mesh mesh = config::load_mesh(scene_args.mesh_path, place);

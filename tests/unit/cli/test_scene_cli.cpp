@@ -1,4 +1,4 @@
-// gnssemu sky --scene, batch with [scene], bench multipath.
+// gnssemu sky --scene and batch with [scene].
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,7 +7,6 @@
 #include <fmt/format.h>
 
 #include "cli_test_util.hpp"
-#include "tools/gnssemu/bench_multipath.hpp"
 #include "core/common/constants.hpp"
 #include "core/geo/local_frame.hpp"
 
@@ -105,6 +104,24 @@ TEST(SkyScene, EmptySceneAllDirectInsideABoxNothing) {
 }
 
 std::string canyon_truth(int n);
+
+// The scene options take the ranges of the config keys they mirror (core's).
+TEST(SceneCli, OptionRangesAreTheConfigRanges) {
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--scale", "0"}, "--scale: 0 is out of range (0, 1000000]"},
+      {{"--max-loss-db", "0"}, "--max-loss-db: 0 is out of range (0, 1000] dB"},
+      {{"--yaw-deg", "400"}, "--yaw-deg: 400 is out of range [-360, 360] deg"},
+      {{"--reflection-loss-db", "101"}, "--reflection-loss-db: 101 is out of range [0, 100] dB"},
+      {{"--min-arrival-elevation-deg", "90"}, "--min-arrival-elevation-deg: 90 is out of range [-89, 89] deg"},
+  };
+  for (const auto& [extra, message] : cases) {
+    std::vector<std::string> a = sky_args(Enu(1.0, 2.0, 1.5), kScenes + "closed_box.obj");
+    a.insert(a.end(), extra.begin(), extra.end());
+    const test::CliResult r = run(a);
+    EXPECT_EQ(r.status, kExitBadInput) << extra[0];
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+  }
+}
 
 TEST(SceneCli, SkippedMeshElementsAreReportedWithTheFirstProblem) {
   // Two good triangles of a wall far east, one face with a missing vertex.
@@ -288,67 +305,6 @@ TEST(BatchScene, ExcludedSatellitesDropFromGsa) {
     excluded_epochs += e.num(i, "nsat") < e.num(i, "ntracked");
   }
   EXPECT_GT(excluded_epochs, 0);
-}
-
-TEST(BenchMultipath, MeanP95AndMaxComeFromTheSameMedianRepeat) {
-  EXPECT_EQ(median_repeat({5.0, 1.0, 3.0}), 2u);
-  EXPECT_EQ(median_repeat({4.0, 2.0}), 1u);  // lower median
-  EXPECT_EQ(median_repeat({7.0}), 0u);
-  const test::CliResult r =
-      run({"bench", "multipath", "--scene", kScenes + "street_canyon.toml", "--origin", "48.8738,2.2950,100",
-           "--nav", nav_path("brdc0010.22n"), "--week", "2190", "--tow", "561600", "--path=3,-100,3,100", "--speed",
-           "20", "--repeats", "3", "--reference-rays", "8192", "--settings", "128,0,16,0,0,0,256,4,2,1"});
-  ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.err.find("of 3 repeat(s) per setting the median one by mean gives mean, p95 and max"),
-            std::string::npos)
-      << r.err;
-  const Csv c = parse_csv(r.out);
-  ASSERT_EQ(c.rows.size(), 2u);
-  EXPECT_EQ(c.num(0, "azimuth_rays"), 128.0);
-  EXPECT_EQ(c.num(1, "rays"), 256.0);
-  EXPECT_EQ(c.num(1, "max_bounces"), 4.0);
-  EXPECT_EQ(c.num(1, "reuse_m"), 2.0);
-  for (std::size_t i = 0; i < 2; ++i) {
-    // One repeat's figures: its mean cannot exceed its own max.
-    EXPECT_LE(c.num(i, "us_per_epoch_mean"), c.num(i, "us_per_epoch_max") + 0.05);
-    EXPECT_LE(c.num(i, "us_per_epoch_p95"), c.num(i, "us_per_epoch_max"));
-  }
-  const test::CliResult bad = run({"bench", "multipath", "--scene", kScenes + "street_canyon.toml", "--origin",
-                                   "48.8738,2.2950,100", "--nav", nav_path("brdc0010.22n"), "--path=3,-100,3,100",
-                                   "--settings", "128,0,16"});
-  EXPECT_EQ(bad.status, kExitBadInput);
-  EXPECT_NE(bad.err.find("groups of 5"), std::string::npos) << bad.err;
-}
-
-TEST(BenchMultipath, PrintsTheSweep) {
-  TempDir dir;
-  const test::CliResult r =
-      run({"bench", "multipath", "--scene", kScenes + "street_canyon.toml", "--origin", "48.8738,2.2950,100",
-           "--nav", nav_path("brdc0010.22n"), "--week", "2190", "--tow", "561600", "--path=3,-100,3,100", "--speed",
-           "20", "--repeats", "1", "--reference-rays", "8192"});
-  ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.err.find("reference (4096 per satellite"), std::string::npos) << r.err;
-  const Csv c = parse_csv(r.out);
-  ASSERT_EQ(c.rows.size(), 20u);
-  for (std::size_t i = 0; i < c.rows.size(); ++i) {
-    EXPECT_GE(c.num(i, "misclassified_pct"), 0.0);
-    EXPECT_GT(c.num(i, "rays_per_epoch"), 0.0);
-    // A straight two-wall canyon: at full depth every setting with >= 128
-    // cone rays or >= 256 hemisphere rays finds the reference paths, with
-    // exact delays; shallower searches miss the deep ones.
-    if ((c.num(i, "azimuth_rays") >= 128 || c.num(i, "rays") >= 256) && c.num(i, "max_bounces") == 16) {
-      EXPECT_EQ(c.num(i, "misclassified"), 0.0) << i;
-      EXPECT_LT(c.num(i, "nlos_delay_err_max_m"), 1e-3) << i;
-      EXPECT_LT(c.num(i, "pos_err_max_m"), 1e-3) << i;
-    }
-    if (c.num(i, "max_bounces") == 2) {
-      EXPECT_GT(c.num(i, "misclassified"), 0.0) << i;
-    }
-  }
-  const test::CliResult bad = run({"bench", "multipath", "--origin", "48.8,2.3,100", "--nav",
-                                   nav_path("brdc0010.22n"), "--path=0,0,1,1"});
-  EXPECT_EQ(bad.status, kExitBadInput);
-  EXPECT_NE(bad.err.find("--scene or --city"), std::string::npos) << bad.err;
 }
 
 }  // namespace

@@ -99,7 +99,7 @@ TEST(TruthCsv, MissingFile) {
   }
 }
 
-TEST(TruthTrack, LinearInterpolationAndEnds) {
+TEST(TruthCsv, RowsAcrossAWeekBoundaryInterpolateInTheTrack) {
   const auto s = read(
       "gps_week,tow_s,x_m,y_m,z_m\n"
       "2190,604799,6378137,0,0\n"

@@ -25,6 +25,7 @@ use_wall_clock_date = false
 output_delay_s = 0.25
 
 [receiver]
+profile = "geodetic"
 rate_hz = 4
 elevation_mask_deg = 12.5
 seed = 424242
@@ -55,6 +56,10 @@ east_peak_h = 6.3
 sigma_m = 0.351071
 tau_s = 15291.3
 
+[receiver.errors.iono_scale]
+sigma = 0.25
+tau_s = 7200
+
 [receiver.clock]
 bias_s = -2.5e-4
 drift_s_s = -1.5e-7
@@ -62,6 +67,8 @@ drift_noise_s_s_sqrt_s = 3e-11
 jump_threshold_s = 5e-4
 
 [receiver.solver]
+weights = "rtklib"
+code_bias_sigma_m = 0.45
 sigma_a_m = 0.9
 sigma_b_m = 0.45
 sigma_c_m_sqrt_hz = 95.5

@@ -168,6 +168,30 @@ TEST(ReceiverModelsConfig, DefaultTomlIsTheStructDefaults) {
   expect_same_models(shipped, Config{});
 }
 
+// A profile gives the defaults; keys in the file override them.
+TEST(ReceiverModelsConfig, ProfileGivesDefaultsTheFileOverrides) {
+  const Config plain = parse(kBase);
+  EXPECT_FALSE(plain.profile.has_value());
+  const Config g = parse(kBase + "[receiver]\nprofile = \"geodetic\"\n");
+  ASSERT_TRUE(g.profile.has_value());
+  EXPECT_EQ(*g.profile, pipeline::ReceiverProfile::kGeodetic);
+  const pipeline::PipelineConfig want =
+      pipeline::apply_profile({plain.world, plain.receiver}, pipeline::ReceiverProfile::kGeodetic, plain.origin.lat_rad);
+  EXPECT_DOUBLE_EQ(g.world.errors.iono_scale.sigma, want.world.errors.iono_scale.sigma);
+  EXPECT_GT(g.world.errors.iono_scale.sigma, 0.0);
+  EXPECT_DOUBLE_EQ(g.world.signal.dll.loop_bandwidth_hz, want.world.signal.dll.loop_bandwidth_hz);
+  EXPECT_DOUBLE_EQ(g.world.errors.gradient.north_m, want.world.errors.gradient.north_m);
+  const Config m8 = parse(kBase + "[receiver]\nprofile = \"ublox_m8\"\n[receiver.errors.iono_scale]\nsigma = 0.1\n"
+                                  "[signal.dll]\nloop_bandwidth_hz = 0.5\n");
+  EXPECT_DOUBLE_EQ(m8.world.errors.iono_scale.sigma, 0.1);
+  EXPECT_DOUBLE_EQ(m8.world.signal.dll.loop_bandwidth_hz, 0.5);
+  EXPECT_DOUBLE_EQ(m8.world.errors.orbit_clock.sigma_m, want.world.errors.orbit_clock.sigma_m);
+  // Written with its profile and every value, read back the same.
+  const Config back = parse(to_toml(m8, kData));
+  EXPECT_EQ(back.profile, m8.profile);
+  expect_same_models(m8, back);
+}
+
 struct Bad {
   std::string text;
   std::string message;  // expected substring, starting with "t.toml:LINE:"
@@ -177,6 +201,12 @@ TEST(ReceiverModelsConfig, BadValuesNameFileAndLine) {
   const Bad cases[] = {
       {"[receiver.corrections]\ntroposphere = \"hopfield\"\n",
        "t.toml:8: receiver.corrections.troposphere: 'hopfield' is not one of \"saastamoinen\", \"zhd_niell\", \"saastamoinen_cosz\", \"none\""},
+      {"[receiver]\nprofile = \"m9\"\n", "t.toml:8: receiver.profile: 'm9' is not one of \"ublox_m8\", \"geodetic\""},
+      {"[receiver.solver]\nweights = \"snr\"\n",
+       "t.toml:8: receiver.solver.weights: 'snr' is not \"elevation_cn0\" or \"rtklib\""},
+      {"[receiver.solver]\ncode_bias_sigma_m = -1\n", "t.toml:8: receiver.solver.code_bias_sigma_m: -1"},
+      {"[receiver.errors.iono_scale]\nsigma = 3\n", "t.toml:8: receiver.errors.iono_scale.sigma: 3"},
+      {"[receiver.errors.iono_scale]\ntau_s = 0\n", "t.toml:8: receiver.errors.iono_scale.tau_s: 0"},
   };
   for (const Bad& b : cases) {
     const std::string err = error_of(kBase + b.text);

@@ -35,18 +35,3 @@ TEST(DllJitter, Validation) {
   EXPECT_THROW(validate(DllParams{0.5, 0.02, 0.0}), Error);
 }
 
-TEST(Weights, SigmaAndWeight) {
-  const WeightModel w;  // a 0.3, b 0.3, c 150
-  EXPECT_NEAR(pseudorange_sigma_m(45.0, 90 * kDegToRad, w), 0.944199, 1e-5);
-  EXPECT_NEAR(pseudorange_sigma_m(30.0, 10 * kDegToRad, w), 5.057144, 1e-5);
-  EXPECT_NEAR(pseudorange_weight(45.0, 90 * kDegToRad, w), 1.0 / (0.944199 * 0.944199), 1e-4);
-  // Lower C/N0 or elevation -> smaller weight.
-  EXPECT_GT(pseudorange_weight(45.0, 60 * kDegToRad, w), pseudorange_weight(35.0, 60 * kDegToRad, w));
-  EXPECT_GT(pseudorange_weight(45.0, 60 * kDegToRad, w), pseudorange_weight(45.0, 10 * kDegToRad, w));
-  // Elevation floor: 0 and negative elevations use 1 deg; finite.
-  EXPECT_EQ(pseudorange_sigma_m(40.0, 0.0, w), pseudorange_sigma_m(40.0, -0.3, w));
-  EXPECT_TRUE(std::isfinite(pseudorange_weight(NAN, NAN, w)));
-  EXPECT_EQ(pseudorange_weight(40.0, 1.0, WeightModel{0.0, 0.0, 0.0, 0.0175}), 0.0);
-  EXPECT_THROW(validate(WeightModel{-1.0, 0.3, 150.0, 0.0175}), Error);
-  EXPECT_THROW(validate(WeightModel{0.3, 0.3, 150.0, 0.0}), Error);
-}
