@@ -18,9 +18,24 @@ for arg in "$@"; do
   esac
 done
 
+# Wall and CPU time of each stage: CPU (user + system of every child) tells
+# what a stage costs on an idle machine when others share the cores.
 stage_start=0
-stage() { stage_start=$(date +%s); echo "== test.sh: $*" >&2; }
-stage_done() { echo "== test.sh: $1 took $(( $(date +%s) - stage_start )) s" >&2; }
+stage_cpu=0
+times_file="$(mktemp)"
+trap 'rm -f "$times_file"' EXIT
+# Sets cpu: user + system seconds of every child so far. `times` runs in
+# this shell: in a $(...) subshell it would count that subshell's children.
+cpu=0
+cpu_now() {
+  times >"$times_file"
+  cpu=$(awk 'NR == 2 { split($0, f, /[ ms]+/); print int(f[1] * 60 + f[2] + f[3] * 60 + f[4]) }' "$times_file")
+}
+stage() { stage_start=$(date +%s); cpu_now; stage_cpu=$cpu; echo "== test.sh: $*" >&2; }
+stage_done() {
+  cpu_now
+  echo "== test.sh: $1 took $(( $(date +%s) - stage_start )) s wall, $(( cpu - stage_cpu )) s CPU" >&2
+}
 
 "$root/tools/install-deps.sh"
 
