@@ -7,10 +7,14 @@
 
 namespace gnssemu::fuzz {
 
-void load_and_check_mesh(const std::string& path) {
+scene::Mesh load_scene_mesh(const std::string& path, const scene::Placement& placement) {
+  return scene::load_mesh(path, placement);
+}
+
+void load_and_check_mesh(const std::string& path, MeshLoader load) {
   scene::Mesh m;
   try {
-    m = scene::load_mesh(path);
+    m = load(path, scene::Placement{});
   } catch (const Error& e) {
     expect_names_file(e, path);
     return;
