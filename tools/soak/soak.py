@@ -44,12 +44,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 ORIGIN = (48.8738, 2.2950, 100.0)  # Paris, as config/default.toml
 
 
-def free_port(kind):
-    s = socket.socket(socket.AF_INET, kind)
-    s.bind(("127.0.0.1", 0))
-    port = s.getsockname()[1]
-    s.close()
-    return port
+sys.path.insert(0, os.path.join(ROOT, "tests", "integration"))
+from itlib import free_port  # noqa: E402  (the integration tests' loopback port picker)
 
 
 def config_text(tmp, rate_hz, truth_port, tcp_port):
@@ -138,18 +134,23 @@ class Reader(threading.Thread):
             return None
         return max(0, round(d / self.period_ms) - 1)
 
+    def missed_since(self, last_ms, now_ms):
+        """Epochs missed between two epoch times (ms); a jump counts in jumps, not as missed."""
+        if last_ms is None:
+            return 0
+        g = self.gap(last_ms, now_ms)
+        if g is None:
+            self.jumps += 1
+            return 0
+        return g
+
     def on_pvt(self, payload):
         itow, = struct.unpack_from("<I", payload, 0)
         fix_ok = payload[21] & 1
         with self.lock:
             self.pvt += 1
             self.pvt_fix += bool(fix_ok)
-            if self.last_itow is not None:
-                g = self.gap(self.last_itow, itow)
-                if g is None:
-                    self.jumps += 1
-                else:
-                    self.pvt_missed += g
+            self.pvt_missed += self.missed_since(self.last_itow, itow)
             self.last_itow = itow
 
     def on_rmc(self, fields):
@@ -162,12 +163,7 @@ class Reader(threading.Thread):
             return  # no time yet
         with self.lock:
             self.rmc += 1
-            if self.last_rmc is not None:
-                g = self.gap(self.last_rmc, ms)
-                if g is None:
-                    self.jumps += 1
-                else:
-                    self.rmc_missed += g
+            self.rmc_missed += self.missed_since(self.last_rmc, ms)
             self.last_rmc = ms
 
     def parse(self):
