@@ -678,7 +678,9 @@ constexpr auto table_array(std::string_view key, std::string_view note = {}) {
     for (TableReader& e : t.table_array(f.key)) {
       C value;
       read_section(e, Child, value);
-      if constexpr (Check != nullptr) Check(e, out, value);
+      // On the type, not the address: GCC's -fsanitize=undefined makes
+      // `function != nullptr` no constant expression (no null-check deletion).
+      if constexpr (!std::is_null_pointer_v<decltype(Check)>) Check(e, out, value);
       out.push_back(std::move(value));
     }
   };

@@ -11,6 +11,8 @@ PKGS=(
   gpsd gpsd-clients rtklib socat python3
   systemd dpkg-dev  # systemd-analyze (unit tests), dpkg-shlibdeps (cpack -G DEB)
   libjs-chart.js chromium fonts-dejavu-core nodejs
+  # fuzzing and sanitizers (docs/robustness.md): clang's libFuzzer, symbolized reports
+  clang libclang-rt-14-dev llvm
 )
 # The browser test installs its driver (playwright-core, from
 # tests/integration/browser/package-lock.json) into build/browser-driver.

@@ -33,11 +33,13 @@ check_root() {  # ROOT PREFIX: the packaged binaries and config under ROOT
       "$root/etc/gnssemu/gnssemud.toml" > "$conf"
   "$root/usr/bin/gnssemud" --check-config -c "$conf" --truth-port 0 | tail -1
   "$root/usr/bin/gnssemud" -c "$conf" --truth-port 0 >"$tmp/run.out" 2>"$tmp/run.err" & local pid=$!
-  sleep 3
+  # A hot start fixes in about 1 s; a loaded machine may take longer.
+  local waited=0
+  until grep -q "fix 3D with" "$tmp/run.err" || [ $waited -ge 30 ]; do sleep 0.5; waited=$((waited + 1)); done
   [ -L "$tmp/gps0" ] || { echo "no pty"; cat "$tmp/run.err"; kill $pid; exit 1; }
   kill -TERM $pid; wait $pid || { echo "exit $?"; cat "$tmp/run.err"; exit 1; }
   [ ! -e "$tmp/gps0" ] || { echo "symlink left"; exit 1; }
-  grep -o "fix 3D with [0-9]* satellites" "$tmp/run.err" | head -1
+  grep -o "fix 3D with [0-9]* satellites" "$tmp/run.err" | head -1 || { echo "no 3D fix in 15 s"; cat "$tmp/run.err"; exit 1; }
 }
 dpkg -x "$deb" "$tmp/root"
 echo "dpkg -x into a temp root:"

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <string_view>
 
 #include "core/common/constants.hpp"
@@ -28,6 +29,28 @@ using Parser = text::ColumnReader;
 using Record = std::array<Line, kMaxRecordLines>;
 
 bool blank(const std::string& s) { return trim(s).empty(); }
+
+/// Largest magnitude of a two's complement field of `bits` bits scaled by
+/// 2^scale_log2: the negative end, one LSB beyond the positive one.
+constexpr double field_max(int bits, int scale_log2) {
+  double v = 1.0;
+  for (int k = 1; k < bits; ++k) v *= 2.0;  // 2^(bits-1)
+  double s = 1.0;
+  for (int k = 0; k < (scale_log2 < 0 ? -scale_log2 : scale_log2); ++k) s *= 2.0;
+  return scale_log2 < 0 ? v / s : v * s;
+}
+
+/// A value the broadcast message cannot carry (IS-GPS-200 Table 20-III bit
+/// widths and scale factors) is a corrupt record: far beyond them the orbit
+/// and clock models give infinities.
+void check_broadcast_range(const Parser& p, int line, double value, double max_abs, const char* field) {
+  if (!(std::fabs(value) <= max_abs)) {
+    char msg[160];
+    std::snprintf(msg, sizeof msg, "%s %.6g outside what the broadcast message carries (|x| <= %.6g, IS-GPS-200 Table 20-III)",
+                  field, value, max_abs);
+    p.fail(line, msg);
+  }
+}
 
 /// Lines per record for a RINEX 3 system letter, 0 = unknown. version_x100:
 /// 300..305. RINEX 3.04 Tables A6-A19: G/E/C/J/I 8 lines, R/S 4; RINEX 3.05
@@ -178,6 +201,29 @@ Ephemeris parse_gps_record(const Parser& p, const Record& lines, bool v3) {
   const double ttr = o[6][0];
   eph.fit_interval_h = o[6][1];
 
+  // Semicircles as radians (kPiGps, IS-GPS-200 §20.3.3.4.3). Angles get a
+  // whole turn of slack: a writer may not normalise them, and any finite angle
+  // is harmless.
+  constexpr double kSc = kPiGps;
+  constexpr double kAngle_rad = 2.0 * kPi;
+  check_broadcast_range(p, e.number, eph.af0_s, field_max(22, -31), "af0 (s)");
+  check_broadcast_range(p, e.number, eph.af1_s_s, field_max(16, -43), "af1 (s/s)");
+  check_broadcast_range(p, e.number, eph.af2_s_s2, field_max(8, -55), "af2 (s/s^2)");
+  check_broadcast_range(p, line_no(1), eph.crs_m, field_max(16, -5), "Crs (m)");
+  check_broadcast_range(p, line_no(1), eph.delta_n_rad_s, field_max(16, -43) * kSc, "Delta n (rad/s)");
+  check_broadcast_range(p, line_no(1), eph.m0_rad, kAngle_rad, "M0 (rad)");
+  check_broadcast_range(p, line_no(2), eph.cuc_rad, field_max(16, -29), "Cuc (rad)");
+  check_broadcast_range(p, line_no(2), eph.cus_rad, field_max(16, -29), "Cus (rad)");
+  check_broadcast_range(p, line_no(2), eph.sqrt_a_sqrtm, field_max(33, -19), "sqrt(A) (sqrt(m))");
+  check_broadcast_range(p, line_no(3), eph.cic_rad, field_max(16, -29), "Cic (rad)");
+  check_broadcast_range(p, line_no(3), eph.omega0_rad, kAngle_rad, "OMEGA0 (rad)");
+  check_broadcast_range(p, line_no(3), eph.cis_rad, field_max(16, -29), "Cis (rad)");
+  check_broadcast_range(p, line_no(4), eph.i0_rad, kAngle_rad, "i0 (rad)");
+  check_broadcast_range(p, line_no(4), eph.crc_m, field_max(16, -5), "Crc (m)");
+  check_broadcast_range(p, line_no(4), eph.omega_rad, kAngle_rad, "omega (rad)");
+  check_broadcast_range(p, line_no(4), eph.omega_dot_rad_s, field_max(24, -43) * kSc, "OMEGA DOT (rad/s)");
+  check_broadcast_range(p, line_no(5), eph.idot_rad_s, field_max(14, -43) * kSc, "IDOT (rad/s)");
+  check_broadcast_range(p, line_no(6), eph.tgd_s, field_max(8, -31), "TGD (s)");
   if (eph.sqrt_a_sqrtm <= 0.0) p.fail(line_no(2), "sqrt(A) must be positive");
   if (eph.e < 0.0 || eph.e >= 1.0) p.fail(line_no(2), "eccentricity must be in [0, 1)");
   if (toe_sow < 0.0 || toe_sow >= kSecondsPerWeek) p.fail(line_no(3), "toe outside [0, 604800) s");

@@ -37,6 +37,7 @@ Rules project_rules() {
       {"support", "tests/support", {}, {}},
       {"bench", "bench", {"tools", "support"}, {}},
       {"layering", "tests/layering", {}, {}},
+      {"fuzz", "tests/fuzz", {"daemon"}, {}},  // fuzz targets: every parser, up to the truth input
       tests_of("common", "common"),
       tests_of("statistics", "statistics"),
       tests_of("time", "time"),

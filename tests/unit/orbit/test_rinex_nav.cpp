@@ -299,6 +299,46 @@ TEST(RinexNav, WrongWeekIsAnError) {
   }
 }
 
+// Fuzz finding (tests/fuzz/regressions/rinex_nav): a Cus of 8.4e306 rad
+// gave an infinite satellite velocity. Each field is held to what the
+// broadcast message carries (IS-GPS-200 Table 20-III); the limits themselves
+// pass.
+TEST(RinexNav, ValuesTheBroadcastCannotCarryAreErrors) {
+  const std::string good = brdc_prn1_with_week("0.219000000000D+04");
+  struct Edit {
+    const char* from;  // a field of PRN 1's record
+    const char* to;
+    int line;
+    const char* reason;
+  };
+  for (const Edit& c : {Edit{" 0.469572842121D-05", " 0.84000000000D+307", 5, "Cus (rad)"},
+                        Edit{" 0.469572842121D-05", "-0.610351562600D-04", 5, "Cus (rad)"},
+                        Edit{" 0.000000000000D+00\n    0.390", " 0.600000000000D-01\n    0.390", 3, "af2"},
+                        Edit{"-0.141125000000D+03", "-0.102500000000D+04", 4, "Crs (m)"},
+                        Edit{"-0.813355308085D-08", "-0.813355308085D-04", 7, "OMEGA DOT"},
+                        Edit{" 0.884087601569D+00", " 0.700000000000D+01", 7, "omega (rad)"}}) {
+    std::string text = good;
+    const std::size_t at = text.find(c.from);
+    ASSERT_NE(at, std::string::npos) << c.from;
+    text.replace(at, std::string(c.from).size(), c.to);
+    std::istringstream in(text);
+    try {
+      (void)read_rinex_nav(in, "mem.22n");
+      FAIL() << c.to << " accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.line(), c.line) << e.what();
+      EXPECT_NE(std::string(e.what()).find(c.reason), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("IS-GPS-200 Table 20-III"), std::string::npos) << e.what();
+    }
+  }
+  // The extremes a message can hold: Cus -2^15 * 2^-29 rad, af2 -2^7 * 2^-55 s/s^2.
+  std::string edge = good;
+  edge.replace(edge.find(" 0.469572842121D-05"), 19, "-0.610351562500D-04");
+  edge.replace(edge.find(" 0.000000000000D+00\n    0.390"), 19, "-0.355271367880D-14");
+  std::istringstream in(edge);
+  EXPECT_EQ(read_rinex_nav(in, "mem.22n").ephemerides.size(), 1u);
+}
+
 struct BadCase {
   const char* file;
   int line;

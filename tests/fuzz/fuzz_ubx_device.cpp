@@ -1,0 +1,207 @@
+// Host input to the emulated u-blox: bytes through one StreamDecoder per
+// output into Device::handle_ubx / handle_nmea, on one to three outputs
+// (and, on output 0, as seen from the chip's other ports), with navigation
+// epochs, idle resyncs and decoder resets in between, as the daemon's
+// PortChannel drives them. The input's front is the byte stream (a recorded
+// log works as it is), its back the control stream (fuzz_support.hpp).
+// Oracles: every reply and every epoch message is whole, valid UBX frames
+// or checksummed NMEA sentences; InputResult::bytes is what was appended;
+// the epoch period stays within what the emulator runs; an epoch fits the
+// MessageList reservation.
+#include <array>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/common/constants.hpp"
+#include "core/protocol/ubx/ubx_decoder.hpp"
+#include "core/protocol/ubx/ubx_device.hpp"
+#include "fuzz_support.hpp"
+
+namespace {
+
+using namespace gnssemu;
+using namespace gnssemu::protocol::ubx;
+
+bool hex_digit(char c, int& v) {
+  if (c >= '0' && c <= '9') v = c - '0';
+  else if (c >= 'A' && c <= 'F') v = c - 'A' + 10;
+  else return false;
+  return true;
+}
+
+// Length of the valid UBX frame or NMEA sentence (with CR LF, at most
+// max_nmea bytes) at the start of b; 0 if none.
+std::size_t frame_length(std::string_view b, std::size_t max_nmea) {
+  if (b.size() >= kFrameOverheadBytes && static_cast<std::uint8_t>(b[0]) == kSync1 &&
+      static_cast<std::uint8_t>(b[1]) == kSync2) {
+    const std::size_t len = static_cast<std::uint8_t>(b[4]) | static_cast<std::size_t>(static_cast<std::uint8_t>(b[5])) << 8;
+    if (b.size() < len + kFrameOverheadBytes) return 0;
+    const Checksum ck = fletcher8({reinterpret_cast<const std::uint8_t*>(b.data()) + 2, len + 4});
+    if (ck.ck_a != static_cast<std::uint8_t>(b[len + 6]) || ck.ck_b != static_cast<std::uint8_t>(b[len + 7])) return 0;
+    return len + kFrameOverheadBytes;
+  }
+  if (!b.empty() && b[0] == '$') {
+    const std::size_t end = b.find("\r\n");
+    if (end == std::string_view::npos || end < 4 || end + 2 > max_nmea || b[end - 3] != '*') return 0;
+    int hi = 0, lo = 0;
+    if (!hex_digit(b[end - 2], hi) || !hex_digit(b[end - 1], lo)) return 0;
+    unsigned sum = 0;
+    for (std::size_t i = 1; i < end - 3; ++i) {
+      const auto c = static_cast<unsigned char>(b[i]);
+      if (c < 0x20 || c > 0x7e || c == '$' || c == '*') return 0;
+      sum ^= c;
+    }
+    return sum == static_cast<unsigned>(hi * 16 + lo) ? end + 2 : 0;
+  }
+  return 0;
+}
+
+// NMEA 0183 sentences are at most 82 characters, '$' to LF.
+constexpr std::size_t kMaxSentenceBytes = 82;
+
+void expect_frames(std::string_view bytes, const char* what) {
+  while (!bytes.empty()) {
+    const std::size_t n = frame_length(bytes, kMaxSentenceBytes);
+    gnssemu::fuzz::expect(n > 0, what);
+    bytes.remove_prefix(n);
+  }
+}
+
+// A fix within the documented ranges of receiver::Fix, steered by control bytes.
+receiver::Fix make_fix(gnssemu::fuzz::InputSplitter& in, int epoch) {
+  receiver::Fix f;
+  const int kind = in.control_in(0, 3);
+  f.t = time::GpsTime(in.control_in(0, 4000), in.control_in(0, 604799) + 0.1 * (epoch % 10));
+  f.leap_seconds = in.control_in(0, 40);
+  f.in_leap_second = in.control_in(0, 15) == 0;
+  f.time_valid = kind != 0;
+  f.type = kind == 3 ? receiver::FixType::k3D : kind == 2 ? receiver::FixType::k2D : receiver::FixType::kNone;
+  f.lla = Lla{(in.control_in(0, 18000) - 9000) * 0.01 * kDegToRad, (in.control_in(0, 36000) - 18000) * 0.01 * kDegToRad,
+              in.control_in(0, 20000) - 1000.0};
+  f.pos_m = Ecef(6378137.0, 0.0, 0.0);
+  f.geoid_sep_m = in.control_in(0, 200) - 100.0;
+  f.speed_m_s = in.control_in(0, 1000);
+  f.course_rad = in.control_in(0, 359) * kDegToRad;
+  f.vel_enu_m_s = Enu(f.speed_m_s * std::sin(f.course_rad), f.speed_m_s * std::cos(f.course_rad), in.control_in(0, 20) - 10.0);
+  f.vel_m_s = Ecef(f.vel_enu_m_s);
+  f.climb_m_s = f.vel_enu_m_s.z;
+  f.dop = kind >= 2 ? receiver::Dop{2.0, 1.7, 0.9, 1.4, 0.8} : receiver::Dop{};
+  f.h_acc_m = in.control_in(0, 10000) * 0.1;
+  f.v_acc_m = f.h_acc_m * 1.5;
+  f.noise_rise_db = in.control_in(0, 60);
+  f.num_sats = in.control_in(0, kMaxGpsPrn);
+  for (int k = 0; k < f.num_sats; ++k) {
+    receiver::SatInfo& s = f.sats[static_cast<std::size_t>(k)];
+    s.prn = k + 1;
+    s.el_rad = (in.control_in(0, 180) - 90) * kDegToRad;
+    s.az_rad = in.control_in(0, 359) * kDegToRad;
+    s.healthy = true;
+    s.above_mask = s.el_rad > 0.0;
+    s.cn0_dbhz = s.above_mask ? in.control_in(0, 55) : 0.0;
+    s.tracked = s.cn0_dbhz > 0.0;
+    s.used = s.tracked && kind >= 2;
+    f.num_visible += s.above_mask;
+    f.num_tracked += s.tracked;
+    f.num_used += s.used;
+  }
+  return f;
+}
+
+class Host final : public DecoderSink {
+public:
+  Host(Device& device, Link link) : device_(device), link_(link) {}
+  void on_ubx(const FrameView& frame) override {
+    const std::size_t before = out_.size();
+    const InputResult r = device_.handle_ubx(link_, frame, now_s, out_);
+    check(r, before);
+  }
+  void on_nmea(std::string_view sentence) override {
+    const std::size_t before = out_.size();
+    const InputResult r = device_.handle_nmea(link_, sentence, out_);
+    check(r, before);
+  }
+  double now_s = 0.0;
+
+private:
+  void check(const InputResult& r, std::size_t before) {
+    gnssemu::fuzz::expect(out_.size() - before == r.bytes, "InputResult::bytes is what was appended");
+    expect_frames(std::string_view(out_).substr(before), "reply is whole valid frames");
+    const double p = device_.epoch_period_s();
+    gnssemu::fuzz::expect(p >= kMinEpochPeriodS - 1e-12 && p <= kMaxEpochPeriodS + 1e-12, "epoch period in range");
+    out_.clear();
+  }
+  Device& device_;
+  Link link_;
+  std::string out_;
+};
+
+constexpr std::array<std::uint32_t, 5> kBauds = {0, 9600, 38400, 115200, 230400};
+constexpr std::array<MsgId, 8> kRated = {msg::kNavPvt, msg::kNavStatus, msg::kNavDop,  msg::kNavSat,
+                                         msg::kNavSvinfo, msg::kNavTimeutc, msg::kNmeaGga, msg::kNmeaGsv};
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  gnssemu::fuzz::InputSplitter in(data, size);
+  DeviceSetup setup;
+  setup.ack_unknown_cfg = in.control_in(0, 1) == 1;
+  setup.nav_period_s = 1.0 / in.control_in(1, 10);
+  const int outputs = in.control_in(1, 3);
+  for (int k = 0; k < outputs; ++k) {
+    OutputSetup o;
+    o.baud_bps = kBauds[static_cast<std::size_t>(in.control_in(0, kBauds.size() - 1))];
+    o.protocols_in = static_cast<std::uint16_t>(in.control_in(0, 3));
+    o.protocols_out = static_cast<std::uint16_t>(in.control_in(0, 3));
+    for (const MsgId id : kRated) {
+      const int rate = in.control_in(0, 3);
+      if (rate > 0) o.rates.push_back({id, static_cast<std::uint8_t>(rate)});
+    }
+    o.nmea_version = static_cast<protocol::nmea::NmeaVersion>(in.control_in(0, 2));
+    setup.outputs.push_back(o);
+  }
+  Device device(setup);
+  device.power_on(0.0);
+
+  // Hosts on every output's UART1, and on output 0 as seen from DDC, USB, SPI.
+  std::vector<std::unique_ptr<Host>> hosts;
+  std::vector<std::unique_ptr<StreamDecoder>> decoders;
+  for (int k = 0; k < outputs; ++k) hosts.push_back(std::make_unique<Host>(device, Link{static_cast<std::size_t>(k), kPortUart1}));
+  for (const std::uint8_t port : {kPortDdc, kPortUsb, kPortSpi}) hosts.push_back(std::make_unique<Host>(device, Link{0, port}));
+  for (std::size_t k = 0; k < hosts.size(); ++k) decoders.push_back(std::make_unique<StreamDecoder>());
+
+  double now_s = 0.0;
+  int epoch = 0;
+  MessageList list;
+  while (in.remaining() > 0) {
+    const int action = in.control_in(0, 15);
+    const std::size_t who = static_cast<std::size_t>(in.control_in(0, 15)) % hosts.size();
+    Host& host = *hosts[who];
+    StreamDecoder& dec = *decoders[who];
+    now_s += in.control_in(0, 255) * 0.01;
+    host.now_s = now_s;
+    if (action < 11) {
+      dec.feed(in.take(static_cast<std::size_t>(in.control_in(1, 512))), host);
+    } else if (action < 13) {
+      dec.on_idle(host);
+    } else if (action == 13) {
+      dec.reset();
+    } else {
+      const receiver::Fix fix = make_fix(in, epoch++);
+      device.on_epoch(fix, now_s);
+      for (int k = 0; k < outputs; ++k) {
+        list.clear();
+        const Layout layout = action == 14 ? Layout::kLine : Layout::kPerProtocol;
+        device.compose(Link{static_cast<std::size_t>(k), kPortUart1}, list, layout);
+        gnssemu::fuzz::expect(list.messages().size() <= MessageList::kMaxMessages, "epoch within kMaxMessages");
+        gnssemu::fuzz::expect(list.bytes().size() <= MessageList::kMaxBytes, "epoch within kMaxBytes");
+        for (const auto& m : list.messages()) {
+          gnssemu::fuzz::expect(!m.label.empty() && m.end > m.begin, "epoch message labelled and not empty");
+          expect_frames(list.bytes(m), "epoch message is whole valid frames");
+        }
+      }
+    }
+  }
+  return 0;
+}

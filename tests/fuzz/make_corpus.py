@@ -1,0 +1,208 @@
+#!/usr/bin/env python3
+"""Writes the hand-made seed inputs (corpus/<target>/) and dictionaries
+(dict/<target>.dict) of the fuzz targets: what tests/data lacks (truth
+packets, host command sequences, gzip and binary variants) and the keywords
+of each format. Run from anywhere; rewrites the files, so the result is
+reviewable in git. Layouts: docs/truth-protocol.md, docs/ubx.md, the PLY and
+OBJ readers in core/scene, docs/configuration.md.
+"""
+import gzip
+import math
+import pathlib
+import re
+import struct
+
+HERE = pathlib.Path(__file__).resolve().parent
+ROOT = HERE.parent.parent
+
+
+def write(target, name, data):
+    d = HERE / "corpus" / target
+    d.mkdir(parents=True, exist_ok=True)
+    (d / name).write_bytes(data if isinstance(data, bytes) else data.encode())
+
+
+def write_dict(target, words):
+    lines = ["# libFuzzer dictionary for fuzz_%s (written by make_corpus.py)" % target]
+    for w in sorted(set(words)):
+        esc = "".join(c if 0x20 <= ord(c) < 0x7F and c not in '"\\' else "\\x%02X" % ord(c) for c in w)
+        lines.append('"%s"' % esc)
+    (HERE / "dict").mkdir(exist_ok=True)
+    (HERE / "dict" / ("%s.dict" % target)).write_text("\n".join(lines) + "\n")
+
+
+# --- truth packets (docs/truth-protocol.md) ----------------------------------
+
+def truth_record(flags, vehicle=b"ego", sim=12.3, week=0, tow=0.0, pos=(0, 0, 0), vel=(0, 0, 0), att=(0, 0, 0)):
+    rec = bytes([0xF7]) + b"GTR" + struct.pack("<BBH", 1, flags, week) + vehicle.ljust(64, b"\0")
+    rec += struct.pack("<dd", sim, tow) + struct.pack("<3d", *pos) + struct.pack("<3d", *vel) + struct.pack("<3d", *att)
+    assert len(rec) == 160
+    return rec
+
+
+def truth_corpus():
+    write("truth_packet", "lla.json",
+          '{"version":1,"vehicle":"ego","sim_time_s":12.3,"lla":{"lat_deg":48.87,"lon_deg":2.29,"height_m":100}}')
+    write("truth_packet", "ecef_vel.json",
+          '{"version":1,"vehicle":"car 2","sim_time_s":0.01,"ecef":{"x_m":4201575.4,"y_m":168406.6,"z_m":4779210.7},'
+          '"vel_ecef":{"x_m_s":1.5,"y_m_s":-2.0,"z_m_s":0.1}}')
+    write("truth_packet", "enu_gps_time.json",
+          '{"version":1,"vehicle":"ego","sim_time_s":100.0,"enu":{"e_m":10.5,"n_m":-3.25,"u_m":1.5},'
+          '"vel_enu":{"e_m_s":5,"n_m_s":0,"u_m_s":0},"gps_week":2190,"gps_tow_s":522000.0}')
+    write("truth_packet", "nan_literal.json",
+          '{"version":1,"vehicle":"ego","sim_time_s":NaN,"lla":{"lat_deg":48.87,"lon_deg":2.29,"height_m":100}}')
+    write("truth_packet", "repeated_key.json",
+          '{"version":1,"vehicle":"ego","vehicle":"b","sim_time_s":1,"lla":{"lat_deg":1,"lon_deg":2,"height_m":3}}')
+    write("truth_packet", "lla.bin", truth_record(0x00, pos=(48.87, 2.29, 100.0)))
+    write("truth_packet", "ecef_vel_att_gps.bin",
+          truth_record(0x01 | 0x08 | 0x10 | 0x20, vehicle=b"truck-7", week=2190, tow=522000.5,
+                       pos=(4201575.4, 168406.6, 4779210.7), vel=(1.0, 2.0, 0.5), att=(0.1, -0.05, math.pi / 2)))
+    write("truth_packet", "enu_vel_enu.bin", truth_record(0x02 | 0x04, pos=(10.0, -20.0, 2.0), vel=(3.0, 4.0, 0.0)))
+
+
+# --- host input to the emulated u-blox (docs/ubx.md) -------------------------
+
+def ubx(cls, mid, payload=b""):
+    body = bytes([cls, mid]) + struct.pack("<H", len(payload)) + payload
+    a = b = 0
+    for v in body:
+        a = (a + v) & 0xFF
+        b = (b + a) & 0xFF
+    return b"\xB5\x62" + body + bytes([a, b])
+
+
+def nmea(body):
+    cs = 0
+    for c in body.encode():
+        cs ^= c
+    return ("$%s*%02X\r\n" % (body, cs)).encode()
+
+
+def ubx_corpus():
+    # PX4's start-up (tests/integration/ubx_ports_integration.py case_px4).
+    nav5 = bytearray(36)
+    struct.pack_into("<HBB", nav5, 0, 0x0005, 7, 3)
+    px4 = bytes.fromhex("B5620601FF03") + ubx(0x0A, 0x04)
+    px4 += ubx(0x06, 0x8A, bytes([0, 1, 0, 0]) + struct.pack("<II", 0x40520001, 115200))
+    px4 += ubx(0x06, 0x00, struct.pack("<BBHIIHHHH", 1, 0, 0, 0x08D0, 9600, 1, 1, 0, 0))
+    px4 += ubx(0x0A, 0x04) + ubx(0x06, 0x08, struct.pack("<HHH", 200, 1, 0)) + ubx(0x06, 0x24, bytes(nav5))
+    for cls, mid, rate in ((1, 7, 1), (1, 3, 1), (1, 4, 1), (1, 0x30, 5), (0x0A, 9, 5)):
+        px4 += ubx(0x06, 0x01, bytes([cls, mid, rate]))
+    px4 += ubx(0x01, 0x03) + ubx(0x06, 0x04, bytes([0xFF, 0xFF, 0x02, 0x00]))
+    write("ubx_device", "px4_startup.bin", px4)
+    # ArduPilot's probe and poll / set / poll-compare.
+    ap = nmea("PUBX,41,1,0023,0001,230400,0")
+    for (cls, mid), rate in {(1, 7): 1, (1, 3): 1, (1, 6): 1, (1, 0x12): 1, (1, 4): 2, (0x0A, 9): 2}.items():
+        ap += ubx(0x06, 0x01, bytes([cls, mid])) + ubx(0x06, 0x01, bytes([cls, mid, rate]))
+    ap += ubx(0x06, 0x08) + ubx(0x06, 0x08, struct.pack("<HHH", 200, 1, 0)) + ubx(0x06, 0x00, bytes([1]))
+    ap += ubx(0x06, 0x24) + ubx(0x06, 0x3E) + ubx(0x06, 0x16) + ubx(0x06, 0x16, bytes([0, 3, 3, 0, 0, 0, 0, 0]))
+    ap += ubx(0x0A, 0x04) + ubx(0x01, 0x30)
+    write("ubx_device", "ardupilot_startup.bin", ap)
+    # NMEA host commands and polls, CFG-CFG save/clear/load, resets, other ports.
+    misc = nmea("PUBX,40,GGA,0,1,0,0,0,0") + nmea("PUBX,40,ZDA,0,1,0,0,0,0") + nmea("GPGPQ,GGA") + nmea("EIGNQ,RMC")
+    misc += nmea("PUBX,41,1,0003,0003,38400,0") + b"$GPGGA,garbage*00\r\n"
+    misc += ubx(0x06, 0x09, struct.pack("<III", 0, 0xFFFF, 0) + bytes([0x17]))  # save all
+    misc += ubx(0x06, 0x09, struct.pack("<III", 0xFFFF, 0, 0xFFFF))  # clear + load
+    misc += ubx(0x06, 0x00, bytes([3])) + ubx(0x06, 0x00, bytes([0])) + ubx(0x06, 0x00, bytes([4]))
+    misc += ubx(0x06, 0x01, bytes([0xF0, 0x00, 0, 1, 0, 1, 0, 0]))  # CFG-MSG all ports
+    misc += ubx(0x06, 0x31, bytes([0])) + ubx(0x06, 0x02, bytes([1])) + ubx(0x06, 0x17) + ubx(0x06, 0x1B)
+    misc += ubx(0x06, 0x04, bytes([0, 0, 1, 0])) + ubx(0x06, 0x04, bytes([0, 0, 8, 0]))
+    write("ubx_device", "commands_polls_resets.bin", misc)
+
+
+# --- RINEX observation files, gzip (as spp / calibrate read them) -----------
+
+def obs_corpus():
+    for name in ("nya1_v211_mixed.o", "nya1_v305_events.rnx"):
+        data = (ROOT / "tests/data/obs" / name).read_bytes()
+        write("rinex_obs", name + ".gz", gzip.compress(data, mtime=0))
+
+
+# --- meshes ------------------------------------------------------------------
+
+CUBE_V = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+CUBE_F = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+
+
+def ply(fmt, extra_element=False):
+    head = ["ply", "format %s 1.0" % fmt, "comment cube", "element vertex 8", "property float x",
+            "property float y", "property double z", "property uchar red"]
+    if extra_element:
+        head += ["element edge 1", "property int vertex1", "property int vertex2"]
+    head += ["element face 6", "property list uchar int vertex_indices", "end_header"]
+    out = ("\n".join(head) + "\n").encode()
+    if fmt == "ascii":
+        out += "".join("%g %g %g 255\n" % v for v in CUBE_V).encode()
+        if extra_element:
+            out += b"0 1\n"
+        out += "".join("4 %d %d %d %d\n" % f for f in CUBE_F).encode()
+        return out
+    e = "<" if fmt == "binary_little_endian" else ">"
+    out += b"".join(struct.pack(e + "ffdB", *v, 255) for v in CUBE_V)
+    if extra_element:
+        out += struct.pack(e + "ii", 0, 1)
+    out += b"".join(struct.pack(e + "B4i", 4, *f) for f in CUBE_F)
+    return out
+
+
+def mesh_corpus():
+    write("ply", "cube_ascii.ply", ply("ascii"))
+    write("ply", "cube_le.ply", ply("binary_little_endian", extra_element=True))
+    write("ply", "cube_be.ply", ply("binary_big_endian"))
+    obj = "# cube\nmtllib x.mtl\no cube\n" + "".join("v %g %g %g\n" % v for v in CUBE_V)
+    obj += "vt 0 0\nvn 0 0 1\nusemtl concrete\n"
+    obj += "f 1/1/1 4/1/1 3/1/1 2/1/1\nf 5//1 6//1 7//1 8//1\nusemtl glass\n"
+    obj += "f -8 -7 -3 -4\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n"
+    write("obj", "cube_materials.obj", obj)
+    write("footprints", "two_buildings_ground.toml",
+          '[[building]]\nfootprint = [[0, 0], [20, 0], [20, 10], [0, 10]]\nheight_m = 15.0\nmaterial = "concrete"\n\n'
+          '[[building]]\nfootprint = [[30, 0], [40, 5], [30, 10]]\nheight_m = 30.5\nbase_m = 2.0\nmaterial = "glass"\n\n'
+          '[ground]\nhalf_size_m = 200.0\nheight_m = -0.5\nmaterial = "asphalt"\n')
+
+
+# --- dictionaries ------------------------------------------------------------
+
+def dictionaries():
+    write_dict("truth_packet", ["version", "vehicle", "sim_time_s", "lla", "lat_deg", "lon_deg", "height_m", "ecef",
+                                "x_m", "y_m", "z_m", "enu", "e_m", "n_m", "u_m", "vel_enu", "e_m_s", "n_m_s", "u_m_s",
+                                "vel_ecef", "x_m_s", "y_m_s", "z_m_s", "gps_week", "gps_tow_s", "NaN", "Infinity",
+                                "1e999", "-0", "true", "null", "\xf7GTR\x01", "\\u0000"])
+    write_dict("ubx_device", ["\xb5\x62", "\xb5\x62\x06", "\xb5\x62\x0a\x04\x00\x00", "$PUBX,41,", "$PUBX,40,",
+                              "GPQ,", "GNQ,", "*", "\r\n", "$GP", "$GN"])
+    # RINEX header labels (columns 61-80) from the test files.
+    labels = set()
+    for p in list((ROOT / "tests/data/nav").iterdir()) + list((ROOT / "tests/data/obs").glob("*.[or]*")):
+        if p.suffix == ".gz":
+            continue
+        for line in p.read_text(errors="replace").splitlines():
+            if len(line) > 60 and line[60:].strip():
+                labels.add(line[60:].rstrip())
+            if "END OF HEADER" in line:
+                break
+    for target in ("rinex_nav", "rinex_obs"):
+        write_dict(target, sorted(labels) + ["G01", "G32", "R01", "E11", "> 2024", "D+00", "E-01", "0.9999e9"])
+    write_dict("almanac", ["******** Week", "ID:", "Health:", "Eccentricity:", "Time of Applicability(s):",
+                           "Orbital Inclination(rad):", "Rate of Right Ascen(r/s):", "SQRT(A)  (m 1/2):",
+                           "Right Ascen at Week(rad):", "Argument of Perigee(rad):", "Mean Anom(rad):", "Af0(s):",
+                           "Af1(s/s):", "week:", "E-001", "E+000"])
+    keys = set(re.findall(r"^\| `([a-z_0-9.]+)`", (ROOT / "docs/configuration.md").read_text(), re.M))
+    sections = set(re.findall(r"^\s*(\[\[?[a-z_.]+\]\]?)", (ROOT / "config/default.toml").read_text(), re.M))
+    sections |= {"[scene]", "[scene.material_loss_db]", "[[output]]"}
+    write_dict("config", sorted(keys) + sorted(sections) + ["true", "false", "inf", "nan", "1979-05-27T07:32:00Z",
+                                                             "\"pty\"", "\"tcp\"", "\"udp\"", "\"file\"", "\"serial\""])
+    write_dict("ply", ["ply", "format ascii 1.0", "format binary_little_endian 1.0", "format binary_big_endian 1.0",
+                       "element vertex ", "element face ", "property float ", "property double ", "property uchar ",
+                       "property list uchar int vertex_indices", "end_header", "comment", "obj_info", "1e-320",
+                       "nan", "inf"])
+    write_dict("obj", ["v ", "vt ", "vn ", "f ", "usemtl ", "mtllib ", "o ", "g ", "s off", "//", "/", "-1", "1e-320",
+                       "nan", "inf", "1e400"])
+    write_dict("footprints", ["[[building]]", "footprint", "height_m", "base_m", "material", "[ground]",
+                              "half_size_m", "[[", "]]", "1e308", "nan", "inf"])
+
+
+if __name__ == "__main__":
+    truth_corpus()
+    ubx_corpus()
+    obs_corpus()
+    mesh_corpus()
+    dictionaries()
