@@ -20,6 +20,9 @@ constexpr double kNoFixTimeAccuracy_s = 1.0;
 // in GSV / NAV-SAT), dB-Hz.
 constexpr double kMinReportedCn0_dbhz = 1.0;
 
+static_assert(static_cast<int>(AntennaStatus::kShort) == static_cast<int>(world::AntennaState::kShort) &&
+              static_cast<int>(AntennaStatus::kOpen) == static_cast<int>(world::AntennaState::kOpen));
+
 const ReceiverConfig& validated(const ReceiverConfig& c) {
   validate(c);
   return c;
@@ -28,7 +31,7 @@ const ReceiverConfig& validated(const ReceiverConfig& c) {
 }  // namespace
 
 Receiver::Receiver(const ReceiverConfig& config)
-    : config_(validated(config)), solver_(config.solver, config.max_pdop) {
+    : config_(validated(config)), spoof_(config.spoof_detection), solver_(config.solver, config.max_pdop) {
   no_fix_epoch();
 }
 
@@ -106,7 +109,7 @@ void Receiver::measurement_stage(const world::Observables& obs) noexcept {
     si.prn = p;
     si.az_rad = o.az_rad;
     si.el_rad = o.el_rad;
-    si.healthy = true;
+    si.healthy = o.eph != nullptr && o.eph->health == 0;  // a broadcast "unhealthy" is tracked, not used
     si.above_mask = o.above_mask;
     if (si.above_mask) ++fix_.num_visible;
     si.blocked = o.blocked;
@@ -119,6 +122,7 @@ void Receiver::measurement_stage(const world::Observables& obs) noexcept {
     si.pseudorange_m = o.pseudorange_m;
     si.doppler_hz = o.doppler_hz;
     ++fix_.num_tracked;
+    if (!si.healthy) continue;
     Measurement& m = in_.meas[in_.num_meas];
     m.eph = o.eph;
     m.pseudorange_m = si.pseudorange_m;
@@ -139,6 +143,8 @@ const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs)
 
   fix_.t = t;
   fix_.noise_rise_db = obs.noise_rise_db;
+  fix_.cw_jam_to_noise = obs.cw_jam_to_noise;
+  fix_.antenna_status = static_cast<AntennaStatus>(obs.antenna_state);
   fix_.leap_seconds = leap_override_ ? leap_s_ : time::leap_seconds_at(t);
   fix_.in_leap_second = !leap_override_ && time::in_inserted_leap_second(t);  // a fixed count never steps
   fix_.num_sats = fix_.num_visible = fix_.num_tracked = 0;
@@ -147,6 +153,7 @@ const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs)
     fix_.time_valid = time_valid_;
     for (signal::TrackingState& s : tracking_) s.reset();  // antenna lost: lock lost
     no_fix_epoch();
+    fix_.spoof_det_state = spoof_.update(fix_);
     return fix_;
   }
   time_valid_ = true;
@@ -168,6 +175,7 @@ const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs)
   in_.held_height_m = held_height_m_;
   solver_.solve(in_, out_);
   fill_solution();
+  fix_.spoof_det_state = spoof_.update(fix_);
   return fix_;
 }
 

@@ -63,6 +63,8 @@ private:
   bool started_ = false;
   time::GpsTime t_prev_;
 
+  SpoofMonitor spoof_;
+
   // Solution.
   Solver solver_;
   SolverInput in_;

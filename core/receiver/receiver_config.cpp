@@ -54,6 +54,7 @@ void validate(const ReceiverConfig& c) {
                        {static_cast<double>(c.max_channels), R::max_channels, "max_channels"}});
   signal::validate(c.tracking);
   validate(c.solver);
+  validate(c.spoof_detection);
 }
 
 }  // namespace gnssemu::receiver

@@ -9,6 +9,7 @@
 #include "core/common/constants.hpp"
 #include "core/common/range.hpp"
 #include "core/common/violation.hpp"
+#include "core/receiver/spoof_monitor.hpp"
 #include "core/signal/tracking.hpp"
 
 namespace gnssemu::receiver {
@@ -99,6 +100,7 @@ struct ReceiverConfig {
   int max_channels = 16;           ///< satellites tracked at most (highest first)
   signal::TrackingThresholds tracking;  ///< acquire 30 / lose 25 dB-Hz
   SolverConfig solver;
+  SpoofDetectionConfig spoof_detection;  ///< NAV-STATUS spoofDetState criteria
 };
 
 /// Valid values of ReceiverConfig's own numbers (the mask in degrees, as
