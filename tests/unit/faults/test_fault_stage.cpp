@@ -1,0 +1,282 @@
+// The fault stage through the whole pipeline: each fault acts on signals and
+// measurements, and the receiver's own tracking, solution, exclusion and
+// flags react.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/faults/fault_stage.hpp"
+#include "core/faults/interference.hpp"
+#include "fault_rig.hpp"
+#include "tests/support/alloc_counter.hpp"
+
+namespace gnssemu::faults {
+namespace {
+
+using test::make_event;
+using test::Rig;
+
+double n0_dbw_hz(const Rig& r) {
+  const auto& l = r.rx.world().config().signal.link;
+  return signal::thermal_noise_density_dbw_hz(l.noise_temperature_k) + l.noise_figure_db + l.environment_noise_rise_db;
+}
+
+int first_used_prn(const receiver::Fix& f) {
+  for (int i = 0; i < f.num_sats; ++i)
+    if (f.sats[i].used) return f.sats[i].prn;
+  return 0;
+}
+
+const receiver::SatInfo* sat(const receiver::Fix& f, int prn) {
+  for (int i = 0; i < f.num_sats; ++i)
+    if (f.sats[i].prn == prn) return &f.sats[i];
+  return nullptr;
+}
+
+TEST(FaultStage, JammerFollowsTheInterferenceRelation) {
+  FaultEvent e = make_event(FaultType::kJammer, 0.0);
+  e.put(Param::kJsDb, 25.0);
+  Rig clean({}, false), jammed(std::vector<FaultEvent>{e});
+  const double i0 = interference_density_w_hz(kNominalSignal_dbw + 25.0, JammerKind::kWideband);
+  for (int s = 0; s < 5; ++s) {
+    const receiver::Fix c = clean.step(s);
+    const receiver::Fix& j = jammed.step(s);
+    int compared = 0;
+    for (int i = 0; i < c.num_sats; ++i) {
+      const receiver::SatInfo* js = sat(j, c.sats[i].prn);
+      if (!c.sats[i].tracked || js == nullptr || !js->tracked) continue;
+      EXPECT_NEAR(js->cn0_dbhz, effective_cn0_dbhz(c.sats[i].cn0_dbhz, n0_dbw_hz(clean), i0), 1e-9);
+      ++compared;
+    }
+    EXPECT_GE(compared, 4);
+    EXPECT_GT(j.noise_rise_db, c.noise_rise_db + 1.0);  // the AGC sees the jammer
+  }
+}
+
+TEST(FaultStage, WidebandIsGentlerThanCwAtTheSamePower) {
+  FaultEvent wide = make_event(FaultType::kJammer, 0.0, kForever_s, static_cast<int>(JammerKind::kWideband));
+  wide.put(Param::kJsDb, 30.0);
+  FaultEvent cw = wide;
+  cw.mode = static_cast<std::uint8_t>(JammerKind::kCw);
+  Rig a(std::vector<FaultEvent>{wide}), b(std::vector<FaultEvent>{cw});
+  const receiver::Fix fa = a.step(0);
+  const receiver::Fix& fb = b.step(0);
+  EXPECT_EQ(fa.cw_jam_to_noise, 0.0);
+  EXPECT_GT(fb.cw_jam_to_noise, 0.0);
+  double sa = 0, sb = 0;
+  for (int i = 0; i < fa.num_sats; ++i) sa += fa.sats[i].cn0_dbhz;
+  for (int i = 0; i < fb.num_sats; ++i) sb += fb.sats[i].cn0_dbhz;
+  EXPECT_GT(sa, sb);  // Q = 2 against Q = 1
+}
+
+TEST(FaultStage, RampedJammerLosesTheFixAndItComesBack) {
+  FaultEvent e = make_event(FaultType::kJammer, 10.0, 60.0);
+  e.put(Param::kJsDb, Ramp{0.0, 60.0});
+  Rig rig(std::vector<FaultEvent>{e});
+  int lost_at = -1;
+  for (int s = 0; s < 90; ++s) {
+    const receiver::Fix& f = rig.step(s);
+    if (s < 10) {
+      EXPECT_EQ(f.type, receiver::FixType::k3D);
+    }
+    if (lost_at < 0 && f.type == receiver::FixType::kNone) lost_at = s;
+    if (s >= 85) {
+      EXPECT_EQ(f.type, receiver::FixType::k3D) << s;  // reacquired after the jammer stops
+    }
+  }
+  EXPECT_GT(lost_at, 10 + 20);  // not before J/S passes ~20 dB (the jammer reaches the noise floor)
+  EXPECT_LT(lost_at, 70);
+}
+
+TEST(FaultStage, DragOffMovesTheFixWithQuietResiduals) {
+  FaultEvent e = make_event(FaultType::kSpoofer, 10.0, kForever_s, static_cast<int>(SpoofMode::kDrag));
+  e.put(Param::kDragSpeedMS, 2.0);
+  e.put(Param::kDragHeadingDeg, 90.0);
+  Rig rig(std::vector<FaultEvent>{e});
+  for (int s = 0; s <= 110; ++s) {
+    const receiver::Fix& f = rig.step(s);
+    ASSERT_EQ(f.type, receiver::FixType::k3D) << s;
+    EXPECT_EQ(f.num_used, f.num_tracked) << s;  // nothing excluded
+    EXPECT_LT(f.h_acc_m, 10.0);
+  }
+  const Enu d = rig.error(rig.rx.last_fix());
+  EXPECT_NEAR(d.x, 200.0, 8.0);  // 2 m/s for 100 s, east
+  EXPECT_NEAR(d.y, 0.0, 8.0);
+  EXPECT_NEAR(rig.rx.faults()->effects().spoof_offset_m.x, 200.0, 1e-6);
+}
+
+TEST(FaultStage, TakeoverJumpsTheClockAndIsDetected) {
+  FaultEvent e = make_event(FaultType::kSpoofer, 20.0, kForever_s, static_cast<int>(SpoofMode::kTakeover));
+  e.put(Param::kClockJumpUs, 10.0);
+  e.put(Param::kOffsetNorthM, 300.0);
+  e.put(Param::kPowerAdvantageDb, 10.0);
+  Rig rig(std::vector<FaultEvent>{e});
+  double clock_before = 0;
+  for (int s = 0; s < 30; ++s) {
+    const receiver::Fix& f = rig.step(s);
+    if (s < 20) {
+      EXPECT_EQ(f.spoof_det_state, 1) << s;
+      clock_before = f.clock_bias_s;
+    } else {
+      EXPECT_GE(f.spoof_det_state, 2) << s;
+    }
+    if (s == 20) {
+      EXPECT_NEAR((f.clock_bias_s - clock_before) * 1e6, 10.0, 0.1);
+    }
+  }
+  EXPECT_NEAR(rig.error(rig.rx.last_fix()).y, 300.0, 10.0);
+}
+
+TEST(FaultStage, SatelliteStepAboveTheThresholdIsExcludedBelowItIsNot) {
+  Rig probe({}, false);
+  const int prn = first_used_prn(probe.step(0));
+  ASSERT_GT(prn, 0);
+  for (const double bias : {50.0, 3.0}) {
+    FaultEvent e = make_event(FaultType::kSatellite, 5.0, 10.0);
+    e.put(Param::kPrn, prn);
+    e.put(Param::kBiasM, bias);
+    Rig rig(std::vector<FaultEvent>{e});
+    for (int s = 0; s < 20; ++s) {
+      const receiver::Fix& f = rig.step(s);
+      const receiver::SatInfo* si = sat(f, prn);
+      ASSERT_NE(si, nullptr);
+      const bool faulted = s >= 5 && s < 15;
+      EXPECT_EQ(si->used, !(faulted && bias > 10.0)) << "bias " << bias << " t " << s;
+    }
+  }
+}
+
+TEST(FaultStage, UnhealthyBroadcastIsTrackedNotUsed) {
+  Rig probe({}, false);
+  const int prn = first_used_prn(probe.step(0));
+  FaultEvent e = make_event(FaultType::kSatellite, 0.0);
+  e.put(Param::kPrn, prn);
+  e.put(Param::kUnhealthy, 1.0);
+  Rig rig(std::vector<FaultEvent>{e});
+  const receiver::SatInfo* si = sat(rig.step(0), prn);
+  ASSERT_NE(si, nullptr);
+  EXPECT_TRUE(si->tracked);
+  EXPECT_FALSE(si->healthy);
+  EXPECT_FALSE(si->used);
+}
+
+TEST(FaultStage, AntennaOpenAndShortAndRecovery) {
+  for (const OutageKind kind : {OutageKind::kOpen, OutageKind::kShort, OutageKind::kBlockage}) {
+    Rig rig(std::vector<FaultEvent>{make_event(FaultType::kOutage, 5.0, 5.0, static_cast<int>(kind))});
+    for (int s = 0; s < 20; ++s) {
+      const receiver::Fix& f = rig.step(s);
+      const bool out = s >= 5 && s < 10;
+      EXPECT_EQ(f.type == receiver::FixType::kNone, out) << s;
+      if (out) {
+        EXPECT_EQ(f.num_tracked, 0);
+        EXPECT_EQ(f.antenna_status, kind == OutageKind::kOpen    ? receiver::AntennaStatus::kOpen
+                                    : kind == OutageKind::kShort ? receiver::AntennaStatus::kShort
+                                                                 : receiver::AntennaStatus::kOk);
+      } else {
+        EXPECT_EQ(f.antenna_status, receiver::AntennaStatus::kOk);
+      }
+    }
+  }
+}
+
+TEST(FaultStage, SkyBlockRemovesTheSectorOnly) {
+  FaultEvent e = make_event(FaultType::kSkyBlock, 0.0);
+  e.put(Param::kAzFromDeg, 270.0);
+  e.put(Param::kAzToDeg, 90.0);  // the northern half, through north
+  Rig rig(std::vector<FaultEvent>{e});
+  const receiver::Fix& f = rig.step(0);
+  int north = 0, south = 0;
+  for (int i = 0; i < f.num_sats; ++i) {
+    const receiver::SatInfo& s = f.sats[i];
+    if (!s.above_mask) continue;
+    const double az = s.az_rad / kDegToRad;
+    if (az >= 270.0 || az <= 90.0) {
+      EXPECT_FALSE(s.tracked) << s.prn;
+      ++north;
+    } else {
+      south += s.tracked;
+    }
+  }
+  EXPECT_GT(north, 0);
+  EXPECT_GT(south, 0);
+}
+
+TEST(FaultStage, SameEventsSameSeedSameFixes) {
+  FaultEvent j = make_event(FaultType::kJammer, 0.0, 50.0);
+  j.put(Param::kJsDb, Ramp{20.0, 40.0});
+  FaultEvent s = make_event(FaultType::kSpoofer, 5.0, kForever_s, static_cast<int>(SpoofMode::kDrag));
+  s.put(Param::kDragSpeedMS, 1.0);
+  const std::vector<FaultEvent> ev{j, s};
+  Rig a(ev), b(ev);
+  for (int t = 0; t < 40; ++t) {
+    const receiver::Fix fa = a.step(t);
+    const receiver::Fix& fb = b.step(t);
+    EXPECT_EQ(fa.pos_m, fb.pos_m);
+    EXPECT_EQ(fa.num_used, fb.num_used);
+  }
+}
+
+TEST(FaultStage, AnEmptyStageChangesNothing) {
+  Rig with({}, true), without({}, false);
+  for (int t = 0; t < 20; ++t) {
+    const receiver::Fix fa = with.step(t);
+    EXPECT_EQ(fa.pos_m, without.step(t).pos_m);
+  }
+}
+
+TEST(FaultStage, InjectCountsFromNowAndClearEndsEverything) {
+  Rig rig;
+  for (int t = 0; t <= 30; ++t) rig.step(t);
+  rig.rx.faults()->inject(std::vector<FaultEvent>{make_event(FaultType::kOutage, 5.0, 5.0)});
+  for (int t = 31; t < 45; ++t) {
+    const receiver::Fix& f = rig.step(t);
+    EXPECT_EQ(f.type == receiver::FixType::kNone, t >= 35 && t < 40) << t;
+  }
+  EXPECT_EQ(rig.rx.faults()->status().size(), 1u);
+  rig.rx.faults()->inject(std::vector<FaultEvent>{make_event(FaultType::kOutage, 0.0)});
+  EXPECT_EQ(rig.step(45).type, receiver::FixType::kNone);
+  EXPECT_EQ(rig.rx.faults()->active_count(), 1);
+  rig.rx.faults()->clear();
+  EXPECT_EQ(rig.step(46).type, receiver::FixType::k3D);
+  EXPECT_TRUE(rig.rx.faults()->status().empty());
+}
+
+TEST(FaultStage, BadInjectionChangesNothing) {
+  Rig rig;
+  FaultEvent bad = make_event(FaultType::kSatellite, 0.0);  // no prn
+  EXPECT_THROW(rig.rx.faults()->inject(std::vector<FaultEvent>{make_event(FaultType::kOutage, 0.0), bad}), Error);
+  EXPECT_TRUE(rig.rx.faults()->empty());
+}
+
+TEST(FaultStage, StepDoesNotAllocateWithEveryFaultActive) {
+  std::vector<FaultEvent> ev;
+  FaultEvent j = make_event(FaultType::kJammer, 0.0, 400.0, static_cast<int>(JammerKind::kCw));
+  j.put(Param::kEirpDbw, Ramp{-40.0, -20.0});
+  j.put(Param::kLatDeg, 48.875);
+  j.put(Param::kLonDeg, 2.296);
+  ev.push_back(j);
+  FaultEvent s = make_event(FaultType::kSpoofer, 0.0, kForever_s, static_cast<int>(SpoofMode::kDrag));
+  s.put(Param::kDragSpeedMS, 1.0);
+  s.put(Param::kPushRateNsS, 10.0);
+  ev.push_back(s);
+  FaultEvent b = make_event(FaultType::kSkyBlock, 0.0);
+  b.put(Param::kAzFromDeg, 100.0);
+  b.put(Param::kAzToDeg, 140.0);
+  b.put(Param::kLossDb, 6.0);
+  ev.push_back(b);
+  FaultEvent sat = make_event(FaultType::kSatellite, 0.0);
+  sat.put(Param::kPrn, 4);
+  sat.put(Param::kEphAlongM, 50.0);
+  sat.put(Param::kRateMS, 0.5);
+  ev.push_back(sat);
+  ev.push_back(make_event(FaultType::kOutage, 300.0, 20.0, static_cast<int>(OutageKind::kOpen)));
+  Rig rig(ev);
+  for (int k = 0; k < 10; ++k) rig.step(k);  // warm-up
+  const long before = support::allocation_count();
+  for (int k = 10; k < 400; ++k) rig.step(k);
+  EXPECT_EQ(support::allocation_count() - before, 0);
+}
+
+}  // namespace
+}  // namespace gnssemu::faults
