@@ -131,7 +131,7 @@ TEST(Batch, StaticReceiverDefaultErrorModel) {
 
   const Csv e = parse_csv(read_file(dir.file("err.csv")));
   ASSERT_EQ(e.header, (std::vector<std::string>{"gps_week", "tow_s", "fix_type", "nsat", "e_m", "n_m", "u_m", "hdop",
-                                                "vdop", "pdop"}));
+                                                "vdop", "pdop", "hacc_m", "vacc_m"}));
   ASSERT_EQ(e.rows.size(), 601u);
   EXPECT_EQ(e.cell(0, "tow_s"), "522000.000");
   EXPECT_EQ(e.cell(600, "tow_s"), "522600.000");
