@@ -86,12 +86,7 @@ double max_abs_residual(const receiver::Fix& f) {
 }
 
 FaultEvent event(FaultType type, double start_s, double duration_s = faults::kForever_s, int mode = 0) {
-  FaultEvent e;
-  e.type = type;
-  e.start_s = start_s;
-  e.duration_s = duration_s;
-  e.mode = static_cast<std::uint8_t>(mode);
-  return e;
+  return FaultEvent::of(type, start_s, duration_s, static_cast<std::uint8_t>(mode));
 }
 
 // Jamming sweep: J/S 0 -> 60 dB in 2 dB steps of 20 s after 60 s clean.

@@ -94,6 +94,16 @@ struct FaultEvent {
   std::array<Ramp, kParamCount> params{};
   std::uint64_t set = 0;         ///< bit per Param given
 
+  /// An event without parameters yet (add them with put()).
+  static FaultEvent of(FaultType type, double start_s, double duration_s = kForever_s, std::uint8_t mode = 0) noexcept {
+    FaultEvent e;
+    e.type = type;
+    e.start_s = start_s;
+    e.duration_s = duration_s;
+    e.mode = mode;
+    return e;
+  }
+
   bool has(Param p) const noexcept { return (set >> static_cast<int>(p)) & 1u; }
   const Ramp& param(Param p) const noexcept { return params[static_cast<int>(p)]; }
   /// Value of p at fraction f of the event (its default when not given).

@@ -9,6 +9,7 @@
 
 #include "config/scenario_file.hpp"
 #include "core/common/error.hpp"
+#include "test_helpers.hpp"
 
 namespace gnssemu::config {
 namespace {
@@ -16,15 +17,7 @@ namespace {
 using faults::FaultType;
 using faults::Param;
 
-template <class F>
-void expect_error(F f, std::initializer_list<std::string> pieces) {
-  try {
-    f();
-    ADD_FAILURE() << "no error";
-  } catch (const Error& e) {
-    for (const std::string& p : pieces) EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
-  }
-}
+using test::expect_error;
 
 std::vector<faults::FaultEvent> parse(const std::string& text) { return parse_scenario(text, "s.toml"); }
 

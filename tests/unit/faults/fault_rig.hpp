@@ -39,12 +39,7 @@ struct Rig {
 };
 
 inline FaultEvent make_event(FaultType type, double start_s, double duration_s = kForever_s, int mode = 0) {
-  FaultEvent e;
-  e.type = type;
-  e.start_s = start_s;
-  e.duration_s = duration_s;
-  e.mode = static_cast<std::uint8_t>(mode);
-  return e;
+  return FaultEvent::of(type, start_s, duration_s, static_cast<std::uint8_t>(mode));
 }
 
 }  // namespace gnssemu::faults::test
