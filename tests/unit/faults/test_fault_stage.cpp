@@ -106,6 +106,35 @@ TEST(FaultStage, DragOffMovesTheFixWithQuietResiduals) {
   EXPECT_NEAR(rig.rx.faults()->effects().spoof_offset_m.x, 200.0, 1e-6);
 }
 
+TEST(FaultStage, CaptureFollowsThePowerAdvantage) {
+  int captured[3] = {};
+  int tracked = 0;
+  const double advantages[3] = {-15.0, 0.0, 6.0};
+  for (int k = 0; k < 3; ++k) {
+    FaultEvent e = make_event(FaultType::kSpoofer, 0.0, kForever_s, static_cast<int>(SpoofMode::kTimePush));
+    e.put(Param::kPowerAdvantageDb, advantages[k]);
+    Rig rig(std::vector<FaultEvent>{e});
+    tracked = rig.step(0).num_tracked;
+    captured[k] = rig.rx.faults()->effects().captured;
+  }
+  EXPECT_LT(captured[0], captured[1]);  // weak satellites first
+  EXPECT_GT(captured[1], 0);
+  EXPECT_LT(captured[1], tracked);      // 0 dB over the strongest: not the strongest ones (margin 3 dB)
+  EXPECT_EQ(captured[2], tracked);      // 6 dB: all
+}
+
+TEST(FaultStage, TimePushMovesTheClockNotThePosition) {
+  FaultEvent e = make_event(FaultType::kSpoofer, 0.0, kForever_s, static_cast<int>(SpoofMode::kTimePush));
+  e.put(Param::kPushRateNsS, 100.0);
+  Rig clean({}, false), pushed(std::vector<FaultEvent>{e});
+  for (int s = 0; s <= 50; ++s) {
+    const receiver::Fix c = clean.step(s);
+    const receiver::Fix& p = pushed.step(s);
+    EXPECT_NEAR((p.clock_bias_s - c.clock_bias_s) * 1e9, 100.0 * s, 2.0) << s;
+    EXPECT_LT((p.pos_m - c.pos_m).norm(), 1.0) << s;
+  }
+}
+
 TEST(FaultStage, TakeoverJumpsTheClockAndIsDetected) {
   FaultEvent e = make_event(FaultType::kSpoofer, 20.0, kForever_s, static_cast<int>(SpoofMode::kTakeover));
   e.put(Param::kClockJumpUs, 10.0);
