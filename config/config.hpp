@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "config/address_block.hpp"
 #include "core/common/range.hpp"
 #include "core/common/vec3.hpp"
 #include "core/orbit/constellation.hpp"
@@ -67,6 +68,10 @@ struct TruthInputConfig {
   uint16_t port = 5500;           ///< 0: pick a free port (logged)
   double timeout_s = 2.0;         ///< no truth for this long -> no fix
   double max_extrapolation_s = 0.5;
+  /// Senders accepted (addresses or CIDR blocks); empty: any sender.
+  std::vector<AddressBlock> allow;
+  /// Vehicle id that drives the receiver; empty: the first vehicle heard.
+  std::string vehicle;
 };
 
 /// Truth is extrapolated within its timeout: max_extrapolation_s <= timeout_s.

@@ -273,6 +273,42 @@ constexpr Section<TimeConfig> kTime{kTimeFields};
 
 // --- [truth], [demo], [log] ------------------------------------------------
 
+void read_allow(TableReader& t, const Field<TruthInputConfig>& f, TruthInputConfig& truth) {
+  const toml::node* n = t.find(f.key);
+  if (n == nullptr) return;
+  const std::string name = t.full_name(f.key);
+  const toml::array* a = n->as_array();
+  if (a == nullptr) t.fail(*n, name + ": expected an array of addresses, got " + std::string(type_name(*n)));
+  truth.allow.clear();
+  for (const toml::node& e : *a) {
+    const auto* s = e.as_string();
+    if (s == nullptr) t.fail(e, name + ": expected an address string, got " + std::string(type_name(e)));
+    std::string why;
+    const std::optional<AddressBlock> b = parse_address_block(s->get(), why);
+    if (!b) t.fail(e, name + ": " + why);
+    truth.allow.push_back(*b);
+  }
+}
+
+void write_allow(TomlWriter& w, const Field<TruthInputConfig>& f, const TruthInputConfig& truth) {
+  if (truth.allow.empty()) return;
+  std::string list = "[";
+  for (const AddressBlock& b : truth.allow) list += (list.size() > 1 ? ", " : "") + string_text(b.text());
+  w.key(f.key, list + "]", f.note);
+}
+
+void read_vehicle(TableReader& t, const Field<TruthInputConfig>& f, TruthInputConfig& truth) {
+  const toml::node* n = t.find(f.key);
+  if (n == nullptr) return;
+  truth.vehicle = t.string(f.key, std::nullopt);
+  if (truth.vehicle.empty()) t.fail(*n, t.full_name(f.key) + ": must not be empty (leave it out: the first vehicle)");
+  if (truth.vehicle.size() > 64) t.fail(*n, t.full_name(f.key) + ": longer than a packet's vehicle id (64 bytes)");
+}
+
+void write_vehicle(TomlWriter& w, const Field<TruthInputConfig>& f, const TruthInputConfig& truth) {
+  if (!truth.vehicle.empty()) w.key(f.key, string_text(truth.vehicle), f.note);
+}
+
 constexpr Field<TruthInputConfig> kTruthFields[] = {
     address<&TruthInputConfig::bind_address>("bind", "address to listen on (`\"0.0.0.0\"`: all interfaces); host "
                                                      "names are not accepted"),
@@ -283,6 +319,16 @@ constexpr Field<TruthInputConfig> kTruthFields[] = {
         "max_extrapolation_s", Range{0.0, 10.0, "s"},
         "how far truth is extrapolated past its last sample; ≤ `timeout_s`"),
     rule<TruthInputConfig, check_extrapolation, RuleScope::kKey>(),
+    custom<TruthInputConfig>("allow", "", "addresses, CIDR blocks",
+                             "senders accepted, e.g. `[\"127.0.0.1\", \"10.0.0.0/8\", \"::1\"]`; packets from "
+                             "others are dropped and counted as `not_allowed`. Unset: any sender",
+                             read_allow, write_allow)
+        .default_doc("unset"),
+    custom<TruthInputConfig>("vehicle", "", "a vehicle id",
+                             "the vehicle that drives the receiver; truth of other vehicles is tracked, logged once "
+                             "and does not move the fix. Unset: the first vehicle heard",
+                             read_vehicle, write_vehicle)
+        .default_doc("unset"),
 };
 constexpr Section<TruthInputConfig> kTruth{kTruthFields};
 

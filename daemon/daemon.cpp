@@ -43,7 +43,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       frame_(cfg.origin),
       scene_(load_scene_logged(cfg)),
       demo_(frame_, cfg.demo.radius_m, cfg.demo.speed_m_s, cfg.demo.height_m),
-      router_(TrackParams{cfg.truth.timeout_s, cfg.truth.max_extrapolation_s}, cfg.time.mode),
+      router_(TrackParams{cfg.truth.timeout_s, cfg.truth.max_extrapolation_s}, cfg.time.mode, cfg.truth.vehicle),
       start_(plan.start),
       period_s_(1.0 / cfg.rate_hz),
       output_delay_s_(cfg.time.output_delay_s),
@@ -52,7 +52,9 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       timer_(io),
       retry_timer_(io),
       socket_(io),
-      signals_(io, SIGINT, SIGTERM) {
+      notify_(io),
+      allow_(cfg.truth.allow),
+      tick_timer_(io) {
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
   check_range(output_delay_s_, config::TimeRanges::output_delay_s, cfg.source, "time.output_delay_s");
   power_on_ = kProcessStart;
@@ -69,6 +71,9 @@ void Daemon::restart_receiver() {
 
 void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& result) {
   if (result.nav_rate_changed || result.reset) on_nav_period(src);
+  if (result.ports_changed || result.reset) {
+    for (std::size_t i = 0; i < channels_.size(); ++i) log_port_change(i);
+  }
   // One chip: a reset or a configuration load from any host changes the
   // other outputs' UART1s too (their bauds; a reset drops partial input).
   if (result.reset || result.ports_changed) {
@@ -97,8 +102,14 @@ double Daemon::now_s() const noexcept {
   return std::chrono::duration<double>(Clock::now() - t0_).count();
 }
 
+void Daemon::open_channel(std::size_t i, std::unique_ptr<OutputPort> port) {
+  channels_[i] = std::make_unique<PortChannel>(std::move(port), device_, i, [this] { return now_s(); });
+  PortChannel& c = *channels_[i];
+  c.use_idle_timer(io_);
+  c.on_input([this, i](const protocol::ubx::InputResult& r) { on_host_input(i, r); });
+}
+
 void Daemon::start() {
-  const auto clock = [this] { return now_s(); };
   t0_ = Clock::now();
   if (cfg_.time.use_wall_clock_date && cfg_.time.mode == config::TimeMode::kRealtime) {
     // Epoch 0 at the next whole GPS second of the wall clock, so every epoch
@@ -109,13 +120,10 @@ void Daemon::start() {
     t0_ += std::chrono::nanoseconds(std::llround(w.wait_s * 1e9));
   }
   device_.power_on(std::chrono::duration<double>(power_on_ - t0_).count());
-  for (std::size_t i = 0; i < cfg_.outputs.size(); ++i) {
-    channels_.push_back(std::make_unique<PortChannel>(open_port(cfg_.outputs[i], io_), device_, i, clock));
-    PortChannel& c = *channels_.back();
-    c.use_idle_timer(io_);
-    c.on_input([this, i](const protocol::ubx::InputResult& r) { on_host_input(i, r); });
-  }
+  channels_.resize(cfg_.outputs.size());
+  for (std::size_t i = 0; i < cfg_.outputs.size(); ++i) open_channel(i, open_port(cfg_.outputs[i], io_));
   for (const auto& c : channels_) c->start();
+  for (const auto& c : channels_) out_summary_.push_back(c->output_summary());
 
   boost::system::error_code ec;
   const auto addr = asio::ip::make_address(cfg_.truth.bind_address, ec);
@@ -150,23 +158,30 @@ void Daemon::start() {
                  cfg_.demo.speed_m_s);
   }
 
-  signals_.async_wait([this](const boost::system::error_code& sec, int sig) {
-    if (sec) return;
-    spdlog::info("signal {}: shutting down", sig);
-    shutdown();
-  });
+  if (!allow_.empty()) spdlog::info("truth: accepting packets from {} only", allow_.describe());
+  if (!cfg_.truth.vehicle.empty()) {
+    spdlog::info("truth: vehicle '{}' drives the receiver ([truth] vehicle); other vehicles are ignored",
+                 cfg_.truth.vehicle);
+  }
+  signals_ = std::make_unique<SignalDispatch>(io_, [this](SignalAction a, int sig) { on_signal(a, sig); });
 
   index_ = 0;
   receive();
   arm_timer();
+  arm_tick();
+  notify_.ready(fmt::format("{} output(s), truth on udp port {}", channels_.size(), local.port()));
 }
 
 void Daemon::shutdown() {
+  if (stopped_) return;
+  stopped_ = true;
   boost::system::error_code ec;
+  notify_.stopping();
   timer_.cancel();
   retry_timer_.cancel();
+  tick_timer_.cancel();
   socket_.close(ec);
-  signals_.cancel(ec);
+  if (signals_) signals_->cancel();
   if (!channels_.empty()) {
     for (const auto& c : channels_) {
       const PortStats& ps = c->port().stats();
@@ -177,8 +192,8 @@ void Daemon::shutdown() {
                    c->port().config().name, ps.epochs_written, ps.epochs_dropped, ps.replies_written,
                    ps.bytes_from_reader, c->stats().messages_dropped, drops.empty() ? "" : ": ", drops);
     }
-    spdlog::info("truth: {} packets accepted, {} dropped; {} epochs, {} skipped", packets_ok_, drops_.total(),
-                 epochs_, epochs_skipped_);
+    spdlog::info("truth: {} packets accepted, {} dropped{}{}; {} epochs, {} skipped", packets_ok_, drops_.total(),
+                 drops_.total() > 0 ? ": " : "", drop_counts_text(drops_.totals()), epochs_, epochs_skipped_);
   }
   channels_.clear();  // closes ports, removes pty symlinks
 }
@@ -220,7 +235,7 @@ void Daemon::redate_constellation(const time::GpsTime& t) {
 }
 
 world::Truth Daemon::fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept {
-  if (!router_.has_driver() && cfg_.demo.enabled) return demo_.truth(t, demo_elapsed_s);
+  if (!ever_driven_ && cfg_.demo.enabled) return demo_.truth(t, demo_elapsed_s);
   world::Truth none;
   none.t = t;
   return none;
@@ -275,6 +290,8 @@ void Daemon::emit_epoch(const time::GpsTime& t, const world::Truth& truth) {
   device_.on_epoch(fix, now_s());
   for (const auto& c : channels_) c->send_epoch();
   const int type = static_cast<int>(fix.type);
+  last_num_used_ = fix.num_used;
+  last_num_tracked_ = fix.num_tracked;
   if (type != last_fix_type_ || truth.valid != last_truth_valid_) {
     spdlog::info("epoch {}: truth {}, fix {} with {} satellites (PDOP {:.1f})", gps_text(t),
                  truth.valid ? "valid" : "none", type == 3 ? "3D" : type == 2 ? "2D" : "none", fix.num_used,
@@ -342,6 +359,10 @@ void Daemon::on_datagram(std::size_t n) {
                    peer_.address().to_string(), peer_.port(), drop_reason_name(reason), detail, drops_.total());
     }
   };
+  if (!allow_.allows(peer_.address())) {
+    report(DropReason::kNotAllowed, "sender not in [truth] allow");
+    return;
+  }
   const ParseResult parsed = parse_truth_packet(data, frame_);
   if (!parsed.ok) {
     report(parsed.reason, parsed.detail);
@@ -360,6 +381,8 @@ void Daemon::on_datagram(std::size_t n) {
   if (in.new_vehicle) {
     spdlog::info("truth: vehicle '{}' from {}:{}", parsed.sample.vehicle, peer_.address().to_string(), peer_.port());
   }
+  if (!in.driving) note_other_vehicle(parsed.sample.vehicle);
+  if (in.driving) ever_driven_ = true;
   if (in.driving && !had_driver) {
     spdlog::info("truth: vehicle '{}' drives the receiver{}", router_.driver_id(),
                  cfg_.demo.enabled ? " (demo off for good)" : "");

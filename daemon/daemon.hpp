@@ -6,6 +6,7 @@
 #include <utility>  // before Asio: Boost 1.74 awaitable.hpp needs std::exchange
 #include <memory>
 #include <optional>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,10 @@
 #include "daemon/output_port.hpp"
 #include "daemon/port_channel.hpp"
 #include "daemon/run_plan.hpp"
+#include "daemon/signals.hpp"
+#include "daemon/status_line.hpp"
+#include "daemon/systemd_notify.hpp"
+#include "daemon/truth_allow.hpp"
 #include "daemon/time_mapping.hpp"
 #include "daemon/truth_router.hpp"
 
@@ -41,6 +46,16 @@ public:
   /// Open ports and the truth socket, print where NMEA goes, start the
   /// schedule and signal handling. Throws gnssemu::Error.
   void start();
+
+  /// Loads the configuration anew for SIGHUP (the same file and command-line
+  /// overrides as at start); throws gnssemu::Error naming file:line.
+  using Reloader = std::function<config::Config()>;
+  void set_reloader(Reloader r) { reloader_ = std::move(r); }
+  /// SIGHUP: load, validate, apply what can change live (ReloadPlan); a bad
+  /// configuration is logged and the running one kept. Never throws.
+  void reload() noexcept;
+  /// The status line (logged every minute and on SIGUSR1/SIGUSR2).
+  std::string status_line();
 
 private:
   using Clock = std::chrono::steady_clock;
@@ -68,6 +83,17 @@ private:
   /// configuration load from channel src): run at it.
   void on_nav_period(std::size_t src);
   void shutdown();
+  void on_signal(SignalAction action, int sig);
+  /// Once a second: drop summaries that are due, the status line every minute.
+  void arm_tick();
+  void on_tick();
+  /// A host reconfigured channel src's port (CFG-PRT, $PUBX,41, a config
+  /// load): say what it sends now.
+  void log_port_change(std::size_t src);
+  /// Truth from a vehicle that is not driving the receiver: say so once.
+  void note_other_vehicle(const std::string& id);
+  /// Wire port to output i of the device (replacing what was there).
+  void open_channel(std::size_t i, std::unique_ptr<OutputPort> port);
 
   asio::io_context& io_;
   config::Config cfg_;
@@ -93,7 +119,19 @@ private:
   asio::steady_timer retry_timer_;  // back-off after a socket error
   asio::ip::udp::socket socket_;
   asio::ip::udp::endpoint peer_;
-  asio::signal_set signals_;
+  std::unique_ptr<SignalDispatch> signals_;
+  SystemdNotify notify_;
+  TruthAllowList allow_;
+  StatusLine status_;
+  asio::steady_timer tick_timer_;
+  Reloader reloader_;
+  double last_status_s_ = 0.0;
+  std::vector<std::string> noted_vehicles_;  ///< non-driving vehicles already logged
+  std::vector<std::string> out_summary_;     ///< per channel: what it sent when last logged ("NMEA+UBX")
+  bool ever_driven_ = false;                 ///< a simulator drove the receiver: the demo is off for good
+  int last_num_used_ = 0;
+  int last_num_tracked_ = 0;
+  bool stopped_ = false;
   std::array<char, 65536> rx_buf_{};
 
   Clock::time_point power_on_;  // receiver power-on (process start): uptime (msss) and ttff count from here

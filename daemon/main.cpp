@@ -70,41 +70,64 @@ void print_summary(const config::Config& cfg, const orbit::NavData& nav, const d
   }
 }
 
-}  // namespace
+// Exit status (docs/daemon.md §Exit status; gnssemud(8)).
+constexpr int kExitOk = 0;       // clean shutdown on a signal, --check-config OK, --help, --version
+constexpr int kExitRuntime = 1;  // failed while running (unexpected error)
+constexpr int kExitConfig = 2;   // command line, configuration, nav data, ports: nothing started
 
-int main(int argc, char** argv) {
-  CLI::App app{"gnssemud: GNSS receiver emulator daemon (NMEA on a pty from UDP vehicle truth)"};
+// The configuration as the command line asks for it: file (or the default),
+// overrides, port checks. Throws gnssemu::Error naming file:line.
+struct Options {
   std::string config_path;
   std::string pty_path;
   int truth_port = -1;
+};
+
+config::Config load_run_config(const Options& o) {
+  config::Config cfg = o.config_path.empty() ? config::default_config() : config::load_config(o.config_path);
+  if (!o.pty_path.empty()) {
+    if (cfg.outputs.empty()) {
+      config::OutputPortConfig p;
+      p.name = "pty";
+      cfg.outputs.push_back(p);
+    }
+    cfg.outputs.front().transport = config::PtyPortConfig{o.pty_path};
+  }
+  if (o.truth_port >= 0) cfg.truth.port = static_cast<uint16_t>(o.truth_port);
+  for (const auto& p : cfg.outputs) daemon::validate_port(p);
+  return cfg;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"gnssemud: GNSS receiver emulator daemon (NMEA on a pty from UDP vehicle truth)", "gnssemud"};
+  Options opt;
   bool verbose = false;
   bool check_only = false;
-  app.add_option("-c,--config", config_path, "TOML configuration (default: the shipped default.toml)");
-  app.add_option("--pty", pty_path, "path of the pty symlink of the first output (overrides the config)");
-  app.add_option("--truth-port", truth_port, "UDP port of the truth input, 0: any free one (overrides the config)")
+  app.add_option("-c,--config", opt.config_path, "TOML configuration (default: the shipped default.toml)");
+  app.add_option("--pty", opt.pty_path, "path of the pty symlink of the first output (overrides the config)");
+  app.add_option("--truth-port", opt.truth_port, "UDP port of the truth input, 0: any free one (overrides the config)")
       ->check(CLI::Range(0, 65535));
   app.add_flag("-v,--verbose", verbose, "debug logging");
   app.add_flag("--check-config", check_only, "load and validate the configuration, print a summary, exit");
-  CLI11_PARSE(app, argc, argv);
+  app.set_version_flag("--version", std::string("gnssemud ") + GNSSEMU_VERSION);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // CLI11's own codes (105-114) mean nothing to a caller: usage is 2.
+    return app.exit(e) == 0 ? kExitOk : kExitConfig;
+  }
 
   auto logger = spdlog::stderr_color_mt("gnssemud");
   spdlog::set_default_logger(logger);
   spdlog::set_pattern("%Y-%m-%d %H:%M:%S.%e %^%l%$ %v");
 
+  bool started = false;
   try {
-    if (config_path.empty()) config_path = daemon::find_default_config(self_exe());
+    if (opt.config_path.empty()) opt.config_path = daemon::find_default_config(self_exe());
     // No file anywhere: the copy of default.toml compiled into the binary.
-    config::Config cfg = config_path.empty() ? config::default_config() : config::load_config(config_path);
-    if (!pty_path.empty()) {
-      if (cfg.outputs.empty()) {
-        config::OutputPortConfig p;
-        p.name = "pty";
-        cfg.outputs.push_back(p);
-      }
-      cfg.outputs.front().transport = config::PtyPortConfig{pty_path};
-    }
-    if (truth_port >= 0) cfg.truth.port = static_cast<uint16_t>(truth_port);
-    for (const auto& p : cfg.outputs) daemon::validate_port(p);
+    const config::Config cfg = load_run_config(opt);
     const orbit::NavData nav = config::load_nav(cfg);
     // The start must be served by the nav data (as the configured mode dates
     // them): an error here, not a receiver without a fix forever.
@@ -115,7 +138,7 @@ int main(int argc, char** argv) {
       const daemon::Daemon check(check_io, cfg, nav, plan);  // builds the receiver: validates its config
       print_summary(cfg, nav, plan);
       std::printf("configuration OK\n");
-      return 0;
+      return kExitOk;
     }
 
     auto level = spdlog::level::from_str(cfg.log.level);
@@ -124,14 +147,16 @@ int main(int argc, char** argv) {
 
     boost::asio::io_context io;
     daemon::Daemon d(io, cfg, nav, plan);
+    if (!opt.config_path.empty()) d.set_reloader([opt] { return load_run_config(opt); });
     d.start();
+    started = true;
     io.run();
-    return 0;
+    return kExitOk;
   } catch (const gnssemu::Error& e) {
     std::fprintf(stderr, "gnssemud: %s\n", e.what());
-    return 2;
+    return started ? kExitRuntime : kExitConfig;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "gnssemud: error: %s\n", e.what());
-    return 1;
+    return started ? kExitRuntime : kExitConfig;
   }
 }

@@ -57,6 +57,9 @@ public:
   virtual void set_baud_after_drain(uint32_t baud_bps) noexcept { (void)baud_bps; }
   /// Current line rate (bit/s) as the port knows it; 0 without a line.
   virtual uint32_t baud() const noexcept { return 0; }
+  /// Readers now, for the status line: tcp clients; a pty 1 while someone
+  /// drains it, else 0; -1 where the port cannot tell (serial, udp, file).
+  virtual int readers() const noexcept { return -1; }
   /// One line for the startup message, e.g. "/tmp/gnssemu/gps0 (pty /dev/pts/5)".
   virtual std::string describe() const = 0;
   const config::OutputPortConfig& config() const noexcept { return config_; }

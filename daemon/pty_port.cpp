@@ -76,6 +76,7 @@ public:
   uint32_t baud() const noexcept override { return baud_; }
 
   std::string describe() const override { return pty_.path + " (pty " + slave_name_ + ")"; }
+  int readers() const noexcept override { return reader_active_ ? 1 : 0; }
 
 protected:
   void deliver(int /*source*/, std::string_view data, std::span<const std::size_t> /*ends*/, bool epoch) noexcept override {
@@ -83,17 +84,22 @@ protected:
     int backlog = 0;
     if (epoch && ::ioctl(slave_, FIONREAD, &backlog) == 0) {
       if (backlog == 0) unread_epochs_ = 0;
-      if (backlog > kPtyMaxBacklogBytes) {
-        // Nobody is reading: discard what is queued so a reader that opens
-        // later starts with the current epoch.
+      // Nobody read a byte since the last epoch (or the queue is long): a
+      // reader that opens now must get this epoch, not a burst of old ones.
+      // A reader that is there drains each epoch within the period.
+      const bool untouched = backlog > 0 && backlog >= backlog_after_write_;
+      reader_active_ = backlog < backlog_after_write_;
+      if (untouched || backlog > kPtyMaxBacklogBytes) {
         ::tcflush(slave_, TCIFLUSH);
         stats_.epochs_dropped += unread_epochs_;
         unread_epochs_ = 0;
+        backlog = 0;
       }
     }
     const ssize_t n = ::write(master, data.data(), data.size());
     if (n == static_cast<ssize_t>(data.size())) {
       stats_.bytes_written += static_cast<uint64_t>(n);
+      if (epoch) backlog_after_write_ = backlog + static_cast<int>(n);
       if (epoch) {
         ++stats_.epochs_written;
         ++unread_epochs_;
@@ -161,6 +167,8 @@ private:
   std::string slave_name_;
   bool linked_ = false;
   uint64_t unread_epochs_ = 0;
+  int backlog_after_write_ = 0;  ///< unread bytes right after the last epoch was written
+  bool reader_active_ = false;   ///< the reader drained some of the last epoch
   uint32_t baud_ = 0;
   PortListener* listener_ = nullptr;
   std::array<uint8_t, 1024> rx_{};

@@ -1,6 +1,8 @@
 // TCP server port: every client gets the stream; input from any client goes
 // to the port's responder and replies go back to that client only.
+#include <algorithm>
 #include <array>
+#include <chrono>
 #include <list>
 #include <memory>
 
@@ -18,6 +20,20 @@ namespace asio = boost::asio;
 using asio::ip::tcp;
 
 constexpr std::size_t kMaxClients = 16;
+// A client whose socket has taken no byte for this long while data waits
+// is not reading (an idle connection, a hung program): it is disconnected so
+// it neither holds a slot nor memory. Readers at any line rate drain a
+// write well within it.
+constexpr double kStallS = 10.0;
+// A new client beyond kMaxClients takes the slot of a client stalled this long.
+constexpr double kEvictStallS = 1.0;
+// Kernel send buffer per client: bounds what a non-reading client holds
+// beyond its kMaxQueuedBytes queue, so a stall shows within seconds.
+constexpr int kSendBufferBytes = 32 * 1024;
+
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 class TcpPort final : public OutputPort {
 public:
@@ -47,6 +63,8 @@ public:
     accept();
   }
 
+  int readers() const noexcept override { return static_cast<int>(clients_.size()); }
+
   std::string describe() const override {
     return "tcp " + bind_ + ":" + std::to_string(local_port_) + " (server)";
   }
@@ -54,6 +72,15 @@ public:
 protected:
   void deliver(int source, std::string_view data, std::span<const std::size_t> /*ends*/, bool epoch) noexcept override {
     bool any = false;
+    const double now = now_s();
+    for (auto it = clients_.begin(); it != clients_.end();) {
+      const ClientPtr s = *it++;  // a copy: drop() erases the element
+      if (s->writing && now - s->progress_s > kStallS) {
+        spdlog::warn("output {}: client {} took no data for {:.0f} s: disconnected ({} epochs dropped for it)",
+                     config_.name, s->id, kStallS, s->dropped);
+        drop(s);
+      }
+    }
     for (auto& c : clients_) {
       if (source != kAllSources && c->id != source) continue;
       if (c->queue.size() + data.size() > kMaxQueuedBytes) {
@@ -78,6 +105,7 @@ private:
     int id = 0;
     std::string queue;
     bool writing = false;
+    double progress_s = 0.0;  ///< when the pending write started or last took bytes, steady s
     uint64_t dropped = 0;
     std::array<uint8_t, 1024> rx{};
   };
@@ -90,15 +118,18 @@ private:
     acceptor_.async_accept(c->socket, [this, c](const boost::system::error_code& ec) {
       if (ec == asio::error::operation_aborted || !acceptor_.is_open()) return;
       if (!ec) {
+        if (clients_.size() >= kMaxClients) evict_stalled();
         if (clients_.size() >= kMaxClients) {
-          spdlog::warn("output {}: refusing a client beyond {}", config_.name, kMaxClients);
+          spdlog::warn("output {}: refusing a client beyond {} (all of them reading)", config_.name, kMaxClients);
           boost::system::error_code cec;
           c->socket.close(cec);
         } else {
+          c->progress_s = now_s();
           c->id = next_id_++;
           c->queue.reserve(kMaxQueuedBytes);
           boost::system::error_code oec;
           c->socket.set_option(tcp::no_delay(true), oec);
+          c->socket.set_option(asio::socket_base::send_buffer_size(kSendBufferBytes), oec);
           const auto peer = c->socket.remote_endpoint(oec);
           spdlog::info("output {}: client {} connected from {}:{}", config_.name, c->id, peer.address().to_string(),
                        peer.port());
@@ -126,6 +157,7 @@ private:
   void flush(const ClientPtr& c) {
     if (c->writing || c->queue.empty()) return;
     c->writing = true;
+    c->progress_s = now_s();  // a pending write older than kStallS: not reading
     c->socket.async_write_some(asio::buffer(c->queue), [this, c](const boost::system::error_code& ec, std::size_t n) {
       c->writing = false;
       if (ec) {
@@ -133,9 +165,23 @@ private:
         return;
       }
       stats_.bytes_written += n;
+      c->progress_s = now_s();
       c->queue.erase(0, n);
       flush(c);
     });
+  }
+
+  /// Disconnect the client stalled longest, if any is stalled kEvictStallS.
+  void evict_stalled() {
+    const double now = now_s();
+    ClientPtr worst;
+    for (const ClientPtr& c : clients_) {
+      if (c->writing && now - c->progress_s > kEvictStallS && (!worst || c->progress_s < worst->progress_s)) worst = c;
+    }
+    if (!worst) return;
+    spdlog::warn("output {}: client {} took no data for {:.0f} s: disconnected for a new client", config_.name,
+                 worst->id, now - worst->progress_s);
+    drop(worst);
   }
 
   void drop(const ClientPtr& c) {

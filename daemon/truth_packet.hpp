@@ -62,6 +62,7 @@ enum class DropReason : uint8_t {
   kBadVehicleId,
   kSimTimeBackwards,
   kTooManyVehicles,
+  kNotAllowed,  ///< sender not in [truth] allow
   kCount
 };
 inline constexpr std::size_t kDropReasonCount = static_cast<std::size_t>(DropReason::kCount);
@@ -97,7 +98,7 @@ struct ParseResult {
 
 /// Parse and validate one datagram, JSON or binary. frame: the configured
 /// local origin, for "enu" positions. Checks everything a single packet can
-/// show; ordering (sim time going backwards) is checked by the TruthTrack.
+/// show; ordering (sim time going backwards) is checked by the TruthRouter.
 ParseResult parse_truth_packet(std::string_view datagram, const geo::LocalFrame& frame);
 
 }  // namespace gnssemu::daemon

@@ -3,7 +3,7 @@
 namespace gnssemu::daemon {
 
 TruthRouter::TruthRouter(const TrackParams& params, config::TimeMode mode, std::string driving_vehicle)
-    : params_(params), mode_(mode), driving_id_(std::move(driving_vehicle)) {
+    : params_(params), mode_(mode), driving_id_(driving_vehicle), wanted_(std::move(driving_vehicle)) {
   vehicles_.reserve(kMaxVehicles);
 }
 
@@ -84,6 +84,22 @@ std::optional<time::GpsTime> TruthRouter::driver_newest() const noexcept {
   const VehicleTrack& tr = vehicles_[static_cast<std::size_t>(driver_)].track;
   if (tr.size() == 0) return std::nullopt;
   return tr.newest().t;
+}
+
+void TruthRouter::set_driving_vehicle(const std::string& id) {
+  wanted_ = id;
+  if (id.empty() || id == driving_id_) return;
+  driving_id_ = id;
+  driver_ = -1;
+  for (std::size_t i = 0; i < vehicles_.size(); ++i) {
+    if (vehicles_[i].id == id) driver_ = static_cast<int>(i);
+  }
+}
+
+std::vector<std::string> TruthRouter::vehicle_ids() const {
+  std::vector<std::string> ids;
+  for (const Vehicle& v : vehicles_) ids.push_back(v.id);
+  return ids;
 }
 
 void TruthRouter::on_clock_jump() noexcept {

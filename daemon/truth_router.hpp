@@ -47,6 +47,17 @@ public:
   std::optional<time::GpsTime> driver_newest() const noexcept;
   const std::string& driver_id() const noexcept { return driving_id_; }
 
+  /// New timeouts ([truth] reloaded); the tracks are kept.
+  void set_params(const TrackParams& params) noexcept { params_ = params; }
+  /// Follow vehicle id from now on (empty: the first vehicle heard next, or
+  /// the one already driving). The tracks are kept: a vehicle already heard
+  /// drives at once.
+  void set_driving_vehicle(const std::string& id);
+  /// The configured vehicle (set_driving_vehicle or the constructor), "" none.
+  const std::string& wanted_vehicle() const noexcept { return wanted_; }
+  /// Vehicle ids heard, in order of first packet.
+  std::vector<std::string> vehicle_ids() const;
+
   /// The epoch clock jumped back (coverage wrap): drop samples, re-anchor clocks.
   void on_clock_jump() noexcept;
 
@@ -63,6 +74,7 @@ private:
   TrackParams params_;
   config::TimeMode mode_;
   std::string driving_id_;
+  std::string wanted_;  ///< configured vehicle, "" the first heard
   std::vector<Vehicle> vehicles_;
   int driver_ = -1;
 };

@@ -17,6 +17,18 @@ VehicleTrack::AddResult VehicleTrack::add(double sim_time_s, const time::GpsTime
   s.pos_m = pos_m;
   s.vel_m_s = vel_m_s.value_or(Ecef{});
   s.has_vel = vel_m_s.has_value();
+  if (!s.has_vel && track_.size() > 0 && t - track_.newest().t < kVelocityBaselineS) {
+    // High-rate packets without velocity: difference over >= the baseline
+    // (the newest sample at least that old, else the oldest held).
+    std::size_t k = track_.size() - 1;
+    while (k > 0 && t - track_.sample(k).t < kVelocityBaselineS) --k;
+    const world::TruthSample& ref = track_.sample(k);
+    const double dt = t - ref.t;
+    if (dt > 0.0) {
+      s.vel_m_s = Ecef((pos_m - ref.pos_m) * (1.0 / dt));
+      s.has_vel = true;
+    }
+  }
   track_.add(s);
   return result;
 }

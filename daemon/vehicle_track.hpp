@@ -21,7 +21,17 @@ struct TrackParams {
 
 class VehicleTrack {
 public:
-  static constexpr std::size_t kHistory = 32;
+  /// Highest truth rate handled, Hz (docs/truth-protocol.md).
+  static constexpr double kMaxRateHz = 1000.0;
+  /// Samples kept: at least 1 s at kMaxRateHz (a few epochs back at 10 Hz
+  /// and the whole extrapolation span); ~80 kB per vehicle, allocated once.
+  static constexpr std::size_t kHistory = 1024;
+  static_assert(static_cast<double>(kHistory) >= kMaxRateHz * 1.0);
+  /// Packets without velocity less than this apart (s) get a velocity from the
+  /// position difference over at least this baseline, not over the last
+  /// segment: at 1 kHz a 1 ms difference turns 1 mm of position noise into
+  /// 1 m/s. Slower senders (>= 20 Hz spacing) keep the segment velocity.
+  static constexpr double kVelocityBaselineS = 0.05;
 
   enum class AddResult {
     kAdded,

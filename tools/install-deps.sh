@@ -7,8 +7,9 @@ PKGS=(
   build-essential cmake pkg-config
   libgeographiclib-dev libembree-dev libboost-dev libserialport-dev
   libspdlog-dev libfmt-dev libgtest-dev libgmock-dev libtomlplusplus-dev libcli11-dev
-  nlohmann-json3-dev zlib1g-dev
+  nlohmann-json3-dev zlib1g-dev libsystemd-dev
   gpsd gpsd-clients rtklib socat python3
+  systemd dpkg-dev  # systemd-analyze (unit tests), dpkg-shlibdeps (cpack -G DEB)
 )
 
 missing=()

@@ -480,6 +480,11 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     }
     return false;
   };
+  // `gnssemu --version` as every packaged tool has it (same text as `gnssemu version`).
+  if (argc == 2 && std::string_view(argv[1]) == "--version") {
+    write_version(out);
+    return kExitOk;
+  }
   if (argc > 1 && argv[1][0] != '-' && !known(argv[1])) {
     err << "gnssemu: unknown subcommand '" << argv[1] << "' (satpos, sky, dop, batch, spp, calibrate, bench, version; see --help)\n";
     return kExitUsage;

@@ -200,6 +200,8 @@ bind = "0.0.0.0"
 port = 6001
 timeout_s = 1.5
 max_extrapolation_s = 0.25
+allow = ["127.0.0.1/32", "10.0.0.0/8", "::1/128"]
+vehicle = "ego"
 
 [demo]
 enabled = false

@@ -386,5 +386,24 @@ TEST(ConfigKeys, DocsKeyTablesAreTheKeyTables) {
                             << "  GNSSEMU_REBUILD_DOCS=1 build/tests/test_config --gtest_filter='ConfigKeys.Docs*'";
 }
 
+
+// --- [truth] allow, vehicle --------------------------------------------------
+
+TEST(ConfigValidation, TruthAllowListAndVehicle) {
+  const Config c = parse(kBase + "[truth]\nallow = [\"127.0.0.1\", \"10.0.0.0/8\", \"::1\"]\nvehicle = \"ego\"\n");
+  ASSERT_EQ(c.truth.allow.size(), 3u);
+  EXPECT_EQ(c.truth.allow[1].text(), "10.0.0.0/8");
+  EXPECT_EQ(c.truth.vehicle, "ego");
+  EXPECT_TRUE(parse(kBase).truth.allow.empty());
+  EXPECT_EQ(error_of(kBase + "[truth]\nallow = [\"127.0.0.1\",\n  \"gateway\"]\n"),
+            "t.toml:9: truth.allow: 'gateway' is not an IPv4 or IPv6 address (host names are not accepted)");
+  EXPECT_EQ(error_of(kBase + "[truth]\nallow = [\"10.0.0.0/40\"]\n"),
+            "t.toml:8: truth.allow: prefix length '40' is not an integer in [0, 32]");
+  EXPECT_EQ(error_of(kBase + "[truth]\nallow = \"10.0.0.0/8\"\n"),
+            "t.toml:8: truth.allow: expected an array of addresses, got a string");
+  EXPECT_EQ(error_of(kBase + "[truth]\nvehicle = \"\"\n"),
+            "t.toml:8: truth.vehicle: must not be empty (leave it out: the first vehicle)");
+}
+
 }  // namespace
 }  // namespace gnssemu::config::test

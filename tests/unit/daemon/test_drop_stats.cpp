@@ -28,3 +28,25 @@ TEST(DropStats, FloodIsBounded) {
   EXPECT_EQ(lines, 2);
   EXPECT_EQ(d.total(), 100000u);
 }
+
+TEST(DropStats, BurstIsSummarisedWithoutFurtherPackets) {
+  DropStats d(5.0);
+  for (int i = 0; i < 5000; ++i) d.record(DropReason::kMalformedJson, 1.0 + i * 1e-5);
+  d.record(DropReason::kBadMagic, 1.2);
+  EXPECT_EQ(drop_counts_sum(d.take_due(3.0)), 0u);  // within the interval of the first lines
+  const DropCounts due = d.take_due(6.0);           // no packet since: the timer reports them
+  EXPECT_EQ(due[static_cast<std::size_t>(DropReason::kMalformedJson)], 4999u);
+  EXPECT_EQ(due[static_cast<std::size_t>(DropReason::kBadMagic)], 0u);  // its line said it all
+  EXPECT_EQ(drop_counts_text(due), "malformed_json 4999");
+  EXPECT_EQ(drop_counts_sum(d.take_due(20.0)), 0u);  // taken once
+  EXPECT_EQ(drop_counts_text(d.totals()), "malformed_json 5000, bad_magic 1");
+}
+
+TEST(DropStats, SummaryRestartsTheInterval) {
+  DropStats d(5.0);
+  d.record(DropReason::kNotAllowed, 0.0);
+  d.record(DropReason::kNotAllowed, 1.0);
+  EXPECT_EQ(drop_counts_sum(d.take_due(5.0)), 1u);
+  EXPECT_EQ(d.record(DropReason::kNotAllowed, 6.0), 0u);  // 1 s after the summary: suppressed
+  EXPECT_EQ(drop_counts_text(d.take_due(10.0)), "not_allowed 1");
+}

@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "daemon/vehicle_track.hpp"
 
 using namespace gnssemu;
@@ -115,16 +118,45 @@ TEST(VehicleTrack, StampNotAfterNewestRestartsHistory) {
 }
 
 TEST(VehicleTrack, RingKeepsNewestSamples) {
-  const VehicleTrack tr = moving_track(100, 0.1);
+  const int n = static_cast<int>(VehicleTrack::kHistory) + 68;
+  const VehicleTrack tr = moving_track(n, 0.1);
   EXPECT_EQ(tr.size(), VehicleTrack::kHistory);
-  EXPECT_NEAR(tr.newest().pos_m.x, 1000.0 + 10.0 * 9.9, 1e-9);
-  EXPECT_NEAR(tr.sample(0).pos_m.x, 1000.0 + 10.0 * 6.8, 1e-9);
+  EXPECT_NEAR(tr.newest().pos_m.x, 1000.0 + (n - 1), 1e-6);
+  EXPECT_NEAR(tr.sample(0).pos_m.x, 1000.0 + 68.0, 1e-6);
   // Interpolation deep inside the ring.
-  const world::Truth t = tr.truth_at(kT0 + 8.05, 9.9, kParams);
+  const world::Truth t = tr.truth_at(kT0 + 8.05, (n - 1) * 0.1, kParams);
   ASSERT_TRUE(t.valid);
   EXPECT_NEAR(t.pos_m.x, 1080.5, 1e-6);
   // Older than the ring (and beyond extrapolation): invalid.
-  EXPECT_FALSE(tr.truth_at(kT0 + 5.0, 9.9, kParams).valid);
+  EXPECT_FALSE(tr.truth_at(kT0 + 5.0, (n - 1) * 0.1, kParams).valid);
+}
+
+TEST(VehicleTrack, HoldsOneSecondAtOneKilohertz) {
+  const VehicleTrack tr = moving_track(3000, 1e-3);
+  ASSERT_EQ(tr.size(), VehicleTrack::kHistory);
+  EXPECT_GE(tr.newest().t - tr.sample(0).t, 1.0);
+}
+
+TEST(VehicleTrack, KilohertzVelocityFromABaselineNotOneMillisecond) {
+  // 1 kHz, 10 m/s along x, positions rounded to 1 mm as a JSON sender with
+  // three decimals sends them; no velocity field.
+  VehicleTrack tr;
+  for (int i = 0; i < 1000; ++i) {
+    const double s = i * 1e-3;
+    const double x_m = std::round((1000.0 + 10.0 * s + 0.0004 * ((i * 7919) % 3 - 1)) * 1000.0) / 1000.0;
+    ASSERT_EQ(tr.add(s, kT0 + s, Ecef(x_m, 0.0, 0.0), std::nullopt, s), VehicleTrack::AddResult::kAdded);
+  }
+  double worst_m_s = 0.0;
+  for (int k = 100; k < 990; k += 7) {
+    const world::Truth t = tr.truth_at(kT0 + k * 1e-3 + 3e-4, 0.999, kParams);
+    ASSERT_TRUE(t.valid);
+    worst_m_s = std::max(worst_m_s, std::abs(t.vel_m_s.x - 10.0));
+  }
+  // Over one 1 ms segment a 1 mm step would read 1 m/s off; over 50 ms, 0.04 m/s.
+  EXPECT_LT(worst_m_s, 0.05);
+  // Extrapolated past the newest sample with that velocity.
+  const world::Truth ahead = tr.truth_at(kT0 + 1.099, 1.0, kParams);
+  EXPECT_NEAR(ahead.vel_m_s.x, 10.0, 0.05);
 }
 
 TEST(VehicleTrack, ClearSamplesKeepsOrdering) {

@@ -1,0 +1,187 @@
+// Daemon: its service side — signals, SIGHUP reload, the once-a-second tick
+// (drop summaries, the status line), and the log lines a person acts on
+// (docs/daemon.md §Signals, §Reload, §Logs).
+#include <memory>
+
+#include <spdlog/spdlog.h>
+
+#include "config/pipeline_setup.hpp"
+#include "core/common/error.hpp"
+#include "daemon/daemon.hpp"
+#include "daemon/reload_plan.hpp"
+#include "daemon/scene_setup.hpp"
+
+namespace gnssemu::daemon {
+namespace {
+
+constexpr double kStatusIntervalS = 60.0;
+
+}  // namespace
+
+void Daemon::on_signal(SignalAction action, int sig) {
+  switch (action) {
+    case SignalAction::kTerminate:
+      spdlog::info("signal {} ({}): shutting down", sig, strsignal(sig));
+      shutdown();
+      break;
+    case SignalAction::kReload:
+      spdlog::info("signal {} ({}): reloading the configuration", sig, strsignal(sig));
+      reload();
+      break;
+    case SignalAction::kStatus:
+      spdlog::info("status: {}", status_line());
+      break;
+    case SignalAction::kIgnore:
+      break;
+  }
+}
+
+void Daemon::reload() noexcept {
+  const auto t0 = Clock::now();
+  if (!reloader_) {
+    spdlog::warn("reload: no configuration file to reload (built-in configuration)");
+    return;
+  }
+  notify_.reloading();
+  try {
+    config::Config loaded = reloader_();
+    const ReloadPlan plan = plan_reload(cfg_, loaded);
+    // Build everything that can fail before anything running is touched.
+    std::unique_ptr<scene::Scene> scene;
+    if (plan.scene) scene = load_scene_logged(loaded);
+    std::unique_ptr<pipeline::Pipeline> receiver;
+    if (plan.receiver || plan.scene) {
+      receiver = config::make_pipeline(loaded, store_, pipeline::broadcast_of(constellation_.nav),
+                                       plan.scene ? scene.get() : scene_.get());
+    }
+    // New ports open before the old ones close: a port that cannot open
+    // fails the reload with everything as it was.
+    std::vector<std::unique_ptr<OutputPort>> reopened;
+    for (std::size_t i : plan.reopen) {
+      validate_port(loaded.outputs[i]);
+      reopened.push_back(open_port(loaded.outputs[i], io_));
+    }
+    // Apply.
+    for (std::size_t k = 0; k < plan.reopen.size(); ++k) {
+      const std::size_t i = plan.reopen[k];
+      cfg_.outputs[i] = loaded.outputs[i];
+      open_channel(i, std::move(reopened[k]));
+      channels_[i]->start();
+      spdlog::info("reload: output {} now on {}", cfg_.outputs[i].name, channels_[i]->port().describe());
+    }
+    if (plan.log_level) spdlog::set_level(spdlog::level::from_str(loaded.log.level));
+    if (plan.truth) {
+      cfg_.truth.allow = loaded.truth.allow;
+      cfg_.truth.vehicle = loaded.truth.vehicle;
+      cfg_.truth.timeout_s = loaded.truth.timeout_s;
+      cfg_.truth.max_extrapolation_s = loaded.truth.max_extrapolation_s;
+      allow_ = TruthAllowList(cfg_.truth.allow);
+      router_.set_params(TrackParams{cfg_.truth.timeout_s, cfg_.truth.max_extrapolation_s});
+      if (cfg_.truth.vehicle != router_.wanted_vehicle()) {
+        router_.set_driving_vehicle(cfg_.truth.vehicle);
+        noted_vehicles_.clear();
+        if (!cfg_.truth.vehicle.empty()) spdlog::info("truth: vehicle '{}' drives the receiver now", cfg_.truth.vehicle);
+      }
+      spdlog::info("truth: accepting packets from {}", allow_.describe());
+    }
+    if (plan.demo) {
+      cfg_.demo = loaded.demo;
+      // DemoTrajectory refers to frame_ (not assignable): built anew in place.
+      std::destroy_at(&demo_);
+      std::construct_at(&demo_, frame_, cfg_.demo.radius_m, cfg_.demo.speed_m_s, cfg_.demo.height_m);
+    }
+    if (plan.receiver || plan.scene) {
+      cfg_.receiver = loaded.receiver;
+      cfg_.world = loaded.world;
+      if (plan.scene) {
+        cfg_.scene = loaded.scene;
+        receiver_.reset();  // holds the old scene
+        scene_ = std::move(scene);
+      }
+      receiver_ = std::move(receiver);
+    }
+    if (plan.log_level) cfg_.log = loaded.log;
+    for (const std::string& what : plan.need_restart) {
+      spdlog::warn("reload: {} changed: applies at the next restart; running on the old value", what);
+    }
+    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    spdlog::info("reload: {} applied in {:.1f} ms ({})", cfg_.source, ms, plan.describe(cfg_));
+    notify_.ready("reloaded: " + plan.describe(cfg_));
+  } catch (const std::exception& e) {
+    spdlog::error("reload failed, keeping the running configuration: {}", e.what());
+    notify_.ready("reload failed: " + std::string(e.what()));
+  }
+}
+
+std::string Daemon::status_line() {
+  StatusSnapshot s;
+  s.now_s = std::max(now_s(), 0.0);
+  s.fix_type = last_fix_type_ < 0 ? 0 : last_fix_type_;
+  s.sats_used = last_num_used_;
+  s.sats_tracked = last_num_tracked_;
+  s.packets_ok = packets_ok_;
+  s.drops = drops_.total();
+  s.epochs = epochs_;
+  s.driver = router_.has_driver() ? router_.driver_id() : std::string();
+  s.driver_fresh = router_.driver_fresh(s.now_s);
+  s.demo = !ever_driven_ && cfg_.demo.enabled;
+  s.vehicles = router_.vehicle_count();
+  for (const auto& c : channels_) s.ports.push_back({c->port().config().name, c->port().readers()});
+  return status_.line(s);
+}
+
+void Daemon::arm_tick() {
+  tick_timer_.expires_after(std::chrono::seconds(1));
+  tick_timer_.async_wait([this](const boost::system::error_code& ec) {
+    if (!ec) on_tick();
+  });
+}
+
+void Daemon::on_tick() {
+  const double now = now_s();
+  const DropCounts due = drops_.take_due(now);
+  if (const uint64_t n = drop_counts_sum(due); n > 0) {
+    spdlog::warn("truth: dropped {} more packet(s) in the last {:.0f} s: {}; {} dropped in total", n,
+                 drops_.interval_s(), drop_counts_text(due), drops_.total());
+  }
+  if (now - last_status_s_ >= kStatusIntervalS) {
+    last_status_s_ = now;
+    const std::string line = status_line();
+    spdlog::info("status: {}", line);
+    notify_.status(line);
+  }
+  arm_tick();
+}
+
+void Daemon::log_port_change(std::size_t src) {
+  if (src >= channels_.size() || !channels_[src]) return;
+  const std::string now = channels_[src]->output_summary();
+  if (now == out_summary_[src]) return;
+  const std::string& was = out_summary_[src];
+  const protocol::ubx::PortSettings& p = device_.port(channels_[src]->link());
+  spdlog::info("output {}: a host reconfigured the port: now sends {} (was {}), {} baud{}", cfg_.outputs[src].name,
+               now, was, p.baud_bps,
+               p.outputs_nmea() ? ""
+                                : "; NMEA is off: a gpsd without -b does this when it probes a u-blox, "
+                                  "run gpsd -b to keep the port as configured");
+  out_summary_[src] = now;
+}
+
+void Daemon::note_other_vehicle(const std::string& id) {
+  for (const std::string& v : noted_vehicles_) {
+    if (v == id) return;
+  }
+  if (noted_vehicles_.size() >= TruthRouter::kMaxVehicles) return;
+  noted_vehicles_.push_back(id);
+  if (router_.has_driver()) {
+    spdlog::warn("truth: vehicle '{}' from {}:{} is not driving the receiver: '{}' is{}; set [truth] vehicle = \"{}\" "
+                 "to follow it",
+                 id, peer_.address().to_string(), peer_.port(), router_.driver_id(),
+                 router_.wanted_vehicle().empty() ? " (the first heard)" : " ([truth] vehicle)", id);
+  } else {
+    spdlog::warn("truth: vehicle '{}' from {}:{} is ignored: waiting for vehicle '{}' ([truth] vehicle)", id,
+                 peer_.address().to_string(), peer_.port(), router_.wanted_vehicle());
+  }
+}
+
+}  // namespace gnssemu::daemon
