@@ -6,6 +6,8 @@
 #include <array>
 #include <charconv>
 #include <filesystem>
+#include <string>
+#include <variant>
 
 namespace gnssemu::config {
 
@@ -26,6 +28,11 @@ std::optional<Violation> check_extrapolation(const TruthInputConfig& t) {
   return Violation{"max_extrapolation_s", "timeout_s",
                    format_number(t.max_extrapolation_s) + " s exceeds truth.timeout_s (" + format_number(t.timeout_s) +
                        " s)"};
+}
+
+std::optional<Violation> check_status(const StatusConfig& s) {
+  if (!(s.free_port && s.port == 0)) return std::nullopt;
+  return Violation{"free_port", "port", "true needs status.port above 0 (port = 0 turns the page off)"};
 }
 
 namespace detail {
@@ -271,7 +278,7 @@ constexpr Field<TimeConfig> kTimeFields[] = {
 };
 constexpr Section<TimeConfig> kTime{kTimeFields};
 
-// --- [truth], [demo], [log] ------------------------------------------------
+// --- [truth], [demo], [status], [log] --------------------------------------
 
 void read_allow(TableReader& t, const Field<TruthInputConfig>& f, TruthInputConfig& truth) {
   const toml::node* n = t.find(f.key);
@@ -340,6 +347,19 @@ constexpr Field<DemoConfig> kDemoFields[] = {
 };
 constexpr Section<DemoConfig> kDemo{kDemoFields};
 
+constexpr Field<StatusConfig> kStatusFields[] = {
+    address<&StatusConfig::bind>("bind", "address of the status page (docs/status.md); anything but loopback "
+                                         "(`127.0.0.0/8`, `::1`) makes the vehicle's position reachable from other "
+                                         "machines and is logged as a warning; host names are not accepted"),
+    integer<&StatusConfig::port>("port", 0, 65535,
+                                 "TCP port of the page; 0: no page. A port already taken at start-up moves the "
+                                 "page to a free one (logged as a warning, the URL is printed)"),
+    boolean<&StatusConfig::free_port>("free_port", "true: any free port instead of `port` (the URL is printed at "
+                                                   "start-up), e.g. for several daemons on one machine"),
+    rule<StatusConfig, check_status, RuleScope::kKey>(),
+};
+constexpr Section<StatusConfig> kStatus{kStatusFields};
+
 constexpr std::array<std::string_view, 7> kLogLevels{"trace", "debug", "info", "warn", "error", "critical", "off"};
 
 std::string log_levels_text() {
@@ -370,6 +390,27 @@ constexpr Section<LogConfig> kLog{kLogFields};
 
 // --- the file --------------------------------------------------------------
 
+// The page and a tcp [[output]] cannot listen on one port: reported at
+// status.port when the file sets it, else at the output's port.
+void check_status_port(TableReader& t, const Field<Config>&, Config& c) {
+  if (c.status.port == 0 || c.status.free_port) return;
+  for (std::size_t i = 0; i < c.outputs.size(); ++i) {
+    const auto* tcp = std::get_if<TcpPortConfig>(&c.outputs[i].transport);
+    if (tcp == nullptr || tcp->port != c.status.port) continue;
+    const std::string reason = "status.port: " + std::to_string(c.status.port) + " is also the tcp port of [[output]] '" +
+                               c.outputs[i].name + "'";
+    const toml::node* at = nullptr;
+    if (const toml::node* st = t.find("status"); st != nullptr && st->is_table()) at = st->as_table()->get("port");
+    if (at == nullptr) {
+      const toml::node* outs = t.find("output");
+      const toml::array* a = outs != nullptr ? outs->as_array() : nullptr;
+      const toml::table* o = a != nullptr && i < a->size() ? a->get(i)->as_table() : nullptr;
+      at = o != nullptr ? o->get("port") : nullptr;
+    }
+    throw Error(t.file(), at != nullptr ? line_of(*at) : t.line(), reason);
+  }
+}
+
 // The world's and the receiver's validators on the assembled models, reported
 // at [atmosphere] (else [signal], else the file).
 void check_models(TableReader& t, const Field<Config>&, Config& c) {
@@ -394,6 +435,8 @@ constexpr Field<Config> kConfigFields[] = {
     table<kDemo, &Config::demo>("demo", "circle around the origin while no truth arrives"),
     table_array<kOutputKeys, check_unique_port, &Config::outputs>("output"),
     optional_table<kSceneKeys, &Config::scene>("scene", "buildings, docs/scene.md"),
+    table<kStatus, &Config::status>("status", "live status page, docs/status.md"),
+    check<Config>(check_status_port),
     table<kLog, &Config::log>("log"),
 };
 

@@ -14,6 +14,7 @@
 #include "core/common/error.hpp"
 #include "daemon/epoch_schedule.hpp"
 #include "daemon/scene_setup.hpp"
+#include "daemon/status_setup.hpp"
 #include "daemon/truth_packet.hpp"
 
 namespace gnssemu::daemon {
@@ -49,6 +50,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       output_delay_s_(cfg.time.output_delay_s),
       device_(config::device_setup(cfg)),
       rate_hz_(cfg.rate_hz),
+      status_(status_settings(cfg)),
       timer_(io),
       retry_timer_(io),
       socket_(io),
@@ -142,6 +144,7 @@ void Daemon::start() {
   }
   std::printf("gnssemud: truth input udp %s:%u\n", local.address().to_string().c_str(),
               static_cast<unsigned>(local.port()));
+  start_status_page();
   std::fflush(stdout);
 
   const std::optional<int>& leap = constellation_.nav.leap_seconds;
@@ -182,6 +185,7 @@ void Daemon::shutdown() {
   tick_timer_.cancel();
   socket_.close(ec);
   if (signals_) signals_->cancel();
+  if (status_server_) status_server_->stop();
   if (!channels_.empty()) {
     for (const auto& c : channels_) {
       const PortStats& ps = c->port().stats();
@@ -289,6 +293,7 @@ void Daemon::emit_epoch(const time::GpsTime& t, const world::Truth& truth) {
   ++epochs_;
   device_.on_epoch(fix, now_s());
   for (const auto& c : channels_) c->send_epoch();
+  record_status(t, truth, fix);
   const int type = static_cast<int>(fix.type);
   last_num_used_ = fix.num_used;
   last_num_tracked_ = fix.num_tracked;

@@ -28,6 +28,8 @@
 #include "daemon/status_line.hpp"
 #include "daemon/systemd_notify.hpp"
 #include "daemon/truth_allow.hpp"
+#include "daemon/status_producer.hpp"
+#include "daemon/status_server.hpp"
 #include "daemon/time_mapping.hpp"
 #include "daemon/truth_router.hpp"
 
@@ -94,6 +96,9 @@ private:
   void note_other_vehicle(const std::string& id);
   /// Wire port to output i of the device (replacing what was there).
   void open_channel(std::size_t i, std::unique_ptr<OutputPort> port);
+  // Status page (daemon_status.cpp).
+  void start_status_page();
+  void record_status(const time::GpsTime& t, const world::Truth& truth, const receiver::Fix& fix) noexcept;
 
   asio::io_context& io_;
   config::Config cfg_;
@@ -115,6 +120,10 @@ private:
   double rate_hz_;              // epoch rate now (CFG-RATE may change it)
   double sched_base_s_ = 0.0;   // realtime: elapsed time of index 0 of the current rate
 
+  StatusProducer status_;       ///< /api/status and the control socket's status
+  std::unique_ptr<StatusServer> status_server_;  ///< null: [status] port = 0
+  std::optional<time::GpsTime> status_first_t_;  ///< run time 0 of the status history
+
   asio::steady_timer timer_;
   asio::steady_timer retry_timer_;  // back-off after a socket error
   asio::ip::udp::socket socket_;
@@ -122,7 +131,7 @@ private:
   std::unique_ptr<SignalDispatch> signals_;
   SystemdNotify notify_;
   TruthAllowList allow_;
-  StatusLine status_;
+  StatusLine status_line_;  ///< the log line (every minute, SIGUSR1) and STATUS=
   asio::steady_timer tick_timer_;
   Reloader reloader_;
   double last_status_s_ = 0.0;

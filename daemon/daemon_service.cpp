@@ -127,7 +127,7 @@ std::string Daemon::status_line() {
   s.demo = !ever_driven_ && cfg_.demo.enabled;
   s.vehicles = router_.vehicle_count();
   for (const auto& c : channels_) s.ports.push_back({c->port().config().name, c->port().readers()});
-  return status_.line(s);
+  return status_line_.line(s);
 }
 
 void Daemon::arm_tick() {

@@ -17,6 +17,7 @@
 #include "core/common/error.hpp"
 #include "daemon/config_locator.hpp"
 #include "daemon/daemon.hpp"
+#include "daemon/status_setup.hpp"
 
 namespace {
 
@@ -48,6 +49,14 @@ void print_summary(const config::Config& cfg, const orbit::NavData& nav, const d
   }
   std::printf("truth:   udp %s:%u, timeout %.2f s, max extrapolation %.2f s\n", cfg.truth.bind_address.c_str(),
               static_cast<unsigned>(cfg.truth.port), cfg.truth.timeout_s, cfg.truth.max_extrapolation_s);
+  if (cfg.status.port == 0 && !cfg.status.free_port) {
+    std::printf("status:  off\n");
+  } else {
+    const bool v6 = cfg.status.bind.find(':') != std::string::npos;
+    std::printf("status:  http://%s%s%s:%s/%s\n", v6 ? "[" : "", cfg.status.bind.c_str(), v6 ? "]" : "",
+                cfg.status.free_port ? "(free port)" : std::to_string(cfg.status.port).c_str(),
+                daemon::is_loopback(cfg.status.bind) ? "" : " (not loopback: reachable from other machines)");
+  }
   std::printf("demo:    %s (circle r=%.1f m, %.1f m/s)\n", cfg.demo.enabled ? "on" : "off", cfg.demo.radius_m,
               cfg.demo.speed_m_s);
   for (const auto& p : cfg.outputs) {
@@ -81,6 +90,7 @@ struct Options {
   std::string config_path;
   std::string pty_path;
   int truth_port = -1;
+  std::string status_port;  ///< --status-port: a number, or "free"
 };
 
 config::Config load_run_config(const Options& o) {
@@ -94,6 +104,12 @@ config::Config load_run_config(const Options& o) {
     cfg.outputs.front().transport = config::PtyPortConfig{o.pty_path};
   }
   if (o.truth_port >= 0) cfg.truth.port = static_cast<uint16_t>(o.truth_port);
+  if (o.status_port == "free") {
+    cfg.status.free_port = true;
+  } else if (!o.status_port.empty()) {
+    cfg.status.port = static_cast<uint16_t>(std::stoi(o.status_port));
+    cfg.status.free_port = false;
+  }
   for (const auto& p : cfg.outputs) daemon::validate_port(p);
   return cfg;
 }
@@ -109,6 +125,20 @@ int main(int argc, char** argv) {
   app.add_option("--pty", opt.pty_path, "path of the pty symlink of the first output (overrides the config)");
   app.add_option("--truth-port", opt.truth_port, "UDP port of the truth input, 0: any free one (overrides the config)")
       ->check(CLI::Range(0, 65535));
+  app.add_option("--status-port", opt.status_port,
+                 "TCP port of the status page: a number, 0: no page, free: any free port (overrides [status])")
+      ->check([](const std::string& v) -> std::string {
+        if (v == "free") return {};
+        int n = -1;
+        try {
+          std::size_t used = 0;
+          n = std::stoi(v, &used);
+          if (used != v.size()) n = -1;
+        } catch (const std::exception&) {
+          n = -1;
+        }
+        return n >= 0 && n <= 65535 ? std::string() : "a port 0..65535 or 'free'";
+      });
   app.add_flag("-v,--verbose", verbose, "debug logging");
   app.add_flag("--check-config", check_only, "load and validate the configuration, print a summary, exit");
   app.set_version_flag("--version", std::string("gnssemud ") + GNSSEMU_VERSION);

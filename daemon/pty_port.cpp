@@ -1,5 +1,6 @@
 // Pseudo-terminal with a stable symlink to its slave side (docs/daemon.md).
 #include <fcntl.h>
+#include <grp.h>
 #include <pty.h>
 #include <sys/stat.h>
 #include <sys/ioctl.h>
@@ -25,6 +26,22 @@ void set_nonblocking(int fd) {
   if (flags < 0 || ::fcntl(fd, F_SETFL, flags | O_NONBLOCK) < 0) throw Error("fcntl(O_NONBLOCK): " + errno_text());
 }
 
+// A serial device on Debian is root:dialout 0660, and gpsd (user gpsd, in
+// dialout) opens its devices as that group. The slave of a pty is ours:tty
+// 0620; when this process is in dialout (the systemd unit's
+// SupplementaryGroups), it is handed to dialout 0660 so such a reader can
+// open it as it would a serial port.
+void share_with_dialout(int fd) {
+  const group* g = ::getgrnam("dialout");
+  if (g == nullptr) return;
+  bool member = ::getegid() == g->gr_gid;
+  std::array<gid_t, 256> groups{};
+  const int n = ::getgroups(static_cast<int>(groups.size()), groups.data());
+  for (int i = 0; i < n && !member; ++i) member = groups[static_cast<std::size_t>(i)] == g->gr_gid;
+  if (!member) return;
+  if (::fchown(fd, static_cast<uid_t>(-1), g->gr_gid) == 0) ::fchmod(fd, 0660);
+}
+
 // The slave stays open here too, so a reader may come and go without the pty
 // vanishing. Input the reader writes arrives on the master.
 class PtyPort final : public OutputPort {
@@ -46,6 +63,7 @@ public:
     ::fcntl(slave_, F_SETFD, FD_CLOEXEC);
     set_nonblocking(master);
     set_nonblocking(slave_);
+    share_with_dialout(slave_);
     record_baud(cfg.baud);
     make_symlink();
   }

@@ -10,7 +10,10 @@ PKGS=(
   nlohmann-json3-dev zlib1g-dev libsystemd-dev
   gpsd gpsd-clients rtklib socat python3
   systemd dpkg-dev  # systemd-analyze (unit tests), dpkg-shlibdeps (cpack -G DEB)
+  libjs-chart.js chromium fonts-dejavu-core nodejs
 )
+# The browser test installs its driver (playwright-core, from
+# tests/integration/browser/package-lock.json) into build/browser-driver.
 
 missing=()
 for p in "${PKGS[@]}"; do
@@ -18,7 +21,12 @@ for p in "${PKGS[@]}"; do
     missing+=("$p")
   fi
 done
-[ ${#missing[@]} -eq 0 ] && exit 0
+# npm may come with nodejs (NodeSource) or as Debian's own package.
+command -v npm >/dev/null 2>&1 || missing+=(npm)
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
 
 echo "install-deps: installing ${missing[*]}" >&2
 SUDO=""

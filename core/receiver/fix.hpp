@@ -35,6 +35,7 @@ struct SatInfo {
   bool above_mask = false;    ///< elevation >= mask
   bool tracked = false;       ///< signal tracked (pseudorange available)
   bool used = false;          ///< used in the navigation solution
+  bool excluded = false;      ///< tracked, but removed from the solution by fault detection (residual test)
   double pseudorange_m = 0.0; ///< measured (with all errors), m
   double doppler_hz = 0.0;    ///< measured L1 Doppler, Hz
   double residual_m = 0.0;    ///< post-fit pseudorange residual, m (used only)

@@ -58,6 +58,7 @@ void Receiver::no_fix_epoch() noexcept {
   fix_.time_acc_s = kNoFixTimeAccuracy_s;
   for (int i = 0; i < fix_.num_sats; ++i) {
     fix_.sats[i].used = false;
+    fix_.sats[i].excluded = false;
     fix_.sats[i].residual_m = 0.0;
   }
 }
@@ -218,6 +219,7 @@ void Receiver::fill_solution() noexcept {
     SatInfo& si = f.sats[i];
     if (si.prn != meas_prn_[k]) continue;
     si.used = !out_.excluded[k];  // excluded by the residual test: tracked, not used
+    si.excluded = out_.excluded[k];
     si.residual_m = out_.residual_m[k++];
   }
 

@@ -28,7 +28,7 @@ constexpr double kGridTolerance_s = 1e-6;
 
 BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const world::TruthTrack& track,
                        std::ostream* nmea, std::ostream* errors, std::ostream* ubx, orbit::StoreOptions store_options,
-                       const std::vector<faults::FaultEvent>* scenario) {
+                       std::span<BatchObserver* const> observers, const std::vector<faults::FaultEvent>* scenario) {
   if (!(config.rate_hz > 0.0) || !std::isfinite(config.rate_hz)) {
     throw Error(config.source, 0, "rate_hz must be positive");
   }
@@ -127,6 +127,7 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
       row.push_back('\n');
       errors->write(row.data(), static_cast<std::streamsize>(row.size()));
     }
+    for (BatchObserver* o : observers) o->on_epoch(t, fix, truth);
   }
   if (sum.epochs > 0) {
     sum.mean_visible = static_cast<double>(visible_sum) / sum.epochs;

@@ -2,6 +2,7 @@
 // `gnssemu batch`: the daemon's code path (config -> ephemeris store ->
 // make_pipeline -> encoders) run over a truth trajectory faster than real time.
 #include <ostream>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,13 @@ struct BatchSummary {
   std::string mesh_report;  ///< scene::skip_report of the mesh, \"\" when nothing was skipped
 };
 
+/// Sees every epoch of run_batch after it ran (the --sats CSV, the report).
+class BatchObserver {
+public:
+  virtual ~BatchObserver() = default;
+  virtual void on_epoch(const time::GpsTime& t, const receiver::Fix& fix, const world::Truth& truth) = 0;
+};
+
 /// Run the receiver, set up as the daemon sets it up from the nav file (its
 /// ephemerides, its header's leap seconds), at config.rate_hz on the GPS-time grid (multiples of
 /// 1/rate s of week) from the first to the last truth time. nmea and ubx: the
@@ -43,11 +51,13 @@ struct BatchSummary {
 /// Either may be null. Throws gnssemu::Error when the truth spans no epoch.
 /// store: how the ephemeris store treats times past the data (the daemon's
 /// constellation continues the orbits; orbit::Constellation::store_options).
-/// scenario: fault events (start times from the first epoch) applied
-/// between world and receiver; null: no fault stage.
+/// observers: told of every epoch, in order. scenario: fault events (start
+/// times from the first epoch) applied between world and receiver; null: no
+/// fault stage.
 BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const world::TruthTrack& track,
                        std::ostream* nmea, std::ostream* errors, std::ostream* ubx = nullptr,
-                       orbit::StoreOptions store = {}, const std::vector<faults::FaultEvent>* scenario = nullptr);
+                       orbit::StoreOptions store = {}, std::span<BatchObserver* const> observers = {},
+                       const std::vector<faults::FaultEvent>* scenario = nullptr);
 
 /// Human-readable summary (for stderr).
 void write_summary(const BatchSummary& summary, std::ostream& out);

@@ -26,6 +26,9 @@
 #include "config/scenario_file.hpp"
 #include "tools/gnssemu/batch.hpp"
 #include "tools/gnssemu/calibrate.hpp"
+#include "tools/gnssemu/plot.hpp"
+#include "tools/gnssemu/report.hpp"
+#include "tools/gnssemu/sats_csv.hpp"
 #include "tools/gnssemu/bench_multipath.hpp"
 #include "tools/gnssemu/satpos.hpp"
 #include "tools/gnssemu/sky.hpp"
@@ -67,7 +70,11 @@ struct SceneArgs {
 };
 
 struct BatchArgs {
-  std::string config_path, truth_path, nmea_path, errors_path, ubx_path, scenario_path;
+  std::string config_path, truth_path, nmea_path, errors_path, ubx_path;
+  std::string scenario_path;   ///< --scenario
+  std::string sats_path;       ///< --sats
+  std::string report_dir;      ///< --report
+  std::string reference_path;  ///< --cn0-reference (with --report)
 };
 
 /// Where satpos, sky and dop take their satellites from.
@@ -197,9 +204,10 @@ private:
 };
 
 int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) {
-  if ((a.nmea_path == "-") + (a.errors_path == "-") + (a.ubx_path == "-") > 1) {
-    throw Error("--nmea, --ubx, --errors: two outputs cannot both be '-' (stdout)");
+  if ((a.nmea_path == "-") + (a.errors_path == "-") + (a.ubx_path == "-") + (a.sats_path == "-") > 1) {
+    throw Error("--nmea, --ubx, --errors, --sats: two outputs cannot both be '-' (stdout)");
   }
+  if (!a.reference_path.empty() && a.report_dir.empty()) throw Error("--cn0-reference needs --report DIR");
   const config::Config cfg = config::load_config(a.config_path);
   const world::TruthTrack track(read_truth_csv(a.truth_path));
   for (const std::string& p : config::nav_paths(cfg)) {
@@ -223,12 +231,34 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
   OutputFile nmea(a.nmea_path, out);
   OutputFile errors(a.errors_path, out);
   OutputFile ubx(a.ubx_path, out);
-  const BatchSummary sum = run_batch(cfg, c.nav, track, nmea.get(), errors.get(), ubx.get(), c.store_options(),
-                                     a.scenario_path.empty() ? nullptr : &scenario);
+  OutputFile sats(a.sats_path, out);
+  std::vector<BatchObserver*> observers;
+  std::optional<SatsCsvWriter> sats_writer;
+  if (sats.get() != nullptr) observers.push_back(&sats_writer.emplace(*sats.get()));
+  ReportData report;
+  ReportCollector collector(report);
+  if (!a.report_dir.empty()) {
+    if (!a.reference_path.empty()) report.reference = read_cn0_reference(a.reference_path);
+    observers.push_back(&collector);
+  }
+  const BatchSummary sum =
+      run_batch(cfg, c.nav, track, nmea.get(), errors.get(), ubx.get(), c.store_options(), observers,
+                a.scenario_path.empty() ? nullptr : &scenario);
   nmea.close(a.nmea_path);
   ubx.close(a.ubx_path);
   errors.close(a.errors_path);
+  sats.close(a.sats_path);
   write_summary(sum, err);
+  if (!a.report_dir.empty()) {
+    report.title = "gnssemu batch: " + std::filesystem::path(a.truth_path).filename().string();
+    report.inputs = {"config: " + a.config_path, "truth: " + a.truth_path, "satellites: " + c.describe()};
+    if (report.reference) report.inputs.push_back("C/N0 reference: " + a.reference_path);
+    report.elevation_mask_deg = cfg.receiver.elevation_mask_rad * kRadToDeg;
+    report.acquire_dbhz = cfg.receiver.tracking.acquire_dbhz;
+    report.lose_dbhz = cfg.receiver.tracking.lose_dbhz;
+    write_cn0_comparison(report, err);
+    err << "gnssemu batch: report " << write_report(report, a.report_dir) << '\n';
+  }
   return kExitOk;
 }
 
@@ -418,6 +448,21 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   batch_cmd->add_option("--ubx", batch.ubx_path, "write the UBX stream here ('-' = stdout)");
   batch_cmd->add_option("--errors", batch.errors_path, "write per-epoch fix errors CSV here ('-' = stdout)");
   batch_cmd->add_option("--scenario", batch.scenario_path, "fault scenario TOML ([[event]] tables, docs/faults.md)");
+  batch_cmd->add_option("--sats", batch.sats_path,
+                        "write per epoch and satellite gps_week,tow_s,prn,az_deg,el_deg,cn0_dbhz,tracked,used here "
+                        "('-' = stdout)");
+  batch_cmd->add_option("--report", batch.report_dir, "write an HTML report with plots to DIR/report.html");
+  batch_cmd->add_option("--cn0-reference", batch.reference_path,
+                        "a real receiver's C/N0 for the report: NMEA log (GSV) or CSV with el_deg,cn0_dbhz");
+  PlotArgs plot_args;
+  CLI::App* plot = app.add_subcommand("plot", "HTML report from batch / bench multipath CSVs");
+  plot->add_option("--errors", plot_args.errors_path, "batch --errors CSV");
+  plot->add_option("--sats", plot_args.sats_path, "batch --sats CSV");
+  plot->add_option("--multipath", plot_args.multipath_path, "bench multipath CSV");
+  plot->add_option("--cn0-reference", plot_args.reference_path,
+                   "a real receiver's C/N0: NMEA log (GSV) or CSV with el_deg,cn0_dbhz");
+  plot->add_option("--mask", plot_args.mask_deg, "elevation mask to draw, deg [0, 90)");
+  plot->add_option("--out", plot_args.out_dir, "report folder (report.html is written there)")->required();
   ObsArgs obs_args;
   CLI::App* spp = app.add_subcommand("spp", "single-point positions from a real RINEX observation file (C1C)");
   spp->add_option("--obs", obs_args.obs_path, "RINEX 2.11/3.x observation file (.gz read too)")->required();
@@ -475,7 +520,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
 
   // CLI11 reports a mistyped subcommand only as "A subcommand is required".
   const auto known = [&](const std::string& name) {
-    for (const CLI::App* sub : {satpos, sky, dop, batch_cmd, spp, calib, bench, version}) {
+    for (const CLI::App* sub : {satpos, sky, dop, batch_cmd, plot, spp, calib, bench, version}) {
       if (sub->get_name() == name) return true;
     }
     return false;
@@ -486,7 +531,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     return kExitOk;
   }
   if (argc > 1 && argv[1][0] != '-' && !known(argv[1])) {
-    err << "gnssemu: unknown subcommand '" << argv[1] << "' (satpos, sky, dop, batch, spp, calibrate, bench, version; see --help)\n";
+    err << "gnssemu: unknown subcommand '" << argv[1] << "' (satpos, sky, dop, batch, plot, spp, calibrate, bench, version; see --help)\n";
     return kExitUsage;
   }
   try {
@@ -550,6 +595,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       }
     } else if (*batch_cmd) {
       return run_batch_command(batch, out, err);
+    } else if (*plot) {
+      if (!std::isnan(plot_args.mask_deg)) check_range("--mask", plot_args.mask_deg, 0.0, 90.0, true);
+      run_plot(plot_args, out, err);
     } else if (*spp) {
       return run_spp_command(obs_args, out, err);
     } else if (*calib) {

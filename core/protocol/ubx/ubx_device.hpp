@@ -162,6 +162,8 @@ public:
   const UbxEncoder& encoder() const noexcept { return encoder_; }
   const DeviceStats& stats() const noexcept { return stats_; }
   std::uint64_t epoch_count() const noexcept { return epochs_; }
+  /// Uptime and time to first fix as of the last on_epoch (NAV-STATUS msss, ttff).
+  const EpochInfo& epoch_info() const noexcept { return info_; }
 
 private:
   bool valid(Link at) const noexcept { return at.output < outputs() && at.port_id < kNumPorts; }

@@ -264,6 +264,11 @@ reflection_loss_db = 3.5
 [scene.material_loss_db]
 glass = 1.5
 
+[status]
+bind = "::1"
+port = 8088
+free_port = true
+
 [log]
 level = "debug"
 )";

@@ -1,0 +1,91 @@
+// The daemon's hooks for the status page (docs/status.md): the server is
+// started with the ports and every epoch feeds the one StatusProducer.
+#include <cstdio>
+#include <string_view>
+
+#include <spdlog/spdlog.h>
+
+#include "core/common/error.hpp"
+#include "daemon/daemon.hpp"
+#include "daemon/status_setup.hpp"
+
+namespace gnssemu::daemon {
+
+namespace {
+
+std::string_view protocols_text(std::uint16_t bits) noexcept {
+  const bool nmea = (bits & protocol::ubx::proto::kNmea) != 0;
+  const bool ubx = (bits & protocol::ubx::proto::kUbx) != 0;
+  return nmea && ubx ? "NMEA+UBX" : nmea ? "NMEA" : ubx ? "UBX" : "nothing";
+}
+
+}  // namespace
+
+void Daemon::start_status_page() {
+  std::vector<PortInfo> ports;
+  for (const auto& c : channels_) {
+    const config::OutputPortConfig& pc = c->port().config();
+    ports.push_back(PortInfo{pc.name, std::string(config::port_type_name(pc.type())), c->port().describe()});
+  }
+  status_.set_ports(std::move(ports));
+  const config::StatusConfig& sc = cfg_.status;
+  if (sc.port == 0 && !sc.free_port) return;
+  status_server_ = std::make_unique<StatusServer>(io_, status_);
+  try {
+    status_server_->start(sc.bind, sc.free_port ? 0 : sc.port);
+  } catch (const Error& e) {
+    // The page is a window on the receiver, not part of it: a taken port
+    // moves it to a free one rather than stopping the emulator.
+    spdlog::warn("{}; serving the status page on a free port instead", e.what());
+    status_server_ = std::make_unique<StatusServer>(io_, status_);
+    status_server_->start(sc.bind, 0);
+  }
+  if (!is_loopback(sc.bind)) {
+    spdlog::warn("status page on {}: reachable from other machines (it shows the vehicle's position); "
+                 "[status] bind = \"127.0.0.1\" keeps it local",
+                 sc.bind);
+  }
+  const auto ep = status_server_->local_endpoint();
+  const std::string host = ep.address().is_v6() ? "[" + ep.address().to_string() + "]" : ep.address().to_string();
+  std::printf("gnssemud: status page http://%s:%u/\n", host.c_str(), static_cast<unsigned>(ep.port()));
+}
+
+void Daemon::record_status(const time::GpsTime& t, const world::Truth& truth, const receiver::Fix& fix) noexcept {
+  if (!status_first_t_) status_first_t_ = t;
+  const double run_s = t - *status_first_t_;
+  const protocol::ubx::EpochInfo& info = device_.epoch_info();
+  EpochStatus e;
+  e.fix = &fix;
+  e.truth = &truth;
+  e.run_s = run_s;
+  e.uptime_s = info.msss_ms * 1e-3;
+  e.ttff_s = info.ttff_ms * 1e-3;
+  status_.on_epoch(e);
+
+  TruthCounters tc;
+  tc.packets_accepted = packets_ok_;
+  for (std::size_t r = 0; r < kDropReasonCount; ++r) tc.dropped[r] = drops_.count(static_cast<DropReason>(r));
+  const double now = now_s();
+  tc.simulator = router_.has_driver();
+  tc.fresh = tc.simulator && router_.driver_fresh(now);
+  tc.demo = !tc.simulator && cfg_.demo.enabled;
+  status_.set_truth(tc);
+
+  for (std::size_t i = 0; i < channels_.size(); ++i) {
+    const PortChannel& c = *channels_[i];
+    PortCounters pc;
+    pc.protocols = protocols_text(device_.protocols_sent(c.link()));
+    pc.baud_bps = c.budget().limited() ? c.budget().baud_bps() : 0;
+    pc.bytes_offered = c.stats().bytes_offered;
+    pc.bytes_written = c.port().stats().bytes_written;
+    pc.epochs_written = c.port().stats().epochs_written;
+    pc.epochs_dropped = c.port().stats().epochs_dropped;
+    pc.messages_dropped = c.stats().messages_dropped;
+    pc.tx_level_bytes = c.budget().level_bytes();
+    pc.tx_capacity_bytes = static_cast<double>(c.budget().capacity_bytes());
+    status_.set_port_counters(i, pc);
+  }
+  if (status_server_) status_server_->publish();
+}
+
+}  // namespace gnssemu::daemon

@@ -1,0 +1,193 @@
+// The live status page (docs/status.md): /api/status once for the history,
+// then one status per epoch from /api/events (server-sent events). Renders
+// only what that JSON carries.
+'use strict';
+
+(() => {
+  const G = GnssCharts;
+  const $ = (id) => document.getElementById(id);
+  const kHistory = 600;
+  const hist = { t_s: [], e_m: [], n_m: [], u_m: [], h_acc_m: [], v_acc_m: [], fix_type: [], num_used: [], num_tracked: [] };
+
+  const sky = G.skyChart($('sky'), { prnLabels: true });
+  const cn0 = G.cn0Chart($('cn0'));
+  const error = G.timeChart($('error'), 'error (m)');
+  const scatter = G.scatterChart($('scatter'));
+  const accuracy = G.timeChart($('accuracy'), 'm');
+  let faults = null;
+
+  function text(id, v) {
+    const el = $(id);
+    if (el && el.textContent !== v) el.textContent = v;
+  }
+
+  function appendHistory(h) {
+    if (!h || !h.t_s) return;
+    for (let i = 0; i < h.t_s.length; i++) {
+      const t = h.t_s[i];
+      const n = hist.t_s.length;
+      if (n && t <= hist.t_s[n - 1]) {
+        if (t < hist.t_s[n - 1]) for (const k of Object.keys(hist)) hist[k].length = 0;  // the run restarted
+        else continue;
+      }
+      for (const k of Object.keys(hist)) hist[k].push(h[k] !== undefined ? h[k][i] : null);
+    }
+    const extra = hist.t_s.length - kHistory;
+    if (extra > 0) for (const k of Object.keys(hist)) hist[k].splice(0, extra);
+  }
+
+  function renderFix(s) {
+    const f = s.fix;
+    const badge = $('fix-type');
+    badge.textContent = f.type_name === 'none' ? 'no fix' : `${f.type_name} fix`;
+    badge.className = `badge badge-${f.type_name}`;
+    badge.dataset.fixType = String(f.type);
+    text('utc', s.epoch.utc || '—');
+    text('gps-week', String(s.epoch.gps_week));
+    text('tow', G.fmt(s.epoch.tow_s, 1));
+    document.body.dataset.tow = String(s.epoch.tow_s);
+    document.body.dataset.epoch = String(s.epoch.count);
+    text('num-used', String(f.num_used));
+    text('num-tracked', String(f.num_tracked));
+    text('num-visible', String(f.num_visible));
+    text('lat', G.fmt(f.lat_deg, 7, '°'));
+    text('lon', G.fmt(f.lon_deg, 7, '°'));
+    text('height', G.fmt(f.height_m, 2, ' m'));
+    text('msl', G.fmt(f.msl_m, 2, ' m'));
+    text('speed', G.fmt(f.speed_m_s, 2, ' m/s'));
+    text('course', G.fmt(f.course_deg, 1, '°'));
+    for (const k of ['pdop', 'hdop', 'vdop', 'gdop', 'tdop']) text(k, G.fmt(f.dop[k], 2));
+    text('ttff', G.fmt(f.ttff_s, 1, ' s'));
+    text('uptime', G.fmt(s.epoch.uptime_s, 0, ' s'));
+    const e = s.error;
+    text('h-acc', G.fmt(f.h_acc_m, 2, ' m'));
+    text('v-acc', G.fmt(f.v_acc_m, 2, ' m'));
+    text('h-err', G.fmt(e.h_m, 2, ' m'));
+    text('v-err', G.fmt(e.v_m, 2, ' m'));
+    $('h-err').className = e.valid && e.h_m > 3 * f.h_acc_m ? 'warn' : '';
+    $('v-err').className = e.valid && e.v_m > 3 * f.v_acc_m ? 'warn' : '';
+    text('cep50', G.fmt(e.cep50_m, 2, ' m'));
+    text('cep95', G.fmt(e.cep95_m, 2, ' m'));
+    text('cep-n', String(e.samples));
+    const t = s.truth;
+    text('truth-source', `${t.source}${t.source === 'simulator' && !t.fresh ? ' (stopped)' : ''}${t.valid ? '' : ', no truth'}`);
+    text('truth-rate', G.fmt(t.rate_hz, 1, ' packets/s'));
+    text('truth-packets', String(t.packets));
+    text('truth-dropped', String(t.dropped));
+    const reasons = Object.entries(t.drops || {}).map(([k, v]) => `${k} ${v}`).join(', ');
+    text('truth-drops', reasons ? `(${reasons})` : '');
+  }
+
+  function renderSats(s) {
+    const pts = s.satellites.map((x) => ({ prn: x.prn, az: x.az_deg, el: x.el_deg, cn0: x.cn0_dbhz, state: x.state, used: x.used }));
+    sky.data.datasets = G.skyDatasets(pts, s.settings.elevation_mask_deg, 7);
+    sky.update('none');
+    cn0.data = G.cn0Data(s.satellites, s.settings.acquire_dbhz, s.settings.lose_dbhz);
+    cn0.update('none');
+    const body = $('sat-table').tBodies[0];
+    const rows = s.satellites.map((x) => {
+      const tr = document.createElement('tr');
+      tr.dataset.prn = String(x.prn);
+      tr.dataset.state = x.state;
+      const cells = [
+        `<span class="state" style="background:${G.stateColors[x.state]}"></span>${x.prn}`,
+        G.stateLabels[x.state] || x.state,
+        G.fmt(x.az_deg, 1), G.fmt(x.el_deg, 1), x.tracked ? G.fmt(x.cn0_dbhz, 1) : '—',
+        G.fmt(x.residual_m, 2), G.fmt(x.nlos_delay_m, 1),
+      ];
+      tr.innerHTML = cells.map((c) => `<td>${c}</td>`).join('');
+      return tr;
+    });
+    body.replaceChildren(...rows);
+  }
+
+  function renderPorts(s) {
+    const body = $('port-table').tBodies[0];
+    const esc = (v) => String(v).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));
+    body.replaceChildren(...s.ports.map((p) => {
+      const tr = document.createElement('tr');
+      tr.dataset.port = p.name;
+      const cells = [esc(p.name), esc(p.type), esc(p.where), esc(p.protocols), p.baud ? String(p.baud) : '—',
+        G.fmt(p.bytes_per_s, 0), p.line_use === null ? 'no line' : G.fmt(100 * p.line_use, 1, ' %'),
+        p.tx_fill === null ? '—' : G.fmt(100 * p.tx_fill, 1, ' %'), String(p.epochs_written),
+        String(p.epochs_dropped), String(p.messages_dropped)];
+      tr.innerHTML = cells.map((c) => `<td>${c}</td>`).join('');
+      if (p.line_use !== null && p.line_use > 1) tr.className = 'warn';
+      return tr;
+    }));
+  }
+
+  function renderFaults(s, now) {
+    const list = s.faults || [];
+    $('fault-none').style.display = list.length ? 'none' : '';
+    $('fault-timeline-box').style.display = list.length ? '' : 'none';
+    if (!list.length) return;
+    if (!faults) {
+      faults = new Chart($('fault-timeline'), {
+        type: 'bar',
+        data: { labels: [], datasets: [] },
+        options: { animation: false, maintainAspectRatio: false, indexAxis: 'y', parsing: true,
+                   scales: { x: { type: 'linear', title: { display: true, text: 'run time (s)' } } },
+                   plugins: { legend: { display: false } } },
+      });
+    }
+    faults.data.labels = list.map((f) => `${f.type} ${f.id}`);
+    faults.data.datasets = [{
+      data: list.map((f) => [f.start_s, f.end_s === null ? now : f.end_s]),
+      backgroundColor: list.map((f) => (f.active ? '#c0392b' : '#9aa3ad')),
+    }];
+    faults.update('none');
+  }
+
+  function renderHistory(s) {
+    error.data.datasets = [
+      G.series('east', '#2f6fd6', hist.t_s, hist.e_m),
+      G.series('north', '#1f9d3a', hist.t_s, hist.n_m),
+      G.series('up', '#e08a00', hist.t_s, hist.u_m),
+    ];
+    G.clipY(error, hist.e_m.concat(hist.n_m, hist.u_m), true, 'error (m)');
+    error.update('none');
+    const h = hist.e_m.map((e, i) => (e === null || hist.n_m[i] === null ? null : Math.hypot(e, hist.n_m[i])));
+    const v = hist.u_m.map((u) => (u === null ? null : Math.abs(u)));
+    accuracy.data.datasets = [
+      G.series('horizontal error', '#2f6fd6', hist.t_s, h),
+      G.series('hAcc (reported)', '#0b2f6b', hist.t_s, hist.h_acc_m, { borderDash: [6, 3], borderWidth: 2.5, order: -1 }),
+      G.series('vertical error', '#e08a00', hist.t_s, v),
+      G.series('vAcc (reported)', '#7a4500', hist.t_s, hist.v_acc_m, { borderDash: [6, 3], borderWidth: 2.5, order: -1 }),
+    ];
+    G.clipY(accuracy, h.concat(v, hist.h_acc_m, hist.v_acc_m), false, 'm');
+    accuracy.update('none');
+    const e = s.error;
+    const sd = G.scatterData(hist.e_m, hist.n_m, e.cep50_m, e.cep95_m, e.valid ? { x: e.e_m, y: e.n_m } : null);
+    scatter.data.datasets = sd.datasets;
+    G.squareUpdate(scatter, sd.lim, 'none');
+  }
+
+  function render(s) {
+    appendHistory(s.history);
+    renderFix(s);
+    renderSats(s);
+    renderPorts(s);
+    renderFaults(s, s.epoch.run_s);
+    renderHistory(s);
+  }
+
+  function connect() {
+    const es = new EventSource('/api/events');
+    es.onopen = () => { $('conn').textContent = 'live'; $('conn').className = 'conn conn-on'; };
+    es.onerror = () => { $('conn').textContent = 'reconnecting…'; $('conn').className = 'conn conn-off'; };
+    es.onmessage = (m) => {
+      try {
+        render(JSON.parse(m.data));
+      } catch (err) {
+        console.error('status event', err);
+      }
+    };
+  }
+
+  fetch('/api/status')
+    .then((r) => r.json())
+    .then((s) => { if (s.epoch.count > 0) render(s); })
+    .catch((err) => console.error('status', err))
+    .finally(connect);
+})();
