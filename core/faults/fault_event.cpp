@@ -148,6 +148,22 @@ double FaultEvent::fraction_at(double s) const noexcept {
   return f < 0.0 ? 0.0 : f > 1.0 ? 1.0 : f;
 }
 
+std::string describe(const FaultEvent& e, double s) {
+  std::string out;
+  const auto names = mode_names(e.type);
+  if (!names.empty() && e.mode < names.size()) {
+    out += std::string(mode_key(e.type)) + "=" + std::string(names[e.mode]);
+  }
+  const double f = e.fraction_at(s);
+  for (const ParamSpec& p : kSpecs) {
+    if (!e.has(p.id)) continue;
+    if (!out.empty()) out += ' ';
+    const double v = e.value(p.id, f);
+    out += std::string(p.name) + "=" + (p.boolean ? std::string(v >= 0.5 ? "true" : "false") : format_number(v));
+  }
+  return out;
+}
+
 std::optional<std::string> check_event(const FaultEvent& e) {
   if (!(e.start_s >= 0.0) || !std::isfinite(e.start_s)) return "start_s: must be a finite number >= 0";
   if (!(e.duration_s > 0.0)) return "duration_s: must be > 0";

@@ -120,6 +120,11 @@ struct FaultEvent {
   double fraction_at(double s) const noexcept;
 };
 
+/// One line for status displays: the string key and every given parameter
+/// at elapsed time s, in the scenario file's words ("kind=cw js_db=35",
+/// ramps at their current value). Allocates; not for the per-epoch path.
+std::string describe(const FaultEvent& e, double s);
+
 /// Default of a parameter the event does not give.
 double default_value(Param p) noexcept;
 

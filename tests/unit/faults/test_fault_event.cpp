@@ -52,6 +52,16 @@ TEST(FaultEvent, RulesNameTheKey) {
   EXPECT_EQ(check_event(wrong_type).value().rfind("js_db: not a parameter of type outage", 0), 0u);
 }
 
+TEST(FaultEvent, DescribeSaysTheParametersNow) {
+  FaultEvent e = make_event(FaultType::kJammer, 10.0, 100.0, static_cast<int>(JammerKind::kCw));
+  e.put(Param::kJsDb, Ramp{0.0, 60.0});
+  EXPECT_EQ(describe(e, 60.0), "kind=cw js_db=30");
+  FaultEvent s = make_event(FaultType::kSatellite, 0.0);
+  s.put(Param::kPrn, 8);
+  s.put(Param::kUnhealthy, 1.0);
+  EXPECT_EQ(describe(s, 5.0), "prn=8 unhealthy=true");
+}
+
 TEST(FaultEvent, EveryParameterHasANameARangeAndADoc) {
   for (const ParamSpec& s : param_specs()) {
     EXPECT_FALSE(s.name.empty());
