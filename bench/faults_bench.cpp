@@ -292,6 +292,11 @@ void cost(const orbit::EphemerisStore& store, time::GpsTime t0) {
     cases.push_back({"jammer", {e}});
   }
   {
+    FaultEvent e = event(FaultType::kJammer, 0.0);
+    e.put(Param::kJsDb, 20.0);
+    cases.push_back({"jammer_js", {e}});
+  }
+  {
     FaultEvent e = event(FaultType::kSpoofer, 0.0);
     e.put(Param::kDragSpeedMS, 2.0);
     cases.push_back({"spoofer", {e}});

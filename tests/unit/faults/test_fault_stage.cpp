@@ -54,6 +54,28 @@ TEST(FaultStage, JammerFollowsTheInterferenceRelation) {
   }
 }
 
+TEST(FaultStage, PlacedJammerFollowsFreeSpaceLossAndTheAntennaPattern) {
+  Rig probe({}, false);
+  // 1 km north of the receiver, at its height (elevation ~0).
+  const double north_deg = 1000.0 / 111200.0;
+  FaultEvent e = make_event(FaultType::kJammer, 0.0);
+  e.put(Param::kEirpDbw, -20.0);
+  e.put(Param::kLatDeg, probe.site.lat_rad / kDegToRad + north_deg);
+  e.put(Param::kLonDeg, probe.site.lon_rad / kDegToRad);
+  e.put(Param::kHeightM, probe.site.height_m);
+  Rig rig(std::vector<FaultEvent>{e});
+  rig.step(0);
+  const auto& link = rig.rx.world().config().signal.link;
+  const double expected = jammer_power_dbw(-20.0, 1000.0, signal::antenna_gain_dbi(link.antenna, 0.0));
+  EXPECT_NEAR(rig.rx.faults()->effects().jammer_dbw, expected, 0.1);  // 1 km to ~0.5 %, el ~0 deg
+  FaultEvent d = make_event(FaultType::kJammer, 0.0);
+  d.put(Param::kEirpDbw, -20.0);
+  d.put(Param::kDistanceM, 1000.0);
+  Rig by_distance(std::vector<FaultEvent>{d});
+  by_distance.step(0);
+  EXPECT_NEAR(by_distance.rx.faults()->effects().jammer_dbw, expected, 1e-9);
+}
+
 TEST(FaultStage, WidebandIsGentlerThanCwAtTheSamePower) {
   FaultEvent wide = make_event(FaultType::kJammer, 0.0, kForever_s, static_cast<int>(JammerKind::kWideband));
   wide.put(Param::kJsDb, 30.0);
