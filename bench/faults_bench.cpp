@@ -238,7 +238,8 @@ void step(const orbit::EphemerisStore& store, time::GpsTime t0) {
   int prn = 0;
   {
     Rig probe(store, t0);
-    const receiver::Fix& f = probe.step(0);
+    for (int s = 0; s < 30; ++s) probe.step(s);  // acquisition
+    const receiver::Fix& f = probe.step(30);
     for (int i = 0; i < f.num_sats && prn == 0; ++i)
       if (f.sats[i].used) prn = f.sats[i].prn;
   }
@@ -324,7 +325,7 @@ void cost(const orbit::EphemerisStore& store, time::GpsTime t0) {
   std::printf("%-10s %10s %12s\n", "fault", "ns/epoch", "allocs/ep");
   Rig rig(store, t0);
   const world::WorldConfig& wc = rig.rx.world().config();
-  const faults::FaultContext ctx{wc.seed, wc.signal.link, wc.signal.dll};
+  const faults::FaultContext ctx{wc.seed, wc.signal.link, wc.signal.dll, wc.carrier};
   std::vector<std::unique_ptr<faults::FaultStage>> stages;
   for (const Case& c : cases) stages.push_back(std::make_unique<faults::FaultStage>(ctx, c.ev));
   std::vector<double> best(cases.size(), 1e300);

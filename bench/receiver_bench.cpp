@@ -1,6 +1,8 @@
 // receiver_bench: per-epoch cost of Pipeline::step() (world + receiver) on real broadcast
 // ephemerides, static and moving (100 m/s) receivers, and heap allocations
-// per epoch after warm-up. Prints figures; not a test.
+// per epoch after warm-up, for the default receiver (navigation filter) and
+// the snapshot receiver (filter none, acquisition not modelled: the receiver
+// before the filter). Prints figures; not a test.
 //   receiver_bench [nav_file] [epochs]
 #include <algorithm>
 #include <chrono>
@@ -26,8 +28,17 @@ struct Result {
   double allocs_per_epoch = 0, mean_used = 0, mean_h_err_m = 0, fix_ratio = 0;
 };
 
-Result run(const orbit::EphemerisStore& store, const time::GpsTime& t0, double speed_m_s, int epochs) {
-  pipeline::Pipeline rx(store, pipeline::PipelineConfig{});
+pipeline::PipelineConfig snapshot() {
+  pipeline::PipelineConfig c;
+  c.receiver.filter.type = receiver::NavFilterType::kNone;
+  c.receiver.acquisition.modelled = false;
+  c.world.carrier.doppler_model = world::DopplerModel::kFixed;
+  return c;
+}
+
+Result run(const orbit::EphemerisStore& store, const pipeline::PipelineConfig& cfg, const time::GpsTime& t0,
+           double speed_m_s, int epochs) {
+  pipeline::Pipeline rx(store, cfg);
   const Lla site{39.6 * kDegToRad, 22.4 * kDegToRad, 100.0};
   const Ecef p0 = geo::ecef_from_lla(site);
   const Vec3 v = geo::enu_to_ecef_vector(Enu(speed_m_s * 0.6, speed_m_s * 0.8, 0.0), site.lat_rad, site.lon_rad);
@@ -81,19 +92,20 @@ int main(int argc, char** argv) {
   try {
     const orbit::NavData nav = orbit::read_rinex_nav(nav_path);
     const orbit::EphemerisStore store(nav.ephemerides);
-    std::printf("receiver_bench: %s, %d epochs at 10 Hz per case, default PipelineConfig, 39.6N 22.4E\n",
-                nav_path.c_str(), epochs);
-    std::printf("%-8s %7s %9s %9s %9s %9s %12s %8s %9s %10s\n", "case", "start_h", "mean_us", "median_us", "p99_us",
-                "max_us", "allocs/ep", "fix", "sats_used", "h_err_m");
+    std::printf("receiver_bench: %s, %d epochs at 10 Hz per case, 39.6N 22.4E\n", nav_path.c_str(), epochs);
+    std::printf("%-9s %-8s %7s %9s %9s %9s %9s %12s %8s %9s %10s\n", "receiver", "case", "start_h", "mean_us",
+                "median_us", "p99_us", "max_us", "allocs/ep", "fix", "sats_used", "h_err_m");
     // Several start times across the file's day: the satellite count (and so
     // the cost of the solver) varies with the sky.
-    for (const double start_h : {2.0, 4.0, 8.0, 12.0, 16.0, 20.0}) {
-      const time::GpsTime t0 = store.first_valid() + start_h * 3600.0;
-      for (const double speed : {0.0, 100.0}) {
-        const Result r = run(store, t0, speed, epochs);
-        std::printf("%-8s %7.1f %9.2f %9.2f %9.2f %9.2f %12.3f %8.3f %9.2f %10.3f\n", speed > 0 ? "moving" : "static",
-                    start_h, r.mean_us, r.median_us, r.p99_us, r.max_us, r.allocs_per_epoch, r.fix_ratio,
-                    r.mean_used, r.mean_h_err_m);
+    for (const bool filtered : {true, false}) {
+      for (const double start_h : {2.0, 4.0, 8.0, 12.0, 16.0, 20.0}) {
+        const time::GpsTime t0 = store.first_valid() + start_h * 3600.0;
+        for (const double speed : {0.0, 100.0}) {
+          const Result r = run(store, filtered ? pipeline::PipelineConfig{} : snapshot(), t0, speed, epochs);
+          std::printf("%-9s %-8s %7.1f %9.2f %9.2f %9.2f %9.2f %12.3f %8.3f %9.2f %10.3f\n",
+                      filtered ? "default" : "snapshot", speed > 0 ? "moving" : "static", start_h, r.mean_us,
+                      r.median_us, r.p99_us, r.max_us, r.allocs_per_epoch, r.fix_ratio, r.mean_used, r.mean_h_err_m);
+        }
       }
     }
   } catch (const std::exception& e) {

@@ -1,5 +1,7 @@
 #include "config/device_setup.hpp"
 
+#include <cmath>
+
 namespace gnssemu::config {
 
 protocol::ubx::OutputSetup output_setup(const OutputPortConfig& port) {
@@ -16,6 +18,10 @@ protocol::ubx::OutputSetup output_setup(const OutputPortConfig& port) {
 protocol::ubx::DeviceSetup device_setup(const Config& config) {
   protocol::ubx::DeviceSetup s;
   s.nav_period_s = 1.0 / config.rate_hz;
+  const receiver::NavFilterConfig& f = config.receiver.filter;
+  s.dyn_model = static_cast<std::uint8_t>(f.dynamic_model);
+  s.static_hold_thresh_cm_s = static_cast<std::uint8_t>(std::lround(f.static_hold_speed_m_s * 100.0));
+  s.static_hold_max_dist_m = static_cast<std::uint16_t>(std::lround(f.static_hold_max_dist_m));
   for (const OutputPortConfig& p : config.outputs) s.outputs.push_back(output_setup(p));
   return s;
 }

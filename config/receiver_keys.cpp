@@ -1,5 +1,6 @@
 // [receiver] and its sub-tables: the receiver's own settings and the
 // world's error processes and oscillator. Ranges: the core's.
+#include <array>
 #include <limits>
 
 #include "config/config_keys.hpp"
@@ -8,6 +9,9 @@ namespace gnssemu::config::detail {
 
 namespace {
 
+using receiver::AcquisitionConfig;
+using receiver::NavFilterConfig;
+using receiver::OperationalLimits;
 using receiver::ReceiverConfig;
 using receiver::SolverConfig;
 using world::ClockConfig;
@@ -26,6 +30,17 @@ constexpr Choice<atmosphere::TropoCorrection> kTropoCorrections[] = {
     {"zhd_niell", atmosphere::TropoCorrection::kZhdNiell},
     {"saastamoinen_cosz", atmosphere::TropoCorrection::kSaastamoinenCosZ},
     {"none", atmosphere::TropoCorrection::kNone}};
+
+constexpr Choice<receiver::NavFilterType> kFilterTypes[] = {{"kalman", receiver::NavFilterType::kKalman},
+                                                           {"none", receiver::NavFilterType::kNone}};
+constexpr Choice<receiver::StartMode> kStartModes[] = {
+    {"hot", receiver::StartMode::kHot}, {"warm", receiver::StartMode::kWarm}, {"cold", receiver::StartMode::kCold}};
+// The core's names, in dynModel order.
+constexpr auto kDynamicModels = [] {
+  std::array<Choice<receiver::DynamicModel>, receiver::kDynamicModelNames.size()> c{};
+  for (std::size_t i = 0; i < c.size(); ++i) c[i] = {receiver::kDynamicModelNames[i].name, receiver::kDynamicModelNames[i].model};
+  return c;
+}();
 
 // --- [receiver.errors.*] ---------------------------------------------------
 
@@ -73,7 +88,7 @@ constexpr Field<ErrorModelConfig> kErrorsFields[] = {
     number<&ErrorModelConfig::thermal_sigma_m>("thermal_sigma_m", world::ErrorModelRanges::thermal_sigma_m,
                                                "white pseudorange noise, 1 sigma (`thermal_model = \"fixed\"`)"),
     number<&ErrorModelConfig::doppler_sigma_m_s>("doppler_sigma_m_s", world::ErrorModelRanges::doppler_sigma_m_s,
-                                                 "white range-rate noise, 1 sigma"),
+                                                 "white range-rate noise, 1 sigma (`[signal.carrier] doppler_model = \"fixed\"`)"),
     table<kOrbitClock, &ErrorModelConfig::orbit_clock>("orbit_clock", "first-order Gauss-Markov"),
     table<kMultipath, &ErrorModelConfig::multipath>("multipath",
                                                     "unit Gauss-Markov x sigma_m / sin(el); sigma_m 0 = off"),
@@ -153,6 +168,99 @@ constexpr Field<SolverConfig> kCorrectionsFields[] = {
                        "compare with rnx2rtkp)"),
 };
 constexpr Section<SolverConfig> kCorrections{kCorrectionsFields};
+
+// --- [receiver.nav], [receiver.acquisition], [receiver.limits] -------------
+
+using Nr = receiver::NavFilterRanges;
+constexpr Field<NavFilterConfig> kNavFields[] = {
+    choice<kDynamicModels, &NavFilterConfig::dynamic_model>(
+        "dyn_model", "CFG-NAV5 dynModel: the platform the navigation filter assumes (its process noise) and its "
+                     "sanity limits of altitude and speed, beyond which there is no fix (u-blox's dynamic platform "
+                     "table, docs/models.md \"Navigation filter\"); a host's CFG-NAV5 changes it at run time"),
+    number<&NavFilterConfig::static_hold_speed_m_s>(
+        "static_hold_thresh_m_s", Nr::static_hold_speed_m_s,
+        "CFG-NAV5 staticHoldThresh (cm/s on the wire): below this speed the position is frozen and the velocity "
+        "reported 0, until the speed exceeds 1.5 × it; 0 off (the M8's default)"),
+    number<&NavFilterConfig::static_hold_max_dist_m>(
+        "static_hold_max_dist_m", Nr::static_hold_max_dist_m,
+        "CFG-NAV5 staticHoldMaxDist: static hold also ends once the filter's position is this far from the held "
+        "one; 0: speed only"),
+    number<&NavFilterConfig::smoothing_window_s>(
+        "smoothing_window_s", Nr::smoothing_window_s,
+        "carrier smoothing of code (Hatch filter, restarted at a slip or loss of lock); 0: raw code, as an M8 "
+        "navigates (its NAV-SAT never flags a smoothed pseudorange)"),
+    number<&NavFilterConfig::coast_limit_s>(
+        "coast_limit_s", Nr::coast_limit_s,
+        "with fewer than 3 usable satellites the filter dead-reckons this long (NAV-PVT fixType 1, GGA quality "
+        "6, growing hAcc), then there is no fix"),
+    number<&NavFilterConfig::position_noise_m2_s>(
+        "position_noise_m2_s", Nr::position_noise_m2_s,
+        "random-walk position noise of the filter: how fast it follows slowly drifting pseudorange errors; sets "
+        "the static epoch-to-epoch step (0.02: 0.15 m at 1 Hz, docs/validation.md)"),
+    number<&NavFilterConfig::clock_h0_s>("clock_h0_s", Nr::clock_h0_s,
+                                         "the filter's oscillator model: white frequency noise h0 (TCXO)"),
+    number<&NavFilterConfig::clock_h_minus2_per_s>("clock_h_minus2_per_s", Nr::clock_h_minus2_per_s,
+                                                   "random-walk frequency noise h−2 of that model"),
+    number<&NavFilterConfig::innovation_gate_sigma>("innovation_gate_sigma", Nr::innovation_gate_sigma,
+                                                    "a measurement whose innovation exceeds this many σ is not used"),
+    number<&NavFilterConfig::reinit_margin_m>(
+        "reinit_margin_m", Nr::reinit_margin_m,
+        "a snapshot fix this far beyond 5 σ of the filter's prediction restarts the filter (the antenna moved)"),
+};
+constexpr Section<NavFilterConfig> kNav{kNavFields};
+
+using Ar = receiver::AcquisitionRanges;
+constexpr Field<AcquisitionConfig> kAcquisitionFields[] = {
+    choice<kStartModes, &AcquisitionConfig::start>(
+        "start", "what the receiver knows at daemon start and in batch, as CFG-RST navBbrMask keeps it: hot "
+                 "everything (first fix after about 1 s), warm no ephemerides, cold nothing (about 30 s; MAX-M8 "
+                 "data sheet: 29 s GPS)"),
+    boolean<&AcquisitionConfig::modelled>(
+        "modelled", "false: a satellite is tracked and used as soon as its C/N0 reaches `signal.acquire_dbhz` (no "
+                    "search, no ephemeris download, `start` has no effect)"),
+    number<&AcquisitionConfig::cold_search_s>("cold_search_s", Ar::cold_search_s,
+                                              "mean search time of one satellite without aiding (whole Doppler "
+                                              "range), at strong signal"),
+    number<&AcquisitionConfig::aided_search_s>("aided_search_s", Ar::aided_search_s,
+                                               "the same, aided by time, position and almanac or ephemeris"),
+    number<&AcquisitionConfig::reacq_search_s>("reacq_search_s", Ar::reacq_search_s,
+                                               "the same, for a satellite lost less than `reacq_window_s` ago"),
+    number<&AcquisitionConfig::reacq_window_s>("reacq_window_s", Ar::reacq_window_s,
+                                               "how long a lost satellite counts as a reacquisition"),
+    number<&AcquisitionConfig::strong_cn0_dbhz>(
+        "strong_cn0_dbhz", Ar::strong_cn0_dbhz,
+        "below this C/N0 a search takes 10^((strong − C/N0)/10) times longer (dwell ∝ 1/(C/N0))"),
+    number<&AcquisitionConfig::search_spread>("search_spread", Ar::search_spread,
+                                              "search times drawn uniformly in [1 − s, 1 + s] × the mean"),
+    number<&AcquisitionConfig::cold_acquire_dbhz>(
+        "cold_acquire_dbhz", Ar::cold_acquire_dbhz,
+        "C/N0 an unaided search needs at least, besides `signal.acquire_dbhz` (MAX-M8 data sheet cold-start "
+        "sensitivity −148 dBm)"),
+    number<&AcquisitionConfig::reacq_margin_db>(
+        "reacq_margin_db", Ar::reacq_margin_db,
+        "a reacquisition succeeds this far below `signal.acquire_dbhz` (data sheet: −160 vs −157 dBm)"),
+    number<&AcquisitionConfig::aided_doppler_window_hz>(
+        "aided_doppler_window_hz", Ar::aided_doppler_window_hz,
+        "half-width of an aided search about the Doppler predicted from the last fix; a receiver carried farther "
+        "(≳ 150 km) falls back to the unaided search"),
+    number<&AcquisitionConfig::bit_sync_s>("bit_sync_s", Ar::bit_sync_s,
+                                           "from acquisition to data bit synchronisation"),
+    number<&AcquisitionConfig::almanac_download_s>("almanac_download_s", Ar::almanac_download_s,
+                                                   "tracking time to collect the almanac (25 pages × 30 s)"),
+    number<&AcquisitionConfig::ephemeris_validity_s>("ephemeris_validity_s", Ar::ephemeris_validity_s,
+                                                     "how long a decoded ephemeris is used (4-h fit interval)"),
+};
+constexpr Section<AcquisitionConfig> kAcquisition{kAcquisitionFields};
+
+using Lr = receiver::OperationalLimitRanges;
+constexpr Field<OperationalLimits> kLimitsFields[] = {
+    number<&OperationalLimits::max_altitude_m>(
+        "max_altitude_m", Lr::max_altitude_m,
+        "above this height above mean sea level there is no fix (MAX-M8 data sheet operational limit 50 000 m)"),
+    number<&OperationalLimits::max_speed_m_s>("max_speed_m_s", Lr::max_speed_m_s,
+                                              "above this 3D speed there is no fix (data sheet: 500 m/s)"),
+};
+constexpr Section<OperationalLimits> kLimits{kLimitsFields};
 
 // --- [receiver.spoof_detection] -------------------------------------------
 
@@ -242,11 +350,18 @@ constexpr Field<Config> kReceiverFields[] = {
                                                          "above this PDOP the fix is reported as none"),
     integer<&Config::receiver, &ReceiverConfig::max_channels>("max_channels", Rr::max_channels,
                                                               "satellites tracked at most (highest first)"),
+    either<kFilterTypes, &Config::receiver, &ReceiverConfig::filter, &NavFilterConfig::type>(
+        "filter", "`kalman`: the navigation filter of a u-blox M8 (position, velocity, clock; `[receiver.nav]`); "
+                  "`none`: a snapshot least-squares fix on raw code every epoch"),
     table<kErrors, &Config::world, &WorldConfig::errors>("errors"),
     table<kClock, &Config::world, &WorldConfig::clock>("clock"),
     table<kSolver, &Config::receiver, &ReceiverConfig::solver>("solver", "what the receiver's own solver assumes"),
     table<kCorrections, &Config::receiver, &ReceiverConfig::solver>(
         "corrections", "what the receiver subtracts (broadcast models)"),
+    table<kNav, &Config::receiver, &ReceiverConfig::filter>("nav", "navigation filter (CFG-NAV5)"),
+    table<kAcquisition, &Config::receiver, &ReceiverConfig::acquisition>("acquisition",
+                                                                         "search, reacquisition, ephemeris download"),
+    table<kLimits, &Config::receiver, &ReceiverConfig::limits>("limits", "operational limits"),
     table<kSpoofDetection, &Config::receiver, &ReceiverConfig::spoof_detection>(
         "spoof_detection", "the receiver's spoofing indicators (NAV-STATUS spoofDetState, docs/faults.md)"),
 };

@@ -39,6 +39,29 @@ constexpr Field<DllParams> kDllFields[] = {
 };
 constexpr Section<DllParams> kDll{kDllFields};
 
+constexpr Choice<world::DopplerModel> kDopplerModels[] = {{"fll", world::DopplerModel::kFll},
+                                                          {"fixed", world::DopplerModel::kFixed}};
+using Cr = world::CarrierRanges;
+constexpr Field<world::CarrierConfig> kCarrierFields[] = {
+    boolean<&world::CarrierConfig::enabled>("enabled", "false: no carrier phase (nothing to smooth code with)"),
+    either<kDopplerModels, &world::CarrierConfig::doppler_model>(
+        "doppler_model", "Doppler noise: the FLL's jitter at each satellite's C/N0, or the white "
+                         "`receiver.errors.doppler_sigma_m_s`"),
+    number<&world::CarrierConfig::pll_bandwidth_hz>("pll_bandwidth_hz", Cr::pll_bandwidth_hz,
+                                                    "Costas PLL noise bandwidth: phase jitter and cycle slips"),
+    number<&world::CarrierConfig::fll_bandwidth_hz>("fll_bandwidth_hz", Cr::fll_bandwidth_hz,
+                                                    "frequency loop noise bandwidth: Doppler jitter"),
+    number<&world::CarrierConfig::integration_s>("integration_s", Cr::integration_s,
+                                                 "predetection integration of both loops (one data bit at most)"),
+    number<&world::CarrierConfig::oscillator_sigma_rad>(
+        "oscillator_sigma_rad", Cr::oscillator_sigma_rad,
+        "phase jitter besides thermal noise (oscillator, vibration): the slip rate of strong signals"),
+    number<&world::CarrierConfig::lock_break_m>(
+        "lock_break_m", Cr::lock_break_m,
+        "a range jump between epochs beyond what its rate explains breaks lock (half a C/A chip)"),
+};
+constexpr Section<world::CarrierConfig> kCarrier{kCarrierFields};
+
 // A preset for noise_rise_db, which may not be given as well.
 void read_environment(TableReader& t, const Field<Config>& f, Config& c) {
   const toml::node* env = t.find(f.key);
@@ -94,6 +117,7 @@ constexpr Field<Config> kSignalFields[] = {
     table<kAntenna, &Config::world, &WorldConfig::signal, &SignalConfig::link, &LinkBudgetConfig::antenna>("antenna"),
     table<kDll, &Config::world, &WorldConfig::signal, &SignalConfig::dll>(
         "dll", "code tracking loop (thermal noise when receiver.errors.thermal_model = \"dll\")"),
+    table<kCarrier, &Config::world, &WorldConfig::carrier>("carrier", "carrier loops: phase, Doppler, slips"),
 };
 
 }  // namespace

@@ -25,6 +25,15 @@ namespace {
 // first fix count from here, so ttff is what the emulator really took.
 const std::chrono::steady_clock::time_point kProcessStart = std::chrono::steady_clock::now();
 
+const char* start_name(receiver::StartMode m) {
+  switch (m) {
+    case receiver::StartMode::kHot: return "hot";
+    case receiver::StartMode::kWarm: return "warm";
+    case receiver::StartMode::kCold: break;
+  }
+  return "cold";
+}
+
 std::string gps_text(const time::GpsTime& t) {
   const time::CalendarTime c = t.to_calendar();
   char buf[64];
@@ -60,19 +69,38 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
   check_range(output_delay_s_, config::TimeRanges::output_delay_s, cfg.source, "time.output_delay_s");
   power_on_ = kProcessStart;
-  restart_receiver();
+  restart_receiver(cfg_.receiver.acquisition.start);
+  spdlog::info("receiver: {} start at power-on", start_name(cfg_.receiver.acquisition.start));
   if (scene_) spdlog::info("scene {}: {} triangles", cfg_.scene->mesh_file, scene_->triangle_count());
   lock_next_ = start_;
 }
 
-void Daemon::restart_receiver() {
-  // A fresh receiver (start-up, or GPS time going back) with the broadcast
-  // leap seconds and Klobuchar coefficients of the run's dates.
-  receiver_ = config::make_pipeline(cfg_, store_, pipeline::broadcast_of(constellation_.nav), scene_.get());
+void Daemon::restart_receiver(receiver::StartMode start) {
+  // With the broadcast leap seconds and Klobuchar coefficients of the run's dates.
+  config::Config c = cfg_;
+  c.receiver.acquisition.start = start;
+  receiver_ = config::make_pipeline(c, store_, pipeline::broadcast_of(constellation_.nav), scene_.get());
+  apply_nav5();
+}
+
+void Daemon::apply_nav5() {
+  // CFG-NAV5 dynModel and static hold drive the receiver as on an M8; the
+  // handler accepted only dynModels the receiver knows.
+  const protocol::ubx::wire::CfgNav5& n = device_.config().nav5;
+  receiver::Receiver& rx = receiver_->receiver();
+  if (const auto m = receiver::dynamic_model_from_ubx(n.dynModel)) rx.set_dynamic_model(*m);
+  rx.set_static_hold(0.01 * n.staticHoldThresh, n.staticHoldMaxDist);
 }
 
 void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& result) {
   if (result.nav_rate_changed || result.reset) on_nav_period(src);
+  if (result.nav_config_changed) {
+    const protocol::ubx::wire::CfgNav5& n = device_.config().nav5;
+    spdlog::info("output {}: CFG-NAV5 dynModel {}, static hold {} cm/s / {} m", cfg_.outputs[src].name,
+                 static_cast<unsigned>(n.dynModel), static_cast<unsigned>(n.staticHoldThresh),
+                 static_cast<unsigned>(n.staticHoldMaxDist));
+    apply_nav5();
+  }
   if (result.ports_changed || result.reset) {
     for (std::size_t i = 0; i < channels_.size(); ++i) log_port_change(i);
   }
@@ -84,18 +112,22 @@ void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& re
   }
   if (!result.reset) return;
   // Every reset mode but "GNSS stop" restarts navigation: the tracked
-  // satellites and the solution are gone and the fix is reacquired; the
-  // device measures the time to first fix from the reset on every port.
-  // All ports share the one receiver, so all of them see the fix drop.
+  // satellites and the solution are gone and the fix is reacquired with
+  // what navBbrMask kept (hot: about 1 s, cold: about 30 s); the device
+  // measures the time to first fix from the reset on every port. All ports
+  // share the one receiver, so all of them see the fix drop. The world
+  // (satellite errors, the oscillator) runs on.
   const protocol::ubx::Reset& reset = *result.reset;
   if (!reset.restarts_navigation()) {
     spdlog::info("output {}: CFG-RST GNSS stop: not modelled, the receiver keeps navigating",
                  cfg_.outputs[src].name);
     return;
   }
-  spdlog::info("output {}: CFG-RST {} start: the receiver restarts and reacquires", cfg_.outputs[src].name,
-               reset.start_name());
-  restart_receiver();
+  spdlog::info("output {}: CFG-RST {} start (navBbrMask 0x{:04X}): the receiver restarts and reacquires",
+               cfg_.outputs[src].name, reset.start_name(), reset.nav_bbr_mask);
+  receiver_->receiver().restart(receiver::StartState{reset.keeps_ephemeris(), reset.keeps_almanac(),
+                                                     reset.keeps_position(), reset.keeps_time()});
+  apply_nav5();  // a reboot may have loaded the saved CFG-NAV5
 }
 
 Daemon::~Daemon() { shutdown(); }
@@ -299,7 +331,8 @@ void Daemon::emit_epoch(const time::GpsTime& t, const world::Truth& truth) {
   last_num_tracked_ = fix.num_tracked;
   if (type != last_fix_type_ || truth.valid != last_truth_valid_) {
     spdlog::info("epoch {}: truth {}, fix {} with {} satellites (PDOP {:.1f})", gps_text(t),
-                 truth.valid ? "valid" : "none", type == 3 ? "3D" : type == 2 ? "2D" : "none", fix.num_used,
+                 truth.valid ? "valid" : "none",
+                 type == 3 ? "3D" : type == 2 ? "2D" : type == 1 ? "dead reckoning" : "none", fix.num_used,
                  fix.dop.pdop);
     last_fix_type_ = type;
     last_truth_valid_ = truth.valid;
@@ -421,11 +454,13 @@ void Daemon::align_to_packet_time(const time::GpsTime& stamp) {
                                   [&](const orbit::TimeSpan& s) { return s.contains(first); }) ||
                       (constellation_.continues && !constellation_.coverage.empty() &&
                        constellation_.coverage.back().end < first);
+  // The run starts over at the packets' time: a receiver powered on there,
+  // in the state [receiver.acquisition] start configures.
   if (!served) {
     redate_constellation(first);
-    restart_receiver();
+    restart_receiver(cfg_.receiver.acquisition.start);
   } else if (first < lock_next_) {
-    restart_receiver();  // time goes back
+    restart_receiver(cfg_.receiver.acquisition.start);  // time goes back
   }
   lock_next_ = first;
   spdlog::info("lockstep: epochs follow the packets' GPS time from {}", gps_text(first));

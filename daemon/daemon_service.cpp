@@ -51,7 +51,11 @@ void Daemon::reload() noexcept {
     if (plan.scene) scene = load_scene_logged(loaded);
     std::unique_ptr<pipeline::Pipeline> receiver;
     if (plan.receiver || plan.scene) {
-      receiver = config::make_pipeline(loaded, store_, pipeline::broadcast_of(constellation_.nav),
+      // A reload is not a power cycle: the new receiver keeps what the
+      // running one knew (a hot start, whatever start the file gives).
+      config::Config hot = loaded;
+      hot.receiver.acquisition.start = receiver::StartMode::kHot;
+      receiver = config::make_pipeline(hot, store_, pipeline::broadcast_of(constellation_.nav),
                                        plan.scene ? scene.get() : scene_.get());
     }
     // New ports open before the old ones close: a port that cannot open
@@ -99,6 +103,7 @@ void Daemon::reload() noexcept {
         scene_ = std::move(scene);
       }
       receiver_ = std::move(receiver);
+      apply_nav5();  // the chip's CFG-NAV5 (what a host set, what its polls read back) stays in force
     }
     if (plan.log_level) cfg_.log = loaded.log;
     for (const std::string& what : plan.need_restart) {

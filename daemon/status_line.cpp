@@ -7,8 +7,9 @@ namespace gnssemu::daemon {
 std::string StatusLine::line(const StatusSnapshot& now) {
   const double span_s = now.now_s - last_.now_s;
   const double rate_hz = span_s > 0.0 ? static_cast<double>(now.packets_ok - last_.packets_ok) / span_s : 0.0;
-  std::string out = now.fix_type >= 2 ? fmt::format("fix {}D, {} sats", now.fix_type, now.sats_used)
-                                      : fmt::format("no fix, {} sats tracked", now.sats_tracked);
+  std::string out = now.fix_type >= 2   ? fmt::format("fix {}D, {} sats", now.fix_type, now.sats_used)
+                    : now.fix_type == 1 ? fmt::format("dead reckoning, {} sats tracked", now.sats_tracked)
+                                        : fmt::format("no fix, {} sats tracked", now.sats_tracked);
   if (!now.driver.empty()) {
     out += fmt::format("; truth {:.1f} Hz from '{}'{}", rate_hz, now.driver, now.driver_fresh ? "" : " (stale)");
   } else if (now.demo) {

@@ -11,7 +11,7 @@ namespace gnssemu::daemon {
 
 struct StatusSnapshot {
   double now_s = 0.0;            ///< monotonic time, s
-  int fix_type = 0;              ///< 0 none, 2 2D, 3 3D
+  int fix_type = 0;              ///< 0 none, 1 dead reckoning (coasting), 2 2D, 3 3D
   int sats_used = 0;
   int sats_tracked = 0;
   uint64_t packets_ok = 0;       ///< truth packets accepted (cumulative)

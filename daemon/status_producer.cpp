@@ -21,6 +21,7 @@ std::string_view fix_type_name(receiver::FixType t) noexcept {
   switch (t) {
     case receiver::FixType::k3D: return "3D";
     case receiver::FixType::k2D: return "2D";
+    case receiver::FixType::kDeadReckoning: return "DR";
     case receiver::FixType::kNone: break;
   }
   return "none";

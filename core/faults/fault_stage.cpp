@@ -40,6 +40,7 @@ FaultStage::FaultStage(const FaultContext& context, std::span<const FaultEvent> 
     : ctx_(context), rng_(world::CounterRng::mix(context.seed ^ kSeedSalt)) {
   signal::validate(ctx_.link);
   signal::validate(ctx_.dll);
+  world::validate(ctx_.carrier);
   n0_dbw_hz_ = signal::thermal_noise_density_dbw_hz(ctx_.link.noise_temperature_k) + ctx_.link.noise_figure_db +
                ctx_.link.environment_noise_rise_db;
   events_.reserve(kMaxEvents);
@@ -96,8 +97,40 @@ void FaultStage::degrade(world::SatObservable& o, double cn0_dbhz) noexcept {
   const double s0 = signal::dll_thermal_sigma_m(o.cn0_dbhz, ctx_.dll);
   const double s1 = signal::dll_thermal_sigma_m(cn0_dbhz, ctx_.dll);
   const double extra = std::sqrt(std::max(s1 * s1 - s0 * s0, 0.0));
-  o.pseudorange_m += extra * rng_.normal(static_cast<std::uint64_t>(o.prn), epoch_, world::Purpose::kThermal);
+  const auto stream = static_cast<std::uint64_t>(o.prn);
+  o.pseudorange_m += extra * rng_.normal(stream, epoch_, world::Purpose::kThermal);
+  const world::CarrierConfig& cc = ctx_.carrier;
+  if (cc.enabled && cc.doppler_model == world::DopplerModel::kFll) {
+    const double d0 = world::fll_range_rate_sigma_m_s(o.cn0_dbhz, cc);
+    const double d1 = world::fll_range_rate_sigma_m_s(cn0_dbhz, cc);
+    const double extra_rr = std::sqrt(std::max(d1 * d1 - d0 * d0, 0.0));
+    o.doppler_hz -= extra_rr * rng_.normal(stream, epoch_, world::Purpose::kDoppler) / kL1Wavelength_m;
+  }
+  if (cc.enabled && o.carrier_valid && dt_s_ > 0.0) {
+    // Slips the weaker signal adds to those the world drew at the old C/N0.
+    const auto slip_p = [&](double cn0) {
+      const double j = world::pll_jitter_rad(cn0, cc.pll_bandwidth_hz, cc.integration_s);
+      return world::cycle_slip_probability(std::sqrt(j * j + cc.oscillator_sigma_rad * cc.oscillator_sigma_rad),
+                                           cc.pll_bandwidth_hz, dt_s_);
+    };
+    const double p_extra = slip_p(cn0_dbhz) - slip_p(o.cn0_dbhz);
+    if (p_extra > 0.0 && rng_.uniform(stream, epoch_, world::Purpose::kCycleSlip, 0) < p_extra) {
+      o.carrier_phase_cycles += 0.5;  // a Costas loop slips by half a cycle
+      ++o.carrier_discontinuities;
+    }
+  }
   o.cn0_dbhz = cn0_dbhz;
+}
+
+void FaultStage::shift(world::SatObservable& o, double delta_m, double rate_m_s) noexcept {
+  o.pseudorange_m += delta_m;
+  o.carrier_phase_cycles += delta_m / kL1Wavelength_m;
+  o.doppler_hz -= rate_m_s / kL1Wavelength_m;
+}
+
+void FaultStage::break_lock(world::SatObservable& o) noexcept {
+  o.lock_break = true;
+  ++o.carrier_discontinuities;
 }
 
 void FaultStage::satellite_fault(const FaultEvent& e, double f, double since_s, world::Observables& obs) noexcept {
@@ -125,8 +158,7 @@ void FaultStage::satellite_fault(const FaultEvent& e, double f, double since_s, 
     const double offset_m = e.value(Param::kBiasM, f) + rate_m_s * since_s +
                             kSpeedOfLight_m_s * 1e-6 * e.value(Param::kClockJumpUs, f);
     if (!o.received) continue;
-    o.pseudorange_m += offset_m;
-    o.doppler_hz -= (rate_m_s + bias_rate_m_s) / kL1Wavelength_m;
+    shift(o, offset_m, rate_m_s + bias_rate_m_s);
   }
 }
 
@@ -190,12 +222,14 @@ void FaultStage::spoofer(const FaultEvent& e, SpoofState& s, double f, double dt
       break;
     }
     case SpoofMode::kMeacon:
+      s.aligned = false;  // the replay arrives late: the loops must let go and reacquire
       s.offset_m = fixed_offset;
       s.rate_m_s = Enu{};
       s.clock_m = e.value(Param::kDelayUs, f) * 1e-6 * c;
       s.clock_rate_m_s = 0.0;
       break;
     case SpoofMode::kTakeover:
+      s.aligned = false;
       s.offset_m = fixed_offset;
       s.rate_m_s = Enu{};
       s.clock_m = e.value(Param::kClockJumpUs, f) * 1e-6 * c;
@@ -217,15 +251,16 @@ void FaultStage::spoofer(const FaultEvent& e, SpoofState& s, double f, double dt
     world::SatObservable& o = obs.sats[i];
     if (!o.above_mask || !o.received) continue;
     const bool captured = level - o.cn0_dbhz >= margin;
+    const bool newly = captured && !s.captured[o.prn - 1];
     s.captured[o.prn - 1] = captured;
     if (!captured) continue;
     ++effects_.captured;
     // Ranges as seen from the false position with the false clock: every
     // spoofed pseudorange agrees with one solution (residuals stay quiet).
     const Enu u = los_enu(o.az_rad, o.el_rad);
-    o.pseudorange_m += -u.dot(s.offset_m) + s.clock_m;
-    o.doppler_hz -= (-u.dot(s.rate_m_s) + s.clock_rate_m_s) / kL1Wavelength_m;
+    shift(o, -u.dot(s.offset_m) + s.clock_m, -u.dot(s.rate_m_s) + s.clock_rate_m_s);
     o.cn0_dbhz = level;
+    if (newly && !s.aligned) break_lock(o);
   }
   effects_.spoof_offset_m = s.offset_m;
   effects_.spoof_clock_m = s.clock_m;
@@ -264,6 +299,7 @@ void FaultStage::apply(const time::GpsTime& t, const world::Truth& truth, world:
     if (!std::isfinite(dt_s) || dt_s < 0.0) dt_s = 0.0;
   }
   t_prev_ = t;
+  dt_s_ = dt_s;
   elapsed_s_ = t - t0_;
   ++epoch_;
   effects_ = FaultEffects{};
@@ -283,7 +319,13 @@ void FaultStage::apply(const time::GpsTime& t, const world::Truth& truth, world:
     if (e.type != FaultType::kSpoofer) continue;
     if (e.active_at(now)) {
       spoofer(e, spoof_[k], e.fraction_at(now), dt_s, obs);
-    } else {
+    } else if (spoof_[k].started) {
+      // The spoofer stops: the loops it held find no signal where it was
+      // (unless it had not moved them) and reacquire the authentic ones.
+      const SpoofState& s = spoof_[k];
+      const bool moved = s.offset_m.norm() > 0.0 || s.clock_m != 0.0;
+      for (int i = 0; i < obs.num_sats; ++i)
+        if (moved && s.captured[obs.sats[i].prn - 1] && obs.sats[i].received) break_lock(obs.sats[i]);
       spoof_[k] = SpoofState{};
     }
   }

@@ -17,6 +17,7 @@
 #include "core/signal/dll_jitter.hpp"
 #include "core/signal/link_budget.hpp"
 #include "core/time/gps_time.hpp"
+#include "core/world/carrier.hpp"
 #include "core/world/observables.hpp"
 #include "core/world/random.hpp"
 #include "core/world/truth.hpp"
@@ -28,6 +29,7 @@ struct FaultContext {
   std::uint64_t seed = 1;           ///< the world's seed (the stage draws its own streams from it)
   signal::LinkBudgetConfig link;    ///< noise floor (N0) and antenna pattern
   signal::DllParams dll;            ///< code noise versus C/N0
+  world::CarrierConfig carrier;     ///< carrier loops: slips and Doppler noise versus C/N0
 };
 
 /// One event's state at the last epoch, for status displays.
@@ -81,6 +83,7 @@ private:
     double clock_m = 0.0, clock_rate_m_s = 0.0;
     double drag_s = 0.0;            ///< time dragged so far, s
     std::array<bool, kMaxGpsPrn> captured{};
+    bool aligned = true;            ///< the spoofed signals start where the authentic ones are
   };
 
   void satellite_fault(const FaultEvent& e, double f, double since_s, world::Observables& obs) noexcept;
@@ -88,9 +91,15 @@ private:
   void outage(const FaultEvent& e, world::Observables& obs) noexcept;
   void spoofer(const FaultEvent& e, SpoofState& s, double f, double dt_s, world::Observables& obs) noexcept;
   double jammer_power_w(const FaultEvent& e, double f, const world::Truth& truth, bool* cw) const noexcept;
-  /// Lower a satellite's C/N0 to cn0_dbhz, adding the code noise the lower
-  /// C/N0 brings (DLL jitter difference), and drop it below 0 dB-Hz.
+  /// Lower a satellite's C/N0 to cn0_dbhz, adding the code and Doppler noise
+  /// and the carrier slips the lower C/N0 brings (the loops' jitter
+  /// difference), and drop it below 0 dB-Hz.
   void degrade(world::SatObservable& o, double cn0_dbhz) noexcept;
+  /// Shift a satellite's signal by delta_m (code and carrier alike) and its
+  /// range rate by rate_m_s.
+  static void shift(world::SatObservable& o, double delta_m, double rate_m_s) noexcept;
+  /// The receiver loses lock on o (a non-aligned signal replaced it).
+  static void break_lock(world::SatObservable& o) noexcept;
 
   FaultContext ctx_;
   double n0_dbw_hz_ = 0.0;
@@ -103,6 +112,7 @@ private:
   bool started_ = false;
   time::GpsTime t0_, t_prev_;
   double elapsed_s_ = 0.0;
+  double dt_s_ = 0.0;                       ///< this epoch's step, s
   std::uint64_t epoch_ = 0;
 };
 

@@ -6,7 +6,7 @@ Broadcast broadcast_of(const orbit::NavData& nav) { return Broadcast{nav.klobuch
 
 Pipeline::Pipeline(const orbit::EphemerisStore& store, const PipelineConfig& config, const Broadcast& broadcast,
                    const world::SceneSetup& scene)
-    : world_(store, config.world), receiver_(config.receiver) {
+    : world_(store, config.world), receiver_(config.receiver, config.world.seed) {
   world_.set_klobuchar_shape(broadcast.klobuchar);
   receiver_.set_klobuchar(broadcast.klobuchar);
   if (broadcast.leap_seconds) receiver_.set_leap_seconds(*broadcast.leap_seconds);
@@ -14,6 +14,7 @@ Pipeline::Pipeline(const orbit::EphemerisStore& store, const PipelineConfig& con
   fault_context_.seed = config.world.seed;
   fault_context_.link = config.world.signal.link;
   fault_context_.dll = config.world.signal.dll;
+  fault_context_.carrier = config.world.carrier;
 }
 
 void Pipeline::set_faults(std::span<const faults::FaultEvent> events) {

@@ -71,6 +71,9 @@ PipelineConfig apply_profile(PipelineConfig c, ReceiverProfile p, double lat_rad
   w.signal.link.antenna.zenith_gain_dbi = geodetic ? kGeodeticZenithGain_dbi : kM8ZenithGain_dbi;
   w.signal.link.antenna.horizon_gain_dbi = geodetic ? kGeodeticHorizonGain_dbi : kM8HorizonGain_dbi;
   w.signal.dll.loop_bandwidth_hz = geodetic ? kGeodeticLoopBandwidth_hz : kM8LoopBandwidth_hz;
+  // Station receivers' positions are compared as single-point solutions of
+  // their raw code (RINEX): no navigation filter. The M8 filters.
+  if (geodetic) c.receiver.filter.type = receiver::NavFilterType::kNone;
   return c;
 }
 

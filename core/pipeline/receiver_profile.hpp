@@ -28,7 +28,9 @@ ReceiverProfile receiver_profile(std::string_view name);
 /// The profile's name as receiver_profile reads it.
 std::string_view profile_name(ReceiverProfile p) noexcept;
 
-/// base with the profile's world error model, antenna and code loop. The
+/// base with the profile's world error model, antenna and code loop, and
+/// for kGeodetic the snapshot solution (filter none, as station receivers'
+/// single-point positions are compared). The
 /// mean azimuthal gradient was fitted at 36-79 deg N, where it points to
 /// the equator; south of it the sign is mirrored (lat_rad < 0), an
 /// assumption no data here can check. Everything else in base is kept.

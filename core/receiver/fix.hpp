@@ -12,6 +12,10 @@ namespace gnssemu::receiver {
 
 enum class FixType : uint8_t {
   kNone = 0,  ///< no position (too few satellites, bad geometry, no antenna)
+  /// The navigation filter's prediction alone (too few satellites for a few
+  /// seconds): the position is extrapolated, the accuracies grow, nothing is
+  /// used; u-blox "dead reckoning only" (NAV-PVT fixType 1, GGA quality 6).
+  kDeadReckoning = 1,
   k2D = 2,    ///< horizontal only; height held
   k3D = 3,
 };
@@ -36,6 +40,8 @@ struct SatInfo {
   bool tracked = false;       ///< signal tracked (pseudorange available)
   bool used = false;          ///< used in the navigation solution
   bool excluded = false;      ///< tracked, but removed from the solution by fault detection (residual test)
+  bool ephemeris = true;      ///< the receiver has its broadcast ephemeris (decoded, or kept over a restart)
+  bool smoothed = false;      ///< its pseudorange is carrier-smoothed
   double pseudorange_m = 0.0; ///< measured (with all errors), m
   double doppler_hz = 0.0;    ///< measured L1 Doppler, Hz
   double residual_m = 0.0;    ///< post-fit pseudorange residual, m (used only)
@@ -50,7 +56,7 @@ struct Fix {
   time::GpsTime t;             ///< epoch, GPS time (receive time)
   int leap_seconds = 18;       ///< GPS - UTC used for UTC output, s
   bool in_leap_second = false; ///< t is in an inserted leap second: UTC 23:59:60.x (leap_seconds still the old count)
-  bool time_valid = false;     ///< receiver time known (false before first epoch with truth)
+  bool time_valid = false;     ///< receiver time known (false before the receiver has GPS time)
   FixType type = FixType::kNone;
 
   Ecef pos_m;                  ///< valid when type != kNone

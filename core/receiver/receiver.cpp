@@ -19,6 +19,8 @@ constexpr double kNoFixTimeAccuracy_s = 1.0;
 // A tracked satellite always reports a positive C/N0 (0 means "not tracked"
 // in GSV / NAV-SAT), dB-Hz.
 constexpr double kMinReportedCn0_dbhz = 1.0;
+// A gap longer than this between two smoothing updates restarts the smoothing, s.
+constexpr double kMaxSmoothingGap_s = 2.0;
 
 static_assert(static_cast<int>(AntennaStatus::kShort) == static_cast<int>(world::AntennaState::kShort) &&
               static_cast<int>(AntennaStatus::kOpen) == static_cast<int>(world::AntennaState::kOpen));
@@ -30,8 +32,12 @@ const ReceiverConfig& validated(const ReceiverConfig& c) {
 
 }  // namespace
 
-Receiver::Receiver(const ReceiverConfig& config)
-    : config_(validated(config)), spoof_(config.spoof_detection), solver_(config.solver, config.max_pdop) {
+Receiver::Receiver(const ReceiverConfig& config, std::uint64_t seed)
+    : config_(validated(config)),
+      acq_(config.acquisition, config.tracking, seed),
+      spoof_(config.spoof_detection),
+      solver_(config.solver, config.max_pdop),
+      nav_(config.filter, config.solver) {
   no_fix_epoch();
 }
 
@@ -41,6 +47,29 @@ void Receiver::set_klobuchar(const orbit::KlobucharParams& p) {
   for (double v : p.beta)
     if (!std::isfinite(v)) throw Error("receiver config: Klobuchar beta must be finite");
   solver_.set_klobuchar(p);
+}
+
+void Receiver::restart(const StartState& keep) noexcept {
+  acq_.restart(keep);
+  nav_.reset();
+  for (HatchFilter& h : hatch_) h.reset();
+  smoothed_last_.fill(false);
+  if (!keep.position) {
+    have_fix_ = false;
+    have_3d_ = false;
+  }
+  no_fix_epoch();
+}
+
+void Receiver::set_dynamic_model(DynamicModel m) noexcept {
+  config_.filter.dynamic_model = m;
+  nav_.set_dynamic_model(m);
+}
+
+void Receiver::set_static_hold(double speed_m_s, double max_dist_m) noexcept {
+  config_.filter.static_hold_speed_m_s = speed_m_s;
+  config_.filter.static_hold_max_dist_m = max_dist_m;
+  nav_.set_static_hold(speed_m_s, max_dist_m);
 }
 
 void Receiver::no_fix_epoch() noexcept {
@@ -63,45 +92,37 @@ void Receiver::no_fix_epoch() noexcept {
   }
 }
 
-void Receiver::tracking_stage(const world::Observables& obs, double dt_s) noexcept {
+void Receiver::tracking_stage(const time::GpsTime& t, const world::Observables& obs, double dt_s) noexcept {
+  AidingState aiding;
+  if (have_fix_) aiding = AidingState{true, last_pos_m_, last_vel_m_s_, last_drift_m_s_};
+  acq_.step(t, dt_s, obs, aiding);
   tracked_.fill(false);
-  std::array<bool, kMaxGpsPrn> above{};
-  for (int i = 0; i < obs.num_sats; ++i)
-    if (obs.sats[i].above_mask) above[obs.sats[i].prn - 1] = true;
-  for (int p = 1; p <= kMaxGpsPrn; ++p)
-    if (!above[p - 1]) tracking_[p - 1].reset();
   int n_tracked = 0;
   std::array<int, kMaxGpsPrn> tracked_prn{};
   for (int i = 0; i < obs.num_sats; ++i) {
     const world::SatObservable& o = obs.sats[i];
     if (!o.above_mask) continue;
-    const int p = o.prn;
-    el_rad_[p - 1] = o.el_rad;
-    bool ok = false;
-    if (!obs.signal_modelled) {
-      ok = o.received;
-    } else if (o.received) {
-      ok = tracking_[p - 1].update(o.cn0_dbhz, dt_s, config_.tracking);
-    } else {
-      tracking_[p - 1].reset();
-    }
-    if (ok) tracked_prn[n_tracked++] = p;
+    el_rad_[o.prn - 1] = o.el_rad;
+    if (acq_.tracked(o.prn)) tracked_prn[n_tracked++] = o.prn;
   }
   if (n_tracked > config_.max_channels) {
     std::sort(tracked_prn.begin(), tracked_prn.begin() + n_tracked, [this](int a, int b) {
       const double ea = el_rad_[a - 1], eb = el_rad_[b - 1];
       return ea != eb ? ea > eb : a < b;
     });
-    for (int i = config_.max_channels; i < n_tracked; ++i) tracking_[tracked_prn[i] - 1].reset();
+    for (int i = config_.max_channels; i < n_tracked; ++i) acq_.drop(tracked_prn[i]);
     n_tracked = config_.max_channels;
   }
   for (int i = 0; i < n_tracked; ++i) tracked_[tracked_prn[i] - 1] = true;
+  for (int p = 1; p <= kMaxGpsPrn; ++p) usable_[p - 1] = tracked_[p - 1] && acq_.usable(p);
 }
 
-void Receiver::measurement_stage(const world::Observables& obs) noexcept {
+void Receiver::measurement_stage(const world::Observables& obs, double dt_s) noexcept {
   in_.t_rx_local = obs.t_rx_local;
   in_.doy = in_.t_rx_local.fractional_day_of_year();
   in_.num_meas = 0;
+  const bool smooth = config_.filter.type == NavFilterType::kKalman && config_.filter.smoothing_window_s > 0.0;
+  std::array<bool, kMaxGpsPrn> smoothed_now{};
   for (int i = 0; i < obs.num_sats; ++i) {
     const world::SatObservable& o = obs.sats[i];
     const int p = o.prn;
@@ -117,20 +138,32 @@ void Receiver::measurement_stage(const world::Observables& obs) noexcept {
     si.nlos = o.nlos;
     si.bounces = o.bounces;
     si.nlos_delay_m = o.nlos_delay_m;
+    si.ephemeris = acq_.has_ephemeris(p);
     if (!tracked_[p - 1]) continue;
     si.tracked = true;
     si.cn0_dbhz = std::max(o.cn0_dbhz, kMinReportedCn0_dbhz);
     si.pseudorange_m = o.pseudorange_m;
     si.doppler_hz = o.doppler_hz;
     ++fix_.num_tracked;
-    if (!si.healthy) continue;
+    if (!usable_[p - 1] || !si.healthy) continue;
+    double pr_m = si.pseudorange_m;
+    if (smooth && o.carrier_valid) {
+      const bool restart = !smoothed_last_[p - 1] || acq_.new_lock(p) ||
+                           o.carrier_discontinuities != discontinuities_[p - 1] || dt_s > kMaxSmoothingGap_s;
+      pr_m = hatch_[p - 1].update(o.pseudorange_m, o.carrier_phase_cycles * kL1Wavelength_m, dt_s,
+                                  config_.filter.smoothing_window_s, restart);
+      discontinuities_[p - 1] = o.carrier_discontinuities;
+      smoothed_now[p - 1] = true;
+      si.smoothed = hatch_[p - 1].epochs() > 1.0;
+    }
     Measurement& m = in_.meas[in_.num_meas];
     m.eph = o.eph;
-    m.pseudorange_m = si.pseudorange_m;
+    m.pseudorange_m = pr_m;
     m.doppler_hz = si.doppler_hz;
     m.cn0_dbhz = si.cn0_dbhz;
     meas_prn_[in_.num_meas++] = p;
   }
+  smoothed_last_ = smoothed_now;
 }
 
 const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs) noexcept {
@@ -149,19 +182,30 @@ const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs)
   fix_.leap_seconds = leap_override_ ? leap_s_ : time::leap_seconds_at(t);
   fix_.in_leap_second = !leap_override_ && time::in_inserted_leap_second(t);  // a fixed count never steps
   fix_.num_sats = fix_.num_visible = fix_.num_tracked = 0;
+  // Without modelled acquisition time is known once there is an antenna (as
+  // before the acquisition model); with it, from the real-time clock or the
+  // first decoded time of week.
+  const bool modelled = config_.acquisition.modelled;
 
   if (!obs.antenna_connected) {
-    fix_.time_valid = time_valid_;
-    for (signal::TrackingState& s : tracking_) s.reset();  // antenna lost: lock lost
+    acq_.lose_all(dt_s);
+    smoothed_last_.fill(false);
+    fix_.time_valid = modelled ? acq_.time_known() : fix_.time_valid;
     no_fix_epoch();
+    if (config_.filter.type == NavFilterType::kKalman) {
+      // Nothing to measure: the filter coasts for its limit, then the fix is lost.
+      in_.num_meas = 0;
+      snap_ = SolverOutput{};
+      nav_.step(dt_s, in_, snap_, solver_, out_);
+      if (out_.type != FixType::kNone) fill_solution();
+    }
     fix_.spoof_det_state = spoof_.update(fix_);
     return fix_;
   }
-  time_valid_ = true;
-  fix_.time_valid = true;
 
-  tracking_stage(obs, dt_s);
-  measurement_stage(obs);
+  tracking_stage(t, obs, dt_s);
+  fix_.time_valid = modelled ? acq_.time_known() : true;
+  measurement_stage(obs, dt_s);
 
   // Its own corrections and solution, warm-started from the last fix.
   in_.have_prior = have_fix_;
@@ -174,10 +218,27 @@ const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs)
   in_.have_held_height = have_3d_;
   in_.held_pos_m = held_pos_m_;
   in_.held_height_m = held_height_m_;
-  solver_.solve(in_, out_);
+  if (config_.filter.type == NavFilterType::kKalman) {
+    solver_.solve(in_, snap_);
+    nav_.step(dt_s, in_, snap_, solver_, out_);
+  } else {
+    solver_.solve(in_, out_);
+  }
   fill_solution();
   fix_.spoof_det_state = spoof_.update(fix_);
   return fix_;
+}
+
+bool Receiver::within_limits() const noexcept {
+  const DynamicModelParams& dm = dynamic_model_params(config_.filter.dynamic_model);
+  const double alt_msl_m = fix_.lla.height_m - fix_.geoid_sep_m;
+  const double speed_3d = std::hypot(fix_.speed_m_s, fix_.climb_m_s);
+  const OperationalLimits& lim = config_.limits;
+  if (!(alt_msl_m <= lim.max_altitude_m) || !(speed_3d <= lim.max_speed_m_s)) return false;
+  if (!(alt_msl_m <= dm.max_altitude_m)) return false;
+  if (dm.check_velocity && (!(fix_.speed_m_s <= dm.max_h_speed_m_s) || !(std::fabs(fix_.climb_m_s) <= dm.max_v_speed_m_s)))
+    return false;
+  return true;
 }
 
 void Receiver::fill_solution() noexcept {
@@ -200,6 +261,10 @@ void Receiver::fill_solution() noexcept {
   f.climb_m_s = out_.vel_enu_m_s.z;
   f.clock_bias_s = out_.clock_m / kSpeedOfLight_m_s;
   f.clock_drift_s_s = out_.drift_m_s / kSpeedOfLight_m_s;
+  if (!within_limits()) {
+    no_fix_epoch();
+    return;
+  }
   f.dop = out_.dop;
   f.num_used = out_.num_used;
   f.sigma_uere_m = out_.sigma_uere_m;
@@ -218,7 +283,7 @@ void Receiver::fill_solution() noexcept {
   for (int i = 0; i < f.num_sats && k < in_.num_meas; ++i) {
     SatInfo& si = f.sats[i];
     if (si.prn != meas_prn_[k]) continue;
-    si.used = !out_.excluded[k];  // excluded by the residual test: tracked, not used
+    si.used = f.type != FixType::kDeadReckoning && !out_.excluded[k];  // excluded: tracked, not used
     si.excluded = out_.excluded[k];
     si.residual_m = out_.residual_m[k++];
   }
@@ -229,6 +294,7 @@ void Receiver::fill_solution() noexcept {
   last_vel_m_s_ = f.vel_m_s;
   last_clock_m_ = out_.clock_m;
   last_drift_m_s_ = out_.drift_m_s;
+  acq_.on_fix();
   if (f.type == FixType::k3D) {
     have_3d_ = true;
     held_pos_m_ = f.pos_m;

@@ -1,26 +1,31 @@
 #pragma once
 // Receiver: the emulated receiver's own processing of the world's
-// observables at one epoch (DESIGN.md §1, steps 7-9): tracking with
-// acquire / lose hysteresis and the channel limit, its own broadcast
-// corrections, weighted least squares with fault exclusion, DOP, accuracy
-// and fix state. It never sees the world's models or the truth. Pure and
-// deterministic; no exceptions and no allocation on step() after construction.
+// observables at one epoch (DESIGN.md §1, steps 7-9): acquisition and
+// tracking (search times, lose hysteresis, ephemeris download, the channel
+// limit), carrier smoothing of code, its own broadcast corrections, weighted
+// least squares with fault exclusion, the navigation Kalman filter with its
+// dynamic model, DOP, accuracy, fix state and operational limits. It never
+// sees the world's models or the truth. Pure and deterministic for a seed; no
+// exceptions and no allocation on step() after construction.
 #include <array>
 #include <cstdint>
 
 #include "core/orbit/nav_data.hpp"
+#include "core/receiver/acquisition.hpp"
 #include "core/receiver/fix.hpp"
+#include "core/receiver/hatch_filter.hpp"
+#include "core/receiver/navigator.hpp"
 #include "core/receiver/receiver_config.hpp"
 #include "core/receiver/solver.hpp"
-#include "core/signal/tracking.hpp"
 #include "core/world/observables.hpp"
 
 namespace gnssemu::receiver {
 
 class Receiver {
 public:
-  /// Throws gnssemu::Error on an invalid config.
-  explicit Receiver(const ReceiverConfig& config);
+  /// Throws gnssemu::Error on an invalid config. seed: the receiver's random
+  /// draws (search times); the pipeline passes the world's seed.
+  explicit Receiver(const ReceiverConfig& config, std::uint64_t seed = 1);
 
   /// Process the observables of the epoch at receive time t (GPS). Without
   /// an antenna (obs.antenna_connected false) the epoch has no fix (time
@@ -29,6 +34,14 @@ public:
 
   const Fix& last_fix() const noexcept { return fix_; }
   const ReceiverConfig& config() const noexcept { return config_; }
+
+  /// Restart navigation (CFG-RST): every satellite is lost and searched
+  /// again, the filter starts over; keep says what the receiver remembers.
+  void restart(const StartState& keep) noexcept;
+  /// CFG-NAV5 dynModel: the filter's motion model and sanity limits from now on.
+  void set_dynamic_model(DynamicModel m) noexcept;
+  /// CFG-NAV5 static hold: speed threshold (m/s, 0 off) and distance (m, 0: none).
+  void set_static_hold(double speed_m_s, double max_dist_m) noexcept;
 
   /// GPS - UTC to report (e.g. the nav header's LEAP SECONDS); without it
   /// the built-in table (time::leap_seconds_at) is used.
@@ -43,34 +56,45 @@ public:
   /// construction). Throws gnssemu::Error for non-finite values.
   void set_klobuchar(const orbit::KlobucharParams& p);
 
+  const Acquisition& acquisition() const noexcept { return acq_; }
+  const Navigator& navigator() const noexcept { return nav_; }
+
 private:
-  /// Acquisition / loss with hysteresis, then the channel limit (highest
-  /// elevations first): tracked_.
-  void tracking_stage(const world::Observables& obs, double dt_s) noexcept;
+  /// Acquisition, then the channel limit (highest elevations first): tracked_.
+  void tracking_stage(const time::GpsTime& t, const world::Observables& obs, double dt_s) noexcept;
   /// fix_.sats from every satellite in view and the solver's measurements
-  /// from the tracked ones.
-  void measurement_stage(const world::Observables& obs) noexcept;
+  /// from the usable ones (carrier-smoothed with the filter).
+  void measurement_stage(const world::Observables& obs, double dt_s) noexcept;
   void no_fix_epoch() noexcept;
   void fill_solution() noexcept;
+  /// No fix beyond the operational limits or the dynamic model's sanity limits.
+  bool within_limits() const noexcept;
 
   ReceiverConfig config_;
   Fix fix_;
 
   // Tracking.
-  std::array<signal::TrackingState, kMaxGpsPrn> tracking_{};
+  Acquisition acq_;
   std::array<bool, kMaxGpsPrn> tracked_{};
+  std::array<bool, kMaxGpsPrn> usable_{};
   std::array<double, kMaxGpsPrn> el_rad_{};  ///< elevation per PRN this epoch (channel priority)
   bool started_ = false;
   time::GpsTime t_prev_;
 
   SpoofMonitor spoof_;
 
+  // Carrier smoothing.
+  std::array<HatchFilter, kMaxGpsPrn> hatch_{};
+  std::array<std::uint32_t, kMaxGpsPrn> discontinuities_{};  ///< the world's count at the last update
+  std::array<bool, kMaxGpsPrn> smoothed_last_{};  ///< smoothed at the previous epoch
+
   // Solution.
   Solver solver_;
+  Navigator nav_;
   SolverInput in_;
-  SolverOutput out_;
+  SolverOutput snap_;  ///< the snapshot solution of the epoch
+  SolverOutput out_;   ///< the reported solution (snapshot or filter)
   std::array<int, kMaxGpsPrn> meas_prn_{};  ///< PRN of each solver measurement
-  bool time_valid_ = false;
   bool have_fix_ = false;
   time::GpsTime last_fix_t_;
   Ecef last_pos_m_, last_vel_m_s_;

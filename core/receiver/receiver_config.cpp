@@ -54,6 +54,10 @@ void validate(const ReceiverConfig& c) {
                        {static_cast<double>(c.max_channels), R::max_channels, "max_channels"}});
   signal::validate(c.tracking);
   validate(c.solver);
+  validate(c.acquisition);
+  validate(c.filter);
+  check_ranges(kWhat, {{c.limits.max_altitude_m, OperationalLimitRanges::max_altitude_m, "limits.max_altitude_m"},
+                       {c.limits.max_speed_m_s, OperationalLimitRanges::max_speed_m_s, "limits.max_speed_m_s"}});
   validate(c.spoof_detection);
 }
 

@@ -9,6 +9,8 @@
 #include "core/common/constants.hpp"
 #include "core/common/range.hpp"
 #include "core/common/violation.hpp"
+#include "core/receiver/acquisition.hpp"
+#include "core/receiver/nav_filter.hpp"
 #include "core/receiver/spoof_monitor.hpp"
 #include "core/signal/tracking.hpp"
 
@@ -94,12 +96,29 @@ void validate(const SolverConfig& s);
 /// base is kept.
 SolverConfig rtklib_single_point(SolverConfig base = {}) noexcept;
 
+/// Operational limits of the receiver (export-control limits of a u-blox M8,
+/// MAX-M8 data sheet UBX-15031506: altitude 50 000 m, velocity 500 m/s):
+/// beyond either there is no fix.
+struct OperationalLimits {
+  double max_altitude_m = 50000.0;  ///< height above mean sea level, m
+  double max_speed_m_s = 500.0;     ///< 3D speed, m/s
+};
+
+/// Valid values of OperationalLimits' fields.
+struct OperationalLimitRanges {
+  static constexpr Range max_altitude_m{0.0, 1.0e7, "m", true};
+  static constexpr Range max_speed_m_s{0.0, 1.0e5, "m/s", true};
+};
+
 struct ReceiverConfig {
   double elevation_mask_rad = 5.0 * kDegToRad;  ///< [0, pi/2)
   double max_pdop = 20.0;          ///< above this the fix is reported as none
   int max_channels = 16;           ///< satellites tracked at most (highest first)
   signal::TrackingThresholds tracking;  ///< acquire 30 / lose 25 dB-Hz
   SolverConfig solver;
+  AcquisitionConfig acquisition;   ///< search, reacquisition, ephemeris download, start mode
+  NavFilterConfig filter;          ///< carrier smoothing, Kalman filter, dynamic model, static hold
+  OperationalLimits limits;
   SpoofDetectionConfig spoof_detection;  ///< NAV-STATUS spoofDetState criteria
 };
 

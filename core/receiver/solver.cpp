@@ -240,6 +240,11 @@ void Solver::solve(const SolverInput& in, SolverOutput& out) noexcept {
   for (int i = 0; i < kMaxGpsPrn; ++i) idx[i] = i;
   const SolverInput* cur = &in;
   Outcome o = solve_all(*cur, out);
+  // Every measurement of in, prepared: measurement_model reuses them.
+  solved_ = {&in, in.t_rx_local, n_};
+  std::copy(sats_.begin(), sats_.begin() + n_, solved_sats_.begin());
+  solved_corr_valid_ = corr_valid_;
+  solved_corr_pos_ = corr_pos_;
   int exclusions = 0;
   while (o == Outcome::kResidualTestFailed && n_ - 1 >= kMinSatsAfterExclusion &&
          exclusions++ < cfg_.max_exclusions) {
@@ -295,8 +300,7 @@ int Solver::worst_residual(const SolverOutput& out) const noexcept {
   return worst;
 }
 
-Solver::Outcome Solver::solve_all(const SolverInput& in, SolverOutput& out) noexcept {
-  out = SolverOutput{};
+bool Solver::prepare(const SolverInput& in) noexcept {
   n_ = std::clamp(in.num_meas, 0, kMaxGpsPrn);
   corr_valid_ = false;
   for (int i = 0; i < n_; ++i) {
@@ -304,7 +308,7 @@ Solver::Outcome Solver::solve_all(const SolverInput& in, SolverOutput& out) noex
     Sat& s = sats_[i];
     if (m.eph == nullptr || !std::isfinite(m.pseudorange_m) || !std::isfinite(m.doppler_hz)) {
       n_ = 0;  // malformed input: no fix rather than a guess
-      break;
+      return false;
     }
     const TransmitState tx = transmit_state(*m.eph, in.t_rx_local, m.pseudorange_m);
     const time::GpsTime& t_tx = tx.t_tx;
@@ -319,6 +323,39 @@ Solver::Outcome Solver::solve_all(const SolverInput& in, SolverOutput& out) noex
     s.sat_var_m2 = satellite_variance_m2(cfg_, m.cn0_dbhz, m.eph->sv_accuracy_m) +
                    (m.correction_var_m2 > 0.0 ? m.correction_var_m2 : 0.0);
   }
+  return true;
+}
+
+int Solver::measurement_model(const SolverInput& in, const Ecef& pos_m, double clock_m,
+                              std::array<MeasurementRow, kMaxGpsPrn>& rows) noexcept {
+  if (solved_.in == &in && solved_.t_rx_local == in.t_rx_local && solved_.n == in.num_meas) {
+    // The epoch solve() just prepared: same satellites, same corrections.
+    n_ = solved_.n;
+    std::copy(solved_sats_.begin(), solved_sats_.begin() + n_, sats_.begin());
+    corr_valid_ = solved_corr_valid_;
+    corr_pos_ = solved_corr_pos_;
+  } else if (!prepare(in)) {
+    return 0;
+  }
+  if (!(pos_m.norm() > kSurfaceRadius_m)) return 0;
+  const Lla lla = geo::lla_from_ecef(pos_m);
+  linearise(in, pos_m, clock_m, &lla);
+  const Vec3 up = up_ecef(lla);
+  for (int i = 0; i < n_; ++i) {
+    const Sat& s = sats_[i];
+    MeasurementRow& r = rows[i];
+    r.los = s.los;
+    r.range_resid_m = s.resid_m;
+    r.sigma2_m2 = s.sigma2;
+    r.rate_obs_m_s = -kL1Wavelength_m * in.meas[i].doppler_hz - s.los.dot(s.vel_rx_frame_m_s) + s.drift_m_s;
+    r.el_rad = std::asin(std::clamp(s.los.dot(up), -1.0, 1.0));
+  }
+  return n_;
+}
+
+Solver::Outcome Solver::solve_all(const SolverInput& in, SolverOutput& out) noexcept {
+  out = SolverOutput{};
+  prepare(in);
   if (n_ < 3) return Outcome::kNoFix;
   const bool two_d = n_ == 3;
   if (two_d && !in.have_held_height) return Outcome::kNoFix;

@@ -65,6 +65,17 @@ struct SolverOutput {
   int num_excluded = 0;
 };
 
+/// One measurement linearised at a given state (MeasurementModel).
+struct MeasurementRow {
+  Vec3 los;                  ///< unit vector receiver -> satellite, ECEF
+  double range_resid_m = 0.0;  ///< pseudorange minus its prediction at the state, m
+  double sigma2_m2 = 0.0;    ///< the weight model's variance of the pseudorange, m^2
+  /// Measured range rate minus the satellite's part (LOS satellite velocity,
+  /// its clock drift): what -los . v_rx + c drift_rx should equal, m/s.
+  double rate_obs_m_s = 0.0;
+  double el_rad = 0.0;       ///< elevation at the state, rad
+};
+
 class Solver {
 public:
   /// cfg and max_pdop as in ReceiverConfig. Does not validate (Receiver does).
@@ -91,6 +102,14 @@ public:
   /// false-alarm probability (Wilson–Hilferty; dof >= 1).
   double chi2_threshold(int dof) const noexcept;
 
+  /// The measurements of in linearised at pos_m (ECEF, m, near the Earth's
+  /// surface) and clock_m (c x clock bias, m) with the receiver's corrections
+  /// and weights, as the solver does at its solution (for a navigation
+  /// filter's update). Returns the rows filled (in.num_meas; 0 for malformed
+  /// input).
+  int measurement_model(const SolverInput& in, const Ecef& pos_m, double clock_m,
+                        std::array<MeasurementRow, kMaxGpsPrn>& rows) noexcept;
+
 private:
   struct Sat {
     Ecef pos_m;            // at transmit time, transmit-time ECEF frame
@@ -109,6 +128,9 @@ private:
     double sigma2 = 0.0;
   };
 
+  /// Satellite states at transmit time and the C/N0 weight terms of in; false
+  /// for malformed input (n_ = 0).
+  bool prepare(const SolverInput& in) noexcept;
   bool iterate(const SolverInput& in, Ecef& pos, double& clock_m, bool two_d) noexcept;
   void linearise(const SolverInput& in, const Ecef& pos, double clock_m, const Lla* lla) noexcept;
   void update_corrections(const SolverInput& in, const Ecef& pos, const Lla& lla) noexcept;
@@ -125,6 +147,16 @@ private:
   double z_pfa_;  // standard-normal upper quantile of residual_test_pfa
   std::array<Sat, kMaxGpsPrn> sats_{};
   SolverInput subset_;  ///< in without the excluded measurements (fault exclusion)
+  /// The input solve() last prepared whole, its satellites and corrections
+  /// (measurement_model at the same epoch starts from them).
+  struct Solved {
+    const SolverInput* in = nullptr;
+    time::GpsTime t_rx_local;
+    int n = 0;
+  } solved_;
+  std::array<Sat, kMaxGpsPrn> solved_sats_{};
+  bool solved_corr_valid_ = false;
+  Ecef solved_corr_pos_;
   int n_ = 0;
   orbit::KlobucharParams klobuchar_;  // invalid: RTKLIB defaults
   bool corr_valid_ = false;           // corr_m computed at corr_pos_

@@ -32,6 +32,18 @@ struct SatObservable {
   double cn0_dbhz = 0.0;                ///< carrier-to-noise density at the antenna, dB-Hz (0 when not received)
   double pseudorange_m = 0.0;           ///< code pseudorange with every error, m (when received)
   double doppler_hz = 0.0;              ///< L1 Doppler, Hz, positive when approaching (when received)
+  /// The carrier loop is locked (received, with the carrier modelled).
+  bool carrier_valid = false;
+  /// Accumulated carrier phase, L1 cycles, with the sign of the pseudorange
+  /// (grows with the range); an arbitrary whole number of cycles per lock.
+  double carrier_phase_cycles = 0.0;
+  /// Carrier discontinuities of this PRN so far (new locks, cycle slips): a
+  /// change since the last epoch says the phase is not continuous (as the
+  /// loss-of-lock indicator of RINEX), so carrier smoothing must restart.
+  std::uint32_t carrier_discontinuities = 0;
+  /// The range jumped by more than the code loop follows since the last
+  /// epoch (a discontinuous truth): the receiver loses lock on it.
+  bool lock_break = false;
   // Path truth of the scene stage (analysis only; zero without a scene).
   bool nlos = false;                    ///< received via reflections only
   bool blocked = false;                 ///< no signal path (not received)

@@ -28,12 +28,19 @@ enum class Purpose : uint64_t {
   kGradientStep = 13,
   kIonoScaleInit = 14,  ///< common relative ionospheric error, stream kIonoScaleStream
   kIonoScaleStep = 15,
+  kCarrierNoise = 16,      ///< carrier phase jitter per PRN
+  kCycleSlip = 17,         ///< slip draw per PRN (uniform) and its size
+  kCarrierAmbiguity = 18,  ///< integer ambiguity of a new carrier lock
+  kAcquisition = 19,       ///< the receiver's search times (streams kAcquisitionStream + PRN)
 };
 
 /// First stream of the two azimuthal-gradient processes (after the 32 PRNs).
 inline constexpr uint64_t kGradientStream = 33;
 /// Stream of the common relative ionospheric error (after the gradients).
 inline constexpr uint64_t kIonoScaleStream = 35;
+
+/// Streams of the receiver's acquisition draws: this + PRN.
+inline constexpr uint64_t kAcquisitionStream = 100;
 
 /// Stream id of the receiver clock (satellites use their PRN 1..32).
 inline constexpr uint64_t kClockStream = 0;

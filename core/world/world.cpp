@@ -89,6 +89,7 @@ void World::advance(const time::GpsTime& t) noexcept {
   } else {
     double dt_s = t - t_prev_;
     if (!std::isfinite(dt_s) || dt_s < 0.0) dt_s = 0.0;  // time going back: hold the processes
+    dt_s_ = dt_s;
     for (int p = 1; p <= kMaxGpsPrn; ++p)
       orbit_clock_m_[p - 1] =
           gauss_markov_step(orbit_clock_m_[p - 1], dt_s, gm, rng_.normal(p, epoch_, Purpose::kGaussMarkovStep));
@@ -257,14 +258,68 @@ void World::observables_stage(const time::GpsTime& t, uint64_t epoch, double mas
             ? config_.errors.multipath.sigma_m / std::sin(std::max(s.el_rad, kMultipathMinEl_rad)) * multipath_unit_[p - 1]
             : 0.0;
     const double gradient_m = gradient_now_m_[0] * std::cos(s.az_rad) + gradient_now_m_[1] * std::sin(s.az_rad);
-    const double rr_noise_m_s = config_.errors.doppler_sigma_m_s * rng_.normal(p, epoch, Purpose::kDoppler);
+    const double rr_sigma_m_s = config_.carrier.doppler_model == DopplerModel::kFll
+                                    ? fll_range_rate_sigma_m_s(cn0, config_.carrier)
+                                    : config_.errors.doppler_sigma_m_s;
+    const double rr_noise_m_s = rr_sigma_m_s * rng_.normal(p, epoch, Purpose::kDoppler);
     // The satellite's actual L1 clock = broadcast (dt_sv - TGD) + residual.
     const double pr_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - eph->tgd_s)) +
                         orbit_clock_m_[p - 1] + path_[p - 1].delay_m + thermal_m + multipath_m + gradient_m;
     const double rr_m_s = s.range_rate_m_s + kSpeedOfLight_m_s * (rx_drift_s_s - s.clk_drift_s_s) + rr_noise_m_s;
     o.pseudorange_m = pr_m;
     o.doppler_hz = -rr_m_s / kL1Wavelength_m;
+    carrier_observable(o, s, epoch, rx_clock_s, gradient_m);
   }
+  for (int p = 1; p <= kMaxGpsPrn; ++p)
+    if (!carrier_seen_[p - 1]) carrier_[p - 1].continuous = false;
+}
+
+// The carrier range has the code's delays except the ionosphere's, which
+// advances the phase by as much as it delays the code; code multipath and
+// thermal code noise are not in it, the NLOS path length is.
+void World::carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch, double rx_clock_s,
+                               double gradient_m) noexcept {
+  const int p = o.prn;
+  CarrierTrack& c = carrier_[p - 1];
+  carrier_seen_[p - 1] = true;
+  const CarrierConfig& cc = config_.carrier;
+  // Lock break: the range moved by more than its rate explains.
+  if (c.continuous && dt_s_ > 0.0) {
+    const double explained_m = 0.5 * (c.range_rate_m_s + s.range_rate_m_s) * dt_s_;
+    o.lock_break = std::fabs(s.range_m - c.range_m - explained_m) > cc.lock_break_m;
+  }
+  bool restart = !c.continuous || o.lock_break;
+  double slip_cycles = 0.0;
+  const double sigma_rad =
+      std::hypot(pll_jitter_rad(o.cn0_dbhz, cc.pll_bandwidth_hz, cc.integration_s), cc.oscillator_sigma_rad);
+  if (!restart) {
+    if (o.nlos != c.nlos) {
+      restart = true;  // a different path: the loop re-locks on it
+    } else if (rng_.uniform(p, epoch, Purpose::kCycleSlip, 0) <
+               cycle_slip_probability(sigma_rad, cc.pll_bandwidth_hz, dt_s_)) {
+      slip_cycles = rng_.uniform(p, epoch, Purpose::kCycleSlip, 1) < 0.5 ? -0.5 : 0.5;
+    }
+  }
+  if (restart) {
+    // A new lock starts from an arbitrary whole number of cycles.
+    c.offset_cycles = std::floor(2.0e5 * rng_.uniform(p, epoch, Purpose::kCarrierAmbiguity, 0)) - 1.0e5;
+    ++c.discontinuities;
+  } else if (slip_cycles != 0.0) {
+    c.offset_cycles += slip_cycles;
+    ++c.discontinuities;
+  }
+  c.continuous = true;
+  c.nlos = o.nlos;
+  c.range_m = s.range_m;
+  c.range_rate_m_s = s.range_rate_m_s;
+  o.carrier_discontinuities = c.discontinuities;
+  if (!cc.enabled) return;
+  const PathEffects& e = path_[p - 1];
+  const double phase_noise_m = sigma_rad / (2.0 * kPi) * kL1Wavelength_m * rng_.normal(p, epoch, Purpose::kCarrierNoise);
+  const double carrier_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - o.eph->tgd_s)) +
+                           orbit_clock_m_[p - 1] + e.delay_m - 2.0 * e.iono_m + gradient_m + phase_noise_m;
+  o.carrier_valid = true;
+  o.carrier_phase_cycles = carrier_m / kL1Wavelength_m + c.offset_cycles;
 }
 
 const Observables& World::step(const time::GpsTime& t, const Truth& truth, double mask_rad) noexcept {
@@ -279,8 +334,12 @@ const Observables& World::step(const time::GpsTime& t, const Truth& truth, doubl
   obs_.clock_drift_s_s = clock_.drift_s_s();
   obs_.num_sats = 0;
   in_sky_.fill(false);
+  carrier_seen_.fill(false);
   obs_.antenna_connected = truth.valid && truth.pos_m.finite() && truth.vel_m_s.finite();
-  if (!obs_.antenna_connected) return obs_;
+  if (!obs_.antenna_connected) {
+    for (CarrierTrack& c : carrier_) c.continuous = false;
+    return obs_;
+  }
 
   const Lla rx_lla = geo::lla_from_ecef(truth.pos_m);
   gradient_now(t, rx_lla.lon_rad);

@@ -17,6 +17,7 @@
 #include "core/orbit/nav_data.hpp"
 #include "core/scene/propagator.hpp"
 #include "core/signal/link_budget.hpp"
+#include "core/world/carrier.hpp"
 #include "core/world/error_processes.hpp"
 #include "core/world/observables.hpp"
 #include "core/world/propagation.hpp"
@@ -78,6 +79,11 @@ private:
   void scene_stage(const Ecef& rx_pos_m) noexcept;
   void signal_stage() noexcept;
   void observables_stage(const time::GpsTime& t, uint64_t epoch, double mask_rad) noexcept;
+  /// Carrier phase, its continuity and the lock-break test of one received
+  /// satellite (o: its pseudorange already set); rx_clock_s the receiver clock
+  /// bias, s, gradient_m the azimuthal delay on its line of sight, m.
+  void carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch, double rx_clock_s,
+                          double gradient_m) noexcept;
   /// G_N, G_E of the azimuthal gradient at t for a receiver at lon_rad.
   void gradient_now(const time::GpsTime& t, double lon_rad) noexcept;
 
@@ -98,6 +104,7 @@ private:
   uint64_t epoch_ = 0;          ///< step() calls so far (random-stream counter)
   bool started_ = false;
   time::GpsTime t_prev_;
+  double dt_s_ = 0.0;           ///< time since the previous step, s (0 at the first)
   // Sky stage.
   std::array<SkySat, kMaxGpsPrn> sky_{};
   std::array<const orbit::Ephemeris*, kMaxGpsPrn> eph_{};
@@ -121,6 +128,9 @@ private:
   // Signal stage.
   signal::LinkBudgetModel link_;
   std::array<double, kMaxGpsPrn> cn0_dbhz_{};
+  // Carrier (observables stage).
+  std::array<CarrierTrack, kMaxGpsPrn> carrier_{};
+  std::array<bool, kMaxGpsPrn> carrier_seen_{};  ///< received this epoch
 };
 
 }  // namespace gnssemu::world

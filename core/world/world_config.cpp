@@ -42,6 +42,7 @@ void validate(const WorldConfig& c) {
   atmosphere::validate(a.clouds_rain);
   signal::validate(c.signal.link);
   signal::validate(c.signal.dll);
+  validate(c.carrier);
 }
 
 void use_klobuchar_ionosphere(AtmosphereConfig& a, double scale, double sigma_tecu, double tau_s) noexcept {

@@ -13,6 +13,7 @@
 #include "core/common/range.hpp"
 #include "core/signal/dll_jitter.hpp"
 #include "core/signal/link_budget.hpp"
+#include "core/world/carrier.hpp"
 
 namespace gnssemu::world {
 
@@ -146,6 +147,7 @@ struct WorldConfig {
   double nominal_cn0_dbhz = 45.0;  ///< zenith C/N0 when signal.enabled is false, dB-Hz
   AtmosphereConfig atmosphere;
   SignalConfig signal;
+  CarrierConfig carrier;           ///< carrier phase, Doppler noise, cycle slips
 };
 
 /// Valid values of WorldConfig's own numbers (seed: any).

@@ -110,10 +110,12 @@ def main():
         def mode_at(a, b):
             return set(modes[a:b])
 
-        assert mode_at(2, 29) == {3}, mode_at(2, 29)
-        assert max(mode_at(31, 39)) <= 1, f"antenna open: modes {mode_at(31, 39)}"
+        # The receiver dead-reckons for its coast limit (3 s, reported as a
+        # fix with gpsd's mode 2), then there is no fix.
+        assert mode_at(5, 29) == {3}, mode_at(5, 29)
+        assert max(mode_at(34, 39)) <= 1, f"antenna open: modes {mode_at(34, 39)}"
         assert 3 in mode_at(45, 59), "no 3D fix after the antenna came back"
-        assert max(mode_at(62, 79)) <= 1, f"45 dB jammer: modes {mode_at(62, 79)}"
+        assert max(mode_at(64, 79)) <= 1, f"45 dB jammer: modes {mode_at(64, 79)}"
         assert 3 in mode_at(85, 99), "no 3D fix after the jammer stopped"
         # The M8's indicators in the same stream, epoch by epoch.
         hw, status = [], []
@@ -123,10 +125,11 @@ def main():
             elif (cls, mid) == (0x01, 0x03):
                 status.append((p[7] >> 3) & 3)
         print(f"  MON-HW (aStatus, agcCnt, jamInd, jamState) at 10/35/70 s: {hw[10]} {hw[35]} {hw[70]}")
-        print(f"  NAV-STATUS spoofDetState at 90/101/110 s: {status[90]} {status[101]} {status[110]}")
+        print(f"  NAV-STATUS spoofDetState 95-110 s: {status[95:111]}")
         assert hw[10][0] == 2 and hw[35][0] == 4, "aStatus OK, then OPEN"
         assert hw[70][1] < hw[10][1] and hw[70][2] > hw[10][2] + 50, "AGC down and jamInd up under the jammer"
-        assert status[90] == 1 and status[101] >= 2, "spoofDetState set by the takeover"
+        # The takeover breaks lock; once the spoofed signals are acquired (a few s) it is flagged.
+        assert status[90] == 1 and min(status[105:120]) >= 2, "spoofDetState set by the takeover"
     print("OK")
     return 0
 

@@ -79,11 +79,17 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
       const std::string_view bytes = messages.bytes(m);
       if (log != nullptr) log->write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     }
-    const bool has_fix = fix.type != receiver::FixType::kNone;
+    // A position without truth (the receiver coasting through an antenna
+    // loss) has nothing to be compared with; dead reckoning is reported in
+    // the rows (fix_type 1) but is not a GNSS fix in the summary.
+    const bool has_fix = fix.type != receiver::FixType::kNone && truth.valid;
+    const bool gnss_fix = has_fix && fix.type != receiver::FixType::kDeadReckoning;
     Enu d;
     if (has_fix) {
       const Lla truth_lla = geo::lla_from_ecef(truth.pos_m);
       d = geo::ecef_to_enu_vector(fix.pos_m - truth.pos_m, truth_lla.lat_rad, truth_lla.lon_rad);
+    }
+    if (gnss_fix) {
       ++sum.fixes;
       if (fix.type == receiver::FixType::k3D) ++sum.fixes_3d;
       e_err.push_back(d.x);

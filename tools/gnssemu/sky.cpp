@@ -29,6 +29,9 @@ pipeline::PipelineConfig geometry_config(double mask_rad) {
   c.receiver.max_channels = kMaxGpsPrn;
   c.receiver.max_pdop = receiver::ReceiverRanges::max_pdop.max;  // report poor geometry rather than drop the fix
   c.receiver.solver.residual_test_pfa = 0.0;  // nothing to detect without errors
+  // One epoch of geometry: the solver alone, every satellite at once.
+  c.receiver.filter.type = receiver::NavFilterType::kNone;
+  c.receiver.acquisition.modelled = false;
   return c;
 }
 

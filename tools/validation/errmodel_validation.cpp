@@ -19,6 +19,7 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -31,6 +32,7 @@
 #include "core/observation/rinex_obs.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
+#include "core/pipeline/pipeline.hpp"
 #include "core/pipeline/receiver_profile.hpp"
 #include "core/statistics/statistics.hpp"
 #include "tools/gnssemu/calibrate.hpp"
@@ -123,6 +125,35 @@ void switch_off(world::WorldConfig& w, const std::vector<std::string>& terms) {
 }
 
 std::vector<std::string> g_without;  // --without terms
+bool g_filtered = false;              // --filtered
+
+/// --filtered: the whole receiver (acquisition, navigation filter, the
+/// default dynamic model) at the station's antenna in world w, stepped at
+/// 1 Hz over obs's span and sampled at its epochs; NaN where it has no fix.
+std::vector<Enu> filtered_error_series(const Day& d, const observation::ObsData& obs, const world::WorldConfig& w,
+                                       const receiver::ReceiverConfig& rx) {
+  std::vector<Enu> out;
+  if (obs.epochs.empty()) return out;
+  pipeline::Pipeline p(*d.store, pipeline::PipelineConfig{w, rx}, pipeline::broadcast_of(d.nav));
+  const Lla lla = geo::lla_from_ecef(d.arp);
+  world::Truth truth;
+  truth.pos_m = d.arp;
+  truth.valid = true;
+  time::GpsTime t = obs.epochs.front().t;
+  std::size_t k = 0;
+  while (k < obs.epochs.size()) {
+    truth.t = t;
+    const receiver::Fix& f = p.step(t, truth);
+    while (k < obs.epochs.size() && obs.epochs[k].t - t < 0.5) {
+      const bool gnss = f.type == receiver::FixType::k3D || f.type == receiver::FixType::k2D;
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      out.push_back(gnss ? geo::ecef_to_enu_vector(f.pos_m - d.arp, lla.lat_rad, lla.lon_rad) : Enu(nan, nan, nan));
+      ++k;
+    }
+    t = t + 1.0;
+  }
+  return out;
+}
 
 /// Real against simulated: obs of day d, the world w simulated for seeds 1..seeds.
 Comparison compare(const std::string& title, const Day& d, const observation::ObsData& obs, world::WorldConfig w,
@@ -135,6 +166,12 @@ Comparison compare(const std::string& title, const Day& d, const observation::Ob
   switch_off(w, g_without);
   for (int seed = 1; seed <= seeds; ++seed) {
     w.seed = static_cast<uint64_t>(seed);
+    if (g_filtered) {
+      receiver::ReceiverConfig filtered = base.receiver;
+      filtered.elevation_mask_rad = mask_rad;
+      c.sims.push_back(stats_of(filtered_error_series(d, obs, w, filtered), step_s));
+      continue;
+    }
     const observation::ObsData sim = cli::simulate_station(obs, d.nav, *d.store, w, d.arp, mask_rad);
     c.sims.push_back(stats_of(cli::spp_error_series(sim, d.nav, *d.store, rx, d.arp, step_s), step_s));
   }
@@ -239,6 +276,9 @@ int run(int argc, char** argv) {
   app.add_flag("--default-world", default_world,
                "instead: the built-in default world (no fit) against every day, as the issue measured it");
   app.add_option("--profile", profile, "instead: this receiver profile (ublox_m8, geodetic) against every day");
+  app.add_flag("--filtered", g_filtered,
+               "simulate with the whole default receiver (navigation filter, 1 Hz) at the antenna instead of "
+               "solving simulated observations epoch by epoch");
   app.add_option("--csv", csv_path, "also write title,metric,real,sim_mean,sim_sd,rel_pct rows here");
   CLI11_PARSE(app, argc, argv);
   const double mask_rad = mask_deg * kDegToRad;

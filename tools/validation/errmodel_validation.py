@@ -27,6 +27,7 @@ def main():
     ap.add_argument("--csv")
     ap.add_argument("--default-world", action="store_true", help="the built-in default world against every day")
     ap.add_argument("--profile", help="this receiver profile (ublox_m8, geodetic) against every day")
+    ap.add_argument("--filtered", action="store_true", help="simulate with the whole default receiver (filter)")
     ap.add_argument("--without", action="append", default=[], help="switch a simulated term off (error budget)")
     a = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
@@ -39,6 +40,8 @@ def main():
             argv += ["--without", t]
         if a.profile:
             argv += ["--profile", a.profile]
+        if a.filtered:
+            argv.append("--filtered")
         if a.default_world:
             argv.append("--default-world")
         if a.csv:

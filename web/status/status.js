@@ -39,7 +39,7 @@
   function renderFix(s) {
     const f = s.fix;
     const badge = $('fix-type');
-    badge.textContent = f.type_name === 'none' ? 'no fix' : `${f.type_name} fix`;
+    badge.textContent = f.type_name === 'none' ? 'no fix' : f.type_name === 'DR' ? 'dead reckoning' : `${f.type_name} fix`;
     badge.className = `badge badge-${f.type_name}`;
     badge.dataset.fixType = String(f.type);
     text('utc', s.epoch.utc || '—');

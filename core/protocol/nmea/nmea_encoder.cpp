@@ -32,7 +32,8 @@ constexpr double kMaxSigma_m = 99999.9;
 struct Epoch {
   bool v4 = false;        // NMEA 4.10 / 4.11 extra fields
   bool has_time = false;
-  bool has_fix = false;
+  bool has_fix = false;   // a position to print (a GNSS fix or dead reckoning)
+  bool dead_reckoning = false;
   int nav_mode = 1;       // GSA: 1 none, 2 2D, 3 3D
   UtcStamp utc;
   double lat_deg = 0.0, lon_deg = 0.0;
@@ -70,7 +71,10 @@ Epoch derive(const Fix& fix, const NmeaConfig& cfg) {
   e.has_fix = fix.type != FixType::kNone && e.has_time && std::isfinite(fix.lla.lat_rad) &&
               std::isfinite(fix.lla.lon_rad) && std::isfinite(fix.lla.height_m);
   if (e.has_fix) {
-    e.nav_mode = fix.type == FixType::k2D ? 2 : 3;
+    // u-blox position fix flags: dead reckoning is GGA quality 6, mode E,
+    // GSA navMode 2 (UBX-13003221 / ZED-F9P interface description, NMEA flags).
+    e.dead_reckoning = fix.type == FixType::kDeadReckoning;
+    e.nav_mode = fix.type == FixType::k3D ? 3 : 2;
     e.lat_deg = std::clamp(fix.lla.lat_rad * kRadToDeg, -90.0, 90.0);
     e.lon_deg = std::remainder(fix.lla.lon_rad * kRadToDeg, 360.0);  // [-180, 180]
     const double sep = std::isfinite(fix.geoid_sep_m) ? fix.geoid_sep_m : 0.0;
@@ -118,7 +122,7 @@ void put_position(SentenceWriter& w, const Epoch& e) {
   }
 }
 
-char pos_mode(const Epoch& e) { return e.has_fix ? 'A' : 'N'; }
+char pos_mode(const Epoch& e) { return !e.has_fix ? 'N' : e.dead_reckoning ? 'E' : 'A'; }
 char status(const Epoch& e) { return e.has_fix ? 'A' : 'V'; }
 
 /// Appends finished sentences to out and tells the sink where each ends.
@@ -190,7 +194,7 @@ void write_gga(const Epoch& e, const Emit& emit) {
   SentenceWriter w("GPGGA");
   put_time(w, e);
   put_position(w, e);
-  w.integer(e.has_fix ? 1 : 0, 1);
+  w.integer(!e.has_fix ? 0 : e.dead_reckoning ? 6 : 1, 1);
   w.integer(e.num_used, 2);
   w.fixed(e.hdop, 2);
   if (e.has_fix) {

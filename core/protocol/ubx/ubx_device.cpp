@@ -70,6 +70,9 @@ Device::Device(const DeviceSetup& setup)
   }
   current_.rate.measRate = static_cast<std::uint16_t>(std::lround(setup.nav_period_s * 1000.0));
   current_.rate.navRate = 1;
+  current_.nav5.dynModel = setup.dyn_model;
+  current_.nav5.staticHoldThresh = setup.static_hold_thresh_cm_s;
+  current_.nav5.staticHoldMaxDist = setup.static_hold_max_dist_m;
   save_config();
 }
 
@@ -193,11 +196,12 @@ void Device::on_epoch(const receiver::Fix& fix, double now_s) noexcept {
   // (0.34999...) from losing a ms to binary rounding.
   constexpr double kSlackMs = 1e-6;
   info_.msss_ms = static_cast<std::uint32_t>(std::min(ms + kSlackMs, 4294967295.0));
-  if (!have_fix_once_ && fix.type != receiver::FixType::kNone && fix.time_valid) {
+  const bool gnss_fix = fix.type == receiver::FixType::k2D || fix.type == receiver::FixType::k3D;
+  if (!have_fix_once_ && gnss_fix && fix.time_valid) {
     have_fix_once_ = true;
-    // The uptime of this epoch, rounded up to the ms: a fix comes after the
-    // start, and 0 on the wire means "no fix yet".
-    info_.ttff_ms = static_cast<std::uint32_t>(std::max(1.0, std::ceil(ms - kSlackMs)));
+    // The uptime of this epoch (msss of the same NAV-STATUS, so ttff <= msss);
+    // at least 1 ms: 0 on the wire means "no fix yet".
+    info_.ttff_ms = std::max<std::uint32_t>(1, info_.msss_ms);
   }
   const StoredBlock* itfm = current_.stored(msg::kCfgItfm);
   info_.itfm_enabled = itfm != nullptr && itfm->size >= 4 && (itfm->bytes[3] & 0x80) != 0;

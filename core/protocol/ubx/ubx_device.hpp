@@ -63,6 +63,11 @@ struct DeviceSetup {
   bool ack_unknown_cfg = false;
   /// Epoch period at start-up, s (> 0): CFG-RATE measRate round(1000 period) ms, navRate 1.
   double nav_period_s = 1.0;
+  /// CFG-NAV5 at start-up: dynModel (0 portable, 2..9), staticHoldThresh
+  /// (cm/s) and staticHoldMaxDist (m), as the receiver is configured.
+  std::uint8_t dyn_model = 0;
+  std::uint8_t static_hold_thresh_cm_s = 0;
+  std::uint16_t static_hold_max_dist_m = 0;
   /// One per output; empty: one factory UART1.
   std::vector<OutputSetup> outputs;
 };

@@ -56,7 +56,8 @@ double deg0_360(double rad) noexcept {
 /// What every message derives from the Fix, computed once per message.
 struct Common {
   bool has_time = false;
-  bool has_fix = false;
+  bool has_fix = false;   ///< a position to report (a GNSS fix or dead reckoning)
+  bool fix_ok = false;    ///< a GNSS fix: gnssFixOK / gpsFixOk (not set for dead reckoning only)
   std::uint8_t fix_type = 0;
   std::uint32_t itow = 0;    // ms
   std::int32_t ftow_ns = 0;  // tow - iTOW, ns
@@ -105,8 +106,9 @@ Common derive(const Fix& fix) noexcept {
     if (fix.in_leap_second && c.hour == 23 && c.minute == 59 && c.second == 59) c.second = 60;
     c.nano = static_cast<std::int32_t>(ms_of_day % 1000) * 1000000 + c.ftow_ns;
   }
+  c.fix_ok = c.has_fix && fix.type != FixType::kDeadReckoning;
   if (c.has_fix) {
-    c.fix_type = fix.type == FixType::k2D ? 2 : 3;
+    c.fix_type = fix.type == FixType::k2D ? 2 : fix.type == FixType::kDeadReckoning ? 1 : 3;
     c.lat_deg = std::clamp(fix.lla.lat_rad * kRadToDeg, -90.0, 90.0);
     c.lon_deg = std::remainder(fix.lla.lon_rad * kRadToDeg, 360.0);
     c.height_m = fix.lla.height_m;
@@ -134,7 +136,7 @@ Common derive(const Fix& fix) noexcept {
 
 std::uint8_t nav_flags(const Common& c) noexcept {
   // b0 gpsFixOk, b2 wknSet, b3 towSet (NAV-STATUS and NAV-SOL share these).
-  return static_cast<std::uint8_t>((c.has_fix ? 0x01 : 0) | (c.has_time ? 0x0C : 0));
+  return static_cast<std::uint8_t>((c.fix_ok ? 0x01 : 0) | (c.has_time ? 0x0C : 0));
 }
 
 /// NAV-SAT qualityInd: 7 code+carrier locked, 4 code locked, 1 searching, 0 idle.
@@ -225,7 +227,7 @@ std::size_t UbxEncoder::nav_pvt(const Fix& fix, std::string& out) const {
   }
   m.tAcc = c.has_time ? to_acc<std::uint32_t>(fix.time_acc_s * 1e9) : 0xFFFFFFFF;
   m.fixType = c.fix_type;
-  m.flags = c.has_fix ? 0x01 : 0x00;  // gnssFixOK; no DGNSS, no carrier solution
+  m.flags = c.fix_ok ? 0x01 : 0x00;  // gnssFixOK; no DGNSS, no carrier solution
   m.numSV = c.num_sv;
   if (c.has_fix) {
     m.lon = to_int<std::int32_t>(c.lon_deg * 1e7);
@@ -403,7 +405,9 @@ std::size_t UbxEncoder::nav_sat(const Fix& fix, std::string& out) const {
     std::uint32_t flags = quality_ind(s);
     if (used) flags |= 1u << 3;
     flags |= (s.healthy ? 1u : 2u) << 4;  // health: 1 healthy, 2 unhealthy
-    if (s.healthy) flags |= 1u << 8 | 1u << 11 | 1u << 12;  // orbitSource ephemeris, ephAvail, almAvail
+    if (s.smoothed) flags |= 1u << 7;
+    if (s.healthy) flags |= 1u << 12;                          // almAvail
+    if (s.healthy && s.ephemeris) flags |= 1u << 8 | 1u << 11;  // orbitSource ephemeris, ephAvail
     sv.flags = flags;
     std::memcpy(buf + len, &sv, sizeof sv);
     len += sizeof sv;
@@ -431,7 +435,9 @@ std::size_t UbxEncoder::nav_svinfo(const Fix& fix, std::string& out) const {
     ch.svid = static_cast<std::uint8_t>(s.prn);
     const bool used = s.used && c.has_fix;
     std::uint8_t flags = used ? 0x01 : 0x00;
-    flags |= s.healthy ? 0x0C : 0x10;  // orbitAvail + orbitEph, or unhealthy
+    // orbitAvail + orbitEph (or orbitAlm without its ephemeris), or unhealthy; b7 smoothed
+    flags |= s.healthy ? (s.ephemeris ? 0x0C : 0x24) : 0x10;
+    if (s.smoothed) flags |= 0x80;
     ch.flags = flags;
     ch.quality = quality_ind(s);
     ch.cno = cno_u1(s);

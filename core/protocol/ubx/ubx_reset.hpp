@@ -40,6 +40,12 @@ struct Reset {
   constexpr StartKind start() const noexcept {
     return nav_bbr_mask == 0 ? StartKind::kHot : nav_bbr_mask == 0xFFFF ? StartKind::kCold : StartKind::kWarm;
   }
+  /// What the navBbrMask bits keep of the battery-backed navigation data
+  /// (UBX-13003221 CFG-RST: b0 eph, b1 alm, b4 pos, b8 rtc).
+  constexpr bool keeps_ephemeris() const noexcept { return (nav_bbr_mask & 0x0001) == 0; }
+  constexpr bool keeps_almanac() const noexcept { return (nav_bbr_mask & 0x0002) == 0; }
+  constexpr bool keeps_position() const noexcept { return (nav_bbr_mask & 0x0010) == 0; }
+  constexpr bool keeps_time() const noexcept { return (nav_bbr_mask & 0x0100) == 0; }
   /// "hot", "warm", "cold" (logs).
   constexpr std::string_view start_name() const noexcept {
     switch (start()) {

@@ -1,7 +1,10 @@
 // The whole pipeline pinned, as gpsd pins its drivers: config + truth ->
 // `batch` (receiver, encoders, the emulated u-blox's message rates) ->
 // NMEA, UBX, per-epoch errors and the summary, compared byte for byte with
-// tests/golden/pipeline/<case>/expected.*. GNSSEMU_REBUILD_GOLDEN=1 rewrites
+// tests/golden/pipeline/<case>/expected.*. The same case with the snapshot
+// receiver (no navigation filter, acquisition not modelled, fixed Doppler
+// noise) is compared with <case>/snapshot/expected.*, the outputs of the
+// receiver before the filter existed. GNSSEMU_REBUILD_GOLDEN=1 rewrites
 // them (review the diff); a missing expected file is a failure.
 #include <gtest/gtest.h>
 
@@ -105,21 +108,44 @@ void expect_binary(const fs::path& expected, const std::string& got) {
                 << ", starting at byte " << start << ")";
 }
 
-class PipelineGolden : public ::testing::TestWithParam<std::string> {};
+/// The receiver as it was before acquisition and the navigation filter, as
+/// a user selects it (docs/configuration.md): snapshot least squares on raw
+/// code, satellites tracked as soon as their C/N0 allows, white Doppler noise
+/// of errors.doppler_sigma_m_s. The case's file with those keys added.
+config::Config snapshot_receiver(const fs::path& config_file) {
+  std::string text = read_file(config_file);
+  const std::string header = "\n[receiver]\n";
+  const std::size_t at = text.find(header);
+  EXPECT_NE(at, std::string::npos) << config_file << " has no [receiver] table";
+  if (at != std::string::npos) text.insert(at + header.size(), "filter = \"none\"\n");
+  text += "\n[receiver.acquisition]\nmodelled = false\n\n[signal.carrier]\ndoppler_model = \"fixed\"\n";
+  return config::parse_config(text, config_file.string(), config_file.parent_path().string());
+}
 
-TEST_P(PipelineGolden, MatchesByteForByte) {
-  const fs::path dir = golden_dir() / GetParam();
-  const config::Config cfg = config::load_config((dir / "config.toml").string());
+void run_case(const config::Config& cfg, const fs::path& dir, const fs::path& out) {
   const orbit::NavData nav = orbit::read_rinex_nav(cfg.nav_file);
   const world::TruthTrack track(read_truth_csv((dir / "truth.csv").string()));
   std::ostringstream nmea, ubx, errors, summary;
   const BatchSummary sum = run_batch(cfg, nav, track, &nmea, &errors, &ubx);
   write_summary(sum, summary);
   EXPECT_GT(sum.epochs, 0);
-  expect_text(dir / "expected.nmea", nmea.str());
-  expect_binary(dir / "expected.ubx", ubx.str());
-  expect_text(dir / "expected_errors.csv", errors.str());
-  expect_text(dir / "expected_summary.txt", summary.str());
+  if (rebuild()) fs::create_directories(out);
+  expect_text(out / "expected.nmea", nmea.str());
+  expect_binary(out / "expected.ubx", ubx.str());
+  expect_text(out / "expected_errors.csv", errors.str());
+  expect_text(out / "expected_summary.txt", summary.str());
+}
+
+class PipelineGolden : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(PipelineGolden, MatchesByteForByte) {
+  const fs::path dir = golden_dir() / GetParam();
+  run_case(config::load_config((dir / "config.toml").string()), dir, dir);
+}
+
+TEST_P(PipelineGolden, SnapshotReceiverMatchesByteForByte) {
+  const fs::path dir = golden_dir() / GetParam();
+  run_case(snapshot_receiver(dir / "config.toml"), dir, dir / "snapshot");
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, PipelineGolden, ::testing::ValuesIn(case_names()),

@@ -32,6 +32,7 @@ seed = 424242
 nominal_cn0_dbhz = 41.5
 max_pdop = 8.0
 max_channels = 12
+filter = "none"
 
 [receiver.errors]
 thermal_model = "fixed"
@@ -83,6 +84,38 @@ max_iterations = 8
 [receiver.corrections]
 ionosphere = "none"
 troposphere = "zhd_niell"
+
+[receiver.nav]
+dyn_model = "automotive"
+static_hold_thresh_m_s = 0.5
+static_hold_max_dist_m = 20
+smoothing_window_s = 100
+coast_limit_s = 5
+position_noise_m2_s = 0.05
+clock_h0_s = 9.4e-20
+clock_h_minus2_per_s = 3.8e-21
+innovation_gate_sigma = 4
+reinit_margin_m = 50
+
+[receiver.acquisition]
+start = "cold"
+modelled = false
+cold_search_s = 2.5
+aided_search_s = 0.8
+reacq_search_s = 0.2
+reacq_window_s = 120
+strong_cn0_dbhz = 42
+search_spread = 0.2
+cold_acquire_dbhz = 26
+reacq_margin_db = 2
+aided_doppler_window_hz = 800
+bit_sync_s = 0.5
+almanac_download_s = 800
+ephemeris_validity_s = 7200
+
+[receiver.limits]
+max_altitude_m = 18000
+max_speed_m_s = 515
 
 [receiver.spoof_detection]
 enabled = false
@@ -194,6 +227,15 @@ loop_bandwidth_hz = 1.0
 integration_s = 0.005
 spacing_chips = 0.1
 discriminator = "dot_product"
+
+[signal.carrier]
+enabled = false
+doppler_model = "fixed"
+pll_bandwidth_hz = 15
+fll_bandwidth_hz = 5
+integration_s = 0.01
+oscillator_sigma_rad = 0.05
+lock_break_m = 300
 
 [truth]
 bind = "0.0.0.0"

@@ -3,6 +3,7 @@
 // corrections and error models; each assertion pins "file:line: reason".
 #include <string>
 
+#include "config/device_setup.hpp"
 #include "test_helpers.hpp"
 
 namespace gnssemu::config::test {
@@ -207,6 +208,80 @@ TEST(ReceiverModelsConfig, BadValuesNameFileAndLine) {
       {"[receiver.solver]\ncode_bias_sigma_m = -1\n", "t.toml:8: receiver.solver.code_bias_sigma_m: -1"},
       {"[receiver.errors.iono_scale]\nsigma = 3\n", "t.toml:8: receiver.errors.iono_scale.sigma: 3"},
       {"[receiver.errors.iono_scale]\ntau_s = 0\n", "t.toml:8: receiver.errors.iono_scale.tau_s: 0"},
+  };
+  for (const Bad& b : cases) {
+    const std::string err = error_of(kBase + b.text);
+    EXPECT_NE(err.find(b.message), std::string::npos) << b.text << "\n got: " << err;
+  }
+}
+
+// [receiver] filter, [receiver.nav], [receiver.acquisition], [receiver.limits].
+
+TEST(ReceiverDynamicsConfig, DefaultsAreAnM8) {
+  const Config c = parse(kBase);
+  EXPECT_EQ(c.receiver.filter.type, receiver::NavFilterType::kKalman);
+  EXPECT_EQ(c.receiver.filter.dynamic_model, receiver::DynamicModel::kPortable);
+  EXPECT_EQ(c.receiver.filter.static_hold_speed_m_s, 0.0);
+  EXPECT_EQ(c.receiver.acquisition.start, receiver::StartMode::kHot);
+  EXPECT_TRUE(c.receiver.acquisition.modelled);
+  EXPECT_EQ(c.receiver.limits.max_altitude_m, 50000.0);
+  EXPECT_EQ(c.receiver.limits.max_speed_m_s, 500.0);
+  EXPECT_EQ(c.world.carrier.doppler_model, world::DopplerModel::kFll);
+}
+
+TEST(ReceiverDynamicsConfig, KeysReachTheReceiverAndTheDevice) {
+  const Config c = parse(kBase +
+                         "[receiver]\nfilter = \"none\"\n"
+                         "[receiver.nav]\ndyn_model = \"airborne2g\"\nstatic_hold_thresh_m_s = 0.3\n"
+                         "static_hold_max_dist_m = 12\n"
+                         "[receiver.acquisition]\nstart = \"warm\"\ncold_acquire_dbhz = 25\n"
+                         "[receiver.limits]\nmax_altitude_m = 18000\nmax_speed_m_s = 515\n");
+  EXPECT_EQ(c.receiver.filter.type, receiver::NavFilterType::kNone);
+  EXPECT_EQ(c.receiver.filter.dynamic_model, receiver::DynamicModel::kAirborne2g);
+  EXPECT_EQ(c.receiver.acquisition.start, receiver::StartMode::kWarm);
+  EXPECT_EQ(c.receiver.acquisition.cold_acquire_dbhz, 25.0);
+  EXPECT_EQ(c.receiver.limits.max_altitude_m, 18000.0);
+  EXPECT_EQ(c.receiver.limits.max_speed_m_s, 515.0);
+  // What CFG-NAV5 reads back after start-up (dynModel 7, cm/s, m).
+  const protocol::ubx::DeviceSetup d = device_setup(c);
+  EXPECT_EQ(d.dyn_model, 7);
+  EXPECT_EQ(d.static_hold_thresh_cm_s, 30);
+  EXPECT_EQ(d.static_hold_max_dist_m, 12);
+}
+
+TEST(ReceiverDynamicsConfig, GeodeticProfileSolvesSnapshotsUnlessTheFileSaysOtherwise) {
+  EXPECT_EQ(parse(kBase + "[receiver]\nprofile = \"geodetic\"\n").receiver.filter.type,
+            receiver::NavFilterType::kNone);
+  EXPECT_EQ(parse(kBase + "[receiver]\nprofile = \"geodetic\"\nfilter = \"kalman\"\n").receiver.filter.type,
+            receiver::NavFilterType::kKalman);
+  EXPECT_EQ(parse(kBase + "[receiver]\nprofile = \"ublox_m8\"\n").receiver.filter.type,
+            receiver::NavFilterType::kKalman);
+}
+
+TEST(ReceiverDynamicsConfig, BadValuesNameFileAndLine) {
+  const Bad cases[] = {
+      {"[receiver]\nfilter = \"ekf\"\n", "t.toml:8: receiver.filter: 'ekf' is not \"kalman\" or \"none\""},
+      {"[receiver.nav]\ndyn_model = \"car\"\n",
+       "t.toml:8: receiver.nav.dyn_model: 'car' is not one of \"portable\", \"stationary\", \"pedestrian\", "
+       "\"automotive\", \"sea\", \"airborne1g\", \"airborne2g\", \"airborne4g\", \"wrist\""},
+      {"[receiver.nav]\nstatic_hold_thresh_m_s = 3\n",
+       "t.toml:8: receiver.nav.static_hold_thresh_m_s: 3 is out of range [0, 2.55] m/s"},
+      {"[receiver.nav]\nsmoothing_window_s = 100\ncoast_limit_s = -1\n",
+       "t.toml:9: receiver.nav.coast_limit_s: -1 is out of range [0, 600] s"},
+      {"[receiver.nav]\ninnovation_gate_sigma = 0\n",
+       "t.toml:8: receiver.nav.innovation_gate_sigma: 0 is out of range (0, 100]"},
+      {"[receiver.acquisition]\nstart = \"lukewarm\"\n",
+       "t.toml:8: receiver.acquisition.start: 'lukewarm' is not one of \"hot\", \"warm\", \"cold\""},
+      {"[receiver.acquisition]\nmodelled = 1\n", "t.toml:8: receiver.acquisition.modelled:"},
+      {"[receiver.acquisition]\ncold_search_s = 0\n",
+       "t.toml:8: receiver.acquisition.cold_search_s: 0 is out of range (0, 600] s"},
+      {"[receiver.acquisition]\nsearch_spread = 1\n",
+       "t.toml:8: receiver.acquisition.search_spread: 1 is out of range [0, 1)"},
+      {"[receiver.limits]\nmax_altitude_m = 0\n",
+       "t.toml:8: receiver.limits.max_altitude_m: 0 is out of range (0, 10000000] m"},
+      {"[receiver.limits]\nmax_speed_m_s = nan\n",
+       "t.toml:8: receiver.limits.max_speed_m_s: must be a finite number, got nan"},
+      {"[receiver.limits]\nmax_altitude_km = 50\n", "t.toml:8: unknown key 'receiver.limits.max_altitude_km'"},
   };
   for (const Bad& b : cases) {
     const std::string err = error_of(kBase + b.text);

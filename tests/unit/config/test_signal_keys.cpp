@@ -96,6 +96,13 @@ TEST(SignalConfig, BadValuesNameFileAndLine) {
       {"[signal.antenna]\nzenith_gain_dbi = -2\nhorizon_gain_dbi = 1\n",
        "t.toml:9: signal.antenna: horizon_gain_dbi 1 exceeds zenith_gain_dbi -2"},
       {"[signal.dll]\nspacing_chips = 1.5\n", "t.toml:8: signal.dll.spacing_chips: 1.5 is out of range (0, 1] chips"},
+      {"[signal.carrier]\ndoppler_model = \"pll\"\n",
+       "t.toml:8: signal.carrier.doppler_model: 'pll' is not \"fll\" or \"fixed\""},
+      {"[signal.carrier]\npll_bandwidth_hz = 0\n",
+       "t.toml:8: signal.carrier.pll_bandwidth_hz: 0 is out of range (0, 100] Hz"},
+      {"[signal.carrier]\nenabled = true\nintegration_s = 0.05\n",
+       "t.toml:9: signal.carrier.integration_s: 0.05 is out of range (0, 0.02] s"},
+      {"[signal.carrier]\nlock_break_m = -1\n", "t.toml:8: signal.carrier.lock_break_m: -1 is out of range"},
   };
   for (const Bad& b : cases) {
     const std::string err = error_of(kBase + b.text);

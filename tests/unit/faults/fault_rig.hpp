@@ -3,6 +3,7 @@
 #include <cmath>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "core/faults/fault_event.hpp"
 #include "core/geo/geodesy.hpp"
@@ -18,15 +19,23 @@ inline const orbit::EphemerisStore& test_store() {
   return store;
 }
 
+/// The receiver runs kWarmUp_s before the test's time 0 (acquisition and
+/// the filter settle); event times count from the test's time 0.
 struct Rig {
+  static constexpr double kWarmUp_s = 60.0;
   explicit Rig(std::span<const FaultEvent> events = {}, bool with_stage = true)
       : t0(test_store().first_valid() + 8.0 * 3600.0), rx(test_store(), pipeline::PipelineConfig{}) {
     truth.pos_m = geo::ecef_from_lla(site);
     truth.valid = true;
-    if (with_stage) rx.set_faults(events);
+    if (with_stage) {
+      std::vector<FaultEvent> shifted(events.begin(), events.end());
+      for (FaultEvent& e : shifted) e.start_s += kWarmUp_s;
+      rx.set_faults(shifted);
+    }
+    for (int k = 0; k < static_cast<int>(kWarmUp_s); ++k) step(k - kWarmUp_s);
   }
   const receiver::Fix& step(double s) {
-    truth.t = t0 + s;
+    truth.t = t0 + kWarmUp_s + s;
     return rx.step(truth.t, truth);
   }
   Enu error(const receiver::Fix& f) const {

@@ -181,6 +181,20 @@ TEST(NmeaEncoder, TwoDimensionalFix) {
   EXPECT_EQ(parse_sentence(lines[0]).fields[11], "A");
 }
 
+// The navigation filter coasting: u-blox's dead-reckoning flags.
+TEST(NmeaEncoder, DeadReckoningFix) {
+  receiver::Fix f = sample_fix_3d();
+  f.type = receiver::FixType::kDeadReckoning;
+  const auto lines = encode(f, all_sentences(NmeaVersion::k411));
+  expect_well_formed(lines);
+  const Sentence rmc = parse_sentence(lines[0]);
+  EXPECT_EQ(rmc.fields[1], "A");
+  EXPECT_FALSE(rmc.fields[2].empty());  // the extrapolated position
+  EXPECT_EQ(rmc.fields[11], "E");       // posMode estimated
+  EXPECT_EQ(parse_sentence(lines[2]).fields[5], "6");  // GGA quality: estimated (dead reckoning)
+  EXPECT_EQ(parse_sentence(lines[3]).fields[1], "2");  // GSA navMode
+}
+
 // 2D fix from 3 satellites: VDOP/PDOP unavailable (99.99 as u-blox), HDOP
 // from the height-constrained geometry; GGA and GSA print the same HDOP.
 TEST(NmeaEncoder, TwoDimensionalFixDops) {

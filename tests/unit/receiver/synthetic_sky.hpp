@@ -20,6 +20,11 @@ using pipeline::PipelineConfig;
 
 inline constexpr double kGpsSqrtA_sqrtm = 5153.7;  // A = 26 561.7 km (GPS nominal)
 
+/// The epoch and site the acquisition, navigation and carrier tests share:
+/// a nominal constellation's toe, a mid-latitude antenna.
+inline const time::GpsTime kToe(2190, 300000.0);
+inline const Lla kSite{45.0 * kDegToRad, 7.0 * kDegToRad, 300.0};
+
 inline orbit::Ephemeris base_eph(int prn, const time::GpsTime& toe) {
   orbit::Ephemeris e;
   e.prn = prn;
@@ -86,10 +91,23 @@ inline Ecef sat_position_at(const Ecef& rx, const Lla& rx_lla, double az_rad, do
   return Ecef(rx + los * rho);
 }
 
+/// The snapshot receiver: the solver alone every epoch on raw code,
+/// satellites used as soon as their C/N0 allows (no search, no ephemeris
+/// download), white Doppler noise of a fixed sigma. The tests of the world's
+/// models and of the solver use it; acquisition, smoothing and the
+/// navigation filter have tests of their own.
+inline PipelineConfig snapshot(PipelineConfig c = {}) {
+  c.receiver.filter.type = NavFilterType::kNone;
+  c.receiver.acquisition.modelled = false;
+  c.world.carrier.doppler_model = world::DopplerModel::kFixed;
+  return c;
+}
+
 /// The pre-atmosphere world: no atmosphere, no receiver corrections, white
 /// code noise of a fixed sigma (errors.thermal_sigma_m) and elevation-only
-/// solver weights. The error is then exactly GM orbit/clock + white noise.
-inline PipelineConfig gm_white_world(PipelineConfig c = {}) {
+/// solver weights, seen by the snapshot receiver. The error is then exactly
+/// GM orbit/clock + white noise.
+inline PipelineConfig gm_white_world(PipelineConfig c = snapshot()) {
   c.world.atmosphere.ionosphere.enabled = false;
   c.world.atmosphere.troposphere.enabled = false;
   c.world.atmosphere.gases = false;
@@ -111,8 +129,9 @@ inline world::Truth truth_at(const Ecef& pos, const time::GpsTime& t, const Ecef
 }
 
 /// Deterministic world (no random processes, no clock noise) with the
-/// atmosphere of c, computed every epoch (no slow-term cache).
-inline PipelineConfig noiseless(PipelineConfig c = {}) {
+/// atmosphere of c, computed every epoch (no slow-term cache), seen by the
+/// snapshot receiver.
+inline PipelineConfig noiseless(PipelineConfig c = snapshot()) {
   c.world.errors.orbit_clock.sigma_m = 0.0;
   c.world.errors.thermal_model = world::ThermalModel::kFixed;
   c.world.errors.thermal_sigma_m = 0.0;

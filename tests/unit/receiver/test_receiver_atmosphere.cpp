@@ -119,7 +119,7 @@ TEST(ReceiverAtmosphere, CorrectionsRemoveMostOfTheDelay) {
 
 TEST(ReceiverAtmosphere, TrackingThresholdsAndHysteresis) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  PipelineConfig cfg;
+  PipelineConfig cfg = test::snapshot();
   cfg.receiver.tracking.acquire_dbhz = 44.0;
   cfg.receiver.tracking.lose_dbhz = 20.0;
   cfg.receiver.elevation_mask_rad = 0.0;
@@ -153,11 +153,11 @@ TEST(ReceiverAtmosphere, TrackingThresholdsAndHysteresis) {
 TEST(ReceiverAtmosphere, NoiseRiseDropsLowSatellitesThenEverything) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
   const Ecef pos = geo::ecef_from_lla(kSite);
-  PipelineConfig suburban_low;
+  PipelineConfig suburban_low = test::snapshot();
   suburban_low.world.signal.link.environment_noise_rise_db = 15.0;
-  PipelineConfig industrial;
+  PipelineConfig industrial = test::snapshot();
   industrial.world.signal.link.environment_noise_rise_db = signal::environment_noise_rise_db("industrial");
-  Pipeline a(store, PipelineConfig{}), b(store, suburban_low), c(store, industrial);
+  Pipeline a(store, test::snapshot()), b(store, suburban_low), c(store, industrial);
   for (int k = 0; k < 10; ++k) {
     const time::GpsTime t = kToe + 60.0 * k;
     const Fix& fa = a.step(t, truth_at(pos, t));
@@ -177,7 +177,7 @@ TEST(ReceiverAtmosphere, NoiseRiseDropsLowSatellitesThenEverything) {
     EXPECT_EQ(fc.num_visible, fa.num_visible);
     EXPECT_EQ(fc.dop.pdop, Dop::kNoDop);
     // The fix carries the world's noise floor (MON-HW jamInd / AGC read it).
-    EXPECT_EQ(fa.noise_rise_db, PipelineConfig{}.world.signal.link.environment_noise_rise_db);
+    EXPECT_EQ(fa.noise_rise_db, test::snapshot().world.signal.link.environment_noise_rise_db);
     EXPECT_EQ(fb.noise_rise_db, 15.0);
     EXPECT_EQ(fc.noise_rise_db, 20.0);
   }
@@ -193,7 +193,7 @@ TEST(ReceiverAtmosphere, ModelErrorVarianceWidensTheAccuracyOnlyWhenCorrecting) 
   // geometry re-weighted, its hAcc/vAcc grow; without corrections nothing changes.
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
   const Ecef pos = geo::ecef_from_lla(kSite);
-  PipelineConfig base;  // default world and corrections
+  PipelineConfig base = test::snapshot();  // default world and corrections
   ASSERT_NE(base.receiver.solver.iono, atmosphere::IonoCorrection::kNone);
   ASSERT_NE(base.receiver.solver.tropo, atmosphere::TropoCorrection::kNone);
   PipelineConfig wide = base;
@@ -263,7 +263,7 @@ TEST(ReceiverAtmosphere, CacheRefreshesOnScheduleWithSmallError) {
 
 TEST(ReceiverAtmosphere, DeterministicWithEveryStageOn) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  PipelineConfig cfg;
+  PipelineConfig cfg = test::snapshot();
   cfg.world.atmosphere.clouds_rain.layers[0] = atmosphere::cloud_preset("thunderstorm");
   cfg.world.atmosphere.clouds_rain.layers[1] = atmosphere::cloud_preset("fog");
   cfg.world.atmosphere.clouds_rain.layer_count = 2;
@@ -312,7 +312,7 @@ TEST(ReceiverAtmosphere, RainAndThunderstormCostDecibelsNotTracking) {
 TEST(ReceiverAtmosphere, NoAllocationWithEveryStageAndTheCache) {
   const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
   const orbit::EphemerisStore store(nav.ephemerides);
-  PipelineConfig cfg;
+  PipelineConfig cfg = test::snapshot();
   cfg.world.atmosphere.clouds_rain.layers[0] = atmosphere::cloud_preset("cumulus");
   cfg.world.atmosphere.clouds_rain.layer_count = 1;
   cfg.world.atmosphere.clouds_rain.rain.rate_mm_h = 20.0;

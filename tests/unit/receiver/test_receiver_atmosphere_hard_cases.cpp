@@ -63,7 +63,9 @@ TEST_P(AtmosphereHardCases, NoNanNoConfidentWrongFix) {
   const Case& c = GetParam();
   const time::GpsTime t0 = time::GpsTime::from_calendar(c.when);
   const orbit::EphemerisStore store(test::nominal_constellation(t0, 5));
-  PipelineConfig cfg;
+  PipelineConfig cfg = test::snapshot();
+  // Airborne: the portable model's sanity limit (12 km MSL) would void the aircraft's fix.
+  cfg.receiver.filter.dynamic_model = DynamicModel::kAirborne1g;
   c.tweak(cfg);
   Pipeline rx(store, cfg);
   const Ecef pos = geo::ecef_from_lla(c.lla);
@@ -142,7 +144,7 @@ TEST(AtmosphereHardCases, SatellitesAtTheMaskAndAtZenith) {
     ephs.push_back(test::placed_eph(i + 1, t, t - 0.07, sat));
   }
   const orbit::EphemerisStore store(ephs);
-  PipelineConfig cfg;
+  PipelineConfig cfg = test::snapshot();
   cfg.receiver.elevation_mask_rad = 9.99 * kDegToRad;  // placement is exact to ~0.001 deg
   Pipeline rx(store, cfg);
   Truth tr;

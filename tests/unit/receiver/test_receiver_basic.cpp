@@ -85,7 +85,7 @@ TEST(ReceiverBasic, RealBroadcastEphemerisErrorsOffWithin1mm) {
 TEST(ReceiverBasic, DefaultErrorsGiveMetreLevelFixWithRealData) {
   const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
   const orbit::EphemerisStore store(nav.ephemerides);
-  Pipeline rx(store, PipelineConfig{});
+  Pipeline rx(store, test::snapshot());
   const Ecef larm(4549397.1706, 1874003.1392, 4045167.6109);
   const time::GpsTime t0 = time::GpsTime::from_calendar({2022, 1, 1, 6, 0, 0.0});
   double worst_m = 0.0;
@@ -107,7 +107,7 @@ TEST(ReceiverBasic, DefaultErrorsGiveMetreLevelFixWithRealData) {
 
 TEST(ReceiverBasic, SameSeedIdenticalDifferentSeedDiffers) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  PipelineConfig cfg;
+  PipelineConfig cfg = test::snapshot();
   cfg.world.seed = 42;
   Pipeline a(store, cfg), b(store, cfg);
   cfg.world.seed = 43;
@@ -135,7 +135,7 @@ TEST(ReceiverBasic, SameSeedIdenticalDifferentSeedDiffers) {
 
 TEST(ReceiverBasic, NoiseOfOneSatelliteDoesNotDependOnOthersVisible) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  PipelineConfig low, high;
+  PipelineConfig low = test::snapshot(), high = test::snapshot();
   low.world.seed = high.world.seed = 7;
   high.receiver.elevation_mask_rad = 35.0 * kDegToRad;
   Pipeline a(store, low), b(store, high);
@@ -161,7 +161,7 @@ TEST(ReceiverBasic, NoiseOfOneSatelliteDoesNotDependOnOthersVisible) {
 
 TEST(ReceiverBasic, NoTruthGivesNoFixAndKeepsTime) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  Pipeline rx(store, PipelineConfig{});
+  Pipeline rx(store, test::snapshot());
   const Lla lla{0.5, 0.3, 100.0};
   Truth lost;  // valid == false
   const Fix& f0 = rx.step(kToe, lost);
@@ -189,7 +189,7 @@ TEST(ReceiverBasic, NoTruthGivesNoFixAndKeepsTime) {
 
 TEST(ReceiverBasic, LeapSecondsFromTableOrOverride) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  Pipeline rx(store, PipelineConfig{});
+  Pipeline rx(store, test::snapshot());
   Truth lost;
   EXPECT_EQ(rx.step(kToe, lost).leap_seconds, 18);
   const time::GpsTime t2010 = time::GpsTime::from_calendar({2010, 6, 1, 0, 0, 0.0});
@@ -201,7 +201,7 @@ TEST(ReceiverBasic, LeapSecondsFromTableOrOverride) {
 TEST(ReceiverBasic, InvalidConfigThrows) {
   const orbit::EphemerisStore store;
   auto bad = [&](auto mutate) {
-    PipelineConfig c;
+    PipelineConfig c = test::snapshot();
     mutate(c);
     EXPECT_THROW(Pipeline(store, c), Error);
   };
@@ -216,9 +216,9 @@ TEST(ReceiverBasic, InvalidConfigThrows) {
   bad([](PipelineConfig& c) { c.receiver.solver.sigma_a_m = 0.0, c.receiver.solver.sigma_b_m = 0.0; });
   bad([](PipelineConfig& c) { c.receiver.solver.residual_test_pfa = 0.7; });
   bad([](PipelineConfig& c) { c.world.clock.bias_s = 2.0; });
-  EXPECT_NO_THROW(Pipeline(store, PipelineConfig{}));
+  EXPECT_NO_THROW(Pipeline(store, test::snapshot()));
   // An empty store is not an error: no satellites, no fix.
-  Pipeline rx(store, PipelineConfig{});
+  Pipeline rx(store, test::snapshot());
   const Fix& f = rx.step(kToe, static_truth({0.1, 0.2, 0.0}, kToe));
   EXPECT_EQ(f.type, FixType::kNone);
   EXPECT_TRUE(f.time_valid);

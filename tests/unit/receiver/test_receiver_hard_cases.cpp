@@ -33,8 +33,11 @@ class HardSites : public ::testing::TestWithParam<Site> {};
 TEST_P(HardSites, ExactWithErrorsOffAndSaneWithDefaults) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
   const Ecef pos = geo::ecef_from_lla(GetParam().lla);
-  Pipeline exact(store, errors_off_config());
-  Pipeline noisy(store, PipelineConfig{});
+  // Airborne: the portable model's sanity limit (12 km MSL) would void the aircraft's fix.
+  PipelineConfig exact_cfg = errors_off_config(), noisy_cfg = test::snapshot();
+  exact_cfg.receiver.filter.dynamic_model = noisy_cfg.receiver.filter.dynamic_model = DynamicModel::kAirborne1g;
+  Pipeline exact(store, exact_cfg);
+  Pipeline noisy(store, noisy_cfg);
   for (int k = 0; k < 24; ++k) {
     const time::GpsTime t = kToe + 600.0 * k - 7200.0;
     const Fix& f = exact.step(t, truth_at(pos, t));
@@ -98,7 +101,7 @@ const Lla kSite{40.0 * kDegToRad, -3.7 * kDegToRad, 650.0};
 
 TEST(ReceiverHardCases, PlacedSatellitesAppearWhereRequested) {
   const orbit::EphemerisStore store(placed(kSite, kToe, {{30.0, 60.0}, {200.0, 10.0}}));
-  Pipeline rx(store, PipelineConfig{});
+  Pipeline rx(store, test::snapshot());
   const Fix& f = rx.step(kToe, truth_at(geo::ecef_from_lla(kSite), kToe));
   ASSERT_EQ(f.num_sats, 2);
   EXPECT_NEAR(f.sats[0].az_rad * kRadToDeg, 30.0, 0.05);
@@ -111,7 +114,7 @@ TEST(ReceiverHardCases, PlacedSatellitesAppearWhereRequested) {
 TEST(ReceiverHardCases, FourSatellitesInOneSkyPatchGiveNoFix) {
   const orbit::EphemerisStore store(placed(kSite, kToe, {{10.0, 45.0}, {11.0, 45.5}, {12.0, 44.5}, {13.0, 45.2}}));
   for (uint64_t seed = 1; seed <= 20; ++seed) {
-    PipelineConfig cfg;
+    PipelineConfig cfg = test::snapshot();
     cfg.world.seed = seed;
     Pipeline rx(store, cfg);
     const Ecef pos = geo::ecef_from_lla(kSite);
@@ -131,7 +134,7 @@ TEST(ReceiverHardCases, PoorGeometryIsRejectedOrHonestAboutIt) {
   int fixes_default = 0, fixes_lenient = 0;
   double worst_ratio = 0.0, pdop = 0.0;
   for (uint64_t seed = 1; seed <= 100; ++seed) {
-    PipelineConfig cfg;
+    PipelineConfig cfg = test::snapshot();
     cfg.world.seed = seed;
     Pipeline rx(store, cfg);
     const Fix& f = rx.step(kToe, truth_at(pos, kToe));
@@ -191,7 +194,7 @@ TEST(ReceiverHardCases, ThreeSatellitesGive2DOnlyAfterA3DFix) {
   }
 
   // 2D with errors: horizontal error stays metre-level, height stays held.
-  Pipeline noisy(store, PipelineConfig{});
+  Pipeline noisy(store, test::snapshot());
   ASSERT_EQ(noisy.step(kToe, truth_at(rx_pos, kToe)).type, FixType::k3D);
   const double held_h = noisy.last_fix().lla.height_m;
   const Fix& f2 = noisy.step(kToe + 30.0, truth_at(rx_pos, kToe + 30.0));
@@ -242,7 +245,7 @@ TEST(ReceiverHardCases, TwoDFixDopFromSatelliteGeometryOnly) {
 
 TEST(ReceiverHardCases, MaskNearZenithGivesNoFix) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  PipelineConfig cfg;
+  PipelineConfig cfg = test::snapshot();
   cfg.receiver.elevation_mask_rad = kPi / 2.0 - 1e-9;
   Pipeline rx(store, cfg);
   const Fix& f = rx.step(kToe, truth_at(geo::ecef_from_lla(kSite), kToe));
@@ -255,7 +258,7 @@ TEST(ReceiverHardCases, MaskNearZenithGivesNoFix) {
 
 TEST(ReceiverHardCases, ChannelLimitKeepsHighestSatellites) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  PipelineConfig cfg;
+  PipelineConfig cfg = test::snapshot();
   cfg.receiver.max_channels = 5;
   Pipeline rx(store, cfg);
   const Fix& f = rx.step(kToe, truth_at(geo::ecef_from_lla(kSite), kToe));

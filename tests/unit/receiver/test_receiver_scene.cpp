@@ -11,6 +11,7 @@
 #include "core/scene/footprints.hpp"
 #include "core/scene/mesh.hpp"
 #include "core/scene/scene.hpp"
+#include "synthetic_sky.hpp"
 #include "tests/support/alloc_counter.hpp"
 
 namespace gnssemu::receiver {
@@ -52,8 +53,8 @@ struct ReceiverScene : ::testing::Test {
 
 TEST_F(ReceiverScene, EmptySceneIsIdenticalToNoScene) {
   const scene::Scene empty(scene::MeshBuilder("empty", {}).finish());  // an empty mesh file is an error
-  Pipeline plain(store, PipelineConfig{});
-  Pipeline with(store, PipelineConfig{});
+  Pipeline plain(store, test::snapshot());
+  Pipeline with(store, test::snapshot());
   with.world().attach_scene({&empty, kOrigin, scene::SearchConfig{}});
   for (int k = 0; k < 120; ++k) {
     const Truth tr = truth_at(Enu(2.0 * k, -1.0 * k, 1.5), k);
@@ -74,7 +75,7 @@ TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
   const scene::Scene canyon(street_canyon());
   // Fixed code noise, so the only pseudorange difference is the path (the
   // DLL model's noise follows C/N0, which the reflection loss lowers).
-  PipelineConfig cfg;
+  PipelineConfig cfg = test::snapshot();
   cfg.world.errors.thermal_model = world::ThermalModel::kFixed;
   Pipeline plain(store, cfg);
   Pipeline with(store, cfg);
@@ -119,7 +120,7 @@ TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
 // epoch; an excluded satellite is tracked but not used (GSA, NAV-SAT).
 TEST_F(ReceiverScene, FaultExclusionDropsBiasedSatellitesFromTheSolution) {
   const scene::Scene canyon(street_canyon());
-  Pipeline rx(store, PipelineConfig{});
+  Pipeline rx(store, test::snapshot());
   rx.world().attach_scene({&canyon, kOrigin, scene::SearchConfig{}});
   int fixes = 0, with_exclusion = 0, excluded = 0, excluded_nlos = 0;
   for (int k = 0; k < 200; ++k) {
@@ -153,7 +154,7 @@ TEST_F(ReceiverScene, FaultExclusionDropsBiasedSatellitesFromTheSolution) {
 
 TEST_F(ReceiverScene, InsideClosedBuildingNoSatelliteNoFix) {
   const scene::Scene box(scene::load_mesh(kData + "/scenes/closed_box.obj"));
-  Pipeline rx(store, PipelineConfig{});
+  Pipeline rx(store, test::snapshot());
   rx.world().attach_scene({&box, kOrigin, scene::SearchConfig{}});
   for (int k = 0; k < 5; ++k) {
     const Truth tr = truth_at(Enu(1.0, 2.0, 1.5), k);
@@ -176,7 +177,7 @@ TEST_F(ReceiverScene, StepWithSceneDoesNotAllocate) {
   const scene::Scene canyon(street_canyon());
   scene::SearchConfig search;
   search.reuse_distance_m = 1.0;
-  Pipeline rx(store, PipelineConfig{});
+  Pipeline rx(store, test::snapshot());
   rx.world().attach_scene({&canyon, kOrigin, search});
   rx.step(t0, truth_at(Enu(3.0, -100.0, 1.5), 0.0));
   const long before = support::allocation_count();

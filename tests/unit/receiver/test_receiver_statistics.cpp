@@ -81,7 +81,7 @@ TEST(ReceiverStatistics, EnsembleErrorMatchesSigmaUereTimesDop) {
 
 TEST(ReceiverStatistics, DefaultSolverAccuracyIsConservativeButTight) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  const Ensemble e = run_ensemble(store, PipelineConfig{}, 400);
+  const Ensemble e = run_ensemble(store, test::snapshot(), 400);
   ASSERT_GE(e.fixes, 396);
   // The default solver assumes sigma^2 = 1.2^2 + 0.3^2 / sin^2(el) + 150^2 10^(-C/N0/10),
   // at least the default world's variance (GM 1.2 m, DLL noise, atmosphere
@@ -137,7 +137,7 @@ TEST(ReceiverStatistics, ErrorIsTimeCorrelatedNotWhite) {
 
 TEST(ReceiverStatistics, MovingReceiverVelocityWithinSigma) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
-  Pipeline rx(store, PipelineConfig{});
+  Pipeline rx(store, test::snapshot());
   const Ecef p0 = geo::ecef_from_lla(kSite);
   const Vec3 v_ecef = geo::enu_to_ecef_vector(Enu(100.0, 0.0, 0.0), kSite.lat_rad, kSite.lon_rad);
   double sum_err2 = 0.0, sum_acc2 = 0.0;

@@ -396,6 +396,43 @@ TEST(UbxDevice, StatusCountsTtffAndUptime) {
   EXPECT_EQ(status(40.0, test::sample_fix()).ttff, 27500u);
 }
 
+TEST(UbxDevice, ResetKeepsWhatNavBbrMaskKeeps) {
+  // CFG-RST navBbrMask (UBX-13003221): b0 eph, b1 alm, b4 pos, b8 rtc.
+  const Reset hot{0x0000, ResetMode::kGnssOnly}, warm{0x0001, ResetMode::kGnssOnly},
+      cold{0xFFFF, ResetMode::kHardware}, no_pos{0x0010, ResetMode::kSoftware};
+  EXPECT_TRUE(hot.keeps_ephemeris() && hot.keeps_almanac() && hot.keeps_position() && hot.keeps_time());
+  EXPECT_FALSE(warm.keeps_ephemeris());
+  EXPECT_TRUE(warm.keeps_almanac() && warm.keeps_position() && warm.keeps_time());
+  EXPECT_FALSE(cold.keeps_ephemeris() || cold.keeps_almanac() || cold.keeps_position() || cold.keeps_time());
+  EXPECT_TRUE(no_pos.keeps_ephemeris() && no_pos.keeps_time());
+  EXPECT_FALSE(no_pos.keeps_position());
+  EXPECT_EQ(no_pos.start(), StartKind::kWarm);
+}
+
+TEST(UbxDevice, StartsWithTheReceiversNav5) {
+  // The configured dynamic model and static hold, read back by a CFG-NAV5 poll.
+  DeviceSetup setup;
+  setup.dyn_model = 4;
+  setup.static_hold_thresh_cm_s = 50;
+  setup.static_hold_max_dist_m = 20;
+  Device r(setup);
+  EXPECT_EQ(r.config().nav5.dynModel, 4);
+  EXPECT_EQ(r.saved().nav5.dynModel, 4);
+  EXPECT_EQ(r.config().nav5.staticHoldThresh, 50);
+  EXPECT_EQ(r.config().nav5.staticHoldMaxDist, 20);
+  Host h(r);
+  const std::string poll = h.send(msg::kCfgNav5, {});
+  EXPECT_EQ(poll.substr(0, 17), "B5 62 06 24 24 00");
+  EXPECT_EQ(poll.substr(24, 2), "04");  // payload byte 2: dynModel
+  // A host's change is reported so the receiver can follow it.
+  std::vector<std::uint8_t> nav5(36, 0);
+  nav5[0] = 0x01;  // mask: dyn
+  nav5[2] = 7;     // airborne < 2 g
+  EXPECT_EQ(h.send(msg::kCfgNav5, nav5), kAckNav5);
+  EXPECT_TRUE(h.last().nav_config_changed);
+  EXPECT_EQ(r.config().nav5.dynModel, 7);
+}
+
 TEST(UbxDevice, Pubx40SetsNmeaRatesPerPort) {
   Device r({});
   Host h(r);

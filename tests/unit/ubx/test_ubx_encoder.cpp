@@ -209,6 +209,46 @@ TEST(UbxEncoder, NavSvinfoChipGenM8AndChannels) {
   EXPECT_EQ(test::i4(p, 8 + 12 * 0 + 8), std::lround(f.sats[0].residual_m * 100));
 }
 
+TEST(UbxEncoder, EphemerisAndSmoothingFlagsFollowTheReceiver) {
+  receiver::Fix f = sample_fix();
+  f.sats[0].ephemeris = false;  // PRN 3: tracked, its ephemeris still downloading
+  f.sats[2].smoothed = true;    // carrier-smoothed pseudorange
+  const UbxEncoder enc;
+  std::string sat, svinfo;
+  enc.nav_sat(f, sat);
+  enc.nav_svinfo(f, svinfo);
+  const auto sat_frames = test::split_frames(sat), svinfo_frames = test::split_frames(svinfo);
+  ASSERT_EQ(sat_frames.size(), 1u);
+  ASSERT_EQ(svinfo_frames.size(), 1u);
+  const auto& p = sat_frames[0].payload;
+  const std::uint32_t no_eph = test::u4(p, 8 + 8), smoothed = test::u4(p, 8 + 24 + 8);
+  EXPECT_EQ((no_eph >> 8) & 7, 0u);   // orbitSource: none
+  EXPECT_EQ((no_eph >> 11) & 1, 0u);  // ephAvail
+  EXPECT_EQ((no_eph >> 12) & 1, 1u);  // almAvail
+  EXPECT_EQ((smoothed >> 7) & 1, 1u);
+  EXPECT_EQ((test::u4(p, 8 + 12 + 8) >> 7) & 1, 0u);
+  const auto& q = svinfo_frames[0].payload;
+  EXPECT_EQ(q[8 + 2] & 0x2C, 0x24);             // orbitAvail + orbitAlm, no orbitEph
+  EXPECT_EQ(q[8 + 24 + 2] & 0x80, 0x80);        // smoothed
+}
+
+TEST(UbxEncoder, DeadReckoningIsFixType1WithoutGnssFixOk) {
+  receiver::Fix f = sample_fix();
+  f.type = receiver::FixType::kDeadReckoning;
+  const UbxEncoder enc;
+  std::string pvt, status;
+  enc.nav_pvt(f, pvt);
+  enc.nav_status(f, EpochInfo{}, status);
+  const auto pf = test::split_frames(pvt), sf = test::split_frames(status);
+  ASSERT_EQ(pf.size(), 1u);
+  ASSERT_EQ(sf.size(), 1u);
+  EXPECT_EQ(pf[0].payload[20], 1);         // fixType: dead reckoning only
+  EXPECT_EQ(pf[0].payload[21] & 1, 0);     // gnssFixOK not set
+  EXPECT_NE(test::i4(pf[0].payload, 28), 0);  // the extrapolated latitude is reported
+  EXPECT_EQ(sf[0].payload[4], 1);          // gpsFix
+  EXPECT_EQ(sf[0].payload[5] & 1, 0);      // gpsFixOk
+}
+
 TEST(UbxEncoder, NoFixIsFlaggedNotFaked) {
   receiver::Fix f = sample_fix();
   f.type = receiver::FixType::kNone;
