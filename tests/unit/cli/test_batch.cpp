@@ -27,15 +27,6 @@ namespace {
 constexpr int kWeek = 2190;
 constexpr double kTow0 = 522000.0;
 
-std::string static_truth(double duration_s) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf,
-                "gps_week,tow_s,lat_deg,lon_deg,height_m\n"
-                "%d,%.1f,48.8738,2.2950,100.0\n%d,%.1f,48.8738,2.2950,100.0\n",
-                kWeek, kTow0, kWeek, kTow0 + duration_s);
-  return buf;
-}
-
 /// East at speed_m_s along the parallel, samples every step_s, ECEF with ENU velocity.
 std::string moving_truth(double duration_s, double step_s, double speed_m_s) {
   std::ostringstream s;

@@ -14,15 +14,6 @@ using namespace gnssemu::cli::test;
 
 namespace {
 
-std::string static_truth(double duration_s) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf,
-                "gps_week,tow_s,lat_deg,lon_deg,height_m\n"
-                "2190,522000.0,48.8738,2.2950,100.0\n2190,%.1f,48.8738,2.2950,100.0\n",
-                522000.0 + duration_s);
-  return buf;
-}
-
 double col(const Csv& csv, std::size_t row, const std::string& name) {
   const std::string& v = csv.rows.at(row).at(static_cast<std::size_t>(csv.col(name)));
   return v.empty() ? NAN : std::stod(v);
