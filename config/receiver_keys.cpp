@@ -262,6 +262,28 @@ constexpr Field<OperationalLimits> kLimitsFields[] = {
 };
 constexpr Section<OperationalLimits> kLimits{kLimitsFields};
 
+// --- [receiver.spoof_detection] -------------------------------------------
+
+using receiver::SpoofDetectionConfig;
+using Sd = receiver::SpoofDetectionRanges;
+constexpr Field<SpoofDetectionConfig> kSpoofDetectionFields[] = {
+    boolean<&SpoofDetectionConfig::enabled>("enabled", "false: NAV-STATUS spoofDetState 0 (deactivated)"),
+    number<&SpoofDetectionConfig::cn0_jump_db>("cn0_jump_db", Sd::cn0_jump_db,
+                                               "C/N0 rise of one satellite between epochs that counts as a jump"),
+    integer<&SpoofDetectionConfig::cn0_jump_sats>("cn0_jump_sats", Sd::cn0_jump_sats,
+                                                  "satellites that must jump in the same epoch"),
+    number<&SpoofDetectionConfig::clock_jump_m>("clock_jump_m", Sd::clock_jump_m,
+                                                "clock bias change beyond the drift prediction that counts as a jump"),
+    number<&SpoofDetectionConfig::uniform_std_db>(
+        "uniform_std_db", Sd::uniform_std_db,
+        "C/N0 spread below which the sky looks like one transmitter (satellites spanning >= 30 deg elevation)"),
+    integer<&SpoofDetectionConfig::uniform_min_sats>("uniform_min_sats", Sd::uniform_min_sats,
+                                                     "tracked satellites the uniformity test needs"),
+    number<&SpoofDetectionConfig::hold_s>("hold_s", Sd::hold_s, "an indication is reported this long"),
+};
+constexpr Section<SpoofDetectionConfig> kSpoofDetection{
+    kSpoofDetectionFields, [](const SpoofDetectionConfig& c) { receiver::validate(c); }};
+
 // --- [receiver] ------------------------------------------------------------
 
 // Any 64-bit seed is valid; TOML integers stop at 2^63 - 1.
@@ -340,6 +362,8 @@ constexpr Field<Config> kReceiverFields[] = {
     table<kAcquisition, &Config::receiver, &ReceiverConfig::acquisition>("acquisition",
                                                                          "search, reacquisition, ephemeris download"),
     table<kLimits, &Config::receiver, &ReceiverConfig::limits>("limits", "operational limits"),
+    table<kSpoofDetection, &Config::receiver, &ReceiverConfig::spoof_detection>(
+        "spoof_detection", "the receiver's spoofing indicators (NAV-STATUS spoofDetState, docs/faults.md)"),
 };
 
 }  // namespace

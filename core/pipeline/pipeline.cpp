@@ -11,6 +11,14 @@ Pipeline::Pipeline(const orbit::EphemerisStore& store, const PipelineConfig& con
   receiver_.set_klobuchar(broadcast.klobuchar);
   if (broadcast.leap_seconds) receiver_.set_leap_seconds(*broadcast.leap_seconds);
   if (scene.scene != nullptr) world_.attach_scene(scene);
+  fault_context_.seed = config.world.seed;
+  fault_context_.link = config.world.signal.link;
+  fault_context_.dll = config.world.signal.dll;
+  fault_context_.carrier = config.world.carrier;
+}
+
+void Pipeline::set_faults(std::span<const faults::FaultEvent> events) {
+  faults_ = std::make_unique<faults::FaultStage>(fault_context_, events);
 }
 
 }  // namespace gnssemu::pipeline

@@ -1,11 +1,14 @@
 #pragma once
 // Pipeline: the emulated receiver in its world, as every caller runs it —
 // vehicle truth in, the receiver's Fix out. The world makes the observables
-// at the antenna; the receiver processes them (faults will edit the
-// observables in between). The one place the two are put together, with
+// at the antenna, the fault stage (when there is one) edits them, and the
+// receiver processes them. The one place these are put together, with
 // what the navigation message broadcasts and the optional buildings.
+#include <memory>
 #include <optional>
+#include <span>
 
+#include "core/faults/fault_stage.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/nav_data.hpp"
 #include "core/receiver/receiver.hpp"
@@ -39,10 +42,22 @@ public:
            const world::SceneSetup& scene = {});
 
   /// One epoch at receive time t (GPS): the world at the receiver's mask,
-  /// then the receiver. Never throws, never allocates.
+  /// the faults, then the receiver. Never throws, never allocates.
   const receiver::Fix& step(const time::GpsTime& t, const world::Truth& truth) noexcept {
-    return receiver_.step(t, world_.step(t, truth, receiver_.config().elevation_mask_rad));
+    const world::Observables& o = world_.step(t, truth, receiver_.config().elevation_mask_rad);
+    if (!faults_) return receiver_.step(t, o);
+    obs_ = o;  // the world's own stay untouched
+    faults_->apply(t, truth, obs_);
+    return receiver_.step(t, obs_);
   }
+
+  /// Put a fault stage between world and receiver with these events (start
+  /// times from the first epoch; none: an empty stage that inject() fills
+  /// later). Setup only (allocates); throws gnssemu::Error on a bad event.
+  void set_faults(std::span<const faults::FaultEvent> events);
+  /// The fault stage, or nullptr without one.
+  faults::FaultStage* faults() noexcept { return faults_.get(); }
+  const faults::FaultStage* faults() const noexcept { return faults_.get(); }
 
   const receiver::Fix& last_fix() const noexcept { return receiver_.last_fix(); }
   world::World& world() noexcept { return world_; }
@@ -53,6 +68,9 @@ public:
 private:
   world::World world_;
   receiver::Receiver receiver_;
+  faults::FaultContext fault_context_;
+  std::unique_ptr<faults::FaultStage> faults_;
+  world::Observables obs_;  ///< the faulted copy of the world's observables
 };
 
 }  // namespace gnssemu::pipeline

@@ -20,6 +20,9 @@ enum class FixType : uint8_t {
   k3D = 3,
 };
 
+/// The antenna supervisor's state (MON-HW aStatus).
+enum class AntennaStatus : uint8_t { kOk, kShort, kOpen };
+
 /// Dilutions of precision; kNoDop when undefined (NMEA prints 99.99).
 struct Dop {
   static constexpr double kNoDop = 99.99;
@@ -86,6 +89,13 @@ struct Fix {
   /// the signal module's environment_noise_rise_db. Drives MON-HW noisePerMS,
   /// AGC and jamInd. 1 dB = quiet countryside.
   double noise_rise_db = 1.0;
+  /// CW / narrowband interference over the front end's noise floor (linear,
+  /// >= 0; 0 none): the CW detector's input (MON-HW jamInd).
+  double cw_jam_to_noise = 0.0;
+  AntennaStatus antenna_status = AntennaStatus::kOk;
+  /// NAV-STATUS flags2 spoofDetState: 0 deactivated, 1 no spoofing
+  /// indicated, 2 spoofing indicated, 3 multiple indications.
+  uint8_t spoof_det_state = 1;
 
   std::array<SatInfo, kMaxGpsPrn> sats{};  ///< first num_sats entries valid, sorted by PRN
   int num_sats = 0;

@@ -22,6 +22,9 @@ constexpr double kMinReportedCn0_dbhz = 1.0;
 // A gap longer than this between two smoothing updates restarts the smoothing, s.
 constexpr double kMaxSmoothingGap_s = 2.0;
 
+static_assert(static_cast<int>(AntennaStatus::kShort) == static_cast<int>(world::AntennaState::kShort) &&
+              static_cast<int>(AntennaStatus::kOpen) == static_cast<int>(world::AntennaState::kOpen));
+
 const ReceiverConfig& validated(const ReceiverConfig& c) {
   validate(c);
   return c;
@@ -32,6 +35,7 @@ const ReceiverConfig& validated(const ReceiverConfig& c) {
 Receiver::Receiver(const ReceiverConfig& config, std::uint64_t seed)
     : config_(validated(config)),
       acq_(config.acquisition, config.tracking, seed),
+      spoof_(config.spoof_detection),
       solver_(config.solver, config.max_pdop),
       nav_(config.filter, config.solver) {
   no_fix_epoch();
@@ -127,7 +131,7 @@ void Receiver::measurement_stage(const world::Observables& obs, double dt_s) noe
     si.prn = p;
     si.az_rad = o.az_rad;
     si.el_rad = o.el_rad;
-    si.healthy = true;
+    si.healthy = o.eph != nullptr && o.eph->health == 0;  // a broadcast "unhealthy" is tracked, not used
     si.above_mask = o.above_mask;
     if (si.above_mask) ++fix_.num_visible;
     si.blocked = o.blocked;
@@ -141,7 +145,7 @@ void Receiver::measurement_stage(const world::Observables& obs, double dt_s) noe
     si.pseudorange_m = o.pseudorange_m;
     si.doppler_hz = o.doppler_hz;
     ++fix_.num_tracked;
-    if (!usable_[p - 1]) continue;
+    if (!usable_[p - 1] || !si.healthy) continue;
     double pr_m = si.pseudorange_m;
     if (smooth && o.carrier_valid) {
       const bool restart = !smoothed_last_[p - 1] || acq_.new_lock(p) ||
@@ -173,6 +177,8 @@ const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs)
 
   fix_.t = t;
   fix_.noise_rise_db = obs.noise_rise_db;
+  fix_.cw_jam_to_noise = obs.cw_jam_to_noise;
+  fix_.antenna_status = static_cast<AntennaStatus>(obs.antenna_state);
   fix_.leap_seconds = leap_override_ ? leap_s_ : time::leap_seconds_at(t);
   fix_.in_leap_second = !leap_override_ && time::in_inserted_leap_second(t);  // a fixed count never steps
   fix_.num_sats = fix_.num_visible = fix_.num_tracked = 0;
@@ -193,6 +199,7 @@ const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs)
       nav_.step(dt_s, in_, snap_, solver_, out_);
       if (out_.type != FixType::kNone) fill_solution();
     }
+    fix_.spoof_det_state = spoof_.update(fix_);
     return fix_;
   }
 
@@ -218,6 +225,7 @@ const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs)
     solver_.solve(in_, out_);
   }
   fill_solution();
+  fix_.spoof_det_state = spoof_.update(fix_);
   return fix_;
 }
 

@@ -81,6 +81,8 @@ private:
   bool started_ = false;
   time::GpsTime t_prev_;
 
+  SpoofMonitor spoof_;
+
   // Carrier smoothing.
   std::array<HatchFilter, kMaxGpsPrn> hatch_{};
   std::array<std::uint32_t, kMaxGpsPrn> discontinuities_{};  ///< the world's count at the last update

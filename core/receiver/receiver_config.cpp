@@ -58,6 +58,7 @@ void validate(const ReceiverConfig& c) {
   validate(c.filter);
   check_ranges(kWhat, {{c.limits.max_altitude_m, OperationalLimitRanges::max_altitude_m, "limits.max_altitude_m"},
                        {c.limits.max_speed_m_s, OperationalLimitRanges::max_speed_m_s, "limits.max_speed_m_s"}});
+  validate(c.spoof_detection);
 }
 
 }  // namespace gnssemu::receiver

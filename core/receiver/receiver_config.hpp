@@ -11,6 +11,7 @@
 #include "core/common/violation.hpp"
 #include "core/receiver/acquisition.hpp"
 #include "core/receiver/nav_filter.hpp"
+#include "core/receiver/spoof_monitor.hpp"
 #include "core/signal/tracking.hpp"
 
 namespace gnssemu::receiver {
@@ -118,6 +119,7 @@ struct ReceiverConfig {
   AcquisitionConfig acquisition;   ///< search, reacquisition, ephemeris download, start mode
   NavFilterConfig filter;          ///< carrier smoothing, Kalman filter, dynamic model, static hold
   OperationalLimits limits;
+  SpoofDetectionConfig spoof_detection;  ///< NAV-STATUS spoofDetState criteria
 };
 
 /// Valid values of ReceiverConfig's own numbers (the mask in degrees, as

@@ -16,6 +16,9 @@ namespace gnssemu::world {
 /// Noise-floor rise of a quiet countryside, dB.
 inline constexpr double kQuietNoiseRise_db = 1.0;
 
+/// The antenna as the receiver's supervisor sees it (MON-HW aStatus).
+enum class AntennaState : uint8_t { kOk, kShort, kOpen };
+
 /// One satellite above the horizon with a healthy ephemeris.
 struct SatObservable {
   int prn = 0;                          ///< 1..32
@@ -57,6 +60,11 @@ struct Observables {
   bool signal_modelled = true;
   /// Environment noise-floor rise above thermal at the antenna, dB (>= 0).
   double noise_rise_db = kQuietNoiseRise_db;
+  /// Antenna supervisor state; not kOk: nothing is received.
+  AntennaState antenna_state = AntennaState::kOk;
+  /// CW / narrowband interference power over the front end's noise floor
+  /// (linear, >= 0; 0: none): what a CW detector sees (MON-HW jamInd).
+  double cw_jam_to_noise = 0.0;
   time::GpsTime t_rx_local;             ///< the epoch on the receiver's own (biased) clock
   double clock_bias_s = 0.0;            ///< true receiver clock bias, s (analysis)
   double clock_drift_s_s = 0.0;         ///< true receiver clock drift, s/s (analysis)

@@ -26,8 +26,10 @@ Rules project_rules() {
       {"scene", "core/scene", {"geo"}, {}},
       {"signal", "core/signal", {"atmosphere"}, {}},
       {"world", "core/world", {"signal", "scene"}, {}},
+      // Faults edit the world's observables; the receiver never sees them.
+      {"faults", "core/faults", {"world"}, {}},
       {"receiver", "core/receiver", {"world"}, {}},
-      {"pipeline", "core/pipeline", {"receiver"}, {}},
+      {"pipeline", "core/pipeline", {"receiver", "faults"}, {}},
       // The encoders read the Fix struct only, not the receiver that fills it.
       {"nmea", "core/protocol/nmea", {"time"}, {"core/receiver/fix.hpp"}},
       {"ubx", "core/protocol/ubx", {"nmea"}, {}},
@@ -50,6 +52,7 @@ Rules project_rules() {
       tests_of("world", "world"),
       tests_of("receiver", "pipeline"),  // receiver tests assemble world + receiver
       tests_of("pipeline", "pipeline"),
+      tests_of("faults", "pipeline"),  // fault tests run the whole pipeline
       tests_of("nmea", "nmea"),
       tests_of("ubx", "ubx"),
       tests_of("config", "config"),

@@ -28,7 +28,7 @@ constexpr double kGridTolerance_s = 1e-6;
 
 BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const world::TruthTrack& track,
                        std::ostream* nmea, std::ostream* errors, std::ostream* ubx, orbit::StoreOptions store_options,
-                       std::span<BatchObserver* const> observers) {
+                       std::span<BatchObserver* const> observers, const std::vector<faults::FaultEvent>* scenario) {
   if (!(config.rate_hz > 0.0) || !std::isfinite(config.rate_hz)) {
     throw Error(config.source, 0, "rate_hz must be positive");
   }
@@ -47,6 +47,7 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
   const std::unique_ptr<scene::Scene> buildings = config::load_scene(config, &mesh_stats);
   const std::unique_ptr<pipeline::Pipeline> rx =
       config::make_pipeline(config, store, pipeline::broadcast_of(nav), buildings.get());
+  if (scenario != nullptr) rx->set_faults(*scenario);
   // The daemon's emulated u-blox; its first output (a factory UART1 when
   // there is none) writes the NMEA and UBX logs. It powers on at the first epoch.
   protocol::ubx::Device device(config::device_setup(config));
@@ -59,7 +60,7 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
   sum.mesh_skipped = mesh_stats.skipped();
   sum.mesh_report = scene::skip_report(mesh_stats);
   if (errors) {
-    *errors << "gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop"
+    *errors << "gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop,hacc_m,vacc_m"
             << (sum.scene ? ",nvisible,ntracked,nlos,nblocked,nlos_delay_mean_m\n" : "\n");
   }
   long visible_sum = 0, nlos_sum = 0, blocked_sum = 0;
@@ -105,7 +106,8 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
       } else {
         fmt::format_to(std::back_inserter(row), ",,,");
       }
-      fmt::format_to(std::back_inserter(row), "{:.2f},{:.2f},{:.2f}", fix.dop.hdop, fix.dop.vdop, fix.dop.pdop);
+      fmt::format_to(std::back_inserter(row), "{:.2f},{:.2f},{:.2f},{:.3f},{:.3f}", fix.dop.hdop, fix.dop.vdop,
+                     fix.dop.pdop, fix.h_acc_m, fix.v_acc_m);
     }
     if (sum.scene) {
       int nlos = 0, blocked = 0;

@@ -4,8 +4,10 @@
 #include <ostream>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "config/config.hpp"
+#include "core/faults/fault_event.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/nav_data.hpp"
 #include "core/world/truth_track.hpp"
@@ -42,15 +44,20 @@ public:
 /// 1/rate s of week) from the first to the last truth time. nmea and ubx: the
 /// NMEA and UBX streams of the first configured output port, under its
 /// message rates (u-blox default NMEA set and no UBX when there is none);
-/// the emulated receiver powers on at the first epoch. errors: CSV `gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop`, plus
+/// the emulated receiver powers on at the first epoch. errors: CSV
+/// `gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop,hacc_m,vacc_m`
+/// (hacc_m, vacc_m: what the receiver reports about itself), plus
 /// `nvisible,ntracked,nlos,nblocked,nlos_delay_mean_m` when the config has a [scene].
 /// Either may be null. Throws gnssemu::Error when the truth spans no epoch.
 /// store: how the ephemeris store treats times past the data (the daemon's
 /// constellation continues the orbits; orbit::Constellation::store_options).
-/// observers: told of every epoch, in order.
+/// observers: told of every epoch, in order. scenario: fault events (start
+/// times from the first epoch) applied between world and receiver; null: no
+/// fault stage.
 BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, const world::TruthTrack& track,
                        std::ostream* nmea, std::ostream* errors, std::ostream* ubx = nullptr,
-                       orbit::StoreOptions store = {}, std::span<BatchObserver* const> observers = {});
+                       orbit::StoreOptions store = {}, std::span<BatchObserver* const> observers = {},
+                       const std::vector<faults::FaultEvent>* scenario = nullptr);
 
 /// Human-readable summary (for stderr).
 void write_summary(const BatchSummary& summary, std::ostream& out);

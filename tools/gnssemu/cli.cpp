@@ -23,6 +23,7 @@
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
 #include "core/scene/scene.hpp"
+#include "config/scenario_file.hpp"
 #include "tools/gnssemu/batch.hpp"
 #include "tools/gnssemu/calibrate.hpp"
 #include "tools/gnssemu/plot.hpp"
@@ -70,6 +71,7 @@ struct SceneArgs {
 
 struct BatchArgs {
   std::string config_path, truth_path, nmea_path, errors_path, ubx_path;
+  std::string scenario_path;   ///< --scenario
   std::string sats_path;       ///< --sats
   std::string report_dir;      ///< --report
   std::string reference_path;  ///< --cn0-reference (with --report)
@@ -216,6 +218,16 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
   // dates them ([nav] mode; as_is: the truth must start inside the data).
   const orbit::Constellation c = config::make_constellation(cfg, config::load_nav(cfg), track.first());
   err << "gnssemu batch: satellites: " << c.describe() << '\n';
+  std::vector<faults::FaultEvent> scenario;
+  if (!a.scenario_path.empty()) {
+    scenario = config::read_scenario(a.scenario_path);
+    for (const faults::FaultEvent& e : scenario) {
+      if (e.type == faults::FaultType::kPort) {
+        err << "gnssemu batch: " << a.scenario_path << ':' << e.line
+            << ": port event not applied in batch (link faults act on the daemon's ports)\n";
+      }
+    }
+  }
   OutputFile nmea(a.nmea_path, out);
   OutputFile errors(a.errors_path, out);
   OutputFile ubx(a.ubx_path, out);
@@ -230,7 +242,8 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
     observers.push_back(&collector);
   }
   const BatchSummary sum =
-      run_batch(cfg, c.nav, track, nmea.get(), errors.get(), ubx.get(), c.store_options(), observers);
+      run_batch(cfg, c.nav, track, nmea.get(), errors.get(), ubx.get(), c.store_options(), observers,
+                a.scenario_path.empty() ? nullptr : &scenario);
   nmea.close(a.nmea_path);
   ubx.close(a.ubx_path);
   errors.close(a.errors_path);
@@ -434,6 +447,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   batch_cmd->add_option("--nmea", batch.nmea_path, "write the NMEA stream here ('-' = stdout)");
   batch_cmd->add_option("--ubx", batch.ubx_path, "write the UBX stream here ('-' = stdout)");
   batch_cmd->add_option("--errors", batch.errors_path, "write per-epoch fix errors CSV here ('-' = stdout)");
+  batch_cmd->add_option("--scenario", batch.scenario_path, "fault scenario TOML ([[event]] tables, docs/faults.md)");
   batch_cmd->add_option("--sats", batch.sats_path,
                         "write per epoch and satellite gps_week,tow_s,prn,az_deg,el_deg,cn0_dbhz,tracked,used here "
                         "('-' = stdout)");

@@ -276,7 +276,9 @@ std::size_t UbxEncoder::nav_status(const Fix& fix, const EpochInfo& info, std::s
   m.iTOW = c.itow;
   m.gpsFix = c.fix_type;
   m.flags = nav_flags(c);
-  m.flags2 = 0x08;  // spoofDetState 1: no spoofing indicated (real M8 logs)
+  // flags2 b3-4 spoofDetState (the receiver's spoofing detection; 1 "no
+  // spoofing indicated" in real M8 logs).
+  m.flags2 = static_cast<std::uint8_t>((fix.spoof_det_state & 0x03) << 3);
   m.ttff = info.ttff_ms;
   m.msss = info.msss_ms;
   return append_message(out, msg::kNavStatus, m);
@@ -460,14 +462,23 @@ std::size_t UbxEncoder::mon_hw(const Fix& fix, const EpochInfo& info, std::strin
   // Heuristic front-end model (docs/ubx.md): the AGC takes gain out as the
   // noise floor rises, the noise level after the AGC creeps up, and the CW
   // jamming indicator scales with the rise. Quiet sky: noise ~ 85, AGC ~ 60 %,
-  // jamInd ~ 10 (typical M8 readings in public logs).
+  // jamInd ~ 10 (typical M8 readings in public logs). A CW / narrowband
+  // interferer stands out of the noise as a spectral line, so it adds to
+  // jamInd beyond its share of the AGC rise.
   const double rise = std::isfinite(fix.noise_rise_db) ? std::clamp(fix.noise_rise_db, 0.0, 60.0) : 0.0;
+  const double cw_db = fix.cw_jam_to_noise > 0.0 && std::isfinite(fix.cw_jam_to_noise)
+                           ? std::clamp(10.0 * std::log10(1.0 + fix.cw_jam_to_noise), 0.0, 60.0)
+                           : 0.0;
   wire::MonHw m{};
   m.noisePerMS = to_int<std::uint16_t>(82.0 + 3.0 * rise);
   m.agcCnt = to_int<std::uint16_t>(std::clamp(5000.0 - 110.0 * rise, 0.0, 8191.0));
-  m.aStatus = 2;  // antenna OK
-  m.aPower = 1;   // antenna power ON
-  m.jamInd = to_int<std::uint8_t>(std::clamp(7.0 + 5.0 * rise, 0.0, 255.0));
+  // aStatus 2 OK, 3 SHORT (the supervisor then switches the supply off:
+  // aPower 0), 4 OPEN (supply stays on).
+  m.aStatus = fix.antenna_status == receiver::AntennaStatus::kShort  ? 3
+              : fix.antenna_status == receiver::AntennaStatus::kOpen ? 4
+                                                                     : 2;
+  m.aPower = fix.antenna_status == receiver::AntennaStatus::kShort ? 0 : 1;
+  m.jamInd = to_int<std::uint8_t>(std::clamp(7.0 + 5.0 * rise + 4.0 * cw_db, 0.0, 255.0));
   std::uint8_t jam_state = 0;  // unknown: interference monitor disabled (M8 default)
   if (info.itfm_enabled) jam_state = m.jamInd >= 200 ? 3 : m.jamInd >= 80 ? 2 : 1;
   m.flags = static_cast<std::uint8_t>(0x01 | jam_state << 2);  // rtcCalib

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -81,6 +82,17 @@ inline Csv parse_csv(const std::string& text) {
     }
   }
   return csv;
+}
+
+/// A static receiver in Paris from 2022-01-01 (week 2190, tow 522000 s) for
+/// duration_s: two truth rows.
+inline std::string static_truth(double duration_s) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "gps_week,tow_s,lat_deg,lon_deg,height_m\n2190,522000.0,48.8738,2.2950,100.0\n"
+                "2190,%.1f,48.8738,2.2950,100.0\n",
+                522000.0 + duration_s);
+  return buf;
 }
 
 inline std::string read_file(const std::string& path) {

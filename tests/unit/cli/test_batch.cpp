@@ -27,15 +27,6 @@ namespace {
 constexpr int kWeek = 2190;
 constexpr double kTow0 = 522000.0;
 
-std::string static_truth(double duration_s) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf,
-                "gps_week,tow_s,lat_deg,lon_deg,height_m\n"
-                "%d,%.1f,48.8738,2.2950,100.0\n%d,%.1f,48.8738,2.2950,100.0\n",
-                kWeek, kTow0, kWeek, kTow0 + duration_s);
-  return buf;
-}
-
 /// East at speed_m_s along the parallel, samples every step_s, ECEF with ENU velocity.
 std::string moving_truth(double duration_s, double step_s, double speed_m_s) {
   std::ostringstream s;
@@ -133,7 +124,7 @@ TEST(Batch, StaticReceiverDefaultErrorModel) {
 
   const Csv e = parse_csv(read_file(dir.file("err.csv")));
   ASSERT_EQ(e.header, (std::vector<std::string>{"gps_week", "tow_s", "fix_type", "nsat", "e_m", "n_m", "u_m", "hdop",
-                                                "vdop", "pdop"}));
+                                                "vdop", "pdop", "hacc_m", "vacc_m"}));
   ASSERT_EQ(e.rows.size(), 601u);
   EXPECT_EQ(e.cell(0, "tow_s"), "522000.000");
   EXPECT_EQ(e.cell(600, "tow_s"), "522600.000");

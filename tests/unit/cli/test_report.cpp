@@ -17,15 +17,6 @@ using namespace gnssemu::cli::test;
 
 namespace {
 
-std::string static_truth(double duration_s) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf,
-                "gps_week,tow_s,lat_deg,lon_deg,height_m\n2190,522000.0,48.8738,2.2950,100.0\n"
-                "2190,%.1f,48.8738,2.2950,100.0\n",
-                522000.0 + duration_s);
-  return buf;
-}
-
 /// The JSON a report carries (the #report-data element).
 nlohmann::json report_data(const std::string& html) {
   const std::string open = "<script type=\"application/json\" id=\"report-data\">";

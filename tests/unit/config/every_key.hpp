@@ -117,6 +117,15 @@ ephemeris_validity_s = 7200
 max_altitude_m = 18000
 max_speed_m_s = 515
 
+[receiver.spoof_detection]
+enabled = false
+cn0_jump_db = 6
+cn0_jump_sats = 4
+clock_jump_m = 300
+uniform_std_db = 0.5
+uniform_min_sats = 6
+hold_s = 10
+
 [atmosphere]
 cache_refresh_s = 30
 cache_mode = "hold"

@@ -27,16 +27,7 @@ std::string temp_file(const std::string& name, const std::string& content) {
   return p.string();
 }
 
-// Runs f, expects a gnssemu::Error whose message contains every piece.
-template <class F>
-void expect_error(F f, std::initializer_list<std::string> pieces) {
-  try {
-    f();
-    ADD_FAILURE() << "no error";
-  } catch (const Error& e) {
-    for (const std::string& p : pieces) EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
-  }
-}
+using test::expect_error;
 
 TEST(Footprints, ExtrudedClosedBuildingsAndGround) {
   const std::string p = temp_file("fp.toml",

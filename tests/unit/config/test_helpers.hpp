@@ -2,6 +2,7 @@
 // Shared helpers for the config tests.
 #include <gtest/gtest.h>
 
+#include <initializer_list>
 #include <string>
 
 #include "config/config.hpp"
@@ -46,6 +47,17 @@ inline std::string error_of(const std::string& text) {
     return e.what();
   }
   return "no error";
+}
+
+/// Runs f, expects a gnssemu::Error whose message contains every piece.
+template <class F>
+void expect_error(F f, std::initializer_list<std::string> pieces) {
+  try {
+    f();
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    for (const std::string& p : pieces) EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace gnssemu::config::test

@@ -1,0 +1,156 @@
+#include "config/scenario_file.hpp"
+
+#include <cmath>
+#include <string>
+
+#include <toml++/toml.h>
+
+#include "config/toml_reader.hpp"
+#include "core/common/error.hpp"
+
+namespace gnssemu::config {
+
+namespace {
+
+using detail::line_of;
+using faults::FaultEvent;
+using faults::FaultType;
+using faults::Param;
+
+std::string known_types() {
+  std::string s;
+  for (int i = 0; i < faults::kFaultTypeCount; ++i) {
+    if (i > 0) s += ", ";
+    s += faults::type_name(static_cast<FaultType>(i));
+  }
+  return s;
+}
+
+std::string known_keys(FaultType t) {
+  std::string s = "start_s, duration_s, type";
+  if (!faults::mode_key(t).empty()) s += ", " + std::string(faults::mode_key(t));
+  for (const faults::ParamSpec& p : faults::param_specs())
+    if (faults::find_param(t, p.name) == &p) s += ", " + std::string(p.name);
+  return s;
+}
+
+double number_of(const toml::node& n, const std::string& file, const std::string& where, bool allow_bool) {
+  if (allow_bool && n.is_boolean()) return n.as_boolean()->get() ? 1.0 : 0.0;
+  const auto v = n.value<double>();
+  if (!v || n.is_boolean() || n.is_string()) {
+    throw Error(file, line_of(n), where + ": expected a number, got " + std::string(detail::type_name(n)));
+  }
+  if (!std::isfinite(*v)) throw Error(file, line_of(n), where + ": must be finite");
+  return *v;
+}
+
+FaultEvent read_event(const toml::table& t, const std::string& file, const std::string& where) {
+  FaultEvent e;
+  e.line = line_of(t);
+  const toml::node* type_node = t.get("type");
+  if (type_node == nullptr) throw Error(file, e.line, where + ": type is required (" + known_types() + ")");
+  const auto* type_str = type_node->as_string();
+  if (type_str == nullptr) throw Error(file, line_of(*type_node), where + ".type: expected a string");
+  const auto type = faults::type_from_name(type_str->get());
+  if (!type) {
+    throw Error(file, line_of(*type_node),
+                where + ".type: unknown type '" + type_str->get() + "' (known: " + known_types() + ")");
+  }
+  e.type = *type;
+  const toml::node* start = t.get("start_s");
+  if (start == nullptr) throw Error(file, e.line, where + ": start_s is required");
+  e.start_s = number_of(*start, file, where + ".start_s", false);
+  if (e.start_s < 0.0) throw Error(file, line_of(*start), where + ".start_s: must be >= 0");
+  if (const toml::node* d = t.get("duration_s")) {
+    e.duration_s = number_of(*d, file, where + ".duration_s", false);
+    if (!(e.duration_s > 0.0)) throw Error(file, line_of(*d), where + ".duration_s: must be > 0");
+  }
+  const std::string_view mkey = faults::mode_key(e.type);
+  for (const auto& [k, v] : t) {
+    const std::string key(k.str());
+    const std::string at = where + "." + key;
+    if (key == "type" || key == "start_s" || key == "duration_s") continue;
+    if (!mkey.empty() && key == mkey) {
+      const auto* s = v.as_string();
+      if (s == nullptr) throw Error(file, line_of(v), at + ": expected a string");
+      const auto names = faults::mode_names(e.type);
+      std::string list;
+      bool found = false;
+      for (std::size_t i = 0; i < names.size(); ++i) {
+        list += (i ? ", " : "") + std::string(names[i]);
+        if (names[i] == s->get()) {
+          e.mode = static_cast<std::uint8_t>(i);
+          found = true;
+        }
+      }
+      if (!found) throw Error(file, line_of(v), at + ": unknown value '" + s->get() + "' (known: " + list + ")");
+      continue;
+    }
+    const faults::ParamSpec* spec = faults::find_param(e.type, key);
+    if (spec == nullptr) {
+      throw Error(file, line_of(v), where + ": unknown key '" + key + "' for type " +
+                                         std::string(faults::type_name(e.type)) + " (known: " + known_keys(e.type) +
+                                         ")");
+    }
+    faults::Ramp r;
+    if (const auto* a = v.as_array()) {
+      if (a->size() != 2) throw Error(file, line_of(v), at + ": a ramp is [from, to]");
+      r.from = number_of(*a->get(0), file, at, spec->boolean);
+      r.to = number_of(*a->get(1), file, at, spec->boolean);
+    } else {
+      r.from = r.to = number_of(v, file, at, spec->boolean);
+    }
+    e.put(spec->id, r);
+    // Range and cross-field rules per key, so the message points at its line.
+    if (const auto problem = faults::check_event(e)) {
+      if (problem->rfind(key + ":", 0) == 0) throw Error(file, line_of(v), where + "." + *problem);
+    }
+  }
+  if (const auto problem = faults::check_event(e)) throw Error(file, e.line, where + ": " + *problem);
+  return e;
+}
+
+std::vector<FaultEvent> read_doc(const toml::table& doc, const std::string& file) {
+  for (const auto& [k, v] : doc) {
+    if (k.str() != "event") {
+      throw Error(file, line_of(v), "unknown key '" + std::string(k.str()) + "': a scenario is a list of [[event]] tables");
+    }
+  }
+  std::vector<FaultEvent> events;
+  const toml::node* arr = doc.get("event");
+  if (arr == nullptr) return events;
+  const auto* a = arr->as_array();
+  if (a == nullptr) throw Error(file, line_of(*arr), "event: expected [[event]] tables");
+  int i = 0;
+  for (const toml::node& n : *a) {
+    const std::string where = "event[" + std::to_string(i++) + "]";
+    const auto* t = n.as_table();
+    if (t == nullptr) throw Error(file, line_of(n), where + ": expected a table");
+    events.push_back(read_event(*t, file, where));
+  }
+  return events;
+}
+
+}  // namespace
+
+std::vector<FaultEvent> read_scenario(const std::string& path) {
+  toml::table doc;
+  try {
+    doc = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw Error(path, static_cast<int>(e.source().begin.line), "TOML syntax error: " + std::string(e.description()));
+  }
+  return read_doc(doc, path);
+}
+
+std::vector<FaultEvent> parse_scenario(std::string_view text, const std::string& name) {
+  toml::table doc;
+  try {
+    doc = toml::parse(text, name);
+  } catch (const toml::parse_error& e) {
+    throw Error(name, static_cast<int>(e.source().begin.line), "TOML syntax error: " + std::string(e.description()));
+  }
+  return read_doc(doc, name);
+}
+
+}  // namespace gnssemu::config

@@ -1,0 +1,353 @@
+#include "core/faults/fault_stage.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/common/error.hpp"
+#include "core/faults/interference.hpp"
+#include "core/geo/geodesy.hpp"
+
+namespace gnssemu::faults {
+
+namespace {
+
+// Salt of the stage's own random streams, so its draws never repeat the world's.
+constexpr std::uint64_t kSeedSalt = 0x6661756C74730001ULL;  // "faults"
+// C/N0 at which a signal no longer reaches the correlators at all, dB-Hz.
+constexpr double kNoSignal_dbhz = 0.0;
+
+void check(const FaultEvent& e) {
+  if (const auto problem = check_event(e)) {
+    throw Error("scenario", e.line, std::string(type_name(e.type)) + " event: " + *problem);
+  }
+}
+
+// Unit line of sight in ENU from azimuth / elevation.
+Enu los_enu(double az_rad, double el_rad) noexcept {
+  const double ce = std::cos(el_rad);
+  return Enu(std::sin(az_rad) * ce, std::cos(az_rad) * ce, std::sin(el_rad));
+}
+
+bool in_sector(double az_deg, double from_deg, double to_deg) noexcept {
+  if (from_deg <= to_deg) return az_deg >= from_deg && az_deg <= to_deg;
+  return az_deg >= from_deg || az_deg <= to_deg;  // wraps through north
+}
+
+}  // namespace
+
+FaultStage::FaultStage(const FaultContext& context, std::span<const FaultEvent> events)
+    : ctx_(context), rng_(world::CounterRng::mix(context.seed ^ kSeedSalt)) {
+  signal::validate(ctx_.link);
+  signal::validate(ctx_.dll);
+  world::validate(ctx_.carrier);
+  n0_dbw_hz_ = signal::thermal_noise_density_dbw_hz(ctx_.link.noise_temperature_k) + ctx_.link.noise_figure_db +
+               ctx_.link.environment_noise_rise_db;
+  events_.reserve(kMaxEvents);
+  status_.reserve(kMaxEvents);
+  spoof_.reserve(kMaxEvents);
+  inject(events);
+}
+
+void FaultStage::inject(std::span<const FaultEvent> events) {
+  if (events_.size() + events.size() > kMaxEvents) {
+    throw Error("scenario: at most " + std::to_string(kMaxEvents) + " events are held; " +
+                std::to_string(events_.size()) + " are, " + std::to_string(events.size()) + " more given");
+  }
+  for (const FaultEvent& e : events) check(e);
+  for (const FaultEvent& e : events) {
+    FaultEvent shifted = e;
+    shifted.start_s += elapsed_s_;
+    events_.push_back(shifted);
+    spoof_.push_back(SpoofState{});
+    status_.push_back(FaultStatus{});
+  }
+  for (std::size_t i = 0; i < events_.size(); ++i) status_[i].event = &events_[i];
+}
+
+void FaultStage::clear() noexcept {
+  events_.clear();
+  spoof_.clear();
+  status_.clear();
+}
+
+std::span<const FaultStatus> FaultStage::status() noexcept {
+  for (std::size_t i = 0; i < events_.size(); ++i) {
+    status_[i].event = &events_[i];
+    status_[i].elapsed_s = elapsed_s_ - events_[i].start_s;
+    status_[i].active = events_[i].active_at(elapsed_s_);
+  }
+  return status_;
+}
+
+int FaultStage::active_count() const noexcept {
+  int n = 0;
+  for (const FaultEvent& e : events_) n += e.active_at(elapsed_s_) ? 1 : 0;
+  return n;
+}
+
+void FaultStage::degrade(world::SatObservable& o, double cn0_dbhz) noexcept {
+  if (!o.received || !(cn0_dbhz < o.cn0_dbhz)) return;
+  if (!(cn0_dbhz > kNoSignal_dbhz)) {
+    o.received = false;
+    o.cn0_dbhz = 0.0;
+    return;
+  }
+  // The world drew the code noise at the old C/N0; add the difference in variance.
+  const double s0 = signal::dll_thermal_sigma_m(o.cn0_dbhz, ctx_.dll);
+  const double s1 = signal::dll_thermal_sigma_m(cn0_dbhz, ctx_.dll);
+  const double extra = std::sqrt(std::max(s1 * s1 - s0 * s0, 0.0));
+  const auto stream = static_cast<std::uint64_t>(o.prn);
+  o.pseudorange_m += extra * rng_.normal(stream, epoch_, world::Purpose::kThermal);
+  const world::CarrierConfig& cc = ctx_.carrier;
+  if (cc.enabled && cc.doppler_model == world::DopplerModel::kFll) {
+    const double d0 = world::fll_range_rate_sigma_m_s(o.cn0_dbhz, cc);
+    const double d1 = world::fll_range_rate_sigma_m_s(cn0_dbhz, cc);
+    const double extra_rr = std::sqrt(std::max(d1 * d1 - d0 * d0, 0.0));
+    o.doppler_hz -= extra_rr * rng_.normal(stream, epoch_, world::Purpose::kDoppler) / kL1Wavelength_m;
+  }
+  if (cc.enabled && o.carrier_valid && dt_s_ > 0.0) {
+    // Slips the weaker signal adds to those the world drew at the old C/N0.
+    const auto slip_p = [&](double cn0) {
+      const double j = world::pll_jitter_rad(cn0, cc.pll_bandwidth_hz, cc.integration_s);
+      return world::cycle_slip_probability(std::sqrt(j * j + cc.oscillator_sigma_rad * cc.oscillator_sigma_rad),
+                                           cc.pll_bandwidth_hz, dt_s_);
+    };
+    const double p_extra = slip_p(cn0_dbhz) - slip_p(o.cn0_dbhz);
+    if (p_extra > 0.0 && rng_.uniform(stream, epoch_, world::Purpose::kCycleSlip, 0) < p_extra) {
+      o.carrier_phase_cycles += 0.5;  // a Costas loop slips by half a cycle
+      ++o.carrier_discontinuities;
+    }
+  }
+  o.cn0_dbhz = cn0_dbhz;
+}
+
+void FaultStage::shift(world::SatObservable& o, double delta_m, double rate_m_s) noexcept {
+  o.pseudorange_m += delta_m;
+  o.carrier_phase_cycles += delta_m / kL1Wavelength_m;
+  o.doppler_hz -= rate_m_s / kL1Wavelength_m;
+}
+
+void FaultStage::break_lock(world::SatObservable& o) noexcept {
+  o.lock_break = true;
+  ++o.carrier_discontinuities;
+}
+
+void FaultStage::satellite_fault(const FaultEvent& e, double f, double since_s, world::Observables& obs) noexcept {
+  const int prn = static_cast<int>(e.param(Param::kPrn).from);
+  for (int i = 0; i < obs.num_sats; ++i) {
+    world::SatObservable& o = obs.sats[i];
+    if (o.prn != prn || o.eph == nullptr) continue;
+    // Broadcast faults: the receiver decodes a falsified copy of the set.
+    const bool eph_fault = e.has(Param::kEphRadialM) || e.has(Param::kEphAlongM) || e.has(Param::kUnhealthy);
+    if (eph_fault) {
+      orbit::Ephemeris& c = eph_copy_[prn - 1];
+      c = *o.eph;
+      const double a_m = c.sqrt_a_sqrtm * c.sqrt_a_sqrtm;
+      const double da_m = e.value(Param::kEphRadialM, f);
+      if (a_m + da_m > 0.0) c.sqrt_a_sqrtm = std::sqrt(a_m + da_m);
+      if (a_m > 0.0) c.m0_rad += e.value(Param::kEphAlongM, f) / a_m;
+      if (e.value(Param::kUnhealthy, f) >= 0.5) c.health = 1;
+      o.eph = &c;
+    }
+    // Signal faults: the satellite transmits early or late (code and carrier alike).
+    const Ramp& bias = e.param(Param::kBiasM);
+    const double bias_rate_m_s =
+        e.has(Param::kBiasM) && std::isfinite(e.duration_s) ? (bias.to - bias.from) / e.duration_s : 0.0;
+    const double rate_m_s = e.value(Param::kRateMS, f);
+    const double offset_m = e.value(Param::kBiasM, f) + rate_m_s * since_s +
+                            kSpeedOfLight_m_s * 1e-6 * e.value(Param::kClockJumpUs, f);
+    if (!o.received) continue;
+    shift(o, offset_m, rate_m_s + bias_rate_m_s);
+  }
+}
+
+void FaultStage::sky_block(const FaultEvent& e, double f, world::Observables& obs) noexcept {
+  const double az0 = e.value(Param::kAzFromDeg, f), az1 = e.value(Param::kAzToDeg, f);
+  const double el0 = e.value(Param::kElMinDeg, f), el1 = e.value(Param::kElMaxDeg, f);
+  const bool full_circle = az0 == 0.0 && az1 == 360.0;
+  for (int i = 0; i < obs.num_sats; ++i) {
+    world::SatObservable& o = obs.sats[i];
+    if (!o.above_mask || !o.received) continue;
+    const double az = o.az_rad / kDegToRad, el = o.el_rad / kDegToRad;
+    if (!(full_circle || in_sector(az, az0, az1)) || el < el0 || el > el1) continue;
+    if (e.has(Param::kLossDb)) {
+      degrade(o, o.cn0_dbhz - e.value(Param::kLossDb, f));
+    } else {
+      o.received = false;
+      o.blocked = true;
+      o.cn0_dbhz = 0.0;
+    }
+  }
+}
+
+void FaultStage::outage(const FaultEvent& e, world::Observables& obs) noexcept {
+  const auto kind = static_cast<OutageKind>(e.mode);
+  if (kind == OutageKind::kOpen) obs.antenna_state = world::AntennaState::kOpen;
+  if (kind == OutageKind::kShort) obs.antenna_state = world::AntennaState::kShort;
+  for (int i = 0; i < obs.num_sats; ++i) {
+    world::SatObservable& o = obs.sats[i];
+    if (!o.above_mask) continue;
+    o.blocked = o.blocked || kind == OutageKind::kBlockage;
+    o.received = false;
+    o.cn0_dbhz = 0.0;
+  }
+}
+
+void FaultStage::spoofer(const FaultEvent& e, SpoofState& s, double f, double dt_s, world::Observables& obs) noexcept {
+  const auto mode = static_cast<SpoofMode>(e.mode);
+  const double c = kSpeedOfLight_m_s;
+  // The false trajectory and clock (ENU offset from the truth).
+  const Enu fixed_offset(e.value(Param::kOffsetEastM, f), e.value(Param::kOffsetNorthM, f),
+                         e.value(Param::kOffsetUpM, f));
+  switch (mode) {
+    case SpoofMode::kDrag: {
+      const double since_s = s.started ? dt_s : 0.0;
+      const double hdg = e.value(Param::kDragHeadingDeg, f) * kDegToRad;
+      // Speed grows with the acceleration from the start of the drag.
+      const double speed = e.value(Param::kDragSpeedMS, f) + e.value(Param::kDragAccelMS2, f) * s.drag_s;
+      s.rate_m_s = Enu(speed * std::sin(hdg), speed * std::cos(hdg), e.value(Param::kDragUpMS, f));
+      s.offset_m = Enu(s.offset_m + s.rate_m_s * since_s);
+      s.clock_rate_m_s = e.value(Param::kPushRateNsS, f) * 1e-9 * c;
+      s.clock_m += s.clock_rate_m_s * since_s;
+      s.drag_s += since_s;
+      break;
+    }
+    case SpoofMode::kTimePush: {
+      const double since_s = s.started ? dt_s : 0.0;
+      s.rate_m_s = Enu{};
+      s.clock_rate_m_s = e.value(Param::kPushRateNsS, f) * 1e-9 * c;
+      s.clock_m += s.clock_rate_m_s * since_s;
+      s.offset_m = fixed_offset;
+      break;
+    }
+    case SpoofMode::kMeacon:
+      s.aligned = false;  // the replay arrives late: the loops must let go and reacquire
+      s.offset_m = fixed_offset;
+      s.rate_m_s = Enu{};
+      s.clock_m = e.value(Param::kDelayUs, f) * 1e-6 * c;
+      s.clock_rate_m_s = 0.0;
+      break;
+    case SpoofMode::kTakeover:
+      s.aligned = false;
+      s.offset_m = fixed_offset;
+      s.rate_m_s = Enu{};
+      s.clock_m = e.value(Param::kClockJumpUs, f) * 1e-6 * c;
+      s.clock_rate_m_s = e.value(Param::kPushRateNsS, f) * 1e-9 * c;
+      break;
+  }
+  s.started = true;
+  if (obs.antenna_state != world::AntennaState::kOk) return;
+  // One transmitter sends every PRN at one power: the strongest authentic
+  // signal plus the advantage. A loop is captured where the spoofed signal
+  // beats the authentic one by the capture margin (weak satellites first).
+  double strongest = 0.0;
+  for (int i = 0; i < obs.num_sats; ++i)
+    if (obs.sats[i].above_mask && obs.sats[i].received) strongest = std::max(strongest, obs.sats[i].cn0_dbhz);
+  if (!(strongest > 0.0)) return;
+  const double level = strongest + e.value(Param::kPowerAdvantageDb, f);
+  const double margin = e.value(Param::kCaptureMarginDb, f);
+  for (int i = 0; i < obs.num_sats; ++i) {
+    world::SatObservable& o = obs.sats[i];
+    if (!o.above_mask || !o.received) continue;
+    const bool captured = level - o.cn0_dbhz >= margin;
+    const bool newly = captured && !s.captured[o.prn - 1];
+    s.captured[o.prn - 1] = captured;
+    if (!captured) continue;
+    ++effects_.captured;
+    // Ranges as seen from the false position with the false clock: every
+    // spoofed pseudorange agrees with one solution (residuals stay quiet).
+    const Enu u = los_enu(o.az_rad, o.el_rad);
+    shift(o, -u.dot(s.offset_m) + s.clock_m, -u.dot(s.rate_m_s) + s.clock_rate_m_s);
+    o.cn0_dbhz = level;
+    if (newly && !s.aligned) break_lock(o);
+  }
+  effects_.spoof_offset_m = s.offset_m;
+  effects_.spoof_clock_m = s.clock_m;
+}
+
+double FaultStage::jammer_power_w(const FaultEvent& e, double f, const world::Truth& truth, bool* cw) const noexcept {
+  *cw = static_cast<JammerKind>(e.mode) != JammerKind::kWideband;
+  double j_dbw = 0.0;
+  if (e.has(Param::kJsDb)) {
+    j_dbw = kNominalSignal_dbw + e.value(Param::kJsDb, f);
+  } else {
+    double distance_m = e.value(Param::kDistanceM, f);
+    double el_rad = 0.0;
+    if (e.has(Param::kLatDeg)) {
+      const Lla rx = geo::lla_from_ecef(truth.pos_m);
+      const Lla jl{e.value(Param::kLatDeg, f) * kDegToRad, e.value(Param::kLonDeg, f) * kDegToRad,
+                   e.has(Param::kHeightM) ? e.value(Param::kHeightM, f) : rx.height_m};
+      const Ecef jp = geo::ecef_from_lla(jl);
+      distance_m = (jp - truth.pos_m).norm();
+      el_rad = geo::look_angles(truth.pos_m, rx, jp).el_rad;
+    }
+    const double gain = e.has(Param::kGainDbi) ? e.value(Param::kGainDbi, f)
+                                               : signal::antenna_gain_dbi(ctx_.link.antenna, el_rad);
+    j_dbw = jammer_power_dbw(e.value(Param::kEirpDbw, f), distance_m, gain);
+  }
+  return std::pow(10.0, j_dbw / 10.0);
+}
+
+void FaultStage::apply(const time::GpsTime& t, const world::Truth& truth, world::Observables& obs) noexcept {
+  double dt_s = 0.0;
+  if (!started_) {
+    started_ = true;
+    t0_ = t;
+  } else {
+    dt_s = t - t_prev_;
+    if (!std::isfinite(dt_s) || dt_s < 0.0) dt_s = 0.0;
+  }
+  t_prev_ = t;
+  dt_s_ = dt_s;
+  elapsed_s_ = t - t0_;
+  ++epoch_;
+  effects_ = FaultEffects{};
+  if (events_.empty()) return;
+  const double now = elapsed_s_;
+  // Order of the physics: the satellites transmit (satellite faults), the
+  // sky and the antenna pass or stop the signals (sky_block, outage), a
+  // ground spoofer adds its own, and interference degrades everything received.
+  for (const FaultEvent& e : events_)
+    if (e.type == FaultType::kSatellite && e.active_at(now)) satellite_fault(e, e.fraction_at(now), now - e.start_s, obs);
+  for (const FaultEvent& e : events_)
+    if (e.type == FaultType::kSkyBlock && e.active_at(now)) sky_block(e, e.fraction_at(now), obs);
+  for (const FaultEvent& e : events_)
+    if (e.type == FaultType::kOutage && e.active_at(now)) outage(e, obs);
+  for (std::size_t k = 0; k < events_.size(); ++k) {
+    const FaultEvent& e = events_[k];
+    if (e.type != FaultType::kSpoofer) continue;
+    if (e.active_at(now)) {
+      spoofer(e, spoof_[k], e.fraction_at(now), dt_s, obs);
+    } else if (spoof_[k].started) {
+      // The spoofer stops: the loops it held find no signal where it was
+      // (unless it had not moved them) and reacquire the authentic ones.
+      const SpoofState& s = spoof_[k];
+      const bool moved = s.offset_m.norm() > 0.0 || s.clock_m != 0.0;
+      for (int i = 0; i < obs.num_sats; ++i)
+        if (moved && s.captured[obs.sats[i].prn - 1] && obs.sats[i].received) break_lock(obs.sats[i]);
+      spoof_[k] = SpoofState{};
+    }
+  }
+  double j_w = 0.0, i0_w_hz = 0.0, cw_w = 0.0;
+  for (const FaultEvent& e : events_) {
+    if (e.type != FaultType::kJammer || !e.active_at(now)) continue;
+    bool cw = false;
+    const double p_w = jammer_power_w(e, e.fraction_at(now), truth, &cw);
+    j_w += p_w;
+    if (cw) cw_w += p_w;
+    i0_w_hz += p_w / (spectral_factor(static_cast<JammerKind>(e.mode)) * kCaChipRate_hz);
+  }
+  if (j_w > 0.0) {
+    effects_.jammer_dbw = 10.0 * std::log10(j_w);
+    effects_.agc_rise_db = agc_rise_db(j_w, n0_dbw_hz_);
+    obs.noise_rise_db += effects_.agc_rise_db;
+    obs.cw_jam_to_noise += cw_w / (std::pow(10.0, n0_dbw_hz_ / 10.0) * kFrontEndBandwidth_hz);
+    for (int i = 0; i < obs.num_sats; ++i) {
+      world::SatObservable& o = obs.sats[i];
+      if (o.above_mask && o.received) degrade(o, effective_cn0_dbhz(o.cn0_dbhz, n0_dbw_hz_, i0_w_hz));
+    }
+  }
+}
+
+}  // namespace gnssemu::faults

@@ -1,0 +1,38 @@
+#include "core/faults/interference.hpp"
+
+#include <cmath>
+
+#include "core/signal/link_budget.hpp"
+
+namespace gnssemu::faults {
+
+double spectral_factor(JammerKind kind) noexcept {
+  switch (kind) {
+    case JammerKind::kCw:
+    case JammerKind::kNarrowband: return 1.0;
+    case JammerKind::kWideband: return 2.0;
+  }
+  return 2.0;
+}
+
+double jammer_power_dbw(double eirp_dbw, double distance_m, double gain_dbi) noexcept {
+  return eirp_dbw - signal::free_space_path_loss_db(distance_m > 0.1 ? distance_m : 0.1) + gain_dbi;
+}
+
+double interference_density_w_hz(double j_dbw, JammerKind kind) noexcept {
+  return std::pow(10.0, j_dbw / 10.0) / (spectral_factor(kind) * kCaChipRate_hz);
+}
+
+double effective_cn0_dbhz(double cn0_dbhz, double n0_dbw_hz, double i0_w_hz) noexcept {
+  if (!(i0_w_hz > 0.0)) return cn0_dbhz;
+  const double n0_w_hz = std::pow(10.0, n0_dbw_hz / 10.0);
+  return cn0_dbhz - 10.0 * std::log10(1.0 + i0_w_hz / n0_w_hz);
+}
+
+double agc_rise_db(double j_w, double n0_dbw_hz) noexcept {
+  if (!(j_w > 0.0)) return 0.0;
+  const double floor_w = std::pow(10.0, n0_dbw_hz / 10.0) * kFrontEndBandwidth_hz;
+  return 10.0 * std::log10(1.0 + j_w / floor_w);
+}
+
+}  // namespace gnssemu::faults

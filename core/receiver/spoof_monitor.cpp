@@ -1,0 +1,85 @@
+#include "core/receiver/spoof_monitor.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gnssemu::receiver {
+
+namespace {
+// Authentic C/N0 follows the antenna gain with elevation, so satellites
+// spread over this much elevation differ by several dB; only then is a
+// uniform C/N0 suspicious.
+constexpr double kUniformMinElevationSpread_rad = 30.0 * kDegToRad;
+}  // namespace
+
+void validate(const SpoofDetectionConfig& c) {
+  using R = SpoofDetectionRanges;
+  check_ranges("receiver spoof_detection", {{c.cn0_jump_db, R::cn0_jump_db, "cn0_jump_db"},
+                                            {static_cast<double>(c.cn0_jump_sats), R::cn0_jump_sats, "cn0_jump_sats"},
+                                            {c.clock_jump_m, R::clock_jump_m, "clock_jump_m"},
+                                            {c.uniform_std_db, R::uniform_std_db, "uniform_std_db"},
+                                            {static_cast<double>(c.uniform_min_sats), R::uniform_min_sats,
+                                             "uniform_min_sats"},
+                                            {c.hold_s, R::hold_s, "hold_s"}});
+}
+
+void SpoofMonitor::reset() noexcept {
+  prev_cn0_.fill(0.0);
+  have_clock_ = false;
+  last_seen_s_.fill(-1e30);
+  held_ = 0;
+}
+
+std::uint8_t SpoofMonitor::update(const Fix& fix) noexcept {
+  if (!c_.enabled) return 0;
+  const double now_s = fix.t.week() * kSecondsPerWeek + fix.t.tow_s();
+  std::uint8_t fired = 0;
+  // C/N0: simultaneous jumps and the spread across tracked satellites.
+  int jumps = 0, n = 0;
+  double sum = 0.0, sum2 = 0.0, el_min = kPi, el_max = -kPi;
+  std::array<double, kMaxGpsPrn> cn0{};
+  for (int i = 0; i < fix.num_sats; ++i) {
+    const SatInfo& s = fix.sats[i];
+    if (!s.tracked) continue;
+    cn0[s.prn - 1] = s.cn0_dbhz;
+    const double before = prev_cn0_[s.prn - 1];
+    if (before > 0.0 && s.cn0_dbhz - before >= c_.cn0_jump_db) ++jumps;
+    ++n;
+    sum += s.cn0_dbhz;
+    sum2 += s.cn0_dbhz * s.cn0_dbhz;
+    el_min = std::min(el_min, s.el_rad);
+    el_max = std::max(el_max, s.el_rad);
+  }
+  prev_cn0_ = cn0;
+  if (jumps >= c_.cn0_jump_sats) fired |= kSpoofCn0Jump;
+  if (n >= c_.uniform_min_sats && el_max - el_min >= kUniformMinElevationSpread_rad) {
+    const double mean = sum / n;
+    const double var = std::max(sum2 / n - mean * mean, 0.0);
+    if (std::sqrt(var) < c_.uniform_std_db) fired |= kSpoofCn0Uniform;
+  }
+  // Clock: the solution's bias against what its drift predicted.
+  if (fix.type != FixType::kNone) {
+    const double clock_m = fix.clock_bias_s * kSpeedOfLight_m_s;
+    const double drift_m_s = fix.clock_drift_s_s * kSpeedOfLight_m_s;
+    if (have_clock_) {
+      const double dt_s = fix.t - prev_t_;
+      if (std::isfinite(dt_s) && dt_s > 0.0 && dt_s < 60.0 &&
+          std::fabs(clock_m - (prev_clock_m_ + prev_drift_m_s_ * dt_s)) > c_.clock_jump_m) {
+        fired |= kSpoofClockJump;
+      }
+    }
+    have_clock_ = true;
+    prev_t_ = fix.t;
+    prev_clock_m_ = clock_m;
+    prev_drift_m_s_ = drift_m_s;
+  }
+  held_ = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (fired & (1u << k)) last_seen_s_[k] = now_s;
+    if (now_s - last_seen_s_[k] <= c_.hold_s) held_ = static_cast<std::uint8_t>(held_ | (1u << k));
+  }
+  const int count = (held_ & 1) + ((held_ >> 1) & 1) + ((held_ >> 2) & 1);
+  return count == 0 ? 1 : count == 1 ? 2 : 3;
+}
+
+}  // namespace gnssemu::receiver

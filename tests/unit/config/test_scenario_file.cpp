@@ -1,0 +1,108 @@
+// Scenario files (config/scenario_file): [[event]] tables into fault events;
+// every error names file:line and the reason.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "config/scenario_file.hpp"
+#include "core/common/error.hpp"
+#include "test_helpers.hpp"
+
+namespace gnssemu::config {
+namespace {
+
+using faults::FaultType;
+using faults::Param;
+
+using test::expect_error;
+
+std::vector<faults::FaultEvent> parse(const std::string& text) { return parse_scenario(text, "s.toml"); }
+
+TEST(ScenarioFile, ReadsTheIssueExamples) {
+  const auto ev = parse(R"(
+[[event]]
+type = "jammer"
+start_s = 10
+duration_s = 60
+js_db = [0, 60]
+
+[[event]]
+type = "spoofer"
+mode = "drag"
+start_s = 100
+drag_speed_m_s = 2.0
+drag_heading_deg = 90
+power_advantage_db = 6
+
+[[event]]
+type = "satellite"
+start_s = 5
+prn = 12
+bias_m = 50
+
+[[event]]
+type = "outage"
+start_s = 200
+)");
+  ASSERT_EQ(ev.size(), 4u);
+  EXPECT_EQ(ev[0].type, FaultType::kJammer);
+  EXPECT_EQ(ev[0].param(Param::kJsDb).to, 60.0);
+  EXPECT_EQ(ev[0].duration_s, 60.0);
+  EXPECT_EQ(ev[0].line, 2);
+  EXPECT_EQ(ev[1].mode, static_cast<int>(faults::SpoofMode::kDrag));
+  EXPECT_EQ(ev[1].value(Param::kDragSpeedMS, 0.0), 2.0);
+  EXPECT_FALSE(std::isfinite(ev[1].duration_s));  // to the end
+  EXPECT_EQ(ev[2].param(Param::kPrn).from, 12.0);
+  EXPECT_EQ(ev[3].type, FaultType::kOutage);
+  EXPECT_EQ(ev[3].mode, static_cast<int>(faults::OutageKind::kBlockage));
+}
+
+TEST(ScenarioFile, ErrorsNameTheLineAndTheReason) {
+  expect_error([] { parse("[[event]]\nstart_s = 0\ntype = \"laser\"\n"); },
+               {"s.toml:3", "unknown type 'laser'", "jammer, spoofer, outage, sky_block, satellite, port"});
+  expect_error([] { parse("[[event]]\ntype = \"jammer\"\nstart_s = 0\njs_db = 10\nfoo = 1\n"); },
+               {"s.toml:5", "unknown key 'foo' for type jammer", "js_db"});
+  expect_error([] { parse("[[event]]\ntype = \"satellite\"\nstart_s = 0\nprn = 40\n"); },
+               {"s.toml:4", "prn: 40 is out of range [1, 32]"});
+  expect_error([] { parse("[[event]]\ntype = \"jammer\"\nstart_s = 0\njs_db = [0, 60]\n"); },
+               {"s.toml:4", "js_db: a [from, to] ramp needs a finite duration_s"});
+  expect_error([] { parse("[[event]]\ntype = \"spoofer\"\nstart_s = 0\nmode = \"warp\"\n"); },
+               {"s.toml:4", "unknown value 'warp'", "drag, time_push, meacon, takeover"});
+  expect_error([] { parse("[[event]]\ntype = \"satellite\"\nstart_s = 3\nbias_m = 5\n"); },
+               {"s.toml:1", "prn is required"});
+  expect_error([] { parse("[[event]]\ntype = \"outage\"\nstart_s = -1\n"); }, {"s.toml:3", "start_s: must be >= 0"});
+  expect_error([] { parse("[[event]]\ntype = \"outage\"\nstart_s = 0\nduration_s = 0\n"); },
+               {"s.toml:4", "duration_s: must be > 0"});
+  expect_error([] { parse("[[event]]\nstart_s = 0\n"); }, {"s.toml:1", "type is required"});
+  expect_error([] { parse("[[event]]\ntype = \"outage\"\n"); }, {"s.toml:1", "start_s is required"});
+  expect_error([] { parse("[[event]]\ntype = \"satellite\"\nstart_s = 0\nprn = [3, 4]\nduration_s = 9\n"); },
+               {"s.toml:4", "prn: cannot be ramped"});
+  expect_error([] { parse("[[event]]\ntype = \"jammer\"\nstart_s = 0\njs_db = \"loud\"\n"); },
+               {"s.toml:4", "expected a number"});
+  expect_error([] { parse("[events]\n"); }, {"s.toml:1", "a scenario is a list of [[event]] tables"});
+  expect_error([] { parse("[[event]\n"); }, {"s.toml:1", "TOML syntax error"});
+}
+
+TEST(ScenarioFile, ShippedExamplesAreValid) {
+  const std::filesystem::path dir = std::filesystem::path(GNSSEMU_SOURCE_DIR) / "config/examples/scenarios";
+  int n = 0;
+  for (const auto& f : std::filesystem::directory_iterator(dir)) {
+    if (f.path().extension() != ".toml") continue;
+    EXPECT_NO_THROW(read_scenario(f.path().string())) << f.path();
+    ++n;
+  }
+  EXPECT_GE(n, 5);
+  const auto every = read_scenario((dir / "every_type.toml").string());
+  EXPECT_EQ(every.size(), 6u);
+  EXPECT_EQ(every.back().type, FaultType::kPort);
+}
+
+TEST(ScenarioFile, MissingFileIsAnError) {
+  expect_error([] { read_scenario("/nonexistent/s.toml"); }, {"/nonexistent/s.toml"});
+}
+
+}  // namespace
+}  // namespace gnssemu::config
