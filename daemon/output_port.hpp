@@ -96,8 +96,12 @@ void validate_port(const config::OutputPortConfig& port);
 std::unique_ptr<OutputPort> open_port(const config::OutputPortConfig& config, boost::asio::io_context& io);
 
 /// Pty backlog (bytes unread by the reader) above which the queued epochs are
-/// discarded before writing the next: keeps what a late reader sees fresh.
-inline constexpr int kPtyMaxBacklogBytes = 2048;
+/// discarded before writing the next: Linux's tty read buffer (N_TTY_BUF_SIZE),
+/// what a serial port's kernel side holds for a stalled reader.
+inline constexpr int kPtyMaxBacklogBytes = 4096;
+/// A pty nobody has read for this long has no reader: its queue is discarded
+/// before the next epoch, so a reader that opens late gets the current one, s.
+inline constexpr double kPtyReaderGone_s = 1.0;
 /// Userspace queue per serial port / tcp client beyond which epochs are dropped.
 inline constexpr std::size_t kMaxQueuedBytes = 64 * 1024;
 /// Largest UDP datagram sent; an epoch is split at message boundaries.

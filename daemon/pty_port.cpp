@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <chrono>
 #include <filesystem>
 
 #include <boost/asio/posix/stream_descriptor.hpp>
@@ -102,12 +103,15 @@ protected:
     int backlog = 0;
     if (epoch && ::ioctl(slave_, FIONREAD, &backlog) == 0) {
       if (backlog == 0) unread_epochs_ = 0;
-      // Nobody read a byte since the last epoch (or the queue is long): a
-      // reader that opens now must get this epoch, not a burst of old ones.
-      // A reader that is there drains each epoch within the period.
-      const bool untouched = backlog > 0 && backlog >= backlog_after_write_;
+      // Nobody has read a byte for kPtyReaderGone_s (or the queue is longer
+      // than a tty's read buffer): a reader that opens now must get this
+      // epoch, not a burst of old ones. A reader that stalls for less keeps
+      // its epochs, as the kernel's tty buffer keeps them on a serial port.
+      const auto now = std::chrono::steady_clock::now();
       reader_active_ = backlog < backlog_after_write_;
-      if (untouched || backlog > kPtyMaxBacklogBytes) {
+      if (backlog == 0 || reader_active_) last_read_ = now;
+      const bool gone = backlog > 0 && now - last_read_ >= std::chrono::duration<double>(kPtyReaderGone_s);
+      if (gone || backlog > kPtyMaxBacklogBytes) {
         ::tcflush(slave_, TCIFLUSH);
         stats_.epochs_dropped += unread_epochs_;
         unread_epochs_ = 0;
@@ -187,6 +191,8 @@ private:
   uint64_t unread_epochs_ = 0;
   int backlog_after_write_ = 0;  ///< unread bytes right after the last epoch was written
   bool reader_active_ = false;   ///< the reader drained some of the last epoch
+  /// When the reader last drained something (or the queue was empty).
+  std::chrono::steady_clock::time_point last_read_ = std::chrono::steady_clock::now();
   uint32_t baud_ = 0;
   PortListener* listener_ = nullptr;
   std::array<uint8_t, 1024> rx_{};
