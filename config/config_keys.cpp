@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
-#include <filesystem>
 #include <string>
 #include <variant>
 
@@ -82,9 +81,7 @@ void read_nav_files(TableReader& t, const Field<Config>& f, Config& c) {
     const auto* s = e.as_string();
     if (s == nullptr) t.fail(e, name + ": expected a file name string, got " + std::string(type_name(e)));
     if (s->get().empty()) t.fail(e, name + ": a file name must not be empty");
-    const std::string path = resolve_path(s->get(), t.base_dir());
-    if (!is_file(path)) t.fail(e, name + ": '" + s->get() + "' not found (tried " + path + ")");
-    c.nav.files.push_back(path);
+    c.nav.files.push_back(existing_path(t, e, name, s->get(), PathKind::kFile));
   }
 }
 
@@ -95,42 +92,12 @@ void write_nav_files(TomlWriter& w, const Field<Config>& f, const Config& c) {
   w.key(f.key, list + "]", f.note);
 }
 
-void read_nav_folder(TableReader& t, const Field<Config>& f, Config& c) {
-  const toml::node* n = t.find(f.key);
-  if (n == nullptr) return;
-  const std::string given = t.string(f.key, std::nullopt);
-  if (given.empty()) t.fail(*n, t.full_name(f.key) + ": must not be empty");
-  const std::string path = resolve_path(given, t.base_dir());
-  std::error_code ec;
-  if (!std::filesystem::is_directory(path, ec)) {
-    t.fail(*n, t.full_name(f.key) + ": '" + given + "' is not a folder (tried " + path + ")");
-  }
-  c.nav.folder = path;
-}
-
-void write_nav_folder(TomlWriter& w, const Field<Config>& f, const Config& c) {
-  if (!c.nav.folder.empty()) w.key(f.key, string_text(w.path_text(c.nav.folder)), f.note);
-}
-
-void read_almanac(TableReader& t, const Field<Config>& f, Config& c) {
-  const toml::node* n = t.find(f.key);
-  if (n == nullptr) return;
-  const std::string given = t.string(f.key, std::nullopt);
-  if (given.empty()) t.fail(*n, t.full_name(f.key) + ": must not be empty");
-  const std::string path = resolve_path(given, t.base_dir());
-  if (!is_file(path)) t.fail(*n, t.full_name(f.key) + ": '" + given + "' not found (tried " + path + ")");
-  c.nav.almanac_file = path;
-}
-
-void write_almanac(TomlWriter& w, const Field<Config>& f, const Config& c) {
-  if (!c.nav.almanac_file.empty()) w.key(f.key, string_text(w.path_text(c.nav.almanac_file)), f.note);
-}
-
-template <void (*Read)(TableReader&, const Field<Config>&, Config&),
-          void (*Write)(TomlWriter&, const Field<Config>&, const Config&)>
-constexpr Field<Config> nav_path_field(std::string_view key, std::string_view unit, std::string_view range,
-                                       std::string_view meaning) {
-  Field<Config> row = custom<Config>(key, unit, range, meaning, Read, Write);
+constexpr Field<Config> nav_files_field() {
+  Field<Config> row = custom<Config>(
+      "files", "paths", "existing files",
+      "more RINEX nav files merged with `file` into one ephemeris store (a set broadcast in two files is kept once, "
+      "as RTKLIB's tie rule); relative to the config file's folder",
+      read_nav_files, write_nav_files);
   row.doc_default = "unset";
   return row;
 }
@@ -146,17 +113,12 @@ constexpr Field<Config> kNavFields[] = {
                 "error says which path was tried. toe's week is taken from the record's epoch (toc, a full date): "
                 "the one within half a week of toc; the file's GPS week (BROADCAST ORBIT 5) may be 10-bit (mod 1024) "
                 "or the week of transmission (±1), anything else is an error naming file:line"),
-    nav_path_field<read_nav_files, write_nav_files>(
-        "files", "paths", "existing files",
-        "more RINEX nav files merged with `file` into one ephemeris store (a set broadcast in two files is kept "
-        "once, as RTKLIB's tie rule); relative to the config file's folder"),
-    nav_path_field<read_nav_folder, write_nav_folder>(
-        "folder", "path", "an existing folder",
-        "every RINEX nav file in this folder (`*.yyn`, `*_GN.rnx`, also `.gz`) is merged too; an error when it "
-        "holds none"),
-    nav_path_field<read_almanac, write_almanac>(
-        "almanac", "path", "an existing file",
-        "YUMA or SEM GPS almanac for `mode = \"almanac\"` (needs it, and only it may name one)"),
+    nav_files_field(),
+    existing_path_row<PathKind::kFolder, &Config::nav, &NavConfig::folder>(
+        "folder", "every RINEX nav file in this folder (`*.yyn`, `*_GN.rnx`, also `.gz`) is merged too; an error when "
+                  "it holds none"),
+    existing_path_row<PathKind::kFile, &Config::nav, &NavConfig::almanac_file>(
+        "almanac", "YUMA or SEM GPS almanac for `mode = \"almanac\"` (needs it, and only it may name one)"),
     choice<kNavModes, &Config::nav, &NavConfig::mode>(
         "mode", "how the data are dated for the run: `auto` uses them as they are when they cover the start, else "
                 "as `relabel`; `as_is` only their own dates (a start outside their coverage is an error naming it); "

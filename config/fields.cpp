@@ -41,6 +41,18 @@ bool is_file(const std::string& path) {
   return std::filesystem::is_regular_file(path, ec);
 }
 
+std::string existing_path(TableReader& t, const toml::node& n, const std::string& name, const std::string& given,
+                          PathKind kind) {
+  if (given.empty()) t.fail(n, name + ": must not be empty");
+  const std::string path = resolve_path(given, t.base_dir());
+  if (kind == PathKind::kFile && !is_file(path)) t.fail(n, name + ": '" + given + "' not found (tried " + path + ")");
+  std::error_code ec;
+  if (kind == PathKind::kFolder && !std::filesystem::is_directory(path, ec)) {
+    t.fail(n, name + ": '" + given + "' is not a folder (tried " + path + ")");
+  }
+  return path;
+}
+
 bool is_ip_address(const std::string& text) {
   in6_addr buf{};
   return inet_pton(AF_INET, text.c_str(), &buf) == 1 || inet_pton(AF_INET6, text.c_str(), &buf) == 1;

@@ -518,35 +518,50 @@ bool is_file(const std::string& path);
 /// text is an IPv4 or IPv6 address.
 bool is_ip_address(const std::string& text);
 
-template <class T>
-void read_existing_file(TableReader& t, const Field<T>& f, T& o) {
-  const std::string given = t.string(f.key, std::nullopt);
-  const toml::node* node = t.find(f.key);
-  if (given.empty()) t.fail(*node, t.full_name(f.key) + ": must not be empty");
-  const std::string path = resolve_path(given, t.base_dir());
-  if (!is_file(path)) t.fail(*node, t.full_name(f.key) + ": '" + given + "' not found (tried " + path + ")");
-  value_of<std::string>(f, o) = path;
+/// What a path key must name.
+enum class PathKind : uint8_t { kFile, kFolder };
+
+/// given (the text of node n, key name) resolved against t's folder and
+/// normalised; a file:line error at n when it is empty or names no existing
+/// file (kFolder: folder), naming the path tried.
+std::string existing_path(TableReader& t, const toml::node& n, const std::string& name, const std::string& given,
+                          PathKind kind);
+
+template <class T, PathKind K>
+void read_existing_path(TableReader& t, const Field<T>& f, T& o) {
+  const toml::node* node = present(t, f.key, f.required);
+  if (node == nullptr) return;
+  value_of<std::string>(f, o) = existing_path(t, *node, t.full_name(f.key), t.string(f.key, std::nullopt), K);
 }
 template <class T>
 void write_path(TomlWriter& w, const Field<T>& f, const T& o) {
-  w.key(f.key, string_text(w.path_text(value_of<std::string>(f, o))), f.note);
+  const std::string& path = value_of<std::string>(f, o);
+  if (path.empty() && !f.required) return;  // an optional path left unset
+  w.key(f.key, string_text(w.path_text(path)), f.note);
 }
 template <class T>
 void describe_text(KeyDocs& d, const Field<T>& f, const T& o) {
   d.add(key_doc(f, o, "", ""));
 }
 
-/// An existing file, relative to the config file's folder; stored absolute,
-/// written relative to the folder to_toml is given when under it.
-template <auto... Path>
-constexpr Field<OwnerOf<Path...>> existing_file(std::string_view key, std::string_view meaning) {
+/// An existing file (kFolder: folder), relative to the config file's folder;
+/// stored absolute, written relative to the folder to_toml is given when
+/// under it. Optional unless .needed(): unset is "".
+template <PathKind K, auto... Path>
+constexpr Field<OwnerOf<Path...>> existing_path_row(std::string_view key, std::string_view meaning) {
   using T = OwnerOf<Path...>;
   static_assert(kHolds<std::string, Path...>);
-  Field<T> row = plain_row<Path...>(key, meaning, read_existing_file<T>, write_path<T>, describe_text<T>);
-  row.required = true;
+  Field<T> row = plain_row<Path...>(key, meaning, read_existing_path<T, K>, write_path<T>, describe_text<T>);
   row.unit = "path";
-  row.doc_range = "an existing file";
+  row.doc_range = K == PathKind::kFile ? "an existing file" : "an existing folder";
+  row.doc_default = "unset";
   return row;
+}
+
+/// A required existing file (existing_path_row).
+template <auto... Path>
+constexpr Field<OwnerOf<Path...>> existing_file(std::string_view key, std::string_view meaning) {
+  return existing_path_row<PathKind::kFile, Path...>(key, meaning).needed();
 }
 
 template <class T>
