@@ -157,7 +157,7 @@ void Daemon::start() {
   channels_.resize(cfg_.outputs.size());
   for (std::size_t i = 0; i < cfg_.outputs.size(); ++i) open_channel(i, open_port(cfg_.outputs[i], io_));
   for (const auto& c : channels_) c->start();
-  for (const auto& c : channels_) out_summary_.push_back(c->output_summary());
+  for (const auto& c : channels_) out_summary_.emplace_back(c->output_summary());
 
   boost::system::error_code ec;
   const auto addr = asio::ip::make_address(cfg_.truth.bind_address, ec);
@@ -172,7 +172,7 @@ void Daemon::start() {
   const auto local = socket_.local_endpoint(ec);
 
   for (const auto& c : channels_) {
-    std::printf("gnssemud: %s on %s\n", c->output_summary().c_str(), c->port().describe().c_str());
+    std::printf("gnssemud: %s on %s\n", std::string(c->output_summary()).c_str(), c->port().describe().c_str());
   }
   std::printf("gnssemud: truth input udp %s:%u\n", local.address().to_string().c_str(),
               static_cast<unsigned>(local.port()));
@@ -245,14 +245,12 @@ void Daemon::arm_timer() {
 }
 
 void Daemon::note_coverage(const time::GpsTime& t) noexcept {
-  const std::vector<orbit::TimeSpan>& spans = constellation_.coverage;
-  bool served = constellation_.continues && !spans.empty() && spans.back().end < t;
-  for (const orbit::TimeSpan& s : spans) served = served || s.contains(t);
+  const bool served = constellation_.serves(t);
   if (served == served_) return;
   served_ = served;
   if (!served) {
     spdlog::warn("epoch {}: outside the nav data ({}): no satellites until the data resume", gps_text(t),
-                 orbit::spans_text(spans));
+                 orbit::spans_text(constellation_.coverage));
   } else {
     spdlog::info("epoch {}: back inside the nav data", gps_text(t));
   }
@@ -450,10 +448,7 @@ void Daemon::align_to_packet_time(const time::GpsTime& stamp) {
   gps_aligned_ = true;
   const double tow_epochs = std::ceil(stamp.tow_s() * rate_hz_ - 1e-9);
   const time::GpsTime first = time::GpsTime::make(stamp.week(), tow_epochs / rate_hz_).value_or(stamp);
-  const bool served = std::any_of(constellation_.coverage.begin(), constellation_.coverage.end(),
-                                  [&](const orbit::TimeSpan& s) { return s.contains(first); }) ||
-                      (constellation_.continues && !constellation_.coverage.empty() &&
-                       constellation_.coverage.back().end < first);
+  const bool served = constellation_.serves(first);
   // The run starts over at the packets' time: a receiver powered on there,
   // in the state [receiver.acquisition] start configures.
   if (!served) {

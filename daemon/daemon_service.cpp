@@ -160,7 +160,7 @@ void Daemon::on_tick() {
 
 void Daemon::log_port_change(std::size_t src) {
   if (src >= channels_.size() || !channels_[src]) return;
-  const std::string now = channels_[src]->output_summary();
+  const std::string now(channels_[src]->output_summary());
   if (now == out_summary_[src]) return;
   const std::string& was = out_summary_[src];
   const protocol::ubx::PortSettings& p = device_.port(channels_[src]->link());

@@ -11,16 +11,6 @@
 
 namespace gnssemu::daemon {
 
-namespace {
-
-std::string_view protocols_text(std::uint16_t bits) noexcept {
-  const bool nmea = (bits & protocol::ubx::proto::kNmea) != 0;
-  const bool ubx = (bits & protocol::ubx::proto::kUbx) != 0;
-  return nmea && ubx ? "NMEA+UBX" : nmea ? "NMEA" : ubx ? "UBX" : "nothing";
-}
-
-}  // namespace
-
 void Daemon::start_status_page() {
   std::vector<PortInfo> ports;
   for (const auto& c : channels_) {
@@ -74,7 +64,7 @@ void Daemon::record_status(const time::GpsTime& t, const world::Truth& truth, co
   for (std::size_t i = 0; i < channels_.size(); ++i) {
     const PortChannel& c = *channels_[i];
     PortCounters pc;
-    pc.protocols = protocols_text(device_.protocols_sent(c.link()));
+    pc.protocols = c.output_summary();
     pc.baud_bps = c.budget().limited() ? c.budget().baud_bps() : 0;
     pc.bytes_offered = c.stats().bytes_offered;
     pc.bytes_written = c.port().stats().bytes_written;

@@ -46,7 +46,7 @@ PortChannel::~PortChannel() = default;
 
 void PortChannel::start() { port_->start(port_->config().protocols_in != 0 ? this : nullptr); }
 
-std::string PortChannel::output_summary() const {
+std::string_view PortChannel::output_summary() const noexcept {
   const uint16_t sent = device_.protocols_sent(link());
   const bool ubx_on = (sent & ubx::proto::kUbx) != 0;
   const bool nmea_on = (sent & ubx::proto::kNmea) != 0;

@@ -86,7 +86,7 @@ public:
   /// Per message label ("NAV-SAT", "GSV") the count dropped so far.
   const std::map<std::string, uint64_t, std::less<>>& drops() const noexcept { return drops_by_name_; }
   /// "NMEA", "UBX", "NMEA+UBX" or "nothing": what the port sends each epoch now.
-  std::string output_summary() const;
+  std::string_view output_summary() const noexcept;
 
 private:
   class Sink;

@@ -95,6 +95,11 @@ std::string Constellation::describe() const {
   return "?";
 }
 
+bool Constellation::serves(const time::GpsTime& t) const noexcept {
+  if (continues && !coverage.empty() && coverage.back().end < t) return true;
+  return std::any_of(coverage.begin(), coverage.end(), [&](const TimeSpan& s) { return s.contains(t); });
+}
+
 Constellation build_constellation(const NavData& data, const ConstellationRequest& request) {
   if (data.ephemerides.empty()) throw Error(data.source, 0, "no GPS ephemerides in the nav data");
   if (request.mode == NavMode::kAlmanac) throw Error("nav mode almanac needs an almanac file");

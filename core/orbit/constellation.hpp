@@ -44,6 +44,8 @@ struct Constellation {
   bool continues = true;                ///< sets stay in use after coverage.back().end
 
   StoreOptions store_options() const noexcept { return StoreOptions{continues}; }
+  /// t lies in the coverage, or past its end when sets continue.
+  bool serves(const time::GpsTime& t) const noexcept;
   /// One line for logs and --check-config: mode, shift, coverage.
   std::string describe() const;
 };
