@@ -1,6 +1,7 @@
 #pragma once
 // WGS-84 geodetic <-> ECEF conversions and satellite look angles, through
 // GeographicLib::Geocentric (the only geodesy implementation in the project).
+#include <cmath>
 #include <string>
 
 #include "core/common/vec3.hpp"
@@ -16,6 +17,11 @@ Lla lla_from_ecef(const Ecef& ecef) noexcept;
 Enu ecef_to_enu_vector(const Vec3& ecef_vec, double lat_rad, double lon_rad) noexcept;
 /// Rotation of an ENU vector into ECEF at (lat_rad, lon_rad).
 Vec3 enu_to_ecef_vector(const Enu& enu_vec, double lat_rad, double lon_rad) noexcept;
+/// Local vertical (ellipsoid normal, up) at lla as an ECEF unit vector.
+inline Vec3 up_unit_ecef(const Lla& lla) noexcept {
+  const double cl = std::cos(lla.lat_rad);
+  return {cl * std::cos(lla.lon_rad), cl * std::sin(lla.lon_rad), std::sin(lla.lat_rad)};
+}
 
 /// Azimuth (rad, [0, 2pi), clockwise from true north), elevation (rad,
 /// [-pi/2, pi/2]) and geometric range (m) from a receiver to a target.

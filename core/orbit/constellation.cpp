@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <map>
 
+#include "core/common/constants.hpp"
 #include "core/common/error.hpp"
 #include "core/orbit/relabel.hpp"
 
@@ -13,14 +14,13 @@ namespace gnssemu::orbit {
 
 namespace {
 
-constexpr double kDay_s = 86400.0;
 /// An almanac this much older than the start (or up to the ephemeris window
 /// newer) is current: used at its own date.
-constexpr double kAlmanacCurrentAge_s = 7.0 * kDay_s;
+constexpr double kAlmanacCurrentAge_s = 7.0 * kSecondsPerDay;
 constexpr double kAlmanacLead_s = 7200.0;
 
 int64_t day_index(const time::GpsTime& t) noexcept {
-  return static_cast<int64_t>(std::floor((t - time::GpsTime()) / kDay_s));
+  return static_cast<int64_t>(std::floor((t - time::GpsTime()) / kSecondsPerDay));
 }
 
 /// The GPS day holding the most toes (the earliest of equals): a daily
@@ -42,7 +42,7 @@ std::vector<TimeSpan> moved(const std::vector<TimeSpan>& spans, double shift_s) 
 
 std::string days_text(double shift_s) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%+.0f days", shift_s / kDay_s);
+  std::snprintf(buf, sizeof buf, "%+.0f days", shift_s / kSecondsPerDay);
   return buf;
 }
 
@@ -126,8 +126,8 @@ Constellation build_constellation(const NavData& data, const ConstellationReques
   // Whole days keep the time of day, so every start on one day sees the same
   // sky at the same instant; the start falls on the data's main day, or on
   // the day after when the data begin later in the day (the orbits continue).
-  double shift_s = static_cast<double>(day_index(request.start) - reference_day(data.ephemerides)) * kDay_s;
-  if (request.start - shift_s < c.data_coverage.front().begin) shift_s -= kDay_s;
+  double shift_s = static_cast<double>(day_index(request.start) - reference_day(data.ephemerides)) * kSecondsPerDay;
+  if (request.start - shift_s < c.data_coverage.front().begin) shift_s -= kSecondsPerDay;
   const time::GpsTime mapped = request.start - shift_s;
   // Only the covered block the start falls in (or after): a later block would
   // replace the continued orbits with other ones, a jump.
@@ -157,7 +157,7 @@ Constellation build_constellation(const std::vector<AlmanacEntry>& almanac, cons
     if (toa < a.toa) toa = a.toa;
   const double age_s = request.start - toa;
   double shift_s = 0.0;
-  if (!(age_s >= -kAlmanacLead_s && age_s <= kAlmanacCurrentAge_s)) shift_s = std::floor(age_s / kDay_s) * kDay_s;
+  if (!(age_s >= -kAlmanacLead_s && age_s <= kAlmanacCurrentAge_s)) shift_s = std::floor(age_s / kSecondsPerDay) * kSecondsPerDay;
 
   Constellation c;
   c.mode = NavMode::kAlmanac;

@@ -18,11 +18,6 @@ constexpr double kClockStepGate_m = 1000.0;
 constexpr double kStaticHoldExit = 1.5;
 constexpr double kPivotTol = 1e-10;
 
-Vec3 up_of(const Lla& lla) noexcept {
-  const double cl = std::cos(lla.lat_rad);
-  return {cl * std::cos(lla.lon_rad), cl * std::sin(lla.lon_rad), std::sin(lla.lat_rad)};
-}
-
 using Mat3 = std::array<std::array<double, 3>, 3>;
 
 /// Covariance of the three ECEF states from index k of p, in local ENU: R P R'.
@@ -233,7 +228,7 @@ void Navigator::step(double dt_s, const SolverInput& in, const SolverOutput& sna
     type = FixType::k3D;
   } else if (used == 3 && dm.allows_2d && have_height_) {
     const Lla lla = geo::lla_from_ecef(kf_.pos_m());
-    const Vec3 up = up_of(lla);
+    const Vec3 up = geo::up_unit_ecef(lla);
     kf_.update({up.x, up.y, up.z, 0.0, 0.0, 0.0, 0.0, 0.0}, held_height_m_ - lla.height_m,
                height_sigma_m_ * height_sigma_m_, 1e9);
     type = FixType::k2D;

@@ -40,11 +40,6 @@ double upper_normal_quantile(double p) noexcept {
   return 0.5 * (lo + hi);
 }
 
-Vec3 up_ecef(const Lla& lla) noexcept {
-  const double cl = std::cos(lla.lat_rad);
-  return {cl * std::cos(lla.lon_rad), cl * std::sin(lla.lon_rad), std::sin(lla.lat_rad)};
-}
-
 void accumulate(Mat4& n, Vec4& g, const Vec4& h, double w, double y) noexcept {
   for (int i = 0; i < 4; ++i) {
     g[i] += w * h[i] * y;
@@ -84,7 +79,7 @@ void Solver::update_corrections(const SolverInput& in, const Ecef& pos, const Ll
   corr_valid_ = true;
   corr_pos_ = pos;
   const double tow_s = in.t_rx_local.tow_s();
-  const Vec3 up = up_ecef(lla);
+  const Vec3 up = geo::up_unit_ecef(lla);
   const Vec3 east{-std::sin(lla.lon_rad), std::cos(lla.lon_rad), 0.0};
   const Vec3 north = up.cross(east);
   for (int i = 0; i < n_; ++i) {
@@ -103,7 +98,7 @@ void Solver::update_corrections(const SolverInput& in, const Ecef& pos, const Ll
 }
 
 void Solver::linearise(const SolverInput& in, const Ecef& pos, double clock_m, const Lla* lla) noexcept {
-  const Vec3 up = lla ? up_ecef(*lla) : Vec3{};
+  const Vec3 up = lla ? geo::up_unit_ecef(*lla) : Vec3{};
   if (lla) {
     update_corrections(in, pos, *lla);
   } else if (corr_valid_) {
@@ -142,7 +137,7 @@ bool Solver::iterate(const SolverInput& in, Ecef& pos, double& clock_m, bool two
     }
     if (two_d) {
       if (!near_surface) return false;
-      const Vec3 up = up_ecef(lla);
+      const Vec3 up = geo::up_unit_ecef(lla);
       accumulate(n, g, {up.x, up.y, up.z, 0.0}, wh, in.held_height_m - lla.height_m);
     }
     Mat4 inv;
@@ -340,7 +335,6 @@ int Solver::measurement_model(const SolverInput& in, const Ecef& pos_m, double c
   if (!(pos_m.norm() > kSurfaceRadius_m)) return 0;
   const Lla lla = geo::lla_from_ecef(pos_m);
   linearise(in, pos_m, clock_m, &lla);
-  const Vec3 up = up_ecef(lla);
   for (int i = 0; i < n_; ++i) {
     const Sat& s = sats_[i];
     MeasurementRow& r = rows[i];
@@ -348,7 +342,6 @@ int Solver::measurement_model(const SolverInput& in, const Ecef& pos_m, double c
     r.range_resid_m = s.resid_m;
     r.sigma2_m2 = s.sigma2;
     r.rate_obs_m_s = -kL1Wavelength_m * in.meas[i].doppler_hz - s.los.dot(s.vel_rx_frame_m_s) + s.drift_m_s;
-    r.el_rad = std::asin(std::clamp(s.los.dot(up), -1.0, 1.0));
   }
   return n_;
 }

@@ -73,7 +73,6 @@ struct MeasurementRow {
   /// Measured range rate minus the satellite's part (LOS satellite velocity,
   /// its clock drift): what -los . v_rx + c drift_rx should equal, m/s.
   double rate_obs_m_s = 0.0;
-  double el_rad = 0.0;       ///< elevation at the state, rad
 };
 
 class Solver {

@@ -32,7 +32,7 @@ void SpoofMonitor::reset() noexcept {
 
 std::uint8_t SpoofMonitor::update(const Fix& fix) noexcept {
   if (!c_.enabled) return 0;
-  const double now_s = fix.t.week() * kSecondsPerWeek + fix.t.tow_s();
+  const double now_s = fix.t.total_s();
   std::uint8_t fired = 0;
   // C/N0: simultaneous jumps and the spread across tracked satellites.
   int jumps = 0, n = 0;

@@ -15,9 +15,13 @@ void validate(const DllParams& p) {
                               {p.spacing_chips, R::spacing_chips, "spacing_chips"}, {p.chip_m, R::chip_m, "chip_m"}});
 }
 
+double cn0_ratio_hz(double cn0_dbhz) noexcept {
+  const double db = std::isfinite(cn0_dbhz) ? std::clamp(cn0_dbhz, 0.0, 70.0) : 0.0;
+  return std::pow(10.0, db / 10.0);
+}
+
 double dll_thermal_sigma_m(double cn0_dbhz, const DllParams& p) noexcept {
-  const double cn0_db = std::isfinite(cn0_dbhz) ? std::clamp(cn0_dbhz, 0.0, 70.0) : 0.0;
-  const double cn0 = std::pow(10.0, cn0_db / 10.0);
+  const double cn0 = cn0_ratio_hz(cn0_dbhz);
   const double d = p.spacing_chips;
   const double squaring = p.discriminator == DllDiscriminator::kDotProduct
                               ? 1.0 + 1.0 / (p.integration_s * cn0)

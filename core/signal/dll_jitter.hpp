@@ -40,4 +40,8 @@ void validate(const DllParams& p);
 /// cn0_dbhz is clamped to [0, 70] (NaN -> 0) so the result is finite.
 double dll_thermal_sigma_m(double cn0_dbhz, const DllParams& p) noexcept;
 
+/// C/N0 as a ratio, Hz: 10^(C/N0 / 10) with cn0_dbhz held in [0, 70] dB-Hz
+/// (NaN -> 0 dB-Hz), so loop models stay finite.
+double cn0_ratio_hz(double cn0_dbhz) noexcept;
+
 }  // namespace gnssemu::signal

@@ -3,14 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/signal/dll_jitter.hpp"
+
 namespace gnssemu::world {
 
 namespace {
-
-double cn0_ratio_hz(double cn0_dbhz) noexcept {
-  const double db = std::isfinite(cn0_dbhz) ? std::clamp(cn0_dbhz, 0.0, 70.0) : 0.0;
-  return std::pow(10.0, db / 10.0);
-}
 
 /// ln I0(x) for x >= 0 by the polynomial approximations of Abramowitz &
 /// Stegun 9.8.1 (x <= 3.75) and 9.8.2 (beyond; relative error < 2e-7).
@@ -37,12 +34,12 @@ void validate(const CarrierConfig& c) {
 }
 
 double pll_jitter_rad(double cn0_dbhz, double bandwidth_hz, double integration_s) noexcept {
-  const double cn0 = cn0_ratio_hz(cn0_dbhz);
+  const double cn0 = signal::cn0_ratio_hz(cn0_dbhz);
   return std::sqrt(bandwidth_hz / cn0 * (1.0 + 1.0 / (2.0 * integration_s * cn0)));
 }
 
 double fll_range_rate_sigma_m_s(double cn0_dbhz, const CarrierConfig& c) noexcept {
-  const double cn0 = cn0_ratio_hz(cn0_dbhz);
+  const double cn0 = signal::cn0_ratio_hz(cn0_dbhz);
   const double t = c.integration_s;
   const double sigma_hz = std::sqrt(4.0 * c.fll_bandwidth_hz / cn0 * (1.0 + 1.0 / (t * cn0))) / (2.0 * kPi * t);
   return kL1Wavelength_m * sigma_hz;
