@@ -8,6 +8,7 @@
 
 #include "core/common/constants.hpp"
 #include "core/geo/geodesy.hpp"
+#include "core/statistics/statistics.hpp"
 #include "daemon/json_writer.hpp"
 #include "daemon/sat_state.hpp"
 
@@ -27,13 +28,6 @@ std::string_view fix_type_name(receiver::FixType t) noexcept {
   return "none";
 }
 
-/// Nearest-rank percentile of the first n values of v (sorted in place), q in (0, 1].
-double percentile(std::span<double> v, double q) noexcept {
-  if (v.empty()) return kNaN;
-  std::sort(v.begin(), v.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
-  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
-}
 
 }  // namespace
 
@@ -122,8 +116,9 @@ void StatusProducer::update_error_stats() noexcept {
   }
   error_samples_ = static_cast<int>(n);
   const std::span<double> h(scratch_.data(), n);
-  cep50_m_ = percentile(h, 0.5);
-  cep95_m_ = percentile(h, 0.95);
+  std::sort(h.begin(), h.end());
+  cep50_m_ = statistics::percentile_nearest_rank_sorted(h, 0.5);
+  cep95_m_ = statistics::percentile_nearest_rank_sorted(h, 0.95);
 }
 
 void StatusProducer::write_history(JsonWriter& w, std::size_t history_max) const noexcept {

@@ -76,10 +76,14 @@ double variance(std::span<const double> v, double mean_v) noexcept {
 double std_dev(std::span<const double> v, double mean_v) noexcept { return std::sqrt(variance(v, mean_v)); }
 
 double percentile_nearest_rank(std::vector<double> v, double p) {
-  if (v.empty()) return kNaN;
   std::sort(v.begin(), v.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(v.size())));
-  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
+  return percentile_nearest_rank_sorted(v, p);
+}
+
+double percentile_nearest_rank_sorted(std::span<const double> sorted, double p) noexcept {
+  if (sorted.empty()) return kNaN;
+  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(sorted.size())));
+  return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
 }
 
 double quantile_linear(std::vector<double> v, double q) {

@@ -24,6 +24,9 @@ double std_dev(std::span<const double> v, double mean_v) noexcept;
 /// Nearest-rank percentile: the ceil(p n)-th smallest of v (p in (0, 1]; the
 /// rank is held in [1, n]); NaN when v is empty.
 double percentile_nearest_rank(std::vector<double> v, double p);
+/// percentile_nearest_rank of values already sorted ascending; no copy, no
+/// allocation (the per-epoch status figures).
+double percentile_nearest_rank_sorted(std::span<const double> sorted, double p) noexcept;
 /// Quantile q in [0, 1] interpolated linearly between the order statistics
 /// around q (n - 1) (Hyndman & Fan 1996, definition 7); NaN when v is empty.
 double quantile_linear(std::vector<double> v, double q);

@@ -34,7 +34,7 @@ Rules project_rules() {
       {"nmea", "core/protocol/nmea", {"time"}, {"core/receiver/fix.hpp"}},
       {"ubx", "core/protocol/ubx", {"nmea"}, {}},
       {"config", "config", {"pipeline", "ubx", "observation"}, {}},
-      {"daemon", "daemon", {"config"}, {}},
+      {"daemon", "daemon", {"config", "statistics"}, {}},
       {"tools", "tools", {"daemon", "statistics"}, {}},
       {"support", "tests/support", {}, {}},
       {"bench", "bench", {"tools", "support"}, {}},

@@ -10,6 +10,7 @@
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
+#include "core/statistics/statistics.hpp"
 #include "daemon/json_writer.hpp"
 #include "daemon/sat_state.hpp"
 #include "daemon/web_assets.hpp"
@@ -24,20 +25,6 @@ constexpr std::size_t kMaxSeriesPoints = 20000;
 constexpr std::size_t kMaxSkyPoints = 40000;
 constexpr std::size_t kCdfPoints = 500;
 constexpr double kBinDeg = 5.0;
-
-double median(std::vector<double> v) {
-  if (v.empty()) return kNoValue;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-/// Nearest-rank percentile (as statistics::percentile_nearest_rank) of sorted v.
-double nearest_rank(const std::vector<double>& sorted, double q) {
-  if (sorted.empty()) return kNoValue;
-  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(sorted.size())));
-  return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
-}
 
 std::string asset(std::string_view url) {
   const web::Asset* a = web::find_asset(url);
@@ -94,24 +81,19 @@ std::string report_json(const ReportData& d) {
   }
   std::sort(h.begin(), h.end());
   std::sort(v.begin(), v.end());
-  auto rms = [](const std::vector<double>& x) {
-    double s = 0.0;
-    for (double a : x) s += a * a;
-    return x.empty() ? kNoValue : std::sqrt(s / static_cast<double>(x.size()));
-  };
   w.key("summary");
   w.begin_object();
   w.field_int("epochs", static_cast<int64_t>(d.epochs.size()));
   w.field_int("fixes", fixes);
   w.field_int("fixes_3d", fixes_3d);
   w.field_int("error_samples", static_cast<int64_t>(h.size()));
-  w.field("cep50_m", nearest_rank(h, 0.5), 3);
-  w.field("cep95_m", nearest_rank(h, 0.95), 3);
-  w.field("h_rms_m", rms(h), 3);
+  w.field("cep50_m", statistics::percentile_nearest_rank(h, 0.5), 3);
+  w.field("cep95_m", statistics::percentile_nearest_rank(h, 0.95), 3);
+  w.field("h_rms_m", statistics::rms(h), 3);
   w.field("h_max_m", h.empty() ? kNoValue : h.back(), 3);
-  w.field("v50_m", nearest_rank(v, 0.5), 3);
-  w.field("v95_m", nearest_rank(v, 0.95), 3);
-  w.field("v_rms_m", rms(v), 3);
+  w.field("v50_m", statistics::percentile_nearest_rank(v, 0.5), 3);
+  w.field("v95_m", statistics::percentile_nearest_rank(v, 0.95), 3);
+  w.field("v_rms_m", statistics::rms(v), 3);
   w.end_object();
 
   w.key("cdf");
@@ -293,8 +275,8 @@ std::vector<Cn0Bin> cn0_bins(const ReportData& d) {
     b.el_hi_deg = (k + 1) * kBinDeg;
     b.sim_n = static_cast<int>(sim[i].size());
     b.ref_n = static_cast<int>(ref[i].size());
-    b.sim_median_dbhz = median(sim[i]);
-    b.ref_median_dbhz = median(ref[i]);
+    b.sim_median_dbhz = statistics::quantile_linear(sim[i], 0.5);
+    b.ref_median_dbhz = statistics::quantile_linear(ref[i], 0.5);
     out.push_back(b);
   }
   return out;
