@@ -96,12 +96,6 @@ void TruthRouter::set_driving_vehicle(const std::string& id) {
   }
 }
 
-std::vector<std::string> TruthRouter::vehicle_ids() const {
-  std::vector<std::string> ids;
-  for (const Vehicle& v : vehicles_) ids.push_back(v.id);
-  return ids;
-}
-
 void TruthRouter::on_clock_jump() noexcept {
   for (Vehicle& v : vehicles_) {
     v.track.clear_samples();

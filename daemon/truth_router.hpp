@@ -55,8 +55,6 @@ public:
   void set_driving_vehicle(const std::string& id);
   /// The configured vehicle (set_driving_vehicle or the constructor), "" none.
   const std::string& wanted_vehicle() const noexcept { return wanted_; }
-  /// Vehicle ids heard, in order of first packet.
-  std::vector<std::string> vehicle_ids() const;
 
   /// The epoch clock jumped back (coverage wrap): drop samples, re-anchor clocks.
   void on_clock_jump() noexcept;

@@ -68,8 +68,6 @@ std::vector<Residual> station_residuals(const CalibrationInput& in, const orbit:
       r.klobuchar_m = corr_m - atmosphere::standard_troposphere_correction_m(lla.lat_rad, lla.height_m, look.el_rad,
                                                                              e.t.fractional_day_of_year());
       r.nmf_wet = atmosphere::niell_mapping(look.el_rad, lla.lat_rad, lla.height_m, e.t.fractional_day_of_year()).wet;
-      // Local time as the receiver's gradient and Klobuchar (IS-GPS-200 20.3.3.5.2.5) take it.
-      r.local_time_rad = 2.0 * kPi * (e.t.tow_s() / kSecondsPerDay) + lla.lon_rad;
       r.value_m = pr->value - (rho - kSpeedOfLight_m_s * (st.clk_bias_s - eph->tgd_s) + corr_m);
       if (const observation::ObsValue* sn = s.get(s1c)) r.cn0_dbhz = sn->value;
       epoch.push_back(r);

@@ -42,7 +42,6 @@ struct Residual {
   double cn0_dbhz = std::numeric_limits<double>::quiet_NaN();  ///< S1C, dB-Hz (NaN if absent)
   double klobuchar_m = 0.0;   ///< broadcast Klobuchar delay the receiver removed, m
   double nmf_wet = 0.0;       ///< Niell wet mapping factor at el
-  double local_time_rad = 0.0;  ///< local mean solar time at the station, 2 pi per day
 };
 
 /// Sampling interval of obs: the header INTERVAL, else the median epoch spacing, s.
