@@ -22,6 +22,7 @@
 #include "core/scene/propagator.hpp"
 #include "core/time/gps_time.hpp"
 #include "core/world/world_config.hpp"
+#include "config/control_config.hpp"
 #include "config/status_config.hpp"
 
 namespace gnssemu::config {
@@ -195,6 +196,7 @@ struct Config {
   LogConfig log;
   std::optional<SceneConfig> scene;  ///< no [scene]: no scene stage
   StatusConfig status;            ///< the live status page
+  ControlConfig control;          ///< the control socket
 };
 
 /// Load and validate a TOML file. Relative paths inside are resolved against

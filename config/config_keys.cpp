@@ -322,6 +322,32 @@ constexpr Field<StatusConfig> kStatusFields[] = {
 };
 constexpr Section<StatusConfig> kStatus{kStatusFields};
 
+void read_socket(TableReader& t, const Field<ControlConfig>& f, ControlConfig& c) {
+  const toml::node* n = t.find(f.key);
+  if (n == nullptr) return;
+  c.socket = t.string(f.key, std::nullopt);
+  const std::string name = t.full_name(f.key);
+  if (c.socket.empty()) t.fail(*n, name + ": must not be empty (leave it out: no control socket)");
+  if (c.socket.front() != '/') t.fail(*n, name + ": '" + c.socket + "' must be an absolute path");
+  if (c.socket.size() > kMaxSocketPathBytes) {
+    t.fail(*n, name + ": " + std::to_string(c.socket.size()) + " bytes; a Unix socket path holds at most " +
+                   std::to_string(kMaxSocketPathBytes));
+  }
+}
+
+void write_socket(TomlWriter& w, const Field<ControlConfig>& f, const ControlConfig& c) {
+  if (!c.socket.empty()) w.key(f.key, string_text(c.socket), f.note);
+}
+
+constexpr Field<ControlConfig> kControlFields[] = {
+    custom<ControlConfig>("socket", "path", "absolute, at most 107 bytes",
+                          "Unix socket for `gnssemu ctl` (status, fault injection; docs/daemon.md), created 0600 "
+                          "and removed at exit. Unset: no control socket",
+                          read_socket, write_socket)
+        .default_doc("unset"),
+};
+constexpr Section<ControlConfig> kControl{kControlFields};
+
 constexpr std::array<std::string_view, 7> kLogLevels{"trace", "debug", "info", "warn", "error", "critical", "off"};
 
 std::string log_levels_text() {
@@ -399,6 +425,7 @@ constexpr Field<Config> kConfigFields[] = {
     optional_table<kSceneKeys, &Config::scene>("scene", "buildings, docs/scene.md"),
     table<kStatus, &Config::status>("status", "live status page, docs/status.md"),
     check<Config>(check_status_port),
+    table<kControl, &Config::control>("control", "control socket, docs/daemon.md"),
     table<kLog, &Config::log>("log"),
 };
 

@@ -48,6 +48,8 @@ ReloadPlan plan_reload(const Config& running, const Config& loaded) {
     m.truth.bind_address = l.truth.bind_address;
     m.truth.port = l.truth.port;
   });
+  restart_if("[status]", [](Config& m, const Config& l) { m.status = l.status; });
+  restart_if("[control]", [](Config& m, const Config& l) { m.control = l.control; });
 
   if (running.outputs.size() != loaded.outputs.size()) {
     p.need_restart.push_back("outputs added or removed (" + std::to_string(running.outputs.size()) + " -> " +

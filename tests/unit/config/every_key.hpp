@@ -311,6 +311,9 @@ bind = "::1"
 port = 8088
 free_port = true
 
+[control]
+socket = "/run/gnssemu/control.sock"
+
 [log]
 level = "debug"
 )";
