@@ -36,17 +36,22 @@ bool in_sector(double az_deg, double from_deg, double to_deg) noexcept {
 
 }  // namespace
 
-FaultStage::FaultStage(const FaultContext& context, std::span<const FaultEvent> events)
-    : ctx_(context), rng_(world::CounterRng::mix(context.seed ^ kSeedSalt)) {
-  signal::validate(ctx_.link);
-  signal::validate(ctx_.dll);
-  world::validate(ctx_.carrier);
-  n0_dbw_hz_ = signal::thermal_noise_density_dbw_hz(ctx_.link.noise_temperature_k) + ctx_.link.noise_figure_db +
-               ctx_.link.environment_noise_rise_db;
+FaultStage::FaultStage(const FaultContext& context, std::span<const FaultEvent> events) {
+  set_context(context);
   events_.reserve(kMaxEvents);
   status_.reserve(kMaxEvents);
   spoof_.reserve(kMaxEvents);
   inject(events);
+}
+
+void FaultStage::set_context(const FaultContext& context) {
+  signal::validate(context.link);
+  signal::validate(context.dll);
+  world::validate(context.carrier);
+  ctx_ = context;
+  rng_ = world::CounterRng(world::CounterRng::mix(context.seed ^ kSeedSalt));
+  n0_dbw_hz_ = signal::thermal_noise_density_dbw_hz(ctx_.link.noise_temperature_k) + ctx_.link.noise_figure_db +
+               ctx_.link.environment_noise_rise_db;
 }
 
 void FaultStage::inject(std::span<const FaultEvent> events) {

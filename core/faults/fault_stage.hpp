@@ -57,6 +57,12 @@ public:
   /// check_event (naming its line when it has one).
   FaultStage(const FaultContext& context, std::span<const FaultEvent> events);
 
+  /// The world's models changed (a receiver restart with a new
+  /// configuration): use these from the next epoch on; events, time line
+  /// and spoofer state stay. Setup only; throws gnssemu::Error on an
+  /// invalid context (and keeps the old one).
+  void set_context(const FaultContext& context);
+
   /// Edit obs for the epoch at t (GPS) with the vehicle truth (position for
   /// a placed jammer). The first call fixes time zero of the scenario.
   void apply(const time::GpsTime& t, const world::Truth& truth, world::Observables& obs) noexcept;
@@ -74,6 +80,8 @@ public:
   int active_count() const noexcept;
   const FaultEffects& effects() const noexcept { return effects_; }
   bool empty() const noexcept { return events_.empty(); }
+  /// Events held (active, pending or ended).
+  std::size_t event_count() const noexcept { return events_.size(); }
 
 private:
   struct SpoofState {
@@ -103,7 +111,7 @@ private:
 
   FaultContext ctx_;
   double n0_dbw_hz_ = 0.0;
-  world::CounterRng rng_;
+  world::CounterRng rng_{0};
   std::vector<FaultEvent> events_;          ///< reserved kMaxEvents
   std::vector<FaultStatus> status_;         ///< reserved kMaxEvents
   std::vector<SpoofState> spoof_;           ///< one per event, reserved kMaxEvents

@@ -21,4 +21,9 @@ void Pipeline::set_faults(std::span<const faults::FaultEvent> events) {
   faults_ = std::make_unique<faults::FaultStage>(fault_context_, events);
 }
 
+void Pipeline::adopt_faults(std::unique_ptr<faults::FaultStage> stage) {
+  if (stage) stage->set_context(fault_context_);
+  faults_ = std::move(stage);
+}
+
 }  // namespace gnssemu::pipeline

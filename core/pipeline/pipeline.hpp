@@ -55,6 +55,13 @@ public:
   /// times from the first epoch; none: an empty stage that inject() fills
   /// later). Setup only (allocates); throws gnssemu::Error on a bad event.
   void set_faults(std::span<const faults::FaultEvent> events);
+  /// Hand the fault stage (its events, time line and spoofer state) to
+  /// another pipeline: the faults are in the world around the receiver, so a
+  /// receiver restart (a reset, a reload) keeps them. nullptr without one.
+  std::unique_ptr<faults::FaultStage> take_faults() noexcept { return std::move(faults_); }
+  /// Take over a stage from take_faults(), now with this pipeline's noise
+  /// models and seed (nullptr: no stage). Setup only.
+  void adopt_faults(std::unique_ptr<faults::FaultStage> stage);
   /// The fault stage, or nullptr without one.
   faults::FaultStage* faults() noexcept { return faults_.get(); }
   const faults::FaultStage* faults() const noexcept { return faults_.get(); }
