@@ -79,7 +79,10 @@ void Daemon::restart_receiver(receiver::StartMode start) {
   // With the broadcast leap seconds and Klobuchar coefficients of the run's dates.
   config::Config c = cfg_;
   c.receiver.acquisition.start = start;
+  // The faults are in the world around the receiver: they go on.
+  std::unique_ptr<faults::FaultStage> faults = receiver_ ? receiver_->take_faults() : nullptr;
   receiver_ = config::make_pipeline(c, store_, pipeline::broadcast_of(constellation_.nav), scene_.get());
+  receiver_->adopt_faults(std::move(faults));
   apply_nav5();
 }
 
@@ -177,6 +180,7 @@ void Daemon::start() {
   std::printf("gnssemud: truth input udp %s:%u\n", local.address().to_string().c_str(),
               static_cast<unsigned>(local.port()));
   start_status_page();
+  start_control_socket();
   std::fflush(stdout);
 
   const std::optional<int>& leap = constellation_.nav.leap_seconds;
@@ -218,6 +222,7 @@ void Daemon::shutdown() {
   socket_.close(ec);
   if (signals_) signals_->cancel();
   if (status_server_) status_server_->stop();
+  if (control_) control_->stop();  // removes the socket file
   if (!channels_.empty()) {
     for (const auto& c : channels_) {
       const PortStats& ps = c->port().stats();
@@ -451,12 +456,11 @@ void Daemon::align_to_packet_time(const time::GpsTime& stamp) {
   const bool served = constellation_.serves(first);
   // The run starts over at the packets' time: a receiver powered on there,
   // in the state [receiver.acquisition] start configures.
-  if (!served) {
-    redate_constellation(first);
-    restart_receiver(cfg_.receiver.acquisition.start);
-  } else if (first < lock_next_) {
-    restart_receiver(cfg_.receiver.acquisition.start);  // time goes back
-  }
+  // So a lockstep run repeats gnssemu batch on the same truth, byte for
+  // byte: the receiver and the scenario's time line start at the first packet.
+  if (!served) redate_constellation(first);
+  restart_receiver(cfg_.receiver.acquisition.start);
+  restart_scenario();
   lock_next_ = first;
   spdlog::info("lockstep: epochs follow the packets' GPS time from {}", gps_text(first));
 }

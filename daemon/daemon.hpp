@@ -19,6 +19,8 @@
 #include "core/orbit/nav_data.hpp"
 #include "core/pipeline/pipeline.hpp"
 #include "core/scene/scene.hpp"
+#include "daemon/control_commands.hpp"
+#include "daemon/control_server.hpp"
 #include "daemon/demo_trajectory.hpp"
 #include "daemon/drop_stats.hpp"
 #include "daemon/output_port.hpp"
@@ -37,13 +39,22 @@ namespace gnssemu::daemon {
 
 namespace asio = boost::asio;
 
-class Daemon {
+/// A port event naming an output the daemon does not have: why (naming the
+/// event's line), else nothing.
+std::optional<std::string> check_port_outputs(std::span<const faults::FaultEvent> events, std::size_t outputs);
+
+class Daemon final : private ControlTarget {
 public:
   /// nav: the configured nav data as read (kept to re-date the constellation
   /// for a lockstep simulator's GPS time). Builds receiver and encoders;
   /// throws gnssemu::Error on a bad config or a start the data cannot serve.
   Daemon(asio::io_context& io, const config::Config& cfg, const orbit::NavData& nav, const RunPlan& plan);
   ~Daemon();
+
+  /// Run the events of a scenario file (gnssemud --scenario), time zero at
+  /// the first epoch (lockstep: the simulator's first). Before start();
+  /// throws gnssemu::Error naming source for a port event without its output.
+  void set_scenario(std::vector<faults::FaultEvent> events, const std::string& source);
 
   /// Open ports and the truth socket, print where NMEA goes, start the
   /// schedule and signal handling. Throws gnssemu::Error.
@@ -100,6 +111,16 @@ private:
   void note_other_vehicle(const std::string& id);
   /// Wire port to output i of the device (replacing what was there).
   void open_channel(std::size_t i, std::unique_ptr<OutputPort> port);
+  // Scenario and control socket (daemon_control.cpp).
+  /// A fresh fault stage with the scenario's events, time zero at the next epoch.
+  void restart_scenario();
+  void start_control_socket();
+  void write_status(std::string& out) override;
+  std::vector<std::string> inject(std::string_view scenario, const std::string& source) override;
+  std::size_t clear() override;
+  std::size_t fault_count() const override;
+  /// The fault list for the status (at most once a second of run time).
+  void record_faults(double run_s);
   // Status page (daemon_status.cpp).
   void start_status_page();
   void record_status(const time::GpsTime& t, const world::Truth& truth, const receiver::Fix& fix) noexcept;
@@ -127,6 +148,11 @@ private:
   StatusProducer status_;       ///< /api/status and the control socket's status
   std::unique_ptr<StatusServer> status_server_;  ///< null: [status] port = 0
   std::optional<time::GpsTime> status_first_t_;  ///< run time 0 of the status history
+  std::vector<faults::FaultEvent> scenario_;     ///< --scenario (time zero: the first epoch)
+  std::string scenario_source_;
+  std::unique_ptr<ControlServer> control_;       ///< null: no [control] socket
+  std::vector<FaultStatus> faults_view_;         ///< the fault list as the status shows it
+  double fault_status_s_ = -1.0;                 ///< run time the fault list was last built, s
 
   asio::steady_timer timer_;
   asio::steady_timer retry_timer_;  // back-off after a socket error

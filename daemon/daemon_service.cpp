@@ -102,6 +102,7 @@ void Daemon::reload() noexcept {
         receiver_.reset();  // holds the old scene
         scene_ = std::move(scene);
       }
+      receiver->adopt_faults(receiver_->take_faults());  // the faults go on around the new receiver
       receiver_ = std::move(receiver);
       apply_nav5();  // the chip's CFG-NAV5 (what a host set, what its polls read back) stays in force
     }

@@ -43,6 +43,7 @@ void Daemon::start_status_page() {
 void Daemon::record_status(const time::GpsTime& t, const world::Truth& truth, const receiver::Fix& fix) noexcept {
   if (!status_first_t_) status_first_t_ = t;
   const double run_s = t - *status_first_t_;
+  record_faults(run_s);
   const protocol::ubx::EpochInfo& info = device_.epoch_info();
   EpochStatus e;
   e.fix = &fix;

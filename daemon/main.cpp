@@ -12,6 +12,7 @@
 #include <spdlog/spdlog.h>
 
 #include "config/config.hpp"
+#include "config/scenario_file.hpp"
 #include "config/nav_setup.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
@@ -91,6 +92,7 @@ struct Options {
   std::string pty_path;
   int truth_port = -1;
   std::string status_port;  ///< --status-port: a number, or "free"
+  std::string scenario_path;  ///< --scenario: fault events (docs/faults.md)
 };
 
 config::Config load_run_config(const Options& o) {
@@ -139,6 +141,8 @@ int main(int argc, char** argv) {
         }
         return n >= 0 && n <= 65535 ? std::string() : "a port 0..65535 or 'free'";
       });
+  app.add_option("--scenario", opt.scenario_path,
+                 "scenario file (TOML [[event]] list, docs/faults.md): faults from the first epoch on");
   app.add_flag("-v,--verbose", verbose, "debug logging");
   app.add_flag("--check-config", check_only, "load and validate the configuration, print a summary, exit");
   app.set_version_flag("--version", std::string("gnssemud ") + GNSSEMU_VERSION);
@@ -162,11 +166,15 @@ int main(int argc, char** argv) {
     // The start must be served by the nav data (as the configured mode dates
     // them): an error here, not a receiver without a fix forever.
     const daemon::RunPlan plan = daemon::plan_run(cfg, nav, daemon::system_clock_gps());
+    std::vector<gnssemu::faults::FaultEvent> scenario;
+    if (!opt.scenario_path.empty()) scenario = config::read_scenario(opt.scenario_path);
 
     if (check_only) {
       boost::asio::io_context check_io;
-      const daemon::Daemon check(check_io, cfg, nav, plan);  // builds the receiver: validates its config
+      daemon::Daemon check(check_io, cfg, nav, plan);  // builds the receiver: validates its config
+      if (!opt.scenario_path.empty()) check.set_scenario(scenario, opt.scenario_path);
       print_summary(cfg, nav, plan);
+      if (!opt.scenario_path.empty()) std::printf("scenario: %s, %zu event(s)\n", opt.scenario_path.c_str(), scenario.size());
       std::printf("configuration OK\n");
       return kExitOk;
     }
@@ -177,6 +185,10 @@ int main(int argc, char** argv) {
 
     boost::asio::io_context io;
     daemon::Daemon d(io, cfg, nav, plan);
+    if (!opt.scenario_path.empty()) {
+      d.set_scenario(scenario, opt.scenario_path);
+      spdlog::info("scenario {}: {} event(s) from the first epoch", opt.scenario_path, scenario.size());
+    }
     if (!opt.config_path.empty()) d.set_reloader([opt] { return load_run_config(opt); });
     d.start();
     started = true;

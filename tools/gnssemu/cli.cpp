@@ -1,4 +1,5 @@
 #include "tools/gnssemu/cli.hpp"
+#include "tools/gnssemu/ctl.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -517,10 +518,21 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       ->delimiter(',');
   bench_mp->add_option("--max-loss-db", bmp.max_loss_db, "loss cap of every path, dB (1000: off)")->capture_default_str();
   CLI::App* version = app.add_subcommand("version", "versions of gnssemu, Embree and GeographicLib");
+  CtlArgs ctl_args;
+  CLI::App* ctl = app.add_subcommand("ctl", "talk to a running gnssemud on its control socket ([control] socket)");
+  ctl->add_option("--socket", ctl_args.socket, "the daemon's control socket path")->required();
+  ctl->add_option("--timeout", ctl_args.timeout_s, "seconds to wait for the reply (0, 600]")
+      ->check(CLI::Range(1e-3, 600.0))
+      ->capture_default_str();
+  ctl->require_subcommand(1);
+  CLI::App* ctl_status = ctl->add_subcommand("status", "fix, satellites (C/N0, state), faults, counters as JSON");
+  CLI::App* ctl_inject = ctl->add_subcommand("inject", "add the events of a scenario file, start times from now");
+  ctl_inject->add_option("file", ctl_args.file, "scenario file (TOML [[event]] tables, docs/faults.md)")->required();
+  CLI::App* ctl_clear = ctl->add_subcommand("clear", "remove every fault (injected and scenario)");
 
   // CLI11 reports a mistyped subcommand only as "A subcommand is required".
   const auto known = [&](const std::string& name) {
-    for (const CLI::App* sub : {satpos, sky, dop, batch_cmd, plot, spp, calib, bench, version}) {
+    for (const CLI::App* sub : {satpos, sky, dop, batch_cmd, plot, spp, calib, bench, version, ctl}) {
       if (sub->get_name() == name) return true;
     }
     return false;
@@ -531,7 +543,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     return kExitOk;
   }
   if (argc > 1 && argv[1][0] != '-' && !known(argv[1])) {
-    err << "gnssemu: unknown subcommand '" << argv[1] << "' (satpos, sky, dop, batch, plot, spp, calibrate, bench, version; see --help)\n";
+    err << "gnssemu: unknown subcommand '" << argv[1] << "' (satpos, sky, dop, batch, plot, spp, calibrate, bench, ctl, version; see --help)\n";
     return kExitUsage;
   }
   try {
@@ -543,6 +555,10 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   try {
     if (*version) {
       write_version(out);
+    } else if (*ctl) {
+      ctl_args.command = *ctl_status ? "status" : *ctl_inject ? "inject" : "clear";
+      (void)ctl_clear;
+      return run_ctl(ctl_args, out, err);
     } else if (*satpos) {
       const time::GpsTime t = checked_time(time_args);
       write_satpos(load_store(nav_args, t), t, out);

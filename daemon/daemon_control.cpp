@@ -1,0 +1,120 @@
+// The daemon's fault scenario and control socket (docs/faults.md, docs/daemon.md
+// §Control socket): gnssemud --scenario, ctl status / inject / clear, and the
+// fault list the status page and ctl status show.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include <spdlog/spdlog.h>
+
+#include "config/scenario_file.hpp"
+#include "core/common/error.hpp"
+#include "daemon/daemon.hpp"
+
+namespace gnssemu::daemon {
+
+namespace {
+
+// The fault list is rebuilt for the status at most this often (it allocates
+// strings; ramps change the text), s of run time.
+constexpr double kFaultStatusPeriodS = 1.0;
+
+}  // namespace
+
+std::optional<std::string> check_port_outputs(std::span<const faults::FaultEvent> events, std::size_t outputs) {
+  for (const faults::FaultEvent& e : events) {
+    if (e.type != faults::FaultType::kPort) continue;
+    const double o = e.param(faults::Param::kOutput).from;
+    if (o >= static_cast<double>(outputs)) {
+      return "line " + std::to_string(e.line) + ": port event output = " + std::to_string(static_cast<int>(o)) +
+             " but the daemon has " + std::to_string(outputs) + " output(s) (0.." +
+             std::to_string(static_cast<int>(outputs) - 1) + ")";
+    }
+  }
+  return std::nullopt;
+}
+
+void Daemon::set_scenario(std::vector<faults::FaultEvent> events, const std::string& source) {
+  if (const auto bad = check_port_outputs(events, cfg_.outputs.size())) throw Error(source + ": " + *bad);
+  scenario_ = std::move(events);
+  scenario_source_ = source;
+  restart_scenario();
+}
+
+void Daemon::restart_scenario() {
+  if (scenario_.empty()) {
+    if (receiver_->faults() != nullptr) receiver_->set_faults({});  // injected events start over too
+    return;
+  }
+  receiver_->set_faults(scenario_);
+  fault_status_s_ = -kFaultStatusPeriodS;
+}
+
+void Daemon::start_control_socket() {
+  if (cfg_.control.socket.empty()) return;
+  control_ = std::make_unique<ControlServer>(io_, [this](std::string_view line) {
+    return handle_control_request(line, *this);
+  });
+  control_->start(cfg_.control.socket);
+  std::printf("gnssemud: control socket %s\n", control_->path().c_str());
+}
+
+void Daemon::write_status(std::string& out) { status_.write_json(out, 0); }
+
+std::vector<std::string> Daemon::inject(std::string_view scenario, const std::string& source) {
+  const std::vector<faults::FaultEvent> events = config::parse_scenario(scenario, source);
+  if (events.empty()) throw Error(source + ": no [[event]] to inject");
+  if (const auto bad = check_port_outputs(events, channels_.size())) throw Error(source + ": " + *bad);
+  if (receiver_->faults() == nullptr) receiver_->set_faults({});
+  receiver_->faults()->inject(events);  // all or nothing
+  std::vector<std::string> added;
+  for (const faults::FaultEvent& e : events) {
+    std::string line = std::string(faults::type_name(e.type)) + " " + faults::describe(e, e.start_s);
+    char when[96];
+    if (std::isfinite(e.duration_s)) {
+      std::snprintf(when, sizeof when, " (in %.1f s, for %.1f s)", e.start_s, e.duration_s);
+    } else {
+      std::snprintf(when, sizeof when, " (in %.1f s, to the end)", e.start_s);
+    }
+    added.push_back(line + when);
+    spdlog::info("control: {} injected {}", source, added.back());
+  }
+  fault_status_s_ = -kFaultStatusPeriodS;  // show them at the next epoch
+  return added;
+}
+
+std::size_t Daemon::clear() {
+  faults::FaultStage* stage = receiver_->faults();
+  const std::size_t n = stage != nullptr ? stage->status().size() : 0;
+  if (stage != nullptr) stage->clear();
+  status_.set_faults({});
+  spdlog::info("control: cleared {} fault(s)", n);
+  return n;
+}
+
+std::size_t Daemon::fault_count() const {
+  const faults::FaultStage* stage = receiver_->faults();
+  return stage != nullptr ? stage->event_count() : 0;
+}
+
+void Daemon::record_faults(double run_s) {
+  faults::FaultStage* stage = receiver_->faults();
+  if (stage == nullptr || run_s - fault_status_s_ < kFaultStatusPeriodS) return;
+  fault_status_s_ = run_s;
+  const auto st = stage->status();
+  faults_view_.resize(st.size());
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    const faults::FaultEvent& e = *st[i].event;
+    FaultStatus& f = faults_view_[i];
+    f.id = std::to_string(i + 1);
+    f.type = faults::type_name(e.type);
+    f.description = faults::describe(e, e.start_s + std::max(st[i].elapsed_s, 0.0));
+    f.start_s = run_s - st[i].elapsed_s;
+    f.end_s = std::isfinite(e.duration_s) ? f.start_s + e.duration_s : std::nan("");
+    f.active = st[i].active;
+  }
+  status_.set_faults(faults_view_);
+}
+
+}  // namespace gnssemu::daemon
