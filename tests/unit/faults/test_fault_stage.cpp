@@ -322,6 +322,32 @@ TEST(FaultStage, InjectCountsFromNowAndClearEndsEverything) {
   EXPECT_LE(back_at, 55);
 }
 
+// A receiver restart (CFG-RST, a reload) builds a new pipeline; the faults
+// in the world around it go on where they were.
+TEST(FaultStage, AStageHandedToANewPipelineKeepsItsTimeLine) {
+  Rig rig(std::vector<FaultEvent>{make_event(FaultType::kOutage, 5.0, 10.0)});
+  for (int t = 0; t < 8; ++t) rig.step(t);
+  EXPECT_TRUE(rig.rx.faults()->status()[0].active);
+  pipeline::Pipeline fresh(test::test_store(), pipeline::PipelineConfig{});
+  fresh.adopt_faults(rig.rx.take_faults());
+  EXPECT_EQ(rig.rx.faults(), nullptr);
+  ASSERT_NE(fresh.faults(), nullptr);
+  world::Truth truth = rig.truth;
+  for (int t = 8; t < 15; ++t) {  // the outage still holds: nothing tracked
+    truth.t = rig.t0 + Rig::kWarmUp_s + t;
+    EXPECT_EQ(fresh.step(truth.t, truth).num_tracked, 0) << t;
+  }
+  EXPECT_NEAR(fresh.faults()->status()[0].elapsed_s, 9.0, 1e-9);  // 14 s - 5 s
+  int tracked_at = -1;
+  for (int t = 15; t < 25 && tracked_at < 0; ++t) {  // it ends at 15 s as scripted
+    truth.t = rig.t0 + Rig::kWarmUp_s + t;
+    if (fresh.step(truth.t, truth).num_tracked > 0) tracked_at = t;
+  }
+  EXPECT_GE(tracked_at, 15);
+  EXPECT_LE(tracked_at, 17);  // through the new receiver's acquisition
+  EXPECT_FALSE(fresh.faults()->status()[0].active);
+}
+
 TEST(FaultStage, BadInjectionChangesNothing) {
   Rig rig;
   FaultEvent bad = make_event(FaultType::kSatellite, 0.0);  // no prn
