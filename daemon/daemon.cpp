@@ -274,7 +274,7 @@ void Daemon::redate_constellation(const time::GpsTime& t) {
 }
 
 world::Truth Daemon::fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept {
-  if (!ever_driven_ && cfg_.demo.enabled) return demo_.truth(t, demo_elapsed_s);
+  if (demo_drives()) return demo_.truth(t, demo_elapsed_s);
   world::Truth none;
   none.t = t;
   return none;

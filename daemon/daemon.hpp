@@ -91,6 +91,9 @@ private:
   void align_to_packet_time(const time::GpsTime& stamp);
   void emit_epoch(const time::GpsTime& t, const world::Truth& truth);
   world::Truth fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept;
+  /// The demo circle drives the receiver (no simulator ever did, demo on):
+  /// what fallback_truth, the status line and the status page all say.
+  bool demo_drives() const noexcept { return !ever_driven_ && cfg_.demo.enabled; }
   /// Logs when the epoch clock leaves or re-enters what the constellation serves.
   void note_coverage(const time::GpsTime& t) noexcept;
   /// Lockstep: the simulator's GPS time t lies outside the constellation:

@@ -130,7 +130,7 @@ std::string Daemon::status_line() {
   s.epochs = epochs_;
   s.driver = router_.has_driver() ? router_.driver_id() : std::string();
   s.driver_fresh = router_.driver_fresh(s.now_s);
-  s.demo = !ever_driven_ && cfg_.demo.enabled;
+  s.demo = demo_drives();
   s.vehicles = router_.vehicle_count();
   for (const auto& c : channels_) s.ports.push_back({c->port().config().name, c->port().readers()});
   return status_line_.line(s);

@@ -59,7 +59,7 @@ void Daemon::record_status(const time::GpsTime& t, const world::Truth& truth, co
   const double now = now_s();
   tc.simulator = router_.has_driver();
   tc.fresh = tc.simulator && router_.driver_fresh(now);
-  tc.demo = !tc.simulator && cfg_.demo.enabled;
+  tc.demo = demo_drives();
   status_.set_truth(tc);
 
   for (std::size_t i = 0; i < channels_.size(); ++i) {
