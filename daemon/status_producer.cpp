@@ -112,7 +112,10 @@ void StatusProducer::update_error_stats() noexcept {
   std::size_t n = 0;
   for (std::size_t i = 0; i < history_n_; ++i) {
     const HistoryPoint& p = history_[i];
-    if (std::isfinite(p.e_m)) scratch_[n++] = std::hypot(p.e_m, p.n_m);
+    // Dead-reckoning epochs are plotted but are not GNSS fixes (batch's rule).
+    if (std::isfinite(p.e_m) && receiver::is_gnss_fix(static_cast<receiver::FixType>(p.fix_type))) {
+      scratch_[n++] = std::hypot(p.e_m, p.n_m);
+    }
   }
   error_samples_ = static_cast<int>(n);
   const std::span<double> h(scratch_.data(), n);

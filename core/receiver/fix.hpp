@@ -20,6 +20,10 @@ enum class FixType : uint8_t {
   k3D = 3,
 };
 
+/// A position from the satellites (2D or 3D), not extrapolated: what error
+/// statistics count as a fix.
+constexpr bool is_gnss_fix(FixType t) noexcept { return t == FixType::k2D || t == FixType::k3D; }
+
 /// The antenna supervisor's state (MON-HW aStatus).
 enum class AntennaStatus : uint8_t { kOk, kShort, kOpen };
 

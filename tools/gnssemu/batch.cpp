@@ -83,7 +83,7 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
     // loss) has nothing to be compared with; dead reckoning is reported in
     // the rows (fix_type 1) but is not a GNSS fix in the summary.
     const bool has_fix = fix.type != receiver::FixType::kNone && truth.valid;
-    const bool gnss_fix = has_fix && fix.type != receiver::FixType::kDeadReckoning;
+    const bool gnss_fix = has_fix && receiver::is_gnss_fix(fix.type);
     Enu d;
     if (has_fix) {
       const Lla truth_lla = geo::lla_from_ecef(truth.pos_m);

@@ -72,9 +72,12 @@ std::string report_json(const ReportData& d) {
   std::vector<double> h, v;
   int fixes = 0, fixes_3d = 0;
   for (const ReportEpoch& e : d.epochs) {
-    if (e.fix_type != 0) ++fixes;
+    // Dead reckoning (fix type 1) is extrapolation, not a GNSS fix: counted
+    // neither as a fix nor in the error statistics (as batch's summary).
+    const bool gnss_fix = receiver::is_gnss_fix(static_cast<receiver::FixType>(e.fix_type));
+    if (gnss_fix) ++fixes;
     if (e.fix_type == 3) ++fixes_3d;
-    if (e.fix_type != 0 && std::isfinite(e.e_m) && std::isfinite(e.n_m)) {
+    if (gnss_fix && std::isfinite(e.e_m) && std::isfinite(e.n_m)) {
       h.push_back(std::hypot(e.e_m, e.n_m));
       if (std::isfinite(e.u_m)) v.push_back(std::fabs(e.u_m));
     }

@@ -124,6 +124,21 @@ TEST(Plot, ReportFromTheCsvsOfARunMatchesTheBatchReport) {
   EXPECT_EQ(a["epochs"]["tracked"], b["epochs"]["tracked"]);
 }
 
+TEST(Plot, DeadReckoningIsNotCountedAsAFix) {
+  TempDir dir;
+  const std::string e = dir.write("e.csv",
+                                  "gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop,hacc_m,vacc_m\n"
+                                  "2190,1,3,8,1.0,0.0,1.0,1,1,1,2,3\n"
+                                  "2190,2,3,8,2.0,0.0,1.0,1,1,1,2,3\n"
+                                  "2190,3,1,0,400.0,0.0,9.0,,,,20,30\n");
+  const CliResult r = run({"plot", "--errors", e, "--out", dir.file("p")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json d = report_data(read_file(dir.file("p/report.html")));
+  EXPECT_EQ(d["summary"]["fixes"], 2);
+  EXPECT_EQ(d["summary"]["error_samples"], 2);
+  EXPECT_NEAR(d["summary"]["h_max_m"].get<double>(), 2.0, 1e-9);
+}
+
 TEST(Plot, BenchMultipathCsvGivesTimeAgainstError) {
   TempDir dir;
   const std::string mp = dir.write(

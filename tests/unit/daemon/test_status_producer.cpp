@@ -141,6 +141,22 @@ TEST(StatusProducer, CepFromTheHistoryAndHistoryBoundedNewestLast) {
   EXPECT_NEAR(j["error"]["cep95_m"].get<double>(), 1.0, 1e-3);  // the old errors left the window
 }
 
+TEST(StatusProducer, DeadReckoningIsPlottedButNotInTheCep) {
+  StatusProducer p(StatusSettings{});
+  for (int k = 1; k <= 10; ++k) {
+    receiver::Fix f = fix_at(1000.0 + k, Enu(k <= 5 ? 1.0 : 500.0, 0.0, 0.0));
+    if (k > 5) f.type = receiver::FixType::kDeadReckoning;  // drifting on the filter alone
+    const world::Truth t = truth_at(1000.0 + k);
+    p.on_epoch(EpochStatus{&f, &t, static_cast<double>(k), 0.0, 0.0});
+  }
+  std::string out;
+  p.write_json(out, 10);
+  const nlohmann::json j = nlohmann::json::parse(out);
+  EXPECT_EQ(j["error"]["samples"], 5);
+  EXPECT_NEAR(j["error"]["cep95_m"].get<double>(), 1.0, 1e-3);
+  EXPECT_NEAR(j["history"]["e_m"][9].get<double>(), 500.0, 1e-3);  // still drawn
+}
+
 TEST(StatusProducer, TruthAndPortRatesFromCounters) {
   StatusProducer p(StatusSettings{});
   p.set_ports({PortInfo{"ser", "serial", "/dev/ttyUSB0"}});
