@@ -360,6 +360,7 @@ void Daemon::on_nav_period(std::size_t src) {
                1.0 / p, rate.measRate);
   period_s_ = p;
   rate_hz_ = 1.0 / p;
+  refresh_status_setup();
   if (cfg_.time.mode == config::TimeMode::kRealtime) {
     // Next epoch on a whole multiple of the new period (u-blox aligns
     // measurements to GPS time; elapsed 0 is on a whole GPS second).

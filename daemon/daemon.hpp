@@ -126,6 +126,9 @@ private:
   void record_faults(double run_s);
   // Status page (daemon_status.cpp).
   void start_status_page();
+  /// The status page's settings and port list from the running state (after
+  /// start, a reload, a rate change).
+  void refresh_status_setup();
   void record_status(const time::GpsTime& t, const world::Truth& truth, const receiver::Fix& fix) noexcept;
 
   asio::io_context& io_;

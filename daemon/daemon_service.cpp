@@ -110,6 +110,7 @@ void Daemon::reload() noexcept {
     for (const std::string& what : plan.need_restart) {
       spdlog::warn("reload: {} changed: applies at the next restart; running on the old value", what);
     }
+    refresh_status_setup();  // mask, thresholds, reopened ports
     const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     spdlog::info("reload: {} applied in {:.1f} ms ({})", cfg_.source, ms, plan.describe(cfg_));
     notify_.ready("reloaded: " + plan.describe(cfg_));

@@ -11,13 +11,20 @@
 
 namespace gnssemu::daemon {
 
-void Daemon::start_status_page() {
+void Daemon::refresh_status_setup() {
+  StatusSettings s = status_settings(cfg_);
+  s.rate_hz = rate_hz_;  // a host's CFG-RATE
+  status_.set_settings(std::move(s));
   std::vector<PortInfo> ports;
   for (const auto& c : channels_) {
     const config::OutputPortConfig& pc = c->port().config();
     ports.push_back(PortInfo{pc.name, std::string(config::port_type_name(pc.type())), c->port().describe()});
   }
   status_.set_ports(std::move(ports));
+}
+
+void Daemon::start_status_page() {
+  refresh_status_setup();
   const config::StatusConfig& sc = cfg_.status;
   if (sc.port == 0 && !sc.free_port) return;
   status_server_ = std::make_unique<StatusServer>(io_, status_);

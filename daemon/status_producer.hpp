@@ -83,6 +83,8 @@ public:
 
   explicit StatusProducer(StatusSettings settings);
 
+  /// The receiver settings shown (start-up, a reload, a host's CFG-RATE).
+  void set_settings(StatusSettings settings) { settings_ = std::move(settings); }
   /// The output ports, in channel order (start-up; allocates).
   void set_ports(std::vector<PortInfo> ports);
   /// Counters of port i (< ports), updated every epoch. No allocation.

@@ -12,6 +12,7 @@ import signal
 import socket
 import sys
 import time
+import urllib.request
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from itlib import RigBase, free_port  # noqa: E402
@@ -122,12 +123,17 @@ def case_signals(rig):
     assert rig.daemon.poll() is None and os.readlink(gps0) == link
     # A changed pty path: that port alone is reopened, the old link removed.
     gps1 = os.path.join(rig.tmp, "gps1")
-    rig.write_config(pty_out(gps1), truth='vehicle = "ego"')
+    rig.write_config(pty_out(gps1), truth='vehicle = "ego"', extra="[signal]\nacquire_dbhz = 33.0\n")
     mark = len(rig.log_text())
     rig.kill(signal.SIGHUP)
     rig.wait_log(r"reload: output gps0 now on .*gps1", start=mark)
     rig.wait_path(gps1)
     assert not os.path.lexists(gps0), "old symlink left behind"
+    # The status page follows the reload: the reopened port, the new threshold.
+    url = re.search(r"status page (http://\S+)", open(os.path.join(rig.tmp, "out.log")).read()).group(1)
+    st = json.loads(urllib.request.urlopen(url + "api/status", timeout=5).read())
+    assert st["settings"]["acquire_dbhz"] == 33.0, st["settings"]
+    assert "gps1" in st["ports"][0]["where"], st["ports"][0]
     # A restart-only change is logged, not applied.
     rig.write_config(pty_out(gps1), truth='vehicle = "ego"', rate=5.0)
     mark = len(rig.log_text())
