@@ -325,7 +325,7 @@ void cost(const orbit::EphemerisStore& store, time::GpsTime t0) {
   std::printf("%-10s %10s %12s\n", "fault", "ns/epoch", "allocs/ep");
   Rig rig(store, t0);
   const world::WorldConfig& wc = rig.rx.world().config();
-  const faults::FaultContext ctx{wc.seed, wc.signal.link, wc.signal.dll, wc.carrier};
+  const faults::FaultContext ctx{wc.seed, wc.signal.link, world::MeasurementNoise::of(wc)};
   std::vector<std::unique_ptr<faults::FaultStage>> stages;
   for (const Case& c : cases) stages.push_back(std::make_unique<faults::FaultStage>(ctx, c.ev));
   std::vector<double> best(cases.size(), 1e300);

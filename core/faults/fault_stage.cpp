@@ -46,8 +46,7 @@ FaultStage::FaultStage(const FaultContext& context, std::span<const FaultEvent> 
 
 void FaultStage::set_context(const FaultContext& context) {
   signal::validate(context.link);
-  signal::validate(context.dll);
-  world::validate(context.carrier);
+  world::validate(context.noise);
   ctx_ = context;
   rng_ = world::CounterRng(world::CounterRng::mix(context.seed ^ kSeedSalt));
   n0_dbw_hz_ = signal::thermal_noise_density_dbw_hz(ctx_.link.noise_temperature_k) + ctx_.link.noise_figure_db +
@@ -99,18 +98,19 @@ void FaultStage::degrade(world::SatObservable& o, double cn0_dbhz) noexcept {
     return;
   }
   // The world drew the code noise at the old C/N0; add the difference in variance.
-  const double s0 = signal::dll_thermal_sigma_m(o.cn0_dbhz, ctx_.dll);
-  const double s1 = signal::dll_thermal_sigma_m(cn0_dbhz, ctx_.dll);
-  const double extra = std::sqrt(std::max(s1 * s1 - s0 * s0, 0.0));
+  // The world drew its noise at the old C/N0: add the difference in variance
+  // (none where the configured model does not depend on C/N0).
+  const world::MeasurementNoise& n = ctx_.noise;
+  const auto extra_sigma = [&](auto sigma) {
+    const double s0 = sigma(o.cn0_dbhz), s1 = sigma(cn0_dbhz);
+    return std::sqrt(std::max(s1 * s1 - s0 * s0, 0.0));
+  };
   const auto stream = static_cast<std::uint64_t>(o.prn);
-  o.pseudorange_m += extra * rng_.normal(stream, epoch_, world::Purpose::kThermal);
-  const world::CarrierConfig& cc = ctx_.carrier;
-  if (cc.enabled && cc.doppler_model == world::DopplerModel::kFll) {
-    const double d0 = world::fll_range_rate_sigma_m_s(o.cn0_dbhz, cc);
-    const double d1 = world::fll_range_rate_sigma_m_s(cn0_dbhz, cc);
-    const double extra_rr = std::sqrt(std::max(d1 * d1 - d0 * d0, 0.0));
-    o.doppler_hz -= extra_rr * rng_.normal(stream, epoch_, world::Purpose::kDoppler) / kL1Wavelength_m;
-  }
+  const double extra_m = extra_sigma([&](double c) { return n.code_sigma_m(c); });
+  if (extra_m > 0.0) o.pseudorange_m += extra_m * rng_.normal(stream, epoch_, world::Purpose::kThermal);
+  const double extra_rr = extra_sigma([&](double c) { return n.range_rate_sigma_m_s(c); });
+  if (extra_rr > 0.0) o.doppler_hz -= extra_rr * rng_.normal(stream, epoch_, world::Purpose::kDoppler) / kL1Wavelength_m;
+  const world::CarrierConfig& cc = n.carrier;
   if (cc.enabled && o.carrier_valid && dt_s_ > 0.0) {
     // Slips the weaker signal adds to those the world drew at the old C/N0.
     const auto slip_p = [&](double cn0) {

@@ -18,6 +18,7 @@
 #include "core/signal/link_budget.hpp"
 #include "core/time/gps_time.hpp"
 #include "core/world/carrier.hpp"
+#include "core/world/measurement_noise.hpp"
 #include "core/world/observables.hpp"
 #include "core/world/random.hpp"
 #include "core/world/truth.hpp"
@@ -28,8 +29,7 @@ namespace gnssemu::faults {
 struct FaultContext {
   std::uint64_t seed = 1;           ///< the world's seed (the stage draws its own streams from it)
   signal::LinkBudgetConfig link;    ///< noise floor (N0) and antenna pattern
-  signal::DllParams dll;            ///< code noise versus C/N0
-  world::CarrierConfig carrier;     ///< carrier loops: slips and Doppler noise versus C/N0
+  world::MeasurementNoise noise;    ///< code and Doppler noise versus C/N0, carrier loops (slips)
 };
 
 /// One event's state at the last epoch, for status displays.

@@ -13,8 +13,7 @@ Pipeline::Pipeline(const orbit::EphemerisStore& store, const PipelineConfig& con
   if (scene.scene != nullptr) world_.attach_scene(scene);
   fault_context_.seed = config.world.seed;
   fault_context_.link = config.world.signal.link;
-  fault_context_.dll = config.world.signal.dll;
-  fault_context_.carrier = config.world.carrier;
+  fault_context_.noise = world::MeasurementNoise::of(config.world);
 }
 
 void Pipeline::set_faults(std::span<const faults::FaultEvent> events) {

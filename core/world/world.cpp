@@ -32,6 +32,7 @@ const WorldConfig& validated(const WorldConfig& c) {
 World::World(const orbit::EphemerisStore& store, const WorldConfig& config)
     : store_(store),
       config_(validated(config)),
+      noise_(MeasurementNoise::of(config_)),
       rng_(config.seed),
       clock_(config.clock),
       atmosphere_(config.atmosphere),
@@ -228,7 +229,6 @@ void World::signal_stage() noexcept {
 void World::observables_stage(const time::GpsTime& t, uint64_t epoch, double mask_rad) noexcept {
   const double rx_clock_s = clock_.bias_s();
   const double rx_drift_s_s = clock_.drift_s_s();
-  const bool dll = config_.errors.thermal_model == ThermalModel::kDll;
   obs_.t_rx_local = t + rx_clock_s;
   for (int p = 1; p <= kMaxGpsPrn; ++p) {
     if (!in_sky_[p - 1]) continue;
@@ -251,17 +251,13 @@ void World::observables_stage(const time::GpsTime& t, uint64_t epoch, double mas
     if (!o.received) continue;
     const orbit::Ephemeris* eph = o.eph;
     const double cn0 = o.cn0_dbhz;
-    const double sigma_m = dll ? signal::dll_thermal_sigma_m(cn0, config_.signal.dll) : config_.errors.thermal_sigma_m;
-    const double thermal_m = sigma_m * rng_.normal(p, epoch, Purpose::kThermal);
+    const double thermal_m = noise_.code_sigma_m(cn0) * rng_.normal(p, epoch, Purpose::kThermal);
     const double multipath_m =
         config_.errors.multipath.sigma_m > 0.0
             ? config_.errors.multipath.sigma_m / std::sin(std::max(s.el_rad, kMultipathMinEl_rad)) * multipath_unit_[p - 1]
             : 0.0;
     const double gradient_m = gradient_now_m_[0] * std::cos(s.az_rad) + gradient_now_m_[1] * std::sin(s.az_rad);
-    const double rr_sigma_m_s = config_.carrier.doppler_model == DopplerModel::kFll
-                                    ? fll_range_rate_sigma_m_s(cn0, config_.carrier)
-                                    : config_.errors.doppler_sigma_m_s;
-    const double rr_noise_m_s = rr_sigma_m_s * rng_.normal(p, epoch, Purpose::kDoppler);
+    const double rr_noise_m_s = noise_.range_rate_sigma_m_s(cn0) * rng_.normal(p, epoch, Purpose::kDoppler);
     // The satellite's actual L1 clock = broadcast (dt_sv - TGD) + residual.
     const double pr_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - eph->tgd_s)) +
                         orbit_clock_m_[p - 1] + path_[p - 1].delay_m + thermal_m + multipath_m + gradient_m;

@@ -18,6 +18,7 @@
 #include "core/scene/propagator.hpp"
 #include "core/signal/link_budget.hpp"
 #include "core/world/carrier.hpp"
+#include "core/world/measurement_noise.hpp"
 #include "core/world/error_processes.hpp"
 #include "core/world/observables.hpp"
 #include "core/world/propagation.hpp"
@@ -89,6 +90,7 @@ private:
 
   const orbit::EphemerisStore& store_;
   WorldConfig config_;
+  MeasurementNoise noise_;  ///< code and range-rate noise versus C/N0 (shared with the fault stage)
   Observables obs_;
 
   // Error processes.
