@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -405,4 +408,57 @@ TEST(LinkFaults, PerEpochPathDoesNotAllocateWithEveryLinkFaultActive) {
   EXPECT_GT(s.epochs_frozen, 0u);
   EXPECT_GT(s.epochs_skipped, 0u);
   EXPECT_GT(s.epochs_wrong_fix, 0u);
+}
+
+namespace {
+
+/// TPV reports gpsdecode (gpsd's own packet layer and drivers) makes of bytes; -1 without gpsdecode.
+int gpsdecode_tpvs(const std::vector<std::string>& epochs, const std::string& name) {
+  if (std::system("command -v gpsdecode > /dev/null 2>&1") != 0) return -1;
+  const std::string path = ::testing::TempDir() + "link_faults_" + name + ".bin";
+  {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    for (const auto& e : epochs) std::fwrite(e.data(), 1, e.size(), f);
+    std::fclose(f);
+  }
+  std::FILE* p = ::popen(("gpsdecode -j < " + path + " 2>/dev/null").c_str(), "r");
+  if (p == nullptr) return -1;
+  int tpv = 0;
+  char line[4096];
+  while (std::fgets(line, sizeof line, p) != nullptr) tpv += std::strstr(line, "\"class\":\"TPV\"") != nullptr;
+  ::pclose(p);
+  std::remove(path.c_str());
+  return tpv;
+}
+
+}  // namespace
+
+TEST(LinkFaults, GpsdRejectsTheCorruptedAndBrokenMessages) {
+  // gpsd's parser on the channel's bytes: a corrupted or broken message gives
+  // no report, so every message corrupted leaves gpsd with nothing.
+  Rig clean(nmea_ubx());
+  const auto sent = run(clean, {}, 30);
+  const int tpv_clean = gpsdecode_tpvs(sent, "clean");
+  if (tpv_clean < 0) GTEST_SKIP() << "gpsdecode not installed";
+  ASSERT_GE(tpv_clean, 30);  // at least one per epoch
+  Rig bad(nmea_ubx());
+  FaultEvent all = port_event(LinkFault::kCorrupt);
+  all.put(Param::kProbability, 1.0);
+  EXPECT_EQ(gpsdecode_tpvs(run(bad, {all}, 30), "corrupt_all"), 0);
+  Rig half(nmea_ubx());
+  FaultEvent some = port_event(LinkFault::kCorrupt);
+  some.put(Param::kProbability, 0.5);
+  const int tpv_half = gpsdecode_tpvs(run(half, {some}, 30), "corrupt_half");
+  // gpsd reports a TPV per epoch when any of RMC, GGA, GLL, NAV-PVT... got
+  // through, so half the messages lost cost fewer than half the TPVs.
+  EXPECT_GT(tpv_half, 0);
+  EXPECT_LT(tpv_half, tpv_clean);
+  Rig lossy(nmea_ubx());
+  FaultEvent loss = port_event(LinkFault::kByteLoss);
+  loss.put(Param::kProbability, 0.01);
+  const int tpv_lossy = gpsdecode_tpvs(run(lossy, {loss}, 30), "byte_loss");
+  EXPECT_GT(tpv_lossy, 0);
+  EXPECT_LT(tpv_lossy, tpv_clean);
+  std::printf("gpsdecode TPVs over 30 epochs: clean %d, half corrupted %d, 1 %% byte loss %d\n", tpv_clean, tpv_half,
+              tpv_lossy);
 }
