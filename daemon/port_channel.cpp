@@ -72,7 +72,7 @@ void PortChannel::on_port_input(int source, std::span<const uint8_t> bytes) {
   } else if (reset_after_feed_) {
     in->decoder.reset();
   } else if (in->decoder.pending_bytes() > 0) {
-    arm_idle_timer(kInputIdleS);
+    arm(idle_timer_, kInputIdleS, &PortChannel::check_idle);
   }
   drop_after_feed_ = reset_after_feed_ = false;
 }
@@ -88,20 +88,21 @@ void PortChannel::on_source_closed(int source) {
 }
 
 void PortChannel::use_idle_timer(boost::asio::io_context& io) {
-  idle_timer_ = std::make_unique<boost::asio::steady_timer>(io);
-  delay_timer_ = std::make_unique<boost::asio::steady_timer>(io);
+  idle_timer_.timer = std::make_unique<boost::asio::steady_timer>(io);
+  delay_timer_.timer = std::make_unique<boost::asio::steady_timer>(io);
 }
 
-void PortChannel::arm_delay_timer(double delay_s) {
-  if (!delay_timer_) return;
+void PortChannel::arm(Timer& t, double delay_s, bool (PortChannel::*check)() noexcept) {
+  if (!t.timer) return;
   const auto due = std::chrono::steady_clock::now() + std::chrono::nanoseconds(std::llround(delay_s * 1e9));
-  if (delay_armed_ && delay_timer_->expiry() <= due) return;
-  delay_armed_ = true;
-  delay_timer_->expires_at(due);
-  delay_timer_->async_wait([this](const boost::system::error_code& ec) {
+  // Never later than a wait already pending: what it waits for is still due then.
+  if (t.armed && t.timer->expiry() <= due) return;
+  t.armed = true;
+  t.timer->expires_at(due);
+  t.timer->async_wait([this, &t, check](const boost::system::error_code& ec) {
     if (ec) return;  // re-armed earlier, or shut down
-    delay_armed_ = false;
-    check_delayed();
+    t.armed = false;
+    (this->*check)();
   });
 }
 
@@ -114,23 +115,8 @@ bool PortChannel::check_delayed() noexcept {
     delay_.pop();
   }
   if (delay_.empty()) return false;
-  arm_delay_timer(delay_.next_due_s() - now);
+  arm(delay_timer_, delay_.next_due_s() - now, &PortChannel::check_delayed);
   return true;
-}
-
-void PortChannel::arm_idle_timer(double delay_s) {
-  if (!idle_timer_) return;
-  const auto due = std::chrono::steady_clock::now() + std::chrono::nanoseconds(std::llround(delay_s * 1e9));
-  // One timer for every source: a busy source must not push back the check
-  // another, quiet one is waiting for.
-  if (idle_armed_ && idle_timer_->expiry() <= due) return;
-  idle_armed_ = true;
-  idle_timer_->expires_at(due);
-  idle_timer_->async_wait([this](const boost::system::error_code& ec) {
-    if (ec) return;  // re-armed earlier, or shut down
-    idle_armed_ = false;
-    check_idle();
-  });
 }
 
 bool PortChannel::check_idle() noexcept {
@@ -165,7 +151,7 @@ bool PortChannel::check_idle() noexcept {
     }
     drop_after_feed_ = reset_after_feed_ = false;
   }
-  if (next_s >= 0.0) arm_idle_timer(next_s);
+  if (next_s >= 0.0) arm(idle_timer_, next_s, &PortChannel::check_idle);
   return next_s >= 0.0;
 }
 

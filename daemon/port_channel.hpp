@@ -112,8 +112,13 @@ private:
     protocol::ubx::StreamDecoder decoder;
     double last_input_s = 0.0;
   };
-  void arm_idle_timer(double delay_s);
-  void arm_delay_timer(double delay_s);
+  /// A timer of the daemon's io and whether a wait is pending on it.
+  struct Timer {
+    std::unique_ptr<boost::asio::steady_timer> timer;
+    bool armed = false;
+  };
+  /// Run check in delay_s on t (one wait per timer: an earlier one stays).
+  void arm(Timer& t, double delay_s, bool (PortChannel::*check)() noexcept);
   void send_composed(double now) noexcept;
   /// Admit message (label for the drop counts) to out_ through the TX budget.
   bool admit(std::string_view message, std::string_view label, double now) noexcept;
@@ -133,8 +138,8 @@ private:
   std::map<int, std::unique_ptr<Input>> inputs_;
   std::unique_ptr<Sink> sink_;
   InputHandler on_input_;
-  std::unique_ptr<boost::asio::steady_timer> idle_timer_;
-  bool idle_armed_ = false;  ///< idle_timer_ has a wait pending
+  Timer idle_timer_;   ///< abandons partial input frames
+  Timer delay_timer_;  ///< sends epochs a latency fault held
   // Set while a decoder is feeding the device: the decoder must not be
   // reset or destroyed under it, so those wait until feed() returns.
   bool feeding_ = false;
@@ -155,8 +160,6 @@ private:
   DelayLine delay_;
   std::string wire_;                    ///< out_ as the line carries it (byte loss)
   std::vector<std::size_t> wire_ends_;
-  std::unique_ptr<boost::asio::steady_timer> delay_timer_;
-  bool delay_armed_ = false;  ///< delay_timer_ has a wait pending
 };
 
 }  // namespace gnssemu::daemon

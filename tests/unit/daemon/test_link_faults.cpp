@@ -32,6 +32,13 @@ FaultEvent port_event(LinkFault f, double duration_s = faults::kForever_s) {
   return FaultEvent::of(FaultType::kPort, 0.0, duration_s, static_cast<std::uint8_t>(f));
 }
 
+/// An endless port event with one parameter.
+FaultEvent port_event(LinkFault f, Param p, double value) {
+  FaultEvent e = port_event(f);
+  e.put(p, value);
+  return e;
+}
+
 /// Every event active, elapsed_s into it.
 std::vector<FaultStatus> active(const std::vector<FaultEvent>& events, double elapsed_s = 0.0) {
   std::vector<FaultStatus> s;
@@ -74,6 +81,19 @@ std::size_t valid_messages(const std::vector<std::string>& epochs) {
   return n;
 }
 
+/// n epochs of a clean port and of one with fault f at probability p.
+struct CleanAndFaulted {
+  std::vector<std::string> sent, got;
+  LinkFaultStats stats;  ///< of the faulted port
+};
+CleanAndFaulted clean_and_faulted(LinkFault f, double p, int n) {
+  Rig clean(nmea_ubx());
+  Rig faulted(nmea_ubx());
+  CleanAndFaulted r{run(clean, {}, n), run(faulted, {port_event(f, Param::kProbability, p)}, n), {}};
+  r.stats = faulted.ch->stats().link_faults;
+  return r;
+}
+
 }  // namespace
 
 TEST(LinkFaults, WithoutPortEventsTheBytesAreUnchanged) {
@@ -94,14 +114,9 @@ TEST(LinkFaults, WithoutPortEventsTheBytesAreUnchanged) {
 }
 
 TEST(LinkFaults, ByteLossTakesBytesAtItsProbabilityAndBreaksFrames) {
-  Rig clean(nmea_ubx());
-  Rig lossy(nmea_ubx());
-  FaultEvent e = port_event(LinkFault::kByteLoss);
-  e.put(Param::kProbability, 0.02);
-  const auto sent = run(clean, {}, 200);
-  const auto got = run(lossy, {e}, 200);
+  const auto [sent, got, stats] = clean_and_faulted(LinkFault::kByteLoss, 0.02, 200);
   const std::size_t lost = total_bytes(sent) - total_bytes(got);
-  EXPECT_EQ(lossy.ch->stats().link_faults.bytes_lost, lost);
+  EXPECT_EQ(stats.bytes_lost, lost);
   const double rate = static_cast<double>(lost) / static_cast<double>(total_bytes(sent));
   EXPECT_NEAR(rate, 0.02, 0.003);  // ~110 kB drawn: 3 sigma is 0.0013
   // A message survives only if none of its bytes went, nor a byte that
@@ -116,14 +131,9 @@ TEST(LinkFaults, ByteLossTakesBytesAtItsProbabilityAndBreaksFrames) {
 }
 
 TEST(LinkFaults, CorruptBreaksTheChecksumOfExactlyTheDrawnMessages) {
-  Rig clean(nmea_ubx());
-  Rig bad(nmea_ubx());
-  FaultEvent e = port_event(LinkFault::kCorrupt);
-  e.put(Param::kProbability, 0.3);
-  const auto sent = run(clean, {}, 50);
-  const auto got = run(bad, {e}, 50);
+  const auto [sent, got, stats] = clean_and_faulted(LinkFault::kCorrupt, 0.3, 50);
   EXPECT_EQ(total_bytes(sent), total_bytes(got));  // same length, wrong checksums
-  const std::uint64_t corrupted = bad.ch->stats().link_faults.messages_corrupted;
+  const std::uint64_t corrupted = stats.messages_corrupted;
   EXPECT_EQ(valid_messages(got), valid_messages(sent) - corrupted);
   const double share = static_cast<double>(corrupted) / static_cast<double>(valid_messages(sent));
   EXPECT_NEAR(share, 0.3, 0.06);
@@ -145,13 +155,8 @@ TEST(LinkFaults, BreakChecksumMakesAUbxOrNmeaMessageInvalidOnly) {
 }
 
 TEST(LinkFaults, DropRemovesWholeMessagesAndTheRestStayValid) {
-  Rig clean(nmea_ubx());
-  Rig bad(nmea_ubx());
-  FaultEvent e = port_event(LinkFault::kDrop);
-  e.put(Param::kProbability, 0.5);
-  const auto sent = run(clean, {}, 40);
-  const auto got = run(bad, {e}, 40);
-  const std::uint64_t dropped = bad.ch->stats().link_faults.messages_dropped;
+  const auto [sent, got, stats] = clean_and_faulted(LinkFault::kDrop, 0.5, 40);
+  const std::uint64_t dropped = stats.messages_dropped;
   EXPECT_EQ(valid_messages(got) + dropped, valid_messages(sent));
   EXPECT_GT(dropped, valid_messages(sent) * 4 / 10);
   EXPECT_LT(dropped, valid_messages(sent) * 6 / 10);
@@ -260,12 +265,9 @@ TEST(LinkFaults, WrongFixIsReportedOnItsOutputOnly) {
 }
 
 TEST(LinkFaults, SameSeedSameBytesOtherSeedOtherBytes) {
-  FaultEvent loss = port_event(LinkFault::kByteLoss);
-  loss.put(Param::kProbability, 0.05);
-  FaultEvent corrupt = port_event(LinkFault::kCorrupt);
-  corrupt.put(Param::kProbability, 0.2);
-  FaultEvent drop = port_event(LinkFault::kDrop);
-  drop.put(Param::kProbability, 0.2);
+  const FaultEvent loss = port_event(LinkFault::kByteLoss, Param::kProbability, 0.05);
+  const FaultEvent corrupt = port_event(LinkFault::kCorrupt, Param::kProbability, 0.2);
+  const FaultEvent drop = port_event(LinkFault::kDrop, Param::kProbability, 0.2);
   const auto with_seed = [&](std::uint64_t seed) {
     Rig r(nmea_ubx());
     r.ch->set_link_seed(seed);
@@ -291,19 +293,13 @@ TEST(LinkFaults, ProbabilityRampsFromZeroToOneOverTheEvent) {
 }
 
 TEST(LinkFaults, SeveralEventsCombine) {
-  FaultEvent a = port_event(LinkFault::kByteLoss);
-  a.put(Param::kProbability, 0.5);
-  FaultEvent b = a;
-  FaultEvent l1 = port_event(LinkFault::kLatency);
-  l1.put(Param::kLatencyMs, 200.0);
-  FaultEvent l2 = l1;
-  l2.put(Param::kLatencyMs, 300.0);
-  FaultEvent r1 = port_event(LinkFault::kRate);
-  r1.put(Param::kRateHz, 2.0);
-  FaultEvent r2 = port_event(LinkFault::kRate);
-  r2.put(Param::kRateHz, 0.5);
-  FaultEvent w1 = port_event(LinkFault::kWrongFix);
-  w1.put(Param::kFixType, 0.0);
+  const FaultEvent a = port_event(LinkFault::kByteLoss, Param::kProbability, 0.5);
+  const FaultEvent b = a;
+  const FaultEvent l1 = port_event(LinkFault::kLatency, Param::kLatencyMs, 200.0);
+  const FaultEvent l2 = port_event(LinkFault::kLatency, Param::kLatencyMs, 300.0);
+  const FaultEvent r1 = port_event(LinkFault::kRate, Param::kRateHz, 2.0);
+  const FaultEvent r2 = port_event(LinkFault::kRate, Param::kRateHz, 0.5);
+  const FaultEvent w1 = port_event(LinkFault::kWrongFix, Param::kFixType, 0.0);
   FaultEvent w2 = w1;
   w2.start_s = 5.0;
   w2.put(Param::kFixType, 5.0);
@@ -441,22 +437,17 @@ TEST(LinkFaults, GpsdRejectsTheCorruptedAndBrokenMessages) {
   const int tpv_clean = gpsdecode_tpvs(sent, "clean");
   if (tpv_clean < 0) GTEST_SKIP() << "gpsdecode not installed";
   ASSERT_GE(tpv_clean, 30);  // at least one per epoch
-  Rig bad(nmea_ubx());
-  FaultEvent all = port_event(LinkFault::kCorrupt);
-  all.put(Param::kProbability, 1.0);
-  EXPECT_EQ(gpsdecode_tpvs(run(bad, {all}, 30), "corrupt_all"), 0);
-  Rig half(nmea_ubx());
-  FaultEvent some = port_event(LinkFault::kCorrupt);
-  some.put(Param::kProbability, 0.5);
-  const int tpv_half = gpsdecode_tpvs(run(half, {some}, 30), "corrupt_half");
+  const auto tpvs_with = [](LinkFault f, double p, const std::string& name) {
+    Rig r(nmea_ubx());
+    return gpsdecode_tpvs(run(r, {port_event(f, Param::kProbability, p)}, 30), name);
+  };
+  EXPECT_EQ(tpvs_with(LinkFault::kCorrupt, 1.0, "corrupt_all"), 0);
   // gpsd reports a TPV per epoch when any of RMC, GGA, GLL, NAV-PVT... got
   // through, so half the messages lost cost fewer than half the TPVs.
+  const int tpv_half = tpvs_with(LinkFault::kCorrupt, 0.5, "corrupt_half");
   EXPECT_GT(tpv_half, 0);
   EXPECT_LT(tpv_half, tpv_clean);
-  Rig lossy(nmea_ubx());
-  FaultEvent loss = port_event(LinkFault::kByteLoss);
-  loss.put(Param::kProbability, 0.01);
-  const int tpv_lossy = gpsdecode_tpvs(run(lossy, {loss}, 30), "byte_loss");
+  const int tpv_lossy = tpvs_with(LinkFault::kByteLoss, 0.01, "byte_loss");
   EXPECT_GT(tpv_lossy, 0);
   EXPECT_LT(tpv_lossy, tpv_clean);
   std::printf("gpsdecode TPVs over 30 epochs: clean %d, half corrupted %d, 1 %% byte loss %d\n", tpv_clean, tpv_half,
