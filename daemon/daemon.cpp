@@ -143,6 +143,7 @@ void Daemon::open_channel(std::size_t i, std::unique_ptr<OutputPort> port) {
   channels_[i] = std::make_unique<PortChannel>(std::move(port), device_, i, [this] { return now_s(); });
   PortChannel& c = *channels_[i];
   c.use_idle_timer(io_);
+  c.set_link_seed(cfg_.world.seed);
   c.on_input([this, i](const protocol::ubx::InputResult& r) { on_host_input(i, r); });
 }
 
@@ -327,7 +328,14 @@ void Daemon::emit_epoch(const time::GpsTime& t, const world::Truth& truth) {
   const receiver::Fix& fix = receiver_->step(t, truth);
   ++epochs_;
   device_.on_epoch(fix, now_s());
-  for (const auto& c : channels_) c->send_epoch();
+  // Port events act on the ports (docs/faults.md "Link faults"); no stage: none.
+  faults::FaultStage* stage = receiver_->faults();
+  const std::span<const faults::FaultStatus> link_status =
+      stage != nullptr ? stage->status() : std::span<const faults::FaultStatus>{};
+  for (const auto& c : channels_) {
+    c->set_link_faults(link_status);
+    c->send_epoch();
+  }
   record_status(t, truth, fix);
   const int type = static_cast<int>(fix.type);
   last_num_used_ = fix.num_used;

@@ -39,10 +39,6 @@ namespace gnssemu::daemon {
 
 namespace asio = boost::asio;
 
-/// A port event naming an output the daemon does not have: why (naming the
-/// event's line), else nothing.
-std::optional<std::string> check_port_outputs(std::span<const faults::FaultEvent> events, std::size_t outputs);
-
 class Daemon final : private ControlTarget {
 public:
   /// nav: the configured nav data as read (kept to re-date the constellation

@@ -11,6 +11,7 @@
 #include "config/scenario_file.hpp"
 #include "core/common/error.hpp"
 #include "daemon/daemon.hpp"
+#include "daemon/link_faults.hpp"
 
 namespace gnssemu::daemon {
 
@@ -22,21 +23,8 @@ constexpr double kFaultStatusPeriodS = 1.0;
 
 }  // namespace
 
-std::optional<std::string> check_port_outputs(std::span<const faults::FaultEvent> events, std::size_t outputs) {
-  for (const faults::FaultEvent& e : events) {
-    if (e.type != faults::FaultType::kPort) continue;
-    const double o = e.param(faults::Param::kOutput).from;
-    if (o >= static_cast<double>(outputs)) {
-      return "line " + std::to_string(e.line) + ": port event output = " + std::to_string(static_cast<int>(o)) +
-             " but the daemon has " + std::to_string(outputs) + " output(s) (0.." +
-             std::to_string(static_cast<int>(outputs) - 1) + ")";
-    }
-  }
-  return std::nullopt;
-}
-
 void Daemon::set_scenario(std::vector<faults::FaultEvent> events, const std::string& source) {
-  if (const auto bad = check_port_outputs(events, cfg_.outputs.size())) throw Error(source + ": " + *bad);
+  if (const auto bad = check_port_events(events, cfg_.outputs.size(), source)) throw Error(*bad);
   scenario_ = std::move(events);
   scenario_source_ = source;
   restart_scenario();
@@ -65,7 +53,7 @@ void Daemon::write_status(std::string& out) { status_.write_json(out, 0); }
 std::vector<std::string> Daemon::inject(std::string_view scenario, const std::string& source) {
   const std::vector<faults::FaultEvent> events = config::parse_scenario(scenario, source);
   if (events.empty()) throw Error(source + ": no [[event]] to inject");
-  if (const auto bad = check_port_outputs(events, channels_.size())) throw Error(source + ": " + *bad);
+  if (const auto bad = check_port_events(events, channels_.size(), source)) throw Error(*bad);
   if (receiver_->faults() == nullptr) receiver_->set_faults({});
   receiver_->faults()->inject(events);  // all or nothing
   std::vector<std::string> added;

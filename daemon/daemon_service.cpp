@@ -97,6 +97,7 @@ void Daemon::reload() noexcept {
     if (plan.receiver || plan.scene) {
       cfg_.receiver = loaded.receiver;
       cfg_.world = loaded.world;
+      for (const auto& c : channels_) c->set_link_seed(cfg_.world.seed);
       if (plan.scene) {
         cfg_.scene = loaded.scene;
         receiver_.reset();  // holds the old scene

@@ -1,5 +1,6 @@
 #include "daemon/port_channel.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -35,9 +36,12 @@ PortChannel::PortChannel(std::unique_ptr<OutputPort> port, ubx::Device& device, 
       clock_(std::move(clock)),
       budget_(port_->config().baud),
       line_(port_->config().baud != 0),
-      sink_(std::make_unique<Sink>(*this)) {
+      sink_(std::make_unique<Sink>(*this)),
+      link_(output) {
   out_.reserve(ubx::MessageList::kMaxBytes);
   out_ends_.reserve(ubx::MessageList::kMaxMessages);
+  wire_.reserve(std::max<std::size_t>(ubx::MessageList::kMaxBytes, 4096));
+  wire_ends_.reserve(ubx::MessageList::kMaxMessages);
   reply_.reserve(4096);
   epoch_dropped_.reserve(512);
 }
@@ -68,7 +72,7 @@ void PortChannel::on_port_input(int source, std::span<const uint8_t> bytes) {
   } else if (reset_after_feed_) {
     in->decoder.reset();
   } else if (in->decoder.pending_bytes() > 0) {
-    arm_idle_timer(kInputIdleS);
+    arm(idle_timer_, kInputIdleS, &PortChannel::check_idle);
   }
   drop_after_feed_ = reset_after_feed_ = false;
 }
@@ -84,22 +88,35 @@ void PortChannel::on_source_closed(int source) {
 }
 
 void PortChannel::use_idle_timer(boost::asio::io_context& io) {
-  idle_timer_ = std::make_unique<boost::asio::steady_timer>(io);
+  idle_timer_.timer = std::make_unique<boost::asio::steady_timer>(io);
+  delay_timer_.timer = std::make_unique<boost::asio::steady_timer>(io);
 }
 
-void PortChannel::arm_idle_timer(double delay_s) {
-  if (!idle_timer_) return;
+void PortChannel::arm(Timer& t, double delay_s, bool (PortChannel::*check)() noexcept) {
+  if (!t.timer) return;
   const auto due = std::chrono::steady_clock::now() + std::chrono::nanoseconds(std::llround(delay_s * 1e9));
-  // One timer for every source: a busy source must not push back the check
-  // another, quiet one is waiting for.
-  if (idle_armed_ && idle_timer_->expiry() <= due) return;
-  idle_armed_ = true;
-  idle_timer_->expires_at(due);
-  idle_timer_->async_wait([this](const boost::system::error_code& ec) {
+  // Never later than a wait already pending: what it waits for is still due then.
+  if (t.armed && t.timer->expiry() <= due) return;
+  t.armed = true;
+  t.timer->expires_at(due);
+  t.timer->async_wait([this, &t, check](const boost::system::error_code& ec) {
     if (ec) return;  // re-armed earlier, or shut down
-    idle_armed_ = false;
-    check_idle();
+    t.armed = false;
+    (this->*check)();
   });
+}
+
+bool PortChannel::check_delayed() noexcept {
+  const double now = clock_();
+  // The 1 ns slack keeps a timer that fired on time from waiting for rounding.
+  while (!delay_.empty() && delay_.next_due_s() <= now + 1e-9) {
+    const DelayLine::Entry& e = delay_.front();
+    port_->write_epoch(e.bytes, e.ends);
+    delay_.pop();
+  }
+  if (delay_.empty()) return false;
+  arm(delay_timer_, delay_.next_due_s() - now, &PortChannel::check_delayed);
+  return true;
 }
 
 bool PortChannel::check_idle() noexcept {
@@ -134,7 +151,7 @@ bool PortChannel::check_idle() noexcept {
     }
     drop_after_feed_ = reset_after_feed_ = false;
   }
-  if (next_s >= 0.0) arm_idle_timer(next_s);
+  if (next_s >= 0.0) arm(idle_timer_, next_s, &PortChannel::check_idle);
   return next_s >= 0.0;
 }
 
@@ -190,6 +207,13 @@ void PortChannel::count_drop(std::string_view label) {
 }
 
 void PortChannel::send_reply(int source, std::string_view label) noexcept {
+  // A stopped output sends nothing, replies included: the host sees a dead
+  // receiver (docs/faults.md "Link faults").
+  if (link_.active().stop) {
+    link_.count_stopped_reply();
+    stats_.link_faults = link_.stats();
+    return;
+  }
   // Replies share the TX buffer with the epochs: a full buffer drops them too.
   if (!budget_.admit(reply_.size(), clock_())) {
     count_drop(label);
@@ -203,34 +227,88 @@ void PortChannel::send_reply(int source, std::string_view label) noexcept {
     }
     return;
   }
+  if (link_.active().byte_loss > 0.0) {
+    link_.lose_bytes(0, true, reply_, {}, wire_, wire_ends_);
+    stats_.link_faults = link_.stats();
+    if (!wire_.empty()) port_->write_reply(source, wire_);
+    return;
+  }
   port_->write_reply(source, reply_);
 }
 
 void PortChannel::send_epoch() noexcept {
-  const double now = clock_();
-  device_.compose(link(), epoch_);
+  send_composed(clock_());
+  stats_.link_faults = link_.stats();
+}
+
+bool PortChannel::admit(std::string_view message, std::string_view label, double now) noexcept {
+  stats_.bytes_offered += message.size();
+  epoch_bytes_ += message.size();
+  if (budget_.admit(message.size(), now)) {
+    out_.append(message);
+    out_ends_.push_back(out_.size());
+    ++stats_.messages_sent;
+    return true;
+  }
+  count_drop(label);
+  if (!warned_ && epoch_dropped_.size() < 400) {
+    if (!epoch_dropped_.empty()) epoch_dropped_ += ", ";
+    epoch_dropped_ += fmt::format("{} ({} B)", label, message.size());
+  }
+  return false;
+}
+
+void PortChannel::send_composed(double now) noexcept {
+  const LinkFaultSet& faults = link_.active();
+  device_.compose(link(), epoch_, ubx::Layout::kLine, faults.fix_type);
+  if (faults.fix_type) link_.count_wrong_fix();
+  // The firmware: a stopped, slowed or frozen output (out_ still holds the
+  // epoch last sent).
+  const LinkFaults::Release release = link_.release(device_.epoch_period_s(), out_, out_ends_);
+  if (release == LinkFaults::Release::kNothing) {
+    check_delayed();
+    return;
+  }
+  const std::uint64_t epoch = device_.epoch_count();
   out_.clear();
   out_ends_.clear();
   epoch_bytes_ = 0;
   epoch_dropped_.clear();
-  for (const ubx::MessageList::Message& m : epoch_.messages()) {
-    const std::string_view bytes = epoch_.bytes(m);
-    stats_.bytes_offered += bytes.size();
-    epoch_bytes_ += bytes.size();
-    if (budget_.admit(bytes.size(), now)) {
-      out_.append(bytes);
-      out_ends_.push_back(out_.size());
-      ++stats_.messages_sent;
-      continue;
+  if (release == LinkFaults::Release::kHeld) {
+    const std::string_view held = link_.held();
+    std::size_t begin = 0;
+    for (const std::size_t end : link_.held_ends()) {
+      admit(held.substr(begin, end - begin), "frozen epoch", now);
+      begin = end;
     }
-    count_drop(m.label);
-    if (!warned_ && epoch_dropped_.size() < 400) {
-      if (!epoch_dropped_.empty()) epoch_dropped_ += ", ";
-      epoch_dropped_ += fmt::format("{} ({} B)", m.label, bytes.size());
+  } else {
+    const auto& messages = epoch_.messages();
+    for (std::size_t i = 0; i < messages.size(); ++i) {
+      const ubx::MessageList::Message& m = messages[i];
+      if (link_.drops(epoch, i)) continue;
+      const std::size_t begin = out_.size();
+      if (admit(epoch_.bytes(m), m.label, now) && link_.corrupts(epoch, i)) {
+        break_checksum(std::span<char>(out_.data() + begin, out_.size() - begin));
+      }
     }
   }
-  if (!out_.empty()) port_->write_epoch(out_, out_ends_);
   if (!epoch_dropped_.empty() && !warned_) warn_drops();
+  // The line: bytes lost on the way, then a delay.
+  std::string_view bytes = out_;
+  std::span<const std::size_t> ends = out_ends_;
+  if (faults.byte_loss > 0.0) {
+    link_.lose_bytes(epoch, false, out_, out_ends_, wire_, wire_ends_);
+    bytes = wire_;
+    ends = wire_ends_;
+  }
+  if (faults.latency_s > 0.0 || !delay_.empty()) {
+    // Behind epochs still held, even once the latency is gone: bytes keep their order.
+    if (!bytes.empty()) delay_.push(now + faults.latency_s, bytes, ends);
+    if (faults.latency_s > 0.0) link_.count_delayed();
+    check_delayed();
+    return;
+  }
+  if (!bytes.empty()) port_->write_epoch(bytes, ends);
 }
 
 void PortChannel::warn_drops() {

@@ -3,7 +3,8 @@
 // emulated u-blox (docs/ports.md). Input bytes go through the UBX/NMEA
 // stream decoder into the device and its replies go back at once on the
 // same port; each epoch it sends the messages the device composed for the
-// port through a model of the M8's transmit buffer drained at the line rate.
+// port through a model of the M8's transmit buffer drained at the line rate,
+// and through the link faults active on the port (daemon/link_faults.hpp).
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -17,8 +18,11 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/steady_timer.hpp>
 
+#include "core/faults/fault_stage.hpp"
 #include "core/protocol/ubx/ubx_decoder.hpp"
 #include "core/protocol/ubx/ubx_device.hpp"
+#include "daemon/delay_line.hpp"
+#include "daemon/link_faults.hpp"
 #include "daemon/output_port.hpp"
 #include "daemon/tx_budget.hpp"
 
@@ -37,6 +41,7 @@ struct ChannelStats {
   uint64_t messages_sent = 0;
   uint64_t messages_dropped = 0;  ///< TX buffer full (line too slow for the message set)
   uint64_t bytes_offered = 0;     ///< bytes of every message due, sent or not
+  LinkFaultStats link_faults;     ///< what the port's link faults did
 };
 
 class PortChannel final : public PortListener {
@@ -57,8 +62,9 @@ public:
   /// Start the port's input (replies need the event loop running).
   void start();
   void on_input(InputHandler h) { on_input_ = std::move(h); }
-  /// Abandon partial input frames after kInputIdleS of silence, on a timer
-  /// of io (the daemon). Without it only check_idle() does (tests).
+  /// Abandon partial input frames after kInputIdleS of silence, and send
+  /// epochs a latency link fault held back when they are due, on timers of
+  /// io (the daemon). Without it only check_idle() and check_delayed() do (tests).
   void use_idle_timer(boost::asio::io_context& io);
   /// Sources whose input has been quiet for kInputIdleS with a partial frame
   /// pending: give the frame up and rescan what is held (replies go out).
@@ -69,10 +75,22 @@ public:
   /// partial input arrived before it is gone.
   void follow_device(bool reset) noexcept;
 
+  /// The world's seed: the link faults' draws repeat for it.
+  void set_link_seed(uint64_t seed) noexcept { link_.set_seed(seed); }
+  /// This epoch's fault status (FaultStage::status(), after the receiver
+  /// step; empty without a fault stage): the port events active on this
+  /// output act from the next send_epoch on.
+  void set_link_faults(std::span<const faults::FaultStatus> status) noexcept { link_.update(status); }
+  const LinkFaults& link_faults() const noexcept { return link_; }
+
   /// Send what the device composed for this port this epoch (after
-  /// Device::on_epoch) through the TX budget, as one block. No allocation
-  /// after the first epochs.
+  /// Device::on_epoch) through the link faults and the TX budget, as one
+  /// block. No allocation after the first epochs (a latency fault: after
+  /// the most epochs it ever held at once).
   void send_epoch() noexcept;
+  /// Send the epochs a latency fault held that are due now. Returns true
+  /// while some are still held.
+  bool check_delayed() noexcept;
 
   void on_port_input(int source, std::span<const uint8_t> bytes) override;
   void on_source_closed(int source) override;
@@ -94,7 +112,16 @@ private:
     protocol::ubx::StreamDecoder decoder;
     double last_input_s = 0.0;
   };
-  void arm_idle_timer(double delay_s);
+  /// A timer of the daemon's io and whether a wait is pending on it.
+  struct Timer {
+    std::unique_ptr<boost::asio::steady_timer> timer;
+    bool armed = false;
+  };
+  /// Run check in delay_s on t (one wait per timer: an earlier one stays).
+  void arm(Timer& t, double delay_s, bool (PortChannel::*check)() noexcept);
+  void send_composed(double now) noexcept;
+  /// Admit message (label for the drop counts) to out_ through the TX budget.
+  bool admit(std::string_view message, std::string_view label, double now) noexcept;
   void handle_result(int source, const protocol::ubx::InputResult& r);
   void send_reply(int source, std::string_view label) noexcept;
   /// Ask the port for baud once what is queued has drained, and drain the budget at it from now.
@@ -111,8 +138,8 @@ private:
   std::map<int, std::unique_ptr<Input>> inputs_;
   std::unique_ptr<Sink> sink_;
   InputHandler on_input_;
-  std::unique_ptr<boost::asio::steady_timer> idle_timer_;
-  bool idle_armed_ = false;  ///< idle_timer_ has a wait pending
+  Timer idle_timer_;   ///< abandons partial input frames
+  Timer delay_timer_;  ///< sends epochs a latency fault held
   // Set while a decoder is feeding the device: the decoder must not be
   // reset or destroyed under it, so those wait until feed() returns.
   bool feeding_ = false;
@@ -129,6 +156,10 @@ private:
   std::string out_;                 ///< this epoch's admitted messages
   std::vector<std::size_t> out_ends_;  ///< where each of them ends in out_
   bool warned_ = false;
+  LinkFaults link_;
+  DelayLine delay_;
+  std::string wire_;                    ///< out_ as the line carries it (byte loss)
+  std::vector<std::size_t> wire_ends_;
 };
 
 }  // namespace gnssemu::daemon

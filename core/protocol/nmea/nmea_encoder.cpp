@@ -33,7 +33,10 @@ struct Epoch {
   bool v4 = false;        // NMEA 4.10 / 4.11 extra fields
   bool has_time = false;
   bool has_fix = false;   // a position to print (a GNSS fix or dead reckoning)
-  bool dead_reckoning = false;
+  // The fix type as the sentences report it (u-blox NMEA position fix flags).
+  int quality = 0;        // GGA: 0 none, 1 GNSS fix, 6 dead reckoning
+  char status = 'V';      // RMC, GLL: A valid, V invalid
+  char pos_mode = 'N';    // RMC, VTG, GLL: N none, A autonomous, E estimated (dead reckoning)
   int nav_mode = 1;       // GSA: 1 none, 2 2D, 3 3D
   UtcStamp utc;
   double lat_deg = 0.0, lon_deg = 0.0;
@@ -62,7 +65,22 @@ int rounded_deg(double rad) {
   return std::isfinite(deg) ? static_cast<int>(std::lround(deg)) : 0;
 }
 
-Epoch derive(const Fix& fix, const NmeaConfig& cfg) {
+// The fix-type fields for a reported type, after the u-blox NMEA position
+// fix flags table (UBX-13003221 / ZED-F9P interface description): dead
+// reckoning is GGA quality 6, mode E, GSA navMode 2; GNSS + dead reckoning
+// reads as a 3D GNSS fix; time only has no position, so it reads as none.
+void set_fix_flags(Epoch& e, ReportedFix f) {
+  switch (f) {
+    case ReportedFix::kDeadReckoning: e.quality = 6; e.status = 'A'; e.pos_mode = 'E'; e.nav_mode = 2; return;
+    case ReportedFix::k2D: e.quality = 1; e.status = 'A'; e.pos_mode = 'A'; e.nav_mode = 2; return;
+    case ReportedFix::k3D:
+    case ReportedFix::kGnssDeadReckoning: e.quality = 1; e.status = 'A'; e.pos_mode = 'A'; e.nav_mode = 3; return;
+    case ReportedFix::kNoFix:
+    case ReportedFix::kTimeOnly: e.quality = 0; e.status = 'V'; e.pos_mode = 'N'; e.nav_mode = 1; return;
+  }
+}
+
+Epoch derive(const Fix& fix, const NmeaConfig& cfg, FixOverride reported) {
   Epoch e;
   e.v4 = cfg.version != NmeaVersion::k23;
   e.has_time = fix.time_valid;
@@ -71,10 +89,6 @@ Epoch derive(const Fix& fix, const NmeaConfig& cfg) {
   e.has_fix = fix.type != FixType::kNone && e.has_time && std::isfinite(fix.lla.lat_rad) &&
               std::isfinite(fix.lla.lon_rad) && std::isfinite(fix.lla.height_m);
   if (e.has_fix) {
-    // u-blox position fix flags: dead reckoning is GGA quality 6, mode E,
-    // GSA navMode 2 (UBX-13003221 / ZED-F9P interface description, NMEA flags).
-    e.dead_reckoning = fix.type == FixType::kDeadReckoning;
-    e.nav_mode = fix.type == FixType::k3D ? 3 : 2;
     e.lat_deg = std::clamp(fix.lla.lat_rad * kRadToDeg, -90.0, 90.0);
     e.lon_deg = std::remainder(fix.lla.lon_rad * kRadToDeg, 360.0);  // [-180, 180]
     const double sep = std::isfinite(fix.geoid_sep_m) ? fix.geoid_sep_m : 0.0;
@@ -92,6 +106,13 @@ Epoch derive(const Fix& fix, const NmeaConfig& cfg) {
     e.pdop = dop_or_none(fix.dop.pdop, true);
     e.hdop = dop_or_none(fix.dop.hdop, true);
     e.vdop = dop_or_none(fix.dop.vdop, true);
+  }
+  if (reported) {
+    set_fix_flags(e, *reported);
+  } else if (e.has_fix) {
+    set_fix_flags(e, fix.type == FixType::kDeadReckoning ? ReportedFix::kDeadReckoning
+                     : fix.type == FixType::k3D          ? ReportedFix::k3D
+                                                         : ReportedFix::k2D);
   }
   const int n = std::clamp(fix.num_sats, 0, static_cast<int>(fix.sats.size()));
   for (int i = 0; i < n; ++i) {
@@ -122,8 +143,6 @@ void put_position(SentenceWriter& w, const Epoch& e) {
   }
 }
 
-char pos_mode(const Epoch& e) { return !e.has_fix ? 'N' : e.dead_reckoning ? 'E' : 'A'; }
-char status(const Epoch& e) { return e.has_fix ? 'A' : 'V'; }
 
 /// Appends finished sentences to out and tells the sink where each ends.
 struct Emit {
@@ -141,7 +160,7 @@ struct Emit {
 void write_rmc(const Epoch& e, const Emit& emit) {
   SentenceWriter w("GPRMC");
   put_time(w, e);
-  w.character(status(e));
+  w.character(e.status);
   put_position(w, e);
   if (e.has_fix) {
     w.fixed(e.speed_m_s * kKnotsPerMps, 3);
@@ -160,7 +179,7 @@ void write_rmc(const Epoch& e, const Emit& emit) {
   }
   w.empty();  // magnetic variation: u-blox leaves it empty
   w.empty();
-  w.character(pos_mode(e));
+  w.character(e.pos_mode);
   if (e.v4) w.character('V');  // navStatus: u-blox always sends V
   emit(w);
 }
@@ -184,7 +203,7 @@ void write_vtg(const Epoch& e, const Emit& emit) {
   } else {
     for (int i = 0; i < 8; ++i) w.empty();
   }
-  w.character(pos_mode(e));
+  w.character(e.pos_mode);
   emit(w);
 }
 
@@ -194,7 +213,7 @@ void write_gga(const Epoch& e, const Emit& emit) {
   SentenceWriter w("GPGGA");
   put_time(w, e);
   put_position(w, e);
-  w.integer(!e.has_fix ? 0 : e.dead_reckoning ? 6 : 1, 1);
+  w.integer(e.quality, 1);
   w.integer(e.num_used, 2);
   w.fixed(e.hdop, 2);
   if (e.has_fix) {
@@ -262,8 +281,8 @@ void write_gll(const Epoch& e, const Emit& emit) {
   SentenceWriter w("GPGLL");
   put_position(w, e);
   put_time(w, e);
-  w.character(status(e));
-  w.character(pos_mode(e));
+  w.character(e.status);
+  w.character(e.pos_mode);
   emit(w);
 }
 
@@ -321,9 +340,9 @@ std::size_t NmeaEncoder::encode_epoch(const receiver::Fix& fix, std::string& out
 }
 
 std::size_t NmeaEncoder::encode_epoch(const receiver::Fix& fix, SentenceSet set, std::string& out,
-                                      SentenceSink* sink) const {
+                                      SentenceSink* sink, FixOverride reported) const {
   const std::size_t before = out.size();
-  const Epoch e = derive(fix, config_);
+  const Epoch e = derive(fix, config_, reported);
   const auto emit = [&](Sentence s) { return Emit{out, sink, s}; };
   // u-blox epoch order (ref §6).
   if (set.has(Sentence::kRmc)) write_rmc(e, emit(Sentence::kRmc));

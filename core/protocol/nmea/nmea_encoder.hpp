@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/protocol/nmea/nmea_sentences.hpp"
+#include "core/protocol/nmea/reported_fix.hpp"
 #include "core/receiver/fix.hpp"
 
 namespace gnssemu::protocol::nmea {
@@ -54,8 +55,10 @@ public:
   std::size_t encode_epoch(const receiver::Fix& fix, std::string& out) const;
   /// The same for the sentences in set (instead of the config's); sink, if
   /// not null, hears the end of every sentence (GSV: each of its parts).
+  /// reported: the fix type GGA quality, GSA navMode and the RMC/GLL status
+  /// and posMode report instead of the Fix's (nothing: the Fix's).
   std::size_t encode_epoch(const receiver::Fix& fix, SentenceSet set, std::string& out,
-                           SentenceSink* sink = nullptr) const;
+                           SentenceSink* sink = nullptr, FixOverride reported = std::nullopt) const;
 
   const NmeaConfig& config() const noexcept { return config_; }
 

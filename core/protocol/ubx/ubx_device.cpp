@@ -221,10 +221,12 @@ nmea::SentenceSet Device::nmea_due(Link at) const noexcept {
   return s;
 }
 
-void Device::compose(Link at, MessageList& out, Layout layout) const noexcept {
+void Device::compose(Link at, MessageList& out, Layout layout, FixOverride reported) const noexcept {
   out.clear();
   if (!valid(at) || epochs_ == 0) return;
   const std::size_t col = column(at);
+  EpochInfo info = info_;
+  info.reported_fix = reported;
   const bool ubx_on = current_.port(col).outputs_ubx();
   const auto ubx_messages = [&](bool before_nmea) {
     if (!ubx_on) return;
@@ -232,14 +234,14 @@ void Device::compose(Link at, MessageList& out, Layout layout) const noexcept {
       const PeriodicMessage& m = kPeriodicMessages[i];
       if (layout == Layout::kLine && (m.group == EpochGroup::kBeforeNmea) != before_nmea) continue;
       if (!due(col, m.id)) continue;
-      if (encoder_.encode(m.id, last_fix_, info_, out.buffer()) > 0) out.close(m.name, Protocol::kUbx);
+      if (encoder_.encode(m.id, last_fix_, info, out.buffer()) > 0) out.close(m.name, Protocol::kUbx);
     }
   };
   ubx_messages(true);
   const nmea::SentenceSet sentences = nmea_due(at);
   if (!sentences.empty()) {
     SentenceCloser closer(out);
-    nmea_[at.output].encode_epoch(last_fix_, sentences, out.buffer(), &closer);
+    nmea_[at.output].encode_epoch(last_fix_, sentences, out.buffer(), &closer, reported);
   }
   if (layout == Layout::kLine) ubx_messages(false);
 }

@@ -139,8 +139,11 @@ public:
   void on_epoch(const receiver::Fix& fix, double now_s) noexcept;
   /// The messages due at at this epoch (rates divide the epoch count;
   /// protocols per outProtoMask) in layout's order. No allocation
-  /// (MessageList reserves for the largest epoch).
-  void compose(Link at, MessageList& out, Layout layout = Layout::kLine) const noexcept;
+  /// (MessageList reserves for the largest epoch). reported: the fix type
+  /// every message that carries one reports on this port instead of the
+  /// receiver's (a wrong_fix link fault, docs/faults.md); nothing: the receiver's.
+  void compose(Link at, MessageList& out, Layout layout = Layout::kLine,
+               FixOverride reported = std::nullopt) const noexcept;
   /// NMEA sentences due at at this epoch (CFG-MSG class 0xF0 rates).
   nmea::SentenceSet nmea_due(Link at) const noexcept;
   /// outProtoMask bits of the protocols at at that have a message at a

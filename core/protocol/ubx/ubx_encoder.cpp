@@ -71,7 +71,7 @@ struct Common {
   std::uint8_t num_sv = 0;
 };
 
-Common derive(const Fix& fix) noexcept {
+Common derive(const Fix& fix, FixOverride reported = std::nullopt) noexcept {
   Common c;
   c.has_time = fix.time_valid && std::isfinite(fix.t.tow_s());
   c.has_fix = fix.type != FixType::kNone && c.has_time && std::isfinite(fix.lla.lat_rad) &&
@@ -130,6 +130,10 @@ Common derive(const Fix& fix) noexcept {
     const double ratio = c.speed_2d > 0.0 ? sacc / c.speed_2d : std::numeric_limits<double>::infinity();
     c.course_acc_deg = std::min(180.0, ratio * kRadToDeg);
     c.num_sv = static_cast<std::uint8_t>(std::clamp(fix.num_used, 0, 255));
+  }
+  if (reported) {
+    c.fix_type = static_cast<std::uint8_t>(*reported);
+    c.fix_ok = gnss_fix_ok(*reported);
   }
   return c;
 }
@@ -211,8 +215,10 @@ UbxEncoder::UbxEncoder(const MonVerConfig& config) : config_(config) {
   for (const auto& e : config_.extensions) add_ext(e);
 }
 
-std::size_t UbxEncoder::nav_pvt(const Fix& fix, std::string& out) const {
-  const Common c = derive(fix);
+std::size_t UbxEncoder::nav_pvt(const Fix& fix, std::string& out) const { return nav_pvt_as(fix, std::nullopt, out); }
+
+std::size_t UbxEncoder::nav_pvt_as(const Fix& fix, FixOverride reported, std::string& out) const {
+  const Common c = derive(fix, reported);
   wire::NavPvt m{};
   m.iTOW = c.itow;
   if (c.has_time) {
@@ -271,7 +277,7 @@ std::size_t UbxEncoder::nav_posllh(const Fix& fix, std::string& out) const {
 }
 
 std::size_t UbxEncoder::nav_status(const Fix& fix, const EpochInfo& info, std::string& out) const {
-  const Common c = derive(fix);
+  const Common c = derive(fix, info.reported_fix);
   wire::NavStatus m{};
   m.iTOW = c.itow;
   m.gpsFix = c.fix_type;
@@ -306,8 +312,10 @@ std::size_t UbxEncoder::nav_dop(const Fix& fix, std::string& out) const {
   return append_message(out, msg::kNavDop, m);
 }
 
-std::size_t UbxEncoder::nav_sol(const Fix& fix, std::string& out) const {
-  const Common c = derive(fix);
+std::size_t UbxEncoder::nav_sol(const Fix& fix, std::string& out) const { return nav_sol_as(fix, std::nullopt, out); }
+
+std::size_t UbxEncoder::nav_sol_as(const Fix& fix, FixOverride reported, std::string& out) const {
+  const Common c = derive(fix, reported);
   wire::NavSol m{};
   m.iTOW = c.itow;
   m.fTOW = c.ftow_ns;
@@ -504,11 +512,11 @@ bool UbxEncoder::can_encode(MsgId id) noexcept {
 }
 
 std::size_t UbxEncoder::encode(MsgId id, const Fix& fix, const EpochInfo& info, std::string& out) const {
-  if (id == msg::kNavPvt) return nav_pvt(fix, out);
+  if (id == msg::kNavPvt) return nav_pvt_as(fix, info.reported_fix, out);
   if (id == msg::kNavPosllh) return nav_posllh(fix, out);
   if (id == msg::kNavStatus) return nav_status(fix, info, out);
   if (id == msg::kNavDop) return nav_dop(fix, out);
-  if (id == msg::kNavSol) return nav_sol(fix, out);
+  if (id == msg::kNavSol) return nav_sol_as(fix, info.reported_fix, out);
   if (id == msg::kNavVelned) return nav_velned(fix, out);
   if (id == msg::kNavTimegps) return nav_timegps(fix, out);
   if (id == msg::kNavTimeutc) return nav_timeutc(fix, out);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/protocol/nmea/reported_fix.hpp"
 #include "core/protocol/ubx/ubx_frame.hpp"
 #include "core/receiver/fix.hpp"
 
@@ -35,6 +36,9 @@ struct EpochInfo {
   std::uint32_t msss_ms = 0;  ///< ms since start-up or reset (NAV-STATUS msss)
   std::uint32_t ttff_ms = 0;  ///< time to first fix, ms; 0 = no fix yet
   bool itfm_enabled = false;  ///< CFG-ITFM enable: MON-HW jammingState reported (else 0 = unknown)
+  /// Fix type NAV-PVT, NAV-STATUS and NAV-SOL report instead of the Fix's
+  /// (a wrong_fix link fault); nothing: the Fix's.
+  FixOverride reported_fix;
 };
 
 /// Largest output of one epoch with every message enabled and 32 satellites
@@ -69,8 +73,9 @@ public:
   /// ACK-ACK (ack = true) or ACK-NAK for the input message acked.
   static std::size_t ack(MsgId acked, bool ack, std::string& out);
 
-  /// Encode message id from fix (the NAV/MON ids above). Returns 0 for ids
-  /// this encoder does not produce.
+  /// Encode message id from fix (the NAV/MON ids above), with the fix type
+  /// info.reported_fix says if it says one. Returns 0 for ids this encoder
+  /// does not produce.
   std::size_t encode(MsgId id, const receiver::Fix& fix, const EpochInfo& info, std::string& out) const;
   /// True when encode() produces id.
   static bool can_encode(MsgId id) noexcept;
@@ -78,6 +83,10 @@ public:
   const MonVerConfig& mon_ver_config() const noexcept { return config_; }
 
 private:
+  /// NAV-PVT / NAV-SOL with fixType (gpsFix) and gnssFixOK as reported says
+  /// (nothing: the Fix's).
+  std::size_t nav_pvt_as(const receiver::Fix& fix, FixOverride reported, std::string& out) const;
+  std::size_t nav_sol_as(const receiver::Fix& fix, FixOverride reported, std::string& out) const;
   MonVerConfig config_;
   std::string mon_ver_payload_;
 };

@@ -124,7 +124,7 @@ TEST(UbxEncoder, StatusDopTime) {
   const receiver::Fix f = sample_fix();
   const UbxEncoder enc;
   std::string out;
-  enc.nav_status(f, EpochInfo{12345, 3000}, out);
+  enc.nav_status(f, EpochInfo{12345, 3000, false, std::nullopt}, out);
   auto fr = test::split_frames(out);
   ASSERT_EQ(fr.size(), 1u);
   wire::NavStatus st{};
@@ -410,7 +410,7 @@ TEST(UbxEncoder, MonHwJammingFollowsNoiseRise) {
     receiver::Fix f = sample_fix();
     f.noise_rise_db = rise;
     std::string out;
-    UbxEncoder().mon_hw(f, EpochInfo{0, 0, itfm}, out);
+    UbxEncoder().mon_hw(f, EpochInfo{0, 0, itfm, std::nullopt}, out);
     const auto fr = test::split_frames(out);
     wire::MonHw m{};
     EXPECT_EQ(fr.size(), 1u);
