@@ -13,8 +13,10 @@ gpspipe -w. Steps, each timed from the moment the command returned:
      active; `ctl clear`: mode 3 back through reacquisition
   4. `ctl inject` a CW jammer ramp 20 -> 50 dB over 20 s: gpsd's SKY C/N0
      falls, then mode <= 1; `ctl clear`: mode 3 back
-  5. a bad scenario: ctl exits 1 naming file:line; nothing was added
-  6. the socket is mode 0600 and gone after the daemon exits
+  5. `ctl inject` a port fault (wrong_fix 0): gpsd mode <= 1 while the
+     receiver keeps its 3D fix; `ctl clear`: mode 3
+  6. a bad scenario: ctl exits 1 naming file:line; nothing was added
+  7. the socket is mode 0600 and gone after the daemon exits
 Exit 77 (skip) without gpsd/gpspipe."""
 import argparse
 import json
@@ -84,6 +86,14 @@ kind = "cw"
 start_s = 0
 duration_s = 20
 js_db = [20, 50]
+"""
+
+WRONG_FIX = """[[event]]
+type = "port"
+fault = "wrong_fix"
+output = 0
+fix_type = 0
+start_s = 0
 """
 
 BAD = """[[event]]
@@ -239,7 +249,22 @@ def run(rig):
           f"mode <= 1 {t - t_inj:.1f} s after inject (J/S {20 + 30 * (t - t_inj) / 20:.0f} dB); "
           f"mode 3 {t2 - t_clr:.2f} s after clear")
 
-    # 5. a bad scenario changes nothing
+    # 5. a link fault: the port reports no fix while the receiver has one
+    rig.wait_mode(lambda m: m == 3, 10, "mode 3")
+    rc, out, err = rig.ctl("inject", rig.write("wrong_fix.toml", WRONG_FIX))
+    assert rc == 0, f"inject exit {rc}: {err}"
+    t_inj = time.monotonic()
+    rig.drain()
+    t, _ = rig.wait_mode(lambda m: m <= 1, 5, "mode <= 1 from the wrong_fix port fault")
+    assert rig.status()["fix"]["type"] == 3, "the receiver itself lost its fix"
+    rc, out, err = rig.ctl("clear")
+    assert rc == 0, err
+    t_clr = time.monotonic()
+    t2, _ = rig.wait_mode(lambda m: m == 3, 5, "mode 3 after clearing the port fault")
+    print(f"  ctl wrong_fix 0: gpsd mode <= 1 {t - t_inj:.2f} s after inject while the receiver has 3D; "
+          f"mode 3 {t2 - t_clr:.2f} s after clear")
+
+    # 6. a bad scenario changes nothing
     bad = rig.write("bad.toml", BAD)
     rc, out, err = rig.ctl("inject", bad)
     assert rc == 1 and f"{bad}:5:" in err and "power_w" in err, (rc, out, err)
@@ -248,7 +273,7 @@ def run(rig):
     rc, _, err2 = rig.ctl("frobnicate")
     assert rc == 2, (rc, err2)
 
-    # 6. the socket: 0600 while running, removed at exit
+    # 7. the socket: 0600 while running, removed at exit
     mode = stat.S_IMODE(os.stat(rig.sock).st_mode)
     assert mode == 0o600, oct(mode)
     rig.stop(rig.daemon)
