@@ -20,9 +20,13 @@
 namespace gnssemu::daemon {
 namespace {
 
-// The emulated receiver's power-on: the process start (static initialisation,
-// before the config and nav file are read). NAV-STATUS msss and the time to
-// first fix count from here, so ttff is what the emulator really took.
+// Lockstep: a time within this of a grid epoch is on it (as gnssemu batch), s.
+constexpr double kLockGridTolerance_s = 1e-6;
+
+// The emulated receiver's power-on in realtime mode: the process start
+// (static initialisation, before the config and nav file are read).
+// NAV-STATUS msss and the time to first fix count from here, so ttff is what
+// the emulator really took. Lockstep counts in epoch time (chip_clock_s).
 const std::chrono::steady_clock::time_point kProcessStart = std::chrono::steady_clock::now();
 
 const char* start_name(receiver::StartMode m) {
@@ -72,7 +76,21 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
   restart_receiver(cfg_.receiver.acquisition.start);
   spdlog::info("receiver: {} start at power-on", start_name(cfg_.receiver.acquisition.start));
   if (scene_) spdlog::info("scene {}: {} triangles", cfg_.scene->mesh_file, scene_->triangle_count());
-  lock_next_ = start_;
+  lock_grid_from(start_);
+}
+
+void Daemon::lock_grid_from(const time::GpsTime& t) noexcept {
+  // The first epoch of the rate's grid at or after t (batch's tolerance).
+  lock_week_ = t.week();
+  lock_k_ = std::ceil(t.tow_s() * rate_hz_ - kLockGridTolerance_s * rate_hz_);
+  lock_next_ = time::GpsTime::make(lock_week_, lock_k_ / rate_hz_).value_or(t);
+}
+
+void Daemon::lock_step(double n) noexcept {
+  // Epoch k is (week, k / rate) as gnssemu batch computes it: adding the
+  // period each epoch would drift off the grid (NAV-PVT nano -1 ns at 5 Hz).
+  lock_k_ += n;
+  lock_next_ = time::GpsTime::make(lock_week_, lock_k_ / rate_hz_).value_or(lock_next_ + n * period_s_);
 }
 
 void Daemon::restart_receiver(receiver::StartMode start) {
@@ -130,6 +148,9 @@ void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& re
                cfg_.outputs[src].name, reset.start_name(), reset.nav_bbr_mask);
   receiver_->receiver().restart(receiver::StartState{reset.keeps_ephemeris(), reset.keeps_almanac(),
                                                      reset.keeps_position(), reset.keeps_time()});
+  // The device restarted its uptime on the wall clock; in lockstep the chip
+  // counts in epoch time, from the epoch it has reached (the rate count starts over too).
+  if (cfg_.time.mode == config::TimeMode::kLockstep) device_.power_on(chip_clock_s(last_epoch_t_));
   apply_nav5();  // a reboot may have loaded the saved CFG-NAV5
 }
 
@@ -137,6 +158,10 @@ Daemon::~Daemon() { shutdown(); }
 
 double Daemon::now_s() const noexcept {
   return std::chrono::duration<double>(Clock::now() - t0_).count();
+}
+
+double Daemon::chip_clock_s(const time::GpsTime& t) const noexcept {
+  return cfg_.time.mode == config::TimeMode::kRealtime ? now_s() : t - chip_origin_;
 }
 
 void Daemon::open_channel(std::size_t i, std::unique_ptr<OutputPort> port) {
@@ -157,7 +182,12 @@ void Daemon::start() {
     lock_next_ = w.start;
     t0_ += std::chrono::nanoseconds(std::llround(w.wait_s * 1e9));
   }
-  device_.power_on(std::chrono::duration<double>(power_on_ - t0_).count());
+  if (cfg_.time.mode == config::TimeMode::kRealtime) {
+    device_.power_on(std::chrono::duration<double>(power_on_ - t0_).count());
+  } else {
+    chip_origin_ = lock_next_;
+    device_.power_on(0.0);
+  }
   channels_.resize(cfg_.outputs.size());
   for (std::size_t i = 0; i < cfg_.outputs.size(); ++i) open_channel(i, open_port(cfg_.outputs[i], io_));
   for (const auto& c : channels_) c->start();
@@ -293,7 +323,7 @@ void Daemon::on_timer(const boost::system::error_code& ec) {
     // Lockstep without a live simulator: keep the receiver talking at the
     // configured rate (demo before any simulator, no fix after one stopped).
     emit_epoch(lock_next_, fallback_truth(lock_next_, lock_next_ - start_));
-    lock_next_ += period_s_;
+    lock_step(1.0);
   }
   const double delay_s = cfg_.time.mode == config::TimeMode::kRealtime ? output_delay_s_ : 0.0;
   const auto now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0_).count() -
@@ -313,13 +343,13 @@ void Daemon::lockstep_advance(const time::GpsTime& stamp) {
   if (behind_s > 10.0 * period_s_) {
     const double n = std::floor(behind_s / period_s_);
     epochs_skipped_ += static_cast<uint64_t>(n);
-    lock_next_ += n * period_s_;
+    lock_step(n);
     spdlog::warn("lockstep: simulator jumped {:.1f} s ahead; skipped {:.0f} epochs", behind_s, n);
   }
   const double now = now_s();
   while (!(stamp < lock_next_)) {
     emit_epoch(lock_next_, router_.truth_at(lock_next_, now));
-    lock_next_ += period_s_;
+    lock_step(1.0);
   }
 }
 
@@ -327,7 +357,8 @@ void Daemon::emit_epoch(const time::GpsTime& t, const world::Truth& truth) {
   note_coverage(t);
   const receiver::Fix& fix = receiver_->step(t, truth);
   ++epochs_;
-  device_.on_epoch(fix, now_s());
+  last_epoch_t_ = t;
+  device_.on_epoch(fix, chip_clock_s(t));
   // Port events act on the ports (docs/faults.md "Link faults"); no stage: none.
   faults::FaultStage* stage = receiver_->faults();
   const std::span<const faults::FaultStatus> link_status =
@@ -377,6 +408,8 @@ void Daemon::on_nav_period(std::size_t src) {
     const double elapsed = std::max(now_s(), 0.0);
     sched_base_s_ = std::ceil(elapsed / p - 1e-9) * p;
     index_ = 0;
+  } else {
+    lock_grid_from(lock_next_);  // the pending epoch, or the next one of the new grid
   }
   arm_timer();  // replaces the pending wait
 }
@@ -460,17 +493,19 @@ void Daemon::align_to_packet_time(const time::GpsTime& stamp) {
   // Lockstep: the first packet with GPS time puts the epoch clock on it.
   if (gps_aligned_) return;
   gps_aligned_ = true;
-  const double tow_epochs = std::ceil(stamp.tow_s() * rate_hz_ - 1e-9);
-  const time::GpsTime first = time::GpsTime::make(stamp.week(), tow_epochs / rate_hz_).value_or(stamp);
+  lock_grid_from(stamp);
+  const time::GpsTime first = lock_next_;
   const bool served = constellation_.serves(first);
   // The run starts over at the packets' time: a receiver powered on there,
-  // in the state [receiver.acquisition] start configures.
-  // So a lockstep run repeats gnssemu batch on the same truth, byte for
-  // byte: the receiver and the scenario's time line start at the first packet.
+  // in the state [receiver.acquisition] start configures, with the chip's
+  // configuration as hosts left it. So a lockstep run repeats gnssemu batch
+  // on the same truth, byte for byte: the receiver, the chip's uptime, ttff
+  // and rate count, and the scenario's time line start at the first packet.
   if (!served) redate_constellation(first);
   restart_receiver(cfg_.receiver.acquisition.start);
   restart_scenario();
-  lock_next_ = first;
+  chip_origin_ = first;
+  device_.power_on(0.0);
   spdlog::info("lockstep: epochs follow the packets' GPS time from {}", gps_text(first));
 }
 

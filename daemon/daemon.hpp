@@ -84,8 +84,16 @@ private:
   void receive();
   void on_datagram(std::size_t n);
   void lockstep_advance(const time::GpsTime& stamp);
+  /// Lockstep: the next epoch is the first of the rate's grid at or after t.
+  void lock_grid_from(const time::GpsTime& t) noexcept;
+  /// Lockstep: the next epoch n (>= 1, whole) epochs of the grid on.
+  void lock_step(double n) noexcept;
   void align_to_packet_time(const time::GpsTime& stamp);
   void emit_epoch(const time::GpsTime& t, const world::Truth& truth);
+  /// The emulated chip's clock (NAV-STATUS msss, ttff), s: the wall clock in
+  /// realtime; in lockstep epoch t's GPS time from chip_origin_, so uptime
+  /// and ttff advance with the simulation as iTOW does, whatever its speed.
+  double chip_clock_s(const time::GpsTime& t) const noexcept;
   world::Truth fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept;
   /// The demo circle drives the receiver (no simulator ever did, demo on):
   /// what fallback_truth, the status line and the status page all say.
@@ -175,11 +183,15 @@ private:
   bool stopped_ = false;
   std::array<char, 65536> rx_buf_{};
 
-  Clock::time_point power_on_;  // receiver power-on (process start): uptime (msss) and ttff count from here
+  Clock::time_point power_on_;  // realtime: receiver power-on (process start): uptime (msss) and ttff count from here
   Clock::time_point t0_;
   int64_t index_ = 0;           // realtime: epoch index since t0
   bool served_ = true;          // the last epoch had the constellation
-  time::GpsTime lock_next_;     // lockstep: GPS time of the next epoch
+  time::GpsTime lock_next_;     // lockstep: GPS time of the next epoch: (lock_week_, lock_k_ / rate_hz_)
+  int32_t lock_week_ = 0;
+  double lock_k_ = 0.0;         // lockstep: index of the next epoch in lock_week_ (whole; may pass the week's end)
+  time::GpsTime chip_origin_;   // lockstep: GPS time of the chip's power-on (start, then the first packet's epoch)
+  time::GpsTime last_epoch_t_;  // GPS time of the last epoch emitted
   uint64_t epochs_ = 0;
   uint64_t epochs_skipped_ = 0;
   uint64_t packets_ok_ = 0;

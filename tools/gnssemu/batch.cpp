@@ -73,7 +73,7 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
     if (sum.epochs == 0) power_on = t;
     ++sum.epochs;
     device.on_epoch(fix, t - power_on);
-    device.compose({}, messages, protocol::ubx::Layout::kPerProtocol);
+    device.compose({}, messages, protocol::ubx::Layout::kLine);
     for (const protocol::ubx::MessageList::Message& m : messages.messages()) {
       std::ostream* log = m.protocol == protocol::ubx::Protocol::kNmea ? nmea : ubx;
       const std::string_view bytes = messages.bytes(m);

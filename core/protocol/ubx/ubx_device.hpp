@@ -122,8 +122,15 @@ public:
   /// Outputs (UART1s), >= 1.
   std::size_t outputs() const noexcept { return nmea_.size(); }
 
-  /// Power-on at now_s (a monotonic clock, s): uptime and ttff count from it.
-  void power_on(double now_s) noexcept { uptime_origin_s_ = now_s; }
+  /// Power-on at now_s (a monotonic clock, s): uptime and ttff count from it,
+  /// no fix yet, the epoch count for rates > 1 starts over; the configuration
+  /// stays as it is (the daemon powers the chip on again where a lockstep run starts).
+  void power_on(double now_s) noexcept {
+    uptime_origin_s_ = now_s;
+    have_fix_once_ = false;
+    info_.ttff_ms = 0;
+    epochs_ = 0;
+  }
 
   /// A UBX frame received at at; now_s: the same clock as power_on (a reset
   /// restarts uptime). Replies are appended to out. Never throws; no
