@@ -132,21 +132,7 @@ class Rig(RigBase):
             time.sleep(0.05)
         assert os.path.exists(self.sock), "no control socket"
         self.t_start = time.monotonic()
-        gport = free_port(socket.SOCK_STREAM)
-        self.gpsd_log = open(os.path.join(self.tmp, "gpsd.log"), "w")
-        self.spawn(["gpsd", "-N", "-n", "-b", "-F", os.path.join(self.tmp, "gpsd.sock"), "-S", str(gport),
-                    "-P", os.path.join(self.tmp, "gpsd.pid"), self.pty], stdout=self.gpsd_log, stderr=subprocess.STDOUT)
-        deadline = time.monotonic() + 10
-        while time.monotonic() < deadline:
-            try:
-                socket.create_connection(("127.0.0.1", gport), timeout=0.5).close()
-                break
-            except OSError:
-                time.sleep(0.1)
-        else:
-            raise AssertionError("gpsd did not open its port")
-        pipe = self.spawn(["gpspipe", "-w", f"localhost:{gport}"], stdout=subprocess.PIPE,
-                          stderr=subprocess.DEVNULL, text=True)
+        pipe = self.spawn_gpsd(self.pty)
         threading.Thread(target=self._reader, args=(pipe.stdout,), daemon=True).start()
 
     def _reader(self, stream):
@@ -304,9 +290,8 @@ def main():
     finally:
         signal.alarm(0)
         rig.stop_all()
-        for f in ("daemon_log", "gpsd_log"):
-            if hasattr(rig, f):
-                getattr(rig, f).close()
+        if hasattr(rig, "daemon_log"):
+            rig.daemon_log.close()
         if not ok:
             rig.dump_logs()
         rig.remove_tmp()

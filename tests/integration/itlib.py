@@ -6,6 +6,7 @@ import signal
 import socket
 import subprocess
 import tempfile
+import time
 
 
 def free_port(kind):
@@ -50,6 +51,29 @@ class RigBase:
             if p is getattr(self, "daemon", None):
                 rc = p.returncode
         return rc
+
+    def spawn_gpsd(self, path, readonly=True):
+        """A private gpsd on path (-N foreground, -n poll without clients, -b
+        read-only unless readonly is False, own control socket and free
+        loopback port, log in gpsd.log) and gpspipe -w on it: the gpspipe
+        process (text stdout)."""
+        gport = free_port(socket.SOCK_STREAM)
+        log = open(os.path.join(self.tmp, "gpsd.log"), "w")
+        self.spawn(["gpsd", "-N", "-n"] + (["-b"] if readonly else []) +
+                   ["-F", os.path.join(self.tmp, "gpsd.sock"), "-S", str(gport), "-P",
+                    os.path.join(self.tmp, "gpsd.pid"), path], stdout=log, stderr=subprocess.STDOUT)
+        log.close()  # gpsd holds its own descriptor
+        deadline = time.monotonic() + 10
+        while True:
+            try:
+                socket.create_connection(("127.0.0.1", gport), timeout=0.5).close()
+                break
+            except OSError:
+                if time.monotonic() > deadline:
+                    raise AssertionError("gpsd did not open its port")
+                time.sleep(0.1)
+        return self.spawn(["gpspipe", "-w", f"localhost:{gport}"], stdout=subprocess.PIPE,
+                          stderr=subprocess.DEVNULL, text=True)
 
     def dump_logs(self):
         """Print the tail of every *.log in the temp dir (on failure)."""

@@ -415,20 +415,7 @@ def case_ardupilot(rig):
 
 
 def gpsd_rig(rig, path, readonly):
-    gport = free_port(socket.SOCK_STREAM)
-    log = open(os.path.join(rig.tmp, "gpsd.log"), "w")
-    rig.spawn(["gpsd", "-N", "-n"] + (["-b"] if readonly else []) +
-              ["-F", os.path.join(rig.tmp, "gpsd.sock"), "-S", str(gport), "-P", os.path.join(rig.tmp, "gpsd.pid"),
-               path], stdout=log, stderr=subprocess.STDOUT)
-    deadline = time.monotonic() + 10
-    while time.monotonic() < deadline:
-        try:
-            socket.create_connection(("127.0.0.1", gport), timeout=0.5).close()
-            break
-        except OSError:
-            time.sleep(0.1)
-    return rig.spawn(["gpspipe", "-w", f"localhost:{gport}"], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-                     text=True)
+    return rig.spawn_gpsd(path, readonly)
 
 
 def read_json(pipe, limit_s, pred, what):
