@@ -29,8 +29,9 @@ std::string unknown_member(const json& req, std::initializer_list<std::string_vi
 std::string handle_control_request(std::string_view request, ControlTarget& target) noexcept {
   try {
     const json req = json::parse(request, nullptr, false);
-    if (req.is_discarded()) return error_reply("not a JSON object: a request is one line of JSON, e.g. {\"cmd\":\"status\"}");
-    if (!req.is_object()) return error_reply("not a JSON object: a request is one line of JSON, e.g. {\"cmd\":\"status\"}");
+    if (req.is_discarded() || !req.is_object()) {
+      return error_reply("not a JSON object: a request is one line of JSON, e.g. {\"cmd\":\"status\"}");
+    }
     const auto cmd = req.find("cmd");
     if (cmd == req.end() || !cmd->is_string()) {
       return error_reply("\"cmd\" (a string) is required: one of " + std::string(kCommands));

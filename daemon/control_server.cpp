@@ -58,9 +58,9 @@ public:
     timer_.cancel();
     socket_.close(ec);
   }
-  /// Say why and hang up (connection limit).
-  void refuse() {
-    out_ = busy_reply() + "\n";
+  /// Say why and hang up (connection limit, oversize request).
+  void reply_and_close(std::string reply) {
+    out_ = std::move(reply) + "\n";
     auto self = shared_from_this();
     asio::async_write(socket_, asio::buffer(out_), [self](const boost::system::error_code&, std::size_t) {
       self->close();
@@ -115,14 +115,6 @@ private:
     });
   }
 
-  void reply_and_close(std::string reply) {
-    out_ = std::move(reply) + "\n";
-    auto self = shared_from_this();
-    asio::async_write(socket_, asio::buffer(out_), [self](const boost::system::error_code&, std::size_t) {
-      self->close();
-    });
-  }
-
   Local::socket socket_;
   asio::steady_timer timer_;
   std::shared_ptr<ControlServer::Shared> shared_;
@@ -154,7 +146,7 @@ void accept_next(const std::shared_ptr<ControlServer::Shared>& shared) {
     }
     auto session = std::make_shared<Session>(std::move(socket), sh);
     if (sh->live() >= kMaxControlSessions) {
-      session->refuse();
+      session->reply_and_close(busy_reply());
     } else {
       sh->sessions.push_back(session);
       session->start();

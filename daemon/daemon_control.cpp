@@ -73,9 +73,8 @@ std::vector<std::string> Daemon::inject(std::string_view scenario, const std::st
 }
 
 std::size_t Daemon::clear() {
-  faults::FaultStage* stage = receiver_->faults();
-  const std::size_t n = stage != nullptr ? stage->status().size() : 0;
-  if (stage != nullptr) stage->clear();
+  const std::size_t n = fault_count();
+  if (faults::FaultStage* stage = receiver_->faults()) stage->clear();
   status_.set_faults({});
   spdlog::info("control: cleared {} fault(s)", n);
   return n;
