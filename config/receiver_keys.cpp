@@ -35,6 +35,8 @@ constexpr Choice<receiver::NavFilterType> kFilterTypes[] = {{"kalman", receiver:
                                                            {"none", receiver::NavFilterType::kNone}};
 constexpr Choice<receiver::StartMode> kStartModes[] = {
     {"hot", receiver::StartMode::kHot}, {"warm", receiver::StartMode::kWarm}, {"cold", receiver::StartMode::kCold}};
+constexpr Choice<receiver::CoastReport> kCoastReports[] = {{"no_fix", receiver::CoastReport::kNoFix},
+                                                           {"dead_reckoning", receiver::CoastReport::kDeadReckoning}};
 // The core's names, in dynModel order.
 constexpr auto kDynamicModels = [] {
   std::array<Choice<receiver::DynamicModel>, receiver::kDynamicModelNames.size()> c{};
@@ -191,8 +193,12 @@ constexpr Field<NavFilterConfig> kNavFields[] = {
         "navigates (its NAV-SAT never flags a smoothed pseudorange)"),
     number<&NavFilterConfig::coast_limit_s>(
         "coast_limit_s", Nr::coast_limit_s,
-        "with fewer than 3 usable satellites the filter dead-reckons this long (NAV-PVT fixType 1, GGA quality "
-        "6, growing hAcc), then there is no fix"),
+        "with fewer than 3 usable satellites the filter extrapolates this long (growing hAcc), then there is no "
+        "fix"),
+    choice<kCoastReports, &NavFilterConfig::coast_report>(
+        "coast_report", "how the outputs flag the extrapolated solution: `no_fix` (NAV-PVT fixType 0 with the "
+                        "extrapolated position, NMEA invalid; u-blox's receivers without sensors) or "
+                        "`dead_reckoning` (fixType 1, GGA quality 6, mode E; as its ADR/UDR modules)"),
     number<&NavFilterConfig::position_noise_m2_s>(
         "position_noise_m2_s", Nr::position_noise_m2_s,
         "random-walk position noise of the filter: how fast it follows slowly drifting pseudorange errors; sets "

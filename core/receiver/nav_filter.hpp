@@ -7,6 +7,7 @@
 // parameters. Brown & Hwang, Introduction to Random Signals and Applied
 // Kalman Filtering, 4th ed., ch. 9 (PV model, two-state clock). No allocation.
 #include <array>
+#include <cstdint>
 
 #include "core/common/range.hpp"
 #include "core/common/vec3.hpp"
@@ -18,6 +19,18 @@ namespace gnssemu::receiver {
 enum class NavFilterType : std::uint8_t {
   kNone,    ///< snapshot weighted least squares on raw code every epoch
   kKalman,  ///< carrier-smoothed code and Doppler into the navigation filter
+};
+
+/// How the receiver's outputs flag a coasted (extrapolated) solution.
+enum class CoastReport : std::uint8_t {
+  /// Extrapolated but flagged "no fix": NAV-PVT fixType 0 with the
+  /// extrapolated position, gnssFixOK 0; NMEA invalid. u-blox's documented
+  /// behaviour for receivers without sensors (ANTARIS 4 System Integration
+  /// Manual §4.6.5.2 "Dead Reckoning / extrapolating positioning"; the M8's
+  /// CFG-NAV5 drLimit is reserved, fixType 1 is for its ADR/UDR products).
+  kNoFix,
+  /// Flagged as dead reckoning: fixType 1, GGA quality 6, mode E.
+  kDeadReckoning,
 };
 
 struct NavFilterConfig {
@@ -39,6 +52,7 @@ struct NavFilterConfig {
   /// Fewer than 3 usable satellites: the filter predicts (reporting a
   /// growing accuracy) for this long, then the fix is lost, s (>= 0).
   double coast_limit_s = 3.0;
+  CoastReport coast_report = CoastReport::kNoFix;
   /// Oscillator: white frequency noise h0 (s) and random-walk frequency
   /// noise h-2 (1/s) of its Allan variance; a TCXO by default (Brown & Hwang,
   /// typical Allan coefficients of ch. 9).

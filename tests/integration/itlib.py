@@ -55,9 +55,10 @@ class RigBase:
     def spawn_gpsd(self, path, readonly=True):
         """A private gpsd on path (-N foreground, -n poll without clients, -b
         read-only unless readonly is False, own control socket and free
-        loopback port, log in gpsd.log) and gpspipe -w on it: the gpspipe
-        process (text stdout)."""
+        loopback port in self.gpsd_port, log in gpsd.log) and gpspipe -w on
+        it: the gpspipe process (text stdout)."""
         gport = free_port(socket.SOCK_STREAM)
+        self.gpsd_port = gport
         log = open(os.path.join(self.tmp, "gpsd.log"), "w")
         self.spawn(["gpsd", "-N", "-n"] + (["-b"] if readonly else []) +
                    ["-F", os.path.join(self.tmp, "gpsd.sock"), "-S", str(gport), "-P",

@@ -49,6 +49,7 @@ private:
 
 Device::Device(const DeviceSetup& setup)
     : ack_unknown_cfg_(setup.ack_unknown_cfg),
+      coast_as_no_fix_(setup.coast_as_no_fix),
       encoder_(setup.mon_ver),
       nmea_(nmea_encoders(setup)),
       defaults_(DeviceConfig::factory_defaults(nmea_.size())),
@@ -225,6 +226,9 @@ void Device::compose(Link at, MessageList& out, Layout layout, FixOverride repor
   out.clear();
   if (!valid(at) || epochs_ == 0) return;
   const std::size_t col = column(at);
+  if (!reported && coast_as_no_fix_ && last_fix_.type == receiver::FixType::kDeadReckoning) {
+    reported = ReportedFix::kNoFix;
+  }
   EpochInfo info = info_;
   info.reported_fix = reported;
   const bool ubx_on = current_.port(col).outputs_ubx();

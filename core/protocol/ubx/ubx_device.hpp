@@ -68,6 +68,9 @@ struct DeviceSetup {
   std::uint8_t dyn_model = 0;
   std::uint8_t static_hold_thresh_cm_s = 0;
   std::uint16_t static_hold_max_dist_m = 0;
+  /// An extrapolated solution (receiver::FixType::kDeadReckoning) is
+  /// reported as no fix on every port (receiver::CoastReport::kNoFix).
+  bool coast_as_no_fix = true;
   /// One per output; empty: one factory UART1.
   std::vector<OutputSetup> outputs;
 };
@@ -190,6 +193,7 @@ private:
   void after_input(const InputResult& r) noexcept;
 
   bool ack_unknown_cfg_;
+  bool coast_as_no_fix_;
   UbxEncoder encoder_;
   std::vector<nmea::NmeaEncoder> nmea_;  ///< per output
   DeviceConfig defaults_, saved_, current_;

@@ -91,6 +91,7 @@ static_hold_thresh_m_s = 0.5
 static_hold_max_dist_m = 20
 smoothing_window_s = 100
 coast_limit_s = 5
+coast_report = "dead_reckoning"
 position_noise_m2_s = 0.05
 clock_h0_s = 9.4e-20
 clock_h_minus2_per_s = 3.8e-21

@@ -3,6 +3,7 @@
 // that carry a fix type, in every message that has one, on that port only.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -19,8 +20,9 @@ namespace {
 
 constexpr Link kAt{0, kPortUart1};
 
-Device device() {
+Device device(bool coast_as_no_fix = true) {
   DeviceSetup setup;
+  setup.coast_as_no_fix = coast_as_no_fix;
   OutputSetup o;
   o.rates = {{msg::kNavPvt, 1},    {msg::kNavStatus, 1}, {msg::kNavSol, 1},    {msg::kNavPosllh, 1},
              {msg::kNmeaRmc, 1},   {msg::kNmeaVtg, 1},   {msg::kNmeaGga, 1},   {msg::kNmeaGsa, 1},
@@ -134,6 +136,34 @@ TEST(UbxReportedFix, A3dClaimWithoutAFixKeepsTheEmptyPosition) {
   EXPECT_EQ(pvt.flags3 & 0x01, 1);  // invalidLlh: no position behind it
   EXPECT_EQ(field(s, "GGA", 6), "1");
   EXPECT_EQ(field(s, "GGA", 2), "");
+}
+
+// An extrapolated solution (the filter coasting without satellites): a
+// receiver without sensors flags it no fix but keeps the extrapolated
+// position (ANTARIS 4 SIM §4.6.5.2); an ADR-style one reports fixType 1.
+TEST(UbxReportedFix, CoastingIsNoFixWithTheExtrapolatedPositionByDefault) {
+  receiver::Fix dr = test::sample_fix();
+  dr.type = receiver::FixType::kDeadReckoning;
+  dr.num_used = 0;
+  Device d = device();
+  d.on_epoch(dr, 10.0);
+  const std::string s = compose(d, std::nullopt);
+  const auto pvt = payload<wire::NavPvt>(s, msg::kNavPvt);
+  EXPECT_EQ(pvt.fixType, 0);
+  EXPECT_EQ(pvt.flags & 0x01, 0);
+  EXPECT_EQ(pvt.lat, static_cast<std::int32_t>(std::lround(dr.lla.lat_rad * 180.0 / M_PI * 1e7)));
+  EXPECT_EQ(payload<wire::NavStatus>(s, msg::kNavStatus).gpsFix, 0);
+  EXPECT_EQ(field(s, "GGA", 6), "0");
+  EXPECT_EQ(field(s, "RMC", 2), "V");
+  // A port fault still wins over the policy.
+  EXPECT_EQ(payload<wire::NavPvt>(compose(d, ReportedFix::k3D), msg::kNavPvt).fixType, 3);
+
+  Device adr = device(false);
+  adr.on_epoch(dr, 10.0);
+  const std::string a = compose(adr, std::nullopt);
+  EXPECT_EQ(payload<wire::NavPvt>(a, msg::kNavPvt).fixType, 1);
+  EXPECT_EQ(field(a, "GGA", 6), "6");
+  EXPECT_EQ(field(a, "RMC", 12), "E");
 }
 
 TEST(UbxReportedFix, OnlyThePortAskedChanges) {
