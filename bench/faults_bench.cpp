@@ -136,7 +136,7 @@ void jam_sweep(const orbit::EphemerisStore& store, time::GpsTime t0) {
         std::printf("model: %zu satellites tracked clean; 3D fix lost at J/S %.1f dB (4th satellite below %.0f dB-Hz), "
                     "any fix at %.1f dB (3rd); the jammer equals the noise floor (I0 = N0) at J/S %.1f dB\n",
                     lost_at.size(), lost_at.size() > 3 ? lost_at[3] : 0.0, lose, lost_at.size() > 2 ? lost_at[2] : 0.0,
-                    n0 - faults::kNominalSignal_dbw + 10.0 * std::log10(2.0 * faults::kCaChipRate_hz));
+                    n0 - faults::kNominalSignal_dbw + 10.0 * std::log10(2.0 * kCaChipRate_hz));
       }
       continue;
     }

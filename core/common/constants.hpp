@@ -16,6 +16,9 @@ inline constexpr double kRelativityF_s_sqrtm = -4.442807633e-10;
 /// GPS L1 carrier, Hz, and wavelength, m.
 inline constexpr double kL1Freq_hz = 1575.42e6;
 inline constexpr double kL1Wavelength_m = kSpeedOfLight_m_s / kL1Freq_hz;
+/// L1 C/A code chipping rate, chip/s (IS-GPS-200: 1.023 Mbps), and chip length, m.
+inline constexpr double kCaChipRate_hz = 1.023e6;
+inline constexpr double kCaChip_m = kSpeedOfLight_m_s / kCaChipRate_hz;
 /// WGS-84 ellipsoid.
 inline constexpr double kWgs84A_m = 6378137.0;
 inline constexpr double kWgs84F = 1.0 / 298.257223563;

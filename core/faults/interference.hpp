@@ -9,12 +9,11 @@
 // Rc = 1.023 Mchip/s; Q = 1 narrowband / CW (worst case on a C/A line),
 // 1.5 matched-spectrum (BPSK(1)), 2 wideband Gaussian noise. Written as
 // noise densities: the jammer adds I0 = J / (Q Rc) to N0.
+#include "core/common/constants.hpp"
 #include "core/faults/fault_event.hpp"
 
 namespace gnssemu::faults {
 
-/// GPS L1 C/A chipping rate, chip/s.
-inline constexpr double kCaChipRate_hz = 1.023e6;
 /// Minimum received L1 C/A power of IS-GPS-200 (-128.5 dBm = -158.5 dBW):
 /// the S of a js_db given at the antenna.
 inline constexpr double kNominalSignal_dbw = -158.5;

@@ -5,9 +5,6 @@
 
 namespace gnssemu::signal {
 
-/// GPS L1 C/A chip length c / 1.023 MHz, m.
-inline constexpr double kCaChip_m = kSpeedOfLight_m_s / 1.023e6;
-
 enum class DllDiscriminator {
   kEarlyMinusLatePower,  ///< noncoherent early-minus-late power
   kDotProduct,           ///< noncoherent dot product

@@ -12,7 +12,7 @@
 namespace gnssemu::world {
 
 /// Half a C/A chip, m: the code loop's pull-in with 1 chip early-late spacing.
-inline constexpr double kHalfChip_m = kSpeedOfLight_m_s / 1.023e6 / 2.0;
+inline constexpr double kHalfChip_m = kCaChip_m / 2.0;
 
 /// Where the Doppler noise comes from.
 enum class DopplerModel {
