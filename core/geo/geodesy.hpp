@@ -17,11 +17,18 @@ Lla lla_from_ecef(const Ecef& ecef) noexcept;
 Enu ecef_to_enu_vector(const Vec3& ecef_vec, double lat_rad, double lon_rad) noexcept;
 /// Rotation of an ENU vector into ECEF at (lat_rad, lon_rad).
 Vec3 enu_to_ecef_vector(const Enu& enu_vec, double lat_rad, double lon_rad) noexcept;
-/// Local vertical (ellipsoid normal, up) at lla as an ECEF unit vector.
-inline Vec3 up_unit_ecef(const Lla& lla) noexcept {
-  const double cl = std::cos(lla.lat_rad);
-  return {cl * std::cos(lla.lon_rad), cl * std::sin(lla.lon_rad), std::sin(lla.lat_rad)};
+/// The local east, north and up unit vectors (ECEF) at (lat_rad, lon_rad):
+/// the rows of the ECEF -> ENU rotation.
+struct EnuAxes {
+  Vec3 e, n, u;
+};
+inline EnuAxes enu_axes(double lat_rad, double lon_rad) noexcept {
+  const double sl = std::sin(lat_rad), cl = std::cos(lat_rad);
+  const double so = std::sin(lon_rad), co = std::cos(lon_rad);
+  return {{-so, co, 0.0}, {-sl * co, -sl * so, cl}, {cl * co, cl * so, sl}};
 }
+/// Local vertical (ellipsoid normal, up) at lla as an ECEF unit vector.
+inline Vec3 up_unit_ecef(const Lla& lla) noexcept { return enu_axes(lla.lat_rad, lla.lon_rad).u; }
 
 /// Azimuth (rad, [0, 2pi), clockwise from true north), elevation (rad,
 /// [-pi/2, pi/2]) and geometric range (m) from a receiver to a target.

@@ -56,10 +56,8 @@ void NavFilter::predict(double dt_s, double q_h, double q_v, double q_pos, doubl
   couple(6, 7);
   // Motion noise: q along local east, north (q_h) and up (q_v), in ECEF.
   const Lla lla = geo::lla_from_ecef(pos_m());
-  const double sl = std::sin(lla.lat_rad), cl = std::cos(lla.lat_rad);
-  const double so = std::sin(lla.lon_rad), co = std::cos(lla.lon_rad);
-  const Vec3 e{-so, co, 0.0}, n{-sl * co, -sl * so, cl}, u{cl * co, cl * so, sl};
-  const double a[3][3] = {{e.x, e.y, e.z}, {n.x, n.y, n.z}, {u.x, u.y, u.z}};
+  const geo::EnuAxes ax = geo::enu_axes(lla.lat_rad, lla.lon_rad);
+  const double a[3][3] = {{ax.e.x, ax.e.y, ax.e.z}, {ax.n.x, ax.n.y, ax.n.z}, {ax.u.x, ax.u.y, ax.u.z}};
   const double q[3] = {q_h, q_h, q_v};
   const double t3 = dt * dt * dt / 3.0, t2 = dt * dt / 2.0;
   for (int i = 0; i < 3; ++i) {

@@ -22,9 +22,8 @@ using Mat3 = std::array<std::array<double, 3>, 3>;
 
 /// Covariance of the three ECEF states from index k of p, in local ENU: R P R'.
 Mat3 enu_block(const NavMatrix& p, int k, const Lla& lla) noexcept {
-  const double sl = std::sin(lla.lat_rad), cl = std::cos(lla.lat_rad);
-  const double so = std::sin(lla.lon_rad), co = std::cos(lla.lon_rad);
-  const Mat3 r{{{-so, co, 0.0}, {-sl * co, -sl * so, cl}, {cl * co, cl * so, sl}}};
+  const geo::EnuAxes a = geo::enu_axes(lla.lat_rad, lla.lon_rad);
+  const Mat3 r{{{a.e.x, a.e.y, a.e.z}, {a.n.x, a.n.y, a.n.z}, {a.u.x, a.u.y, a.u.z}}};
   Mat3 rp{}, out{};
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
