@@ -44,18 +44,6 @@ std::optional<int> parse_int(std::string_view field) noexcept {
   return v;
 }
 
-std::vector<Line> read_lines(std::istream& in) {
-  std::vector<Line> lines;
-  std::string s;
-  int n = 0;
-  while (std::getline(in, s)) {
-    ++n;
-    if (!s.empty() && s.back() == '\r') s.pop_back();
-    lines.push_back({std::move(s), n});
-  }
-  return lines;
-}
-
 void ColumnReader::fail(int line, const std::string& what) const { throw Error(name_, line, what); }
 
 template <class T>

@@ -3,7 +3,6 @@
 // The parse functions only parse; ColumnReader adds the file:line context
 // every reader's errors carry.
 #include <cstddef>
-#include <istream>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -31,9 +30,6 @@ struct Line {
   std::string text;  ///< without the line end (LF or CR LF)
   int number = 0;    ///< 1-based
 };
-
-/// Every line of in, numbered from 1.
-std::vector<Line> read_lines(std::istream& in);
 
 /// Fixed-column fields of one named file: a blank field reads as 0, any
 /// other must parse; failures throw gnssemu::Error with file:line.

@@ -1,7 +1,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <sstream>
 
 #include "core/common/error.hpp"
 #include "core/common/text_fields.hpp"
@@ -37,17 +36,6 @@ TEST(TextFields, Integers) {
   EXPECT_FALSE(text::parse_int("4.5").has_value());
   EXPECT_FALSE(text::parse_int("").has_value());
   EXPECT_FALSE(text::parse_int("99999999999").has_value());
-}
-
-TEST(TextFields, NumberedLinesWithoutLineEnds) {
-  std::istringstream in("first\r\n\nthird");
-  const std::vector<text::Line> lines = text::read_lines(in);
-  ASSERT_EQ(lines.size(), 3u);
-  EXPECT_EQ(lines[0].text, "first");
-  EXPECT_EQ(lines[0].number, 1);
-  EXPECT_EQ(lines[1].text, "");
-  EXPECT_EQ(lines[2].text, "third");
-  EXPECT_EQ(lines[2].number, 3);
 }
 
 TEST(TextFields, ColumnReaderBlankIsZeroErrorsNameFileLineAndColumn) {
