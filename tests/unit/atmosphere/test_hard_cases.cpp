@@ -16,7 +16,6 @@ using namespace gnssemu;
 using namespace gnssemu::atmosphere;
 
 namespace {
-constexpr double kDeg = kDegToRad;
 
 bool ok(double v) { return std::isfinite(v) && v >= 0.0; }
 
@@ -67,9 +66,9 @@ TEST(HardCases, NoNanAnywhere) {
         for (double la : lats)
           for (double lo : lons)
             for (double d : doys) {
-              const double el = e * kDeg, lat = la * kDeg, lon = lo * kDeg;
+              const double el = e * kDegToRad, lat = la * kDegToRad, lon = lo * kDegToRad;
               const double tow = tows[n % 3];
-              const double az = (n * 37 % 360) * kDeg;
+              const double az = (n * 37 % 360) * kDegToRad;
               ++n;
               ASSERT_TRUE(ok(klobuchar_delay_l1_m(klob, lat, lon, az, el, tow))) << e << " " << la << " " << lo;
               ASSERT_TRUE(ok(w.iono.slant_delay_m(lat, lon, az, el, tow, -3.0)));
@@ -109,6 +108,6 @@ TEST(HardCases, ExtremesHaveSensibleMagnitudes) {
   EXPECT_NEAR(hot.iono.slant_delay_m(0, 0, 0, 0.0, 0), 1000 * 0.162370 * 3.3819, 0.5);
   // Tropo at the 1 deg floor is bounded (< 100 m) and at 90 deg equals the zenith delay.
   EXPECT_LT(hot.tropo.slant_delay_m(0.0, 0.0, 0.0, 1.0), 100.0);
-  EXPECT_NEAR(hot.tropo.slant_delay_m(0.0, 12000.0, 90 * kDeg, 1.0), hot.tropo.zhd_m(0, 12000) + hot.tropo.zwd_m(12000),
+  EXPECT_NEAR(hot.tropo.slant_delay_m(0.0, 12000.0, 90 * kDegToRad, 1.0), hot.tropo.zhd_m(0, 12000) + hot.tropo.zwd_m(12000),
               1e-9);
 }

@@ -11,7 +11,6 @@ using namespace gnssemu;
 using namespace gnssemu::atmosphere;
 
 namespace {
-constexpr double kDeg = kDegToRad;
 
 // Deterministic standard normals for the statistics test (splitmix64 + Box–Muller).
 double test_normal(uint64_t i) {
@@ -35,18 +34,18 @@ TEST(Ionosphere, MetresPerTecu) {
 TEST(Ionosphere, ObliquityFactor) {
   // Pivot 95.4 is Klobuchar's F exactly.
   for (double e : {0.0, 5.0, 20.0, 45.0, 90.0})
-    EXPECT_NEAR(iono_obliquity_factor(e * kDeg, 95.4), klobuchar_slant_factor(e * kDeg), 1e-3) << e;
+    EXPECT_NEAR(iono_obliquity_factor(e * kDegToRad, 95.4), klobuchar_slant_factor(e * kDegToRad), 1e-3) << e;
   // Reference §1.3: seed's 96 gives 3.42 at 0 deg and 3.065 at 5 deg; 95.4 gives 3.38 / 3.027.
   // (The seed also rounds 16/180^3 = 2.7435e-6 to 2.74e-6: 3.4248 vs our 3.4273 at 0 deg.)
   EXPECT_NEAR(iono_obliquity_factor(0.0, 96.0), 1.0 + 16.0 * std::pow(96.0 / 180.0, 3), 1e-12);
   EXPECT_NEAR(iono_obliquity_factor(0.0, 96.0), 3.42, 0.01);
-  EXPECT_NEAR(iono_obliquity_factor(5 * kDeg, 96.0), 3.065, 0.01);
+  EXPECT_NEAR(iono_obliquity_factor(5 * kDegToRad, 96.0), 3.065, 0.01);
   EXPECT_NEAR(iono_obliquity_factor(0.0, 95.4), 3.38, 0.005);
-  EXPECT_NEAR(iono_obliquity_factor(5 * kDeg, 95.4), 3.027, 0.005);
+  EXPECT_NEAR(iono_obliquity_factor(5 * kDegToRad, 95.4), 3.027, 0.005);
 }
 
 TEST(Ionosphere, ThinShellMapping) {
-  EXPECT_NEAR(iono_thin_shell_mapping(90 * kDeg), 1.0, 1e-12);
+  EXPECT_NEAR(iono_thin_shell_mapping(90 * kDegToRad), 1.0, 1e-12);
   // el = 0: 1 / sqrt(1 - (R / (R + H))^2), R = 6371 km, H = 350 km.
   const double s = 6371.0 / 6721.0;
   EXPECT_NEAR(iono_thin_shell_mapping(0.0), 1.0 / std::sqrt(1.0 - s * s), 1e-9);
@@ -58,10 +57,10 @@ TEST(Ionosphere, FixedVtecZenith) {
   c.vtec_tecu = 10.0;
   const Ionosphere iono(c);
   // 10 TECU * 0.16237 m/TECU * F(90 deg) (= 1.000432).
-  EXPECT_NEAR(iono.slant_delay_m(0.5, 0.1, 0.0, 90 * kDeg, 0.0), 1.62370 * 1.000432, 2e-4);
-  EXPECT_NEAR(iono.slant_delay_m(0.5, 0.1, 0.0, 90 * kDeg, 0.0, -20.0), 0.0, 0.0);  // floored at 0
-  EXPECT_NEAR(iono.slant_delay_m(0.5, 0.1, 0.0, 90 * kDeg, 0.0, 5.0),
-              1.5 * iono.slant_delay_m(0.5, 0.1, 0.0, 90 * kDeg, 0.0), 1e-12);
+  EXPECT_NEAR(iono.slant_delay_m(0.5, 0.1, 0.0, 90 * kDegToRad, 0.0), 1.62370 * 1.000432, 2e-4);
+  EXPECT_NEAR(iono.slant_delay_m(0.5, 0.1, 0.0, 90 * kDegToRad, 0.0, -20.0), 0.0, 0.0);  // floored at 0
+  EXPECT_NEAR(iono.slant_delay_m(0.5, 0.1, 0.0, 90 * kDegToRad, 0.0, 5.0),
+              1.5 * iono.slant_delay_m(0.5, 0.1, 0.0, 90 * kDegToRad, 0.0), 1e-12);
 }
 
 TEST(Ionosphere, KlobucharShapeScaleOneEqualsKlobuchar) {
@@ -70,13 +69,13 @@ TEST(Ionosphere, KlobucharShapeScaleOneEqualsKlobuchar) {
   const auto p = rtklib_default_klobuchar();
   for (double tow : {0.0, 30000.0, 50400.0, 70000.0})
     for (double e : {5.0, 30.0, 90.0})
-      EXPECT_NEAR(iono.slant_delay_m(45 * kDeg, 10 * kDeg, 1.0, e * kDeg, tow),
-                  klobuchar_delay_l1_m(p, 45 * kDeg, 10 * kDeg, 1.0, e * kDeg, tow), 1e-3);
+      EXPECT_NEAR(iono.slant_delay_m(45 * kDegToRad, 10 * kDegToRad, 1.0, e * kDegToRad, tow),
+                  klobuchar_delay_l1_m(p, 45 * kDegToRad, 10 * kDegToRad, 1.0, e * kDegToRad, tow), 1e-3);
   IonosphereConfig c2 = c;
   c2.klobuchar_scale = 2.5;
   const Ionosphere iono2(c2);
-  EXPECT_NEAR(iono2.slant_delay_m(45 * kDeg, 0, 0, 30 * kDeg, 50400.0),
-              2.5 * iono.slant_delay_m(45 * kDeg, 0, 0, 30 * kDeg, 50400.0), 1e-9);
+  EXPECT_NEAR(iono2.slant_delay_m(45 * kDegToRad, 0, 0, 30 * kDegToRad, 50400.0),
+              2.5 * iono.slant_delay_m(45 * kDegToRad, 0, 0, 30 * kDegToRad, 50400.0), 1e-9);
   IonosphereConfig off = c;
   off.enabled = false;
   EXPECT_EQ(Ionosphere(off).slant_delay_m(0, 0, 0, 0.5, 0), 0.0);

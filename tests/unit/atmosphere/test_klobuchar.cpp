@@ -9,41 +9,40 @@ using namespace gnssemu;
 using namespace gnssemu::atmosphere;
 
 namespace {
-constexpr double kDeg = kDegToRad;
 const orbit::KlobucharParams kRtk = rtklib_default_klobuchar();
 }  // namespace
 
 // Reference atmosphere.md §1.1: 45N 0E az 0, RTKLIB default coefficients.
 TEST(Klobuchar, ReferenceValuesDaytime) {
   const double tow = 14.0 * 3600.0;  // 14 h local time at lon 0 (Sunday)
-  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDeg, 0, 0, 90 * kDeg, tow), 3.64, 0.005);
-  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDeg, 0, 0, 30 * kDeg, tow), 6.25, 0.005);
-  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDeg, 0, 0, 5 * kDeg, tow), 10.3, 0.05);
+  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDegToRad, 0, 0, 90 * kDegToRad, tow), 3.64, 0.005);
+  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDegToRad, 0, 0, 30 * kDegToRad, tow), 6.25, 0.005);
+  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDegToRad, 0, 0, 5 * kDegToRad, tow), 10.3, 0.05);
 }
 
 TEST(Klobuchar, ReferenceValuesNight) {
   const double tow = 2.0 * 3600.0;
-  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDeg, 0, 0, 90 * kDeg, tow), 1.50, 0.005);
-  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDeg, 0, 0, 30 * kDeg, tow), 2.65, 0.005);
-  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDeg, 0, 0, 5 * kDeg, tow), 4.54, 0.005);
+  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDegToRad, 0, 0, 90 * kDegToRad, tow), 1.50, 0.005);
+  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDegToRad, 0, 0, 30 * kDegToRad, tow), 2.65, 0.005);
+  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDegToRad, 0, 0, 5 * kDegToRad, tow), 4.54, 0.005);
   // Night floor is 5 ns * c * F.
-  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDeg, 0, 0, 90 * kDeg, tow),
-              5e-9 * kSpeedOfLight_m_s * klobuchar_slant_factor(90 * kDeg), 1e-9);
+  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDegToRad, 0, 0, 90 * kDegToRad, tow),
+              5e-9 * kSpeedOfLight_m_s * klobuchar_slant_factor(90 * kDegToRad), 1e-9);
 }
 
 // Independent evaluation: a hand-written Python transcription of IS-GPS-200
 // Fig. 20-4 (pi = math.pi), run once; values pasted here.
 TEST(Klobuchar, IndependentPythonEvaluation) {
-  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDeg, 0, 0, 90 * kDeg, 14 * 3600.0), 3.6358, 1e-4);
-  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDeg, 0, 0, 5 * kDeg, 14 * 3600.0), 10.3248, 1e-4);
-  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, -33.9 * kDeg, 151.2 * kDeg, 135 * kDeg, 20 * kDeg, 345600 + 3 * 3600.5),
+  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDegToRad, 0, 0, 90 * kDegToRad, 14 * 3600.0), 3.6358, 1e-4);
+  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 45 * kDegToRad, 0, 0, 5 * kDegToRad, 14 * 3600.0), 10.3248, 1e-4);
+  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, -33.9 * kDegToRad, 151.2 * kDegToRad, 135 * kDegToRad, 20 * kDegToRad, 345600 + 3 * 3600.5),
               7.795749204031743, 1e-6);
-  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 89.9 * kDeg, -179.99 * kDeg, 270 * kDeg, 7 * kDeg, 100.0),
+  EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 89.9 * kDegToRad, -179.99 * kDegToRad, 270 * kDegToRad, 7 * kDegToRad, 100.0),
               4.339823191399475, 1e-6);
 }
 
 TEST(Klobuchar, SlantFactor) {
-  EXPECT_NEAR(klobuchar_slant_factor(90 * kDeg), 1.0 + 16.0 * std::pow(0.03, 3), 1e-9);
+  EXPECT_NEAR(klobuchar_slant_factor(90 * kDegToRad), 1.0 + 16.0 * std::pow(0.03, 3), 1e-9);
   EXPECT_NEAR(klobuchar_slant_factor(0.0), 1.0 + 16.0 * std::pow(0.53, 3), 1e-12);  // 3.382
   EXPECT_NEAR(klobuchar_slant_factor(-0.2), klobuchar_slant_factor(0.0), 0.0);
   EXPECT_NEAR(klobuchar_delay_l1_m(kRtk, 0.3, 0.2, 1.0, 0.4, 50000.0),
@@ -58,6 +57,6 @@ TEST(Klobuchar, FrequencyScaling) {
 
 TEST(Klobuchar, ZeroCoefficientsGiveNightFloor) {
   orbit::KlobucharParams zero;
-  EXPECT_NEAR(klobuchar_delay_l1_m(zero, 0.5, 0.5, 0.0, 90 * kDeg, 50400.0),
-              5e-9 * kSpeedOfLight_m_s * klobuchar_slant_factor(90 * kDeg), 1e-12);
+  EXPECT_NEAR(klobuchar_delay_l1_m(zero, 0.5, 0.5, 0.0, 90 * kDegToRad, 50400.0),
+              5e-9 * kSpeedOfLight_m_s * klobuchar_slant_factor(90 * kDegToRad), 1e-12);
 }

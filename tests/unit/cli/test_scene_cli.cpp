@@ -10,7 +10,7 @@
 #include "core/common/constants.hpp"
 #include "core/geo/local_frame.hpp"
 
-namespace gnssemu::cli {
+namespace gnssemu::cli::scene_cli_test {
 namespace {
 
 using test::Csv;
@@ -308,4 +308,4 @@ TEST(BatchScene, ExcludedSatellitesDropFromGsa) {
 }
 
 }  // namespace
-}  // namespace gnssemu::cli
+}  // namespace gnssemu::cli::scene_cli_test

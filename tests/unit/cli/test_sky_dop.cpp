@@ -15,6 +15,8 @@
 using namespace gnssemu;
 using namespace gnssemu::cli::test;
 
+namespace sky_dop_test {
+
 namespace {
 
 constexpr int kWeek = 2190;
@@ -181,3 +183,5 @@ TEST(Dop, UndefinedWithFewerThanFourSatellites) {
   EXPECT_EQ(r.out, "gdop,pdop,hdop,vdop,tdop,nsat\n,,,,," + std::to_string(sky.rows.size()) + "\n");
   EXPECT_NE(r.err.find("DOP undefined"), std::string::npos) << r.err;
 }
+
+}  // namespace sky_dop_test

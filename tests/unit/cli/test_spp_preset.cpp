@@ -12,6 +12,8 @@
 
 using namespace gnssemu::cli::test;
 
+namespace spp_preset_test {
+
 namespace {
 
 const std::string kObs = std::string(GNSSEMU_TEST_DATA) + "/obs/NYA100NOR_S_20241240000_90M_30S_MO.rnx";
@@ -63,3 +65,5 @@ TEST(SppPreset, UnknownPresetIsAnError) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("--preset"), std::string::npos) << r.err;
 }
+
+}  // namespace spp_preset_test

@@ -12,6 +12,8 @@
 using namespace gnssemu::cli;
 using namespace gnssemu::cli::test;
 
+namespace today_test {
+
 namespace {
 
 // 2026-11-24 10:00:00 GPST = 09:59:42 UTC, week 2446 (Tuesday).
@@ -91,3 +93,5 @@ TEST(Today, OutputsCarryTodaysDateTimeWeekAndLeapSeconds) {
   EXPECT_EQ(utc->payload[18], 42);                         // sec
   EXPECT_EQ(utc->payload[19] & 0x07, 0x07);                // validTOW, validWKN, validUTC
 }
+
+}  // namespace today_test

@@ -16,7 +16,7 @@
 #include "every_key.hpp"
 #include "test_helpers.hpp"
 
-namespace gnssemu::config::test {
+namespace gnssemu::config::test::config_keys_test {
 namespace {
 
 using detail::KeyDoc;
@@ -406,4 +406,4 @@ TEST(ConfigValidation, TruthAllowListAndVehicle) {
 }
 
 }  // namespace
-}  // namespace gnssemu::config::test
+}  // namespace gnssemu::config::test::config_keys_test

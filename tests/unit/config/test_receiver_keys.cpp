@@ -6,7 +6,7 @@
 #include "config/device_setup.hpp"
 #include "test_helpers.hpp"
 
-namespace gnssemu::config::test {
+namespace gnssemu::config::test::receiver_keys_test {
 namespace {
 
 TEST(ConfigValidation, RateOutsideOneToTenHz) {
@@ -290,4 +290,4 @@ TEST(ReceiverDynamicsConfig, BadValuesNameFileAndLine) {
 }
 
 }  // namespace
-}  // namespace gnssemu::config::test
+}  // namespace gnssemu::config::test::receiver_keys_test

@@ -11,7 +11,7 @@
 #include "core/common/error.hpp"
 #include "test_helpers.hpp"
 
-namespace gnssemu::config {
+namespace gnssemu::config::scenario_file_test {
 namespace {
 
 using faults::FaultType;
@@ -105,4 +105,4 @@ TEST(ScenarioFile, MissingFileIsAnError) {
 }
 
 }  // namespace
-}  // namespace gnssemu::config
+}  // namespace gnssemu::config::scenario_file_test

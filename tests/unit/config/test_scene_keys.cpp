@@ -5,7 +5,7 @@
 
 #include "test_helpers.hpp"
 
-namespace gnssemu::config {
+namespace gnssemu::config::scene_keys_test {
 namespace {
 
 using test::error_of;
@@ -86,4 +86,4 @@ TEST(ConfigScene, RoundTrip) {
 }
 
 }  // namespace
-}  // namespace gnssemu::config
+}  // namespace gnssemu::config::scene_keys_test

@@ -6,7 +6,7 @@
 #include "config/scene_loader.hpp"
 #include "test_helpers.hpp"
 
-namespace gnssemu::config {
+namespace gnssemu::config::scene_loader_test {
 namespace {
 
 using test::kBase;
@@ -51,4 +51,4 @@ TEST(ConfigScene, UnknownMaterialNamesTheConfigLine) {
 }
 
 }  // namespace
-}  // namespace gnssemu::config
+}  // namespace gnssemu::config::scene_loader_test

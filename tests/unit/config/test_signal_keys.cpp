@@ -5,7 +5,7 @@
 
 #include "test_helpers.hpp"
 
-namespace gnssemu::config::test {
+namespace gnssemu::config::test::signal_keys_test {
 namespace {
 
 // Every key, each different from its default; kBase is lines 1-6.
@@ -111,4 +111,4 @@ TEST(SignalConfig, BadValuesNameFileAndLine) {
 }
 
 }  // namespace
-}  // namespace gnssemu::config::test
+}  // namespace gnssemu::config::test::signal_keys_test

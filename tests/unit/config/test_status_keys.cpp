@@ -5,7 +5,7 @@
 
 #include "test_helpers.hpp"
 
-namespace gnssemu::config::test {
+namespace gnssemu::config::test::status_keys_test {
 namespace {
 
 TEST(StatusConfig, DefaultsAreLoopbackOnAFixedPort) {
@@ -74,4 +74,4 @@ TEST(StatusConfig, ATcpOutputBesideAnOffOrFreePortPageIsFine) {
 }
 
 }  // namespace
-}  // namespace gnssemu::config::test
+}  // namespace gnssemu::config::test::status_keys_test

@@ -11,6 +11,8 @@
 
 using namespace gnssemu;
 
+namespace run_plan_test {
+
 namespace {
 
 const std::string kNav = std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n";
@@ -80,3 +82,5 @@ TEST(RunPlan, NavFolderAndFiles) {
   c.nav.folder = std::string(GNSSEMU_TEST_DATA) + "/obs";
   EXPECT_THROW((void)config::nav_paths(c), Error);
 }
+
+}  // namespace run_plan_test

@@ -8,6 +8,8 @@
 using namespace gnssemu;
 using namespace gnssemu::daemon;
 
+namespace vehicle_track_test {
+
 namespace {
 
 const time::GpsTime kT0(2190, 3600.0);
@@ -166,3 +168,5 @@ TEST(VehicleTrack, ClearSamplesKeepsOrdering) {
   EXPECT_FALSE(tr.truth_at(kT0, 0.2, kParams).valid);
   EXPECT_EQ(tr.add(0.1, kT0, Ecef(), std::nullopt, 0.3), VehicleTrack::AddResult::kSimTimeBackwards);
 }
+
+}  // namespace vehicle_track_test

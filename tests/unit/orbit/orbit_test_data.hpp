@@ -7,6 +7,8 @@
 namespace gnssemu::orbit::test {
 
 inline const std::string kData = GNSSEMU_TEST_DATA;
+/// The RINEX navigation files, with a trailing slash.
+inline const std::string kNav = kData + "/nav/";
 
 /// IGS brdc0010.22n (2022-01-01, 422 sets, 32 PRNs).
 inline const NavData& brdc() {

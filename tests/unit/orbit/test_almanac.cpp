@@ -6,12 +6,13 @@
 #include "core/common/error.hpp"
 #include "core/orbit/almanac.hpp"
 #include "core/orbit/rinex_nav.hpp"
+#include "orbit_test_data.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::orbit;
+using test::kData;
 
 namespace {
-const std::string kData = GNSSEMU_TEST_DATA;
 const std::string kYuma = kData + "/almanac/yuma_week862_toa319488.alm";
 const std::string kSem = kData + "/almanac/sem_week862_toa319488.al3";
 

@@ -6,12 +6,13 @@
 #include "core/common/constants.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
+#include "orbit_test_data.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::orbit;
+using test::kNav;
 
 namespace {
-const std::string kNav = std::string(GNSSEMU_TEST_DATA) + "/nav/";
 const char* kFiles[] = {"brdc0010.22n", "ab422100.18n", "NYA100NOR_S_20241240000_01D_GN.rnx",
                         "ELKO00USA_R_20182100000_01D_MN.rnx"};
 }  // namespace

@@ -4,14 +4,15 @@
 
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
+#include "orbit_test_data.hpp"
 #include "tests/support/alloc_counter.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::orbit;
+using test::kNav;
 
 namespace {
 
-const std::string kNav = std::string(GNSSEMU_TEST_DATA) + "/nav/";
 
 // A real set (brdc0010.22n PRN 1) re-timed for the selection tests.
 Ephemeris base() {

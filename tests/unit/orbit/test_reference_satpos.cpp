@@ -11,13 +11,13 @@
 
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
+#include "orbit_test_data.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::orbit;
+using test::kData;
 
 namespace {
-
-const std::string kData = GNSSEMU_TEST_DATA;
 
 struct Row {
   int prn, week, toe_week, iode;

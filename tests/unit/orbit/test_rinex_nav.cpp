@@ -10,12 +10,13 @@
 
 #include "core/common/error.hpp"
 #include "core/orbit/rinex_nav.hpp"
+#include "orbit_test_data.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::orbit;
+using test::kNav;
 
 namespace {
-const std::string kNav = std::string(GNSSEMU_TEST_DATA) + "/nav/";
 const std::string kBad = std::string(GNSSEMU_TEST_DATA) + "/bad/";
 
 std::size_t prn_count(const NavData& d) {

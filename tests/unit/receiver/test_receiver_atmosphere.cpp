@@ -16,7 +16,7 @@
 #include "synthetic_sky.hpp"
 #include "tests/support/alloc_counter.hpp"
 
-namespace gnssemu::receiver {
+namespace gnssemu::receiver::receiver_atmosphere_test {
 namespace {
 
 using test::truth_at;
@@ -339,4 +339,4 @@ TEST(ReceiverAtmosphere, NoAllocationWithEveryStageAndTheCache) {
 }
 
 }  // namespace
-}  // namespace gnssemu::receiver
+}  // namespace gnssemu::receiver::receiver_atmosphere_test

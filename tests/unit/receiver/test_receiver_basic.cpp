@@ -12,7 +12,7 @@
 #include "core/pipeline/pipeline.hpp"
 #include "synthetic_sky.hpp"
 
-namespace gnssemu::receiver {
+namespace gnssemu::receiver::receiver_basic_test {
 namespace {
 
 using pipeline::Pipeline;
@@ -226,4 +226,4 @@ TEST(ReceiverBasic, InvalidConfigThrows) {
 }
 
 }  // namespace
-}  // namespace gnssemu::receiver
+}  // namespace gnssemu::receiver::receiver_basic_test

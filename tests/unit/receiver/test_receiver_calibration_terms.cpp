@@ -12,7 +12,7 @@
 #include "core/pipeline/pipeline.hpp"
 #include "synthetic_sky.hpp"
 
-namespace gnssemu::receiver {
+namespace gnssemu::receiver::receiver_calibration_terms_test {
 namespace {
 
 using test::truth_at;
@@ -231,4 +231,4 @@ TEST(ReceiverCalibrationTerms, BadValuesAreRejected) {
 }
 
 }  // namespace
-}  // namespace gnssemu::receiver
+}  // namespace gnssemu::receiver::receiver_calibration_terms_test

@@ -11,7 +11,7 @@
 #include "core/pipeline/pipeline.hpp"
 #include "synthetic_sky.hpp"
 
-namespace gnssemu::receiver {
+namespace gnssemu::receiver::receiver_hard_cases_test {
 namespace {
 
 using test::truth_at;
@@ -337,4 +337,4 @@ TEST(ReceiverHardCases, TeleportedReceiverReconverges) {
 }
 
 }  // namespace
-}  // namespace gnssemu::receiver
+}  // namespace gnssemu::receiver::receiver_hard_cases_test

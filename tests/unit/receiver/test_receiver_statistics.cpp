@@ -10,7 +10,7 @@
 #include "core/pipeline/pipeline.hpp"
 #include "synthetic_sky.hpp"
 
-namespace gnssemu::receiver {
+namespace gnssemu::receiver::receiver_statistics_test {
 namespace {
 
 using test::truth_at;
@@ -202,4 +202,4 @@ TEST(ReceiverStatistics, ChiSquareThresholdMatchesTables) {
 }
 
 }  // namespace
-}  // namespace gnssemu::receiver
+}  // namespace gnssemu::receiver::receiver_statistics_test

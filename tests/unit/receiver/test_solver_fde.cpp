@@ -13,7 +13,7 @@
 #include "synthetic_sky.hpp"
 #include "tests/support/alloc_counter.hpp"
 
-namespace gnssemu::receiver {
+namespace gnssemu::receiver::solver_fde_test {
 namespace {
 
 const time::GpsTime kToe(2190, 200000.0);
@@ -162,4 +162,4 @@ TEST(SolverFde, NoFixWhenExclusionWouldLeaveFewerThanFive) {
 }
 
 }  // namespace
-}  // namespace gnssemu::receiver
+}  // namespace gnssemu::receiver::solver_fde_test

@@ -9,8 +9,7 @@ namespace gnssemu::protocol::ubx {
 namespace {
 
 using test::HandlerRig;
-
-constexpr std::size_t kUart1OfOutput1 = kNumPorts;  // column of the second output's UART1
+using test::kUart1OfOutput1;
 
 std::vector<std::uint8_t> prt(std::uint8_t port, std::uint32_t baud, std::uint32_t mode = 0x8C0) {
   wire::CfgPrt w{};

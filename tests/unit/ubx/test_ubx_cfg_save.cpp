@@ -10,8 +10,7 @@ namespace gnssemu::protocol::ubx {
 namespace {
 
 using test::HandlerRig;
-
-constexpr std::size_t kUart1OfOutput1 = kNumPorts;
+using test::kUart1OfOutput1;
 
 std::vector<std::uint8_t> cfg_cfg(std::uint32_t clear, std::uint32_t save, std::uint32_t load) {
   wire::CfgCfg w{clear, save, load};

@@ -21,7 +21,7 @@
 namespace gnssemu::protocol::ubx {
 namespace {
 
-std::string read_file(const std::string& name) {
+std::string read_log(const std::string& name) {
   std::ifstream in(std::string(GNSSEMU_TEST_DATA) + "/receiver-logs/" + name, std::ios::binary);
   std::stringstream ss;
   ss << in.rdbuf();
@@ -46,9 +46,9 @@ std::string iso_time(const wire::NavPvt& p) {
 }
 
 TEST(UbxRealLogs, NeoM8nNavPvtMatchesGpsdDecode) {
-  const auto frames = test::split_frames(read_file("ublox-neo-m8n.log"));
+  const auto frames = test::split_frames(read_log("ublox-neo-m8n.log"));
   std::map<std::string, nlohmann::json> tpv;
-  std::istringstream chk(read_file("ublox-neo-m8n-tpv.chk"));
+  std::istringstream chk(read_log("ublox-neo-m8n-tpv.chk"));
   for (std::string line; std::getline(chk, line);) {
     const auto j = nlohmann::json::parse(line);
     tpv[j.value("time", "")] = j;
@@ -79,7 +79,7 @@ TEST(UbxRealLogs, NeoM8nNavPvtMatchesGpsdDecode) {
 }
 
 TEST(UbxRealLogs, MixedStreamIsConsistentAcrossMessages) {
-  const auto frames = test::split_frames(read_file("pygpsdata-MIXED-excerpt.log"));
+  const auto frames = test::split_frames(read_log("pygpsdata-MIXED-excerpt.log"));
   std::map<std::uint32_t, wire::NavPvt> pvt;
   std::map<std::uint32_t, wire::NavPosllh> llh;
   std::map<std::uint32_t, wire::NavSol> sol;

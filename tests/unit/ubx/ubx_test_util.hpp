@@ -12,6 +12,9 @@
 
 namespace gnssemu::protocol::ubx::test {
 
+/// Device column of the second output's UART1 (each output has kNumPorts).
+inline constexpr std::size_t kUart1OfOutput1 = kNumPorts;
+
 /// nmea::test::sample_fix_3d() (Zurich, 10 satellites, 9 used, 13.4 m/s on
 /// 87.3 deg) completed with what UBX also reads: ENU/ECEF velocity, ECEF
 /// position, accuracies, residuals, clock.
