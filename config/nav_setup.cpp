@@ -52,11 +52,7 @@ std::vector<std::string> nav_paths(const Config& c) {
   return paths;
 }
 
-orbit::NavData load_nav(const Config& c) {
-  std::vector<orbit::NavData> files;
-  for (const std::string& p : nav_paths(c)) files.push_back(orbit::read_rinex_nav(p));
-  return orbit::merge(files);
-}
+orbit::NavData load_nav(const Config& c) { return orbit::read_rinex_nav_files(nav_paths(c)); }
 
 orbit::Constellation make_constellation(const Config& c, const orbit::NavData& nav, const time::GpsTime& start) {
   orbit::ConstellationRequest req;

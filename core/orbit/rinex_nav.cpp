@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string_view>
 
 #include "core/common/constants.hpp"
@@ -319,6 +320,18 @@ NavData read_rinex_nav(std::istream& in, const std::string& name) {
 NavData read_rinex_nav(const std::string& path) {
   text::LineSource src(path, kNavLimits);
   return read_nav(src);
+}
+
+NavData read_rinex_nav_files(const std::vector<std::string>& paths) {
+  std::vector<NavData> files;
+  files.reserve(paths.size());
+  for (const std::string& p : paths) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec)) throw Error(p, 0, "nav file not found (or not a regular file)");
+    files.push_back(read_rinex_nav(p));
+    if (files.back().ephemerides.empty()) throw Error(p, 0, "no GPS ephemerides in the file");
+  }
+  return merge(files);
 }
 
 }  // namespace gnssemu::orbit

@@ -4,6 +4,7 @@
 // A3/A4, RINEX 3.04 Tables A5/A6 (shared/reference/gps-orbits.md §6-7).
 #include <istream>
 #include <string>
+#include <vector>
 
 #include "core/orbit/nav_data.hpp"
 
@@ -17,5 +18,8 @@ namespace gnssemu::orbit {
 NavData read_rinex_nav(const std::string& path);
 /// Same, from a stream; name is used in error messages.
 NavData read_rinex_nav(std::istream& in, const std::string& name);
+/// Every file of paths read as above and merged into one (merge()); a
+/// missing file or one without GPS ephemerides is an error naming it.
+NavData read_rinex_nav_files(const std::vector<std::string>& paths);
 
 }  // namespace gnssemu::orbit

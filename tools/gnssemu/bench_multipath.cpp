@@ -150,9 +150,7 @@ void run_bench_multipath(const BenchMultipathArgs& a, std::ostream& out, std::os
   const scene::Scene buildings(mesh);
   const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - build0).count();
   // Drive.
-  std::vector<orbit::NavData> files;
-  for (const std::string& p : a.nav_paths) files.push_back(orbit::read_rinex_nav(p));
-  const orbit::NavData nav = orbit::merge(files);
+  const orbit::NavData nav = orbit::read_rinex_nav_files(a.nav_paths);
   const orbit::EphemerisStore store(nav.ephemerides);
   if (store.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides");
   const time::GpsTime t0 = a.start ? *a.start : store.first_valid() + 7200.0;

@@ -125,18 +125,6 @@ SkyRequest checked_site(const SiteArgs& s, const time::GpsTime& t) {
 
 std::string describe(const time::GpsTime& t) { return fmt::format("week {} tow {:.3f}", t.week(), t.tow_s()); }
 
-/// The nav files read (plain or gzip) and merged into one (several files:
-/// one ephemeris store, as the daemon's [nav] files).
-orbit::NavData load_nav_files(const std::vector<std::string>& paths) {
-  std::vector<orbit::NavData> files;
-  for (const std::string& p : paths) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(p, ec)) throw Error(p, 0, "nav file not found");
-    files.push_back(orbit::read_rinex_nav(p));
-    if (files.back().ephemerides.empty()) throw Error(p, 0, "no GPS ephemerides in the file");
-  }
-  return orbit::merge(files);
-}
 
 /// The satellites at t from --nav/--nav-mode/--almanac (a store with at least
 /// one healthy set valid at t; with klobuchar, the header's broadcast iono).
@@ -149,7 +137,7 @@ orbit::EphemerisStore load_store(const NavArgs& a, const time::GpsTime& t,
   if (*mode == orbit::NavMode::kAlmanac && a.almanac.empty()) throw Error("--nav-mode almanac needs --almanac FILE");
   if (*mode != orbit::NavMode::kAlmanac && !a.almanac.empty()) throw Error("--almanac needs --nav-mode almanac");
   if (a.paths.empty() && a.almanac.empty()) throw Error("--nav FILE is required");
-  const orbit::NavData nav = a.paths.empty() ? orbit::NavData{} : load_nav_files(a.paths);
+  const orbit::NavData nav = a.paths.empty() ? orbit::NavData{} : orbit::read_rinex_nav_files(a.paths);
   orbit::ConstellationRequest req;
   req.mode = *mode;
   req.start = t;
@@ -292,7 +280,7 @@ Ecef parse_station(const std::string& text) {
 std::pair<observation::ObsData, orbit::NavData> load_obs_nav(const ObsArgs& a) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(a.obs_path, ec)) throw Error(a.obs_path, 0, "observation file not found");
-  orbit::NavData nav = load_nav_files(a.nav_paths);
+  orbit::NavData nav = orbit::read_rinex_nav_files(a.nav_paths);
   observation::ObsData obs = observation::read_rinex_obs(a.obs_path);
   if (obs.epochs.empty()) throw Error(a.obs_path, 0, "no GPS observation epochs");
   const orbit::EphemerisStore store(nav.ephemerides);

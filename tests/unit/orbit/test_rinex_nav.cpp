@@ -467,3 +467,23 @@ TEST(RinexNav, OverlongLineIsRefused) {
     EXPECT_EQ(std::string(e.what()), "long.n:3: line longer than 1024 bytes: not a file of this kind");
   }
 }
+
+TEST(RinexNav, FilesAreMergedAndAnEmptyOrMissingOneIsNamed) {
+  const NavData one = read_rinex_nav(kNav + "brdc0010.22n");
+  const NavData twice = read_rinex_nav_files({kNav + "brdc0010.22n", kNav + "brdc0010.22n"});
+  EXPECT_EQ(twice.ephemerides.size(), 2 * one.ephemerides.size());  // the store keeps a repeated set once
+  EXPECT_NE(twice.source.find(" + "), std::string::npos) << twice.source;
+  const std::string empty =
+      (std::filesystem::temp_directory_path() / ("gnssemu-nav-empty-" + std::to_string(::getpid()) + ".22n")).string();
+  std::ofstream(empty) << kV2Header;
+  for (const auto& [path, why] : {std::pair{empty, "no GPS ephemerides"}, {kNav + "missing.22n", "not found"}}) {
+    try {
+      (void)read_rinex_nav_files({kNav + "brdc0010.22n", path});
+      ADD_FAILURE() << path;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(path + ": "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+  }
+  std::filesystem::remove(empty);
+}
