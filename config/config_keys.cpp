@@ -71,18 +71,12 @@ constexpr Section<Lla> kOrigin{kOriginFields};
 
 // Each path relative to the config file's folder, stored absolute.
 void read_nav_files(TableReader& t, const Field<Config>& f, Config& c) {
-  const toml::node* n = t.find(f.key);
-  if (n == nullptr) return;
+  if (t.find(f.key) != nullptr) c.nav.files.clear();
   const std::string name = t.full_name(f.key);
-  const toml::array* a = n->as_array();
-  if (a == nullptr) t.fail(*n, name + ": expected an array of file names, got " + std::string(type_name(*n)));
-  c.nav.files.clear();
-  for (const toml::node& e : *a) {
-    const auto* s = e.as_string();
-    if (s == nullptr) t.fail(e, name + ": expected a file name string, got " + std::string(type_name(e)));
-    if (s->get().empty()) t.fail(e, name + ": a file name must not be empty");
-    c.nav.files.push_back(existing_path(t, e, name, s->get(), PathKind::kFile));
-  }
+  t.string_array(f.key, "an array of file names", "a file name string", [&](const toml::node& e, const std::string& s) {
+    if (s.empty()) t.fail(e, name + ": a file name must not be empty");
+    c.nav.files.push_back(existing_path(t, e, name, s, PathKind::kFile));
+  });
 }
 
 void write_nav_files(TomlWriter& w, const Field<Config>& f, const Config& c) {
@@ -243,20 +237,13 @@ constexpr Section<TimeConfig> kTime{kTimeFields};
 // --- [truth], [demo], [status], [log] --------------------------------------
 
 void read_allow(TableReader& t, const Field<TruthInputConfig>& f, TruthInputConfig& truth) {
-  const toml::node* n = t.find(f.key);
-  if (n == nullptr) return;
-  const std::string name = t.full_name(f.key);
-  const toml::array* a = n->as_array();
-  if (a == nullptr) t.fail(*n, name + ": expected an array of addresses, got " + std::string(type_name(*n)));
-  truth.allow.clear();
-  for (const toml::node& e : *a) {
-    const auto* s = e.as_string();
-    if (s == nullptr) t.fail(e, name + ": expected an address string, got " + std::string(type_name(e)));
+  if (t.find(f.key) != nullptr) truth.allow.clear();
+  t.string_array(f.key, "an array of addresses", "an address string", [&](const toml::node& e, const std::string& s) {
     std::string why;
-    const std::optional<AddressBlock> b = parse_address_block(s->get(), why);
-    if (!b) t.fail(e, name + ": " + why);
+    const std::optional<AddressBlock> b = parse_address_block(s, why);
+    if (!b) t.fail(e, t.full_name(f.key) + ": " + why);
     truth.allow.push_back(*b);
-  }
+  });
 }
 
 void write_allow(TomlWriter& w, const Field<TruthInputConfig>& f, const TruthInputConfig& truth) {

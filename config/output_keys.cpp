@@ -266,26 +266,20 @@ std::string baud_range() { return bauds_text() + "; 0 only for tcp, udp, file"; 
 constexpr Choice<uint16_t> kProtocols[] = {{"ubx", proto::kUbx}, {"nmea", proto::kNmea}};
 
 uint16_t read_protocols(TableReader& t, std::string_view key, uint16_t def) {
-  const toml::node* n = t.find(key);
-  if (n == nullptr) return def;
   const std::string name = t.full_name(key);
-  const auto* a = n->as_array();
-  if (a == nullptr) t.fail(*n, name + ": expected an array of strings, got " + std::string(type_name(*n)));
   uint16_t mask = 0;
-  for (std::size_t i = 0; i < a->size(); ++i) {
-    const toml::node& e = *a->get(i);
-    const auto* s = e.as_string();
-    if (s == nullptr) t.fail(e, name + ": expected protocol names (strings), got " + std::string(type_name(e)));
-    uint16_t bit = 0;
-    for (const auto& p : kProtocols) bit = p.name == s->get() ? p.value : bit;
-    if (bit == 0) {
-      t.fail(e, name + ": unknown protocol '" + s->get() + "' (known: " +
-                    known_names(kChoiceNames<kProtocols>, ChoiceStyle::kOneOf) + ")");
-    }
-    if ((mask & bit) != 0) t.fail(e, name + ": '" + s->get() + "' listed twice");
-    mask = static_cast<uint16_t>(mask | bit);
-  }
-  return mask;
+  const toml::array* a = t.string_array(
+      key, "an array of strings", "protocol names (strings)", [&](const toml::node& e, const std::string& s) {
+        uint16_t bit = 0;
+        for (const auto& p : kProtocols) bit = p.name == s ? p.value : bit;
+        if (bit == 0) {
+          t.fail(e, name + ": unknown protocol '" + s + "' (known: " +
+                        known_names(kChoiceNames<kProtocols>, ChoiceStyle::kOneOf) + ")");
+        }
+        if ((mask & bit) != 0) t.fail(e, name + ": '" + s + "' listed twice");
+        mask = static_cast<uint16_t>(mask | bit);
+      });
+  return a == nullptr ? def : mask;
 }
 
 std::string protocols_text(uint16_t mask) {
@@ -330,28 +324,23 @@ constexpr Field<OutputPortConfig> protocols_in_field() {
 
 void read_ubx_messages(TableReader& t, const Field<OutputPortConfig>& f, OutputPortConfig& port) {
   port.ubx_messages.clear();
-  const toml::node* n = t.find(f.key);
-  if (n == nullptr) return;
   const std::string name = t.full_name(f.key);
-  const auto* a = n->as_array();
-  if (a == nullptr) t.fail(*n, name + ": expected an array of strings, got " + std::string(type_name(*n)));
   const std::span<const MessageName> table = ubx_periodic_messages();
-  std::string known;
-  for (const std::string_view m : names_of(table)) {
-    if (!known.empty()) known += ' ';
-    known += m;
-  }
   std::vector<bool> seen(table.size(), false);
-  for (std::size_t i = 0; i < a->size(); ++i) {
-    const toml::node& e = *a->get(i);
-    const auto* s = e.as_string();
-    if (s == nullptr) t.fail(e, name + ": expected message names (strings), got " + std::string(type_name(e)));
-    const auto it = std::find_if(table.begin(), table.end(), [&](const MessageName& m) { return m.name == s->get(); });
-    if (it == table.end()) t.fail(e, name + ": unknown UBX message '" + s->get() + "' (known: " + known + ")");
+  t.string_array(f.key, "an array of strings", "message names (strings)", [&](const toml::node& e, const std::string& s) {
+    const auto it = std::find_if(table.begin(), table.end(), [&](const MessageName& m) { return m.name == s; });
+    if (it == table.end()) {
+      std::string known;
+      for (const std::string_view m : names_of(table)) {
+        if (!known.empty()) known += ' ';
+        known += m;
+      }
+      t.fail(e, name + ": unknown UBX message '" + s + "' (known: " + known + ")");
+    }
     const auto k = static_cast<std::size_t>(it - table.begin());
-    if (seen[k]) t.fail(e, name + ": '" + s->get() + "' listed twice");
+    if (seen[k]) t.fail(e, name + ": '" + s + "' listed twice");
     seen[k] = true;
-  }
+  });
   // Stored in epoch order, whatever the order in the file.
   for (std::size_t k = 0; k < seen.size(); ++k) {
     if (seen[k]) port.ubx_messages.push_back({table[k].msg_class, table[k].msg_id, 1});
@@ -371,22 +360,17 @@ constexpr Choice<protocol::nmea::NmeaVersion> kNmeaVersions[] = {{"2.3", protoco
                                                                  {"4.11", protocol::nmea::NmeaVersion::k411}};
 
 void read_sentences(TableReader& t, const Field<OutputPortConfig>& f, OutputPortConfig& port) {
-  const toml::node* n = t.find(f.key);
-  if (n == nullptr) return;
   const std::string name = t.full_name(f.key);
-  const auto* a = n->as_array();
-  if (a == nullptr) t.fail(*n, name + ": expected an array of strings, got " + std::string(type_name(*n)));
-  if (a->empty()) t.fail(*n, name + ": must name at least one sentence");
   protocol::nmea::SentenceSet out;
-  for (std::size_t i = 0; i < a->size(); ++i) {
-    const toml::node& e = *a->get(i);
-    const auto* s = e.as_string();
-    if (s == nullptr) t.fail(e, name + ": expected sentence names (strings), got " + std::string(type_name(e)));
-    const std::optional<protocol::nmea::Sentence> sentence = protocol::nmea::sentence_by_name(s->get());
-    if (!sentence) t.fail(e, name + ": unknown sentence '" + s->get() + "' (known: GGA RMC GSA GSV VTG GLL GST ZDA)");
-    if (out.has(*sentence)) t.fail(e, name + ": '" + s->get() + "' listed twice");
-    out.set(*sentence);
-  }
+  const toml::array* a = t.string_array(
+      f.key, "an array of strings", "sentence names (strings)", [&](const toml::node& e, const std::string& s) {
+        const std::optional<protocol::nmea::Sentence> sentence = protocol::nmea::sentence_by_name(s);
+        if (!sentence) t.fail(e, name + ": unknown sentence '" + s + "' (known: GGA RMC GSA GSV VTG GLL GST ZDA)");
+        if (out.has(*sentence)) t.fail(e, name + ": '" + s + "' listed twice");
+        out.set(*sentence);
+      });
+  if (a == nullptr) return;
+  if (a->empty()) t.fail(*t.find(f.key), name + ": must name at least one sentence");
   port.nmea.sentences = out;
 }
 

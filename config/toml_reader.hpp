@@ -49,6 +49,23 @@ public:
   std::optional<TableReader> table(std::string_view key, bool required);
   /// An array of tables ([[key]]); empty if absent.
   std::vector<TableReader> table_array(std::string_view key);
+  /// An array of strings: item(element node, its text) for each, in order.
+  /// Errors "key: expected <array_what>, got <type>" and "key: expected
+  /// <item_what>, got <type>". The array; nullptr when key is absent.
+  template <class Item>
+  const toml::array* string_array(std::string_view key, std::string_view array_what, std::string_view item_what,
+                                  Item&& item) {
+    const toml::node* n = find(key);
+    if (n == nullptr) return nullptr;
+    const toml::array* a = n->as_array();
+    if (a == nullptr) fail(*n, full_name(key) + ": expected " + std::string(array_what) + ", got " + std::string(type_name(*n)));
+    for (const toml::node& e : *a) {
+      const auto* s = e.as_string();
+      if (s == nullptr) fail(e, full_name(key) + ": expected " + std::string(item_what) + ", got " + std::string(type_name(e)));
+      item(e, s->get());
+    }
+    return a;
+  }
 
   /// Throws for the first (in file order) key that was never asked for.
   void finish() const;
