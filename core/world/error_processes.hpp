@@ -2,11 +2,20 @@
 // World-side error processes: first-order Gauss–Markov residuals and the
 // receiver's free-running clock. Pure functions of their inputs and a
 // standard-normal draw supplied by the caller (random.hpp).
+#include <algorithm>
 #include <cmath>
 
+#include "core/common/constants.hpp"
 #include "core/world/world_config.hpp"
 
 namespace gnssemu::world {
+
+/// The multipath residual scales as sigma_m / sin(el), el held at >= 5 deg
+/// (WorldConfig::errors.multipath: sigma_m is the zenith value): that sine.
+inline double multipath_sin_el(double el_rad) noexcept {
+  constexpr double kMinEl_rad = 5.0 * kDegToRad;
+  return std::sin(std::max(el_rad, kMinEl_rad));
+}
 
 /// Stationary start of a Gauss–Markov process: sigma_m * w, w ~ N(0, 1).
 inline double gauss_markov_init(const GaussMarkovConfig& cfg, double w) noexcept {

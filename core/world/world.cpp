@@ -7,6 +7,7 @@
 
 #include "core/geo/geodesy.hpp"
 #include "core/signal/dll_jitter.hpp"
+#include "core/world/error_processes.hpp"
 
 namespace gnssemu::world {
 
@@ -20,7 +21,6 @@ constexpr double kCn0ElevationLoss_db = 10.0;
 constexpr double kCacheMaxHeightChange_m = 5.0;
 constexpr double kCacheMaxMove_m = 5000.0;
 // Elevation floor of the multipath 1 / sin(el) scaling (ErrorModelConfig doc), rad.
-constexpr double kMultipathMinEl_rad = 5.0 * kDegToRad;
 
 const WorldConfig& validated(const WorldConfig& c) {
   validate(c);
@@ -254,7 +254,7 @@ void World::observables_stage(const time::GpsTime& t, uint64_t epoch, double mas
     const double thermal_m = noise_.code_sigma_m(cn0) * rng_.normal(p, epoch, Purpose::kThermal);
     const double multipath_m =
         config_.errors.multipath.sigma_m > 0.0
-            ? config_.errors.multipath.sigma_m / std::sin(std::max(s.el_rad, kMultipathMinEl_rad)) * multipath_unit_[p - 1]
+            ? config_.errors.multipath.sigma_m / multipath_sin_el(s.el_rad) * multipath_unit_[p - 1]
             : 0.0;
     const double gradient_m = gradient_now_m_[0] * std::cos(s.az_rad) + gradient_now_m_[1] * std::sin(s.az_rad);
     const double rr_noise_m_s = noise_.range_rate_sigma_m_s(cn0) * rng_.normal(p, epoch, Purpose::kDoppler);

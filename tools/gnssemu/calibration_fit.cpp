@@ -7,12 +7,14 @@
 
 #include "core/atmosphere/ionosphere.hpp"
 #include "core/common/constants.hpp"
+#include "core/world/error_processes.hpp"
 
 namespace gnssemu::cli {
 
 namespace {
 
-constexpr double kMultipathMinEl_rad = 5.0 * kDegToRad;  // as the world's multipath scaling
+double multipath_factor(double el_rad) { return 1.0 / world::multipath_sin_el(el_rad); }
+
 constexpr double kCommonMaxLag_s = 12.0 * 3600.0;        // common-term autocovariance lags
 constexpr double kCommonMaxTau_s = 2.0 * 86400.0;        // longest common-term time scale fitted
 constexpr int kMinSatsCommon = 6;                        // 3 terms + clock + 2 degrees of freedom
@@ -48,7 +50,6 @@ std::array<double, 3> common_regressors(const Residual& r) {
   return {r.klobuchar_m, std::cos(r.az_rad), std::sin(r.az_rad)};
 }
 
-double multipath_factor(double el_rad) { return 1.0 / std::sin(std::max(el_rad, kMultipathMinEl_rad)); }
 
 }  // namespace
 
