@@ -81,6 +81,7 @@ void Daemon::record_status(const time::GpsTime& t, const world::Truth& truth, co
     pc.messages_dropped = c.stats().messages_dropped;
     pc.tx_level_bytes = c.budget().level_bytes();
     pc.tx_capacity_bytes = static_cast<double>(c.budget().capacity_bytes());
+    pc.link_faults = c.stats().link_faults;
     status_.set_port_counters(i, pc);
   }
   if (status_server_) status_server_->publish();

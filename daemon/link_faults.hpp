@@ -20,21 +20,9 @@
 #include "core/faults/fault_stage.hpp"
 #include "core/protocol/nmea/reported_fix.hpp"
 #include "core/world/random.hpp"
+#include "daemon/link_fault_stats.hpp"
 
 namespace gnssemu::daemon {
-
-/// What link faults did to one port so far.
-struct LinkFaultStats {
-  std::uint64_t bytes_lost = 0;          ///< byte_loss: bytes taken off the line (epochs and replies)
-  std::uint64_t messages_corrupted = 0;  ///< corrupt: messages sent with a wrong checksum
-  std::uint64_t messages_dropped = 0;    ///< drop: whole messages not sent
-  std::uint64_t epochs_delayed = 0;      ///< latency: epochs held back
-  std::uint64_t epochs_frozen = 0;       ///< freeze: epochs replaced by the one before the freeze
-  std::uint64_t epochs_stopped = 0;      ///< stop: epochs not sent
-  std::uint64_t replies_stopped = 0;     ///< stop: replies (ACK, poll answers) not sent
-  std::uint64_t epochs_skipped = 0;      ///< rate: epochs not due at the lowered rate
-  std::uint64_t epochs_wrong_fix = 0;    ///< wrong_fix: epochs composed with another fix type
-};
 
 /// The port events active on one output at one epoch, combined: several
 /// events of a kind act together (independent probabilities, latencies in
