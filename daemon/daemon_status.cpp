@@ -47,9 +47,12 @@ void Daemon::start_status_page() {
   std::printf("gnssemud: status page http://%s:%u/\n", host.c_str(), static_cast<unsigned>(ep.port()));
 }
 
-void Daemon::record_status(const time::GpsTime& t, const world::Truth& truth, const receiver::Fix& fix) noexcept {
+double Daemon::run_time_s(const time::GpsTime& t) noexcept {
   if (!status_first_t_) status_first_t_ = t;
-  const double run_s = t - *status_first_t_;
+  return t - *status_first_t_;
+}
+
+void Daemon::record_status(double run_s, const world::Truth& truth, const receiver::Fix& fix) noexcept {
   record_faults(run_s);
   const protocol::ubx::EpochInfo& info = device_.epoch_info();
   EpochStatus e;
