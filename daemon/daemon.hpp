@@ -135,6 +135,11 @@ private:
   void log_fault_transitions(std::span<const faults::FaultStatus> status, double run_s);
   /// Log the end of every active fault event before the stage drops them (why: "cleared", ...).
   void log_fault_ends(std::string_view why);
+  /// A reload's check of the port events against loaded's [[output]] list
+  /// (docs/daemon.md §Reload): throws gnssemu::Error for a --scenario event
+  /// whose output the file no longer has at its index; returns a warning per
+  /// injected event in that case.
+  std::vector<std::string> check_reload_port_events(const config::Config& loaded);
   /// Run time of epoch t, s: from the first epoch (the status history's and the fault log's clock).
   double run_time_s(const time::GpsTime& t) noexcept;
   // Status page (daemon_status.cpp).

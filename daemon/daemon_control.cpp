@@ -140,4 +140,28 @@ void Daemon::log_fault_ends(std::string_view why) {
   }
 }
 
+std::vector<std::string> Daemon::check_reload_port_events(const config::Config& loaded) {
+  // The running outputs stay until a restart (docs/daemon.md §Reload), so
+  // every kept event still acts on its port. A --scenario event whose index
+  // the file now gives no port or another one would be refused or moved by
+  // the next start: the reload refuses the file now, while the rig runs.
+  const std::vector<std::string> running = output_names(cfg_.outputs);
+  const std::vector<std::string> reloaded = output_names(loaded.outputs);
+  const std::vector<std::string> bad =
+      check_port_events_on_reload(scenario_, running, reloaded, scenario_source_, loaded.source);
+  if (!bad.empty()) {
+    throw Error(bad.front() + "; with this [[output]] list the next start would refuse the --scenario event or put it "
+                "on another output: give it its output anew in " + scenario_source_ +
+                " and restart, or keep the [[output]] list");
+  }
+  // Injected events end at a restart: they keep acting on their running port.
+  faults::FaultStage* stage = receiver_->faults();
+  if (stage == nullptr) return {};
+  std::vector<faults::FaultEvent> kept;
+  for (const faults::FaultStatus& st : stage->status()) kept.push_back(*st.event);
+  std::vector<std::string> warnings = check_port_events_on_reload(kept, running, reloaded, "ctl inject", loaded.source);
+  for (std::string& w : warnings) w += ": it keeps acting on the running output until the restart, where it ends";
+  return warnings;
+}
+
 }  // namespace gnssemu::daemon

@@ -54,6 +54,17 @@ LinkFaultSet active_link_faults(std::span<const faults::FaultStatus> status, std
 std::optional<std::string> check_port_events(std::span<const faults::FaultEvent> events, std::size_t output_count,
                                              std::string_view file = "scenario");
 
+/// The same events against a reloaded configuration (docs/daemon.md
+/// §Reload): running and reloaded are the [[output]] names in order. A port
+/// event acts on the running output at its index until a restart; returns
+/// "file:line: reason" for each event whose index the reloaded file gives
+/// no output or another one (removed, renamed or moved: a restart would
+/// refuse the event or put it on another port). reloaded_file names the file.
+std::vector<std::string> check_port_events_on_reload(std::span<const faults::FaultEvent> events,
+                                                     std::span<const std::string> running,
+                                                     std::span<const std::string> reloaded, std::string_view file,
+                                                     std::string_view reloaded_file);
+
 /// Make the checksum of one framed message wrong so a parser rejects exactly
 /// it: a UBX frame's CK_B is inverted, an NMEA sentence's *hh becomes
 /// another valid hex value. Anything else is left as it is (returns false).
