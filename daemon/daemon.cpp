@@ -367,7 +367,10 @@ void Daemon::emit_epoch(const time::GpsTime& t, const world::Truth& truth) {
     c->set_link_faults(link_status);
     c->send_epoch();
   }
-  record_status(t, truth, fix);
+  const double run_s = run_time_s(t);
+  last_run_s_ = run_s;
+  log_fault_transitions(link_status, run_s);
+  record_status(run_s, truth, fix);
   const int type = static_cast<int>(fix.type);
   last_num_used_ = fix.num_used;
   last_num_tracked_ = fix.num_tracked;

@@ -6,6 +6,8 @@
 #include <utility>  // before Asio: Boost 1.74 awaitable.hpp needs std::exchange
 #include <memory>
 #include <optional>
+#include <span>
+#include <string_view>
 #include <functional>
 #include <string>
 #include <vector>
@@ -23,6 +25,7 @@
 #include "daemon/control_server.hpp"
 #include "daemon/demo_trajectory.hpp"
 #include "daemon/drop_stats.hpp"
+#include "daemon/fault_log.hpp"
 #include "daemon/output_port.hpp"
 #include "daemon/port_channel.hpp"
 #include "daemon/run_plan.hpp"
@@ -128,12 +131,23 @@ private:
   std::size_t fault_count() const override;
   /// The fault list for the status (at most once a second of run time).
   void record_faults(double run_s);
+  /// Log the fault events that started or ended at this epoch (status: the stage's, after it).
+  void log_fault_transitions(std::span<const faults::FaultStatus> status, double run_s);
+  /// Log the end of every active fault event before the stage drops them (why: "cleared", ...).
+  void log_fault_ends(std::string_view why);
+  /// A reload's check of the port events against loaded's [[output]] list
+  /// (docs/daemon.md §Reload): throws gnssemu::Error for a --scenario event
+  /// whose output the file no longer has at its index; returns a warning per
+  /// injected event in that case.
+  std::vector<std::string> check_reload_port_events(const config::Config& loaded);
+  /// Run time of epoch t, s: from the first epoch (the status history's and the fault log's clock).
+  double run_time_s(const time::GpsTime& t) noexcept;
   // Status page (daemon_status.cpp).
   void start_status_page();
   /// The status page's settings and port list from the running state (after
   /// start, a reload, a rate change).
   void refresh_status_setup();
-  void record_status(const time::GpsTime& t, const world::Truth& truth, const receiver::Fix& fix) noexcept;
+  void record_status(double run_s, const world::Truth& truth, const receiver::Fix& fix) noexcept;
 
   asio::io_context& io_;
   config::Config cfg_;
@@ -163,6 +177,8 @@ private:
   std::unique_ptr<ControlServer> control_;       ///< null: no [control] socket
   std::vector<FaultStatus> faults_view_;         ///< the fault list as the status shows it
   double fault_status_s_ = -1.0;                 ///< run time the fault list was last built, s
+  FaultLog fault_log_;                           ///< fault starts and ends, for the log
+  double last_run_s_ = 0.0;                      ///< run time of the last epoch, s
 
   asio::steady_timer timer_;
   asio::steady_timer retry_timer_;  // back-off after a socket error

@@ -31,6 +31,7 @@ void Daemon::set_scenario(std::vector<faults::FaultEvent> events, const std::str
 }
 
 void Daemon::restart_scenario() {
+  log_fault_ends("the scenario starts over");
   if (scenario_.empty()) {
     if (receiver_->faults() != nullptr) receiver_->set_faults({});  // injected events start over too
     return;
@@ -74,6 +75,7 @@ std::vector<std::string> Daemon::inject(std::string_view scenario, const std::st
 
 std::size_t Daemon::clear() {
   const std::size_t n = fault_count();
+  log_fault_ends("cleared");
   if (faults::FaultStage* stage = receiver_->faults()) stage->clear();
   status_.set_faults({});
   spdlog::info("control: cleared {} fault(s)", n);
@@ -102,6 +104,64 @@ void Daemon::record_faults(double run_s) {
     f.active = st[i].active;
   }
   status_.set_faults(faults_view_);
+}
+
+namespace {
+
+std::vector<std::string> output_names(const std::vector<config::OutputPortConfig>& outputs) {
+  std::vector<std::string> names;
+  for (const config::OutputPortConfig& o : outputs) names.push_back(o.name);
+  return names;
+}
+
+}  // namespace
+
+void Daemon::log_fault_transitions(std::span<const faults::FaultStatus> status, double run_s) {
+  const std::span<const FaultTransition> changes = fault_log_.update(status);
+  if (changes.empty()) return;  // every epoch but a transition's: nothing allocated
+  const std::vector<std::string> names = output_names(cfg_.outputs);
+  for (const FaultTransition& c : changes) {
+    spdlog::info("fault {}: {} (run {:.1f} s)", c.started ? "start" : "end",
+                 fault_log_text(*status[c.index].event, names), run_s);
+  }
+}
+
+void Daemon::log_fault_ends(std::string_view why) {
+  faults::FaultStage* stage = receiver_ ? receiver_->faults() : nullptr;
+  if (stage == nullptr) {
+    fault_log_.end_all();
+    return;
+  }
+  const auto status = stage->status();
+  const std::vector<std::string> names = output_names(cfg_.outputs);
+  for (const FaultTransition& c : fault_log_.end_all()) {
+    if (c.index >= status.size()) continue;
+    spdlog::info("fault end: {} (run {:.1f} s, {})", fault_log_text(*status[c.index].event, names), last_run_s_, why);
+  }
+}
+
+std::vector<std::string> Daemon::check_reload_port_events(const config::Config& loaded) {
+  // The running outputs stay until a restart (docs/daemon.md §Reload), so
+  // every kept event still acts on its port. A --scenario event whose index
+  // the file now gives no port or another one would be refused or moved by
+  // the next start: the reload refuses the file now, while the rig runs.
+  const std::vector<std::string> running = output_names(cfg_.outputs);
+  const std::vector<std::string> reloaded = output_names(loaded.outputs);
+  const std::vector<std::string> bad =
+      check_port_events_on_reload(scenario_, running, reloaded, scenario_source_, loaded.source);
+  if (!bad.empty()) {
+    throw Error(bad.front() + "; with this [[output]] list the next start would refuse the --scenario event or put it "
+                "on another output: give it its output anew in " + scenario_source_ +
+                " and restart, or keep the [[output]] list");
+  }
+  // Injected events end at a restart: they keep acting on their running port.
+  faults::FaultStage* stage = receiver_->faults();
+  if (stage == nullptr) return {};
+  std::vector<faults::FaultEvent> kept;
+  for (const faults::FaultStatus& st : stage->status()) kept.push_back(*st.event);
+  std::vector<std::string> warnings = check_port_events_on_reload(kept, running, reloaded, "ctl inject", loaded.source);
+  for (std::string& w : warnings) w += ": it keeps acting on the running output until the restart, where it ends";
+  return warnings;
 }
 
 }  // namespace gnssemu::daemon

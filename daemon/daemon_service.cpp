@@ -47,6 +47,7 @@ void Daemon::reload() noexcept {
     config::Config loaded = reloader_();
     const ReloadPlan plan = plan_reload(cfg_, loaded);
     // Build everything that can fail before anything running is touched.
+    const std::vector<std::string> port_event_warnings = check_reload_port_events(loaded);
     std::unique_ptr<scene::Scene> scene;
     if (plan.scene) scene = load_scene_logged(loaded);
     std::unique_ptr<pipeline::Pipeline> receiver;
@@ -111,6 +112,7 @@ void Daemon::reload() noexcept {
     for (const std::string& what : plan.need_restart) {
       spdlog::warn("reload: {} changed: applies at the next restart; running on the old value", what);
     }
+    for (const std::string& w : port_event_warnings) spdlog::warn("reload: {}", w);
     refresh_status_setup();  // mask, thresholds, reopened ports
     const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     spdlog::info("reload: {} applied in {:.1f} ms ({})", cfg_.source, ms, plan.describe(cfg_));

@@ -47,9 +47,12 @@ void Daemon::start_status_page() {
   std::printf("gnssemud: status page http://%s:%u/\n", host.c_str(), static_cast<unsigned>(ep.port()));
 }
 
-void Daemon::record_status(const time::GpsTime& t, const world::Truth& truth, const receiver::Fix& fix) noexcept {
+double Daemon::run_time_s(const time::GpsTime& t) noexcept {
   if (!status_first_t_) status_first_t_ = t;
-  const double run_s = t - *status_first_t_;
+  return t - *status_first_t_;
+}
+
+void Daemon::record_status(double run_s, const world::Truth& truth, const receiver::Fix& fix) noexcept {
   record_faults(run_s);
   const protocol::ubx::EpochInfo& info = device_.epoch_info();
   EpochStatus e;
@@ -81,6 +84,7 @@ void Daemon::record_status(const time::GpsTime& t, const world::Truth& truth, co
     pc.messages_dropped = c.stats().messages_dropped;
     pc.tx_level_bytes = c.budget().level_bytes();
     pc.tx_capacity_bytes = static_cast<double>(c.budget().capacity_bytes());
+    pc.link_faults = c.stats().link_faults;
     status_.set_port_counters(i, pc);
   }
   if (status_server_) status_server_->publish();

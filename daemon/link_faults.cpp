@@ -42,6 +42,16 @@ double probability(const FaultEvent& e, double f) noexcept {
 
 char hex_digit(unsigned v) noexcept { return "0123456789ABCDEF"[v & 0x0F]; }
 
+// "file:line: port event (fault = "drop"): what".
+std::string port_event_problem(const FaultEvent& e, std::string_view file, std::string_view what) {
+  const auto names = faults::mode_names(FaultType::kPort);
+  const std::string_view name = e.mode < names.size() ? names[e.mode] : std::string_view("?");
+  std::string out(file);
+  if (e.line > 0) out.append(":").append(std::to_string(e.line));
+  out.append(": port event (fault = \"").append(name).append("\"): ").append(what);
+  return out;
+}
+
 }  // namespace
 
 LinkFaultSet active_link_faults(std::span<const faults::FaultStatus> status, std::size_t output) noexcept {
@@ -81,14 +91,7 @@ std::optional<std::string> check_port_events(std::span<const FaultEvent> events,
                                              std::string_view file) {
   for (const FaultEvent& e : events) {
     if (e.type != FaultType::kPort) continue;
-    const auto names = faults::mode_names(FaultType::kPort);
-    const std::string_view name = e.mode < names.size() ? names[e.mode] : std::string_view("?");
-    const auto problem = [&](std::string_view what) {
-      std::string out(file);
-      if (e.line > 0) out.append(":").append(std::to_string(e.line));
-      out.append(": port event (fault = \"").append(name).append("\"): ").append(what);
-      return out;
-    };
+    const auto problem = [&](std::string_view what) { return port_event_problem(e, file, what); };
     if (e.has(Param::kOutput)) {
       const double o = e.param(Param::kOutput).from;
       if (o < 0.0 || o >= static_cast<double>(output_count)) {
@@ -120,6 +123,30 @@ std::optional<std::string> check_port_events(std::span<const FaultEvent> events,
     if (missing) return missing;
   }
   return std::nullopt;
+}
+
+std::vector<std::string> check_port_events_on_reload(std::span<const FaultEvent> events,
+                                                     std::span<const std::string> running,
+                                                     std::span<const std::string> reloaded, std::string_view file,
+                                                     std::string_view reloaded_file) {
+  std::vector<std::string> out;
+  for (const FaultEvent& e : events) {
+    if (e.type != FaultType::kPort || !e.has(Param::kOutput)) continue;
+    const double o = e.param(Param::kOutput).from;
+    if (o < 0.0 || o >= static_cast<double>(running.size())) continue;  // check_port_events' case
+    const auto i = static_cast<std::size_t>(o);
+    if (i < reloaded.size() && reloaded[i] == running[i]) continue;
+    if (i >= reloaded.size()) {
+      out.push_back(port_event_problem(
+          e, file, fmt::format("output = {} (\"{}\") does not exist in {}: {} [[output]] table(s)", i, running[i],
+                               reloaded_file, reloaded.size())));
+    } else {
+      out.push_back(port_event_problem(
+          e, file, fmt::format("output = {} is \"{}\" now but \"{}\" in {}", i, running[i], reloaded[i],
+                               reloaded_file)));
+    }
+  }
+  return out;
 }
 
 bool break_checksum(std::span<char> m) noexcept {

@@ -20,21 +20,9 @@
 #include "core/faults/fault_stage.hpp"
 #include "core/protocol/nmea/reported_fix.hpp"
 #include "core/world/random.hpp"
+#include "daemon/link_fault_stats.hpp"
 
 namespace gnssemu::daemon {
-
-/// What link faults did to one port so far.
-struct LinkFaultStats {
-  std::uint64_t bytes_lost = 0;          ///< byte_loss: bytes taken off the line (epochs and replies)
-  std::uint64_t messages_corrupted = 0;  ///< corrupt: messages sent with a wrong checksum
-  std::uint64_t messages_dropped = 0;    ///< drop: whole messages not sent
-  std::uint64_t epochs_delayed = 0;      ///< latency: epochs held back
-  std::uint64_t epochs_frozen = 0;       ///< freeze: epochs replaced by the one before the freeze
-  std::uint64_t epochs_stopped = 0;      ///< stop: epochs not sent
-  std::uint64_t replies_stopped = 0;     ///< stop: replies (ACK, poll answers) not sent
-  std::uint64_t epochs_skipped = 0;      ///< rate: epochs not due at the lowered rate
-  std::uint64_t epochs_wrong_fix = 0;    ///< wrong_fix: epochs composed with another fix type
-};
 
 /// The port events active on one output at one epoch, combined: several
 /// events of a kind act together (independent probabilities, latencies in
@@ -65,6 +53,17 @@ LinkFaultSet active_link_faults(std::span<const faults::FaultStatus> status, std
 /// problem, or nothing. For the scenario loader and `ctl inject`.
 std::optional<std::string> check_port_events(std::span<const faults::FaultEvent> events, std::size_t output_count,
                                              std::string_view file = "scenario");
+
+/// The same events against a reloaded configuration (docs/daemon.md
+/// §Reload): running and reloaded are the [[output]] names in order. A port
+/// event acts on the running output at its index until a restart; returns
+/// "file:line: reason" for each event whose index the reloaded file gives
+/// no output or another one (removed, renamed or moved: a restart would
+/// refuse the event or put it on another port). reloaded_file names the file.
+std::vector<std::string> check_port_events_on_reload(std::span<const faults::FaultEvent> events,
+                                                     std::span<const std::string> running,
+                                                     std::span<const std::string> reloaded, std::string_view file,
+                                                     std::string_view reloaded_file);
 
 /// Make the checksum of one framed message wrong so a parser rejects exactly
 /// it: a UBX frame's CK_B is inverted, an NMEA sentence's *hh becomes

@@ -62,7 +62,9 @@ ReloadPlan plan_reload(const Config& running, const Config& loaded) {
     const bool transport = !(a.transport == b.transport);
     b.transport = a.transport;
     const bool settings = differs(running, loaded, [&](Config& m, const Config&) { m.outputs[i] = b; });
-    if (settings) {
+    if (settings && a.name != b.name) {
+      p.need_restart.push_back("output " + a.name + " name (\"" + b.name + "\" in the file)");
+    } else if (settings) {
       p.need_restart.push_back("output " + a.name + " protocols/messages/baud");
     } else if (transport) {
       p.reopen.push_back(i);

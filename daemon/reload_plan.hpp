@@ -8,7 +8,7 @@
 // stay open. Needs a restart (logged, the running value kept): [origin],
 // [nav], [time], rate_hz, [truth] bind/port, outputs added or removed, and
 // an output's protocols, messages or baud (the emulated chip's stored
-// configuration, which hosts may have changed since).
+// configuration, which hosts may have changed since), and its name.
 #include <cstddef>
 #include <string>
 #include <vector>

@@ -286,6 +286,17 @@ void StatusProducer::write_json(std::string& out, std::size_t history_max) const
     w.field_int("epochs_written", static_cast<int64_t>(c.epochs_written));
     w.field_int("epochs_dropped", static_cast<int64_t>(c.epochs_dropped));
     w.field_int("messages_dropped", static_cast<int64_t>(c.messages_dropped));
+    // One counter per link fault, so a tester sees each act (docs/faults.md §5).
+    const LinkFaultStats& l = c.link_faults;
+    w.field_int("link_bytes_lost", static_cast<int64_t>(l.bytes_lost));
+    w.field_int("link_messages_corrupted", static_cast<int64_t>(l.messages_corrupted));
+    w.field_int("link_messages_dropped", static_cast<int64_t>(l.messages_dropped));
+    w.field_int("link_epochs_delayed", static_cast<int64_t>(l.epochs_delayed));
+    w.field_int("link_epochs_frozen", static_cast<int64_t>(l.epochs_frozen));
+    w.field_int("link_epochs_stopped", static_cast<int64_t>(l.epochs_stopped));
+    w.field_int("link_replies_stopped", static_cast<int64_t>(l.replies_stopped));
+    w.field_int("link_epochs_skipped", static_cast<int64_t>(l.epochs_skipped));
+    w.field_int("link_epochs_wrong_fix", static_cast<int64_t>(l.epochs_wrong_fix));
     w.end_object();
   }
   w.end_array();

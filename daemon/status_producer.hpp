@@ -15,6 +15,7 @@
 
 #include "core/receiver/fix.hpp"
 #include "core/world/truth.hpp"
+#include "daemon/link_fault_stats.hpp"
 #include "daemon/truth_packet.hpp"
 
 namespace gnssemu::daemon {
@@ -46,6 +47,7 @@ struct PortCounters {
   uint64_t messages_dropped = 0;   ///< over the line budget (TX buffer full)
   double tx_level_bytes = 0.0;     ///< TX buffer queued now, bytes
   double tx_capacity_bytes = 0.0;  ///< TX buffer size, bytes
+  LinkFaultStats link_faults;      ///< what port events did to the port (docs/faults.md §5)
 };
 
 /// Truth input counters, totals since start.

@@ -17,7 +17,14 @@ gpspipe -w. Steps, each timed from the moment the command returned:
   5. `ctl inject` a port fault (wrong_fix 0): gpsd mode <= 1 while the
      receiver keeps its 3D fix; `ctl clear`: mode 3
   6. a bad scenario: ctl exits 1 naming file:line; nothing was added
-  7. the socket is mode 0600 and gone after the daemon exits
+  7. `ctl inject` byte_loss 0.05 on the pty: ctl status shows the port's
+     link_bytes_lost rise at 5 % of its bytes; a SIGHUP whose file renames
+     that output warns naming the event, which keeps acting on the port;
+     the log has one `fault start:` and one `fault end:` line per event
+  8. a second daemon with a --scenario port event on its second output: a
+     SIGHUP whose file drops that output is refused naming the event, and
+     the event keeps acting
+  9. the socket is mode 0600 and gone after the daemon exits
 Exit 77 (skip) without gpsd/gpspipe/ubxtool."""
 import argparse
 import json
@@ -40,7 +47,8 @@ RATE_HZ = 2.0
 OUTAGE_LIMIT_S = 2.0   # issue 11: TPV mode <= 1 within 2 s of an injected outage
 LIMIT_S = 240
 
-CONFIG = """[origin]
+# Every daemon of the test: the place, the nav data, the rate, truth on loopback.
+BASE = """[origin]
 lat_deg = {lat}
 lon_deg = {lon}
 height_m = {h}
@@ -53,7 +61,14 @@ rate_hz = {rate}
 [truth]
 bind = "127.0.0.1"
 port = {udp}
-[demo]
+"""
+# No status page; the control socket.
+CONTROL = """[status]
+port = 0
+[control]
+socket = "{sock}"
+"""
+CONFIG = BASE + """[demo]
 enabled = true
 radius_m = 50.0
 speed_m_s = 5.0
@@ -64,11 +79,7 @@ path = "{pty}"
 baud = 115200
 protocols_out = ["ubx", "nmea"]
 ubx_messages = ["NAV-PVT", "NAV-STATUS", "NAV-DOP", "NAV-SAT", "MON-HW", "NAV-EOE"]
-[status]
-port = 0
-[control]
-socket = "{sock}"
-"""
+""" + CONTROL
 
 SCENARIO = """[[event]]
 type = "outage"
@@ -98,6 +109,34 @@ fix_type = 0
 start_s = 0
 """
 
+BYTE_LOSS_P = 0.05
+BYTE_LOSS = """[[event]]
+type = "port"
+fault = "byte_loss"
+output = 0
+probability = 0.05
+start_s = 0
+"""
+
+# Step 8: a second daemon with two file outputs; its scenario drops messages on the second.
+CONFIG_FILES = BASE + """[[output]]
+name = "out0"
+type = "file"
+path = "{dir}/out0.nmea"
+{second}""" + CONTROL
+SECOND_OUTPUT = """[[output]]
+name = "out1"
+type = "file"
+path = "{dir}/out1.nmea"
+"""
+DROP_ON_OUT1 = """[[event]]
+type = "port"
+fault = "drop"
+output = 1
+probability = 0.5
+start_s = 0
+"""
+
 BAD = """[[event]]
 type = "jammer"
 start_s = 0
@@ -121,10 +160,13 @@ class Rig(RigBase):
             f.write(text)
         return path
 
+    def config_args(self, sock):
+        """BASE and CONTROL's fields: a free truth port, the control socket at sock."""
+        return dict(lat=ORIGIN[0], lon=ORIGIN[1], h=ORIGIN[2], nav=os.path.abspath(self.args.nav), rate=RATE_HZ,
+                    udp=free_port(socket.SOCK_DGRAM), sock=sock)
+
     def start(self):
-        cfg = self.write("it.toml", CONFIG.format(lat=ORIGIN[0], lon=ORIGIN[1], h=ORIGIN[2],
-                                                   nav=os.path.abspath(self.args.nav), rate=RATE_HZ,
-                                                   udp=free_port(socket.SOCK_DGRAM), pty=self.pty, sock=self.sock))
+        cfg = self.write("it.toml", CONFIG.format(pty=self.pty, **self.config_args(self.sock)))
         scen = self.write("scenario.toml", SCENARIO)
         self.daemon_log = open(os.path.join(self.tmp, "gnssemud.log"), "w")
         self.daemon = self.spawn([self.args.gnssemud, "--config", cfg, "--scenario", scen],
@@ -150,13 +192,13 @@ class Rig(RigBase):
                 ss = [s["ss"] for s in m["satellites"] if s.get("used") and s.get("ss", 0) > 0]
                 self.sky.append((now, sum(ss) / len(ss) if ss else 0.0))
 
-    def ctl(self, *args):
-        r = subprocess.run([self.args.gnssemu, "ctl", "--socket", self.sock, *args], capture_output=True, text=True,
-                           timeout=15)
+    def ctl(self, *args, sock=None):
+        r = subprocess.run([self.args.gnssemu, "ctl", "--socket", sock or self.sock, *args], capture_output=True,
+                           text=True, timeout=15)
         return r.returncode, r.stdout, r.stderr
 
-    def status(self):
-        rc, out, err = self.ctl("status")
+    def status(self, sock=None):
+        rc, out, err = self.ctl("status", sock=sock)
         assert rc == 0, f"ctl status exit {rc}: {err}"
         reply = json.loads(out)
         assert reply["ok"] is True and reply["cmd"] == "status"
@@ -180,6 +222,19 @@ class Rig(RigBase):
                 raise AssertionError(f"no {what} within {limit_s:.0f} s")
             if pred(m.get("mode", 0)):
                 return t, m
+
+    def wait_log(self, path, pattern, start, limit_s=5.0):
+        """The first match of pattern in the log at path after byte start."""
+        deadline = time.monotonic() + limit_s
+        while True:
+            with open(path, errors="replace") as f:
+                f.seek(start)
+                m = re.search(pattern, f.read())
+            if m:
+                return m
+            if time.monotonic() > deadline:
+                raise AssertionError(f"no log line /{pattern}/ in {os.path.basename(path)} within {limit_s:.0f} s")
+            time.sleep(0.1)
 
     def drain(self):
         while not self.tpvs.empty():
@@ -277,7 +332,80 @@ def run(rig):
     rc, _, err2 = rig.ctl("frobnicate")
     assert rc == 2, (rc, err2)
 
-    # 7. the socket: 0600 while running, removed at exit
+    # 7. a link fault's counters in ctl status, a reload renaming its output, one log line per transition
+    log_path = os.path.join(rig.tmp, "gnssemud.log")
+    gps0 = lambda st: next(p for p in st["ports"] if p["name"] == "gps0")
+    p0 = gps0(rig.status())
+    rc, out, err = rig.ctl("inject", rig.write("byte_loss.toml", BYTE_LOSS))
+    assert rc == 0, f"inject exit {rc}: {err}"
+    time.sleep(3.0)
+    p1 = gps0(rig.status())
+    lost = p1["link_bytes_lost"] - p0["link_bytes_lost"]
+    offered = p1["bytes_offered"] - p0["bytes_offered"]
+    written = p1["bytes_written"] - p0["bytes_written"]
+    assert lost > 0 and offered > 0, (p0, p1)
+    assert abs(lost / offered - BYTE_LOSS_P) < 0.015, f"{lost} of {offered} bytes lost"
+    assert abs(lost / (lost + written) - BYTE_LOSS_P) < 0.02, f"{lost} lost, {written} written"
+    others = [k for k in p1 if k.startswith("link_") and k != "link_bytes_lost" and p1[k] != p0[k]]
+    assert not others, f"other link counters moved under byte_loss: {others}"
+    # The reloaded file renames the output: a restart would not find "gps0" at index 0.
+    mark = os.path.getsize(log_path)
+    with open(os.path.join(rig.tmp, "it.toml")) as f:
+        renamed = f.read().replace('name = "gps0"', 'name = "gpsX"')
+    rig.write("it.toml", renamed)
+    rig.daemon.send_signal(signal.SIGHUP)
+    m = rig.wait_log(log_path, r"reload: (ctl inject:1: port event \(fault = \"byte_loss\"\): output = 0 is \"gps0\" "
+                     r"now but \"gpsX\" in .*)", mark)
+    rig.wait_log(log_path, r"reload: .* applied in", mark)
+    time.sleep(1.0)
+    p2 = gps0(rig.status())
+    assert p2["link_bytes_lost"] > p1["link_bytes_lost"], "byte loss stopped acting after the reload"
+    rc, out, err = rig.ctl("clear")
+    assert rc == 0 and json.loads(out)["cleared"] == 1, (rc, out, err)
+    print(f"  ctl byte_loss {BYTE_LOSS_P}: link_bytes_lost {lost} of {offered} bytes offered "
+          f"({100 * lost / offered:.2f} %), {100 * lost / (lost + written):.2f} % of the bytes on the line; "
+          f"reload warned: {m.group(1)[:100]}...")
+    rig.wait_log(log_path, r"fault end: port fault=byte_loss .*cleared", mark)
+    with open(log_path, errors="replace") as f:
+        log = f.read()
+    starts = re.findall(r"fault start: (.*) \(run ([\d.]+) s\)", log)
+    ends = re.findall(r"fault end: (.*) \(run ([\d.]+) s(?:, ([^)]*))?\)", log)
+    want = ["outage antenna=blockage for 4.0 s", "outage antenna=open", "jammer kind=cw js_db=20→50 for 20.0 s",
+            "port fault=wrong_fix output=0 fix_type=0 on gps0", "port fault=byte_loss output=0 probability=0.05 on gps0"]
+    assert [t for t, _ in starts] == want, starts
+    assert [t for t, _, _ in ends] == want, ends
+    assert abs(float(starts[0][1]) - 12.0) < 0.6 and abs(float(ends[0][1]) - 16.0) < 0.6, (starts[0], ends[0])
+    assert ends[0][2] == "" and all(why == "cleared" for _, _, why in ends[1:2] + ends[3:]), ends
+    print(f"  log: {len(starts)} 'fault start' and {len(ends)} 'fault end' lines for 5 events, e.g. "
+          f"'fault start: {starts[2][0]} (run {starts[2][1]} s)'")
+
+    # 8. a reload that drops the output of a --scenario port event is refused
+    sock2 = os.path.join(rig.tmp, "control2.sock")
+    cfg_args = dict(rig.config_args(sock2), dir=rig.tmp)
+    cfg2 = rig.write("two.toml", CONFIG_FILES.format(second=SECOND_OUTPUT.format(dir=rig.tmp), **cfg_args))
+    scen2 = rig.write("drop.toml", DROP_ON_OUT1)
+    log2_path = os.path.join(rig.tmp, "gnssemud2.log")
+    with open(log2_path, "w") as log2:
+        d2 = rig.spawn([rig.args.gnssemud, "--config", cfg2, "--scenario", scen2], stdout=subprocess.DEVNULL,
+                       stderr=log2)
+    rig.wait_log(log2_path, r"fault start: port fault=drop output=1 probability=0.5 on out1", 0, 15.0)
+    rig.write("two.toml", CONFIG_FILES.format(second="", **cfg_args))
+    mark = os.path.getsize(log2_path)
+    d2.send_signal(signal.SIGHUP)
+    m = rig.wait_log(log2_path, r"reload failed, keeping the running configuration: (.*)", mark)
+    assert (f"{scen2}:1: port event (fault = \"drop\"): output = 1 (\"out1\") does not exist in {cfg2}: "
+            "1 [[output]] table(s)") in m.group(1), m.group(1)
+    q0 = rig.status(sock=sock2)["ports"]
+    time.sleep(1.0)
+    q1 = rig.status(sock=sock2)["ports"]
+    assert [p["name"] for p in q1] == ["out0", "out1"], q1
+    assert q1[1]["link_messages_dropped"] > q0[1]["link_messages_dropped"] > 0, (q0[1], q1[1])
+    assert q1[0]["link_messages_dropped"] == 0, q1[0]
+    rig.stop(d2)
+    assert d2.returncode == 0, f"second gnssemud exit {d2.returncode}"
+    print(f"  reload without the scenario's output refused: {m.group(1)[:110]}...")
+
+    # 9. the socket: 0600 while running, removed at exit
     mode = stat.S_IMODE(os.stat(rig.sock).st_mode)
     assert mode == 0o600, oct(mode)
     rig.stop(rig.daemon)

@@ -101,6 +101,14 @@
     body.replaceChildren(...rows);
   }
 
+  // What port events did (docs/faults.md §5): the counters that are not 0.
+  const LINK_COUNTERS = [['link_bytes_lost', 'bytes lost'], ['link_messages_corrupted', 'messages corrupted'],
+    ['link_messages_dropped', 'messages dropped'], ['link_epochs_delayed', 'epochs delayed'],
+    ['link_epochs_frozen', 'epochs frozen'], ['link_epochs_stopped', 'epochs stopped'],
+    ['link_replies_stopped', 'replies stopped'], ['link_epochs_skipped', 'epochs skipped'],
+    ['link_epochs_wrong_fix', 'epochs with a wrong fix']];
+  const linkText = (p) => LINK_COUNTERS.filter(([k]) => p[k] > 0).map(([k, what]) => `${p[k]} ${what}`).join(', ') || '—';
+
   function renderPorts(s) {
     const body = $('port-table').tBodies[0];
     const esc = (v) => String(v).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));
@@ -110,7 +118,7 @@
       const cells = [esc(p.name), esc(p.type), esc(p.where), esc(p.protocols), p.baud ? String(p.baud) : '—',
         G.fmt(p.bytes_per_s, 0), p.line_use === null ? 'no line' : G.fmt(100 * p.line_use, 1, ' %'),
         p.tx_fill === null ? '—' : G.fmt(100 * p.tx_fill, 1, ' %'), String(p.epochs_written),
-        String(p.epochs_dropped), String(p.messages_dropped)];
+        String(p.epochs_dropped), String(p.messages_dropped), linkText(p)];
       tr.innerHTML = cells.map((c) => `<td>${c}</td>`).join('');
       if (p.line_use !== null && p.line_use > 1) tr.className = 'warn';
       return tr;

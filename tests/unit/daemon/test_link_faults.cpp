@@ -338,6 +338,39 @@ TEST(LinkFaults, ScenarioCheckNamesTheLineOfABadPortEvent) {
   EXPECT_FALSE(check_port_events(std::vector{port_event(LinkFault::kStop)}, 1).has_value());
 }
 
+TEST(LinkFaults, ReloadCheckNamesEventsWhoseOutputTheFileMovedOrRemoved) {
+  FaultEvent on1 = port_event(LinkFault::kDrop, Param::kProbability, 0.5);
+  on1.put(Param::kOutput, 1.0);
+  on1.line = 7;
+  FaultEvent on0 = on1;
+  on0.put(Param::kOutput, 0.0);
+  const FaultEvent every = port_event(LinkFault::kStop);  // no output: every output
+  const std::vector<FaultEvent> events{on0, on1, every};
+  const std::vector<std::string> running{"gps0", "log"};
+  // Same list, a transport change, an output added at the end: nothing moves.
+  EXPECT_TRUE(check_port_events_on_reload(events, running, running, "s.toml", "rig.toml").empty());
+  EXPECT_TRUE(check_port_events_on_reload(events, running, std::vector<std::string>{"gps0", "log", "net"}, "s.toml",
+                                          "rig.toml")
+                  .empty());
+  // Removed: a restart would refuse output = 1.
+  auto p = check_port_events_on_reload(events, running, std::vector<std::string>{"gps0"}, "s.toml", "rig.toml");
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0], "s.toml:7: port event (fault = \"drop\"): output = 1 (\"log\") does not exist in rig.toml: "
+                  "1 [[output]] table(s)");
+  // gps0 removed before it: index 0 is now "log", index 1 gone; a restart would put output = 0 on "log".
+  p = check_port_events_on_reload(events, running, std::vector<std::string>{"log"}, "s.toml", "rig.toml");
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_EQ(p[0], "s.toml:7: port event (fault = \"drop\"): output = 0 is \"gps0\" now but \"log\" in rig.toml");
+  // Renamed counts as moved: the file no longer names the port the event acts on.
+  p = check_port_events_on_reload(events, running, std::vector<std::string>{"gps0", "logger"}, "s.toml", "rig.toml");
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_NE(p[0].find("output = 1 is \"log\" now but \"logger\""), std::string::npos) << p[0];
+  // An index the running list lacks is check_port_events' error, not this one's.
+  FaultEvent far = on1;
+  far.put(Param::kOutput, 5.0);
+  EXPECT_TRUE(check_port_events_on_reload(std::vector{far}, running, running, "s.toml", "rig.toml").empty());
+}
+
 TEST(LinkFaults, DelayLineKeepsTheOrderOfItsEpochs) {
   DelayLine d;
   EXPECT_TRUE(d.empty());

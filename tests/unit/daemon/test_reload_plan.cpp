@@ -60,4 +60,7 @@ TEST(ReloadPlan, RestartOnlyChangesAreNamed) {
   config::Config c = base();
   c.outputs.pop_back();
   EXPECT_EQ(plan_reload(base(), c).need_restart.back(), "outputs added or removed (2 -> 1)");
+  config::Config renamed = base();
+  renamed.outputs[1].name = "net2";
+  EXPECT_EQ(plan_reload(base(), renamed).need_restart, std::vector<std::string>{"output net name (\"net2\" in the file)"});
 }

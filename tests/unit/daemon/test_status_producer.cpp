@@ -188,6 +188,31 @@ TEST(StatusProducer, TruthAndPortRatesFromCounters) {
   EXPECT_NEAR(j["ports"][0]["line_use"].get<double>(), 1.25, 1e-4);  // 1200 B/s on a 960 B/s line
   EXPECT_NEAR(j["ports"][0]["tx_fill"].get<double>(), 0.25, 1e-4);
   EXPECT_EQ(j["ports"][0]["protocols"], "NMEA+UBX");
+  EXPECT_EQ(j["ports"][0]["link_bytes_lost"], 0);
+}
+
+TEST(StatusProducer, PortsCarryTheirLinkFaultCounters) {
+  StatusProducer p(StatusSettings{});
+  p.set_ports({PortInfo{"gps0", "pty", "/tmp/gps0"}, PortInfo{"net", "tcp", "127.0.0.1:2000"}});
+  PortCounters pc;
+  pc.bytes_written = 9500;
+  pc.link_faults = LinkFaultStats{500, 1, 2, 3, 4, 5, 6, 7, 8};
+  p.set_port_counters(1, pc);
+  std::string out;
+  p.write_json(out, 0);
+  const nlohmann::json j = nlohmann::json::parse(out);
+  const nlohmann::json& net = j["ports"][1];
+  EXPECT_EQ(net["link_bytes_lost"], 500);
+  EXPECT_EQ(net["link_messages_corrupted"], 1);
+  EXPECT_EQ(net["link_messages_dropped"], 2);
+  EXPECT_EQ(net["link_epochs_delayed"], 3);
+  EXPECT_EQ(net["link_epochs_frozen"], 4);
+  EXPECT_EQ(net["link_epochs_stopped"], 5);
+  EXPECT_EQ(net["link_replies_stopped"], 6);
+  EXPECT_EQ(net["link_epochs_skipped"], 7);
+  EXPECT_EQ(net["link_epochs_wrong_fix"], 8);
+  EXPECT_EQ(net["bytes_written"], 9500);  // the keys before them are unchanged
+  EXPECT_EQ(j["ports"][0]["link_epochs_wrong_fix"], 0);
 }
 
 TEST(StatusProducer, FaultsAreCarriedAsAList) {
