@@ -12,6 +12,10 @@ Cases (each bounded, every process killed and the temp dir removed on exit):
   ardupilot  ArduPilot's poll / set / poll-compare sequence over a pty, its
              NAV-SVINFO poll (chipGen 4 = M8), NAV-PVT gnssFixOK and the
              rates it set
+  px4_faults, ardupilot_faults
+             the same start-ups while a scenario's jammer, satellite step
+             and port latency run and a fault is injected with gnssemu ctl
+             (ubx_startup_faults.py)
   gpsd_ubx   gpsd (not read-only) probes and configures the receiver itself:
              DEVICE driver "u-blox" in native mode, then TPV mode 3
   gpsd_nmea  an NMEA-only port: gpsd reports driver NMEA0183 and TPV mode 3
@@ -42,7 +46,7 @@ Cases (each bounded, every process killed and the temp dir removed on exit):
              no fix (mode 1) for about the M8's cold TTFF (data sheet 29 s,
              GPS), then mode 3 again; NAV-STATUS ttff counts from the reset
              (about 70 s, the one slow case)
-usage: ubx_ports_integration.py --gnssemud PATH --nav FILE CASE
+usage: ubx_ports_integration.py --gnssemud PATH [--gnssemu PATH] --nav FILE CASE
 """
 import argparse
 import datetime
@@ -60,6 +64,7 @@ import termios
 import time
 
 from itlib import RigBase, free_port
+from ubx_startup_faults import case_ardupilot_faults, case_px4_faults
 from ubx_host import (Stream, ack, ardupilot_rates, ardupilot_startup, frame, is_ack_for, nmea, poll_cfg,
                       px4_rates, px4_startup, send, set_cfg, split_stream, stty_speed)
 import tty
@@ -619,7 +624,8 @@ def case_jamming(rig):
 CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx, "gpsd_nmea": case_gpsd_nmea,
          "gpsdecode": case_gpsdecode, "serial": case_serial, "net": case_net, "budget": case_budget,
          "jamming": case_jamming, "wallclock": case_wallclock, "cold_start": case_cold_start,
-         "power_on_cold": case_power_on_cold, "nav5": case_nav5}
+         "power_on_cold": case_power_on_cold, "nav5": case_nav5, "px4_faults": case_px4_faults,
+         "ardupilot_faults": case_ardupilot_faults}
 NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_nmea": ["gpsd", "gpspipe"], "gpsdecode": ["gpsdecode"],
          "serial": ["socat", "stty"], "cold_start": ["gpsd", "gpspipe"],
          "power_on_cold": ["gpsd", "gpspipe"]}
@@ -633,6 +639,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--gnssemud", required=True)
     ap.add_argument("--nav", required=True)
+    ap.add_argument("--gnssemu", help="the CLI, for `gnssemu ctl` (the *_faults cases)")
     ap.add_argument("case", choices=sorted(CASES) + ["all"])
     args = ap.parse_args()
     failed = False
