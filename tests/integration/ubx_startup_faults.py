@@ -41,6 +41,7 @@ START = "2022-01-01T01:00:00"  # GPS time: a fixed sky, PRN 08 high and used
 BIASED_PRN = 8
 FIX_LIMIT_S = 10.0  # first fix under a 30 dB jammer: ~4 s of reacquisition at low C/N0
 
+
 def event(event_type, **keys):
     """One scenario [[event]] of event_type, active from its start (start_s = 0)."""
     lines = [f'type = "{event_type}"', "start_s = 0"] + [f"{k} = {json.dumps(v)}" for k, v in keys.items()]
