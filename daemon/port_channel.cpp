@@ -111,7 +111,11 @@ bool PortChannel::check_delayed() noexcept {
   // The 1 ns slack keeps a timer that fired on time from waiting for rounding.
   while (!delay_.empty() && delay_.next_due_s() <= now + 1e-9) {
     const DelayLine::Entry& e = delay_.front();
-    port_->write_epoch(e.bytes, e.ends);
+    if (e.reply) {
+      port_->write_reply(e.source, e.bytes);
+    } else {
+      port_->write_epoch(e.bytes, e.ends);
+    }
     delay_.pop();
   }
   if (delay_.empty()) return false;
@@ -227,13 +231,22 @@ void PortChannel::send_reply(int source, std::string_view label) noexcept {
     }
     return;
   }
+  std::string_view bytes = reply_;
   if (link_.active().byte_loss > 0.0) {
     link_.lose_bytes(0, true, reply_, {}, wire_, wire_ends_);
     stats_.link_faults = link_.stats();
-    if (!wire_.empty()) port_->write_reply(source, wire_);
+    bytes = wire_;
+  }
+  if (bytes.empty()) return;
+  // A latency holds replies as it holds epochs, in the order they entered
+  // the line: a u-blox's ACKs share the UART with its epochs.
+  const double latency_s = link_.active().latency_s;
+  if (latency_s > 0.0 || !delay_.empty()) {
+    delay_.push_reply(clock_() + latency_s, source, bytes);
+    check_delayed();
     return;
   }
-  port_->write_reply(source, reply_);
+  port_->write_reply(source, bytes);
 }
 
 void PortChannel::send_epoch() noexcept {

@@ -2,7 +2,7 @@
 // PortChannel: the transport side of one output port, wired to UART1 of the
 // emulated u-blox (docs/ports.md). Input bytes go through the UBX/NMEA
 // stream decoder into the device and its replies go back at once on the
-// same port; each epoch it sends the messages the device composed for the
+// same port (behind what a latency link fault holds); each epoch it sends the messages the device composed for the
 // port through a model of the M8's transmit buffer drained at the line rate,
 // and through the link faults active on the port (daemon/link_faults.hpp).
 #include <cstdint>
@@ -63,7 +63,7 @@ public:
   void start();
   void on_input(InputHandler h) { on_input_ = std::move(h); }
   /// Abandon partial input frames after kInputIdleS of silence, and send
-  /// epochs a latency link fault held back when they are due, on timers of
+  /// epochs and replies a latency link fault held back when they are due, on timers of
   /// io (the daemon). Without it only check_idle() and check_delayed() do (tests).
   void use_idle_timer(boost::asio::io_context& io);
   /// Sources whose input has been quiet for kInputIdleS with a partial frame
@@ -88,7 +88,7 @@ public:
   /// block. No allocation after the first epochs (a latency fault: after
   /// the most epochs it ever held at once).
   void send_epoch() noexcept;
-  /// Send the epochs a latency fault held that are due now. Returns true
+  /// Send the epochs and replies a latency fault held that are due now. Returns true
   /// while some are still held.
   bool check_delayed() noexcept;
 
@@ -139,7 +139,7 @@ private:
   std::unique_ptr<Sink> sink_;
   InputHandler on_input_;
   Timer idle_timer_;   ///< abandons partial input frames
-  Timer delay_timer_;  ///< sends epochs a latency fault held
+  Timer delay_timer_;  ///< sends epochs and replies a latency fault held
   // Set while a decoder is feeding the device: the decoder must not be
   // reset or destroyed under it, so those wait until feed() returns.
   bool feeding_ = false;

@@ -70,6 +70,12 @@ void FaultStage::inject(std::span<const FaultEvent> events) {
 }
 
 void FaultStage::clear() noexcept {
+  // Spoofers end here as at their own end: the loops they moved let go.
+  for (const SpoofState& sp : spoof_) {
+    if (!sp.started || !moved(sp)) continue;
+    for (std::size_t p = 0; p < released_.size(); ++p) released_[p] = released_[p] || sp.captured[p];
+    releasing_ = true;
+  }
   events_.clear();
   spoof_.clear();
   status_.clear();
@@ -136,6 +142,11 @@ void FaultStage::shift(world::SatObservable& o, double delta_m, double rate_m_s)
 void FaultStage::break_lock(world::SatObservable& o) noexcept {
   o.lock_break = true;
   ++o.carrier_discontinuities;
+}
+
+void FaultStage::let_go(const std::array<bool, kMaxGpsPrn>& held, world::Observables& obs) noexcept {
+  for (int i = 0; i < obs.num_sats; ++i)
+    if (held[obs.sats[i].prn - 1] && obs.sats[i].received) break_lock(obs.sats[i]);
 }
 
 void FaultStage::satellite_fault(const FaultEvent& e, double f, double since_s, world::Observables& obs) noexcept {
@@ -308,7 +319,7 @@ void FaultStage::apply(const time::GpsTime& t, const world::Truth& truth, world:
   elapsed_s_ = t - t0_;
   ++epoch_;
   effects_ = FaultEffects{};
-  if (events_.empty()) return;
+  if (events_.empty() && !releasing_) return;
   const double now = elapsed_s_;
   // Order of the physics: the satellites transmit (satellite faults), the
   // sky and the antenna pass or stop the signals (sky_block, outage), a
@@ -319,6 +330,11 @@ void FaultStage::apply(const time::GpsTime& t, const world::Truth& truth, world:
     if (e.type == FaultType::kSkyBlock && e.active_at(now)) sky_block(e, e.fraction_at(now), obs);
   for (const FaultEvent& e : events_)
     if (e.type == FaultType::kOutage && e.active_at(now)) outage(e, obs);
+  if (releasing_) {
+    let_go(released_, obs);
+    released_ = {};
+    releasing_ = false;
+  }
   for (std::size_t k = 0; k < events_.size(); ++k) {
     const FaultEvent& e = events_[k];
     if (e.type != FaultType::kSpoofer) continue;
@@ -327,10 +343,7 @@ void FaultStage::apply(const time::GpsTime& t, const world::Truth& truth, world:
     } else if (spoof_[k].started) {
       // The spoofer stops: the loops it held find no signal where it was
       // (unless it had not moved them) and reacquire the authentic ones.
-      const SpoofState& s = spoof_[k];
-      const bool moved = s.offset_m.norm() > 0.0 || s.clock_m != 0.0;
-      for (int i = 0; i < obs.num_sats; ++i)
-        if (moved && s.captured[obs.sats[i].prn - 1] && obs.sats[i].received) break_lock(obs.sats[i]);
+      if (moved(spoof_[k])) let_go(spoof_[k].captured, obs);
       spoof_[k] = SpoofState{};
     }
   }

@@ -71,7 +71,8 @@ public:
   /// time zero before the first). Throws gnssemu::Error (and adds nothing)
   /// on a bad event or when storage is full.
   void inject(std::span<const FaultEvent> events);
-  /// Remove every event; the next epoch is fault free.
+  /// Remove every event; the next epoch is fault free (the loops a spoofer
+  /// moved lose lock there, as at the spoofer's own end).
   void clear() noexcept;
 
   /// Every event with its state at the last epoch (a plain list).
@@ -108,6 +109,10 @@ private:
   static void shift(world::SatObservable& o, double delta_m, double rate_m_s) noexcept;
   /// The receiver loses lock on o (a non-aligned signal replaced it).
   static void break_lock(world::SatObservable& o) noexcept;
+  /// A spoofer that moved the loops it held stops (its end, or clear()):
+  /// they find no signal where it was and lose lock on the received ones.
+  static bool moved(const SpoofState& s) noexcept { return s.offset_m.norm() > 0.0 || s.clock_m != 0.0; }
+  static void let_go(const std::array<bool, kMaxGpsPrn>& held, world::Observables& obs) noexcept;
 
   FaultContext ctx_;
   double n0_dbw_hz_ = 0.0;
@@ -115,6 +120,8 @@ private:
   std::vector<FaultEvent> events_;          ///< reserved kMaxEvents
   std::vector<FaultStatus> status_;         ///< reserved kMaxEvents
   std::vector<SpoofState> spoof_;           ///< one per event, reserved kMaxEvents
+  std::array<bool, kMaxGpsPrn> released_{};  ///< loops cleared spoofers held: they let go next epoch
+  bool releasing_ = false;
   std::array<orbit::Ephemeris, kMaxGpsPrn> eph_copy_{};  ///< broadcast sets a fault falsified
   FaultEffects effects_;
   bool started_ = false;

@@ -79,7 +79,7 @@ def nmea(body):
 
 
 def ubx_corpus():
-    # PX4's start-up (tests/integration/ubx_ports_integration.py case_px4).
+    # PX4's start-up (tests/integration/ubx_host.py px4_startup).
     nav5 = bytearray(36)
     struct.pack_into("<HBB", nav5, 0, 0x0005, 7, 3)
     px4 = bytes.fromhex("B5620601FF03") + ubx(0x0A, 0x04)

@@ -8,9 +8,14 @@ Cases (each bounded, every process killed and the temp dir removed on exit):
              NAV-PVT with gnssFixOK at the rate PX4 set (CFG-RATE 200 ms); then
              CFG-RST (GNSS-only hot start): no ACK, NAV-STATUS msss restarts,
              the fix comes back within about a second and ttff counts from
-             the reset
+             the reset (the sequences: ubx_host.py)
   ardupilot  ArduPilot's poll / set / poll-compare sequence over a pty, its
-             NAV-SVINFO poll (chipGen 4 = M8) and NAV-PVT gnssFixOK
+             NAV-SVINFO poll (chipGen 4 = M8), NAV-PVT gnssFixOK and the
+             rates it set
+  px4_faults, ardupilot_faults
+             the same start-ups while a scenario's jammer, satellite step
+             and port latency run and a fault is injected with gnssemu ctl
+             (ubx_startup_faults.py)
   gpsd_ubx   gpsd (not read-only) probes and configures the receiver itself:
              DEVICE driver "u-blox" in native mode, then TPV mode 3
   gpsd_nmea  an NMEA-only port: gpsd reports driver NMEA0183 and TPV mode 3
@@ -41,7 +46,7 @@ Cases (each bounded, every process killed and the temp dir removed on exit):
              no fix (mode 1) for about the M8's cold TTFF (data sheet 29 s,
              GPS), then mode 3 again; NAV-STATUS ttff counts from the reset
              (about 70 s, the one slow case)
-usage: ubx_ports_integration.py --gnssemud PATH --nav FILE CASE
+usage: ubx_ports_integration.py --gnssemud PATH [--gnssemu PATH] --nav FILE CASE
 """
 import argparse
 import datetime
@@ -59,98 +64,14 @@ import termios
 import time
 
 from itlib import RigBase, free_port
+from ubx_startup_faults import case_ardupilot_faults, case_px4_faults
+from ubx_host import (Stream, ack, ardupilot_rates, ardupilot_startup, frame, is_ack_for, nmea, poll_cfg,
+                      px4_rates, px4_startup, send, set_cfg, split_stream, stty_speed)
 import tty
 
 ORIGIN = (48.8738, 2.2950, 100.0)
 CASE_LIMIT_S = 60
 CASE_LIMITS_S = {"cold_start": 100, "power_on_cold": 100}  # a cold TTFF (~30 s) plus gpsd's start
-
-# --- UBX helpers -------------------------------------------------------------
-
-def frame(cls, mid, payload=b""):
-    body = bytes([cls, mid]) + struct.pack("<H", len(payload)) + payload
-    a = b = 0
-    for x in body:
-        a = (a + x) & 0xFF
-        b = (b + a) & 0xFF
-    return b"\xb5\x62" + body + bytes([a, b])
-
-
-def ack(cls, mid, ok=True):
-    return frame(0x05, 0x01 if ok else 0x00, bytes([cls, mid]))
-
-
-def nmea(body):
-    cs = 0
-    for ch in body.encode():
-        cs ^= ch
-    return f"${body}*{cs:02X}\r\n".encode()
-
-
-def split_stream(data):
-    """(kind, bytes) for every complete UBX frame / NMEA line; rest returned."""
-    out = []
-    i = 0
-    while i < len(data):
-        if data[i:i + 2] == b"\xb5\x62":
-            if i + 6 > len(data):
-                break
-            n = 8 + struct.unpack_from("<H", data, i + 4)[0]
-            if i + n > len(data):
-                break
-            out.append(("ubx", data[i:i + n]))
-            i += n
-        elif data[i:i + 1] == b"$":
-            j = data.find(b"\n", i)
-            if j < 0:
-                break
-            out.append(("nmea", data[i:j + 1]))
-            i = j + 1
-        else:
-            i += 1
-    return out, data[i:]
-
-
-class Stream:
-    """Reads a fd, splits messages, keeps arrival times."""
-
-    def __init__(self, fd):
-        self.fd = fd
-        self.buf = b""
-        self.msgs = []  # (t, kind, bytes)
-
-    def pump(self, timeout):
-        r, _, _ = select.select([self.fd], [], [], max(0.0, timeout))
-        if not r:
-            return
-        try:
-            chunk = os.read(self.fd, 65536)
-        except BlockingIOError:
-            return
-        t = time.monotonic()
-        msgs, self.buf = split_stream(self.buf + chunk)
-        self.msgs += [(t, k, m) for k, m in msgs]
-
-    def wait_for(self, pred, limit_s, what):
-        deadline = time.monotonic() + limit_s
-        while True:
-            for idx, (t, k, m) in enumerate(self.msgs):
-                if pred(k, m):
-                    del self.msgs[:idx + 1]
-                    return t, m
-            self.msgs.clear()
-            if time.monotonic() > deadline:
-                raise AssertionError(f"no {what} within {limit_s} s")
-            self.pump(deadline - time.monotonic())
-
-    def frame_of(self, cls, mid, limit_s=2.0):
-        return self.wait_for(lambda k, m: k == "ubx" and m[2] == cls and m[3] == mid, limit_s,
-                             f"UBX {cls:02X}-{mid:02X}")[1]
-
-
-def is_ack_for(cls, mid):
-    return lambda k, m: k == "ubx" and m[2] == 0x05 and m[6:8] == bytes([cls, mid])
-
 
 # --- rig ---------------------------------------------------------------------
 
@@ -161,7 +82,7 @@ class Rig(RigBase):
         self.fds = []
         self.banner = []
 
-    def start_daemon(self, outputs, rate_hz=1.0, verbose=False, n_outputs=None, extra_toml=""):
+    def start_daemon(self, outputs, rate_hz=1.0, verbose=False, n_outputs=None, extra_toml="", scenario=None):
         cfg = os.path.join(self.tmp, "it.toml")
         with open(cfg, "w") as f:
             f.write(f"""
@@ -182,7 +103,8 @@ enabled = true
 """)
         self.daemon_log_path = os.path.join(self.tmp, "gnssemud.log")
         self.daemon_log = open(self.daemon_log_path, "w")
-        argv = [self.args.gnssemud, "--config", cfg] + (["-v"] if verbose else [])
+        argv = [self.args.gnssemud, "--config", cfg] + (["-v"] if verbose else []) + \
+            (["--scenario", scenario] if scenario else [])
         self.daemon = self.spawn(argv, stdout=subprocess.PIPE, stderr=self.daemon_log, text=True)
         n = outputs.count("[[output]]") if n_outputs is None else n_outputs
         for _ in range(n + 1):
@@ -220,10 +142,6 @@ def pty_output(rig, name="gps0", extra=""):
     return path, f'[[output]]\nname = "{name}"\ntype = "pty"\npath = "{path}"\n{extra}\n'
 
 
-def send(fd, data):
-    os.write(fd, data)
-
-
 # --- cases -------------------------------------------------------------------
 
 def case_px4(rig):
@@ -239,59 +157,15 @@ def case_px4(rig):
     send(fd, frame(0x0A, 0x04))
     t, _ = s.wait_for(lambda k, m: k == "ubx" and m[2:4] == b"\x0a\x04", 1.0, "MON-VER after a truncated header")
     print(f"  px4: MON-VER answered {t - t0:.3f} s after a truncated header")
-    # 1. CFG-VALSET (RAM, UART1_BAUDRATE = 115200): an M8 does not know it.
-    send(fd, frame(0x06, 0x8A, bytes([0, 1, 0, 0]) + struct.pack("<II", 0x40520001, 115200)))
-    _, m = s.wait_for(is_ack_for(0x06, 0x8A), 1.0, "reply to CFG-VALSET")
-    assert m == ack(0x06, 0x8A, False), f"VALSET: want NAK, got {m.hex()}"
-    # 2. CFG-PRT UART1 at the current baud, UBX in/out only (PX4 turns NMEA off).
-    prt = struct.pack("<BBHIIHHHH", 1, 0, 0, 0x08D0, 9600, 0x0001, 0x0001, 0, 0)
-    t0 = time.monotonic()
-    send(fd, frame(0x06, 0x00, prt))
-    t, m = s.wait_for(is_ack_for(0x06, 0x00), 1.0, "reply to CFG-PRT")
-    assert m == ack(0x06, 0x00), f"CFG-PRT: got {m.hex()}"
-    assert t - t0 < 0.25, f"ACK after {t - t0:.3f} s; PX4 waits 250 ms"
-    # 3. MON-VER poll: the M8 answer, byte for byte.
-    send(fd, frame(0x0A, 0x04))
-    m = s.frame_of(0x0A, 0x04)
-    pad = lambda txt, n: txt.encode().ljust(n, b"\0")
-    want = frame(0x0A, 0x04, pad("ROM CORE 3.01 (107888)", 30) + pad("00080000", 10) + pad("FWVER=SPG 3.01", 30) +
-                 pad("PROTVER=18.00", 30) + pad("GPS;GLO;GAL;BDS", 30) + pad("SBAS;IMES;QZSS", 30))
-    assert m == want, f"MON-VER: {m!r}"
-    # 4. CFG-RATE 200 ms, CFG-NAV5 airborne <2g, CFG-MSG NAV-PVT/STATUS/DOP/SVINFO, MON-HW.
-    steps = [(0x06, 0x08, struct.pack("<HHH", 200, 1, 0))]
-    nav5 = bytearray(36)
-    struct.pack_into("<HBB", nav5, 0, 0x0005, 7, 3)
-    steps.append((0x06, 0x24, bytes(nav5)))
-    for cls, mid, rate in ((0x01, 0x07, 1), (0x01, 0x03, 1), (0x01, 0x04, 1), (0x01, 0x30, 5), (0x0A, 0x09, 5)):
-        steps.append((0x06, 0x01, bytes([cls, mid, rate])))
-    for cls, mid, payload in steps:
-        t0 = time.monotonic()
-        send(fd, frame(cls, mid, payload))
-        t, m = s.wait_for(is_ack_for(cls, mid), 1.0, f"reply to {cls:02X}-{mid:02X} {payload.hex()}")
-        assert m == ack(cls, mid), f"{cls:02X}-{mid:02X} {payload.hex()}: got {m.hex()}"
-        assert t - t0 < 0.25, f"ACK after {t - t0:.3f} s"
+    # 1.-4. PX4's start-up, byte for byte, every reply within its 250 ms.
+    replies = px4_startup(s, fd)
     # 5. NAV-PVT at 5 Hz with gnssFixOK (the first epoch waits for a whole GPS
     # second, time.use_wall_clock_date; the hot start's fix a second later);
     # NMEA is off (PX4's CFG-PRT).
-    s.wait_for(lambda k, m: k == "ubx" and m[2:4] == b"\x01\x07" and m[6 + 21] & 1, 4.0, "the first gnssFixOK")
-    s.msgs.clear()
-    end = time.monotonic() + 3.0
-    while time.monotonic() < end:
-        s.pump(end - time.monotonic())
-    pvts = [m for _, k, m in s.msgs if k == "ubx" and m[2:4] == b"\x01\x07"]
-    nmeas = [m for _, k, m in s.msgs if k == "nmea"]
-    assert not nmeas, f"NMEA still sent after CFG-PRT out=UBX: {nmeas[:2]}"
-    assert len(pvts) >= 12, f"{len(pvts)} NAV-PVT in 3 s, want ~15 at 5 Hz"
-    itows = [struct.unpack_from("<I", m, 6)[0] for m in pvts]
-    steps_ms = {b - a for a, b in zip(itows, itows[1:])}
-    assert steps_ms == {200}, f"iTOW steps {sorted(steps_ms)} ms, want 200"
-    assert all(itow % 200 == 0 for itow in itows), "epochs not on 200 ms boundaries"
-    flags = [m[6 + 21] for m in pvts]
-    fix_types = [m[6 + 20] for m in pvts]
-    assert all(f & 1 for f in flags) and all(ft == 3 for ft in fix_types), f"flags {flags} fixType {fix_types}"
-    svinfo = sum(1 for _, k, m in s.msgs if k == "ubx" and m[2:4] == b"\x01\x30")
-    assert 2 <= svinfo <= 4, f"{svinfo} NAV-SVINFO in 3 s at rate 5 of 5 Hz (want 3)"
-    print(f"  px4: every step answered byte for byte; {len(pvts)} NAV-PVT in 3 s, iTOW step 200 ms, gnssFixOK")
+    msgs = px4_rates(s)
+    pvts = sum(1 for _, k, m in msgs if k == "ubx" and m[2:4] == b"\x01\x07")
+    print(f"  px4: every step answered byte for byte ({replies.summary()}); {pvts} NAV-PVT in 3 s, "
+          f"iTOW step 200 ms, gnssFixOK")
     # 6. CFG-RST, GNSS-only hot start (configuration kept): no ACK, the
     # receiver restarts: msss from the reset, fix reacquired (hot start: about
     # 1 s), ttff from the reset.
@@ -324,94 +198,16 @@ def case_px4(rig):
     print(f"  px4: CFG-RST: msss {msss0} -> {msss} ms, ttff {ttff} ms from the reset, fix back")
 
 
-def poll_cfg(s, fd, mid, payload=b""):
-    """CFG poll: the data frame, then ACK-ACK (data first)."""
-    send(fd, frame(0x06, mid, payload))
-    data = s.wait_for(lambda k, m: k == "ubx" and m[2] == 0x06 and m[3] == mid, 1.0, f"CFG {mid:02X} poll answer")[1]
-    a = s.wait_for(is_ack_for(0x06, mid), 1.0, f"ACK after CFG {mid:02X} poll")[1]
-    assert a == ack(0x06, mid), a.hex()
-    return data[6:-2]
-
-
-def set_cfg(s, fd, mid, payload):
-    send(fd, frame(0x06, mid, payload))
-    a = s.wait_for(is_ack_for(0x06, mid), 1.0, f"ACK of CFG {mid:02X} set")[1]
-    assert a == ack(0x06, mid), f"CFG {mid:02X} set: {a.hex()}"
-
-
 def case_ardupilot(rig):
     path, out = pty_output(rig)
     rig.start_daemon(out)
     fd = rig.open_tty(path)
     s = Stream(fd)
-    # ArduPilot's probe: UART1 in UBX+NMEA+RTCM3, out UBX only, 230400 baud.
-    # On a pty the rate is recorded (stty shows it) and sets the line budget.
-    send(fd, nmea("PUBX,41,1,0023,0001,230400,0"))
-    deadline = time.monotonic() + 3
-    while stty_speed(path) != 230400:
-        assert time.monotonic() < deadline, f"pty termios {stty_speed(path)} after $PUBX,41"
-        time.sleep(0.05)
-    # CFG-MSG: poll, set the rates ArduPilot wants, poll again and compare.
-    wanted = {(0x01, 0x07): 1, (0x01, 0x03): 1, (0x01, 0x06): 1, (0x01, 0x12): 1, (0x01, 0x04): 2, (0x0A, 0x09): 2}
-    for (cls, mid), rate in wanted.items():
-        before = poll_cfg(s, fd, 0x01, bytes([cls, mid]))
-        assert len(before) == 8 and before[:2] == bytes([cls, mid]) and before[3] == 0, before.hex()
-        set_cfg(s, fd, 0x01, bytes([cls, mid, rate]))
-        after = poll_cfg(s, fd, 0x01, bytes([cls, mid]))
-        assert after[3] == rate, f"CFG-MSG {cls:02X}-{mid:02X} read back UART1 rate {after[3]}, set {rate}"
-    # CFG-RATE
-    rate = poll_cfg(s, fd, 0x08)
-    assert len(rate) == 6 and struct.unpack("<HHH", rate) == (1000, 1, 1), rate.hex()
-    new_rate = struct.pack("<HHH", 200, 1, 0)
-    set_cfg(s, fd, 0x08, new_rate)
-    assert poll_cfg(s, fd, 0x08) == new_rate
-    # CFG-PRT (poll by port id): 20 bytes describing UART1 as set.
-    prt = poll_cfg(s, fd, 0x00, bytes([1]))
-    assert len(prt) == 20 and prt[0] == 1, prt.hex()
-    assert struct.unpack_from("<IHH", prt, 8) == (230400, 0x0023, 0x0001), prt.hex()
-    # CFG-NAV5: airborne <4g, 3D only.
-    nav5 = poll_cfg(s, fd, 0x24)
-    assert len(nav5) == 36, len(nav5)
-    new_nav5 = bytearray(nav5)
-    struct.pack_into("<HBB", new_nav5, 0, 0x0005, 8, 2)
-    set_cfg(s, fd, 0x24, bytes(new_nav5))
-    back = poll_cfg(s, fd, 0x24)
-    assert back[2:4] == bytes([8, 2]), f"NAV5 read back dyn {back[2]} fix {back[3]}"
-    # CFG-GNSS and CFG-SBAS: polls at the right length, SBAS set read back.
-    gnss = poll_cfg(s, fd, 0x3E)
-    assert len(gnss) == 4 + 8 * gnss[3] and gnss[3] >= 1, gnss.hex()
-    sbas = poll_cfg(s, fd, 0x16)
-    assert len(sbas) == 8, sbas.hex()
-    new_sbas = bytes([0, 3, 3, 0]) + struct.pack("<I", 0)  # SBAS disabled
-    set_cfg(s, fd, 0x16, new_sbas)
-    assert poll_cfg(s, fd, 0x16) == new_sbas
-    # MON-VER, then the rates are live: NAV-PVT at 5 Hz, NAV-DOP every 2nd epoch.
-    send(fd, frame(0x0A, 0x04))
-    mv = s.frame_of(0x0A, 0x04)
-    s.wait_for(lambda k, m: k == "ubx" and m[2:4] == b"\x01\x07" and m[6 + 21] & 1, 4.0, "the first gnssFixOK")
-    assert mv[6 + 30:6 + 38] == b"00080000", mv[36:46]
-    # NAV-SVINFO poll: ArduPilot reads globalFlags & 7 as the chip generation (4 = u-blox 8 / M8).
-    # Satellites are listed once the receiver has had an epoch (the first
-    # waits for a whole GPS second).
-    s.wait_for(lambda k, m: k == "ubx" and m[2:4] == b"\x01\x07", 2.0, "the first NAV-PVT")
-    send(fd, frame(0x01, 0x30))
-    sv = s.frame_of(0x01, 0x30)
-    num_ch = sv[6 + 4]
-    assert len(sv) == 8 + 8 + 12 * num_ch and num_ch >= 4, f"NAV-SVINFO {len(sv)} bytes, numCh {num_ch}"
-    assert sv[6 + 5] & 7 == 4, f"chipGen {sv[6 + 5] & 7}, want 4 (M8)"
-    s.msgs.clear()
-    end = time.monotonic() + 2.0
-    while time.monotonic() < end:
-        s.pump(end - time.monotonic())
-    count = lambda c, i: sum(1 for _, k, m in s.msgs if k == "ubx" and m[2] == c and m[3] == i)
-    pvts = [m for _, k, m in s.msgs if k == "ubx" and m[2:4] == b"\x01\x07"]
-    assert pvts and all(m[6 + 21] & 1 and m[6 + 20] == 3 for m in pvts), "NAV-PVT without gnssFixOK / 3D fix"
-    pvt, dop = count(0x01, 0x07), count(0x01, 0x04)
-    assert 8 <= pvt <= 11, f"{pvt} NAV-PVT in 2 s at 5 Hz"
-    assert not any(k == "nmea" for _, k, _ in s.msgs), "NMEA sent after $PUBX,41 out=UBX"
-    assert abs(dop - pvt / 2) <= 1.5, f"NAV-DOP {dop} vs NAV-PVT {pvt} (rate 2)"
-    print(f"  ardupilot: every poll answered and read back as set; chipGen 4 ({num_ch} channels); {pvt} NAV-PVT "
-          f"with gnssFixOK and {dop} NAV-DOP in 2 s")
+    replies, sv = ardupilot_startup(s, fd, path)
+    msgs = ardupilot_rates(s)
+    count = lambda c, i: sum(1 for _, k, m in msgs if k == "ubx" and m[2] == c and m[3] == i)
+    print(f"  ardupilot: every poll answered and read back as set ({replies.summary()}); chipGen 4 "
+          f"({sv[6 + 4]} channels); {count(1, 7)} NAV-PVT with gnssFixOK and {count(1, 4)} NAV-DOP in 2 s")
 
 
 def gpsd_rig(rig, path, readonly):
@@ -593,11 +389,6 @@ def case_power_on_cold(rig):
     assert t_back <= 5.0, f"fix back {t_back:.1f} s after a hot start (M8: 1 s)"
     print(f"  power_on_cold: first fix {t_fix:.1f} s after a cold power-on (M8 data sheet: 29 s); "
           f"back {t_back:.1f} s after CFG-RST hot (1 s)")
-
-
-def stty_speed(path):
-    out = subprocess.run(["stty", "-F", path, "speed"], capture_output=True, text=True).stdout.strip()
-    return int(out) if out.isdigit() else -1
 
 
 def set_speed(fd, baud):
@@ -833,7 +624,8 @@ def case_jamming(rig):
 CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx, "gpsd_nmea": case_gpsd_nmea,
          "gpsdecode": case_gpsdecode, "serial": case_serial, "net": case_net, "budget": case_budget,
          "jamming": case_jamming, "wallclock": case_wallclock, "cold_start": case_cold_start,
-         "power_on_cold": case_power_on_cold, "nav5": case_nav5}
+         "power_on_cold": case_power_on_cold, "nav5": case_nav5, "px4_faults": case_px4_faults,
+         "ardupilot_faults": case_ardupilot_faults}
 NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_nmea": ["gpsd", "gpspipe"], "gpsdecode": ["gpsdecode"],
          "serial": ["socat", "stty"], "cold_start": ["gpsd", "gpspipe"],
          "power_on_cold": ["gpsd", "gpspipe"]}
@@ -847,6 +639,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--gnssemud", required=True)
     ap.add_argument("--nav", required=True)
+    ap.add_argument("--gnssemu", help="the CLI, for `gnssemu ctl` (the *_faults cases)")
     ap.add_argument("case", choices=sorted(CASES) + ["all"])
     args = ap.parse_args()
     failed = False

@@ -197,6 +197,41 @@ TEST(LinkFaults, LatencyHoldsEpochsInOrderEvenWhenItRampsDown) {
   EXPECT_EQ(r.ch->stats().link_faults.epochs_delayed, 10u);  // latency > 0 in each of the event's 10 epochs
 }
 
+TEST(LinkFaults, LatencyHoldsRepliesBehindTheEpochsOnTheLine) {
+  // A u-blox sends ACKs and poll answers through the same UART as its
+  // epochs: a slow line delays them alike, in the order they entered it.
+  Rig r(nmea_ubx());
+  const std::vector<FaultEvent> events{port_event(LinkFault::kLatency, Param::kLatencyMs, 500.0)};
+  r.ch->set_link_faults(active(events));
+  r.on_epoch(good_fix(1000.0));  // at 100 s: due at 100.5 s
+  r.now = 100.1;
+  r.input(frame(ubx::msg::kMonVer));  // the reply is due at 100.6 s
+  EXPECT_TRUE(r.port->epochs.empty());
+  EXPECT_TRUE(r.port->replies.empty());
+  r.now = 100.5;
+  EXPECT_TRUE(r.ch->check_delayed());
+  EXPECT_EQ(r.port->epochs.size(), 1u);
+  EXPECT_TRUE(r.port->replies.empty());
+  r.now = 100.6;
+  EXPECT_FALSE(r.ch->check_delayed());
+  ASSERT_EQ(r.port->replies.size(), 1u);
+  EXPECT_EQ(message_label(r.port->replies.front()), "MON-VER");
+  // The latency ends with an epoch still on the line: a reply waits behind it.
+  r.now = 101.0;
+  r.on_epoch(good_fix(1001.0));  // due at 101.5 s
+  r.ch->set_link_faults({});
+  r.now = 101.1;
+  r.input(frame(ubx::msg::kMonVer));
+  EXPECT_EQ(r.port->replies.size(), 1u);
+  r.now = 101.5;
+  EXPECT_FALSE(r.ch->check_delayed());
+  EXPECT_EQ(r.port->epochs.size(), 2u);
+  EXPECT_EQ(r.port->replies.size(), 2u);
+  // Nothing held: a reply goes at once.
+  r.input(frame(ubx::msg::kMonVer));
+  EXPECT_EQ(r.port->replies.size(), 3u);
+}
+
 TEST(LinkFaults, FreezeRepeatsTheLastEpochByteForByte) {
   Rig r(nmea_ubx());
   const auto before = run(r, {}, 3);
@@ -386,9 +421,17 @@ TEST(LinkFaults, DelayLineKeepsTheOrderOfItsEpochs) {
   d.pop();
   EXPECT_EQ(d.size(), 10u);
   d.push(20.0, "dd", ends);
-  while (d.size() > 1) d.pop();
+  d.push_reply(19.0, 7, "rr");  // a reply queues behind the epoch before it
+  while (d.size() > 2) d.pop();
   EXPECT_EQ(d.front().bytes, "dd");
   EXPECT_EQ(d.front().ends, std::vector<std::size_t>{2});
+  EXPECT_FALSE(d.front().reply);
+  d.pop();
+  EXPECT_DOUBLE_EQ(d.next_due_s(), 20.0);
+  EXPECT_TRUE(d.front().reply);
+  EXPECT_EQ(d.front().source, 7);
+  EXPECT_EQ(d.front().bytes, "rr");
+  EXPECT_TRUE(d.front().ends.empty());
 }
 
 TEST(LinkFaults, PerEpochPathDoesNotAllocateWithEveryLinkFaultActive) {

@@ -322,6 +322,33 @@ TEST(FaultStage, InjectCountsFromNowAndClearEndsEverything) {
   EXPECT_LE(back_at, 55);
 }
 
+// `ctl clear` switches a spoofer off: the loops it dragged away lose lock and
+// reacquire the authentic signals, epoch for epoch as when it ends by itself.
+TEST(FaultStage, ClearEndsASpooferAsItsOwnEndDoes) {
+  FaultEvent e = make_event(FaultType::kSpoofer, 0.0, kForever_s, static_cast<int>(SpoofMode::kDrag));
+  e.put(Param::kDragSpeedMS, 5.0);
+  FaultEvent ends = e;
+  ends.duration_s = 10.0;
+  Rig cleared(std::vector<FaultEvent>{e}), ended(std::vector<FaultEvent>{ends});
+  for (int t = 0; t < 10; ++t) {
+    cleared.step(t);
+    ended.step(t);
+  }
+  ASSERT_GT(cleared.error(cleared.rx.last_fix()).norm(), 30.0);  // dragged 45 m
+  cleared.rx.faults()->clear();
+  int coasting = 0;
+  for (int t = 10; t < 20; ++t) {
+    const receiver::Fix& a = cleared.step(t);
+    const receiver::Fix& b = ended.step(t);
+    EXPECT_EQ(a.type, b.type) << t;
+    EXPECT_EQ(a.num_used, b.num_used) << t;
+    EXPECT_EQ(a.pos_m, b.pos_m) << t;
+    coasting += a.num_used == 0;
+  }
+  EXPECT_GE(coasting, 1);  // the loops let go
+  EXPECT_LT(cleared.error(cleared.rx.last_fix()).norm(), 10.0);  // and found the authentic signals
+}
+
 // A receiver restart (CFG-RST, a reload) builds a new pipeline; the faults
 // in the world around it go on where they were.
 TEST(FaultStage, AStageHandedToANewPipelineKeepsItsTimeLine) {

@@ -1,0 +1,347 @@
+"""The host side of a u-blox line for the integration tests: UBX framing, a
+timed message stream, and PX4's and ArduPilot's UBX start-up sequences as
+their drivers send them (docs/ports.md §Tests).
+
+Time-outs, from the hosts' sources:
+- PX4 (PX4-GPSDrivers src/ubx.h, UBX_CONFIG_TIMEOUT): 250 ms for every ACK
+  and for the MON-VER reply; a miss restarts the whole configuration
+  (ubx.cpp configure / configureDevicePreV27). CFG-VALSET waits 2000 ms on a
+  UART (an M8 NAKs it; no answer means the same: legacy protocol).
+- ArduPilot (libraries/AP_GPS/AP_GPS_UBLOX.cpp read()): no reply time-out;
+  it sends its next configuration request every 300 ms until the first
+  NAV-PVT (750 ms after) and repeats a poll whose answer did not read back
+  right. A reply later than 300 ms costs a repeated request, not the
+  start-up; no message at all for 4 s (AP_GPS.cpp GPS_TIMEOUT_MS) drops
+  the driver.
+"""
+import os
+import select
+import struct
+import subprocess
+import time
+
+PX4_REPLY_LIMIT_S = 0.25        # UBX_CONFIG_TIMEOUT
+PX4_VALSET_LIMIT_S = 2.0        # waitForAck(UBX_MSG_CFG_VALSET, 2000, ...) on a UART
+ARDUPILOT_REQUEST_S = 0.3       # _delay_time before the first NAV-PVT
+
+
+def frame(cls, mid, payload=b""):
+    body = bytes([cls, mid]) + struct.pack("<H", len(payload)) + payload
+    a = b = 0
+    for x in body:
+        a = (a + x) & 0xFF
+        b = (b + a) & 0xFF
+    return b"\xb5\x62" + body + bytes([a, b])
+
+
+def ack(cls, mid, ok=True):
+    return frame(0x05, 0x01 if ok else 0x00, bytes([cls, mid]))
+
+
+def nmea(body):
+    cs = 0
+    for ch in body.encode():
+        cs ^= ch
+    return f"${body}*{cs:02X}\r\n".encode()
+
+
+def split_stream(data):
+    """(kind, bytes) for every complete UBX frame / NMEA line; rest returned."""
+    out = []
+    i = 0
+    while i < len(data):
+        if data[i:i + 2] == b"\xb5\x62":
+            if i + 6 > len(data):
+                break
+            n = 8 + struct.unpack_from("<H", data, i + 4)[0]
+            if i + n > len(data):
+                break
+            out.append(("ubx", data[i:i + n]))
+            i += n
+        elif data[i:i + 1] == b"$":
+            j = data.find(b"\n", i)
+            if j < 0:
+                break
+            out.append(("nmea", data[i:j + 1]))
+            i = j + 1
+        else:
+            i += 1
+    return out, data[i:]
+
+
+def is_ubx(cls, mid):
+    return lambda k, m: k == "ubx" and m[2] == cls and m[3] == mid
+
+
+def is_ack_for(cls, mid):
+    return lambda k, m: k == "ubx" and m[2] == 0x05 and m[6:8] == bytes([cls, mid])
+
+
+def pvt_fix_ok(k, m):
+    return k == "ubx" and m[2:4] == b"\x01\x07" and m[6 + 21] & 1
+
+
+class Stream:
+    """Reads a fd, splits messages, keeps arrival times. msgs is consumed by
+    wait_for; seen keeps every message for analysis afterwards."""
+
+    def __init__(self, fd):
+        self.fd = fd
+        self.buf = b""
+        self.msgs = []  # (t, kind, bytes)
+        self.seen = []
+
+    def pump(self, timeout):
+        r, _, _ = select.select([self.fd], [], [], max(0.0, timeout))
+        if not r:
+            return
+        try:
+            chunk = os.read(self.fd, 65536)
+        except BlockingIOError:
+            return
+        t = time.monotonic()
+        msgs, self.buf = split_stream(self.buf + chunk)
+        self.msgs += [(t, k, m) for k, m in msgs]
+        self.seen += [(t, k, m) for k, m in msgs]
+
+    def collect(self, seconds):
+        """Everything that arrives in the next seconds (msgs cleared first)."""
+        self.msgs.clear()
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            self.pump(end - time.monotonic())
+        return list(self.msgs)
+
+    def wait_for(self, pred, limit_s, what):
+        deadline = time.monotonic() + limit_s
+        while True:
+            for idx, (t, k, m) in enumerate(self.msgs):
+                if pred(k, m):
+                    del self.msgs[:idx + 1]
+                    return t, m
+            self.msgs.clear()
+            if time.monotonic() > deadline:
+                raise AssertionError(f"no {what} within {limit_s} s")
+            self.pump(deadline - time.monotonic())
+
+    def frame_of(self, cls, mid, limit_s=2.0):
+        return self.wait_for(is_ubx(cls, mid), limit_s, f"UBX {cls:02X}-{mid:02X}")[1]
+
+
+def send(fd, data):
+    os.write(fd, data)
+
+
+def stty_speed(path):
+    out = subprocess.run(["stty", "-F", path, "speed"], capture_output=True, text=True).stdout.strip()
+    return int(out) if out.isdigit() else -1
+
+
+class Replies:
+    """How long each reply took: (what, seconds) in order."""
+
+    def __init__(self):
+        self.times = []
+
+    def timed(self, s, fd, data, pred, limit_s, what):
+        t0 = time.monotonic()
+        send(fd, data)
+        t, m = s.wait_for(pred, limit_s, what)
+        self.times.append((what, t - t0))
+        return m
+
+    def worst(self):
+        return max(self.times, key=lambda x: x[1])
+
+    def summary(self):
+        what, dt = self.worst()
+        return f"{len(self.times)} replies, slowest {dt * 1000:.1f} ms ({what})"
+
+
+# --- PX4 ---------------------------------------------------------------------
+
+def mon_ver_m8():
+    pad = lambda txt, n: txt.encode().ljust(n, b"\0")
+    return frame(0x0A, 0x04, pad("ROM CORE 3.01 (107888)", 30) + pad("00080000", 10) + pad("FWVER=SPG 3.01", 30) +
+                 pad("PROTVER=18.00", 30) + pad("GPS;GLO;GAL;BDS", 30) + pad("SBAS;IMES;QZSS", 30))
+
+
+def px4_startup(s, fd, after_mon_ver=None):
+    """PX4's legacy (protocol < 27) UART start-up, byte for byte: CFG-VALSET
+    -> NAK, CFG-PRT at the current baud (UBX only) -> ACK, MON-VER -> the
+    M8's reply, then CFG-RATE 200 ms, CFG-NAV5 airborne <2g, CFG-MSG
+    NAV-PVT/STATUS/DOP/SVINFO (5)/MON-HW (5) -> ACK each; every reply within
+    PX4's time-out. after_mon_ver(): called once PX4 knows the board (a fault
+    injected while it configures). Returns the Replies."""
+    r = Replies()
+    m = r.timed(s, fd, frame(0x06, 0x8A, bytes([0, 1, 0, 0]) + struct.pack("<II", 0x40520001, 115200)),
+                is_ack_for(0x06, 0x8A), PX4_VALSET_LIMIT_S, "reply to CFG-VALSET")
+    assert m == ack(0x06, 0x8A, False), f"VALSET: want NAK, got {m.hex()}"
+    prt = struct.pack("<BBHIIHHHH", 1, 0, 0, 0x08D0, 9600, 0x0001, 0x0001, 0, 0)
+    m = r.timed(s, fd, frame(0x06, 0x00, prt), is_ack_for(0x06, 0x00), 1.0, "reply to CFG-PRT")
+    assert m == ack(0x06, 0x00), f"CFG-PRT: got {m.hex()}"
+    m = r.timed(s, fd, frame(0x0A, 0x04), is_ubx(0x0A, 0x04), 1.0, "MON-VER")
+    assert m == mon_ver_m8(), f"MON-VER: {m!r}"
+    if after_mon_ver:
+        after_mon_ver()
+    steps = [(0x06, 0x08, struct.pack("<HHH", 200, 1, 0))]
+    nav5 = bytearray(36)
+    struct.pack_into("<HBB", nav5, 0, 0x0005, 7, 3)
+    steps.append((0x06, 0x24, bytes(nav5)))
+    for cls, mid, rate in ((0x01, 0x07, 1), (0x01, 0x03, 1), (0x01, 0x04, 1), (0x01, 0x30, 5), (0x0A, 0x09, 5)):
+        steps.append((0x06, 0x01, bytes([cls, mid, rate])))
+    for cls, mid, payload in steps:
+        what = f"reply to {cls:02X}-{mid:02X} {payload.hex()}"
+        m = r.timed(s, fd, frame(cls, mid, payload), is_ack_for(cls, mid), 1.0, what)
+        assert m == ack(cls, mid), f"{cls:02X}-{mid:02X} {payload.hex()}: got {m.hex()}"
+    late = [(w, dt) for w, dt in r.times[1:] if dt >= PX4_REPLY_LIMIT_S]
+    assert not late, f"replies after PX4's 250 ms (it restarts its configuration): {late}"
+    return r
+
+
+def px4_rates(s, seconds=3.0, fix_limit_s=4.0):
+    """After PX4's start-up: the first gnssFixOK within fix_limit_s, then
+    NAV-PVT at 5 Hz (iTOW on 200 ms steps and boundaries) with gnssFixOK and
+    3D, no NMEA, NAV-STATUS and NAV-DOP every epoch, NAV-SVINFO and MON-HW
+    every 5th. Returns the messages of those seconds."""
+    s.wait_for(pvt_fix_ok, fix_limit_s, "the first gnssFixOK")
+    msgs = s.collect(seconds)
+    pvts = [m for _, k, m in msgs if k == "ubx" and m[2:4] == b"\x01\x07"]
+    nmeas = [m for _, k, m in msgs if k == "nmea"]
+    assert not nmeas, f"NMEA still sent after CFG-PRT out=UBX: {nmeas[:2]}"
+    want = 5 * seconds
+    assert len(pvts) >= want - 3, f"{len(pvts)} NAV-PVT in {seconds} s, want ~{want:.0f} at 5 Hz"
+    itows = [struct.unpack_from("<I", m, 6)[0] for m in pvts]
+    steps_ms = {b - a for a, b in zip(itows, itows[1:])}
+    assert steps_ms == {200}, f"iTOW steps {sorted(steps_ms)} ms, want 200"
+    assert all(itow % 200 == 0 for itow in itows), "epochs not on 200 ms boundaries"
+    flags = [m[6 + 21] for m in pvts]
+    fix_types = [m[6 + 20] for m in pvts]
+    assert all(f & 1 for f in flags) and all(ft == 3 for ft in fix_types), f"flags {flags} fixType {fix_types}"
+    count = lambda c, i: sum(1 for _, k, m in msgs if k == "ubx" and m[2] == c and m[3] == i)
+    for name, c, i in (("NAV-STATUS", 1, 3), ("NAV-DOP", 1, 4)):
+        assert abs(count(c, i) - len(pvts)) <= 1, f"{count(c, i)} {name} for {len(pvts)} NAV-PVT (rate 1)"
+    for name, c, i in (("NAV-SVINFO", 1, 0x30), ("MON-HW", 0x0A, 9)):
+        assert abs(count(c, i) - len(pvts) / 5) <= 1, f"{count(c, i)} {name} for {len(pvts)} NAV-PVT (rate 5)"
+    return msgs
+
+
+# --- ArduPilot ---------------------------------------------------------------
+
+def poll_cfg(s, fd, mid, payload=b"", replies=None, limit_s=1.0):
+    """CFG poll: the data frame, then ACK-ACK (data first)."""
+    t0 = time.monotonic()
+    send(fd, frame(0x06, mid, payload))
+    t, data = s.wait_for(is_ubx(0x06, mid), limit_s, f"CFG {mid:02X} poll answer")
+    a = s.wait_for(is_ack_for(0x06, mid), limit_s, f"ACK after CFG {mid:02X} poll")[1]
+    assert a == ack(0x06, mid), a.hex()
+    if replies is not None:
+        replies.times.append((f"CFG {mid:02X} poll {payload.hex()}", t - t0))
+    return data[6:-2]
+
+
+def set_cfg(s, fd, mid, payload, replies=None, limit_s=1.0):
+    t0 = time.monotonic()
+    send(fd, frame(0x06, mid, payload))
+    t, a = s.wait_for(is_ack_for(0x06, mid), limit_s, f"ACK of CFG {mid:02X} set")
+    assert a == ack(0x06, mid), f"CFG {mid:02X} set: {a.hex()}"
+    if replies is not None:
+        replies.times.append((f"CFG {mid:02X} set", t - t0))
+
+
+ARDUPILOT_RATES = {(0x01, 0x07): 1, (0x01, 0x03): 1, (0x01, 0x06): 1, (0x01, 0x12): 1, (0x01, 0x04): 2, (0x0A, 0x09): 2}
+
+
+def ardupilot_startup(s, fd, path, after_msg_rates=None, fix_limit_s=4.0):
+    """ArduPilot's probe and configuration: $PUBX,41 (UBX+NMEA+RTCM3 in, UBX
+    out, 230400; the pty's termios follows), then poll / set / poll-compare
+    of CFG-MSG (NAV-PVT/STATUS/SOL/VELNED 1, NAV-DOP/MON-HW 2), CFG-RATE
+    200 ms, CFG-PRT, CFG-NAV5 airborne <4g, CFG-GNSS, CFG-SBAS off, MON-VER
+    (hwVersion 00080000) and its NAV-SVINFO poll (chipGen 4 = M8).
+    after_msg_rates(): called once the message rates are set (a fault
+    injected while it configures). The NAV-SVINFO poll waits for the first
+    gnssFixOK (fix_limit_s). Returns (Replies, NAV-SVINFO frame)."""
+    r = Replies()
+    send(fd, nmea("PUBX,41,1,0023,0001,230400,0"))
+    deadline = time.monotonic() + 3
+    while stty_speed(path) != 230400:
+        assert time.monotonic() < deadline, f"pty termios {stty_speed(path)} after $PUBX,41"
+        time.sleep(0.05)
+    for (cls, mid), rate in ARDUPILOT_RATES.items():
+        before = poll_cfg(s, fd, 0x01, bytes([cls, mid]), r)
+        assert len(before) == 8 and before[:2] == bytes([cls, mid]) and before[3] == 0, before.hex()
+        set_cfg(s, fd, 0x01, bytes([cls, mid, rate]), r)
+        after = poll_cfg(s, fd, 0x01, bytes([cls, mid]), r)
+        assert after[3] == rate, f"CFG-MSG {cls:02X}-{mid:02X} read back UART1 rate {after[3]}, set {rate}"
+    if after_msg_rates:
+        after_msg_rates()
+    rate = poll_cfg(s, fd, 0x08, b"", r)
+    assert len(rate) == 6 and struct.unpack("<HHH", rate) == (1000, 1, 1), rate.hex()
+    new_rate = struct.pack("<HHH", 200, 1, 0)
+    set_cfg(s, fd, 0x08, new_rate, r)
+    assert poll_cfg(s, fd, 0x08, b"", r) == new_rate
+    prt = poll_cfg(s, fd, 0x00, bytes([1]), r)
+    assert len(prt) == 20 and prt[0] == 1, prt.hex()
+    assert struct.unpack_from("<IHH", prt, 8) == (230400, 0x0023, 0x0001), prt.hex()
+    nav5 = poll_cfg(s, fd, 0x24, b"", r)
+    assert len(nav5) == 36, len(nav5)
+    new_nav5 = bytearray(nav5)
+    struct.pack_into("<HBB", new_nav5, 0, 0x0005, 8, 2)
+    set_cfg(s, fd, 0x24, bytes(new_nav5), r)
+    back = poll_cfg(s, fd, 0x24, b"", r)
+    assert back[2:4] == bytes([8, 2]), f"NAV5 read back dyn {back[2]} fix {back[3]}"
+    gnss = poll_cfg(s, fd, 0x3E, b"", r)
+    assert len(gnss) == 4 + 8 * gnss[3] and gnss[3] >= 1, gnss.hex()
+    sbas = poll_cfg(s, fd, 0x16, b"", r)
+    assert len(sbas) == 8, sbas.hex()
+    new_sbas = bytes([0, 3, 3, 0]) + struct.pack("<I", 0)  # SBAS disabled
+    set_cfg(s, fd, 0x16, new_sbas, r)
+    assert poll_cfg(s, fd, 0x16, b"", r) == new_sbas
+    mv = r.timed(s, fd, frame(0x0A, 0x04), is_ubx(0x0A, 0x04), 2.0, "MON-VER")
+    assert mv[6 + 30:6 + 38] == b"00080000", mv[36:46]
+    # Satellites are listed once the receiver has had an epoch.
+    s.wait_for(pvt_fix_ok, fix_limit_s, "the first gnssFixOK")
+    sv = r.timed(s, fd, frame(0x01, 0x30), is_ubx(0x01, 0x30), 2.0, "NAV-SVINFO poll")
+    num_ch = sv[6 + 4]
+    assert len(sv) == 8 + 8 + 12 * num_ch and num_ch >= 4, f"NAV-SVINFO {len(sv)} bytes, numCh {num_ch}"
+    assert sv[6 + 5] & 7 == 4, f"chipGen {sv[6 + 5] & 7}, want 4 (M8)"
+    return r, sv
+
+
+def ardupilot_rates(s, seconds=2.0):
+    """After ArduPilot's configuration: NAV-PVT at 5 Hz with gnssFixOK and
+    3D, the other messages at the rates it set (NAV-DOP and MON-HW every 2nd
+    epoch), no NMEA. Returns the messages of those seconds."""
+    msgs = s.collect(seconds)
+    count = lambda c, i: sum(1 for _, k, m in msgs if k == "ubx" and m[2] == c and m[3] == i)
+    pvts = [m for _, k, m in msgs if k == "ubx" and m[2:4] == b"\x01\x07"]
+    assert pvts and all(m[6 + 21] & 1 and m[6 + 20] == 3 for m in pvts), "NAV-PVT without gnssFixOK / 3D fix"
+    pvt = count(0x01, 0x07)
+    want = 5 * seconds
+    assert want - 2 <= pvt <= want + 1, f"{pvt} NAV-PVT in {seconds} s at 5 Hz"
+    assert not any(k == "nmea" for _, k, _ in msgs), "NMEA sent after $PUBX,41 out=UBX"
+    for (c, i), rate in ARDUPILOT_RATES.items():
+        assert abs(count(c, i) - pvt / rate) <= 1.5, f"{count(c, i)} of {c:02X}-{i:02X} for {pvt} NAV-PVT (rate {rate})"
+    return msgs
+
+
+# --- reading what the host got -----------------------------------------------
+
+def svinfo_channels(m):
+    """NAV-SVINFO channels: [(svid, used, quality, cno_dbhz)]."""
+    n = m[6 + 4]
+    out = []
+    for i in range(n):
+        chn, svid, flags, quality, cno = struct.unpack_from("<BBBBB", m, 6 + 8 + 12 * i)
+        out.append((svid, bool(flags & 1), quality & 0x0F, cno))
+    return out
+
+
+def mon_hw_jam(m):
+    """MON-HW (agcCnt, jamInd)."""
+    return struct.unpack_from("<H", m, 6 + 18)[0], m[6 + 45]
+
+
+def nav_status_spoof(m):
+    """NAV-STATUS spoofDetState (flags2 bits 3-4)."""
+    return (m[6 + 7] >> 3) & 3
