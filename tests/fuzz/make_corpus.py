@@ -11,6 +11,7 @@ import math
 import pathlib
 import re
 import struct
+import sys
 
 HERE = pathlib.Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
@@ -62,13 +63,8 @@ def truth_corpus():
 
 # --- host input to the emulated u-blox (docs/ubx.md) -------------------------
 
-def ubx(cls, mid, payload=b""):
-    body = bytes([cls, mid]) + struct.pack("<H", len(payload)) + payload
-    a = b = 0
-    for v in body:
-        a = (a + v) & 0xFF
-        b = (b + a) & 0xFF
-    return b"\xB5\x62" + body + bytes([a, b])
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "integration"))
+from ubx_host import frame as ubx  # noqa: E402  (one UBX framer for hosts and seeds)
 
 
 def nmea(body):
