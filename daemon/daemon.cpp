@@ -377,7 +377,7 @@ void Daemon::emit_epoch(const time::GpsTime& t, const world::Truth& truth) {
   if (type != last_fix_type_ || truth.valid != last_truth_valid_) {
     spdlog::info("epoch {}: truth {}, fix {} with {} satellites (PDOP {:.1f})", gps_text(t),
                  truth.valid ? "valid" : "none",
-                 type == 3 ? "3D" : type == 2 ? "2D" : type == 1 ? "dead reckoning" : "none", fix.num_used,
+                 receiver::fix_type_name(fix.type), fix.num_used,
                  fix.dop.pdop);
     last_fix_type_ = type;
     last_truth_valid_ = truth.valid;

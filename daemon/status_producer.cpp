@@ -18,16 +18,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string_view fix_type_name(receiver::FixType t) noexcept {
-  switch (t) {
-    case receiver::FixType::k3D: return "3D";
-    case receiver::FixType::k2D: return "2D";
-    case receiver::FixType::kDeadReckoning: return "DR";
-    case receiver::FixType::kNone: break;
-  }
-  return "none";
-}
-
 
 }  // namespace
 
@@ -177,7 +167,7 @@ void StatusProducer::write_json(std::string& out, std::size_t history_max) const
   w.key("fix");
   w.begin_object();
   w.field_int("type", static_cast<int>(fix_.type));
-  w.field_string("type_name", fix_type_name(fix_.type));
+  w.field_string("type_name", receiver::fix_type_name(fix_.type));
   w.field_bool("time_valid", fix_.time_valid);
   auto fix_number = [&](std::string_view name, double v, int decimals) { w.field(name, has_fix ? v : kNaN, decimals); };
   fix_number("lat_deg", fix_.lla.lat_rad * kRadToDeg, 8);

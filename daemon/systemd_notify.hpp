@@ -16,11 +16,6 @@ class SystemdNotify {
 public:
   explicit SystemdNotify(boost::asio::io_context& io);
 
-  /// NOTIFY_SOCKET is set.
-  bool active() const noexcept { return active_; }
-  /// Watchdog interval systemd asked for (WATCHDOG_USEC), s; 0: none.
-  double watchdog_s() const noexcept { return watchdog_s_; }
-
   /// READY=1 with a status line; starts the watchdog pings.
   void ready(const std::string& status);
   void status(const std::string& status);
@@ -31,8 +26,8 @@ private:
   void send(const std::string& state);
   void ping();
 
-  bool active_ = false;
-  double watchdog_s_ = 0.0;
+  bool active_ = false;     ///< NOTIFY_SOCKET is set
+  double watchdog_s_ = 0.0;  ///< WATCHDOG_USEC as s; 0: none
   boost::asio::steady_timer timer_;
 };
 

@@ -3,6 +3,7 @@
 // only this, so satellites used, DOP, accuracy and C/N0 agree across outputs.
 #include <array>
 #include <cstdint>
+#include <string_view>
 
 #include "core/common/constants.hpp"
 #include "core/common/vec3.hpp"
@@ -14,11 +15,23 @@ enum class FixType : uint8_t {
   kNone = 0,  ///< no position (too few satellites, bad geometry, no antenna)
   /// The navigation filter's prediction alone (too few satellites for a few
   /// seconds): the position is extrapolated, the accuracies grow, nothing is
-  /// used; u-blox "dead reckoning only" (NAV-PVT fixType 1, GGA quality 6).
+  /// used; reported as u-blox "dead reckoning only" (NAV-PVT fixType 1,
+  /// GGA quality 6) or as no fix (NavFilterConfig::coast_report).
   kDeadReckoning = 1,
   k2D = 2,    ///< horizontal only; height held
   k3D = 3,
 };
+
+/// Short name for logs and the status page: "none", "DR", "2D", "3D".
+constexpr std::string_view fix_type_name(FixType t) noexcept {
+  switch (t) {
+    case FixType::k3D: return "3D";
+    case FixType::k2D: return "2D";
+    case FixType::kDeadReckoning: return "DR";
+    case FixType::kNone: break;
+  }
+  return "none";
+}
 
 /// A position from the satellites (2D or 3D), not extrapolated: what error
 /// statistics count as a fix.
