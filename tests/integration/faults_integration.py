@@ -14,6 +14,8 @@ import subprocess
 import sys
 import tempfile
 
+from ubx_host import split_stream
+
 CONFIG = """[origin]
 lat_deg = 48.8738
 lon_deg = 2.295
@@ -58,14 +60,10 @@ power_advantage_db = 10
 
 
 def frames(data):
-    i = 0
-    while i + 8 <= len(data):
-        if data[i] != 0xB5 or data[i + 1] != 0x62:
-            i += 1
-            continue
-        cls, mid, n = data[i + 2], data[i + 3], struct.unpack_from("<H", data, i + 4)[0]
-        yield cls, mid, data[i + 6:i + 6 + n]
-        i += 8 + n
+    """(class, id, payload) of every UBX frame in data."""
+    for kind, m in split_stream(data)[0]:
+        if kind == "ubx":
+            yield m[2], m[3], m[6:-2]
 
 
 def main():
