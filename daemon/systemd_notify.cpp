@@ -43,7 +43,6 @@ void SystemdNotify::reloading() {
 }
 
 void SystemdNotify::stopping() {
-  boost::system::error_code ec;
   timer_.cancel();
   send("STOPPING=1");
 }
