@@ -76,10 +76,7 @@ void Daemon::reload() noexcept {
     }
     if (plan.log_level) spdlog::set_level(spdlog::level::from_str(loaded.log.level));
     if (plan.truth) {
-      cfg_.truth.allow = loaded.truth.allow;
-      cfg_.truth.vehicle = loaded.truth.vehicle;
-      cfg_.truth.timeout_s = loaded.truth.timeout_s;
-      cfg_.truth.max_extrapolation_s = loaded.truth.max_extrapolation_s;
+      take_live_truth(cfg_.truth, loaded.truth);
       allow_ = TruthAllowList(cfg_.truth.allow);
       router_.set_params(TrackParams{cfg_.truth.timeout_s, cfg_.truth.max_extrapolation_s});
       if (cfg_.truth.vehicle != router_.wanted_vehicle()) {

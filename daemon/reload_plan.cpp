@@ -27,12 +27,7 @@ ReloadPlan plan_reload(const Config& running, const Config& loaded) {
     m.world = l.world;
   });
   p.scene = differs(running, loaded, [](Config& m, const Config& l) { m.scene = l.scene; });
-  p.truth = differs(running, loaded, [](Config& m, const Config& l) {
-    m.truth.allow = l.truth.allow;
-    m.truth.vehicle = l.truth.vehicle;
-    m.truth.timeout_s = l.truth.timeout_s;
-    m.truth.max_extrapolation_s = l.truth.max_extrapolation_s;
-  });
+  p.truth = differs(running, loaded, [](Config& m, const Config& l) { take_live_truth(m.truth, l.truth); });
 
   auto restart_if = [&](const char* what, auto set) {
     if (differs(running, loaded, set)) p.need_restart.emplace_back(what);

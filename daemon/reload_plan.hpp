@@ -35,4 +35,13 @@ struct ReloadPlan {
 /// Compares the running configuration with the one just loaded.
 ReloadPlan plan_reload(const config::Config& running, const config::Config& loaded);
 
+/// The [truth] settings a reload applies while running (allow-list, vehicle,
+/// timeouts): copied from loaded into running. Bind address and port need a restart.
+inline void take_live_truth(config::TruthInputConfig& running, const config::TruthInputConfig& loaded) {
+  running.allow = loaded.allow;
+  running.vehicle = loaded.vehicle;
+  running.timeout_s = loaded.timeout_s;
+  running.max_extrapolation_s = loaded.max_extrapolation_s;
+}
+
 }  // namespace gnssemu::daemon
