@@ -354,7 +354,7 @@ void FaultStage::apply(const time::GpsTime& t, const world::Truth& truth, world:
     const double p_w = jammer_power_w(e, e.fraction_at(now), truth, &cw);
     j_w += p_w;
     if (cw) cw_w += p_w;
-    i0_w_hz += p_w / (spectral_factor(static_cast<JammerKind>(e.mode)) * kCaChipRate_hz);
+    i0_w_hz += interference_density_w_hz_of_w(p_w, static_cast<JammerKind>(e.mode));
   }
   if (j_w > 0.0) {
     effects_.jammer_dbw = 10.0 * std::log10(j_w);

@@ -19,8 +19,12 @@ double jammer_power_dbw(double eirp_dbw, double distance_m, double gain_dbi) noe
   return eirp_dbw - signal::free_space_path_loss_db(distance_m > 0.1 ? distance_m : 0.1) + gain_dbi;
 }
 
+double interference_density_w_hz_of_w(double j_w, JammerKind kind) noexcept {
+  return j_w / (spectral_factor(kind) * kCaChipRate_hz);
+}
+
 double interference_density_w_hz(double j_dbw, JammerKind kind) noexcept {
-  return std::pow(10.0, j_dbw / 10.0) / (spectral_factor(kind) * kCaChipRate_hz);
+  return interference_density_w_hz_of_w(std::pow(10.0, j_dbw / 10.0), kind);
 }
 
 double effective_cn0_dbhz(double cn0_dbhz, double n0_dbw_hz, double i0_w_hz) noexcept {

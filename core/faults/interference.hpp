@@ -28,7 +28,9 @@ double spectral_factor(JammerKind kind) noexcept;
 /// > 0, free-space loss at L1) and receive gain toward it (dBi).
 double jammer_power_dbw(double eirp_dbw, double distance_m, double gain_dbi) noexcept;
 
-/// Interference noise density I0 = J / (Q Rc), W/Hz, for J in dBW.
+/// Interference noise density I0 = J / (Q Rc), W/Hz, for J in W (>= 0).
+double interference_density_w_hz_of_w(double j_w, JammerKind kind) noexcept;
+/// The same for J in dBW.
 double interference_density_w_hz(double j_dbw, JammerKind kind) noexcept;
 
 /// C/N0 after interference: c/n0 (dB-Hz) with the thermal floor n0 (dBW/Hz)
