@@ -22,6 +22,7 @@
 
 #include "core/common/error.hpp"
 #include "daemon/control_server.hpp"
+#include "io_thread_test.hpp"
 
 namespace gnssemu::daemon {
 namespace {
@@ -63,28 +64,18 @@ std::string read_line(int fd) {
   return "";
 }
 
-class ControlServerTest : public ::testing::Test {
+class ControlServerTest : public test::IoThreadTest {
 protected:
-  template <class F>
-  auto on_io(F f) {
-    std::packaged_task<decltype(f())()> task(std::move(f));
-    auto fut = task.get_future();
-    asio::post(io_, [&task] { task(); });
-    return fut.get();
-  }
   void SetUp() override {
     dir_ = fs::temp_directory_path() / ("gnssemu-ctl-" + std::to_string(::getpid()) + "-" +
                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_);
     path_ = (dir_ / "c.sock").string();
-    work_.emplace(asio::make_work_guard(io_));
-    thread_ = std::thread([this] { io_.run(); });
+    start_io();
   }
   void TearDown() override {
     if (server_) on_io([this] { server_->stop(); return 0; });
-    work_.reset();
-    io_.stop();
-    thread_.join();
+    stop_io();
     server_.reset();
     fs::remove_all(dir_);
   }
@@ -104,9 +95,6 @@ protected:
     });
   }
 
-  asio::io_context io_;
-  std::optional<asio::executor_work_guard<asio::io_context::executor_type>> work_;
-  std::thread thread_;
   std::unique_ptr<ControlServer> server_;
   fs::path dir_;
   std::string path_;

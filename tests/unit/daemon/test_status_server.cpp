@@ -18,6 +18,7 @@
 #include "core/common/constants.hpp"
 #include "core/geo/geodesy.hpp"
 #include "daemon/status_server.hpp"
+#include "io_thread_test.hpp"
 
 namespace gnssemu::daemon {
 namespace {
@@ -25,16 +26,8 @@ namespace {
 namespace asio = boost::asio;
 using tcp = asio::ip::tcp;
 
-class ServerFixture : public ::testing::Test {
+class ServerFixture : public test::IoThreadTest {
 protected:
-  /// Run f on the server's thread and wait for it.
-  template <class F>
-  auto on_io(F f) {
-    std::packaged_task<decltype(f())()> task(std::move(f));
-    auto fut = task.get_future();
-    asio::post(io_, [&task] { task(); });
-    return fut.get();
-  }
   void SetUp() override {
     receiver::Fix f;
     f.t = time::GpsTime(2190, 1000.0);
@@ -50,14 +43,11 @@ protected:
     server_ = std::make_unique<StatusServer>(io_, producer_);
     server_->start("127.0.0.1", 0);
     port_ = server_->local_endpoint().port();
-    work_.emplace(asio::make_work_guard(io_));
-    thread_ = std::thread([this] { io_.run(); });
+    start_io();
   }
   void TearDown() override {
     on_io([this] { server_->stop(); });
-    work_.reset();
-    io_.stop();
-    thread_.join();
+    stop_io();
   }
   tcp::socket connect() {
     tcp::socket s(client_io_);
@@ -93,9 +83,7 @@ protected:
     return p == std::string::npos ? std::string() : response.substr(p + 4);
   }
 
-  asio::io_context io_, client_io_;
-  std::optional<asio::executor_work_guard<asio::io_context::executor_type>> work_;
-  std::thread thread_;
+  asio::io_context client_io_;
   receiver::Fix fix_;
   world::Truth truth_;
   StatusProducer producer_{StatusSettings{}};
