@@ -15,6 +15,10 @@ protocol::ubx::OutputSetup output_setup(const OutputPortConfig& port) {
   return o;
 }
 
+bool coast_as_no_fix(const Config& config) {
+  return config.receiver.filter.coast_report == receiver::CoastReport::kNoFix;
+}
+
 protocol::ubx::DeviceSetup device_setup(const Config& config) {
   protocol::ubx::DeviceSetup s;
   s.nav_period_s = 1.0 / config.rate_hz;
@@ -22,7 +26,7 @@ protocol::ubx::DeviceSetup device_setup(const Config& config) {
   s.dyn_model = static_cast<std::uint8_t>(f.dynamic_model);
   s.static_hold_thresh_cm_s = static_cast<std::uint8_t>(std::lround(f.static_hold_speed_m_s * 100.0));
   s.static_hold_max_dist_m = static_cast<std::uint16_t>(std::lround(f.static_hold_max_dist_m));
-  s.coast_as_no_fix = f.coast_report == receiver::CoastReport::kNoFix;
+  s.coast_as_no_fix = coast_as_no_fix(config);
   for (const OutputPortConfig& p : config.outputs) s.outputs.push_back(output_setup(p));
   return s;
 }

@@ -11,6 +11,10 @@ namespace gnssemu::config {
 /// NMEA version and course threshold.
 protocol::ubx::OutputSetup output_setup(const OutputPortConfig& port);
 
+/// Whether the chip flags the receiver's extrapolation as no fix
+/// ([receiver.nav] coast_report; DeviceSetup::coast_as_no_fix).
+bool coast_as_no_fix(const Config& config);
+
 /// The chip behind config's outputs, at epoch period 1 / rate_hz.
 protocol::ubx::DeviceSetup device_setup(const Config& config);
 

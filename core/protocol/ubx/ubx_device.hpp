@@ -169,6 +169,8 @@ public:
   /// save_config() afterwards so CFG-CFG load and resets restore them.
   DeviceConfig& config() noexcept { return current_; }
   const DeviceConfig& config() const noexcept { return current_; }
+  /// DeviceSetup::coast_as_no_fix changed (a reload of [receiver.nav]).
+  void set_coast_as_no_fix(bool on) noexcept { coast_as_no_fix_ = on; }
   /// The saved (BBR/flash) configuration loaded at start-up and reset.
   const DeviceConfig& saved() const noexcept { return saved_; }
   void save_config() { saved_ = current_; }

@@ -164,6 +164,12 @@ TEST(UbxReportedFix, CoastingIsNoFixWithTheExtrapolatedPositionByDefault) {
   EXPECT_EQ(payload<wire::NavPvt>(a, msg::kNavPvt).fixType, 1);
   EXPECT_EQ(field(a, "GGA", 6), "6");
   EXPECT_EQ(field(a, "RMC", 12), "E");
+
+  // A reload of [receiver.nav] coast_report reaches the running chip.
+  d.set_coast_as_no_fix(false);
+  EXPECT_EQ(compose(d, std::nullopt), a);
+  adr.set_coast_as_no_fix(true);
+  EXPECT_EQ(compose(adr, std::nullopt), s);
 }
 
 TEST(UbxReportedFix, OnlyThePortAskedChanges) {
