@@ -15,6 +15,7 @@
 #include "core/orbit/constellation.hpp"
 #include "core/common/violation.hpp"
 #include "core/protocol/nmea/nmea_encoder.hpp"
+#include "core/protocol/ubx/ubx_generation.hpp"
 #include "core/protocol/ubx/ubx_ports.hpp"
 #include "core/pipeline/receiver_profile.hpp"
 #include "core/receiver/receiver_config.hpp"
@@ -188,6 +189,8 @@ struct Config {
   TimeConfig time;
   world::WorldConfig world;       ///< what happens to the signals ([receiver.errors], [receiver.clock], [atmosphere], [signal] ...)
   receiver::ReceiverConfig receiver;  ///< the receiver's own settings ([receiver], [receiver.solver], [receiver.corrections] ...)
+  /// [receiver] generation: the u-blox chip the outputs present (MON-VER, CFG-VAL*, MON-RF)
+  protocol::ubx::Generation generation = protocol::ubx::Generation::kM8;
   /// [receiver] profile: the profile whose values world and receiver started from
   std::optional<pipeline::ReceiverProfile> profile;
   TruthInputConfig truth;

@@ -31,6 +31,8 @@ constexpr Choice<atmosphere::TropoCorrection> kTropoCorrections[] = {
     {"saastamoinen_cosz", atmosphere::TropoCorrection::kSaastamoinenCosZ},
     {"none", atmosphere::TropoCorrection::kNone}};
 
+constexpr Choice<protocol::ubx::Generation> kGenerations[] = {{"m8", protocol::ubx::Generation::kM8},
+                                                               {"m9", protocol::ubx::Generation::kM9}};
 constexpr Choice<receiver::NavFilterType> kFilterTypes[] = {{"kalman", receiver::NavFilterType::kKalman},
                                                            {"none", receiver::NavFilterType::kNone}};
 constexpr Choice<receiver::StartMode> kStartModes[] = {
@@ -356,6 +358,10 @@ constexpr Field<Config> kReceiverFields[] = {
                                                          "above this PDOP the fix is reported as none"),
     integer<&Config::receiver, &ReceiverConfig::max_channels>("max_channels", Rr::max_channels,
                                                               "satellites tracked at most (highest first)"),
+    either<kGenerations, &Config::generation>(
+        "generation", "the u-blox chip every output presents (docs/ubx.md \"Generations\"): `m8` a NEO-M8N "
+                      "(protocol 18, legacy CFG messages only, MON-HW), `m9` a NEO-M9N (protocol 32.01: CFG-VALSET/"
+                      "VALGET/VALDEL beside the legacy CFG messages, MON-RF, SEC-SIG; no NAV-SVINFO)"),
     either<kFilterTypes, &Config::receiver, &ReceiverConfig::filter, &NavFilterConfig::type>(
         "filter", "`kalman`: the navigation filter of a u-blox M8 (position, velocity, clock; `[receiver.nav]`); "
                   "`none`: a snapshot least-squares fix on raw code every epoch"),

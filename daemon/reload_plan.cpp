@@ -39,6 +39,7 @@ ReloadPlan plan_reload(const Config& running, const Config& loaded) {
   });
   restart_if("[time]", [](Config& m, const Config& l) { m.time = l.time; });
   restart_if("rate_hz", [](Config& m, const Config& l) { m.rate_hz = l.rate_hz; });
+  restart_if("[receiver] generation", [](Config& m, const Config& l) { m.generation = l.generation; });
   restart_if("[truth] bind/port", [](Config& m, const Config& l) {
     m.truth.bind_address = l.truth.bind_address;
     m.truth.port = l.truth.port;

@@ -87,7 +87,7 @@ InputResult Device::handle_ubx(Link at, const FrameView& frame, double now_s, st
   const bool cfg = frame.id.cls == cls::kCfg;
   if (cfg) before_ = current_;
   HandlerContext ctx{current_, saved_, defaults_, at.output, at.port_id, out, encoder_, last_fix_, info_,
-                     ack_unknown_cfg_, std::nullopt};
+                     ack_unknown_cfg_, generation(), std::nullopt};
   const Handler handle = find_handler(frame.id);
   r.reply = handle != nullptr ? handle(ctx, frame) : Reply::kNone;
   if (ctx.reset) {

@@ -57,6 +57,8 @@ struct OutputSetup {
 };
 
 struct DeviceSetup {
+  /// The chip's identity; its generation decides the configuration interface
+  /// and the output messages (ubx_generation.hpp). mon_ver_of(g) for a factory chip.
   MonVerConfig mon_ver;
   /// M8 firmware NAKs CFG ids it does not implement (that is how PX4 tells an
   /// M8 from an M9 with CFG-VALSET). true ACKs them instead (lenient hosts).
@@ -180,6 +182,7 @@ public:
   std::uint8_t message_rate(Link at, MsgId id) const noexcept { return current_.message_rate(column(at), id); }
 
   const UbxEncoder& encoder() const noexcept { return encoder_; }
+  Generation generation() const noexcept { return encoder_.mon_ver_config().generation; }
   const DeviceStats& stats() const noexcept { return stats_; }
   std::uint64_t epoch_count() const noexcept { return epochs_; }
   /// Uptime and time to first fix as of the last on_epoch (NAV-STATUS msss, ttff).

@@ -178,6 +178,18 @@ void put_string(char* dst, std::size_t size, const std::string& s) noexcept {
 
 std::uint32_t itow_ms(const Fix& fix) noexcept { return derive(fix).itow; }
 
+MonVerConfig mon_ver_of(Generation g) {
+  if (g == Generation::kM8) return {};
+  MonVerConfig c;
+  c.sw_version = "ROM CORE 4.04 (d964f4)";
+  c.hw_version = "00190000";
+  c.fw_version = "SPG 4.04";
+  c.protocol_version = 32.01;
+  c.extensions = {"GPS;GLO;GAL;BDS", "SBAS;QZSS"};
+  c.generation = g;
+  return c;
+}
+
 void validate(const MonVerConfig& config) {
   const auto bad = [](const std::string& what) { throw Error("ubx", 0, "MON-VER: " + what); };
   if (config.sw_version.empty() || config.sw_version.size() > kMaxStringChars) {
@@ -188,8 +200,11 @@ void validate(const MonVerConfig& config) {
     bad("hw_version must be 8 hex digits (00080000 = M8), got '" + config.hw_version + "'");
   }
   if (config.fw_version.size() + 6 > kMaxStringChars) bad("fw_version too long");
-  if (!std::isfinite(config.protocol_version) || config.protocol_version < 18.0 || config.protocol_version >= 24.0) {
-    bad("protocol_version must be in [18, 24) for an M8 (PX4 uses CFG-VALSET from 27)");
+  const bool m9 = config.generation == Generation::kM9;
+  const double lo = m9 ? 27.0 : 18.0, hi = m9 ? 50.0 : 24.0;
+  if (!std::isfinite(config.protocol_version) || config.protocol_version < lo || config.protocol_version >= hi) {
+    bad(std::string("protocol_version must be in ") + (m9 ? "[27, 50) for an M9" : "[18, 24) for an M8") +
+        " (PX4 uses CFG-VALSET from 27)");
   }
   if (config.extensions.size() + 2 > kMaxExtensions) bad("too many extension strings");
   for (const auto& e : config.extensions) {

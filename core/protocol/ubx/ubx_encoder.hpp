@@ -10,6 +10,7 @@
 
 #include "core/protocol/nmea/reported_fix.hpp"
 #include "core/protocol/ubx/ubx_frame.hpp"
+#include "core/protocol/ubx/ubx_generation.hpp"
 #include "core/receiver/fix.hpp"
 
 namespace gnssemu::protocol::ubx {
@@ -20,15 +21,22 @@ struct MonVerConfig {
   std::string sw_version = "ROM CORE 3.01 (107888)";  ///< <= 29 characters
   std::string hw_version = "00080000";                ///< <= 9 characters; 00080000 = M8
   std::string fw_version = "SPG 3.01";                ///< sent as "FWVER=<fw_version>"
-  /// Sent as "PROTVER=%05.2f". An M8 speaks 18.00 .. 23.01; PX4 switches to
-  /// CFG-VALSET from 27, so values >= 24 are refused.
+  /// Sent as "PROTVER=%05.2f". An M8 speaks 18.00 .. 23.01, an M9 27 and
+  /// later (PX4 switches to CFG-VALSET from 27).
   double protocol_version = 18.00;
   /// Further extension strings after FWVER and PROTVER (each <= 29 chars, <= 8 of them).
   std::vector<std::string> extensions = {"GPS;GLO;GAL;BDS", "SBAS;IMES;QZSS"};
+  Generation generation = Generation::kM8;  ///< must agree with protocol_version
 };
 
+/// MON-VER of a factory chip of generation g: the M8 above, or a NEO-M9N
+/// as its recorded reply reads (ROM CORE 4.04 (d964f4), 00190000, FWVER=SPG
+/// 4.04, PROTVER=32.01; shared/reference/ubx.md §MON-VER).
+MonVerConfig mon_ver_of(Generation g);
+
 /// Throws gnssemu::Error("ubx", 0, reason) on a string too long, a hwVersion
-/// that is not 8 hex digits, or a protocol version outside [18, 23.99].
+/// that is not 8 hex digits, or a protocol version outside its generation's
+/// range ([18, 24) for an M8, [27, 50) for an M9).
 void validate(const MonVerConfig& config);
 
 /// Receiver state that is not part of a Fix (kept by the responder).

@@ -41,6 +41,7 @@ struct HandlerContext {
   const receiver::Fix& last_fix;  ///< the last epoch's Fix, for polls of output messages
   const EpochInfo& info;          ///< and its uptime and ttff
   bool ack_unknown_cfg = false;  ///< ACK CFG ids an M8 lacks (except CFG-VAL*) instead of NAKing them
+  Generation generation = Generation::kM8;  ///< the chip's (ubx_generation.hpp)
   std::optional<Reset> reset;    ///< set by CFG-RST
 
   /// Column of u-blox port p (< kNumPorts) as this host sees it.

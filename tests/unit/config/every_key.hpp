@@ -32,6 +32,7 @@ seed = 424242
 nominal_cn0_dbhz = 41.5
 max_pdop = 8.0
 max_channels = 12
+generation = "m9"
 filter = "none"
 
 [receiver.errors]

@@ -116,7 +116,8 @@ std::size_t ubx_epoch(const Device& d, Link at, std::string& out) {
 Reply HandlerRig::call(Handler handler, MsgId id, const std::vector<std::uint8_t>& payload, std::size_t uart,
                        std::uint8_t port) {
   out.clear();
-  HandlerContext ctx{current, saved, defaults, uart, port, out, encoder, fix, info, false, std::nullopt};
+  HandlerContext ctx{current, saved, defaults, uart, port, out, encoder, fix, info, false,
+                     encoder.mon_ver_config().generation, std::nullopt};
   const Reply r = handler(ctx, FrameView{id, payload});
   reset = ctx.reset;
   return r;
