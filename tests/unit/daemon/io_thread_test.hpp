@@ -3,6 +3,7 @@
 // does: servers are built, queried and stopped on it through on_io().
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <future>
 #include <optional>
 #include <thread>
@@ -21,6 +22,18 @@ protected:
     auto fut = task.get_future();
     boost::asio::post(io_, [&task] { task(); });
     return fut.get();
+  }
+  /// Poll pred (run on the io thread) until it holds or limit_ms passes;
+  /// what a server does after a client's move is asynchronous and a loaded
+  /// machine can take far longer than usual.
+  template <class Pred>
+  bool eventually_on_io(Pred pred, int limit_ms = 5000) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(limit_ms);
+    for (;;) {
+      if (on_io(pred)) return true;
+      if (std::chrono::steady_clock::now() >= end) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
   }
   void start_io() {
     work_.emplace(boost::asio::make_work_guard(io_));

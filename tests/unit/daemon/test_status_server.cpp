@@ -136,19 +136,19 @@ TEST_F(ServerFixture, BadRequestsGetAnErrorAndTheServerGoesOn) {
 TEST_F(ServerFixture, ConnectionsBeyondTheLimitAreRefusedOthersServed) {
   std::vector<tcp::socket> idle;
   for (std::size_t i = 0; i < kMaxSessions + 10; ++i) idle.push_back(connect());
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_TRUE(eventually_on_io([this] { return server_->stats().sessions_refused >= 10u; }));
   const StatusServerStats st = on_io([this] { return server_->stats(); });
   EXPECT_EQ(st.sessions, kMaxSessions);
   EXPECT_GE(st.sessions_refused, 10u);
   idle.clear();  // they go away; the server serves again
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_TRUE(eventually_on_io([this] { return server_->stats().sessions == 0u; }));
   EXPECT_EQ(exchange("GET /api/status HTTP/1.1\r\nConnection: close\r\n\r\n").rfind("HTTP/1.1 200", 0), 0u);
 }
 
 TEST_F(ServerFixture, EventStreamDeliversOneEventPerPublish) {
   tcp::socket s = connect();
   asio::write(s, asio::buffer(std::string("GET /api/events HTTP/1.1\r\nHost: x\r\n\r\n")));
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  ASSERT_TRUE(eventually_on_io([this] { return server_->stats().streams == 1u; }));
   for (int k = 0; k < 3; ++k) on_io([this] { server_->publish(); });
   std::string got;
   const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
@@ -181,8 +181,7 @@ TEST_F(ServerFixture, AStreamThatIsNotReadIsDroppedAndPublishNeverWaits) {
   s.set_option(asio::socket_base::receive_buffer_size(4096));
   s.connect(tcp::endpoint(asio::ip::make_address("127.0.0.1"), port_));
   asio::write(s, asio::buffer(std::string("GET /api/events HTTP/1.1\r\nHost: x\r\n\r\n")));
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  ASSERT_EQ(on_io([this] { return server_->stats().streams; }), 1u);
+  ASSERT_TRUE(eventually_on_io([this] { return server_->stats().streams == 1u; }));
   // Never read: kernel buffers fill, then the server's bounded backlog.
   for (int k = 0; k < 3000; ++k) {
     const bool dropped = on_io([this] {
