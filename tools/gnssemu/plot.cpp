@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <set>
 #include <string_view>
 #include <vector>
 
@@ -159,8 +158,10 @@ void read_errors_csv(const std::string& path, ReportData& data) {
     ep.e_m = r.number_or_nan(e, "e_m");
     ep.n_m = r.number_or_nan(n, "n_m");
     ep.u_m = r.number_or_nan(u, "u_m");
-    if (ep.fix_type != 0 && (std::isnan(ep.e_m) || std::isnan(ep.n_m) || std::isnan(ep.u_m))) {
-      throw Error(path, r.line(), "a fix without e_m, n_m, u_m");
+    // A fix with no error columns is batch's row for an epoch without truth
+    // (the receiver coasting through a truth gap): kept, not in the statistics.
+    if (std::isnan(ep.e_m) != std::isnan(ep.n_m) || std::isnan(ep.e_m) != std::isnan(ep.u_m)) {
+      throw Error(path, r.line(), "e_m, n_m, u_m must be all given or all empty");
     }
     if (acc) {
       ep.h_acc_m = r.number_or_nan(hacc, "hacc_m");
@@ -180,9 +181,6 @@ void read_sats_csv(const std::string& path, ReportData& data) {
   const std::size_t week = r.column("gps_week"), tow = r.column("tow_s"), prn = r.column("prn"),
                     az = r.column("az_deg"), el = r.column("el_deg"), cn0 = r.column("cn0_dbhz"),
                     tracked = r.column("tracked"), used = r.column("used");
-  std::set<int64_t> fix_epochs;
-  for (const ReportEpoch& e : data.epochs)
-    if (e.fix_type != 0) fix_epochs.insert(epoch_key(e.t));
   const bool know_fixes = !data.epochs.empty();
   const bool derive_counts =
       know_fixes && std::all_of(data.epochs.begin(), data.epochs.end(), [](const ReportEpoch& e) { return e.num_tracked < 0; });
@@ -203,10 +201,12 @@ void read_sats_csv(const std::string& path, ReportData& data) {
     s.used = r.integer(used, "used", 0, 1) == 1;
     if (s.used && !is_tracked) throw Error(path, r.line(), "used but not tracked");
     const bool below = std::isfinite(data.elevation_mask_deg) && s.el_deg < data.elevation_mask_deg;
+    // Tracked but not used is not necessarily excluded by fault detection
+    // (NLOS, no ephemeris yet, PDOP or channel limits): the CSV does not say.
     if (s.used) {
       s.state = "used";
     } else if (is_tracked) {
-      s.state = know_fixes && fix_epochs.count(epoch_key(s.t)) ? "excluded" : "tracked";
+      s.state = "tracked";
     } else {
       s.state = below ? "below_mask" : "searching";
     }

@@ -130,11 +130,13 @@ TEST(Plot, DeadReckoningIsNotCountedAsAFix) {
                                   "gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop,hacc_m,vacc_m\n"
                                   "2190,1,3,8,1.0,0.0,1.0,1,1,1,2,3\n"
                                   "2190,2,3,8,2.0,0.0,1.0,1,1,1,2,3\n"
-                                  "2190,3,1,0,400.0,0.0,9.0,,,,20,30\n");
+                                  "2190,3,1,0,400.0,0.0,9.0,,,,20,30\n"
+                                  // batch's row for a fix while the truth is missing: no error columns
+                                  "2190,4,3,8,,,,1,1,1,2,3\n");
   const CliResult r = run({"plot", "--errors", e, "--out", dir.file("p")});
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json d = report_data(read_file(dir.file("p/report.html")));
-  EXPECT_EQ(d["summary"]["fixes"], 2);
+  EXPECT_EQ(d["summary"]["fixes"], 3);
   EXPECT_EQ(d["summary"]["error_samples"], 2);
   EXPECT_NEAR(d["summary"]["h_max_m"].get<double>(), 2.0, 1e-9);
 }
@@ -181,6 +183,10 @@ TEST(Plot, BadInputIsAnErrorNamingFileAndLine) {
   const std::string short_row = dir.write("e.csv", "gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop\n2190,1,3\n");
   r = run({"plot", "--errors", short_row, "--out", dir.file("o")});
   EXPECT_NE(r.err.find("e.csv:2: 3 fields, the header has 10"), std::string::npos) << r.err;
+  const std::string half = dir.write("h.csv", "gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop\n"
+                                              "2190,1,3,8,1.0,,2.0,1,1,1\n");
+  r = run({"plot", "--errors", half, "--out", dir.file("o")});
+  EXPECT_NE(r.err.find("h.csv:2: e_m, n_m, u_m must be all given or all empty"), std::string::npos) << r.err;
   const std::string no_col = dir.write("n.csv", "gps_week,tow_s\n2190,1\n");
   r = run({"plot", "--errors", no_col, "--out", dir.file("o")});
   EXPECT_NE(r.err.find("n.csv:1: no column 'fix_type'"), std::string::npos) << r.err;
