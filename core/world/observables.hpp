@@ -40,9 +40,11 @@ struct SatObservable {
   /// Carrier discontinuities of this PRN so far (new locks, cycle slips): a
   /// change since the last epoch says the phase is not continuous (as the
   /// loss-of-lock indicator of RINEX), so carrier smoothing must restart.
+  /// Counted only while [signal.carrier] is enabled.
   std::uint32_t carrier_discontinuities = 0;
   /// The range jumped by more than the code loop follows since the last
-  /// epoch (a discontinuous truth): the receiver loses lock on it.
+  /// epoch (a discontinuous truth): the receiver loses lock on it. Only
+  /// while [signal.carrier] is enabled (or set by the fault stage).
   bool lock_break = false;
   // Path truth of the scene stage (analysis only; zero without a scene).
   bool nlos = false;                    ///< received via reflections only

@@ -279,6 +279,8 @@ void World::carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch
   CarrierTrack& c = carrier_[p - 1];
   carrier_seen_[p - 1] = true;
   const CarrierConfig& cc = config_.carrier;
+  // No carrier tracking: no phase, so no lock breaks or slips to model.
+  if (!cc.enabled) return;
   // Lock break: the range moved by more than its rate explains.
   if (c.continuous && dt_s_ > 0.0) {
     const double explained_m = 0.5 * (c.range_rate_m_s + s.range_rate_m_s) * dt_s_;
@@ -309,7 +311,6 @@ void World::carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch
   c.range_m = s.range_m;
   c.range_rate_m_s = s.range_rate_m_s;
   o.carrier_discontinuities = c.discontinuities;
-  if (!cc.enabled) return;
   const PathEffects& e = path_[p - 1];
   const double phase_noise_m = sigma_rad / (2.0 * kPi) * kL1Wavelength_m * rng_.normal(p, epoch, Purpose::kCarrierNoise);
   const double carrier_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - o.eph->tgd_s)) +
