@@ -14,20 +14,17 @@ ubxtool writes through it). Steps:
      jammingState 2 (warning, fix still OK) and 3 (critical, fix gone)
   4. `ctl clear`: jammingState back to 1
 Exit 77 (skip) without gpsd/gpspipe/ubxtool."""
-import argparse
 import json
 import os
 import queue
 import re
-import shutil
-import signal
 import socket
 import subprocess
 import sys
 import threading
 import time
 
-from itlib import RigBase, free_port
+from itlib import RigBase, free_port, gpsd_daemon_main
 
 LIMIT_S = 90
 
@@ -185,34 +182,7 @@ def run(rig):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--gnssemud", required=True)
-    ap.add_argument("--gnssemu", required=True)
-    ap.add_argument("--nav", required=True)
-    args = ap.parse_args()
-    for tool in ("gpsd", "gpspipe", "ubxtool"):
-        if shutil.which(tool) is None:
-            print(f"SKIP: {tool} not installed")
-            return 77
-    rig = Rig(args)
-    signal.signal(signal.SIGALRM, lambda *_: (_ for _ in ()).throw(AssertionError(f"over {LIMIT_S} s")))
-    signal.alarm(LIMIT_S)
-    ok = False
-    try:
-        run(rig)
-        ok = True
-    except AssertionError as e:
-        print(f"FAIL: {e}")
-    finally:
-        signal.alarm(0)
-        rig.stop_all()
-        if hasattr(rig, "daemon_log"):
-            rig.daemon_log.close()
-        if not ok:
-            rig.dump_logs()
-        rig.remove_tmp()
-    print("OK" if ok else "FAILED")
-    return 0 if ok else 1
+    return gpsd_daemon_main(Rig, run, LIMIT_S)
 
 
 if __name__ == "__main__":
