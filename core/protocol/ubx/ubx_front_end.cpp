@@ -7,6 +7,10 @@ namespace gnssemu::protocol::ubx {
 
 namespace {
 
+/// The noise floor's rise in a quiet countryside, dB (Fix::noise_rise_db's
+/// default): "normal" for the monitor's thresholds.
+constexpr double kQuietNoiseRiseDb = 1.0;
+
 /// CW line over the noise floor, dB (0 without one), clamped to [0, 60].
 double cw_db(const receiver::Fix& fix) noexcept {
   const double j = fix.cw_jam_to_noise;
@@ -52,7 +56,7 @@ FrontEnd front_end(const receiver::Fix& fix, const EpochInfo& info) noexcept {
   if (!info.itfm_enabled || info.ttff_ms == 0 || !antenna_ok) return f;
   // Broadband: the noise floor above its quiet level (1 dB, Fix::noise_rise_db)
   // beyond bbThreshold; CW: the line beyond cwThreshold (CFG-ITFM, dB above normal).
-  const double bb_excess_db = rise - receiver::Fix{}.noise_rise_db;
+  const double bb_excess_db = rise - kQuietNoiseRiseDb;
   const bool visible = bb_excess_db >= info.itfm_bb_threshold_db || cw >= info.itfm_cw_threshold_db;
   f.jamming_state = !visible                              ? JammingState::kOk
                     : fix_ok(fix, info.reported_fix)      ? JammingState::kWarning
