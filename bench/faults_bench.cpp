@@ -54,18 +54,22 @@ struct Rig {
   world::Truth truth;
 };
 
-// MON-HW and NAV-STATUS fields as the encoder writes them (CFG-ITFM enabled,
-// so jammingState is reported).
+// MON-HW and NAV-STATUS fields as the M8 encoder writes them, MON-RF and
+// SEC-SIG as the M9's (CFG-ITFM enabled at factory thresholds and the first
+// fix behind us, so jammingState is reported).
 struct UbxView {
   int agc = 0, noise = 0, jam_ind = 0, jam_state = 0, a_status = 0, spoof = 0;
+  int rf_jam_ind = 0, rf_jam_state = 0, sig_jam_state = 0;
 };
 UbxView ubx_view(const receiver::Fix& f) {
   static const protocol::ubx::UbxEncoder enc;
+  static const protocol::ubx::UbxEncoder m9(protocol::ubx::mon_ver_of(protocol::ubx::Generation::kM9));
   protocol::ubx::EpochInfo info;
   info.itfm_enabled = true;
+  info.ttff_ms = 1;
   std::string out;
   enc.mon_hw(f, info, out);
-  const auto* p = reinterpret_cast<const std::uint8_t*>(out.data()) + 6;  // payload
+  const std::uint8_t* p = reinterpret_cast<const std::uint8_t*>(out.data()) + 6;  // payload
   UbxView v;
   v.noise = p[16] | p[17] << 8;
   v.agc = p[18] | p[19] << 8;
@@ -75,6 +79,15 @@ UbxView ubx_view(const receiver::Fix& f) {
   out.clear();
   enc.nav_status(f, info, out);
   v.spoof = (static_cast<std::uint8_t>(out[6 + 7]) >> 3) & 3;
+  out.clear();
+  m9.mon_rf(f, info, out);  // one block at payload offset 4
+  p = reinterpret_cast<const std::uint8_t*>(out.data()) + 6;
+  v.rf_jam_state = p[4 + 1] & 3;
+  v.rf_jam_ind = p[4 + 16];
+  out.clear();
+  m9.sec_sig(f, info, out);
+  p = reinterpret_cast<const std::uint8_t*>(out.data()) + 6;
+  v.sig_jam_state = (p[4] >> 1) & 3;  // jamFlags
   return v;
 }
 
@@ -108,8 +121,9 @@ void jam_sweep(const orbit::EphemerisStore& store, time::GpsTime t0) {
   int top = 0;  // the strongest clean satellite: its C/N0 shows the slope
   double prev_top = NAN;
   std::printf("jamming sweep (wideband, Q = 2): each J/S held %.0f s; means over its last 10 s\n", step_s);
-  std::printf("%6s %9s %9s %7s %9s %9s %7s %5s %4s %8s %7s %6s %6s %8s\n", "js_db", "top_cn0", "analytic", "slope",
-              "mean_cn0", "analytic", "tracked", "used", "fix", "hacc_m", "agcCnt", "noise", "jamInd", "jamState");
+  std::printf("%6s %9s %9s %7s %9s %9s %7s %5s %4s %8s %7s %6s %6s %8s %7s %7s\n", "js_db", "top_cn0", "analytic",
+              "slope", "mean_cn0", "analytic", "tracked", "used", "fix", "hacc_m", "agcCnt", "noise", "jamInd",
+              "jamState", "rfState", "sigJam");
   double sum_cn0 = 0, sum_an = 0, sum_tr = 0, sum_used = 0, sum_hacc = 0, sum_top = 0;
   int n = 0, n_cn0 = 0, fix_epochs = 0, n_top = 0;
   for (int s = 0; s < static_cast<int>(warm_s + step_s * 31); ++s) {
@@ -163,11 +177,14 @@ void jam_sweep(const orbit::EphemerisStore& store, time::GpsTime t0) {
     if (in_step == step_s - 1) {
       const UbxView u = ubx_view(f);
       const double top_cn0 = n_top ? sum_top / n_top : NAN;
-      std::printf("%6.0f %9.2f %9.2f %7.2f %9.2f %9.2f %7.1f %5.1f %4d %8.2f %7d %6d %6d %8d\n", js, top_cn0,
-                  faults::effective_cn0_dbhz(clean[top - 1], n0, i0), (prev_top - top_cn0) / 2.0,
+      std::printf("%6.0f %9.2f %9.2f %7.2f %9.2f %9.2f %7.1f %5.1f %4d %8.2f %7d %6d %6d %8d %7d %7d\n", js,
+                  top_cn0, faults::effective_cn0_dbhz(clean[top - 1], n0, i0), (prev_top - top_cn0) / 2.0,
                   n_cn0 ? sum_cn0 / n_cn0 : NAN, n_cn0 ? sum_an / n_cn0 : NAN, sum_tr / n, sum_used / n,
                   static_cast<int>(f.type), fix_epochs ? sum_hacc / fix_epochs : NAN, u.agc, u.noise, u.jam_ind,
-                  u.jam_state);
+                  u.jam_state, u.rf_jam_state, u.sig_jam_state);
+      if (u.rf_jam_ind != u.jam_ind || u.rf_jam_state != u.jam_state || u.sig_jam_state != u.jam_state) {
+        std::printf("  MON-RF / SEC-SIG disagree with MON-HW\n");
+      }
       prev_top = top_cn0;
     }
   }

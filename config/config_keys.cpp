@@ -409,6 +409,7 @@ constexpr Field<Config> kConfigFields[] = {
     table<kTruth, &Config::truth>("truth", "UDP truth input"),
     table<kDemo, &Config::demo>("demo", "circle around the origin while no truth arrives"),
     table_array<kOutputKeys, check_unique_port, &Config::outputs>("output"),
+    check<Config>(check_output_generation),
     optional_table<kSceneKeys, &Config::scene>("scene", "buildings, docs/scene.md"),
     table<kStatus, &Config::status>("status", "live status page, docs/status.md"),
     check<Config>(check_status_port),

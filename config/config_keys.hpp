@@ -26,6 +26,11 @@ extern const Section<SceneConfig> kSceneKeys;
 /// Throws at port's line in t when an earlier port (before) has it.
 void check_unique_port(TableReader& t, const std::vector<OutputPortConfig>& before, const OutputPortConfig& port);
 
+/// Every port's ubx_messages exist on [receiver] generation (NAV-SVINFO up
+/// to the M8, MON-RF and SEC-SIG from the M9). Throws naming the message's
+/// line in the [[output]] that lists it.
+void check_output_generation(TableReader& t, const Field<Config>& f, Config& c);
+
 /// The key tables of every table, in file order (the rows of docs/configuration.md).
 KeyDocs describe_keys();
 

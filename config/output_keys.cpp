@@ -6,6 +6,8 @@
 
 #include "config/config_keys.hpp"
 #include "config/message_names.hpp"
+#include "core/common/error.hpp"
+#include "core/protocol/ubx/ubx_message_table.hpp"
 
 namespace gnssemu::config {
 
@@ -353,7 +355,10 @@ void write_ubx_messages(TomlWriter& w, const Field<OutputPortConfig>& f, const O
   w.key(f.key, strings_text(names));
 }
 
-std::string ubx_message_names() { return names_doc(names_of(ubx_periodic_messages())) + ", no repeats"; }
+std::string ubx_message_names() {
+  return names_doc(names_of(ubx_periodic_messages())) +
+         ", no repeats; MON-RF and SEC-SIG only with `[receiver] generation = \"m9\"`, NAV-SVINFO only with `\"m8\"`";
+}
 
 constexpr Choice<protocol::nmea::NmeaVersion> kNmeaVersions[] = {{"2.3", protocol::nmea::NmeaVersion::k23},
                                                                  {"4.10", protocol::nmea::NmeaVersion::k410},
@@ -510,6 +515,32 @@ void check_unique_port(TableReader& t, const std::vector<OutputPortConfig>& befo
     if (tcp != nullptr && prev_tcp != nullptr && tcp->port != 0 && prev_tcp->port == tcp->port) {
       t.fail(*t.find("port"), t.full_name("port") + ": tcp port " + std::to_string(tcp->port) +
                                   " is already used by output '" + prev.name + "'");
+    }
+  }
+}
+
+void check_output_generation(TableReader& t, const Field<Config>&, Config& c) {
+  for (std::size_t i = 0; i < c.outputs.size(); ++i) {
+    for (const MessageRate& m : c.outputs[i].ubx_messages) {
+      const protocol::ubx::MsgId id{m.msg_class, m.msg_id};
+      if (protocol::ubx::message_exists(id, c.generation)) continue;
+      const std::string_view g = protocol::ubx::generation_name(c.generation);
+      const std::string_view name = message_name(m.msg_class, m.msg_id);
+      const std::string reason = "output[" + std::to_string(i) + "].ubx_messages: a u-blox " + std::string(g) +
+                                 " has no " + std::string(name) + " ([receiver] generation = \"" + std::string(g) +
+                                 "\"; docs/ubx.md \"Generations\")";
+      // At the array element naming it (touched only to report: the key log stays as read).
+      const toml::node* at = nullptr;
+      const toml::node* outs = t.find("output");
+      const toml::array* a = outs != nullptr ? outs->as_array() : nullptr;
+      const toml::table* o = a != nullptr && i < a->size() ? a->get(i)->as_table() : nullptr;
+      const toml::array* list = o != nullptr && o->get("ubx_messages") != nullptr ? o->get("ubx_messages")->as_array() : nullptr;
+      for (std::size_t k = 0; list != nullptr && k < list->size(); ++k) {
+        const auto* s = list->get(k)->as_string();
+        if (s != nullptr && s->get() == name) at = list->get(k);
+      }
+      if (at == nullptr && o != nullptr) at = o;
+      throw Error(t.file(), at != nullptr ? line_of(*at) : t.line(), reason);
     }
   }
 }

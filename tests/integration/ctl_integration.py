@@ -26,12 +26,10 @@ gpspipe -w. Steps, each timed from the moment the command returned:
      the event keeps acting
   9. the socket is mode 0600 and gone after the daemon exits
 Exit 77 (skip) without gpsd/gpspipe/ubxtool."""
-import argparse
 import json
 import os
 import queue
 import re
-import shutil
 import signal
 import socket
 import stat
@@ -40,7 +38,7 @@ import sys
 import threading
 import time
 
-from itlib import RigBase, free_port
+from itlib import RigBase, free_port, gpsd_daemon_main
 
 ORIGIN = (48.8738, 2.2950, 100.0)
 RATE_HZ = 2.0
@@ -415,33 +413,7 @@ def run(rig):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--gnssemud", required=True)
-    ap.add_argument("--gnssemu", required=True)
-    ap.add_argument("--nav", required=True)
-    args = ap.parse_args()
-    for tool in ("gpsd", "gpspipe", "ubxtool"):
-        if shutil.which(tool) is None:
-            print(f"SKIP: {tool} not installed")
-            return 77
-    rig = Rig(args)
-    signal.signal(signal.SIGALRM, lambda *_: (_ for _ in ()).throw(AssertionError(f"over {LIMIT_S} s")))
-    signal.alarm(LIMIT_S)
-    ok = False
-    try:
-        run(rig)
-        ok = True
-    except AssertionError as e:
-        print(f"FAIL: {e}")
-    finally:
-        signal.alarm(0)
-        rig.stop_all()
-        if hasattr(rig, "daemon_log"):
-            rig.daemon_log.close()
-        if not ok:
-            rig.dump_logs()
-        rig.remove_tmp()
-    return 0 if ok else 1
+    return gpsd_daemon_main(Rig, run, LIMIT_S)
 
 
 if __name__ == "__main__":

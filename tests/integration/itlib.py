@@ -1,5 +1,6 @@
 """Shared pieces of the integration tests: free loopback ports, and a rig
 that owns its processes and temp dir and tears them down even on failure."""
+import argparse
 import os
 import shutil
 import signal
@@ -85,3 +86,41 @@ class RigBase:
 
     def remove_tmp(self):
         shutil.rmtree(self.tmp, ignore_errors=True)
+
+
+def run_rig(rig, body, limit_s):
+    """body(rig) under a limit_s alarm; on AssertionError print FAIL and the
+    logs; always tear the rig down. The exit code: 0 passed, 1 failed."""
+    signal.signal(signal.SIGALRM, lambda *_: (_ for _ in ()).throw(AssertionError(f"over {limit_s} s")))
+    signal.alarm(limit_s)
+    ok = False
+    try:
+        body(rig)
+        ok = True
+    except AssertionError as e:
+        print(f"FAIL: {e}")
+    finally:
+        signal.alarm(0)
+        rig.stop_all()
+        if hasattr(rig, "daemon_log"):
+            rig.daemon_log.close()
+        if not ok:
+            rig.dump_logs()
+        rig.remove_tmp()
+    print("OK" if ok else "FAILED")
+    return 0 if ok else 1
+
+
+def gpsd_daemon_main(make_rig, body, limit_s, tools=("gpsd", "gpspipe", "ubxtool")):
+    """main() of a test of gnssemud (--gnssemud, --gnssemu, --nav) seen by
+    gpsd: exit 77 (skip) when one of tools is missing, else run_rig."""
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--gnssemud", required=True)
+    ap.add_argument("--gnssemu", required=True)
+    ap.add_argument("--nav", required=True)
+    args = ap.parse_args()
+    for tool in tools:
+        if shutil.which(tool) is None:
+            print(f"SKIP: {tool} not installed")
+            return 77
+    return run_rig(make_rig(args), body, limit_s)

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/protocol/ubx/ubx_handlers.hpp"
+#include "core/protocol/ubx/ubx_message_table.hpp"
 
 namespace gnssemu::protocol::ubx {
 
@@ -62,6 +63,9 @@ Reply handle_cfg_prt(HandlerContext& ctx, const FrameView& frame) {
 Reply handle_cfg_msg(HandlerContext& ctx, const FrameView& frame) {
   const auto p = frame.payload;
   const MsgId id = frame.id;
+  // A message the generation's firmware lacks cannot be rated or polled: NAK
+  // (as an M9 NAKs the CFG-MSGOUT keys of messages it lacks, docs/ubx.md §Generations).
+  if (p.size() >= 2 && !message_exists(MsgId{p[0], p[1]}, ctx.generation)) return ack(ctx, id, false);
   if (p.size() == 2) {
     const MsgId target{p[0], p[1]};
     if (!rateable_class(target.cls)) return ack(ctx, id, false);

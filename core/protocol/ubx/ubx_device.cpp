@@ -204,8 +204,15 @@ void Device::on_epoch(const receiver::Fix& fix, double now_s) noexcept {
     // at least 1 ms: 0 on the wire means "no fix yet".
     info_.ttff_ms = std::max<std::uint32_t>(1, info_.msss_ms);
   }
+  // CFG-ITFM config: b0-3 bbThreshold, b4-8 cwThreshold (dB), b31 enable.
   const StoredBlock* itfm = current_.stored(msg::kCfgItfm);
-  info_.itfm_enabled = itfm != nullptr && itfm->size >= 4 && (itfm->bytes[3] & 0x80) != 0;
+  const std::uint32_t word = itfm != nullptr && itfm->size >= 4
+                                 ? static_cast<std::uint32_t>(itfm->bytes[0] | itfm->bytes[1] << 8 | itfm->bytes[2] << 16 |
+                                                              static_cast<std::uint32_t>(itfm->bytes[3]) << 24)
+                                 : 0;
+  info_.itfm_enabled = (word & 0x80000000u) != 0;
+  info_.itfm_bb_threshold_db = static_cast<double>(word & 0x0F);
+  info_.itfm_cw_threshold_db = static_cast<double>(word >> 4 & 0x1F);
 }
 
 bool Device::due(std::size_t col, MsgId id) const noexcept {

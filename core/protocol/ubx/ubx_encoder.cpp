@@ -9,6 +9,8 @@
 
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
+#include "core/protocol/ubx/ubx_front_end.hpp"
+#include "core/protocol/ubx/ubx_message_table.hpp"
 #include "core/protocol/ubx/ubx_messages.hpp"
 #include "core/time/gps_time.hpp"
 
@@ -299,7 +301,7 @@ std::size_t UbxEncoder::nav_status(const Fix& fix, const EpochInfo& info, std::s
   m.flags = nav_flags(c);
   // flags2 b3-4 spoofDetState (the receiver's spoofing detection; 1 "no
   // spoofing indicated" in real M8 logs).
-  m.flags2 = static_cast<std::uint8_t>((fix.spoof_det_state & 0x03) << 3);
+  m.flags2 = static_cast<std::uint8_t>(spoof_det_state(fix) << 3);
   m.ttff = info.ttff_ms;
   m.msss = info.msss_ms;
   return append_message(out, msg::kNavStatus, m);
@@ -482,31 +484,45 @@ std::size_t UbxEncoder::nav_eoe(const Fix& fix, std::string& out) const {
 }
 
 std::size_t UbxEncoder::mon_hw(const Fix& fix, const EpochInfo& info, std::string& out) const {
-  // Heuristic front-end model (docs/ubx.md): the AGC takes gain out as the
-  // noise floor rises, the noise level after the AGC creeps up, and the CW
-  // jamming indicator scales with the rise. Quiet sky: noise ~ 85, AGC ~ 60 %,
-  // jamInd ~ 10 (typical M8 readings in public logs). A CW / narrowband
-  // interferer stands out of the noise as a spectral line, so it adds to
-  // jamInd beyond its share of the AGC rise.
-  const double rise = std::isfinite(fix.noise_rise_db) ? std::clamp(fix.noise_rise_db, 0.0, 60.0) : 0.0;
-  const double cw_db = fix.cw_jam_to_noise > 0.0 && std::isfinite(fix.cw_jam_to_noise)
-                           ? std::clamp(10.0 * std::log10(1.0 + fix.cw_jam_to_noise), 0.0, 60.0)
-                           : 0.0;
+  const FrontEnd f = front_end(fix, info);
   wire::MonHw m{};
-  m.noisePerMS = to_int<std::uint16_t>(82.0 + 3.0 * rise);
-  m.agcCnt = to_int<std::uint16_t>(std::clamp(5000.0 - 110.0 * rise, 0.0, 8191.0));
-  // aStatus 2 OK, 3 SHORT (the supervisor then switches the supply off:
-  // aPower 0), 4 OPEN (supply stays on).
-  m.aStatus = fix.antenna_status == receiver::AntennaStatus::kShort  ? 3
-              : fix.antenna_status == receiver::AntennaStatus::kOpen ? 4
-                                                                     : 2;
-  m.aPower = fix.antenna_status == receiver::AntennaStatus::kShort ? 0 : 1;
-  m.jamInd = to_int<std::uint8_t>(std::clamp(7.0 + 5.0 * rise + 4.0 * cw_db, 0.0, 255.0));
-  std::uint8_t jam_state = 0;  // unknown: interference monitor disabled (M8 default)
-  if (info.itfm_enabled) jam_state = m.jamInd >= 200 ? 3 : m.jamInd >= 80 ? 2 : 1;
-  m.flags = static_cast<std::uint8_t>(0x01 | jam_state << 2);  // rtcCalib
+  m.noisePerMS = f.noise_per_ms;
+  m.agcCnt = f.agc_cnt;
+  m.aStatus = f.ant_status;
+  m.aPower = f.ant_power;
+  m.jamInd = f.jam_ind;
+  m.flags = static_cast<std::uint8_t>(0x01 | static_cast<unsigned>(f.jamming_state) << 2);  // rtcCalib
   m.usedMask = 0x0001FFFF;
   return append_message(out, msg::kMonHw, m);
+}
+
+std::size_t UbxEncoder::mon_rf(const Fix& fix, const EpochInfo& info, std::string& out) const {
+  const FrontEnd f = front_end(fix, info);
+  std::uint8_t buf[sizeof(wire::MonRfHeader) + sizeof(wire::MonRfBlock)];
+  wire::MonRfHeader h{};
+  h.nBlocks = 1;  // a NEO-M9N is L1 only
+  wire::MonRfBlock b{};
+  b.flags = static_cast<std::uint8_t>(f.jamming_state);
+  b.antStatus = f.ant_status;
+  b.antPower = f.ant_power;
+  b.noisePerMS = f.noise_per_ms;
+  b.agcCnt = f.agc_cnt;
+  b.jamInd = f.jam_ind;
+  b.magI = b.magQ = f.mag_iq;  // ofsI, ofsQ 0: a balanced front end
+  std::memcpy(buf, &h, sizeof h);
+  std::memcpy(buf + sizeof h, &b, sizeof b);
+  return append_frame(out, msg::kMonRf, {buf, sizeof buf});
+}
+
+std::size_t UbxEncoder::sec_sig(const Fix& fix, const EpochInfo& info, std::string& out) const {
+  const std::uint8_t spoof = spoof_det_state(fix);
+  wire::SecSigV1 m{};
+  m.version = 1;
+  m.jamFlags = static_cast<std::uint8_t>((info.itfm_enabled ? 0x01 : 0x00) |
+                                         static_cast<unsigned>(front_end(fix, info).jamming_state) << 1);
+  // Spoofing detection is on unless the receiver reports it deactivated (0).
+  m.spfFlags = static_cast<std::uint8_t>((spoof != 0 ? 0x01 : 0x00) | spoof << 1);
+  return append_message(out, msg::kSecSig, m);
 }
 
 std::size_t UbxEncoder::mon_ver(std::string& out) const {
@@ -523,10 +539,11 @@ bool UbxEncoder::can_encode(MsgId id) noexcept {
   return id == msg::kNavPvt || id == msg::kNavPosllh || id == msg::kNavStatus || id == msg::kNavDop ||
          id == msg::kNavSol || id == msg::kNavVelned || id == msg::kNavTimegps || id == msg::kNavTimeutc ||
          id == msg::kNavSat || id == msg::kNavSvinfo || id == msg::kNavEoe || id == msg::kMonHw ||
-         id == msg::kMonVer;
+         id == msg::kMonRf || id == msg::kSecSig || id == msg::kMonVer;
 }
 
 std::size_t UbxEncoder::encode(MsgId id, const Fix& fix, const EpochInfo& info, std::string& out) const {
+  if (!message_exists(id, config_.generation)) return 0;
   if (id == msg::kNavPvt) return nav_pvt_as(fix, info.reported_fix, out);
   if (id == msg::kNavPosllh) return nav_posllh(fix, out);
   if (id == msg::kNavStatus) return nav_status(fix, info, out);
@@ -539,6 +556,8 @@ std::size_t UbxEncoder::encode(MsgId id, const Fix& fix, const EpochInfo& info, 
   if (id == msg::kNavSvinfo) return nav_svinfo(fix, out);
   if (id == msg::kNavEoe) return nav_eoe(fix, out);
   if (id == msg::kMonHw) return mon_hw(fix, info, out);
+  if (id == msg::kMonRf) return mon_rf(fix, info, out);
+  if (id == msg::kSecSig) return sec_sig(fix, info, out);
   if (id == msg::kMonVer) return mon_ver(out);
   return 0;
 }

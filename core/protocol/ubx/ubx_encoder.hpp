@@ -1,5 +1,6 @@
 #pragma once
-// UBX output encoders of a u-blox M8 (protocol 18-23). Every message reads
+// UBX output encoders of a u-blox M8 (protocol 18-23) and M9 (protocol 32,
+// ubx_generation.hpp). Every message reads
 // the same receiver::Fix (and its per-satellite state) as the NMEA encoder,
 // so numSV, DOP, hAcc/vAcc and C/N0 agree across protocols. Conventions
 // where u-blox leaves a choice are listed in docs/ubx.md.
@@ -43,10 +44,17 @@ void validate(const MonVerConfig& config);
 struct EpochInfo {
   std::uint32_t msss_ms = 0;  ///< ms since start-up or reset (NAV-STATUS msss)
   std::uint32_t ttff_ms = 0;  ///< time to first fix, ms; 0 = no fix yet
-  bool itfm_enabled = false;  ///< CFG-ITFM enable: MON-HW jammingState reported (else 0 = unknown)
+  /// CFG-ITFM enable (CFG-ITFM-ENABLE on an M9): the jamming/interference
+  /// monitor runs and MON-HW, MON-RF and SEC-SIG report its jammingState
+  /// (else 0 = unknown). Off from the factory on both generations (docs/ubx.md).
+  bool itfm_enabled = false;
   /// Fix type NAV-PVT, NAV-STATUS and NAV-SOL report instead of the Fix's
   /// (a wrong_fix link fault); nothing: the Fix's.
   FixOverride reported_fix;
+  /// CFG-ITFM bbThreshold and cwThreshold: the monitor flags interference this
+  /// far above normal, dB (0..15 and 0..31; factory 3 and 15).
+  double itfm_bb_threshold_db = 3.0;
+  double itfm_cw_threshold_db = 15.0;
 };
 
 /// Largest output of one epoch with every message enabled and 32 satellites
@@ -75,17 +83,22 @@ public:
   /// One channel per satellite in fix.sats[0..num_sats); chipGen 4 (M8).
   std::size_t nav_svinfo(const receiver::Fix& fix, std::string& out) const;
   std::size_t nav_eoe(const receiver::Fix& fix, std::string& out) const;
-  /// Noise level, AGC and jamming indicator from fix.noise_rise_db.
+  /// Noise level, AGC, jamming indicator and monitor state (ubx_front_end.hpp).
   std::size_t mon_hw(const receiver::Fix& fix, const EpochInfo& info, std::string& out) const;
+  /// MON-RF version 0 with one block (blockId 0, L1): the same front end as MON-HW.
+  std::size_t mon_rf(const receiver::Fix& fix, const EpochInfo& info, std::string& out) const;
+  /// SEC-SIG version 1: jamming monitor as MON-RF, spoofing as NAV-STATUS.
+  std::size_t sec_sig(const receiver::Fix& fix, const EpochInfo& info, std::string& out) const;
   std::size_t mon_ver(std::string& out) const;
   /// ACK-ACK (ack = true) or ACK-NAK for the input message acked.
   static std::size_t ack(MsgId acked, bool ack, std::string& out);
 
-  /// Encode message id from fix (the NAV/MON ids above), with the fix type
+  /// Encode message id from fix (the NAV/MON/SEC ids above), with the fix type
   /// info.reported_fix says if it says one. Returns 0 for ids this encoder
-  /// does not produce.
+  /// does not produce and for messages the configured generation lacks
+  /// (message_exists in ubx_message_table.hpp).
   std::size_t encode(MsgId id, const receiver::Fix& fix, const EpochInfo& info, std::string& out) const;
-  /// True when encode() produces id.
+  /// True when encode() produces id on some generation.
   static bool can_encode(MsgId id) noexcept;
 
   const MonVerConfig& mon_ver_config() const noexcept { return config_; }

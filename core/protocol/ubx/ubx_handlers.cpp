@@ -1,5 +1,7 @@
 #include "core/protocol/ubx/ubx_handlers.hpp"
 
+#include "core/protocol/ubx/ubx_message_table.hpp"
+
 namespace gnssemu::protocol::ubx {
 
 namespace {
@@ -50,7 +52,7 @@ const HandlerRow* find_row(MsgId id) noexcept {
 Handler find_handler(MsgId id) noexcept {
   if (const HandlerRow* r = find_row(id)) return r->handle;
   if (id.cls == cls::kCfg) return handle_cfg_unknown;
-  if (id.cls == cls::kNav || id == msg::kMonHw) return handle_output_poll;
+  if (id.cls == cls::kNav || id == msg::kMonHw || id == msg::kMonRf || id == msg::kSecSig) return handle_output_poll;
   return nullptr;
 }
 
@@ -84,7 +86,10 @@ Reply handle_mon_ver(HandlerContext& ctx, const FrameView& frame) {
 }
 
 Reply handle_output_poll(HandlerContext& ctx, const FrameView& frame) {
-  if (!frame.payload.empty() || !UbxEncoder::can_encode(frame.id)) return Reply::kNone;
+  // A message the generation lacks is an unknown id to its firmware: no answer.
+  if (!frame.payload.empty() || !UbxEncoder::can_encode(frame.id) || !message_exists(frame.id, ctx.generation)) {
+    return Reply::kNone;
+  }
   ctx.encoder.encode(frame.id, ctx.last_fix, ctx.info, ctx.out);
   return Reply::kPollData;
 }

@@ -84,7 +84,8 @@ Reply handle_cfg_rst(HandlerContext& ctx, const FrameView& frame);
 /// CFG ids an M8 lacks: CFG-VALSET/VALGET/VALDEL and the rest.
 Reply handle_cfg_unknown(HandlerContext& ctx, const FrameView& frame);
 Reply handle_mon_ver(HandlerContext& ctx, const FrameView& frame);
-/// A poll of a NAV message or MON-HW: the message from the last epoch.
+/// A poll of a NAV message, MON-HW, MON-RF or SEC-SIG: the message from the
+/// last epoch; ignored for a message the generation lacks.
 Reply handle_output_poll(HandlerContext& ctx, const FrameView& frame);
 
 }  // namespace gnssemu::protocol::ubx

@@ -20,7 +20,7 @@ public:
     std::string_view label;          ///< "NAV-PVT", "GGA" (static storage)
     Protocol protocol = Protocol::kUbx;
   };
-  /// Largest epoch: every periodic UBX message (12) and NMEA sentence (7 plus
+  /// Largest epoch: every periodic UBX message (14) and NMEA sentence (7 plus
   /// 8 GSV parts for 32 satellites).
   static constexpr std::size_t kMaxMessages = 32;
   /// Bytes of the largest epoch (UBX kMaxEpochBytes + nmea::kMaxEpochBytes, rounded up).

@@ -1,7 +1,8 @@
 #pragma once
-// The periodic UBX messages the emulated M8 sends, named once: their ids,
-// where an epoch carries them and whether a port's configuration lists
-// them. Names are u-blox's (UBX-13003221 §32; shared/reference/ubx.md §2).
+// The periodic UBX messages the emulated chip sends, named once: their ids,
+// where an epoch carries them, whether a port's configuration lists them and
+// which hardware generations have them. Names are u-blox's (UBX-13003221
+// §32, UBX-21022436; shared/reference/ubx.md §2; docs/ubx.md §Generations).
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -9,6 +10,7 @@
 #include <string_view>
 
 #include "core/protocol/ubx/ubx_frame.hpp"
+#include "core/protocol/ubx/ubx_generation.hpp"
 
 namespace gnssemu::protocol::ubx {
 
@@ -17,15 +19,30 @@ namespace gnssemu::protocol::ubx {
 /// sends position and velocity first, then NMEA, then the rest.
 enum class EpochGroup : std::uint8_t { kBeforeNmea, kAfterNmea };
 
+/// Generations that have a message: bit (1 << Generation).
+using GenerationSet = std::uint8_t;
+constexpr GenerationSet generation_bit(Generation g) noexcept {
+  return static_cast<GenerationSet>(1u << static_cast<unsigned>(g));
+}
+inline constexpr GenerationSet kM8Only = generation_bit(Generation::kM8);
+inline constexpr GenerationSet kM9Only = generation_bit(Generation::kM9);
+inline constexpr GenerationSet kAllGenerations = kM8Only | kM9Only;
+
 struct PeriodicMessage {
   MsgId id;
   std::string_view name;  ///< "NAV-PVT"
   EpochGroup group;
   bool configurable;      ///< may be listed in a port's ubx_messages (docs/configuration.md)
+  /// Generations whose firmware has the message: NAV-SVINFO is gone from
+  /// protocol 27 (shared/reference/ubx.md §3), MON-RF and SEC-SIG are new
+  /// on the M9 (docs/ubx.md §Generations).
+  GenerationSet generations = kAllGenerations;
+
+  constexpr bool exists_on(Generation g) const noexcept { return (generations & generation_bit(g)) != 0; }
 };
 
 /// Rows in the order the configuration lists them (docs/configuration.md).
-inline constexpr std::array<PeriodicMessage, 12> kPeriodicMessages{{
+inline constexpr std::array<PeriodicMessage, 14> kPeriodicMessages{{
     {msg::kNavPvt, "NAV-PVT", EpochGroup::kBeforeNmea, true},
     {msg::kNavPosllh, "NAV-POSLLH", EpochGroup::kBeforeNmea, true},
     {msg::kNavVelned, "NAV-VELNED", EpochGroup::kBeforeNmea, true},
@@ -34,15 +51,17 @@ inline constexpr std::array<PeriodicMessage, 12> kPeriodicMessages{{
     {msg::kNavSol, "NAV-SOL", EpochGroup::kBeforeNmea, true},
     {msg::kNavTimeutc, "NAV-TIMEUTC", EpochGroup::kAfterNmea, true},
     {msg::kNavSat, "NAV-SAT", EpochGroup::kAfterNmea, true},
-    {msg::kNavSvinfo, "NAV-SVINFO", EpochGroup::kAfterNmea, true},
+    {msg::kNavSvinfo, "NAV-SVINFO", EpochGroup::kAfterNmea, true, kM8Only},
     {msg::kMonHw, "MON-HW", EpochGroup::kAfterNmea, true},
+    {msg::kMonRf, "MON-RF", EpochGroup::kAfterNmea, true, kM9Only},
+    {msg::kSecSig, "SEC-SIG", EpochGroup::kAfterNmea, true, kM9Only},
     {msg::kNavEoe, "NAV-EOE", EpochGroup::kAfterNmea, true},
     {msg::kNavTimegps, "NAV-TIMEGPS", EpochGroup::kAfterNmea, false},
 }};
 
 namespace detail {
 /// Send order within an epoch: NAV by id (the M8 message table order), then
-/// MON, NAV-EOE closing the epoch (ubx.md §3 NAV-EOE).
+/// MON and SEC by class and id, NAV-EOE closing the epoch (ubx.md §3 NAV-EOE).
 constexpr int epoch_rank(MsgId id) noexcept {
   const int group = id == msg::kNavEoe ? 2 : id.cls == cls::kNav ? 0 : 1;
   return group << 16 | id.key();
@@ -71,6 +90,13 @@ constexpr std::optional<PeriodicMessage> periodic_message(MsgId id) noexcept {
     if (m.id == id) return m;
   }
   return std::nullopt;
+}
+
+/// False only for a periodic message generation g lacks (NAV-SVINFO on an
+/// M9, MON-RF on an M8); ids outside the table are not judged here.
+constexpr bool message_exists(MsgId id, Generation g) noexcept {
+  const auto m = periodic_message(id);
+  return !m || m->exists_on(g);
 }
 
 /// Name of a message the device sends, for logs: the periodic names,

@@ -199,6 +199,42 @@ struct MonHw {
 };
 static_assert(sizeof(MonHw) == 60);
 
+/// MON-RF 0x0A 0x38 (M9, protocol 27+): header then nBlocks MonRfBlock.
+struct MonRfHeader {
+  std::uint8_t version;      ///< 0
+  std::uint8_t nBlocks;
+  std::uint8_t reserved0[2];
+};
+static_assert(sizeof(MonRfHeader) == 4);
+struct MonRfBlock {
+  std::uint8_t blockId;      ///< 0: L1 (a NEO-M9N has one block)
+  std::uint8_t flags;        ///< b0-1 jammingState (0 unknown, 1 ok, 2 warning, 3 critical)
+  std::uint8_t antStatus;    ///< 0 INIT, 1 DONTKNOW, 2 OK, 3 SHORT, 4 OPEN
+  std::uint8_t antPower;     ///< 0 OFF, 1 ON, 2 DONTKNOW
+  std::uint32_t postStatus;  ///< POST status word
+  std::uint8_t reserved1[4];
+  std::uint16_t noisePerMS;  ///< noise level as measured by the GNSS core
+  std::uint16_t agcCnt;      ///< AGC monitor, 0..8191 = 0..100 %
+  std::uint8_t jamInd;       ///< CW jamming indicator (cwSuppression), 0 none .. 255 strong
+  std::int8_t ofsI;          ///< I imbalance, -128..127
+  std::uint8_t magI;         ///< I magnitude, 0..255
+  std::int8_t ofsQ;          ///< Q imbalance, -128..127
+  std::uint8_t magQ;         ///< Q magnitude, 0..255
+  std::uint8_t reserved2[3];
+};
+static_assert(sizeof(MonRfBlock) == 24);
+
+/// SEC-SIG 0x27 0x09 version 1 (12 bytes): the jamming and spoofing monitors.
+struct SecSigV1 {
+  std::uint8_t version;      ///< 1
+  std::uint8_t reserved0[3];
+  std::uint8_t jamFlags;     ///< b0 jamDetEnabled, b1-2 jammingState
+  std::uint8_t reserved1[3];
+  std::uint8_t spfFlags;     ///< b0 spfDetEnabled, b1-3 spoofingState
+  std::uint8_t reserved2[3];
+};
+static_assert(sizeof(SecSigV1) == 12);
+
 /// CFG-PRT 0x06 0x00 (20 bytes per port block).
 struct CfgPrt {
   std::uint8_t portID;       ///< 0 DDC, 1 UART1, 2 UART2, 3 USB, 4 SPI

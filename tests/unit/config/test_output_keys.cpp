@@ -108,6 +108,28 @@ TEST(ConfigPorts, RoundTrip) {
 
 std::string port(const std::string& body) { return kBase + "[[output]]\nname = \"a\"\n" + body; }
 
+TEST(ConfigPorts, MessagesMustExistOnTheGeneration) {
+  // [[output]] line 7, name 8, type 9, path 10, ubx_messages from line 11; [receiver] after it.
+  const auto with = [](const std::string& messages, const std::string& generation) {
+    return port("type = \"file\"\npath = \"/tmp/a\"\nubx_messages = [\n" + messages + "]\n") +
+           (generation.empty() ? "" : "[receiver]\ngeneration = \"" + generation + "\"\n");
+  };
+  EXPECT_EQ(error_of(with("\"NAV-PVT\",\n\"MON-RF\",\n", "")),
+            "t.toml:13: output[0].ubx_messages: a u-blox m8 has no MON-RF ([receiver] generation = \"m8\"; "
+            "docs/ubx.md \"Generations\")");
+  EXPECT_EQ(error_of(with("\"SEC-SIG\",\n", "m8")),
+            "t.toml:12: output[0].ubx_messages: a u-blox m8 has no SEC-SIG ([receiver] generation = \"m8\"; "
+            "docs/ubx.md \"Generations\")");
+  EXPECT_EQ(error_of(with("\"NAV-PVT\",\n\"NAV-SAT\",\n\"NAV-SVINFO\",\n", "m9")),
+            "t.toml:14: output[0].ubx_messages: a u-blox m9 has no NAV-SVINFO ([receiver] generation = \"m9\"; "
+            "docs/ubx.md \"Generations\")");
+  const Config m9 = parse(with("\"NAV-PVT\",\n\"MON-HW\",\n\"MON-RF\",\n\"SEC-SIG\",\n", "m9"));
+  ASSERT_EQ(m9.outputs.at(0).ubx_messages.size(), 4u);
+  EXPECT_EQ(m9.outputs[0].ubx_messages[2], (MessageRate{0x0A, 0x38, 1}));
+  EXPECT_EQ(m9.outputs[0].ubx_messages[3], (MessageRate{0x27, 0x09, 1}));
+  EXPECT_EQ(parse(with("\"NAV-SVINFO\",\n", "m8")).outputs.at(0).ubx_messages.size(), 1u);
+}
+
 TEST(ConfigPorts, Errors) {
   // Line numbers: [[output]] is line 7, name line 8, body from line 9.
   EXPECT_EQ(error_of(port("type = \"serial\"\npath = \"/dev/ttyS0\"\n")),
@@ -133,7 +155,7 @@ TEST(ConfigPorts, Errors) {
             "t.toml:10: output[0].protocols_out: 'ubx' listed twice");
   EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nubx_messages = [\"NAV-PVT\", \"NAV-XYZ\"]\n")),
             "t.toml:10: output[0].ubx_messages: unknown UBX message 'NAV-XYZ' (known: NAV-PVT NAV-POSLLH "
-            "NAV-VELNED NAV-STATUS NAV-DOP NAV-SOL NAV-TIMEUTC NAV-SAT NAV-SVINFO MON-HW NAV-EOE)");
+            "NAV-VELNED NAV-STATUS NAV-DOP NAV-SOL NAV-TIMEUTC NAV-SAT NAV-SVINFO MON-HW MON-RF SEC-SIG NAV-EOE)");
   EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nubx_messages = [\"NAV-PVT\", \"NAV-PVT\"]\n")),
             "t.toml:10: output[0].ubx_messages: 'NAV-PVT' listed twice");
   // A set whose protocol is off is kept: a host may turn the protocol on (CFG-PRT, $PUBX,41).

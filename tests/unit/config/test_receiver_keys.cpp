@@ -4,6 +4,7 @@
 #include <string>
 
 #include "config/device_setup.hpp"
+#include "core/protocol/ubx/ubx_device.hpp"
 #include "test_helpers.hpp"
 
 namespace gnssemu::config::test::receiver_keys_test {
@@ -247,6 +248,23 @@ TEST(ReceiverDynamicsConfig, KeysReachTheReceiverAndTheDevice) {
   EXPECT_EQ(d.dyn_model, 7);
   EXPECT_EQ(d.static_hold_thresh_cm_s, 30);
   EXPECT_EQ(d.static_hold_max_dist_m, 12);
+}
+
+TEST(ReceiverGenerationConfig, M9ReachesTheChipThroughTheDaemonsSetup) {
+  // The daemon builds its Device from device_setup(config): MON-VER and the message set follow generation.
+  const Config c = parse(kBase + "[receiver]\ngeneration = \"m9\"\n");
+  const protocol::ubx::DeviceSetup d = device_setup(c);
+  EXPECT_EQ(d.mon_ver.generation, protocol::ubx::Generation::kM9);
+  protocol::ubx::Device chip(d);
+  std::string out;
+  chip.encoder().mon_ver(out);
+  const std::string text(out.begin() + 6, out.end() - 2);
+  EXPECT_NE(text.find("ROM CORE 4.04 (d964f4)"), std::string::npos);
+  EXPECT_NE(text.find("00190000"), std::string::npos);
+  EXPECT_NE(text.find("FWVER=SPG 4.04"), std::string::npos);
+  EXPECT_NE(text.find("PROTVER=32.01"), std::string::npos);
+  EXPECT_EQ(chip.generation(), protocol::ubx::Generation::kM9);
+  EXPECT_EQ(device_setup(parse(kBase)).mon_ver.generation, protocol::ubx::Generation::kM8);
 }
 
 TEST(ReceiverDynamicsConfig, GeodeticProfileSolvesSnapshotsUnlessTheFileSaysOtherwise) {

@@ -405,12 +405,13 @@ TEST(UbxEncoder, MonVerConfigValidated) {
   EXPECT_THROW(UbxEncoder{c}, Error);
 }
 
-TEST(UbxEncoder, MonHwJammingFollowsNoiseRise) {
-  const auto hw = [](double rise, bool itfm) {
+TEST(UbxEncoder, MonHwJammingFollowsNoiseRiseAndTheFix) {
+  const auto hw = [](double rise, bool itfm, bool has_fix = true, std::uint32_t ttff_ms = 1000) {
     receiver::Fix f = sample_fix();
     f.noise_rise_db = rise;
+    if (!has_fix) f.type = receiver::FixType::kNone;
     std::string out;
-    UbxEncoder().mon_hw(f, EpochInfo{0, 0, itfm, std::nullopt}, out);
+    UbxEncoder().mon_hw(f, EpochInfo{0, ttff_ms, itfm, std::nullopt}, out);
     const auto fr = test::split_frames(out);
     wire::MonHw m{};
     EXPECT_EQ(fr.size(), 1u);
@@ -423,9 +424,14 @@ TEST(UbxEncoder, MonHwJammingFollowsNoiseRise) {
   EXPECT_GT(jammed.jamInd, 200);
   EXPECT_GT(quiet.agcCnt, jammed.agcCnt);
   EXPECT_LT(quiet.noisePerMS, jammed.noisePerMS);
-  EXPECT_EQ((quiet.flags >> 2) & 3, 1);   // ok
-  EXPECT_EQ((jammed.flags >> 2) & 3, 3);  // critical
-  EXPECT_EQ((off.flags >> 2) & 3, 0);     // monitor disabled: unknown
+  EXPECT_EQ((quiet.flags >> 2) & 3, 1);                     // ok
+  EXPECT_EQ((jammed.flags >> 2) & 3, 2);                    // warning: interference visible, fix OK
+  EXPECT_EQ((hw(40.0, true, false).flags >> 2) & 3, 3);     // critical: interference and no fix
+  EXPECT_EQ((off.flags >> 2) & 3, 0);                       // monitor disabled: unknown
+  EXPECT_EQ((hw(40.0, true, true, 0).flags >> 2) & 3, 0);   // no good first fix yet: unknown
+  // bbThreshold 3 dB above the quiet floor (1 dB): 3.9 dB of rise is not yet interference, 4 dB is.
+  EXPECT_EQ((hw(3.9, true).flags >> 2) & 3, 1);
+  EXPECT_EQ((hw(4.0, true).flags >> 2) & 3, 2);
   EXPECT_EQ(quiet.aStatus, 2);
 }
 
