@@ -226,22 +226,29 @@ constexpr std::uint64_t mask_of(std::uint8_t width) noexcept {
   return width >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << width) - 1;
 }
 
+/// Bytes of the little-endian field holding k's bits, or 0 when it lies outside size.
+std::size_t field_bytes(const ConfigKey& k, std::size_t size) noexcept {
+  const std::size_t n = (k.shift + k.width + 7u) / 8u;
+  return k.offset + n <= size ? n : 0;
+}
+
+std::uint64_t load_le(std::span<const std::uint8_t> bytes, std::size_t offset, std::size_t n) noexcept {
+  std::uint64_t v = 0;
+  for (std::size_t i = 0; i < n; ++i) v |= std::uint64_t{bytes[offset + i]} << (8 * i);
+  return v;
+}
+
 /// width bits from shift of the little-endian field at offset of bytes (0 when outside).
 std::uint64_t get_bits(std::span<const std::uint8_t> bytes, const ConfigKey& k) noexcept {
-  const std::size_t n = (k.shift + k.width + 7u) / 8u;
-  if (k.offset + n > bytes.size()) return 0;
-  std::uint64_t v = 0;
-  for (std::size_t i = 0; i < n; ++i) v |= std::uint64_t{bytes[k.offset + i]} << (8 * i);
-  return v >> k.shift & mask_of(k.width);
+  const std::size_t n = field_bytes(k, bytes.size());
+  return n == 0 ? 0 : load_le(bytes, k.offset, n) >> k.shift & mask_of(k.width);
 }
 
 bool set_bits(std::span<std::uint8_t> bytes, const ConfigKey& k, std::uint64_t value) noexcept {
-  const std::size_t n = (k.shift + k.width + 7u) / 8u;
-  if (k.offset + n > bytes.size()) return false;
-  std::uint64_t v = 0;
-  for (std::size_t i = 0; i < n; ++i) v |= std::uint64_t{bytes[k.offset + i]} << (8 * i);
+  const std::size_t n = field_bytes(k, bytes.size());
+  if (n == 0) return false;
   const std::uint64_t m = mask_of(k.width) << k.shift;
-  v = (v & ~m) | ((value << k.shift) & m);
+  const std::uint64_t v = (load_le(bytes, k.offset, n) & ~m) | ((value << k.shift) & m);
   for (std::size_t i = 0; i < n; ++i) bytes[k.offset + i] = static_cast<std::uint8_t>(v >> (8 * i));
   return true;
 }
