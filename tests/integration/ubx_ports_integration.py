@@ -733,7 +733,8 @@ CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx
          "jamming": case_jamming, "wallclock": case_wallclock, "cold_start": case_cold_start,
          "power_on_cold": case_power_on_cold, "nav5": case_nav5, "px4_faults": case_px4_faults,
          "ardupilot_faults": case_ardupilot_faults, "px4_m9": case_px4_m9, "gpsd_m9": case_gpsd_m9}
-NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_m9": ["gpsd", "gpspipe", "socat"], "gpsd_nmea": ["gpsd", "gpspipe"], "gpsdecode": ["gpsdecode"],
+NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_m9": ["gpsd", "gpspipe", "socat"], "gpsd_nmea": ["gpsd", "gpspipe"],
+         "gpsdecode": ["gpsdecode"],
          "serial": ["socat", "stty"], "cold_start": ["gpsd", "gpspipe"],
          "power_on_cold": ["gpsd", "gpspipe"]}
 

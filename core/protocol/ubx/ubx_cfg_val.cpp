@@ -76,8 +76,9 @@ bool apply_pairs(HandlerContext& ctx, std::uint8_t layers, Pairs pairs) noexcept
 /// Add pairs to the open transaction (last value per key wins).
 bool add_pending(ValTransaction& t, Pairs pairs) noexcept {
   for (const auto& pr : pairs) {
-    auto* end = t.pending.begin() + static_cast<std::ptrdiff_t>(t.size);
-    auto* it = std::find_if(t.pending.begin(), end, [&](const ValTransaction::Pending& q) { return q.key == pr.key; });
+    const auto end = t.pending.begin() + static_cast<std::ptrdiff_t>(t.size);
+    const auto it =
+        std::find_if(t.pending.begin(), end, [&](const ValTransaction::Pending& q) { return q.key == pr.key; });
     if (it != end) {
       it->value = pr.value;
     } else {

@@ -43,7 +43,8 @@ std::vector<std::uint8_t> valset(std::uint8_t layers, const ValKeyValues& kv, st
   return p;
 }
 
-std::vector<std::uint8_t> valget(std::uint8_t layer, const std::vector<std::uint32_t>& keys, std::uint16_t position = 0) {
+std::vector<std::uint8_t> valget(std::uint8_t layer, const std::vector<std::uint32_t>& keys,
+                                 std::uint16_t position = 0) {
   std::vector<std::uint8_t> p{0, layer};
   put(p, position, 2);
   for (const std::uint32_t k : keys) put(p, k, 4);

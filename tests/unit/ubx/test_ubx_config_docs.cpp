@@ -40,8 +40,9 @@ std::string block_name(MsgId id) {
 
 std::string where(const ConfigKey& k) {
   const std::string port(kPortNames[k.port]);
-  const std::string bit = k.width == 1 ? " bit " + std::to_string(k.shift)
-                                       : " bits " + std::to_string(k.shift) + "-" + std::to_string(k.shift + k.width - 1);
+  const std::string bit =
+      k.width == 1 ? " bit " + std::to_string(k.shift)
+                   : " bits " + std::to_string(k.shift) + "-" + std::to_string(k.shift + k.width - 1);
   switch (k.store) {
     case KeyStore::kPlain: return "stored only";
     case KeyStore::kInProto: return "CFG-PRT " + port + " inProtoMask bit " + std::to_string(k.shift);
