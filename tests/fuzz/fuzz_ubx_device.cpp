@@ -1,6 +1,6 @@
 // Host input to the emulated u-blox: bytes through one StreamDecoder per
 // output into Device::handle_ubx / handle_nmea, on one to three outputs
-// (and, on output 0, as seen from the chip's other ports), with navigation
+// (and, on output 0, as seen from the chip's other ports), an M8 or an M9, with navigation
 // epochs, idle resyncs and decoder resets in between, as the daemon's
 // PortChannel drives them. The input's front is the byte stream (a recorded
 // log works as it is), its back the control stream (fuzz_support.hpp).
@@ -146,7 +146,10 @@ constexpr std::array<MsgId, 8> kRated = {msg::kNavPvt, msg::kNavStatus, msg::kNa
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   gnssemu::fuzz::InputSplitter in(data, size);
   DeviceSetup setup;
-  setup.ack_unknown_cfg = in.control_in(0, 1) == 1;
+  // b0: ACK unknown CFG ids; b1: an M9, which answers CFG-VALSET/VALGET/VALDEL.
+  const int identity = in.control_in(0, 3);
+  setup.ack_unknown_cfg = (identity & 1) != 0;
+  setup.mon_ver = mon_ver_of((identity & 2) != 0 ? Generation::kM9 : Generation::kM8);
   setup.nav_period_s = 1.0 / in.control_in(1, 10);
   const int outputs = in.control_in(1, 3);
   for (int k = 0; k < outputs; ++k) {

@@ -74,6 +74,17 @@ def nmea(body):
     return ("$%s*%02X\r\n" % (body, cs)).encode()
 
 
+def px4_m9_probe():
+    from ubx_host import px4_m9_probe_payload  # noqa: E402
+    return px4_m9_probe_payload()
+
+
+def px4_m9_valsets():
+    """The CFG-VALSET payloads of PX4's M9 configuration (ubx_host.px4_startup_m9)."""
+    from ubx_host import px4_m9_valset_payloads  # noqa: E402
+    return [payload for payload, _ in px4_m9_valset_payloads()]
+
+
 def ubx_corpus():
     # PX4's start-up (tests/integration/ubx_host.py px4_startup).
     nav5 = bytearray(36)
@@ -104,6 +115,23 @@ def ubx_corpus():
     misc += ubx(0x06, 0x31, bytes([0])) + ubx(0x06, 0x02, bytes([1])) + ubx(0x06, 0x17) + ubx(0x06, 0x1B)
     misc += ubx(0x06, 0x04, bytes([0, 0, 1, 0])) + ubx(0x06, 0x04, bytes([0, 0, 8, 0]))
     write("ubx_device", "commands_polls_resets.bin", misc)
+
+    # PX4's M9 start-up (ubx_host.px4_startup_m9) and the rest of the
+    # configuration interface: VALSET transactions and bad sets, VALGET of
+    # single keys, a group and every key (paged), VALDEL. The last byte (the
+    # first control byte) 0x02 makes the chip an M9.
+    m9 = ubx(0x06, 0x8A, px4_m9_probe()) + ubx(0x06, 0x8A, bytes([0, 1, 0, 0]) + struct.pack("<II", 0x40520001, 115200))
+    m9 += ubx(0x0A, 0x04) + b"".join(ubx(0x06, 0x8A, p) for p in px4_m9_valsets())
+    rate = struct.pack("<IH", 0x30210001, 200)
+    m9 += ubx(0x06, 0x8A, bytes([1, 1, 1, 0]) + rate) + ubx(0x06, 0x8A, bytes([1, 1, 2, 0]) + struct.pack("<IB", 0x20910007, 1))
+    m9 += ubx(0x06, 0x8A, bytes([1, 1, 3, 0])) + ubx(0x06, 0x8A, bytes([1, 3, 2, 0]))  # apply; ongoing without start
+    m9 += ubx(0x06, 0x8A, bytes([0, 1, 0, 0]) + struct.pack("<IB", 0x20110021, 1))  # dynModel 1: NAK
+    m9 += ubx(0x06, 0x8A, bytes([0, 6, 0, 0]) + struct.pack("<II", 0x40520001, 115200))  # BBR+Flash baud
+    m9 += ubx(0x06, 0x8B, struct.pack("<BBHII", 0, 0, 0, 0x30210001, 0x20910007))
+    m9 += ubx(0x06, 0x8B, struct.pack("<BBHI", 0, 7, 0, 0x0021FFFF))
+    m9 += ubx(0x06, 0x8B, struct.pack("<BBHI", 0, 1, 64, 0x0FFFFFFF))
+    m9 += ubx(0x06, 0x8C, struct.pack("<BBHI", 0, 2, 0, 0x0091FFFF)) + ubx(0x06, 0x09, struct.pack("<III", 0, 0, 0xFFFF))
+    write("ubx_device", "px4_m9_valset_valget.bin", m9 + b"\x02")
 
 
 # --- RINEX observation files, gzip (as spp / calibrate read them) -----------
@@ -164,7 +192,8 @@ def dictionaries():
                                 "vel_ecef", "x_m_s", "y_m_s", "z_m_s", "gps_week", "gps_tow_s", "NaN", "Infinity",
                                 "1e999", "-0", "true", "null", "\xf7GTR\x01", "\\u0000"])
     write_dict("ubx_device", ["\xb5\x62", "\xb5\x62\x06", "\xb5\x62\x0a\x04\x00\x00", "$PUBX,41,", "$PUBX,40,",
-                              "GPQ,", "GNQ,", "*", "\r\n", "$GP", "$GN"])
+                              "GPQ,", "GNQ,", "*", "\r\n", "$GP", "$GN", "\xb5\x62\x06\x8a", "\xb5\x62\x06\x8b",
+                              "\xb5\x62\x06\x8c", "\xff\xff\xff\x0f", "\x01\x00\x21\x30", "\x07\x00\x91\x20"])
     # RINEX header labels (columns 61-80) from the test files.
     labels = set()
     for p in list((ROOT / "tests/data/nav").iterdir()) + list((ROOT / "tests/data/obs").glob("*.[or]*")):

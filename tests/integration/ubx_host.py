@@ -199,6 +199,115 @@ def px4_startup(s, fd, after_mon_ver=None):
     return r
 
 
+def mon_ver_m9():
+    pad = lambda txt, n: txt.encode().ljust(n, b"\0")
+    return frame(0x0A, 0x04, pad("ROM CORE 4.04 (d964f4)", 30) + pad("00190000", 10) + pad("FWVER=SPG 4.04", 30) +
+                 pad("PROTVER=32.01", 30) + pad("GPS;GLO;GAL;BDS", 30) + pad("SBAS;QZSS", 30))
+
+
+def valset(pairs, layers=1):
+    """CFG-VALSET v0 payload; pairs: (key id, value) with the value's size
+    from the key id (bits 28-30: 1 and 2 one byte, 3 two, 4 four, 5 eight)."""
+    size = {1: 1, 2: 1, 3: 2, 4: 4, 5: 8}
+    out = bytes([0, layers, 0, 0])
+    for key, value in pairs:
+        out += struct.pack("<I", key) + value.to_bytes(size[key >> 28 & 7], "little")
+    return out
+
+
+def valget(keys, layer=0, position=0):
+    return struct.pack("<BBH", 0, layer, position) + b"".join(struct.pack("<I", k) for k in keys)
+
+
+# PX4-GPSDrivers src/ubx.h key ids (facts; values as PX4 sends them).
+K_UART1_BAUDRATE, K_UART1_STOPBITS, K_UART1_DATABITS, K_UART1_PARITY = 0x40520001, 0x20520002, 0x20520003, 0x20520004
+K_UART1IN_UBX, K_UART1IN_NMEA, K_UART1IN_RTCM3X = 0x10730001, 0x10730002, 0x10730004
+K_UART1OUT_UBX, K_UART1OUT_NMEA = 0x10740001, 0x10740002
+K_USBIN_UBX, K_USBIN_NMEA, K_USBIN_RTCM3X, K_USBOUT_UBX, K_USBOUT_NMEA = \
+    0x10770001, 0x10770002, 0x10770004, 0x10780001, 0x10780002
+K_I2CIN_UBX, K_I2CIN_NMEA, K_I2CIN_RTCM3X, K_I2COUT_UBX, K_I2COUT_NMEA = \
+    0x10710001, 0x10710002, 0x10710004, 0x10720001, 0x10720002
+K_NAVSPG_FIXMODE, K_NAVSPG_UTCSTANDARD, K_NAVSPG_DYNMODEL = 0x20110011, 0x2011001C, 0x20110021
+K_ODO = (0x10220001, 0x10220002, 0x10220003, 0x10220004)  # USE_ODO, USE_COG, OUTLPVEL, OUTLPCOG
+K_ITFM_ENABLE, K_RATE_MEAS, K_RATE_NAV, K_RATE_TIMEREF = 0x1041000D, 0x30210001, 0x30210002, 0x20210003
+K_NAVHPG_DGNSSMODE = 0x20140011
+# CFG-MSGOUT I2C ids; PX4's cfgValsetPort sets UART1 (+1) and USB (+3).
+K_MSGOUT_NAV_PVT, K_MSGOUT_NAV_DOP, K_MSGOUT_NAV_SAT, K_MSGOUT_NAV_STATUS, K_MSGOUT_MON_RF, K_MSGOUT_RXM_RTCM = \
+    0x20910006, 0x20910038, 0x20910015, 0x2091001A, 0x20910359, 0x20910268
+PX4_M9_RATE_MEAS_MS = 125  # configureDevice: 8 Hz on everything but an F9P
+
+
+def px4_m9_probe_payload():
+    """PX4's CFG-VALSET probe on a UART (configure(), protocol 27+ test)."""
+    return valset([(K_UART1_STOPBITS, 1), (K_UART1_DATABITS, 0), (K_UART1_PARITY, 0), (K_UART1IN_UBX, 1),
+                   (K_UART1IN_NMEA, 0), (K_UART1OUT_UBX, 1), (K_UART1OUT_NMEA, 0)])
+
+
+def px4_m9_valset_payloads(dyn_model=7, sat_rate=10):
+    """PX4's configureDevice() VALSET blocks for a NEO-M9N (Board::u_blox9)
+    on a UART, output mode GPS, no GNSS selection, I2C protocols off, in
+    order, with whether PX4 requires their ACK."""
+    port = lambda key, v: [(key + 1, v), (key + 3, v)]  # cfgValsetPort: UART1 and USB
+    return [
+        (valset([(K_UART1IN_RTCM3X, 1), (K_USBIN_UBX, 1), (K_USBIN_RTCM3X, 1), (K_USBIN_NMEA, 0),
+                 (K_USBOUT_UBX, 1), (K_USBOUT_NMEA, 0)]), True),
+        (valset([(K_NAVSPG_FIXMODE, 3), (K_NAVSPG_UTCSTANDARD, 3), (K_NAVSPG_DYNMODEL, dyn_model)] +
+                [(k, 0) for k in K_ODO] +
+                [(K_ITFM_ENABLE, 1), (K_RATE_MEAS, PX4_M9_RATE_MEAS_MS), (K_RATE_NAV, 1), (K_RATE_TIMEREF, 0)]), True),
+        (valset([(K_NAVHPG_DGNSSMODE, 3)]), False),  # RTK: F9P only, NAK tolerated
+        (valset(port(K_MSGOUT_NAV_PVT, 1) + port(K_MSGOUT_NAV_DOP, 1) + port(K_MSGOUT_NAV_SAT, sat_rate) +
+                port(K_MSGOUT_NAV_STATUS, 1) + port(K_MSGOUT_MON_RF, 1) + port(K_MSGOUT_RXM_RTCM, 1)), True),
+        (valset([(K_I2CIN_UBX, 0), (K_I2CIN_NMEA, 0), (K_I2CIN_RTCM3X, 0), (K_I2COUT_UBX, 0), (K_I2COUT_NMEA, 0)]),
+         True),
+    ]
+
+
+def px4_startup_m9(s, fd, path, baud=115200):
+    """PX4's protocol-27+ UART start-up against an M9, byte for byte
+    (PX4-GPSDrivers ubx.cpp configure / configureDevice): the VALSET probe
+    (UART1 8N1, UBX only) -> ACK; VALSET UART1 baud -> ACK at the old rate,
+    then the line switches (PX4 switches its side too); MON-VER -> the
+    M9N's; then configureDevice's VALSET blocks, each ACKed within PX4's
+    250 ms except the F9P-only DGNSSMODE, which an M9N NAKs. Returns the
+    Replies."""
+    r = Replies()
+    m = r.timed(s, fd, frame(0x06, 0x8A, px4_m9_probe_payload()), is_ack_for(0x06, 0x8A), PX4_VALSET_LIMIT_S,
+                "reply to the CFG-VALSET probe")
+    assert m == ack(0x06, 0x8A), f"VALSET probe: want ACK (protocol 27+), got {m.hex()}"
+    m = r.timed(s, fd, frame(0x06, 0x8A, valset([(K_UART1_BAUDRATE, baud)])), is_ack_for(0x06, 0x8A), 1.0,
+                "reply to VALSET CFG-UART1-BAUDRATE")
+    assert m == ack(0x06, 0x8A), f"VALSET baud: got {m.hex()}"
+    deadline = time.monotonic() + 1.0
+    while stty_speed(path) != baud and time.monotonic() < deadline:
+        s.pump(0.02)
+    assert stty_speed(path) == baud, f"line at {stty_speed(path)}, want {baud} after the ACK"
+    m = r.timed(s, fd, frame(0x0A, 0x04), is_ubx(0x0A, 0x04), 1.0, "MON-VER")
+    assert m == mon_ver_m9(), f"MON-VER: {m!r}"
+    for payload, required in px4_m9_valset_payloads():
+        what = f"reply to VALSET {payload[4:8][::-1].hex()}.."
+        m = r.timed(s, fd, frame(0x06, 0x8A, payload), is_ack_for(0x06, 0x8A), 1.0, what)
+        assert m == ack(0x06, 0x8A, required), f"{what}: got {m.hex()} (want {'ACK' if required else 'NAK'})"
+    late = [(w, dt) for w, dt in r.times[1:] if dt >= PX4_REPLY_LIMIT_S]
+    assert not late, f"replies after PX4's 250 ms (it restarts its configuration): {late}"
+    return r
+
+
+def valget_values(s, fd, keys, layer=0):
+    """VALGET keys; {key: value} of the reply (then ACK-ACK)."""
+    send(fd, frame(0x06, 0x8B, valget(keys, layer)))
+    data = s.frame_of(0x06, 0x8B, 1.0)
+    a = s.wait_for(is_ack_for(0x06, 0x8B), 1.0, "ACK after VALGET")[1]
+    assert a == ack(0x06, 0x8B), a.hex()
+    size = {1: 1, 2: 1, 3: 2, 4: 4, 5: 8}
+    p, out, off = data[6:-2], {}, 4
+    while off < len(p):
+        key = struct.unpack_from("<I", p, off)[0]
+        n = size[key >> 28 & 7]
+        out[key] = int.from_bytes(p[off + 4:off + 4 + n], "little")
+        off += 4 + n
+    return out
+
+
 def px4_rates(s, seconds=3.0, fix_limit_s=4.0):
     """After PX4's start-up: the first gnssFixOK within fix_limit_s, then
     NAV-PVT at 5 Hz (iTOW on 200 ms steps and boundaries) with gnssFixOK and

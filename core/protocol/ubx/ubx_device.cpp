@@ -56,6 +56,7 @@ Device::Device(const DeviceSetup& setup)
       saved_(defaults_),
       current_(defaults_),
       before_(defaults_),
+      val_(defaults_),
       epoch_period_s_(setup.nav_period_s) {
   for (std::size_t k = 0; k < setup.outputs.size(); ++k) {
     const OutputSetup& o = setup.outputs[k];
@@ -86,8 +87,10 @@ InputResult Device::handle_ubx(Link at, const FrameView& frame, double now_s, st
   const std::size_t start = out.size();
   const bool cfg = frame.id.cls == cls::kCfg;
   if (cfg) before_ = current_;
+  // Any other CFG message cancels a started VALSET transaction (UBX-18010854 CFG-VALSET v1).
+  if (cfg && frame.id != msg::kCfgValset) val_.cancel();
   HandlerContext ctx{current_, saved_, defaults_, at.output, at.port_id, out, encoder_, last_fix_, info_,
-                     ack_unknown_cfg_, generation(), std::nullopt};
+                     ack_unknown_cfg_, generation(), std::nullopt, &val_};
   const Handler handle = find_handler(frame.id);
   r.reply = handle != nullptr ? handle(ctx, frame) : Reply::kNone;
   if (ctx.reset) {

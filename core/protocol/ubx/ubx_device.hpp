@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "core/protocol/nmea/nmea_encoder.hpp"
+#include "core/protocol/ubx/ubx_config_keys.hpp"
 #include "core/protocol/ubx/ubx_device_config.hpp"
 #include "core/protocol/ubx/ubx_encoder.hpp"
 #include "core/protocol/ubx/ubx_frame.hpp"
@@ -203,6 +204,7 @@ private:
   std::vector<nmea::NmeaEncoder> nmea_;  ///< per output
   DeviceConfig defaults_, saved_, current_;
   DeviceConfig before_;  ///< current_ before the input being handled (no allocation per input)
+  ValTransaction val_;   ///< CFG-VALSET transaction and scratch configurations (M9)
   double epoch_period_s_;
   double uptime_origin_s_ = 0.0;  ///< power-on or the last reset that restarted navigation
   receiver::Fix last_fix_{};

@@ -4,6 +4,8 @@
 #include <cstring>
 #include <initializer_list>
 
+#include "core/protocol/ubx/ubx_config_keys.hpp"
+
 namespace gnssemu::protocol::ubx {
 
 namespace {
@@ -140,6 +142,7 @@ DeviceConfig DeviceConfig::factory_defaults(std::size_t uarts) {
   b = {};  // CFG-DAT poll form: WGS-84
   b.u2(0).str("WGS84", 6).r8(6378137.0).r8(298.257223563).r4(0).r4(0).r4(0).r4(0).r4(0).r4(0).r4(0);
   c.store(msg::kCfgDat, 0, b.span());
+  set_plain_defaults(c);
   return c;
 }
 
@@ -205,7 +208,7 @@ bool DeviceConfig::operator==(const DeviceConfig& o) const {
     if (!port_eq(ports_[p], o.ports_[p])) return false;
   }
   if (std::memcmp(&rate, &o.rate, sizeof rate) != 0 || std::memcmp(&nav5, &o.nav5, sizeof nav5) != 0) return false;
-  if (!same_rates(o)) return false;
+  if (!same_rates(o) || plain_ != o.plain_) return false;
   if (num_blocks_ != o.num_blocks_) return false;
   for (std::size_t i = 0; i < num_blocks_; ++i) {
     const StoredBlock* b = o.stored(blocks_[i].id, blocks_[i].index);
@@ -242,6 +245,7 @@ bool DeviceConfig::same_rates(const DeviceConfig& o) const noexcept {
 }
 
 void DeviceConfig::copy_sections(const DeviceConfig& src, std::uint32_t mask) noexcept {
+  if (mask != 0) plain_ = src.plain_;
   if (mask & (1u << 0)) ports_ = src.ports_;
   if (mask & (1u << 1)) {
     rate_ids_ = src.rate_ids_;

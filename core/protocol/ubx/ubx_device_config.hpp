@@ -43,6 +43,9 @@ inline constexpr std::size_t kMaxRateEntries = 64;
 inline constexpr std::size_t kMaxStoredBytes = 112;
 /// Stored CFG payloads (TP5 x2, INF x2, and the other pollable CFG messages).
 inline constexpr std::size_t kMaxStoredBlocks = 24;
+/// Configuration-interface values no legacy CFG message holds (the plain
+/// keys of ubx_config_keys.hpp).
+inline constexpr std::size_t kMaxPlainValues = 16;
 
 /// A CFG payload kept verbatim and returned on poll. index distinguishes
 /// CFG-TP5 tpIdx and CFG-INF protocolID; 0 otherwise.
@@ -93,6 +96,12 @@ public:
   /// Store a payload (size <= kMaxStoredBytes); false when full or too big.
   bool store(MsgId id, std::uint8_t index, std::span<const std::uint8_t> payload) noexcept;
 
+  /// A plain configuration-key value (slot < kMaxPlainValues; ubx_config_keys.hpp).
+  std::uint64_t plain_value(std::size_t slot) const noexcept { return slot < plain_.size() ? plain_[slot] : 0; }
+  void set_plain_value(std::size_t slot, std::uint64_t value) noexcept {
+    if (slot < plain_.size()) plain_[slot] = value;
+  }
+
   /// Navigation epoch period measRate * navRate, s.
   double nav_period_s() const noexcept { return 1e-3 * rate.measRate * rate.navRate; }
 
@@ -101,7 +110,8 @@ public:
 
   /// CFG-CFG mask sections (b0 ioPort, b1 msgConf, b2 infMsg, b3 navConf,
   /// b4 rxmConf, b9 rinvConf, b10 antConf, b11 logConf): copy those sections
-  /// from src (a configuration of the same chip) into this.
+  /// from src (a configuration of the same chip) into this. The plain
+  /// values, which no M8 section holds, travel with any non-zero mask.
   void copy_sections(const DeviceConfig& src, std::uint32_t mask) noexcept;
 
 private:
@@ -114,6 +124,7 @@ private:
   std::vector<std::uint8_t> rates_;  ///< kMaxRateEntries rows of columns() rates
   std::array<StoredBlock, kMaxStoredBlocks> blocks_{};
   std::size_t num_blocks_ = 0;
+  std::array<std::uint64_t, kMaxPlainValues> plain_{};
 };
 
 }  // namespace gnssemu::protocol::ubx

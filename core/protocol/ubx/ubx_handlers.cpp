@@ -37,6 +37,9 @@ constexpr HandlerRow kHandlers[] = {
     {msg::kCfgNmea, handle_cfg_stored, {4, 12, 20}},
     {msg::kCfgPms, handle_cfg_stored, {8}},
     {msg::kCfgLogfilter, handle_cfg_stored, {12}},
+    {msg::kCfgValset, handle_cfg_valset},
+    {msg::kCfgValget, handle_cfg_valget},
+    {msg::kCfgValdel, handle_cfg_valdel},
     {msg::kMonVer, handle_mon_ver},
 };
 

@@ -19,6 +19,8 @@
 
 namespace gnssemu::protocol::ubx {
 
+struct ValTransaction;  // ubx_config_keys.hpp
+
 /// What one input message got.
 enum class Reply : std::uint8_t {
   kNone,      ///< ignored (not for us, or UBX output off on the port)
@@ -43,6 +45,9 @@ struct HandlerContext {
   bool ack_unknown_cfg = false;  ///< ACK CFG ids an M8 lacks (except CFG-VAL*) instead of NAKing them
   Generation generation = Generation::kM8;  ///< the chip's (ubx_generation.hpp)
   std::optional<Reset> reset;    ///< set by CFG-RST
+  /// The chip's CFG-VALSET transaction and scratch configurations; nullptr:
+  /// VALSET and VALDEL are NAKed (ubx_cfg_val.cpp).
+  ValTransaction* transaction = nullptr;
 
   /// Column of u-blox port p (< kNumPorts) as this host sees it.
   std::size_t column(std::uint8_t p) const noexcept { return current.column(uart, p); }
@@ -80,6 +85,11 @@ Reply handle_cfg_stored(HandlerContext& ctx, const FrameView& frame);
 // Saved configuration and resets (ubx_cfg_save.cpp).
 Reply handle_cfg_cfg(HandlerContext& ctx, const FrameView& frame);
 Reply handle_cfg_rst(HandlerContext& ctx, const FrameView& frame);
+// The configuration interface of protocol 27+ (ubx_cfg_val.cpp): answered
+// when has_config_interface(ctx.generation), else as handle_cfg_unknown.
+Reply handle_cfg_valset(HandlerContext& ctx, const FrameView& frame);
+Reply handle_cfg_valget(HandlerContext& ctx, const FrameView& frame);
+Reply handle_cfg_valdel(HandlerContext& ctx, const FrameView& frame);
 // Everything else (ubx_handlers.cpp).
 /// CFG ids an M8 lacks: CFG-VALSET/VALGET/VALDEL and the rest.
 Reply handle_cfg_unknown(HandlerContext& ctx, const FrameView& frame);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "core/protocol/ubx/ubx_decoder.hpp"
 #include "core/protocol/ubx/ubx_device.hpp"
@@ -83,6 +84,46 @@ TEST_P(UbxAlloc, EpochEncodeConfigAndDecodeDoNotAllocate) {
 
 INSTANTIATE_TEST_SUITE_P(Generations, UbxAlloc, ::testing::Values(Generation::kM8, Generation::kM9),
                          [](const ::testing::TestParamInfo<Generation>& p) { return std::string(generation_name(p.param)); });
+
+TEST(UbxAlloc, ConfigInterfaceDoesNotAllocate) {
+  // An M9: VALSET (a transaction and a transaction-less set on RAM+BBR), a
+  // VALGET of every key (paged), a VALDEL, and their NAKs.
+  DeviceSetup setup;
+  setup.mon_ver = mon_ver_of(Generation::kM9);
+  Device r(setup);
+  const auto le = [](std::uint32_t v) {
+    return std::vector<std::uint8_t>{static_cast<std::uint8_t>(v), static_cast<std::uint8_t>(v >> 8),
+                                     static_cast<std::uint8_t>(v >> 16), static_cast<std::uint8_t>(v >> 24)};
+  };
+  const auto cat = [](std::vector<std::uint8_t> a, const std::vector<std::uint8_t>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+  };
+  std::string input;
+  input += test::frame_bytes(msg::kCfgValset, cat(cat({1, 1, 1, 0}, le(0x30210001)), {0xC8, 0}));   // start: RATE-MEAS 200
+  input += test::frame_bytes(msg::kCfgValset, cat(cat({1, 1, 3, 0}, le(0x20910007)), {1}));         // apply: NAV-PVT UART1 1
+  input += test::frame_bytes(msg::kCfgValset, cat(cat({0, 3, 0, 0}, le(0x40520001)), le(9600)));    // RAM+BBR baud
+  input += test::frame_bytes(msg::kCfgValset, cat(cat({0, 1, 0, 0}, le(0x20110021)), {1}));         // NAK: dynModel 1
+  input += test::frame_bytes(msg::kCfgValget, cat({0, 0, 0, 0}, le(0x0FFFFFFF)));                   // every key, page 1
+  input += test::frame_bytes(msg::kCfgValget, cat({0, 7, 64, 0}, le(0x0FFFFFFF)));                  // page 2, defaults
+  input += test::frame_bytes(msg::kCfgValdel, cat({0, 2, 0, 0}, le(0x0091FFFF)));                   // every MSGOUT in BBR
+  std::string out;
+  out.reserve(64 * 1024);
+  StreamDecoder decoder;
+  NullSink sink;
+  sink.r = &r;
+  sink.out = &out;
+  decoder.feed(input, sink);  // warm-up
+  const long before = support::allocation_count();
+  for (int i = 0; i < 20; ++i) {
+    out.clear();
+    decoder.feed(input, sink);
+  }
+  EXPECT_EQ(support::allocation_count(), before);
+  EXPECT_EQ(sink.frames, 21u * 7u);
+  EXPECT_GT(out.size(), 2u * 64u * 5u);  // the VALGET pages were really written
+  EXPECT_EQ(r.config().rate.measRate, 200);
+}
 
 }  // namespace
 }  // namespace gnssemu::protocol::ubx

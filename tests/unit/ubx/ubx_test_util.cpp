@@ -117,7 +117,7 @@ Reply HandlerRig::call(Handler handler, MsgId id, const std::vector<std::uint8_t
                        std::uint8_t port) {
   out.clear();
   HandlerContext ctx{current, saved, defaults, uart, port, out, encoder, fix, info, false,
-                     encoder.mon_ver_config().generation, std::nullopt};
+                     encoder.mon_ver_config().generation, std::nullopt, &transaction};
   const Reply r = handler(ctx, FrameView{id, payload});
   reset = ctx.reset;
   return r;

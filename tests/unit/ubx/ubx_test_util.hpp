@@ -5,6 +5,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/protocol/ubx/ubx_config_keys.hpp"
 #include "core/protocol/ubx/ubx_device.hpp"
 #include "core/protocol/ubx/ubx_frame.hpp"
 #include "core/protocol/ubx/ubx_handlers.hpp"
@@ -44,8 +45,9 @@ std::size_t ubx_epoch(const Device& d, Link at, std::string& out);
 /// alone: call(handler, frame) as a host on UART1 of output uart (or on port).
 struct HandlerRig {
   explicit HandlerRig(std::size_t uarts = 2)
-      : defaults(DeviceConfig::factory_defaults(uarts)), saved(defaults), current(defaults) {}
+      : defaults(DeviceConfig::factory_defaults(uarts)), saved(defaults), current(defaults), transaction(defaults) {}
   DeviceConfig defaults, saved, current;
+  ValTransaction transaction;
   UbxEncoder encoder;
   receiver::Fix fix = sample_fix();
   EpochInfo info;
