@@ -201,8 +201,9 @@ def px4_startup(s, fd, after_mon_ver=None):
 
 def mon_ver_m9():
     pad = lambda txt, n: txt.encode().ljust(n, b"\0")
-    return frame(0x0A, 0x04, pad("ROM CORE 4.04 (d964f4)", 30) + pad("00190000", 10) + pad("FWVER=SPG 4.04", 30) +
-                 pad("PROTVER=32.01", 30) + pad("GPS;GLO;GAL;BDS", 30) + pad("SBAS;QZSS", 30))
+    return frame(0x0A, 0x04, pad("EXT CORE 4.04 (7f89f7)", 30) + pad("00190000", 10) +
+                 pad("ROM BASE 0x118B2060", 30) + pad("FWVER=SPG 4.04", 30) + pad("PROTVER=32.01", 30) +
+                 pad("MOD=NEO-M9N", 30) + pad("GPS;GLO;GAL;BDS", 30) + pad("SBAS;QZSS", 30))
 
 
 def valset(pairs, layers=1):

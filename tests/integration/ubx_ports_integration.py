@@ -238,13 +238,8 @@ def case_px4_m9(rig):
             uart1(K_MSGOUT_NAV_PVT): 1, uart1(K_MSGOUT_MON_RF): 1}
     assert got == want, f"VALGET {got}, want {want}"
     rf = count(0x0A, 0x38)
-    if rf:
-        assert abs(rf - len(pvts)) <= 1, f"{rf} MON-RF for {len(pvts)} NAV-PVT (rate 1)"
-        rf_note = f"{rf} MON-RF"
-    else:
-        # MON-RF is encoded on the m9out branch; until it is merged the rate
-        # PX4 set is checked through VALGET above. The merge tightens this.
-        rf_note = "MON-RF rate 1 stored (VALGET; no MON-RF encoder on this branch)"
+    assert abs(rf - len(pvts)) <= 1, f"{rf} MON-RF for {len(pvts)} NAV-PVT (PX4 set rate 1)"
+    rf_note = f"{rf} MON-RF"
     print(f"  px4_m9: VALSET start-up answered byte for byte ({replies.summary()}); {len(pvts)} NAV-PVT in "
           f"{seconds:.0f} s, iTOW step {PX4_M9_RATE_MEAS_MS} ms, gnssFixOK; {rf_note}")
 
@@ -351,12 +346,18 @@ def case_gpsd_m9(rig):
     for m in val:
         assert (0x06, m[3]) not in naks, f"gpsd's CFG-VAL* {m.hex()} was NAKed"
         assert (0x06, m[3]) in acks, f"gpsd's CFG-VAL* {m.hex()} got no ACK"
-    cfg_naked = sorted({c for c in naks if c[0] == 0x06 and c in {(m[2], m[3]) for m in sent}})
+    # The only CFG command an M9 refuses is CFG-MSG for NAV-SVINFO, a message
+    # protocol 27+ does not have (gpsd 3.22 asks for it on every chip).
+    svinfo_msgs = sum(1 for m in sent if m[2:4] == b"\x06\x01" and m[6:8] == b"\x01\x30")
+    cfg_msg_naks = sum(1 for m in back if m[2:4] == b"\x05\x00" and m[6:8] == b"\x06\x01")
+    assert cfg_msg_naks == svinfo_msgs, f"{cfg_msg_naks} CFG-MSG NAKed, {svinfo_msgs} of them for NAV-SVINFO"
+    cfg_naked = sorted({c for c in naks if c[0] == 0x06 and c != (0x06, 0x01) and c in {(m[2], m[3]) for m in sent}})
     assert not cfg_naked, f"CFG commands of gpsd NAKed: {cfg_naked}"
     names = ", ".join(f"{c:02X}-{i:02X}" for c, i in ids)
     vals = f"{len(val)} CFG-VAL*, all ACKed" if val else "no CFG-VAL* (it configures protocol 32 by CFG-PRT/CFG-MSG)"
     print(f"  gpsd_m9: driver {dev['driver']} ({dev['subtype']}), native mode; TPV mode 3 at {tpv['lat']:.6f} "
-          f"{tpv['lon']:.6f}; gpsd sent UBX {names}: {vals}")
+          f"{tpv['lon']:.6f}; gpsd sent UBX {names}: {vals}; {svinfo_msgs} CFG-MSG NAV-SVINFO NAKed (no such "
+          f"message from protocol 27), nothing else")
 
 
 def case_gpsd_nmea(rig):

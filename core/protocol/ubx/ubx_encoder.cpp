@@ -183,11 +183,12 @@ std::uint32_t itow_ms(const Fix& fix) noexcept { return derive(fix).itow; }
 MonVerConfig mon_ver_of(Generation g) {
   if (g == Generation::kM8) return {};
   MonVerConfig c;
-  c.sw_version = "ROM CORE 4.04 (d964f4)";
+  c.sw_version = "EXT CORE 4.04 (7f89f7)";
   c.hw_version = "00190000";
+  c.rom_base = "ROM BASE 0x118B2060";
   c.fw_version = "SPG 4.04";
   c.protocol_version = 32.01;
-  c.extensions = {"GPS;GLO;GAL;BDS", "SBAS;QZSS"};
+  c.extensions = {"MOD=NEO-M9N", "GPS;GLO;GAL;BDS", "SBAS;QZSS"};
   c.generation = g;
   return c;
 }
@@ -208,7 +209,8 @@ void validate(const MonVerConfig& config) {
     bad(std::string("protocol_version must be in ") + (m9 ? "[27, 50) for an M9" : "[18, 24) for an M8") +
         " (PX4 uses CFG-VALSET from 27)");
   }
-  if (config.extensions.size() + 2 > kMaxExtensions) bad("too many extension strings");
+  if (config.rom_base.size() > kMaxStringChars) bad("rom_base too long");
+  if (config.extensions.size() + (config.rom_base.empty() ? 2 : 3) > kMaxExtensions) bad("too many extension strings");
   for (const auto& e : config.extensions) {
     if (e.empty() || e.size() > kMaxStringChars) bad("extension '" + e + "' must have 1..29 characters");
   }
@@ -225,6 +227,7 @@ UbxEncoder::UbxEncoder(const MonVerConfig& config) : config_(config) {
     put_string(ext, sizeof ext, s);
     mon_ver_payload_.append(ext, sizeof ext);
   };
+  if (!config_.rom_base.empty()) add_ext(config_.rom_base);
   add_ext("FWVER=" + config_.fw_version);
   char protver[32];
   std::snprintf(protver, sizeof protver, "PROTVER=%05.2f", config_.protocol_version);

@@ -21,6 +21,9 @@ namespace gnssemu::protocol::ubx {
 struct MonVerConfig {
   std::string sw_version = "ROM CORE 3.01 (107888)";  ///< <= 29 characters
   std::string hw_version = "00080000";                ///< <= 9 characters; 00080000 = M8
+  /// Firmware running from flash over a ROM: its first extension, before
+  /// FWVER ("ROM BASE 0x118B2060" on a NEO-M9N); empty for ROM firmware.
+  std::string rom_base;
   std::string fw_version = "SPG 3.01";                ///< sent as "FWVER=<fw_version>"
   /// Sent as "PROTVER=%05.2f". An M8 speaks 18.00 .. 23.01, an M9 27 and
   /// later (PX4 switches to CFG-VALSET from 27).
@@ -31,8 +34,10 @@ struct MonVerConfig {
 };
 
 /// MON-VER of a factory chip of generation g: the M8 above, or a NEO-M9N
-/// as its recorded reply reads (ROM CORE 4.04 (d964f4), 00190000, FWVER=SPG
-/// 4.04, PROTVER=32.01; shared/reference/ubx.md §MON-VER).
+/// module (flash firmware SPG 4.04 over ROM 4.04) as field logs and
+/// ubxtool dumps show it: EXT CORE 4.04 (7f89f7), 00190000, ROM BASE
+/// 0x118B2060, FWVER=SPG 4.04, PROTVER=32.01, MOD=NEO-M9N (docs/ubx.md
+/// §Generations). ArduPilot takes "EXT CORE 4" with 00190000 for an M9.
 MonVerConfig mon_ver_of(Generation g);
 
 /// Throws gnssemu::Error("ubx", 0, reason) on a string too long, a hwVersion

@@ -259,7 +259,7 @@ TEST(ReceiverGenerationConfig, M9ReachesTheChipThroughTheDaemonsSetup) {
   std::string out;
   chip.encoder().mon_ver(out);
   const std::string text(out.begin() + 6, out.end() - 2);
-  EXPECT_NE(text.find("ROM CORE 4.04 (d964f4)"), std::string::npos);
+  EXPECT_NE(text.find("EXT CORE 4.04 (7f89f7)"), std::string::npos);
   EXPECT_NE(text.find("00190000"), std::string::npos);
   EXPECT_NE(text.find("FWVER=SPG 4.04"), std::string::npos);
   EXPECT_NE(text.find("PROTVER=32.01"), std::string::npos);

@@ -84,7 +84,8 @@ std::string generate() {
       // One row per message: ids I2C, UART1, UART2, USB, SPI = base + 0..4.
       std::string defaults_per_port;
       for (std::uint8_t p = 0; p < kMsgOutPortSuffix.size(); ++p) {
-        defaults_per_port += (p ? "/" : "") + std::to_string(read_config_key(keys[i + p], defaults, 0));
+        if (p) defaults_per_port += '/';
+        defaults_per_port += std::to_string(read_config_key(keys[i + p], defaults, 0));
       }
       s << "| " << hex(k.id, 8) << "+0..4 | " << k.name << "_{I2C,UART1,UART2,USB,SPI} | 1 byte | 0 … 255 | "
         << defaults_per_port << " | " << where(k) << " |\n";
