@@ -4,8 +4,8 @@
 #                   libFuzzer build (tests/fuzz/fuzz.sh build)
 #   2. build/       every test: unit, golden, integration, fuzz replays and a
 #                   10 s libFuzzer run per target (ctest label fuzz)
-#   3. build-asan/  GNSSEMU_SANITIZE=address,undefined: the unit tests (and the
-#                   fuzz replays) under ASan and UBSan
+#   3. build-asan/  GNSSEMU_SANITIZE=address,undefined: what ctest -L unit runs
+#                   (target unit_tests: unit tests, fuzz replays), under ASan+UBSan
 # Options: --no-asan skips stage 3. Exit status: the first failing stage's.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -56,7 +56,9 @@ if [ "$asan" -eq 1 ]; then
   # as the sanitizers advise: 40 % less compile time than -O3.
   cmake -S "$root" -B "$root/build-asan" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
     -DGNSSEMU_BUILD_TESTS=ON -DGNSSEMU_WERROR=OFF -DGNSSEMU_SANITIZE=address,undefined -DGNSSEMU_FUZZ_SMOKE_S=0
-  cmake --build "$root/build-asan" -j"$jobs"
+  # Only what the unit tests run: the tools and benchmarks are built and run
+  # in stage 1.
+  cmake --build "$root/build-asan" -j"$jobs" --target unit_tests
   ctest --test-dir "$root/build-asan" -L unit -j"$jobs" --output-on-failure
   stage_done asan
 fi
