@@ -22,8 +22,7 @@ constexpr std::uint8_t kGetRam = 0, kGetBbr = 1, kGetFlash = 2, kGetDefault = 7;
 constexpr std::uint8_t kNoTransaction = 0, kStart = 1, kOngoing = 2, kApply = 3;
 
 std::uint32_t u4_at(std::span<const std::uint8_t> p, std::size_t off) noexcept {
-  return static_cast<std::uint32_t>(p[off]) | static_cast<std::uint32_t>(p[off + 1]) << 8 |
-         static_cast<std::uint32_t>(p[off + 2]) << 16 | static_cast<std::uint32_t>(p[off + 3]) << 24;
+  return static_cast<std::uint32_t>(load_le(p, off, 4));
 }
 
 using Pairs = std::span<const ValTransaction::Pending>;
@@ -41,9 +40,7 @@ bool parse_pairs(std::span<const std::uint8_t> p, std::array<ValTransaction::Pen
     if (k == nullptr) return false;
     const std::size_t len = k->value_bytes();
     if (off + 4 + len > p.size()) return false;
-    std::uint64_t v = 0;
-    for (std::size_t i = 0; i < len; ++i) v |= std::uint64_t{p[off + 4 + i]} << (8 * i);
-    out[n++] = {id, v};
+    out[n++] = {id, load_le(p, off + 4, len)};
     off += 4 + len;
   }
   return true;
@@ -155,7 +152,7 @@ Reply handle_cfg_valget(HandlerContext& ctx, const FrameView& frame) {
                             : layer == kGetDefault                    ? &ctx.defaults
                                                                       : nullptr;
   if (src == nullptr) return ack(ctx, id, false);
-  const std::size_t position = static_cast<std::size_t>(p[2] | p[3] << 8);
+  const std::size_t position = static_cast<std::size_t>(load_le(p, 2, 2));
   // Reply: version 1, layer, position, then key/value pairs: at most 64 per
   // message; a host pages through a longer answer with position (values to skip).
   std::array<std::uint8_t, 4 + kMaxKeysPerMessage * 12> reply{};

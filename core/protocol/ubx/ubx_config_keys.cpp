@@ -232,12 +232,6 @@ std::size_t field_bytes(const ConfigKey& k, std::size_t size) noexcept {
   return k.offset + n <= size ? n : 0;
 }
 
-std::uint64_t load_le(std::span<const std::uint8_t> bytes, std::size_t offset, std::size_t n) noexcept {
-  std::uint64_t v = 0;
-  for (std::size_t i = 0; i < n; ++i) v |= std::uint64_t{bytes[offset + i]} << (8 * i);
-  return v;
-}
-
 /// width bits from shift of the little-endian field at offset of bytes (0 when outside).
 std::uint64_t get_bits(std::span<const std::uint8_t> bytes, const ConfigKey& k) noexcept {
   const std::size_t n = field_bytes(k, bytes.size());

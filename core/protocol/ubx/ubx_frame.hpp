@@ -96,6 +96,14 @@ std::size_t append_message(std::string& out, MsgId id, const Wire& wire) {
   return append_frame(out, id, {reinterpret_cast<const std::uint8_t*>(&wire), sizeof(Wire)});
 }
 
+/// The n (<= 8) little-endian bytes of bytes at offset as an unsigned value
+/// (UBX is little-endian throughout); the caller checks offset + n <= size.
+constexpr std::uint64_t load_le(std::span<const std::uint8_t> bytes, std::size_t offset, std::size_t n) noexcept {
+  std::uint64_t v = 0;
+  for (std::size_t i = 0; i < n; ++i) v |= std::uint64_t{bytes[offset + i]} << (8 * i);
+  return v;
+}
+
 /// Copy a wire struct out of a payload. False when the payload is shorter.
 template <class Wire>
 bool read_wire(std::span<const std::uint8_t> payload, Wire& wire, std::size_t offset = 0) noexcept {
