@@ -219,6 +219,17 @@ constexpr bool keys_consistent() {
   return true;
 }
 static_assert(keys_consistent(), "config keys: a size nibble, range, slot or duplicate id is wrong");
+
+/// Row of key id in kKeys (kKeys.size() when absent), for rows code reads by name.
+constexpr std::size_t key_row(std::uint32_t id) {
+  for (std::size_t i = 0; i < kKeys.size(); ++i) {
+    if (kKeys[i].id == id) return i;
+  }
+  return kKeys.size();
+}
+constexpr std::size_t kItfmEnableRow = key_row(0x1041000D), kItfmBbRow = key_row(0x20410001),
+                      kItfmCwRow = key_row(0x20410002);
+static_assert(kItfmEnableRow < kNumKeys && kItfmBbRow < kNumKeys && kItfmCwRow < kNumKeys);
 static_assert(kNumKeys <= sizeof(ValTransaction::pending) / sizeof(ValTransaction::Pending),
               "a transaction holds every key once");
 
@@ -280,6 +291,14 @@ std::int64_t as_signed(std::uint64_t v, std::size_t bytes) noexcept {
 }  // namespace
 
 std::span<const ConfigKey> config_keys() noexcept { return kKeys; }
+
+ItfmSettings itfm_settings(const DeviceConfig& c) noexcept {
+  ItfmSettings s;
+  s.enabled = read_config_key(kKeys[kItfmEnableRow], c, 0) != 0;
+  s.bb_threshold_db = static_cast<double>(read_config_key(kKeys[kItfmBbRow], c, 0));
+  s.cw_threshold_db = static_cast<double>(read_config_key(kKeys[kItfmCwRow], c, 0));
+  return s;
+}
 
 const ConfigKey* find_config_key(std::uint32_t key_id) noexcept {
   for (const ConfigKey& k : kKeys) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/protocol/ubx/ubx_config_keys.hpp"
 #include "core/protocol/ubx/ubx_message_table.hpp"
 #include "core/protocol/ubx/ubx_pubx.hpp"
 
@@ -207,15 +208,10 @@ void Device::on_epoch(const receiver::Fix& fix, double now_s) noexcept {
     // at least 1 ms: 0 on the wire means "no fix yet".
     info_.ttff_ms = std::max<std::uint32_t>(1, info_.msss_ms);
   }
-  // CFG-ITFM config: b0-3 bbThreshold, b4-8 cwThreshold (dB), b31 enable.
-  const StoredBlock* itfm = current_.stored(msg::kCfgItfm);
-  const std::uint32_t word = itfm != nullptr && itfm->size >= 4
-                                 ? static_cast<std::uint32_t>(itfm->bytes[0] | itfm->bytes[1] << 8 | itfm->bytes[2] << 16 |
-                                                              static_cast<std::uint32_t>(itfm->bytes[3]) << 24)
-                                 : 0;
-  info_.itfm_enabled = (word & 0x80000000u) != 0;
-  info_.itfm_bb_threshold_db = static_cast<double>(word & 0x0F);
-  info_.itfm_cw_threshold_db = static_cast<double>(word >> 4 & 0x1F);
+  const ItfmSettings itfm = itfm_settings(current_);
+  info_.itfm_enabled = itfm.enabled;
+  info_.itfm_bb_threshold_db = itfm.bb_threshold_db;
+  info_.itfm_cw_threshold_db = itfm.cw_threshold_db;
 }
 
 bool Device::due(std::size_t col, MsgId id) const noexcept {
