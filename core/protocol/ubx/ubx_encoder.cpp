@@ -73,11 +73,18 @@ struct Common {
   std::uint8_t num_sv = 0;
 };
 
+bool has_time(const Fix& fix) noexcept { return fix.time_valid && std::isfinite(fix.t.tow_s()); }
+
+/// A position to report (a GNSS fix or dead reckoning).
+bool has_fix(const Fix& fix) noexcept {
+  return fix.type != FixType::kNone && has_time(fix) && std::isfinite(fix.lla.lat_rad) &&
+         std::isfinite(fix.lla.lon_rad) && std::isfinite(fix.lla.height_m);
+}
+
 Common derive(const Fix& fix, FixOverride reported = std::nullopt) noexcept {
   Common c;
-  c.has_time = fix.time_valid && std::isfinite(fix.t.tow_s());
-  c.has_fix = fix.type != FixType::kNone && c.has_time && std::isfinite(fix.lla.lat_rad) &&
-              std::isfinite(fix.lla.lon_rad) && std::isfinite(fix.lla.height_m);
+  c.has_time = has_time(fix);
+  c.has_fix = has_fix(fix);
   // iTOW is the epoch rounded to the ms; carry into the week.
   std::int64_t week = fix.t.week();
   std::int64_t ms = std::llround(fix.t.tow_s() * 1000.0);
@@ -108,7 +115,7 @@ Common derive(const Fix& fix, FixOverride reported = std::nullopt) noexcept {
     if (fix.in_leap_second && c.hour == 23 && c.minute == 59 && c.second == 59) c.second = 60;
     c.nano = static_cast<std::int32_t>(ms_of_day % 1000) * 1000000 + c.ftow_ns;
   }
-  c.fix_ok = c.has_fix && fix.type != FixType::kDeadReckoning;
+  c.fix_ok = reports_fix_ok(fix, reported);
   if (c.has_fix) {
     c.fix_type = fix.type == FixType::k2D ? 2 : fix.type == FixType::kDeadReckoning ? 1 : 3;
     c.lat_deg = std::clamp(fix.lla.lat_rad * kRadToDeg, -90.0, 90.0);
@@ -133,10 +140,7 @@ Common derive(const Fix& fix, FixOverride reported = std::nullopt) noexcept {
     c.course_acc_deg = std::min(180.0, ratio * kRadToDeg);
     c.num_sv = static_cast<std::uint8_t>(std::clamp(fix.num_used, 0, 255));
   }
-  if (reported) {
-    c.fix_type = static_cast<std::uint8_t>(*reported);
-    c.fix_ok = gnss_fix_ok(*reported);
-  }
+  if (reported) c.fix_type = static_cast<std::uint8_t>(*reported);
   return c;
 }
 
@@ -179,6 +183,11 @@ void put_string(char* dst, std::size_t size, const std::string& s) noexcept {
 }  // namespace
 
 std::uint32_t itow_ms(const Fix& fix) noexcept { return derive(fix).itow; }
+
+bool reports_fix_ok(const Fix& fix, FixOverride reported) noexcept {
+  if (reported) return gnss_fix_ok(*reported);
+  return has_fix(fix) && fix.type != FixType::kDeadReckoning;
+}
 
 MonVerConfig mon_ver_of(Generation g) {
   if (g == Generation::kM8) return {};

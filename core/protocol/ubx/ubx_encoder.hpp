@@ -120,4 +120,8 @@ private:
 /// iTOW (ms) of fix.t, rounded to the nearest ms.
 std::uint32_t itow_ms(const receiver::Fix& fix) noexcept;
 
+/// gnssFixOK as NAV-PVT and NAV-STATUS report it for fix: a GNSS position
+/// with time (not dead reckoning), or what reported says instead.
+bool reports_fix_ok(const receiver::Fix& fix, FixOverride reported = std::nullopt) noexcept;
+
 }  // namespace gnssemu::protocol::ubx

@@ -17,13 +17,6 @@ double cw_db(const receiver::Fix& fix) noexcept {
   return j > 0.0 && std::isfinite(j) ? std::clamp(10.0 * std::log10(1.0 + j), 0.0, 60.0) : 0.0;
 }
 
-/// A fix the port reports as valid (gnssFixOK): what the monitor calls "fix OK".
-bool fix_ok(const receiver::Fix& fix, FixOverride reported) noexcept {
-  if (reported) return gnss_fix_ok(*reported);
-  const bool gnss = fix.type == receiver::FixType::k2D || fix.type == receiver::FixType::k3D;
-  return gnss && fix.time_valid && std::isfinite(fix.lla.lat_rad) && std::isfinite(fix.lla.lon_rad);
-}
-
 }  // namespace
 
 FrontEnd front_end(const receiver::Fix& fix, const EpochInfo& info) noexcept {
@@ -58,9 +51,9 @@ FrontEnd front_end(const receiver::Fix& fix, const EpochInfo& info) noexcept {
   // beyond bbThreshold; CW: the line beyond cwThreshold (CFG-ITFM, dB above normal).
   const double bb_excess_db = rise - kQuietNoiseRiseDb;
   const bool visible = bb_excess_db >= info.itfm_bb_threshold_db || cw >= info.itfm_cw_threshold_db;
-  f.jamming_state = !visible                              ? JammingState::kOk
-                    : fix_ok(fix, info.reported_fix)      ? JammingState::kWarning
-                                                          : JammingState::kCritical;
+  f.jamming_state = !visible                                 ? JammingState::kOk
+                    : reports_fix_ok(fix, info.reported_fix) ? JammingState::kWarning
+                                                             : JammingState::kCritical;
   return f;
 }
 

@@ -1,7 +1,5 @@
 #include "core/protocol/ubx/ubx_handlers.hpp"
 
-#include "core/protocol/ubx/ubx_message_table.hpp"
-
 namespace gnssemu::protocol::ubx {
 
 namespace {
@@ -89,12 +87,10 @@ Reply handle_mon_ver(HandlerContext& ctx, const FrameView& frame) {
 }
 
 Reply handle_output_poll(HandlerContext& ctx, const FrameView& frame) {
-  // A message the generation lacks is an unknown id to its firmware: no answer.
-  if (!frame.payload.empty() || !UbxEncoder::can_encode(frame.id) || !message_exists(frame.id, ctx.generation)) {
-    return Reply::kNone;
-  }
-  ctx.encoder.encode(frame.id, ctx.last_fix, ctx.info, ctx.out);
-  return Reply::kPollData;
+  // encode() writes nothing for an id the chip does not produce, including a
+  // message its generation lacks (an unknown id to that firmware): no answer.
+  if (!frame.payload.empty()) return Reply::kNone;
+  return ctx.encoder.encode(frame.id, ctx.last_fix, ctx.info, ctx.out) > 0 ? Reply::kPollData : Reply::kNone;
 }
 
 }  // namespace gnssemu::protocol::ubx
