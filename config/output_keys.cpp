@@ -529,18 +529,14 @@ void check_output_generation(TableReader& t, const Field<Config>&, Config& c) {
       const std::string reason = "output[" + std::to_string(i) + "].ubx_messages: a u-blox " + std::string(g) +
                                  " has no " + std::string(name) + " ([receiver] generation = \"" + std::string(g) +
                                  "\"; docs/ubx.md \"Generations\")";
-      // At the array element naming it (touched only to report: the key log stays as read).
-      const toml::node* at = nullptr;
-      const toml::node* outs = t.find("output");
-      const toml::array* a = outs != nullptr ? outs->as_array() : nullptr;
-      const toml::table* o = a != nullptr && i < a->size() ? a->get(i)->as_table() : nullptr;
-      const toml::array* list = o != nullptr && o->get("ubx_messages") != nullptr ? o->get("ubx_messages")->as_array() : nullptr;
-      for (std::size_t k = 0; list != nullptr && k < list->size(); ++k) {
-        const auto* s = list->get(k)->as_string();
-        if (s != nullptr && s->get() == name) at = list->get(k);
-      }
-      if (at == nullptr && o != nullptr) at = o;
-      throw Error(t.file(), at != nullptr ? line_of(*at) : t.line(), reason);
+      // At the array element naming it, through the readers that read it (only on
+      // this error path, so the key log of a good file stays as read).
+      std::vector<TableReader> outs = t.table_array("output");
+      if (i >= outs.size()) throw Error(t.file(), t.line(), reason);
+      outs[i].string_array("ubx_messages", "", "", [&](const toml::node& e, const std::string& s) {
+        if (s == name) outs[i].fail(e, reason);
+      });
+      throw Error(t.file(), outs[i].line(), reason);
     }
   }
 }
