@@ -11,6 +11,7 @@
 #include <cstring>
 #include <exception>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -71,8 +72,9 @@ UbxView ubx_view(const receiver::Fix& f) {
   enc.mon_hw(f, info, out);
   const std::uint8_t* p = reinterpret_cast<const std::uint8_t*>(out.data()) + 6;  // payload
   UbxView v;
-  v.noise = p[16] | p[17] << 8;
-  v.agc = p[18] | p[19] << 8;
+  const std::span<const std::uint8_t> hw{p, out.size() - 6};
+  v.noise = static_cast<int>(protocol::ubx::load_le(hw, 16, 2));
+  v.agc = static_cast<int>(protocol::ubx::load_le(hw, 18, 2));
   v.a_status = p[20];
   v.jam_state = (p[22] >> 2) & 3;
   v.jam_ind = p[45];
