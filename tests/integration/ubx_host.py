@@ -160,10 +160,15 @@ class Replies:
 
 # --- PX4 ---------------------------------------------------------------------
 
-def mon_ver_m8():
+def mon_ver_frame(sw, hw, *extensions):
+    """MON-VER as a u-blox sends it: swVersion CH[30], hwVersion CH[10], CH[30] extensions, NUL-padded."""
     pad = lambda txt, n: txt.encode().ljust(n, b"\0")
-    return frame(0x0A, 0x04, pad("ROM CORE 3.01 (107888)", 30) + pad("00080000", 10) + pad("FWVER=SPG 3.01", 30) +
-                 pad("PROTVER=18.00", 30) + pad("GPS;GLO;GAL;BDS", 30) + pad("SBAS;IMES;QZSS", 30))
+    return frame(0x0A, 0x04, pad(sw, 30) + pad(hw, 10) + b"".join(pad(e, 30) for e in extensions))
+
+
+def mon_ver_m8():
+    return mon_ver_frame("ROM CORE 3.01 (107888)", "00080000", "FWVER=SPG 3.01", "PROTVER=18.00", "GPS;GLO;GAL;BDS",
+                         "SBAS;IMES;QZSS")
 
 
 def px4_startup(s, fd, after_mon_ver=None):
@@ -200,19 +205,21 @@ def px4_startup(s, fd, after_mon_ver=None):
 
 
 def mon_ver_m9():
-    pad = lambda txt, n: txt.encode().ljust(n, b"\0")
-    return frame(0x0A, 0x04, pad("EXT CORE 4.04 (7f89f7)", 30) + pad("00190000", 10) +
-                 pad("ROM BASE 0x118B2060", 30) + pad("FWVER=SPG 4.04", 30) + pad("PROTVER=32.01", 30) +
-                 pad("MOD=NEO-M9N", 30) + pad("GPS;GLO;GAL;BDS", 30) + pad("SBAS;QZSS", 30))
+    return mon_ver_frame("EXT CORE 4.04 (7f89f7)", "00190000", "ROM BASE 0x118B2060", "FWVER=SPG 4.04",
+                         "PROTVER=32.01", "MOD=NEO-M9N", "GPS;GLO;GAL;BDS", "SBAS;QZSS")
+
+
+def key_value_bytes(key):
+    """Bytes of a configuration key's value, from the key id's bits 28-30
+    (1 and 2 one byte, 3 two, 4 four, 5 eight)."""
+    return {1: 1, 2: 1, 3: 2, 4: 4, 5: 8}[key >> 28 & 7]
 
 
 def valset(pairs, layers=1):
-    """CFG-VALSET v0 payload; pairs: (key id, value) with the value's size
-    from the key id (bits 28-30: 1 and 2 one byte, 3 two, 4 four, 5 eight)."""
-    size = {1: 1, 2: 1, 3: 2, 4: 4, 5: 8}
+    """CFG-VALSET v0 payload; pairs: (key id, value), each value key_value_bytes(key) long."""
     out = bytes([0, layers, 0, 0])
     for key, value in pairs:
-        out += struct.pack("<I", key) + value.to_bytes(size[key >> 28 & 7], "little")
+        out += struct.pack("<I", key) + value.to_bytes(key_value_bytes(key), "little")
     return out
 
 
@@ -299,11 +306,10 @@ def valget_values(s, fd, keys, layer=0):
     data = s.frame_of(0x06, 0x8B, 1.0)
     a = s.wait_for(is_ack_for(0x06, 0x8B), 1.0, "ACK after VALGET")[1]
     assert a == ack(0x06, 0x8B), a.hex()
-    size = {1: 1, 2: 1, 3: 2, 4: 4, 5: 8}
     p, out, off = data[6:-2], {}, 4
     while off < len(p):
         key = struct.unpack_from("<I", p, off)[0]
-        n = size[key >> 28 & 7]
+        n = key_value_bytes(key)
         out[key] = int.from_bytes(p[off + 4:off + 4 + n], "little")
         off += 4 + n
     return out
