@@ -28,14 +28,12 @@ gpspipe -w. Steps, each timed from the moment the command returned:
 Exit 77 (skip) without gpsd/gpspipe/ubxtool."""
 import json
 import os
-import queue
 import re
 import signal
 import socket
 import stat
 import subprocess
 import sys
-import threading
 import time
 
 from itlib import RigBase, free_port, gpsd_daemon_main
@@ -149,7 +147,6 @@ class Rig(RigBase):
         self.args = args
         self.pty = os.path.join(self.tmp, "gps0")
         self.sock = os.path.join(self.tmp, "control.sock")
-        self.tpvs = queue.Queue()
         self.sky = []  # (monotonic, mean ss of used satellites)
 
     def write(self, name, text):
@@ -174,21 +171,12 @@ class Rig(RigBase):
             time.sleep(0.05)
         assert os.path.exists(self.sock), "no control socket"
         self.t_start = time.monotonic()
-        pipe = self.spawn_gpsd(self.pty)
-        threading.Thread(target=self._reader, args=(pipe.stdout,), daemon=True).start()
+        self.watch_gpsd(self.spawn_gpsd(self.pty).stdout, self._on_sky)
 
-    def _reader(self, stream):
-        for line in stream:
-            try:
-                m = json.loads(line)
-            except ValueError:
-                continue
-            now = time.monotonic()
-            if m.get("class") == "TPV":
-                self.tpvs.put((now, m))
-            elif m.get("class") == "SKY" and m.get("satellites"):
-                ss = [s["ss"] for s in m["satellites"] if s.get("used") and s.get("ss", 0) > 0]
-                self.sky.append((now, sum(ss) / len(ss) if ss else 0.0))
+    def _on_sky(self, now, m):
+        if m.get("class") == "SKY" and m.get("satellites"):
+            ss = [s["ss"] for s in m["satellites"] if s.get("used") and s.get("ss", 0) > 0]
+            self.sky.append((now, sum(ss) / len(ss) if ss else 0.0))
 
     def ctl(self, *args, sock=None):
         r = subprocess.run([self.args.gnssemu, "ctl", "--socket", sock or self.sock, *args], capture_output=True,
@@ -210,16 +198,6 @@ class Rig(RigBase):
         jam = [int(x) for x in re.findall(r"jamInd (\d+)", r.stdout)]
         agc = [int(x) for x in re.findall(r"agcCnt (\d+)", r.stdout)]
         return list(zip(jam, agc))
-
-    def wait_mode(self, pred, limit_s, what):
-        deadline = time.monotonic() + limit_s
-        while True:
-            try:
-                t, m = self.tpvs.get(timeout=max(0.0, deadline - time.monotonic()))
-            except queue.Empty:
-                raise AssertionError(f"no {what} within {limit_s:.0f} s")
-            if pred(m.get("mode", 0)):
-                return t, m
 
     def wait_log(self, path, pattern, start, limit_s=5.0):
         """The first match of pattern in the log at path after byte start."""

@@ -1,12 +1,15 @@
 """Shared pieces of the integration tests: free loopback ports, and a rig
 that owns its processes and temp dir and tears them down even on failure."""
 import argparse
+import json
 import os
+import queue
 import shutil
 import signal
 import socket
 import subprocess
 import tempfile
+import threading
 import time
 
 
@@ -76,6 +79,36 @@ class RigBase:
                 time.sleep(0.1)
         return self.spawn(["gpspipe", "-w", f"localhost:{gport}"], stdout=subprocess.PIPE,
                           stderr=subprocess.DEVNULL, text=True)
+
+    def watch_gpsd(self, stream, on_other=None):
+        """Read gpspipe's JSON lines on a thread: TPVs into a queue for
+        wait_mode, every other object to on_other(monotonic, message)."""
+        self.tpvs = queue.Queue()
+
+        def reader():
+            for line in stream:
+                try:
+                    m = json.loads(line)
+                except ValueError:
+                    continue
+                now = time.monotonic()
+                if m.get("class") == "TPV":
+                    self.tpvs.put((now, m))
+                elif on_other is not None:
+                    on_other(now, m)
+
+        threading.Thread(target=reader, daemon=True).start()
+
+    def wait_mode(self, pred, limit_s, what):
+        """(monotonic, TPV) of the first TPV from watch_gpsd whose mode pred accepts."""
+        deadline = time.monotonic() + limit_s
+        while True:
+            try:
+                t, m = self.tpvs.get(timeout=max(0.0, deadline - time.monotonic()))
+            except queue.Empty:
+                raise AssertionError(f"no {what} within {limit_s:.0f} s")
+            if pred(m.get("mode", 0)):
+                return t, m
 
     def dump_logs(self):
         """Print the tail of every *.log in the temp dir (on failure)."""

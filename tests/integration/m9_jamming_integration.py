@@ -16,12 +16,10 @@ ubxtool writes through it). Steps:
 Exit 77 (skip) without gpsd/gpspipe/ubxtool."""
 import json
 import os
-import queue
 import re
 import socket
 import subprocess
 import sys
-import threading
 import time
 
 from itlib import RigBase, free_port, gpsd_daemon_main
@@ -77,7 +75,6 @@ class Rig(RigBase):
         self.args = args
         self.pty = os.path.join(self.tmp, "gps0")
         self.sock = os.path.join(self.tmp, "control.sock")
-        self.tpvs = queue.Queue()
 
     def start(self):
         cfg = os.path.join(self.tmp, "m9.toml")
@@ -91,27 +88,7 @@ class Rig(RigBase):
         while not (os.path.exists(self.sock) and os.path.exists(self.pty)) and time.monotonic() < deadline:
             time.sleep(0.05)
         assert os.path.exists(self.sock), "no control socket"
-        pipe = self.spawn_gpsd(self.pty, readonly=False)
-        threading.Thread(target=self._reader, args=(pipe.stdout,), daemon=True).start()
-
-    def _reader(self, stream):
-        for line in stream:
-            try:
-                m = json.loads(line)
-            except ValueError:
-                continue
-            if m.get("class") == "TPV":
-                self.tpvs.put((time.monotonic(), m.get("mode", 0)))
-
-    def wait_mode(self, pred, limit_s, what):
-        deadline = time.monotonic() + limit_s
-        while True:
-            try:
-                t, mode = self.tpvs.get(timeout=max(0.0, deadline - time.monotonic()))
-            except queue.Empty:
-                raise AssertionError(f"no {what} within {limit_s:.0f} s")
-            if pred(mode):
-                return t
+        self.watch_gpsd(self.spawn_gpsd(self.pty, readonly=False).stdout)
 
     def ubxtool(self, *args, wait_s=1.5):
         r = subprocess.run(["ubxtool", "-P", "32.01", "-w", str(wait_s), *args, f"127.0.0.1:{self.gpsd_port}"],
