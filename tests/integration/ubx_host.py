@@ -441,6 +441,77 @@ def ardupilot_rates(s, seconds=2.0):
     return msgs
 
 
+# ArduPilot 4.5's legacy configuration loop (AP_GPS_UBLOX _request_next_config,
+# the path it takes for every u-blox but F9/M10): CFG-MSG rates read back on
+# the port CFG-PRT names, once NAV-PVT is seen.
+ARDUPILOT_M9_RATES = {(0x01, 0x07): 1, (0x01, 0x06): 0, (0x01, 0x03): 0, (0x01, 0x02): 0, (0x01, 0x12): 0,
+                      (0x01, 0x20): 5, (0x01, 0x04): 1, (0x0A, 0x09): 5, (0x0A, 0x0B): 5}
+# AP_GPS's u-blox probe: CFG-MSG NAV-SOL rate 1, then $PUBX,41 to 230400.
+ARDUPILOT_PROBE = bytes.fromhex("B5 62 06 01 03 00 01 06 01 12 4F") + b"$PUBX,41,1,0023,0001,230400,0*1E\r\n"
+
+
+def ardupilot_rate_step(s, fd, cls, mid, rate, replies):
+    """One rate step: CFG-MSG poll; a set on the current port if the port's
+    rate differs; the next pass polls it again and must read the rate."""
+    before = poll_cfg(s, fd, 0x01, bytes([cls, mid]), replies)
+    assert len(before) == 8 and before[:2] == bytes([cls, mid]), before.hex()
+    if before[2 + 1] != rate:
+        set_cfg(s, fd, 0x01, bytes([cls, mid, rate]), replies)
+        after = poll_cfg(s, fd, 0x01, bytes([cls, mid]), replies)
+        assert after[2 + 1] == rate, f"CFG-MSG {cls:02X}-{mid:02X} read back UART1 rate {after[3]}, set {rate}"
+
+
+def ardupilot_startup_m9(s, fd, path, fix_limit_s=4.0):
+    """ArduPilot 4.5 against a NEO-M9N: the probe, CFG-PRT poll (port id),
+    NAV-PVT rate and CFG-RATE 200 ms, then (NAV-PVT seen) SOL/STATUS/POSLLH/
+    VELNED off, TIMEGPS 5, the NAV-SVINFO poll it sends while the generation
+    is unknown (an M9 has no NAV-SVINFO: no answer, no NAK), CFG-NAV5 airborne
+    <4g, CFG-GNSS poll, DOP 1, MON-HW/MON-HW2 5, MON-VER ("EXT CORE 4" with
+    00190000 is UBLOX_M9), CFG-CFG save. Nothing may be NAKed: ArduPilot
+    ignores a NAK and asks again forever. Returns (Replies, MON-VER frame)."""
+    r = Replies()
+    send(fd, ARDUPILOT_PROBE)
+    deadline = time.monotonic() + 3
+    while stty_speed(path) != 230400:
+        assert time.monotonic() < deadline, f"pty termios {stty_speed(path)} after $PUBX,41"
+        time.sleep(0.05)
+    prt = poll_cfg(s, fd, 0x00, b"", r)
+    assert len(prt) == 20 and prt[0] == 1, prt.hex()
+    ardupilot_rate_step(s, fd, 0x01, 0x07, 1, r)
+    rate = poll_cfg(s, fd, 0x08, b"", r)
+    assert len(rate) == 6, rate.hex()
+    if struct.unpack("<HHH", rate) != (200, 1, 0):
+        set_cfg(s, fd, 0x08, struct.pack("<HHH", 200, 1, 0), r)
+        assert poll_cfg(s, fd, 0x08, b"", r) == struct.pack("<HHH", 200, 1, 0)
+    s.wait_for(pvt_fix_ok, fix_limit_s, "the first NAV-PVT with gnssFixOK")
+    for (cls, mid), target in ARDUPILOT_M9_RATES.items():
+        if (cls, mid) == (0x01, 0x07):
+            continue
+        if (cls, mid) == (0x01, 0x04):
+            # STEP_POLL_SVINFO, STEP_POLL_NAV, STEP_POLL_GNSS come before the DOP rate.
+            s.msgs.clear()
+            send(fd, frame(0x01, 0x30))
+            end = time.monotonic() + 0.5
+            while time.monotonic() < end:
+                s.pump(end - time.monotonic())
+            assert not [m for _, k, m in s.msgs if k == "ubx" and (m[2:4] == b"\x01\x30" or m[2] == 0x05)], \
+                "an M9 answered a NAV-SVINFO poll"
+            nav5 = bytearray(poll_cfg(s, fd, 0x24, b"", r))
+            assert len(nav5) == 36, len(nav5)
+            if nav5[2] != 8:
+                struct.pack_into("<HB", nav5, 0, 0x0001, 8)
+                set_cfg(s, fd, 0x24, bytes(nav5), r)
+                assert poll_cfg(s, fd, 0x24, b"", r)[2] == 8
+            gnss = poll_cfg(s, fd, 0x3E, b"", r)
+            assert len(gnss) == 4 + 8 * gnss[3] and gnss[3] >= 1, gnss.hex()
+        ardupilot_rate_step(s, fd, cls, mid, target, r)
+    mv = r.timed(s, fd, frame(0x0A, 0x04), is_ubx(0x0A, 0x04), 2.0, "MON-VER")
+    set_cfg(s, fd, 0x09, struct.pack("<III", 0, 0x061F, 0), r)
+    naks = [m for _, k, m in s.seen if k == "ubx" and m[2:4] == b"\x05\x00"]
+    assert not naks, f"NAKed: {[m[6:8].hex() for m in naks]}"
+    return r, mv
+
+
 # --- reading what the host got -----------------------------------------------
 
 def svinfo_channels(m):

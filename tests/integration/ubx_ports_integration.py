@@ -65,8 +65,8 @@ import time
 
 from itlib import RigBase, free_port
 from ubx_startup_faults import case_ardupilot_faults, case_px4_faults
-from ubx_host import (K_MSGOUT_MON_RF, K_MSGOUT_NAV_PVT, K_NAVSPG_DYNMODEL, K_RATE_MEAS, K_UART1_BAUDRATE,
-                      PX4_M9_RATE_MEAS_MS, Stream, ack, ardupilot_rates, ardupilot_startup, frame, is_ack_for, nmea,
+from ubx_host import (ARDUPILOT_M9_RATES, K_MSGOUT_MON_RF, K_MSGOUT_NAV_PVT, K_NAVSPG_DYNMODEL, K_RATE_MEAS, K_UART1_BAUDRATE,
+                      PX4_M9_RATE_MEAS_MS, Stream, ack, ardupilot_rates, ardupilot_startup, ardupilot_startup_m9, frame, is_ack_for, nmea,
                       poll_cfg, pvt_fix_ok, px4_rates, px4_startup, px4_startup_m9, send, set_cfg, split_stream,
                       stty_speed, valget_values)
 import tty
@@ -254,6 +254,35 @@ def case_ardupilot(rig):
     count = lambda c, i: sum(1 for _, k, m in msgs if k == "ubx" and m[2] == c and m[3] == i)
     print(f"  ardupilot: every poll answered and read back as set ({replies.summary()}); chipGen 4 "
           f"({sv[6 + 4]} channels); {count(1, 7)} NAV-PVT with gnssFixOK and {count(1, 4)} NAV-DOP in 2 s")
+
+
+def case_ardupilot_m9(rig):
+    """ArduPilot 4.5 against an emulated NEO-M9N: it configures an M9 with
+    the legacy CFG messages as an M8 (only F9 and M10 get CFG-VALSET), finds
+    the generation from MON-VER, and must finish: nothing NAKed, every rate
+    read back, then the rates it set on the line."""
+    path, out = pty_output(rig)
+    rig.start_daemon(out, receiver_toml=M9)
+    fd = rig.open_tty(path)
+    s = Stream(fd)
+    replies, mv = ardupilot_startup_m9(s, fd, path)
+    sw, hw = mv[6:6 + 30].rstrip(b"\0"), mv[6 + 30:6 + 40].rstrip(b"\0")
+    assert sw.startswith(b"EXT CORE 4") and hw == b"00190000", (sw, hw)
+    seconds = 3.0
+    msgs = s.collect(seconds)
+    count = lambda c, i: sum(1 for _, k, m in msgs if k == "ubx" and m[2] == c and m[3] == i)
+    pvts = [m for _, k, m in msgs if k == "ubx" and m[2:4] == b"\x01\x07"]
+    assert pvts and all(m[6 + 21] & 1 and m[6 + 20] == 3 for m in pvts), "NAV-PVT without gnssFixOK / 3D fix"
+    assert 5 * seconds - 2 <= len(pvts) <= 5 * seconds + 1, f"{len(pvts)} NAV-PVT in {seconds} s at 5 Hz"
+    assert not any(k == "nmea" for _, k, _ in msgs), "NMEA sent after $PUBX,41 out=UBX"
+    sent = {(c, i): count(c, i) for (c, i) in ARDUPILOT_M9_RATES if (c, i) != (0x0A, 0x0B)}
+    for (c, i), n in sent.items():
+        rate = ARDUPILOT_M9_RATES[(c, i)]
+        want = len(pvts) / rate if rate else 0
+        assert abs(n - want) <= 1.5, f"{n} of {c:02X}-{i:02X} for {len(pvts)} NAV-PVT (rate {rate})"
+    print(f"  ardupilot_m9: {sw.decode()} / {hw.decode()}; every step answered, nothing NAKed "
+          f"({replies.summary()}); {len(pvts)} NAV-PVT, {sent[(1, 4)]} NAV-DOP, {sent[(1, 0x20)]} NAV-TIMEGPS, "
+          f"{sent[(0x0A, 9)]} MON-HW in {seconds:.0f} s")
 
 
 def gpsd_rig(rig, path, readonly):
@@ -733,7 +762,8 @@ CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx
          "gpsdecode": case_gpsdecode, "serial": case_serial, "net": case_net, "budget": case_budget,
          "jamming": case_jamming, "wallclock": case_wallclock, "cold_start": case_cold_start,
          "power_on_cold": case_power_on_cold, "nav5": case_nav5, "px4_faults": case_px4_faults,
-         "ardupilot_faults": case_ardupilot_faults, "px4_m9": case_px4_m9, "gpsd_m9": case_gpsd_m9}
+         "ardupilot_faults": case_ardupilot_faults, "px4_m9": case_px4_m9, "gpsd_m9": case_gpsd_m9,
+         "ardupilot_m9": case_ardupilot_m9}
 NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_m9": ["gpsd", "gpspipe", "socat"], "gpsd_nmea": ["gpsd", "gpspipe"],
          "gpsdecode": ["gpsdecode"],
          "serial": ["socat", "stty"], "cold_start": ["gpsd", "gpspipe"],
