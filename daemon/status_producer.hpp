@@ -59,7 +59,7 @@ struct TruthCounters {
   bool demo = false;               ///< the demo trajectory drives the receiver
 };
 
-/// One fault of the fault stage (issue 11), as the timeline shows it.
+/// One fault of the fault stage, as the timeline shows it.
 struct FaultStatus {
   std::string id;           ///< unique per event, e.g. "3"
   std::string type;         ///< jammer, spoofer, outage, sky_block, satellite, port

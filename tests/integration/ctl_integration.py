@@ -40,7 +40,7 @@ from itlib import RigBase, free_port, gpsd_daemon_main
 
 ORIGIN = (48.8738, 2.2950, 100.0)
 RATE_HZ = 2.0
-OUTAGE_LIMIT_S = 2.0   # issue 11: TPV mode <= 1 within 2 s of an injected outage
+OUTAGE_LIMIT_S = 2.0   # a user's failsafe needs TPV mode <= 1 within 2 s of an injected outage
 LIMIT_S = 240
 
 # Every daemon of the test: the place, the nav data, the rate, truth on loopback.

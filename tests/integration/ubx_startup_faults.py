@@ -1,4 +1,4 @@
-"""PX4's and ArduPilot's UBX start-up while faults run (issue 11; cases of
+"""PX4's and ArduPilot's UBX start-up while faults run (cases of
 ubx_ports_integration.py, docs/ports.md §Tests, docs/faults.md).
 
 The daemon starts with `--scenario` whose events are active from the first

@@ -189,7 +189,7 @@ TEST_P(AlmanacBad, ErrorNamesFileAndLine) {
 INSTANTIATE_TEST_SUITE_P(Files, AlmanacBad,
                          ::testing::Values(BadAlm{"yuma_missing_field.alm", false, 1, "Mean Anom"},
                                            BadAlm{"yuma_bad_number.alm", false, 4, "unparsable number"},
-                                           // toa 1e300: refused before it becomes a GpsTime (issue 13, UBSan)
+                                           // toa 1e300: refused before it becomes a GpsTime (UBSan found the overflow)
                                            BadAlm{"yuma_toa_1e300.alm", false, 5, "toa outside the week"},
                                            BadAlm{"sem_truncated.al3", true, 26, "truncated SEM file: 2 of 31"},
                                            BadAlm{"sem_bad_eccentricity.al3", true, 7, "eccentricity"}),
