@@ -5,10 +5,19 @@
 #include <initializer_list>
 
 #include "core/protocol/ubx/ubx_config_keys.hpp"
+#include "core/protocol/ubx/ubx_encoder.hpp"
 
 namespace gnssemu::protocol::ubx {
 
 namespace {
+
+// CFG-ITFM config word (M8 receiver description, UBX-CFG-ITFM): bbThreshold
+// bits 0-3, cwThreshold bits 4-8, algorithmBits 9-30 (0x16B156, fixed by
+// u-blox), enable bit 31.
+constexpr std::uint32_t kFactoryItfmConfig = static_cast<std::uint32_t>(kFactoryItfmBbThreshold_db) |
+                                             static_cast<std::uint32_t>(kFactoryItfmCwThreshold_db) << 4 |
+                                             0x16B156u << 9;
+static_assert(kFactoryItfmConfig == 0x2D62ACF3u, "the factory CFG-ITFM word of a u-blox M8");
 
 /// Little-endian payload builder for the default blocks below.
 struct Bytes {
@@ -101,8 +110,8 @@ DeviceConfig DeviceConfig::factory_defaults(std::size_t uarts) {
   b = {};  // CFG-INF NMEA: ERROR WARNING NOTICE on DDC UART1 USB SPI
   b.u1(1).zeros(3).u1(7).u1(7).u1(0).u1(7).u1(7).u1(0);
   c.store(msg::kCfgInf, 1, b.span());
-  b = {};  // CFG-ITFM: thresholds 3/15, monitor disabled
-  b.u4(0x2D62ACF3).u4(0x0000031E);
+  b = {};  // CFG-ITFM: factory thresholds, monitor disabled
+  b.u4(kFactoryItfmConfig).u4(0x0000031E);
   c.store(msg::kCfgItfm, 0, b.span());
   b = {};  // CFG-NAVX5 version 2
   b.u2(2).u2(0).u4(0).zeros(2).u1(3).u1(32).u1(6).zeros(1).u1(0).zeros(2).u1(0).u2(1867).u1(0)

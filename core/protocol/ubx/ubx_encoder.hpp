@@ -45,6 +45,11 @@ MonVerConfig mon_ver_of(Generation g);
 /// range ([18, 24) for an M8, [27, 50) for an M9).
 void validate(const MonVerConfig& config);
 
+/// CFG-ITFM factory thresholds of the interference monitor, dB above normal
+/// (the M8 and M9 default configuration: bbThreshold 3, cwThreshold 15).
+inline constexpr double kFactoryItfmBbThreshold_db = 3.0;
+inline constexpr double kFactoryItfmCwThreshold_db = 15.0;
+
 /// Receiver state that is not part of a Fix (kept by the responder).
 struct EpochInfo {
   std::uint32_t msss_ms = 0;  ///< ms since start-up or reset (NAV-STATUS msss)
@@ -57,9 +62,9 @@ struct EpochInfo {
   /// (a wrong_fix link fault); nothing: the Fix's.
   FixOverride reported_fix;
   /// CFG-ITFM bbThreshold and cwThreshold: the monitor flags interference this
-  /// far above normal, dB (0..15 and 0..31; factory 3 and 15).
-  double itfm_bb_threshold_db = 3.0;
-  double itfm_cw_threshold_db = 15.0;
+  /// far above normal, dB (0..15 and 0..31).
+  double itfm_bb_threshold_db = kFactoryItfmBbThreshold_db;
+  double itfm_cw_threshold_db = kFactoryItfmCwThreshold_db;
 };
 
 /// Largest output of one epoch with every message enabled and 32 satellites
