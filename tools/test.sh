@@ -40,7 +40,9 @@ stage_done() {
 "$root/tools/install-deps.sh"
 
 stage "build (gcc, Release, -Werror) and the fuzz build (clang)"
-cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release -DGNSSEMU_BUILD_TESTS=ON -DGNSSEMU_WERROR=ON
+# Fuzz smoke 5 s per target (default 10): the first cut docs/robustness.md §CI names for the 20-minute budget.
+cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release -DGNSSEMU_BUILD_TESTS=ON -DGNSSEMU_WERROR=ON \
+  -DGNSSEMU_FUZZ_SMOKE_S=5
 cmake --build "$root/build" -j"$jobs"
 GNSSEMU_JOBS="$jobs" "$root/tests/fuzz/fuzz.sh" build --build-dir "$root/build/fuzz" || [ $? -eq 77 ]
 stage_done build
