@@ -168,8 +168,9 @@ Reply handle_cfg_valget(HandlerContext& ctx, const FrameView& frame) {
       if (index++ < position) continue;
       if (emitted == kMaxKeysPerMessage) break;
       const std::uint64_t v = read_config_key(k, *src, ctx.uart);
-      for (std::size_t i = 0; i < 4; ++i) reply[len++] = static_cast<std::uint8_t>(k.id >> (8 * i));
-      for (std::size_t i = 0; i < k.value_bytes(); ++i) reply[len++] = static_cast<std::uint8_t>(v >> (8 * i));
+      store_le(reply, len, 4, k.id);
+      store_le(reply, len + 4, k.value_bytes(), v);
+      len += 4 + k.value_bytes();
       ++emitted;
     }
   }

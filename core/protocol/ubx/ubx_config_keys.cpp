@@ -254,7 +254,7 @@ bool set_bits(std::span<std::uint8_t> bytes, const ConfigKey& k, std::uint64_t v
   if (n == 0) return false;
   const std::uint64_t m = mask_of(k.width) << k.shift;
   const std::uint64_t v = (load_le(bytes, k.offset, n) & ~m) | ((value << k.shift) & m);
-  for (std::size_t i = 0; i < n; ++i) bytes[k.offset + i] = static_cast<std::uint8_t>(v >> (8 * i));
+  store_le(bytes, k.offset, n, v);
   return true;
 }
 

@@ -104,6 +104,13 @@ constexpr std::uint64_t load_le(std::span<const std::uint8_t> bytes, std::size_t
   return v;
 }
 
+/// Write the low n (<= 8) bytes of value little-endian at offset; the caller
+/// checks offset + n <= size.
+constexpr void store_le(std::span<std::uint8_t> bytes, std::size_t offset, std::size_t n,
+                        std::uint64_t value) noexcept {
+  for (std::size_t i = 0; i < n; ++i) bytes[offset + i] = static_cast<std::uint8_t>(value >> (8 * i));
+}
+
 /// Copy a wire struct out of a payload. False when the payload is shorter.
 template <class Wire>
 bool read_wire(std::span<const std::uint8_t> payload, Wire& wire, std::size_t offset = 0) noexcept {
