@@ -66,7 +66,7 @@ UbxView ubx_view(const receiver::Fix& f) {
   static const protocol::ubx::UbxEncoder enc;
   static const protocol::ubx::UbxEncoder m9(protocol::ubx::mon_ver_of(protocol::ubx::Generation::kM9));
   protocol::ubx::EpochInfo info;
-  info.itfm_enabled = true;
+  info.itfm.enabled = true;
   info.ttff_ms = 1;
   std::string out;
   enc.mon_hw(f, info, out);

@@ -16,6 +16,7 @@
 #include <string_view>
 
 #include "core/protocol/ubx/ubx_device_config.hpp"
+#include "core/protocol/ubx/ubx_encoder.hpp"
 #include "core/protocol/ubx/ubx_frame.hpp"
 
 namespace gnssemu::protocol::ubx {
@@ -93,13 +94,8 @@ bool valid_config_value(const ConfigKey& k, std::uint64_t value) noexcept;
 /// Write value into c; false when the CFG-MSG rate table is full or the
 /// block is missing (nothing written then).
 bool write_config_key(const ConfigKey& k, DeviceConfig& c, std::size_t uart, std::uint64_t value) noexcept;
-/// The jamming/interference monitor as the CFG-ITFM block holds it (CFG-ITFM
-/// or its CFG-ITFM-* keys; the key rows own the bit layout). No block: off.
-struct ItfmSettings {
-  bool enabled = false;
-  double bb_threshold_db = 0.0;  ///< broadband threshold, dB above normal, [0, 15]
-  double cw_threshold_db = 0.0;  ///< CW threshold, dB above normal, [0, 31]
-};
+/// The interference monitor as the CFG-ITFM block of c holds it (the key
+/// rows own the bit layout). No block: off.
 ItfmSettings itfm_settings(const DeviceConfig& c) noexcept;
 
 /// Factory plain values (DeviceConfig::factory_defaults fills them).

@@ -208,10 +208,7 @@ void Device::on_epoch(const receiver::Fix& fix, double now_s) noexcept {
     // at least 1 ms: 0 on the wire means "no fix yet".
     info_.ttff_ms = std::max<std::uint32_t>(1, info_.msss_ms);
   }
-  const ItfmSettings itfm = itfm_settings(current_);
-  info_.itfm_enabled = itfm.enabled;
-  info_.itfm_bb_threshold_db = itfm.bb_threshold_db;
-  info_.itfm_cw_threshold_db = itfm.cw_threshold_db;
+  info_.itfm = itfm_settings(current_);
 }
 
 bool Device::due(std::size_t col, MsgId id) const noexcept {

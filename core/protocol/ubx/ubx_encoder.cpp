@@ -530,7 +530,7 @@ std::size_t UbxEncoder::sec_sig(const Fix& fix, const EpochInfo& info, std::stri
   const std::uint8_t spoof = spoof_det_state(fix);
   wire::SecSigV1 m{};
   m.version = 1;
-  m.jamFlags = static_cast<std::uint8_t>((info.itfm_enabled ? 0x01 : 0x00) |
+  m.jamFlags = static_cast<std::uint8_t>((info.itfm.enabled ? 0x01 : 0x00) |
                                          static_cast<unsigned>(front_end(fix, info).jamming_state) << 1);
   // Spoofing detection is on unless the receiver reports it deactivated (0).
   m.spfFlags = static_cast<std::uint8_t>((spoof != 0 ? 0x01 : 0x00) | spoof << 1);

@@ -50,21 +50,25 @@ void validate(const MonVerConfig& config);
 inline constexpr double kFactoryItfmBbThreshold_db = 3.0;
 inline constexpr double kFactoryItfmCwThreshold_db = 15.0;
 
+/// The jamming/interference monitor as CFG-ITFM (or its CFG-ITFM-* keys on
+/// an M9) configures it; itfm_settings() reads it from a configuration.
+struct ItfmSettings {
+  /// The monitor runs and MON-HW, MON-RF and SEC-SIG report its jammingState
+  /// (else 0 = unknown). Off from the factory on both generations (docs/ubx.md).
+  bool enabled = false;
+  /// Interference is flagged this far above normal, dB: broadband [0, 15], CW [0, 31].
+  double bb_threshold_db = kFactoryItfmBbThreshold_db;
+  double cw_threshold_db = kFactoryItfmCwThreshold_db;
+};
+
 /// Receiver state that is not part of a Fix (kept by the responder).
 struct EpochInfo {
   std::uint32_t msss_ms = 0;  ///< ms since start-up or reset (NAV-STATUS msss)
   std::uint32_t ttff_ms = 0;  ///< time to first fix, ms; 0 = no fix yet
-  /// CFG-ITFM enable (CFG-ITFM-ENABLE on an M9): the jamming/interference
-  /// monitor runs and MON-HW, MON-RF and SEC-SIG report its jammingState
-  /// (else 0 = unknown). Off from the factory on both generations (docs/ubx.md).
-  bool itfm_enabled = false;
+  ItfmSettings itfm;  ///< the interference monitor's settings
   /// Fix type NAV-PVT, NAV-STATUS and NAV-SOL report instead of the Fix's
   /// (a wrong_fix link fault); nothing: the Fix's.
   FixOverride reported_fix;
-  /// CFG-ITFM bbThreshold and cwThreshold: the monitor flags interference this
-  /// far above normal, dB (0..15 and 0..31).
-  double itfm_bb_threshold_db = kFactoryItfmBbThreshold_db;
-  double itfm_cw_threshold_db = kFactoryItfmCwThreshold_db;
 };
 
 /// Largest output of one epoch with every message enabled and 32 satellites

@@ -46,11 +46,11 @@ FrontEnd front_end(const receiver::Fix& fix, const EpochInfo& info) noexcept {
   // The monitor compares the spectrum with a reference taken at a good fix:
   // unknown while disabled, before the first fix and without an antenna
   // (u-blox 9 integration manuals, "Jamming/interference monitor").
-  if (!info.itfm_enabled || info.ttff_ms == 0 || !antenna_ok) return f;
+  if (!info.itfm.enabled || info.ttff_ms == 0 || !antenna_ok) return f;
   // Broadband: the noise floor above its quiet level (1 dB, Fix::noise_rise_db)
   // beyond bbThreshold; CW: the line beyond cwThreshold (CFG-ITFM, dB above normal).
   const double bb_excess_db = rise - kQuietNoiseRiseDb;
-  const bool visible = bb_excess_db >= info.itfm_bb_threshold_db || cw >= info.itfm_cw_threshold_db;
+  const bool visible = bb_excess_db >= info.itfm.bb_threshold_db || cw >= info.itfm.cw_threshold_db;
   f.jamming_state = !visible                                 ? JammingState::kOk
                     : reports_fix_ok(fix, info.reported_fix) ? JammingState::kWarning
                                                              : JammingState::kCritical;

@@ -124,7 +124,7 @@ TEST(UbxEncoder, StatusDopTime) {
   const receiver::Fix f = sample_fix();
   const UbxEncoder enc;
   std::string out;
-  enc.nav_status(f, EpochInfo{12345, 3000, false, std::nullopt}, out);
+  enc.nav_status(f, EpochInfo{12345, 3000, ItfmSettings{false}, std::nullopt}, out);
   auto fr = test::split_frames(out);
   ASSERT_EQ(fr.size(), 1u);
   wire::NavStatus st{};
@@ -411,7 +411,7 @@ TEST(UbxEncoder, MonHwJammingFollowsNoiseRiseAndTheFix) {
     f.noise_rise_db = rise;
     if (!has_fix) f.type = receiver::FixType::kNone;
     std::string out;
-    UbxEncoder().mon_hw(f, EpochInfo{0, ttff_ms, itfm, std::nullopt}, out);
+    UbxEncoder().mon_hw(f, EpochInfo{0, ttff_ms, ItfmSettings{itfm}, std::nullopt}, out);
     const auto fr = test::split_frames(out);
     wire::MonHw m{};
     EXPECT_EQ(fr.size(), 1u);

@@ -57,7 +57,7 @@ std::string encode_case(const fs::path& fix_json) {
     f.time_acc_s = jf.value("time_acc_s", 30e-9);
     for (const auto& m : kMessages) {
       std::string bytes;
-      enc.encode(m.id, f, EpochInfo{60000, 31000, false, std::nullopt}, bytes);
+      enc.encode(m.id, f, EpochInfo{60000, 31000, ItfmSettings{false}, std::nullopt}, bytes);
       text += std::string(m.name) + " " + std::to_string(bytes.size() - 8) + " " + test::to_hex(bytes) + "\n";
     }
   }

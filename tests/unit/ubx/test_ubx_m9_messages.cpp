@@ -19,7 +19,7 @@ using test::sample_fix;
 /// Monitor on at factory thresholds, first fix behind.
 EpochInfo monitoring() {
   EpochInfo info;
-  info.itfm_enabled = true;
+  info.itfm.enabled = true;
   info.ttff_ms = 1200;
   return info;
 }
