@@ -365,6 +365,15 @@ def set_cfg(s, fd, mid, payload, replies=None, limit_s=1.0):
         replies.times.append((f"CFG {mid:02X} set", t - t0))
 
 
+def ardupilot_probe(fd, path, probe):
+    """Send ArduPilot's probe; its $PUBX,41 moves the line to 230400 (the pty's termios follows)."""
+    send(fd, probe)
+    deadline = time.monotonic() + 3
+    while stty_speed(path) != 230400:
+        assert time.monotonic() < deadline, f"pty termios {stty_speed(path)} after $PUBX,41"
+        time.sleep(0.05)
+
+
 ARDUPILOT_RATES = {(0x01, 0x07): 1, (0x01, 0x03): 1, (0x01, 0x06): 1, (0x01, 0x12): 1, (0x01, 0x04): 2, (0x0A, 0x09): 2}
 
 
@@ -378,11 +387,7 @@ def ardupilot_startup(s, fd, path, after_msg_rates=None, fix_limit_s=4.0):
     injected while it configures). The NAV-SVINFO poll waits for the first
     gnssFixOK (fix_limit_s). Returns (Replies, NAV-SVINFO frame)."""
     r = Replies()
-    send(fd, nmea("PUBX,41,1,0023,0001,230400,0"))
-    deadline = time.monotonic() + 3
-    while stty_speed(path) != 230400:
-        assert time.monotonic() < deadline, f"pty termios {stty_speed(path)} after $PUBX,41"
-        time.sleep(0.05)
+    ardupilot_probe(fd, path, nmea("PUBX,41,1,0023,0001,230400,0"))
     for (cls, mid), rate in ARDUPILOT_RATES.items():
         before = poll_cfg(s, fd, 0x01, bytes([cls, mid]), r)
         assert len(before) == 8 and before[:2] == bytes([cls, mid]) and before[3] == 0, before.hex()
@@ -470,11 +475,7 @@ def ardupilot_startup_m9(s, fd, path, fix_limit_s=4.0):
     00190000 is UBLOX_M9), CFG-CFG save. Nothing may be NAKed: ArduPilot
     ignores a NAK and asks again forever. Returns (Replies, MON-VER frame)."""
     r = Replies()
-    send(fd, ARDUPILOT_PROBE)
-    deadline = time.monotonic() + 3
-    while stty_speed(path) != 230400:
-        assert time.monotonic() < deadline, f"pty termios {stty_speed(path)} after $PUBX,41"
-        time.sleep(0.05)
+    ardupilot_probe(fd, path, ARDUPILOT_PROBE)
     prt = poll_cfg(s, fd, 0x00, b"", r)
     assert len(prt) == 20 and prt[0] == 1, prt.hex()
     ardupilot_rate_step(s, fd, 0x01, 0x07, 1, r)
@@ -484,27 +485,29 @@ def ardupilot_startup_m9(s, fd, path, fix_limit_s=4.0):
         set_cfg(s, fd, 0x08, struct.pack("<HHH", 200, 1, 0), r)
         assert poll_cfg(s, fd, 0x08, b"", r) == struct.pack("<HHH", 200, 1, 0)
     s.wait_for(pvt_fix_ok, fix_limit_s, "the first NAV-PVT with gnssFixOK")
-    for (cls, mid), target in ARDUPILOT_M9_RATES.items():
-        if (cls, mid) == (0x01, 0x07):
-            continue
-        if (cls, mid) == (0x01, 0x04):
-            # STEP_POLL_SVINFO, STEP_POLL_NAV, STEP_POLL_GNSS come before the DOP rate.
-            s.msgs.clear()
-            send(fd, frame(0x01, 0x30))
-            end = time.monotonic() + 0.5
-            while time.monotonic() < end:
-                s.pump(end - time.monotonic())
-            assert not [m for _, k, m in s.msgs if k == "ubx" and (m[2:4] == b"\x01\x30" or m[2] == 0x05)], \
-                "an M9 answered a NAV-SVINFO poll"
-            nav5 = bytearray(poll_cfg(s, fd, 0x24, b"", r))
-            assert len(nav5) == 36, len(nav5)
-            if nav5[2] != 8:
-                struct.pack_into("<HB", nav5, 0, 0x0001, 8)
-                set_cfg(s, fd, 0x24, bytes(nav5), r)
-                assert poll_cfg(s, fd, 0x24, b"", r)[2] == 8
-            gnss = poll_cfg(s, fd, 0x3E, b"", r)
-            assert len(gnss) == 4 + 8 * gnss[3] and gnss[3] >= 1, gnss.hex()
-        ardupilot_rate_step(s, fd, cls, mid, target, r)
+
+    def steps(ids):
+        for c, i in ids:
+            ardupilot_rate_step(s, fd, c, i, ARDUPILOT_M9_RATES[(c, i)], r)
+
+    steps([(0x01, 0x06), (0x01, 0x03), (0x01, 0x02), (0x01, 0x12), (0x01, 0x20)])  # SOL .. TIMEGPS
+    # STEP_POLL_SVINFO, STEP_POLL_NAV, STEP_POLL_GNSS.
+    s.msgs.clear()
+    send(fd, frame(0x01, 0x30))
+    end = time.monotonic() + 0.5
+    while time.monotonic() < end:
+        s.pump(end - time.monotonic())
+    assert not [m for _, k, m in s.msgs if k == "ubx" and (m[2:4] == b"\x01\x30" or m[2] == 0x05)], \
+        "an M9 answered a NAV-SVINFO poll"
+    nav5 = bytearray(poll_cfg(s, fd, 0x24, b"", r))
+    assert len(nav5) == 36, len(nav5)
+    if nav5[2] != 8:
+        struct.pack_into("<HB", nav5, 0, 0x0001, 8)
+        set_cfg(s, fd, 0x24, bytes(nav5), r)
+        assert poll_cfg(s, fd, 0x24, b"", r)[2] == 8
+    gnss = poll_cfg(s, fd, 0x3E, b"", r)
+    assert len(gnss) == 4 + 8 * gnss[3] and gnss[3] >= 1, gnss.hex()
+    steps([(0x01, 0x04), (0x0A, 0x09), (0x0A, 0x0B)])  # DOP, MON-HW, MON-HW2
     mv = r.timed(s, fd, frame(0x0A, 0x04), is_ubx(0x0A, 0x04), 2.0, "MON-VER")
     set_cfg(s, fd, 0x09, struct.pack("<III", 0, 0x061F, 0), r)
     naks = [m for _, k, m in s.seen if k == "ubx" and m[2:4] == b"\x05\x00"]
