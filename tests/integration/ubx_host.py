@@ -429,10 +429,11 @@ def ardupilot_startup(s, fd, path, after_msg_rates=None, fix_limit_s=4.0):
     return r, sv
 
 
-def ardupilot_rates(s, seconds=2.0):
+def ardupilot_rates(s, seconds=2.0, rates=None):
     """After ArduPilot's configuration: NAV-PVT at 5 Hz with gnssFixOK and
-    3D, the other messages at the rates it set (NAV-DOP and MON-HW every 2nd
-    epoch), no NMEA. Returns the messages of those seconds."""
+    3D, the other messages at the rates it set (rates, default
+    ARDUPILOT_RATES: NAV-DOP and MON-HW every 2nd epoch; rate 0: none), no
+    NMEA. Returns the messages of those seconds."""
     msgs = s.collect(seconds)
     count = lambda c, i: sum(1 for _, k, m in msgs if k == "ubx" and m[2] == c and m[3] == i)
     pvts = [m for _, k, m in msgs if k == "ubx" and m[2:4] == b"\x01\x07"]
@@ -441,8 +442,9 @@ def ardupilot_rates(s, seconds=2.0):
     want = 5 * seconds
     assert want - 2 <= pvt <= want + 1, f"{pvt} NAV-PVT in {seconds} s at 5 Hz"
     assert not any(k == "nmea" for _, k, _ in msgs), "NMEA sent after $PUBX,41 out=UBX"
-    for (c, i), rate in ARDUPILOT_RATES.items():
-        assert abs(count(c, i) - pvt / rate) <= 1.5, f"{count(c, i)} of {c:02X}-{i:02X} for {pvt} NAV-PVT (rate {rate})"
+    for (c, i), rate in (rates or ARDUPILOT_RATES).items():
+        want = pvt / rate if rate else 0
+        assert abs(count(c, i) - want) <= 1.5, f"{count(c, i)} of {c:02X}-{i:02X} for {pvt} NAV-PVT (rate {rate})"
     return msgs
 
 
