@@ -48,6 +48,12 @@ constexpr int system_base(GnssSystem s) noexcept {
 /// Every satellite of every system: the size of per-satellite arrays.
 inline constexpr int kNumSats = system_base(GnssSystem::kSbas) + system_size(GnssSystem::kSbas);
 
+/// Most satellites one antenna can have above its horizon at once, every
+/// system together (about 75 with every current constellation at the best
+/// place on Earth: half of each system's orbiting satellites plus GEOs):
+/// the size of per-epoch lists of satellites in view.
+inline constexpr int kMaxSatsInView = 96;
+
 /// RINEX letter of a system ('G', 'R', 'E', 'C', 'J', 'S').
 constexpr char system_letter(GnssSystem s) noexcept { return numbering(s).letter; }
 /// The system of a RINEX letter; nullopt for a letter not in the table (I, L, ...).
