@@ -22,6 +22,16 @@ constexpr int kMinEpochs = 100;
 constexpr double kMaxLag_s = 3600.0;  // autocovariance lags of the summary fit (1 h)
 constexpr int kMinCn0Samples = 10;  // fewer S1C samples: no C/N0 curve
 
+/// A fitted Gauss–Markov process as the loader accepts it: sigma in
+/// [0, 100] m and tau in (0, 1e6] s. A fit with no power or no correlation
+/// (sigma or tau not positive, e.g. a half-day with too few pairs) is off:
+/// sigma 0 with the base config's tau, never a tau of 0 the loader rejects.
+world::GaussMarkovConfig fitted_process(double sigma, double tau_s, const world::GaussMarkovConfig& base) {
+  using Gm = world::GaussMarkovRanges;
+  if (!(sigma > 0.0) || !(tau_s > 0.0) || !std::isfinite(sigma) || !std::isfinite(tau_s)) return {0.0, base.tau_s};
+  return {std::min(sigma, Gm::sigma_m.max), std::min(tau_s, Gm::tau_s.max)};
+}
+
 }  // namespace
 
 world::WorldConfig fitted_world(const CalibrationResult& r, const world::WorldConfig& base) {
@@ -32,8 +42,8 @@ world::WorldConfig fitted_world(const CalibrationResult& r, const world::WorldCo
   }
   const ProcessFit& p = r.processes;
   world::ErrorModelConfig& em = w.errors;
-  em.orbit_clock = {p.orbit_clock_sigma_m, p.orbit_clock_tau_s};
-  em.multipath = {p.multipath_sigma_m, p.multipath_tau_s};
+  em.orbit_clock = fitted_process(p.orbit_clock_sigma_m, p.orbit_clock_tau_s, base.errors.orbit_clock);
+  em.multipath = fitted_process(p.multipath_sigma_m, p.multipath_tau_s, base.errors.multipath);
   // White noise: DLL jitter from the link budget's C/N0 with the fitted loop
   // bandwidth (the config range is (0, 50] Hz; none fitted -> fixed 0).
   if (p.dll_bandwidth_hz > 1e-6) {
@@ -48,7 +58,9 @@ world::WorldConfig fitted_world(const CalibrationResult& r, const world::WorldCo
   // per-line-of-sight TEC process. Troposphere: the receiver's own (beta is
   // 0: what is common and elevation-dependent is carried by the ionosphere's
   // terms, AtmosphereBiasFit).
-  world::use_klobuchar_ionosphere(w.atmosphere, 1.0 + r.bias.klobuchar_alpha, p.iono_sigma_tecu, p.iono_tau_s);
+  const world::GaussMarkovConfig iono = fitted_process(
+      p.iono_sigma_tecu, p.iono_tau_s, {base.atmosphere.ionosphere.perturbation.sigma, base.atmosphere.ionosphere.perturbation.tau_s});
+  world::use_klobuchar_ionosphere(w.atmosphere, 1.0 + r.bias.klobuchar_alpha, iono.sigma_m, iono.tau_s);
   em.iono_scale = {std::min(r.bias.scale_sigma, 2.0), r.bias.scale_tau_s > 0.0 ? r.bias.scale_tau_s : 3600.0};
   world::use_receiver_troposphere(w.atmosphere);
   // Azimuthal gradient: the mean of the data plus a slow random process
@@ -57,7 +69,8 @@ world::WorldConfig fitted_world(const CalibrationResult& r, const world::WorldCo
   em.gradient.east_m = r.bias.gradient_east_m;
   em.gradient.north_diurnal_m = em.gradient.east_diurnal_m = 0.0;
   em.gradient.north_peak_h = em.gradient.east_peak_h = 0.0;
-  em.gradient.process = {r.bias.gradient_sigma_m, r.bias.gradient_tau_s > 0.0 ? r.bias.gradient_tau_s : 3600.0};
+  em.gradient.process = fitted_process(r.bias.gradient_sigma_m, r.bias.gradient_tau_s > 0.0 ? r.bias.gradient_tau_s : 3600.0,
+                                       {0.0, 3600.0});
   return w;
 }
 
