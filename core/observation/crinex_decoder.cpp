@@ -57,8 +57,8 @@ bool append_fixed(std::string& out, int64_t v, int decimals, std::size_t width) 
 
 bool is_compact_rinex(std::string_view first_line) { return text::rinex_label(first_line) == "CRINEX VERS   / TYPE"; }
 
-CompactRinexDecoder::CompactRinexDecoder(text::LineSource& src, text::Line first)
-    : src_(src), sats_(static_cast<std::size_t>(26 * kNumbersPerSystem)) {
+CompactRinexDecoder::CompactRinexDecoder(text::LineSource& src, text::Line first, SystemSet systems)
+    : src_(src), systems_(systems), sats_(static_cast<std::size_t>(26 * kNumbersPerSystem)) {
   const std::string_view v = text::trim(text::columns(first.text, 0, 20));
   if (!is_compact_rinex(first.text)) fail(first.number, "not a Compact RINEX file (no CRINEX VERS / TYPE)");
   if (v == "1.0") {
@@ -300,6 +300,15 @@ void CompactRinexDecoder::decode_epoch(Line& e) {
       }
     }
     if (pos < text.size()) apply_text_difference(st.flags, text.substr(pos));
+    const std::optional<GnssSystem> system = system_from_letter(sys);
+    if (!system || !systems_.has(*system)) {  // decoded (the arcs go on), not written
+      if (version_ == 3) {
+        emit(std::move(out), s.number);
+      } else {
+        for (int t = 0; t < ntypes; t += static_cast<int>(kValuesPerV2Line)) emit(std::string(), s.number);
+      }
+      continue;
+    }
     for (int t = 0; t < ntypes; ++t) {
       if (version_ == 1 && t > 0 && t % static_cast<int>(kValuesPerV2Line) == 0) {
         emit(std::move(out), s.number);

@@ -14,10 +14,11 @@ namespace gnssemu::observation {
 
 class CompactRinexDecoder final : public ObsLines {
 public:
-  /// src: the file; first: its first line (CRINEX VERS / TYPE), already read.
-  /// Throws gnssemu::Error "file:line: reason" for a version other than
-  /// 1.0/3.0 or a header that is not Compact RINEX.
-  CompactRinexDecoder(text::LineSource& src, text::Line first);
+  /// src: the file; first: its first line (CRINEX VERS / TYPE), already read;
+  /// systems: whose values are written (open_obs_lines). Throws
+  /// gnssemu::Error "file:line: reason" for a version other than 1.0/3.0 or
+  /// a header that is not Compact RINEX.
+  CompactRinexDecoder(text::LineSource& src, text::Line first, SystemSet systems);
 
   bool next(text::Line& line) override;
   int line_number() const noexcept override { return src_.line_number(); }
@@ -51,6 +52,7 @@ private:
   void emit(std::string text, int number);
 
   text::LineSource& src_;
+  SystemSet systems_;
   int version_ = 0;            // 1 or 3
   bool in_header_ = true;
   int header_lines_ = 0;

@@ -32,10 +32,10 @@ private:
 
 }  // namespace
 
-std::unique_ptr<ObsLines> open_obs_lines(text::LineSource& src) {
+std::unique_ptr<ObsLines> open_obs_lines(text::LineSource& src, SystemSet systems) {
   text::Line first;
   if (!src.next(first)) return std::make_unique<PlainLines>(src, std::nullopt);
-  if (is_compact_rinex(first.text)) return std::make_unique<CompactRinexDecoder>(src, std::move(first));
+  if (is_compact_rinex(first.text)) return std::make_unique<CompactRinexDecoder>(src, std::move(first), systems);
   return std::make_unique<PlainLines>(src, std::move(first));
 }
 

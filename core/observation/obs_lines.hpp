@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "core/common/line_source.hpp"
+#include "core/common/sat_id.hpp"
 
 namespace gnssemu::observation {
 
@@ -26,7 +27,9 @@ public:
 bool is_compact_rinex(std::string_view first_line);
 
 /// The lines of src: decoded when its first line says Compact RINEX, as
-/// they are otherwise. src must outlive the result.
-std::unique_ptr<ObsLines> open_obs_lines(text::LineSource& src);
+/// they are otherwise. src must outlive the result. A Compact RINEX
+/// decoder writes the values of `systems` only (the satellite identifier,
+/// or blank lines in RINEX 2, stand for the others, which the reader skips).
+std::unique_ptr<ObsLines> open_obs_lines(text::LineSource& src, SystemSet systems = SystemSet::all());
 
 }  // namespace gnssemu::observation

@@ -53,7 +53,8 @@ std::string v3_code_from_v2(GnssSystem s, std::string_view t) {
 /// window_ (a deque: references survive reading further lines).
 class Parser : private text::ColumnReader {
 public:
-  Parser(ObsLines& src, const std::string& name, bool compact) : ColumnReader(name), src_(src), compact_(compact) {}
+  Parser(ObsLines& src, const std::string& name, bool compact, SystemSet systems)
+      : ColumnReader(name), src_(src), compact_(compact), systems_(systems) {}
 
   ObsData parse() {
     ObsData out;
@@ -328,6 +329,7 @@ private:
         ++out.skipped_records;
         continue;
       }
+      if (!systems_.has(id->system)) continue;
       const std::size_t ntypes = out.header.types_of(id->system).size();
       SatObs s;
       s.sat = *id;
@@ -384,7 +386,14 @@ private:
     ep.flag = flag;
     ep.rcv_clock_offset_s = real(e, 68, 12, "receiver clock offset");
     for (const auto& [sys, prn] : sats) {
+      const std::optional<SatId> id = sat_of(e, sys, prn, out.header);
+      if (!id || !systems_.has(id->system)) {
+        if (!id) ++out.skipped_records;
+        for (std::size_t k = 0; k < lines_per_sat; ++k) need("observation record", e.number);
+        continue;
+      }
       SatObs s;
+      s.sat = *id;
       s.values.reserve(ntypes);
       for (std::size_t t = 0; t < ntypes; ++t) {
         if (t % kV2ValuesPerLine == 0) cur = &need("observation record", e.number);
@@ -394,12 +403,6 @@ private:
         }
         s.values.push_back(value(*cur, kFieldWidth * (t % kV2ValuesPerLine)));
       }
-      const std::optional<SatId> id = sat_of(e, sys, prn, out.header);
-      if (!id) {
-        ++out.skipped_records;
-        continue;
-      }
-      s.sat = *id;
       ep.sats.push_back(std::move(s));
     }
     out.epochs.push_back(std::move(ep));
@@ -407,6 +410,7 @@ private:
 
   ObsLines& src_;
   bool compact_ = false;
+  SystemSet systems_;
   std::deque<Line> window_;
   uint64_t consumed_ = 0;  // lines taken so far
   int major_ = 0;
@@ -414,21 +418,21 @@ private:
 };
 
 
-ObsData read_rinex_obs(text::LineSource& src) {
-  const std::unique_ptr<ObsLines> lines = open_obs_lines(src);
-  return Parser(*lines, src.name(), lines->compact()).parse();
+ObsData read_rinex_obs(text::LineSource& src, SystemSet systems) {
+  const std::unique_ptr<ObsLines> lines = open_obs_lines(src, systems);
+  return Parser(*lines, src.name(), lines->compact(), systems).parse();
 }
 
 }  // namespace
 
-ObsData read_rinex_obs(std::istream& in, const std::string& name) {
+ObsData read_rinex_obs(std::istream& in, const std::string& name, SystemSet systems) {
   text::LineSource src(in, name, kObsLimits);
-  return read_rinex_obs(src);
+  return read_rinex_obs(src, systems);
 }
 
-ObsData read_rinex_obs(const std::string& path) {
+ObsData read_rinex_obs(const std::string& path, SystemSet systems) {
   text::LineSource src(path, kObsLimits);
-  return read_rinex_obs(src);
+  return read_rinex_obs(src, systems);
 }
 
 }  // namespace gnssemu::observation

@@ -158,6 +158,10 @@ TEST(Crinex, SharedNya1DayMatchesThePlainFilesDecodedFromIt) {
     ASSERT_EQ(j, b.sats.size()) << "epoch " << k;
   }
   EXPECT_EQ(compared, 4u * 33830u);
+  // GPS alone (as spp reads it): the same GPS records.
+  ObsData want = day;
+  for (ObsEpoch& e : want.epochs) std::erase_if(e.sats, [](const SatObs& s) { return s.sat.system != GnssSystem::kGps; });
+  expect_same(read_rinex_obs(crx, SystemSet::only(GnssSystem::kGps)), want);
 }
 
 TEST(Crinex, EverySharedCompactFileDecodes) {
@@ -230,4 +234,18 @@ TEST(Crinex, TruncatedEpochAndEventAreClearErrors) {
   // The header ends early.
   EXPECT_NE(error_of_text(tiny_first(2)).find("bad.crx:2: end of file before END OF HEADER"), std::string::npos)
       << error_of_text(tiny_first(2));
+}
+
+TEST(Crinex, ReadingOneSystemKeepsItsValuesAsReadingAll) {
+  for (const char* name : {"tiny_v3.crx", "tiny_v3.rnx", "KOSG0010.95D", "nya1_v211_mixed.o"}) {
+    for (const GnssSystem sys : {GnssSystem::kGps, GnssSystem::kGlonass}) {
+      const ObsData all = read_rinex_obs(test_obs(name));
+      ObsData want = all;
+      for (ObsEpoch& e : want.epochs) std::erase_if(e.sats, [&](const SatObs& s) { return s.sat.system != sys; });
+      const ObsData one = read_rinex_obs(test_obs(name), SystemSet::only(sys));
+      ASSERT_EQ(one.epochs.size(), want.epochs.size()) << name;
+      expect_same(one, want);
+      EXPECT_EQ(one.skipped_records, all.skipped_records) << name;
+    }
+  }
 }
