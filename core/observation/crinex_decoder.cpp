@@ -122,6 +122,9 @@ void CompactRinexDecoder::header_line(const Line& l) {
       fail(l.number, "Compact RINEX " + std::string(version_ == 1 ? "1.0" : "3.0") + " holds RINEX " +
                          (version_ == 1 ? "2" : "3") + ", not version '" + std::string(v) + "'");
     }
+    // RINEX 2.11 §5.1: a blank satellite letter is GPS, or the file's one system.
+    const char file_system = l.text.size() > 40 ? l.text[40] : ' ';
+    blank_system_ = file_system == ' ' || file_system == 'M' ? 'G' : file_system;
   }
   if (label == "END OF HEADER") {
     in_header_ = false;
@@ -259,7 +262,7 @@ void CompactRinexDecoder::decode_epoch(Line& e) {
 
   for (std::size_t k = 0; k < n; ++k) {
     const std::string_view id(epoch_.data() + list_col + 3 * k, 3);
-    const char sys = id[0] == ' ' ? 'G' : id[0];
+    const char sys = id[0] == ' ' ? blank_system_ : id[0];
     const std::optional<int> number = text::parse_int(id.substr(1));
     if (!number || *number < 0 || *number >= kNumbersPerSystem || sys < 'A' || sys > 'Z') {
       fail(e.number, "bad satellite '" + std::string(id) + "' in the epoch line");

@@ -57,7 +57,8 @@ private:
   bool in_header_ = true;
   int header_lines_ = 0;
   std::array<int, 26> ntypes_{};  // per system letter (RINEX 3), from SYS / # / OBS TYPES
-  int ntypes_v2_ = 0;          // RINEX 2: # / TYPES OF OBSERV, every system
+  int ntypes_v2_ = 0;
+  char blank_system_ = 'G';    // RINEX 2: the system of a blank satellite letter          // RINEX 2: # / TYPES OF OBSERV, every system
   std::string epoch_;          // the last epoch line, decoded
   bool have_epoch_ = false;
   Arc clock_;

@@ -249,3 +249,31 @@ TEST(Crinex, ReadingOneSystemKeepsItsValuesAsReadingAll) {
     }
   }
 }
+
+TEST(Crinex, Version1BlankSatelliteLetterIsTheFileSystem) {
+  const std::string text =
+      "1.0                 COMPACT RINEX FORMAT                    CRINEX VERS   / TYPE\n"
+      "hand-made                               27-Nov-26 00:00     CRINEX PROG / DATE\n"
+      "     2.11           OBSERVATION DATA    R (GLONASS)         RINEX VERSION / TYPE\n"
+      "     2    C1    L1                                          # / TYPES OF OBSERV\n"
+      "                                                            END OF HEADER\n"
+      "&24 05 03 00 00  0.0000000  0  1 05\n"
+      "\n"
+      "3&20000000000 3&105000000000 &5\n"
+      "                3\n"
+      "\n"
+      "1000 -2000\n";
+  for (const SystemSet systems : {SystemSet::all(), SystemSet::only(GnssSystem::kGlonass)}) {
+    std::istringstream in(text);
+    const ObsData d = read_rinex_obs(in, "glo.crx", systems);
+    ASSERT_EQ(d.epochs.size(), 2u);
+    ASSERT_EQ(d.epochs[1].sats.size(), 1u);
+    EXPECT_EQ(d.epochs[1].sats[0].sat, SatId(GnssSystem::kGlonass, 5));
+    EXPECT_DOUBLE_EQ(d.epochs[1].sats[0].get(0)->value, 20000001.0);
+    EXPECT_DOUBLE_EQ(d.epochs[1].sats[0].get(1)->value, 104999998.0);
+    EXPECT_EQ(d.epochs[1].sats[0].get(0)->ssi, 5);  // flags kept from the first epoch
+    EXPECT_DOUBLE_EQ(d.epochs[1].t - d.epochs[0].t, 30.0);
+  }
+  std::istringstream in(text);
+  EXPECT_TRUE(read_rinex_obs(in, "glo.crx", SystemSet::only(GnssSystem::kGps)).epochs[1].sats.empty());
+}
