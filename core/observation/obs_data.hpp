@@ -1,11 +1,15 @@
 #pragma once
-// Contents of a RINEX observation file, GPS satellites only: header facts a
-// positioning tool needs and the epochs with their per-satellite values.
+// Contents of a RINEX observation file, every satellite system of the
+// SatId table (G R E C J S): header facts a positioning tool needs and the
+// epochs with their per-satellite values.
+#include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/common/sat_id.hpp"
 #include "core/common/vec3.hpp"
 #include "core/time/gps_time.hpp"
 
@@ -15,13 +19,14 @@ namespace gnssemu::observation {
 struct ObsValue {
   double value = 0.0;  ///< unit of its type: C m, L cycles, D Hz, S dB-Hz (per header)
   bool valid = false;  ///< false: blank or 0.000 (gl_Rinex and others write 0 for untracked)
-  int lli = 0;         ///< loss-of-lock indicator 0..7 (bit 0: slip, bit 1: half cycle)
-  int ssi = 0;         ///< signal strength indicator 0..9, 0 = unknown
+  int8_t lli = 0;      ///< loss-of-lock indicator 0..9 as written (bit 0: slip, bit 1: half cycle)
+  int8_t ssi = 0;      ///< signal strength indicator 0..9, 0 = unknown
 };
 
-/// Values of one GPS satellite at one epoch, in ObsHeader::gps_types order.
+/// Values of one satellite at one epoch, in the order of its system's
+/// types (ObsHeader::types_of(sat.system)).
 struct SatObs {
-  int prn = 0;  ///< 1..32
+  SatId sat;
   std::vector<ObsValue> values;
 
   /// Value at a type index (ObsHeader::type_index), or nullptr when the index
@@ -38,29 +43,37 @@ struct ObsEpoch {
   int flag = 0;             ///< 0 OK, 1 power failure since the previous epoch
   double rcv_clock_offset_s = 0.0;  ///< from the epoch line (0 if blank)
   int line = 0;             ///< line of the epoch record in the file (messages)
-  std::vector<SatObs> sats; ///< GPS satellites with at least one field, file order
+  std::vector<SatObs> sats; ///< satellites of the table's systems, file order
 };
 
 struct ObsHeader {
   double rinex_version = 0.0;
-  char file_system = ' ';     ///< 'G', 'M', ... from RINEX VERSION / TYPE
+  char file_system = ' ';     ///< 'G', 'R', 'E', 'C', 'J', 'S' or 'M' from RINEX VERSION / TYPE
+  bool compact = false;       ///< read from Compact RINEX (Hatanaka)
   std::string marker_name;
   std::string receiver_type;
   std::optional<Ecef> approx_pos_m;  ///< APPROX POSITION XYZ, ECEF m
   Enu antenna_delta_hen_m;    ///< ANTENNA: DELTA H/E/N, m (x = H, y = E, z = N as in the file)
-  /// GPS observation types as RINEX 3 codes ("C1C", "S1C"); RINEX 2 types are
-  /// mapped: C1->C1C P1->C1W L1->L1C D1->D1C S1->S1C, C2->C2X P2->C2W L2->L2W
-  /// D2->D2W S2->S2W, C5->C5X L5->L5X D5->D5X S5->S5X.
-  std::vector<std::string> gps_types;
+  /// Observation types per system (index: GnssSystem) as RINEX 3 codes
+  /// ("C1C", "S1C"). RINEX 2 types apply to every system and are mapped per
+  /// system (docs/cli.md, "Observation files"); GPS: C1->C1C P1->C1W L1->L1C
+  /// D1->D1C S1->S1C, C2->C2X P2->C2W L2->L2W D2->D2W S2->S2W, C5->C5X ...
+  std::array<std::vector<std::string>, kNumSystems> types;
   double interval_s = 0.0;    ///< INTERVAL, s (0 if absent)
   std::optional<time::GpsTime> first_obs;
   std::optional<int> leap_seconds;
   bool rcv_clock_offset_applied = false;  ///< RCV CLOCK OFFS APPL
 
-  /// Index of a GPS type (RINEX 3 code) in gps_types, or -1.
-  int type_index(std::string_view code) const noexcept {
-    for (std::size_t i = 0; i < gps_types.size(); ++i) {
-      if (gps_types[i] == code) return static_cast<int>(i);
+  const std::vector<std::string>& types_of(GnssSystem s) const noexcept {
+    return types[static_cast<std::size_t>(s)];
+  }
+  std::vector<std::string>& types_of(GnssSystem s) noexcept { return types[static_cast<std::size_t>(s)]; }
+
+  /// Index of a type (RINEX 3 code) among system s's types, or -1.
+  int type_index(GnssSystem s, std::string_view code) const noexcept {
+    const std::vector<std::string>& t = types_of(s);
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      if (t[i] == code) return static_cast<int>(i);
     }
     return -1;
   }
@@ -70,7 +83,7 @@ struct ObsData {
   std::string source;               ///< file name it was read from
   ObsHeader header;
   std::vector<ObsEpoch> epochs;     ///< flag 0/1 epochs, file order
-  int skipped_records = 0;          ///< satellite records of other systems skipped
+  int skipped_records = 0;          ///< satellite records of systems outside the SatId table (I, T, ...) skipped
   int event_records = 0;            ///< epoch records with flags 2..5 (their lines skipped)
   int cycle_slip_records = 0;       ///< epoch records with flag 6 (slip lines skipped)
 };

@@ -9,12 +9,12 @@
 #include "core/common/error.hpp"
 #include "core/common/line_source.hpp"
 #include "core/common/text_fields.hpp"
+#include "core/observation/obs_lines.hpp"
 
 namespace gnssemu::observation {
 
 namespace {
 
-constexpr int kMaxGpsPrn = 32;
 constexpr std::size_t kFieldWidth = 16;  // F14.3 + LLI + SSI (RINEX 2.11 Table A2, 3.05 Table A3)
 constexpr int kV2SatsPerLine = 12;
 constexpr int kV2ValuesPerLine = 5;
@@ -26,26 +26,40 @@ using text::columns;
 using text::Line;
 using text::trim;
 
-/// RINEX 2 two-character GPS type -> RINEX 3 code (RINEX 3.05 §5.1 / Table A2 mapping).
-std::string v3_code_from_v2(std::string_view t) {
+/// RINEX 2 two-character type -> RINEX 3 code of system s (RINEX 3.05
+/// §5.1 and Table A23's signals): GPS C1->C1C P1->C1W L1->L1C, C2->C2X
+/// P2->C2W L2->L2W, band 5 X; GLONASS C->C, P->P (L/D/S of band 1 C, band 2
+/// P); SBAS band 1 C; other systems and bands X.
+std::string v3_code_from_v2(GnssSystem s, std::string_view t) {
   if (t.size() != 2) return std::string(t);
   const char kind = t[0], band = t[1];
-  if (kind == 'P') return band == '1' ? "C1W" : band == '2' ? "C2W" : std::string(t);
-  if (band == '1') return std::string{kind, '1', 'C'};
-  if (band == '2') return std::string{kind, '2', kind == 'C' ? 'X' : 'W'};
-  if (band == '5') return std::string{kind, '5', 'X'};
-  return std::string(t);
+  if (s == GnssSystem::kGlonass) {
+    if (kind == 'P') return std::string{'C', band, 'P'};
+    if (band == '1' || band == '2') return std::string{kind, band, kind == 'C' || band == '1' ? 'C' : 'P'};
+    return std::string{kind, band, 'X'};
+  }
+  if (s == GnssSystem::kGps) {
+    if (kind == 'P') return band == '1' ? "C1W" : band == '2' ? "C2W" : std::string(t);
+    if (band == '1') return std::string{kind, '1', 'C'};
+    if (band == '2') return std::string{kind, '2', kind == 'C' ? 'X' : 'W'};
+    return std::string{kind, band, 'X'};
+  }
+  if (kind == 'P') return std::string{'C', band, 'X'};
+  if (s == GnssSystem::kSbas && band == '1') return std::string{kind, '1', 'C'};
+  return std::string{kind, band, 'X'};
 }
 
 /// Reads the file line by line; the lines of the record being parsed stay in
 /// window_ (a deque: references survive reading further lines).
 class Parser : private text::ColumnReader {
 public:
-  explicit Parser(text::LineSource& src) : ColumnReader(src.name()), src_(src) {}
+  Parser(ObsLines& src, const std::string& name, bool compact, SystemSet systems)
+      : ColumnReader(name), src_(src), compact_(compact), systems_(systems) {}
 
   ObsData parse() {
     ObsData out;
     out.source = name();
+    out.header.compact = compact_;
     parse_header(out);
     for (;;) {
       window_.clear();
@@ -95,9 +109,9 @@ private:
     major_ = v.major;
     if (major_ == 2 && h.file_system == ' ') h.file_system = 'G';  // RINEX 2.11 §5.1: blank = GPS
     if (type != 'O') fail(first.number, std::string("not an observation file (type '") + type + "')");
-    if (h.file_system != 'G' && h.file_system != 'M') {
+    if (h.file_system != 'M' && !system_from_letter(h.file_system)) {
       fail(first.number, std::string("observation file for system '") + h.file_system +
-                             "', need GPS (G) or mixed (M)");
+                             "', need one of G R E C J S or mixed (M)");
     }
     for (;;) {
       window_.clear();
@@ -106,7 +120,7 @@ private:
       const Line& l = *next;
       const std::string label = text::rinex_label(l.text);
       if (label == "END OF HEADER") {
-        if (!have_types_) fail(l.number, "no GPS observation types in the header (SYS / # / OBS TYPES or # / TYPES OF OBSERV)");
+        if (!have_types_) fail(l.number, "no observation types in the header (SYS / # / OBS TYPES or # / TYPES OF OBSERV)");
         return;
       }
       header_line(l, label, h);
@@ -191,18 +205,25 @@ private:
     return codes;
   }
 
+  /// Systems outside the SatId table (I) keep no types: their records are skipped.
   void types_v3(const Line& l, ObsHeader& h) {
     const char sys = l.text[0];
     std::vector<std::string> codes = type_codes(l, kTypesV3);
-    if (sys == 'G') {
-      h.gps_types = std::move(codes);
+    if (const std::optional<GnssSystem> s = system_from_letter(sys)) {
+      h.types_of(*s) = std::move(codes);
       have_types_ = true;
+    } else if (sys < 'A' || sys > 'Z') {
+      fail(l.number, std::string("SYS / # / OBS TYPES for satellite system '") + sys + "'");
     }
   }
 
   void types_v2(const Line& l, ObsHeader& h) {
-    h.gps_types.clear();
-    for (const std::string& code : type_codes(l, kTypesV2)) h.gps_types.push_back(v3_code_from_v2(code));
+    const std::vector<std::string> codes = type_codes(l, kTypesV2);
+    for (int i = 0; i < kNumSystems; ++i) {
+      const auto s = static_cast<GnssSystem>(i);
+      h.types_of(s).clear();
+      for (const std::string& code : codes) h.types_of(s).push_back(v3_code_from_v2(s, code));
+    }
     have_types_ = true;
   }
 
@@ -233,18 +254,35 @@ private:
     return v;
   }
 
-  int indicator(const Line& l, std::size_t col, const char* what) const {
+  int8_t indicator(const Line& l, std::size_t col, const char* what) const {
     if (col >= l.text.size()) return 0;
     const char c = l.text[col];
     if (c == ' ') return 0;
     if (c < '0' || c > '9') fail(l.number, std::string("bad ") + what + " '" + c + "' at column " + std::to_string(col + 1));
-    return c - '0';
+    return static_cast<int8_t>(c - '0');
   }
 
   int prn_of(const Line& l, std::size_t col) const {
     const int prn = integer(l, col + 1, 2, "satellite number");
     if (prn < 1 || prn > 99) fail(l.number, "satellite number " + std::to_string(prn) + " out of range");
     return prn;
+  }
+
+  /// The satellite of system letter sys and RINEX number n; nullopt for a
+  /// system outside the table (skipped, counted); errors for anything else.
+  std::optional<SatId> sat_of(const Line& l, char sys, int n, const ObsHeader& h) const {
+    const std::optional<GnssSystem> s = system_from_letter(sys);
+    if (!s) {
+      if (sys < 'A' || sys > 'Z') fail(l.number, std::string("unknown satellite system '") + sys + "'");
+      return std::nullopt;
+    }
+    const SatId id(*s, n);
+    if (!id.valid()) {
+      fail(l.number, std::string("satellite ") + sys + std::to_string(n) + " out of the system's range " +
+                         std::to_string(numbering(*s).first) + ".." + std::to_string(numbering(*s).last));
+    }
+    if (h.types_of(*s).empty()) fail(l.number, std::string("no observation types for system '") + sys + "'");
+    return id;
   }
 
   struct EpochFlag {
@@ -280,23 +318,21 @@ private:
     ObsEpoch ep = epoch_head(e, 2, 4, 7, 10, 13, 16, 18);
     ep.flag = flag;
     ep.rcv_clock_offset_s = real(e, 41, 15, "receiver clock offset");
-    const std::size_t ntypes = out.header.gps_types.size();
+    ep.sats.reserve(static_cast<std::size_t>(n));
     for (int k = 0; k < n; ++k) {
       const Line& l = need("epoch record", e.number);
       const char sys = l.text.empty() ? ' ' : l.text[0];
       if (sys == '>') fail(l.number, "epoch record at line " + std::to_string(e.number) + " announced " +
                                          std::to_string(n) + " satellites, found " + std::to_string(k));
-      const int prn = prn_of(l, 0);
-      if (sys != 'G') {
-        if (sys != 'R' && sys != 'E' && sys != 'C' && sys != 'J' && sys != 'S' && sys != 'I') {
-          fail(l.number, std::string("unknown satellite system '") + sys + "'");
-        }
+      const std::optional<SatId> id = sat_of(l, sys, prn_of(l, 0), out.header);
+      if (!id) {
         ++out.skipped_records;
         continue;
       }
-      if (prn > kMaxGpsPrn) fail(l.number, "GPS PRN " + std::to_string(prn) + " out of range 1..32");
+      if (!systems_.has(id->system)) continue;
+      const std::size_t ntypes = out.header.types_of(id->system).size();
       SatObs s;
-      s.prn = prn;
+      s.sat = *id;
       s.values.reserve(ntypes);
       for (std::size_t t = 0; t < ntypes; ++t) s.values.push_back(value(l, 3 + kFieldWidth * t));
       ep.sats.push_back(std::move(s));
@@ -335,9 +371,11 @@ private:
         fail(cur->number, "satellite list shorter than the " + std::to_string(n) + " announced");
       }
       const char sys = cur->text[col];
-      sats.emplace_back(sys == ' ' ? out.header.file_system : sys, prn_of(*cur, col));
+      // RINEX 2.11 §5.1: blank is GPS (or the system of a single-system file).
+      sats.emplace_back(sys != ' ' ? sys : out.header.file_system == 'M' ? 'G' : out.header.file_system,
+                        prn_of(*cur, col));
     }
-    const std::size_t ntypes = out.header.gps_types.size();
+    const std::size_t ntypes = out.header.types_of(GnssSystem::kGps).size();  // the same for every system
     const std::size_t lines_per_sat = (ntypes + kV2ValuesPerLine - 1) / kV2ValuesPerLine;
     if (flag == 6) {
       ++out.cycle_slip_records;
@@ -348,8 +386,14 @@ private:
     ep.flag = flag;
     ep.rcv_clock_offset_s = real(e, 68, 12, "receiver clock offset");
     for (const auto& [sys, prn] : sats) {
+      const std::optional<SatId> id = sat_of(e, sys, prn, out.header);
+      if (!id || !systems_.has(id->system)) {
+        if (!id) ++out.skipped_records;
+        for (std::size_t k = 0; k < lines_per_sat; ++k) need("observation record", e.number);
+        continue;
+      }
       SatObs s;
-      s.prn = prn;
+      s.sat = *id;
       s.values.reserve(ntypes);
       for (std::size_t t = 0; t < ntypes; ++t) {
         if (t % kV2ValuesPerLine == 0) cur = &need("observation record", e.number);
@@ -359,36 +403,36 @@ private:
         }
         s.values.push_back(value(*cur, kFieldWidth * (t % kV2ValuesPerLine)));
       }
-      if (sys != 'G') {
-        if (sys != 'R' && sys != 'E' && sys != 'S' && sys != 'T' && sys != 'M') {
-          fail(e.number, std::string("unknown satellite system '") + sys + "'");
-        }
-        ++out.skipped_records;
-        continue;
-      }
-      if (prn > kMaxGpsPrn) fail(e.number, "GPS PRN " + std::to_string(prn) + " out of range 1..32");
       ep.sats.push_back(std::move(s));
     }
     out.epochs.push_back(std::move(ep));
   }
 
-  text::LineSource& src_;
+  ObsLines& src_;
+  bool compact_ = false;
+  SystemSet systems_;
   std::deque<Line> window_;
   uint64_t consumed_ = 0;  // lines taken so far
   int major_ = 0;
   bool have_types_ = false;
 };
 
-}  // namespace
 
-ObsData read_rinex_obs(std::istream& in, const std::string& name) {
-  text::LineSource src(in, name, kObsLimits);
-  return Parser(src).parse();
+ObsData read_rinex_obs(text::LineSource& src, SystemSet systems) {
+  const std::unique_ptr<ObsLines> lines = open_obs_lines(src, systems);
+  return Parser(*lines, src.name(), lines->compact(), systems).parse();
 }
 
-ObsData read_rinex_obs(const std::string& path) {
+}  // namespace
+
+ObsData read_rinex_obs(std::istream& in, const std::string& name, SystemSet systems) {
+  text::LineSource src(in, name, kObsLimits);
+  return read_rinex_obs(src, systems);
+}
+
+ObsData read_rinex_obs(const std::string& path, SystemSet systems) {
   text::LineSource src(path, kObsLimits);
-  return Parser(src).parse();
+  return read_rinex_obs(src, systems);
 }
 
 }  // namespace gnssemu::observation

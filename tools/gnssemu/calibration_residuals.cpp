@@ -32,8 +32,8 @@ double grid_step_s(const observation::ObsData& obs) {
 std::vector<Residual> station_residuals(const CalibrationInput& in, const orbit::EphemerisStore& store, double step_s,
                                         int day, int& epochs_used) {
   const observation::ObsData& obs = *in.obs;
-  const int c1c = obs.header.type_index("C1C");
-  const int s1c = obs.header.type_index("S1C");
+  const int c1c = obs.header.type_index(GnssSystem::kGps, "C1C");
+  const int s1c = obs.header.type_index(GnssSystem::kGps, "S1C");
   if (c1c < 0) throw Error(obs.source, 0, "no GPS C1C (RINEX 2: C1) pseudoranges");
   const Lla lla = geo::lla_from_ecef(in.station_m);
   const time::GpsTime t0 = obs.epochs.front().t;
@@ -42,9 +42,10 @@ std::vector<Residual> station_residuals(const CalibrationInput& in, const orbit:
   for (const observation::ObsEpoch& e : obs.epochs) {
     epoch.clear();
     for (const observation::SatObs& s : e.sats) {
+      if (s.sat.system != GnssSystem::kGps) continue;  // the GPS error model
       const observation::ObsValue* pr = s.get(c1c);
       if (pr == nullptr) continue;
-      const orbit::Ephemeris* eph = store.select(s.prn, e.t);
+      const orbit::Ephemeris* eph = store.select(s.sat.number, e.t);
       if (eph == nullptr) continue;
       const orbit::SatState st = receiver::transmit_state(*eph, e.t, pr->value).state;
       // Sagnac at the known station: rotate by the geometric flight time (the
@@ -60,7 +61,7 @@ std::vector<Residual> station_residuals(const CalibrationInput& in, const orbit:
       Residual r;
       r.day = day;
       r.tow_s = e.t.tow_s();
-      r.prn = s.prn;
+      r.prn = s.sat.number;
       r.el_rad = look.el_rad;
       r.az_rad = look.az_rad;
       r.range_m = rho;

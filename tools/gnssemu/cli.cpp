@@ -281,7 +281,8 @@ std::pair<observation::ObsData, orbit::NavData> load_obs_nav(const ObsArgs& a) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(a.obs_path, ec)) throw Error(a.obs_path, 0, "observation file not found");
   orbit::NavData nav = orbit::read_rinex_nav_files(a.nav_paths);
-  observation::ObsData obs = observation::read_rinex_obs(a.obs_path);
+  // spp and calibrate solve with GPS: the other systems' values are not read.
+  observation::ObsData obs = observation::read_rinex_obs(a.obs_path, SystemSet::only(GnssSystem::kGps));
   if (obs.epochs.empty()) throw Error(a.obs_path, 0, "no GPS observation epochs");
   const orbit::EphemerisStore store(nav.ephemerides);
   const time::GpsTime t0 = obs.epochs.front().t, t1 = obs.epochs.back().t;

@@ -13,7 +13,7 @@ observation::ObsData simulate_station(const observation::ObsData& real, const or
   out.source = real.source + " (simulated)";
   out.header.rinex_version = 3.05;
   out.header.file_system = 'G';
-  out.header.gps_types = {"C1C", "S1C"};
+  out.header.types_of(GnssSystem::kGps) = {"C1C", "S1C"};
   out.header.interval_s = real.header.interval_s;
   world::World w(store, world);
   w.set_klobuchar_shape(nav.klobuchar);
@@ -29,7 +29,7 @@ observation::ObsData simulate_station(const observation::ObsData& real, const or
       const world::SatObservable& s = o.sats[static_cast<std::size_t>(i)];
       if (!s.above_mask || !s.received) continue;
       observation::SatObs so;
-      so.prn = s.prn;
+      so.sat = SatId::gps(s.prn);
       so.values = {observation::ObsValue{s.pseudorange_m, true, 0, 0}, observation::ObsValue{s.cn0_dbhz, true, 0, 0}};
       sim.sats.push_back(std::move(so));
     }

@@ -51,8 +51,8 @@ SppEngine::SppEngine(const orbit::NavData& nav, const orbit::EphemerisStore& sto
       solver_(precorrected(receiver.solver), receiver.max_pdop),
       cold_solver_(untested(precorrected(receiver.solver)), receiver.max_pdop) {
   receiver::validate(rx_);
-  c1c_ = header.type_index("C1C");
-  s1c_ = header.type_index("S1C");
+  c1c_ = header.type_index(GnssSystem::kGps, "C1C");
+  s1c_ = header.type_index(GnssSystem::kGps, "S1C");
   if (c1c_ < 0) throw Error("observation file has no GPS C1C (RINEX 2: C1) pseudoranges");
 }
 
@@ -63,9 +63,10 @@ bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
   Lla site_lla;
   if (site != nullptr) site_lla = geo::lla_from_ecef(*site);
   for (const observation::SatObs& s : epoch.sats) {
+    if (s.sat.system != GnssSystem::kGps) continue;  // GPS-only solution
     const observation::ObsValue* pr = s.get(c1c_);
     if (pr == nullptr) continue;
-    const orbit::Ephemeris* eph = store_.select(s.prn, epoch.t);
+    const orbit::Ephemeris* eph = store_.select(s.sat.number, epoch.t);
     if (eph == nullptr) continue;
     double corr_m = 0.0, corr_var_m2 = 0.0;
     if (site != nullptr) {
@@ -83,7 +84,7 @@ bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
     // S1C gives the solver's C/N0 weight term, as the live receiver's tracking does.
     const observation::ObsValue* sn = s1c_ >= 0 ? s.get(s1c_) : nullptr;
     m.cn0_dbhz = sn != nullptr && std::isfinite(sn->value) ? sn->value : 0.0;
-    meas_prn_[static_cast<std::size_t>(in_.num_meas++)] = s.prn;
+    meas_prn_[static_cast<std::size_t>(in_.num_meas++)] = s.sat.number;
   }
   if (last_pos_m_) {
     in_.have_prior = true;

@@ -25,10 +25,26 @@ std::string bad(const std::string& name) { return std::string(GNSSEMU_TEST_DATA)
 const char* kNya90 = "NYA100NOR_S_20241240000_90M_30S_MO.rnx";
 const char* kNyaDay = "NYA100NOR_S_20241240000_01D_30S_GO_L1.rnx.gz";
 
-const SatObs* find(const ObsEpoch& e, int prn) {
+constexpr GnssSystem kGps = GnssSystem::kGps;
+
+const SatObs* find(const ObsEpoch& e, SatId id) {
   for (const SatObs& s : e.sats)
-    if (s.prn == prn) return &s;
+    if (s.sat == id) return &s;
   return nullptr;
+}
+const SatObs* find(const ObsEpoch& e, int gps_prn) { return find(e, SatId::gps(gps_prn)); }
+
+/// Satellites of system s in an epoch, file order.
+std::vector<const SatObs*> of_system(const ObsEpoch& e, GnssSystem s) {
+  std::vector<const SatObs*> out;
+  for (const SatObs& x : e.sats)
+    if (x.sat.system == s) out.push_back(&x);
+  return out;
+}
+std::size_t count(const ObsData& d, GnssSystem s) {
+  std::size_t n = 0;
+  for (const ObsEpoch& e : d.epochs) n += of_system(e, s).size();
+  return n;
 }
 
 /// The error message of reading path, or "" if it read.
@@ -54,11 +70,16 @@ TEST(RinexObs, Nya1NinetyMinutesHeader) {
   EXPECT_DOUBLE_EQ(h.approx_pos_m->x, 1202434.1303);
   EXPECT_DOUBLE_EQ(h.approx_pos_m->y, 252632.2212);
   EXPECT_DOUBLE_EQ(h.approx_pos_m->z, 6237772.4351);
-  ASSERT_EQ(h.gps_types.size(), 16u);  // two header lines (13 + 3)
-  EXPECT_EQ(h.type_index("C1C"), 0);
-  EXPECT_EQ(h.type_index("S1C"), 3);
-  EXPECT_EQ(h.type_index("S5X"), 15);
-  EXPECT_EQ(h.type_index("C1X"), -1);  // a Galileo type, not GPS
+  ASSERT_EQ(h.types_of(kGps).size(), 16u);  // two header lines (13 + 3)
+  EXPECT_EQ(h.type_index(kGps, "C1C"), 0);
+  EXPECT_EQ(h.type_index(kGps, "S1C"), 3);
+  EXPECT_EQ(h.type_index(kGps, "S5X"), 15);
+  EXPECT_EQ(h.type_index(kGps, "C1X"), -1);  // a Galileo type, not GPS
+  EXPECT_EQ(h.type_index(GnssSystem::kGalileo, "C1X"), 0);
+  EXPECT_EQ(h.types_of(GnssSystem::kGlonass).size(), 20u);
+  EXPECT_EQ(h.types_of(GnssSystem::kGalileo).size(), 20u);
+  EXPECT_EQ(h.types_of(GnssSystem::kBeiDou).size(), 12u);
+  EXPECT_TRUE(h.types_of(GnssSystem::kQzss).empty());
   EXPECT_DOUBLE_EQ(h.interval_s, 30.0);
   ASSERT_TRUE(h.first_obs.has_value());
   EXPECT_EQ(h.first_obs->week(), 2312);  // 2024-05-03 is a Friday of GPS week 2312
@@ -69,18 +90,21 @@ TEST(RinexObs, Nya1NinetyMinutesHeader) {
 TEST(RinexObs, Nya1NinetyMinutesEpochs) {
   const ObsData d = read_rinex_obs(obs(kNya90));
   ASSERT_EQ(d.epochs.size(), 180u);
-  EXPECT_EQ(d.skipped_records, 3994);  // GLONASS, Galileo, BeiDou records (counted with awk)
+  EXPECT_EQ(d.skipped_records, 0);
   EXPECT_EQ(d.event_records, 0);
-  std::size_t gps = 0;
-  for (const ObsEpoch& e : d.epochs) gps += e.sats.size();
-  EXPECT_EQ(gps, 2178u);
+  EXPECT_EQ(count(d, kGps), 2178u);
+  // GLONASS, Galileo, BeiDou records: 3994 (counted with awk).
+  EXPECT_EQ(count(d, GnssSystem::kGlonass) + count(d, GnssSystem::kGalileo) + count(d, GnssSystem::kBeiDou), 3994u);
   EXPECT_DOUBLE_EQ(d.epochs[1].t - d.epochs[0].t, 30.0);
   EXPECT_DOUBLE_EQ(d.epochs.back().t - d.epochs.front().t, 179 * 30.0);
   EXPECT_EQ(d.epochs[0].line, 43);
 
   const ObsEpoch& e0 = d.epochs[0];
-  ASSERT_EQ(e0.sats.size(), 12u);
-  EXPECT_EQ(e0.sats[0].prn, 27);
+  ASSERT_EQ(e0.sats.size(), 36u);
+  ASSERT_EQ(of_system(e0, kGps).size(), 12u);
+  EXPECT_EQ(e0.sats[0].sat, SatId::gps(27));
+  EXPECT_EQ(e0.sats[12].sat, SatId(GnssSystem::kGlonass, 15));
+  EXPECT_EQ(e0.sats[35].sat, SatId(GnssSystem::kBeiDou, 21));
   const SatObs* g27 = find(e0, 27);
   ASSERT_NE(g27, nullptr);
   ASSERT_NE(g27->get(0), nullptr);
@@ -95,23 +119,21 @@ TEST(RinexObs, Nya1NinetyMinutesEpochs) {
   // G20 has no C2X in the first epoch: the file writes 0.000 -> missing.
   const SatObs* g20 = find(e0, 20);
   ASSERT_NE(g20, nullptr);
-  EXPECT_EQ(g20->get(d.header.type_index("C2X")), nullptr);
-  EXPECT_NE(g20->get(d.header.type_index("C2W")), nullptr);
+  EXPECT_EQ(g20->get(d.header.type_index(kGps, "C2X")), nullptr);
+  EXPECT_NE(g20->get(d.header.type_index(kGps, "C2W")), nullptr);
 }
 
 TEST(RinexObs, Nya1FullDayGzip) {
   const ObsData d = read_rinex_obs(obs(kNyaDay));
   ASSERT_EQ(d.epochs.size(), 2880u);
-  EXPECT_EQ(d.header.gps_types, (std::vector<std::string>{"C1C", "L1C", "D1C", "S1C"}));
-  std::size_t gps = 0;
-  for (const ObsEpoch& e : d.epochs) gps += e.sats.size();
-  EXPECT_EQ(gps, 33830u);
+  EXPECT_EQ(d.header.types_of(kGps), (std::vector<std::string>{"C1C", "L1C", "D1C", "S1C"}));
+  EXPECT_EQ(count(d, kGps), 33830u);
   EXPECT_DOUBLE_EQ(d.epochs.back().t - d.epochs.front().t, 86370.0);
   // The day file and the 90-minute file hold the same first epoch.
   const ObsData m = read_rinex_obs(obs(kNya90));
-  ASSERT_EQ(d.epochs[0].sats.size(), m.epochs[0].sats.size());
-  for (std::size_t k = 0; k < m.epochs[0].sats.size(); ++k) {
-    EXPECT_EQ(d.epochs[0].sats[k].prn, m.epochs[0].sats[k].prn);
+  ASSERT_EQ(d.epochs[0].sats.size(), of_system(m.epochs[0], kGps).size());
+  for (std::size_t k = 0; k < d.epochs[0].sats.size(); ++k) {
+    EXPECT_EQ(d.epochs[0].sats[k].sat, m.epochs[0].sats[k].sat);
     for (int t = 0; t < 4; ++t) {
       ASSERT_NE(d.epochs[0].sats[k].get(t), nullptr);
       EXPECT_EQ(d.epochs[0].sats[k].get(t)->value, m.epochs[0].sats[k].get(t)->value);
@@ -123,15 +145,14 @@ TEST(RinexObs, Larm302) {
   const ObsData d = read_rinex_obs(obs("LARM0010.22O"));
   EXPECT_DOUBLE_EQ(d.header.rinex_version, 3.02);
   ASSERT_EQ(d.epochs.size(), 4u);
-  EXPECT_EQ(d.skipped_records, 40);
-  std::size_t gps = 0;
-  for (const ObsEpoch& e : d.epochs) gps += e.sats.size();
-  EXPECT_EQ(gps, 40u);
+  EXPECT_EQ(d.skipped_records, 0);
+  EXPECT_EQ(count(d, kGps), 40u);
+  EXPECT_EQ(count(d, GnssSystem::kGlonass), 40u);
   EXPECT_NEAR(d.header.antenna_delta_hen_m.x, 0.19, 1e-12);
   const SatObs* g01 = find(d.epochs[0], 1);
   ASSERT_NE(g01, nullptr);
-  EXPECT_DOUBLE_EQ(g01->get(d.header.type_index("C1C"))->value, 25256919.479);
-  EXPECT_DOUBLE_EQ(g01->get(d.header.type_index("S1C"))->value, 41.25);
+  EXPECT_DOUBLE_EQ(g01->get(d.header.type_index(kGps, "C1C"))->value, 25256919.479);
+  EXPECT_DOUBLE_EQ(g01->get(d.header.type_index(kGps, "S1C"))->value, 41.25);
   EXPECT_EQ(d.epochs[0].t.week(), 2190);
   EXPECT_DOUBLE_EQ(d.epochs[0].t.tow_s(), 6 * 86400.0);
 }
@@ -140,42 +161,45 @@ TEST(RinexObs, Rinex211MixedMatchesRinex3Source) {
   const ObsData v2 = read_rinex_obs(obs("nya1_v211_mixed.o"));
   const ObsData v3 = read_rinex_obs(obs(kNya90));
   EXPECT_DOUBLE_EQ(v2.header.rinex_version, 2.11);
-  EXPECT_EQ(v2.header.gps_types, (std::vector<std::string>{"C1C", "L1C", "D1C", "S1C", "C2W", "L2W"}));
+  EXPECT_EQ(v2.header.types_of(kGps), (std::vector<std::string>{"C1C", "L1C", "D1C", "S1C", "C2W", "L2W"}));
+  // RINEX 2 P2/L2 are the P-code signals on GLONASS (C2P, L2P), as in the RINEX 3 source.
+  EXPECT_EQ(v2.header.types_of(GnssSystem::kGlonass),
+            (std::vector<std::string>{"C1C", "L1C", "D1C", "S1C", "C2P", "L2P"}));
   ASSERT_TRUE(v2.header.leap_seconds.has_value());
   EXPECT_EQ(*v2.header.leap_seconds, 18);
   ASSERT_EQ(v2.epochs.size(), 4u);
   EXPECT_EQ(v2.event_records, 1);       // flag 4 with two header records
   EXPECT_EQ(v2.cycle_slip_records, 1);  // flag 6 with two satellites
   EXPECT_EQ(v2.header.marker_name, "NYA1 AFTER EVENT");
-  const int c2w = v3.header.type_index("C2W");
   for (std::size_t k = 0; k < 4; ++k) {
     const ObsEpoch& a = v2.epochs[k];
     const ObsEpoch& b = v3.epochs[k];
     EXPECT_EQ(a.t, b.t);
-    ASSERT_EQ(a.sats.size(), b.sats.size()) << "epoch " << k;
-    for (std::size_t s = 0; s < a.sats.size(); ++s) {
-      EXPECT_EQ(a.sats[s].prn, b.sats[s].prn);
-      for (int t = 0; t < 4; ++t) {
-        const ObsValue* x = a.sats[s].get(t);
-        const ObsValue* y = b.sats[s].get(t);
-        ASSERT_EQ(x == nullptr, y == nullptr);
-        if (x) {
-          EXPECT_EQ(x->value, y->value);
-          EXPECT_EQ(x->lli, y->lli);
-          EXPECT_EQ(x->ssi, y->ssi);
+    for (const GnssSystem sys : {kGps, GnssSystem::kGlonass}) {
+      const std::vector<const SatObs*> as = of_system(a, sys), bs = of_system(b, sys);
+      ASSERT_EQ(as.size(), bs.size()) << "epoch " << k;
+      const std::vector<std::string>& codes = v2.header.types_of(sys);
+      for (std::size_t s = 0; s < as.size(); ++s) {
+        EXPECT_EQ(as[s]->sat, bs[s]->sat);
+        for (std::size_t t = 0; t < codes.size(); ++t) {
+          const ObsValue* x = as[s]->get(static_cast<int>(t));
+          const ObsValue* y = bs[s]->get(v3.header.type_index(sys, codes[t]));
+          ASSERT_EQ(x == nullptr, y == nullptr) << codes[t];
+          if (x && t < 4) {
+            EXPECT_EQ(x->lli, y->lli);
+            EXPECT_EQ(x->ssi, y->ssi);
+          }
+          if (x) {
+            EXPECT_EQ(x->value, y->value) << codes[t];
+          }
         }
-      }
-      const ObsValue* x = a.sats[s].get(4);
-      const ObsValue* y = b.sats[s].get(c2w);
-      ASSERT_EQ(x == nullptr, y == nullptr);
-      if (x) {
-        EXPECT_EQ(x->value, y->value);
       }
     }
   }
   // More than 12 satellites (G and R) on each epoch: continuation lines.
-  EXPECT_GT(v2.epochs[0].sats.size() + 9u, 12u);
-  EXPECT_EQ(v2.skipped_records, 9 + 9 + 9 + 9);
+  EXPECT_GT(v2.epochs[0].sats.size(), 12u);
+  EXPECT_EQ(count(v2, GnssSystem::kGlonass), 9u * 4u);
+  EXPECT_EQ(v2.skipped_records, 0);
 }
 
 TEST(RinexObs, Rinex3EventAndCycleSlipRecordsSkipped) {
@@ -206,9 +230,9 @@ TEST(RinexObs, RinexTwoFromStreamWithEventFlagHeaderTypes) {
   const ObsData d = read_rinex_obs(in, "inline.o");
   ASSERT_EQ(d.epochs.size(), 2u);
   EXPECT_EQ(d.epochs[1].flag, 1);
-  EXPECT_EQ(d.header.gps_types, std::vector<std::string>{"C1C"});
+  EXPECT_EQ(d.header.types_of(kGps), std::vector<std::string>{"C1C"});
   ASSERT_EQ(d.epochs[1].sats.size(), 1u);  // blank system letter = GPS in a G file
-  EXPECT_EQ(d.epochs[1].sats[0].prn, 27);
+  EXPECT_EQ(d.epochs[1].sats[0].sat, SatId::gps(27));
   EXPECT_DOUBLE_EQ(d.epochs[1].sats[0].get(0)->value, 22264004.031);
   EXPECT_DOUBLE_EQ(d.epochs[0].sats[0].get(1)->value, 45.9);
 }
@@ -236,7 +260,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"obs_v3_no_end_of_header.rnx", "end of file before END OF HEADER"},
                       BadCase{"obs_v3_glonass_time.rnx", ":18: time system 'GLO' not supported"},
                       BadCase{"obs_v3_bad_flag.rnx", ":43: epoch flag 7 outside 0..6"},
-                      BadCase{"obs_v3_no_types.rnx", "no GPS observation types in the header"},
+                      BadCase{"obs_v3_no_types.rnx", "no observation types in the header"},
                       BadCase{"obs_v4_version.rnx", ":1: unsupported RINEX version 4.01"},
                       BadCase{"obs_type_nav.rnx", ":1: not an observation file (type 'N')"},
                       BadCase{"obs_v2_short_sat_list.o", ":13: satellite list shorter than the 21 announced"},
