@@ -11,6 +11,8 @@ PKGS=(
   gpsd gpsd-clients rtklib socat python3
   systemd dpkg-dev  # systemd-analyze (unit tests), dpkg-shlibdeps (cpack -G DEB)
   libjs-chart.js chromium fonts-dejavu-core nodejs
+  # gnssemu sweep's Slurm test: a one-node cluster on loopback (tools/slurm-local.sh)
+  slurmctld slurmd slurm-client munge
   # fuzzing and sanitizers (docs/robustness.md): clang's libFuzzer, symbolized reports
   clang libclang-rt-14-dev llvm
 )
