@@ -41,4 +41,6 @@ $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 # The gpsd package may start a system gpsd on its socket; tests run their own.
 if command -v systemctl >/dev/null 2>&1 && [ -d /run/systemd/system ]; then
   $SUDO systemctl stop gpsd.socket gpsd.service >/dev/null 2>&1 || true
+  # Slurm's packages enable their services; the sweep test runs its own cluster.
+  $SUDO systemctl stop slurmctld.service slurmd.service >/dev/null 2>&1 || true
 fi
