@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/geo/geodesy.hpp"
@@ -94,12 +95,15 @@ TaskSummary SummaryObserver::summary() const {
   s.ttff_s = first_fix_s_;
   s.avail_3d = s.epochs > 0 ? static_cast<double>(fixes_3d_) / s.epochs : 0.0;
   if (!h_.empty()) {
-    s.h50_m = statistics::percentile_nearest_rank(h_, 0.50);
-    s.h95_m = statistics::percentile_nearest_rank(h_, 0.95);
-    s.h99_m = statistics::percentile_nearest_rank(h_, 0.99);
-    s.v50_m = statistics::percentile_nearest_rank(v_, 0.50);
-    s.v95_m = statistics::percentile_nearest_rank(v_, 0.95);
-    s.v99_m = statistics::percentile_nearest_rank(v_, 0.99);
+    std::vector<double> h = h_, v = v_;
+    std::sort(h.begin(), h.end());
+    std::sort(v.begin(), v.end());
+    s.h50_m = statistics::percentile_nearest_rank_sorted(h, 0.50);
+    s.h95_m = statistics::percentile_nearest_rank_sorted(h, 0.95);
+    s.h99_m = statistics::percentile_nearest_rank_sorted(h, 0.99);
+    s.v50_m = statistics::percentile_nearest_rank_sorted(v, 0.50);
+    s.v95_m = statistics::percentile_nearest_rank_sorted(v, 0.95);
+    s.v99_m = statistics::percentile_nearest_rank_sorted(v, 0.99);
     s.h_over_k_hacc = static_cast<double>(over_h_) / fixes_;
   }
   if (fixes_3d_ > 0) s.v_over_k_vacc = static_cast<double>(over_v_) / fixes_3d_;
