@@ -149,6 +149,19 @@ TEST(SweepTruth, GeneratedAndShiftedTruthReadsBack) {
 TEST(SweepSlurm, ArraySpecsAndJobStates) {
   EXPECT_EQ(array_spec({0, 1, 2, 3}, 0), "0-3");
   EXPECT_EQ(array_spec({3, 7, 8, 9, 12}, 2), "3,7-9,12%2");
+  SlurmOptions o;
+  o.gnssemu = "/opt/gnssemu";
+  o.array_limit = 4;
+  o.time = "5";
+  const std::string one = sbatch_script("/d", {0, 1, 2}, o);
+  EXPECT_NE(one.find("#SBATCH --array=0-2%4\n"), std::string::npos);
+  EXPECT_NE(one.find("#SBATCH --output=/d/tasks/%a/task.log\n"), std::string::npos);
+  EXPECT_NE(one.find("#SBATCH --time=5\n"), std::string::npos);
+  EXPECT_NE(one.find("exec /opt/gnssemu sweep task /d \"$SLURM_ARRAY_TASK_ID\"\n"), std::string::npos);
+  o.per_element = 2;
+  const std::string packed = sbatch_script("/d", {0, 1, 2}, o, "/d/slurm/array-0.ids");
+  EXPECT_NE(packed.find("#SBATCH --array=0-1%4\n"), std::string::npos);
+  EXPECT_NE(packed.find("#SBATCH --output=/d/slurm/array-0-%a.log\n"), std::string::npos);
   const SchedulerStates s = parse_scontrol(
       "JobId=5 ArrayJobId=4 ArrayTaskId=1 JobName=x JobState=COMPLETED Reason=None ExitCode=0:0\n"
       "JobId=6 ArrayJobId=4 ArrayTaskId=3 JobName=x JobState=TIMEOUT Reason=TimeLimit ExitCode=0:15\n"

@@ -24,14 +24,40 @@ namespace fs = std::filesystem;
 
 std::string jobs_csv(const std::string& dir) { return (fs::path(dir) / "slurm" / "jobs.csv").string(); }
 
-/// Job ids recorded for dir, oldest first.
-std::vector<std::string> recorded_jobs(const std::string& dir) {
-  std::vector<std::string> out;
+struct Job {
+  std::string id;
+  std::string ids_file;  ///< "" when array index = task id
+};
+
+/// Jobs recorded for dir, oldest first.
+std::vector<Job> recorded_job_list(const std::string& dir) {
+  std::vector<Job> out;
   std::error_code ec;
   if (!fs::is_regular_file(jobs_csv(dir), ec)) return out;
   const CsvTable t = parse_csv(read_file_bytes(jobs_csv(dir)), jobs_csv(dir));
-  const int col = t.column("job_id");
-  for (const auto& row : t.rows) out.push_back(row[static_cast<std::size_t>(col)]);
+  const int col = t.column("job_id"), ids = t.column("ids_file");
+  for (const auto& row : t.rows) {
+    out.push_back({row[static_cast<std::size_t>(col)], ids < 0 ? std::string() : row[static_cast<std::size_t>(ids)]});
+  }
+  return out;
+}
+
+std::vector<std::string> recorded_jobs(const std::string& dir) {
+  std::vector<std::string> out;
+  for (const Job& j : recorded_job_list(dir)) out.push_back(j.id);
+  return out;
+}
+
+/// Task ids per array element, from an ids file.
+std::vector<std::vector<int>> element_ids(const std::string& ids_file) {
+  std::vector<std::vector<int>> out;
+  std::stringstream ss(read_file_bytes(ids_file));
+  std::string line;
+  while (std::getline(ss, line)) {
+    std::stringstream ls(line);
+    out.emplace_back();
+    for (int id = 0; ls >> id;) out.back().push_back(id);
+  }
   return out;
 }
 
@@ -148,16 +174,28 @@ std::string array_spec(const std::vector<int>& ids, int limit) {
   return out;
 }
 
-std::string sbatch_script(const std::string& dir, const std::vector<int>& ids, const SlurmOptions& o) {
+std::string sbatch_script(const std::string& dir, const std::vector<int>& ids, const SlurmOptions& o,
+                          const std::string& ids_file) {
+  const bool packed = !ids_file.empty();
+  std::vector<int> elements;
+  if (packed) {
+    const int n = (static_cast<int>(ids.size()) + o.per_element - 1) / o.per_element;
+    for (int e = 0; e < n; ++e) elements.push_back(e);
+  }
   std::string s = "#!/bin/sh\n# gnssemu sweep: tasks of " + dir + "/tasks.csv (written by gnssemu sweep run)\n";
   s += "#SBATCH --job-name=gnssemu-sweep\n";
-  s += "#SBATCH --array=" + array_spec(ids, o.array_limit) + "\n";
-  s += "#SBATCH --output=" + dir + "/tasks/%a/task.log\n";
+  s += "#SBATCH --array=" + array_spec(packed ? elements : ids, o.array_limit) + "\n";
+  s += "#SBATCH --output=" + (packed ? ids_file.substr(0, ids_file.size() - 4) + "-%a.log" : dir + "/tasks/%a/task.log") + "\n";
   s += "#SBATCH --chdir=" + dir + "\n";
   s += "#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n";
   if (!o.partition.empty()) s += "#SBATCH --partition=" + o.partition + "\n";
   if (!o.time.empty()) s += "#SBATCH --time=" + o.time + "\n";
-  s += "exec " + o.gnssemu + " sweep task " + dir + " \"$SLURM_ARRAY_TASK_ID\"\n";
+  if (packed) {
+    s += "# Element i runs the task ids on line i + 1 of " + ids_file + "\n";
+    s += "exec " + o.gnssemu + " sweep task " + dir + " $(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" " + ids_file + ")\n";
+  } else {
+    s += "exec " + o.gnssemu + " sweep task " + dir + " \"$SLURM_ARRAY_TASK_ID\"\n";
+  }
   return s;
 }
 
@@ -169,7 +207,17 @@ std::string submit_array(const std::string& dir, const std::vector<int>& ids, co
   if (ec) throw Error(sdir.string(), 0, "cannot create: " + ec.message());
   const std::vector<std::string> jobs = recorded_jobs(dir);
   const std::string script = (sdir / fmt::format("array-{}.sh", jobs.size())).string();
-  write_file_atomic(script, sbatch_script(dir, ids, options));
+  std::string ids_file;
+  if (options.per_element > 1) {
+    ids_file = (sdir / fmt::format("array-{}.ids", jobs.size())).string();
+    std::string lines;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      lines += std::to_string(ids[i]);
+      lines += (i + 1) % static_cast<std::size_t>(options.per_element) == 0 || i + 1 == ids.size() ? '\n' : ' ';
+    }
+    write_file_atomic(ids_file, lines);
+  }
+  write_file_atomic(script, sbatch_script(dir, ids, options, ids_file));
   int status = 0;
   std::string out = capture({"sbatch", "--parsable", script}, &status);
   while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
@@ -177,8 +225,8 @@ std::string submit_array(const std::string& dir, const std::vector<int>& ids, co
   // --parsable prints "jobid" or "jobid;cluster"; warnings may come first.
   std::string job = out.substr(out.rfind('\n') == std::string::npos ? 0 : out.rfind('\n') + 1);
   job = job.substr(0, job.find(';'));
-  std::string csv = jobs.empty() ? std::string("job_id,array,script\n") : read_file_bytes(jobs_csv(dir));
-  csv += csv_row({job, array_spec(ids, options.array_limit), script});
+  std::string csv = jobs.empty() ? std::string("job_id,array,script,ids_file\n") : read_file_bytes(jobs_csv(dir));
+  csv += csv_row({job, array_spec(ids, options.array_limit), script, ids_file});
   write_file_atomic(jobs_csv(dir), csv);
   err << fmt::format("sweep: submitted {} task{} as Slurm job {} ({})\n", ids.size(), ids.size() == 1 ? "" : "s", job,
                      script);
@@ -201,11 +249,18 @@ SchedulerStates parse_scontrol(const std::string& text) {
 
 SchedulerStates slurm_states(const std::string& dir) {
   SchedulerStates out;
-  for (const std::string& job : recorded_jobs(dir)) {
+  for (const Job& job : recorded_job_list(dir)) {
     int status = 0;
-    const std::string text = capture({"scontrol", "-o", "show", "job", job}, &status);
+    const std::string text = capture({"scontrol", "-o", "show", "job", job.id}, &status);
     if (status != 0) continue;  // purged (MinJobAge) or unknown: the files speak
-    for (const auto& [id, s] : parse_scontrol(text)) out[id] = s;
+    const std::vector<std::vector<int>> elements = job.ids_file.empty() ? std::vector<std::vector<int>>{} : element_ids(job.ids_file);
+    for (const auto& [index, s] : parse_scontrol(text)) {
+      if (job.ids_file.empty()) {
+        out[index] = s;
+      } else if (index >= 0 && static_cast<std::size_t>(index) < elements.size()) {
+        for (const int id : elements[static_cast<std::size_t>(index)]) out[id] = s;
+      }
+    }
   }
   return out;
 }

@@ -19,6 +19,7 @@ struct SlurmOptions {
   std::string partition;  ///< --partition; "": the cluster's default
   std::string time;       ///< --time (Slurm's forms: "10", "1:00:00", "1-0"); "": the partition's limit
   std::string gnssemu;    ///< the gnssemu binary every node runs, absolute
+  int per_element = 1;    ///< consecutive tasks per array element (>= 1)
 };
 
 /// The directory of program on PATH, or nullopt (no Slurm here).
@@ -27,8 +28,10 @@ std::optional<std::string> find_program(const std::string& program);
 /// Slurm's array spec of ids: ranges "0-39", lists "3,7,10-12"; "%K" appended for a limit.
 std::string array_spec(const std::vector<int>& ids, int limit);
 
-/// The sbatch script for ids (absolute dir).
-std::string sbatch_script(const std::string& dir, const std::vector<int>& ids, const SlurmOptions& options);
+/// The sbatch script for ids (absolute dir). With per_element > 1 the
+/// array runs over elements and ids_file lists each element's task ids (a line each).
+std::string sbatch_script(const std::string& dir, const std::vector<int>& ids, const SlurmOptions& options,
+                          const std::string& ids_file = {});
 
 /// Write DIR/slurm/array-<n>.sh, submit it with sbatch --parsable and record
 /// the job id in DIR/slurm/jobs.csv. Returns the job id. Throws
@@ -40,7 +43,8 @@ std::string submit_array(const std::string& dir, const std::vector<int>& ids, co
 /// submission of a task wins). Tasks of jobs Slurm no longer knows are left out.
 SchedulerStates slurm_states(const std::string& dir);
 
-/// Parse `scontrol -o show job` lines into states by array task id.
+/// Parse `scontrol -o show job` lines into states by array task id (the
+/// array element when elements run several tasks).
 SchedulerStates parse_scontrol(const std::string& text);
 
 /// Wait until none of the recorded jobs is pending or running (squeue),

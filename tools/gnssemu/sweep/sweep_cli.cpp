@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "core/common/error.hpp"
@@ -62,6 +63,9 @@ SweepCommand::SweepCommand(CLI::App& app) {
   run_->add_option("--partition", slurm_.partition, "slurm: partition");
   run_->add_option("--time", slurm_.time, "slurm: time limit per task (Slurm's forms: MM, HH:MM:SS, D-HH)");
   run_->add_option("--gnssemu", slurm_.gnssemu, "slurm: the gnssemu binary every node runs (default: this one)");
+  run_->add_option("--tasks-per-element", slurm_.per_element,
+                   "slurm: consecutive tasks each array element runs (amortises Slurm's launch cost on short tasks)")
+      ->check(CLI::Range(1, 100000));
   run_->add_flag("--wait", wait_, "slurm: return when no task is pending or running");
   status_ = sweep_->add_subcommand("status", "pending/running/done/failed per task (Slurm's own job state)");
   status_->add_option("dir", dir_, "sweep folder")->required();
@@ -70,7 +74,8 @@ SweepCommand::SweepCommand(CLI::App& app) {
   collect_->add_option("dir", dir_, "sweep folder")->required();
   task_ = sweep_->add_subcommand("task", "run one task of DIR (what each executor runs)");
   task_->add_option("dir", dir_, "sweep folder")->required();
-  task_->add_option("id", task_id_, "task id (row of tasks.csv; SLURM_ARRAY_TASK_ID)")->required();
+  task_->add_option("id", task_ids_, "task ids (rows of tasks.csv); several: each logs to its own task.log")
+      ->required();
 }
 
 int SweepCommand::run(std::ostream& out, std::ostream& err) {
@@ -172,13 +177,27 @@ int SweepCommand::status(std::ostream& out, std::ostream& err) {
 
 int SweepCommand::task(std::ostream& err) {
   const Plan p = read_plan(dir_);
-  try {
-    run_task(p, dir_, task_id_, err);
-  } catch (const Error& e) {
-    mark_failed(dir_, task_id_, fmt::format("exit status {}: {}", kExitTaskFailed, e.what()));
-    throw;
+  int status = 0;
+  for (const int id : task_ids_) {
+    // One id: the log is stderr (Slurm's --output). Several: each its own.
+    std::ofstream own;
+    if (task_ids_.size() > 1) {
+      std::error_code ec;
+      fs::create_directories(task_dir(dir_, id), ec);
+      own.open(fs::path(task_dir(dir_, id)) / kLogFile, std::ios::trunc);
+    }
+    std::ostream& log = task_ids_.size() > 1 ? static_cast<std::ostream&>(own) : err;
+    try {
+      run_task(p, dir_, id, log);
+    } catch (const Error& e) {
+      mark_failed(dir_, id, fmt::format("exit status {}: {}", kExitTaskFailed, e.what()));
+      if (task_ids_.size() == 1) throw;
+      log << "gnssemu: " << e.what() << '\n';
+      err << fmt::format("gnssemu sweep task {}: {}\n", id, e.what());
+      status = kExitTaskFailed;
+    }
   }
-  return 0;
+  return status;
 }
 
 }  // namespace gnssemu::cli::sweep

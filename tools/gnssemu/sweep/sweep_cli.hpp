@@ -5,6 +5,7 @@
 
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "tools/gnssemu/sweep/local_executor.hpp"
 #include "tools/gnssemu/sweep/slurm_executor.hpp"
@@ -36,7 +37,7 @@ private:
   CLI::App *plan_ = nullptr, *run_ = nullptr, *status_ = nullptr, *collect_ = nullptr, *task_ = nullptr;
   std::string file_, dir_, executor_ = "local";
   bool resume_ = false, wait_ = false, list_ = false, calibrate_ = true;
-  int task_id_ = -1;
+  std::vector<int> task_ids_;
   LocalRunOptions local_;
   SlurmOptions slurm_;
   double poll_s_ = 1.0;
