@@ -121,6 +121,19 @@ TEST_F(SweepPlanTest, BadInputIsFileLineError) {
             std::string::npos);
 }
 
+TEST(SweepExamples, ShippedSweepFilesPlan) {
+  const fs::path dir = fs::path(GNSSEMU_SOURCE_DIR) / "config" / "examples" / "sweeps";
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (e.path().extension() != ".toml" || e.path().filename() == "base.toml") continue;
+    ++files;
+    SCOPED_TRACE(e.path().string());
+    EXPECT_NO_THROW(make_plan(read_sweep_file(e.path().string())));
+  }
+  EXPECT_GE(files, 4);
+  EXPECT_EQ(make_plan(read_sweep_file((dir / "jamming.toml").string())).tasks.size(), 160u);
+}
+
 TEST(SweepCsv, QuotedCellsRoundTrip) {
   const std::vector<std::string> cells{"0", "{ a = \"b\", c = 1 }", "plain", ""};
   const std::string row = csv_row(cells);

@@ -36,6 +36,17 @@ std::string truth_path(const Plan& plan, const std::string& dir, const Task& tas
   return truth;
 }
 
+/// A path as one shell word.
+std::string shell_word(const std::string& s) {
+  if (!s.empty() && s.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./-+=:,@%") ==
+                        std::string::npos) {
+    return s;
+  }
+  std::string out = "'";
+  for (const char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
 }  // namespace
 
 std::string task_dir(const std::string& dir, int id) { return (fs::path(dir) / "tasks" / std::to_string(id)).string(); }
@@ -109,10 +120,11 @@ TaskSummary run_task(const Plan& plan, const std::string& dir, int id, std::ostr
 
 std::string reproduce_command(const Plan& plan, const std::string& dir, const Task& task) {
   const std::string abs_dir = fs::absolute(dir).lexically_normal().string();
-  std::string cmd = fmt::format("gnssemu batch --config {}/config.toml --truth {}", task_dir(abs_dir, task.id),
-                                truth_path(plan, abs_dir, task));
+  std::string cmd = fmt::format("gnssemu batch --config {} --truth {}",
+                                shell_word((fs::path(task_dir(abs_dir, task.id)) / "config.toml").string()),
+                                shell_word(truth_path(plan, abs_dir, task)));
   const std::string& scenario = plan.value(task, "scenario");
-  if (!scenario.empty() && scenario != kNoScenario) cmd += " --scenario " + scenario;
+  if (!scenario.empty() && scenario != kNoScenario) cmd += " --scenario " + shell_word(scenario);
   return cmd + " --errors errors.csv";
 }
 
