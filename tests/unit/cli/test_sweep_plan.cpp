@@ -205,6 +205,12 @@ TEST_F(SweepPlanTest, TaskRunsAndSummarises) {
   EXPECT_EQ(st[0].state, TaskState::kDone);
   EXPECT_EQ(state_counts(st), "tasks 1: done 1, failed 0, running 0, pending 0, missing 0");
   EXPECT_NE(reproduce_command(p, out, p.tasks[0]).find("--scenario "), std::string::npos);
+  const fs::path log_path = fs::path(task_dir(out, 0)) / kLogFile;
+  std::ofstream(log_path) << "";
+  EXPECT_EQ(log_tail(out, 0, 3), "");
+  std::ofstream(log_path) << "a\nb\nc\nd\n";
+  EXPECT_EQ(log_tail(out, 0, 2), "c\nd");
+  EXPECT_EQ(log_tail(out, 0, 9), "a\nb\nc\nd");
 }
 
 }  // namespace

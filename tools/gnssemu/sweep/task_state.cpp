@@ -34,9 +34,15 @@ std::string log_tail(const std::string& dir, int id, int n) {
     return {};
   }
   while (!text.empty() && text.back() == '\n') text.pop_back();
-  std::size_t pos = text.size();
-  for (int i = 0; i < n && pos != std::string::npos && pos > 0; ++i) pos = text.rfind('\n', pos - 1);
-  return pos == std::string::npos ? text : text.substr(pos + 1);
+  // Start of the n-th line from the end.
+  std::size_t start = text.size();
+  for (int i = 0; i < n && start > 0; ++i) {
+    const std::size_t nl = text.rfind('\n', start - 1);
+    start = nl == std::string::npos ? 0 : nl;
+    if (nl == std::string::npos) break;
+  }
+  if (start < text.size() && text[start] == '\n') ++start;
+  return text.substr(start);
 }
 
 std::vector<TaskStatus> task_states(const Plan& plan, const std::string& dir, const SchedulerStates& sched) {
