@@ -11,6 +11,8 @@ PKGS=(
   gpsd gpsd-clients rtklib socat python3
   systemd dpkg-dev  # systemd-analyze (unit tests), dpkg-shlibdeps (cpack -G DEB)
   libjs-chart.js chromium fonts-dejavu-core nodejs
+  # gnssemu sweep's Slurm test: a one-node cluster on loopback (tools/slurm-local.sh)
+  slurmctld slurmd slurm-client munge
   # fuzzing and sanitizers (docs/robustness.md): clang's libFuzzer, symbolized reports
   clang libclang-rt-14-dev llvm
 )
@@ -39,4 +41,6 @@ $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 # The gpsd package may start a system gpsd on its socket; tests run their own.
 if command -v systemctl >/dev/null 2>&1 && [ -d /run/systemd/system ]; then
   $SUDO systemctl stop gpsd.socket gpsd.service >/dev/null 2>&1 || true
+  # Slurm's packages enable their services; the sweep test runs its own cluster.
+  $SUDO systemctl stop slurmctld.service slurmd.service >/dev/null 2>&1 || true
 fi

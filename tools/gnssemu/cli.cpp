@@ -34,6 +34,7 @@
 #include "tools/gnssemu/satpos.hpp"
 #include "tools/gnssemu/sky.hpp"
 #include "tools/gnssemu/spp.hpp"
+#include "tools/gnssemu/sweep/sweep_cli.hpp"
 #include "tools/gnssemu/truth_csv.hpp"
 #include "tools/gnssemu/version.hpp"
 
@@ -518,10 +519,11 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   CLI::App* ctl_inject = ctl->add_subcommand("inject", "add the events of a scenario file, start times from now");
   ctl_inject->add_option("file", ctl_args.file, "scenario file (TOML [[event]] tables, docs/faults.md)")->required();
   CLI::App* ctl_clear = ctl->add_subcommand("clear", "remove every fault (injected and scenario)");
+  sweep::SweepCommand sweep_cmd(app);
 
   // CLI11 reports a mistyped subcommand only as "A subcommand is required".
   const auto known = [&](const std::string& name) {
-    for (const CLI::App* sub : {satpos, sky, dop, batch_cmd, plot, spp, calib, bench, version, ctl}) {
+    for (const CLI::App* sub : {satpos, sky, dop, batch_cmd, plot, spp, calib, bench, version, ctl, sweep_cmd.app()}) {
       if (sub->get_name() == name) return true;
     }
     return false;
@@ -532,7 +534,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     return kExitOk;
   }
   if (argc > 1 && argv[1][0] != '-' && !known(argv[1])) {
-    err << "gnssemu: unknown subcommand '" << argv[1] << "' (satpos, sky, dop, batch, plot, spp, calibrate, bench, ctl, version; see --help)\n";
+    err << "gnssemu: unknown subcommand '" << argv[1] << "' (satpos, sky, dop, batch, plot, spp, calibrate, bench, ctl, sweep, version; see --help)\n";
     return kExitUsage;
   }
   try {
@@ -600,6 +602,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       }
     } else if (*batch_cmd) {
       return run_batch_command(batch, out, err);
+    } else if (sweep_cmd.parsed()) {
+      return sweep_cmd.run(out, err);
     } else if (*plot) {
       if (!std::isnan(plot_args.mask_deg)) check_range("--mask", plot_args.mask_deg, 0.0, 90.0, true);
       run_plot(plot_args, out, err);

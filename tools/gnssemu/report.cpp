@@ -285,27 +285,32 @@ std::vector<Cn0Bin> cn0_bins(const ReportData& d) {
   return out;
 }
 
-std::string write_report(const ReportData& data, const std::string& dir) {
-  if (data.epochs.empty() && data.sats.empty() && data.multipath.empty()) {
-    throw Error("report: nothing to plot (no epochs, satellites or multipath rows)");
-  }
+std::string write_html_page(const std::string& dir, const std::string& title, const std::string& json,
+                            std::string_view script_url) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw Error(dir, 0, "cannot create the report folder: " + ec.message());
   const std::string path = (std::filesystem::path(dir) / "report.html").string();
   std::ofstream f(path, std::ios::binary | std::ios::trunc);
   if (!f) throw Error(path, 0, "cannot open for writing");
-  f << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << html_escape(data.title)
+  f << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << html_escape(title)
     << "</title>\n<style>\n"
     << asset("/report.css") << "</style>\n<script>\n"
     << script_safe(asset("/chart.min.js")) << "\n</script>\n<script>\n"
     << script_safe(asset("/gnss_charts.js")) << "\n</script>\n</head>\n<body>\n"
-    << "<script type=\"application/json\" id=\"report-data\">" << script_safe(report_json(data)) << "</script>\n"
+    << "<script type=\"application/json\" id=\"report-data\">" << script_safe(json) << "</script>\n"
     << "<div id=\"report\"></div>\n<script>\n"
-    << script_safe(asset("/report.js")) << "\n</script>\n</body>\n</html>\n";
+    << script_safe(asset(script_url)) << "\n</script>\n</body>\n</html>\n";
   f.close();
   if (!f) throw Error(path, 0, "write failed");
   return path;
+}
+
+std::string write_report(const ReportData& data, const std::string& dir) {
+  if (data.epochs.empty() && data.sats.empty() && data.multipath.empty()) {
+    throw Error("report: nothing to plot (no epochs, satellites or multipath rows)");
+  }
+  return write_html_page(dir, data.title, report_json(data), "/report.js");
 }
 
 }  // namespace gnssemu::cli

@@ -9,6 +9,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/receiver/fix.hpp"
@@ -88,5 +89,11 @@ std::vector<Cn0Bin> cn0_bins(const ReportData& data);
 /// Write dir/report.html (dir is created). Returns the file's path. Throws
 /// gnssemu::Error when nothing can be plotted or the file cannot be written.
 std::string write_report(const ReportData& data, const std::string& dir);
+
+/// Write dir/report.html (dir is created): the report style, Chart.js and the
+/// shared charts, json in #report-data, then the page script (an embedded
+/// asset's url, e.g. "/report.js"). Returns the file's path. Throws gnssemu::Error.
+std::string write_html_page(const std::string& dir, const std::string& title, const std::string& json,
+                            std::string_view script_url);
 
 }  // namespace gnssemu::cli
