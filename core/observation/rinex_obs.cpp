@@ -8,13 +8,13 @@
 
 #include "core/common/error.hpp"
 #include "core/common/line_source.hpp"
+#include "core/common/sat_id.hpp"
 #include "core/common/text_fields.hpp"
 
 namespace gnssemu::observation {
 
 namespace {
 
-constexpr int kMaxGpsPrn = 32;
 constexpr std::size_t kFieldWidth = 16;  // F14.3 + LLI + SSI (RINEX 2.11 Table A2, 3.05 Table A3)
 constexpr int kV2SatsPerLine = 12;
 constexpr int kV2ValuesPerLine = 5;
@@ -294,7 +294,7 @@ private:
         ++out.skipped_records;
         continue;
       }
-      if (prn > kMaxGpsPrn) fail(l.number, "GPS PRN " + std::to_string(prn) + " out of range 1..32");
+      if (prn > system_size(GnssSystem::kGps)) fail(l.number, "GPS PRN " + std::to_string(prn) + " out of range 1..32");
       SatObs s;
       s.prn = prn;
       s.values.reserve(ntypes);
@@ -366,7 +366,7 @@ private:
         ++out.skipped_records;
         continue;
       }
-      if (prn > kMaxGpsPrn) fail(e.number, "GPS PRN " + std::to_string(prn) + " out of range 1..32");
+      if (prn > system_size(GnssSystem::kGps)) fail(e.number, "GPS PRN " + std::to_string(prn) + " out of range 1..32");
       ep.sats.push_back(std::move(s));
     }
     out.epochs.push_back(std::move(ep));

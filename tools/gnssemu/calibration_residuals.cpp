@@ -44,7 +44,8 @@ std::vector<Residual> station_residuals(const CalibrationInput& in, const orbit:
     for (const observation::SatObs& s : e.sats) {
       const observation::ObsValue* pr = s.get(c1c);
       if (pr == nullptr) continue;
-      const orbit::Ephemeris* eph = store.select(s.prn, e.t);
+      const SatId sat = SatId::gps(s.prn);  // the observation reader holds GPS only
+      const orbit::Ephemeris* eph = store.select(sat, e.t);
       if (eph == nullptr) continue;
       const orbit::SatState st = receiver::transmit_state(*eph, e.t, pr->value).state;
       // Sagnac at the known station: rotate by the geometric flight time (the
@@ -60,7 +61,7 @@ std::vector<Residual> station_residuals(const CalibrationInput& in, const orbit:
       Residual r;
       r.day = day;
       r.tow_s = e.t.tow_s();
-      r.prn = s.prn;
+      r.sat = sat;
       r.el_rad = look.el_rad;
       r.az_rad = look.az_rad;
       r.range_m = rho;
