@@ -118,9 +118,9 @@ void jam_sweep(const orbit::EphemerisStore& store, time::GpsTime t0) {
   const auto& link = rig.rx.world().config().signal.link;
   const double n0 = signal::thermal_noise_density_dbw_hz(link.noise_temperature_k) + link.noise_figure_db +
                     link.environment_noise_rise_db;
-  std::array<double, kMaxGpsPrn> clean{};
+  std::array<double, kNumSats> clean{};  ///< by SatId::index()
   const double lose = rig.rx.receiver().config().tracking.lose_dbhz;
-  int top = 0;  // the strongest clean satellite: its C/N0 shows the slope
+  int top = -1;  // index of the strongest clean satellite: its C/N0 shows the slope
   double prev_top = NAN;
   std::printf("jamming sweep (wideband, Q = 2): each J/S held %.0f s; means over its last 10 s\n", step_s);
   std::printf("%6s %9s %9s %7s %9s %9s %7s %5s %4s %8s %7s %6s %6s %8s %7s %7s\n", "js_db", "top_cn0", "analytic",
@@ -132,17 +132,17 @@ void jam_sweep(const orbit::EphemerisStore& store, time::GpsTime t0) {
     const receiver::Fix& f = rig.step(s);
     if (s < warm_s) {
       for (int i = 0; i < f.num_sats; ++i)
-        if (f.sats[i].tracked) clean[f.sats[i].prn - 1] = f.sats[i].cn0_dbhz;
+        if (f.sats[i].tracked) clean[static_cast<std::size_t>(f.sats[i].sat.index())] = f.sats[i].cn0_dbhz;
       if (s == warm_s - 1) {
-        for (int p = 1; p <= kMaxGpsPrn; ++p)
-          if (top == 0 || clean[p - 1] > clean[top - 1]) top = p;
+        for (int p = 0; p < kNumSats; ++p)
+          if (top < 0 || clean[p] > clean[top]) top = p;
         // The model's prediction: each satellite is lost where its effective
         // C/N0 falls below the lose threshold; 3D needs four, 2D three.
         std::vector<double> lost_at;
-        for (int p = 1; p <= kMaxGpsPrn; ++p) {
-          if (!(clean[p - 1] > 0)) continue;
+        for (const double clean_dbhz : clean) {
+          if (!(clean_dbhz > 0)) continue;
           double js = 0;
-          while (js < 100 && faults::effective_cn0_dbhz(clean[p - 1], n0, faults::interference_density_w_hz(
+          while (js < 100 && faults::effective_cn0_dbhz(clean_dbhz, n0, faults::interference_density_w_hz(
                                                                                  faults::kNominalSignal_dbw + js,
                                                                                  faults::JammerKind::kWideband)) >= lose)
             js += 0.1;
@@ -165,9 +165,9 @@ void jam_sweep(const orbit::EphemerisStore& store, time::GpsTime t0) {
     for (int i = 0; i < f.num_sats; ++i) {
       if (!f.sats[i].tracked) continue;
       sum_cn0 += f.sats[i].cn0_dbhz;
-      sum_an += faults::effective_cn0_dbhz(clean[f.sats[i].prn - 1], n0, i0);
+      sum_an += faults::effective_cn0_dbhz(clean[static_cast<std::size_t>(f.sats[i].sat.index())], n0, i0);
       ++n_cn0;
-      if (f.sats[i].prn == top) sum_top += f.sats[i].cn0_dbhz, ++n_top;
+      if (f.sats[i].sat.index() == top) sum_top += f.sats[i].cn0_dbhz, ++n_top;
     }
     sum_tr += f.num_tracked;
     sum_used += f.num_used;
@@ -260,7 +260,7 @@ void step(const orbit::EphemerisStore& store, time::GpsTime t0) {
     for (int s = 0; s < 30; ++s) probe.step(s);  // acquisition
     const receiver::Fix& f = probe.step(30);
     for (int i = 0; i < f.num_sats && prn == 0; ++i)
-      if (f.sats[i].used) prn = f.sats[i].prn;
+      if (f.sats[i].used) prn = f.sats[i].sat.prn();
   }
   for (const double bias : {50.0, 3.0}) {
     FaultEvent e = event(FaultType::kSatellite, 60.0, 60.0);
@@ -276,7 +276,7 @@ void step(const orbit::EphemerisStore& store, time::GpsTime t0) {
       if (s < 60) continue;
       bool used = false;
       for (int i = 0; i < f.num_sats; ++i)
-        if (f.sats[i].prn == prn) used = f.sats[i].used;
+        if (f.sats[i].sat == SatId::gps(prn)) used = f.sats[i].used;
       used_epochs += used;
       if (!used && first_excluded < 0) first_excluded = s - 60;
       const Enu d = rig.error(f), dr = ref.error(g);

@@ -57,9 +57,10 @@ void look(const Ecef& sat, const Lla& site, double& az, double& el) {
 void compare(const EphemerisStore& model, const EphemerisStore& truth, const time::GpsTime& from,
              const time::GpsTime& to, double step_s, const Lla& site, Stats& s) {
   for (time::GpsTime t = from; !(to < t); t += step_s) {
-    for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
-      const Ephemeris* a = model.select(prn, t);
-      const Ephemeris* b = truth.select(prn, t);
+    for (int i = 0; i < kNumSats; ++i) {
+      const SatId sat = SatId::from_index(i);
+      const Ephemeris* a = model.select(sat, t);
+      const Ephemeris* b = truth.select(sat, t);
       if (a == nullptr || b == nullptr) continue;
       const Ecef pa = sat_state(*a, t).pos_m, pb = sat_state(*b, t).pos_m;
       s.pos_km.push_back((pa - pb).norm() / 1e3);
@@ -157,10 +158,11 @@ int main(int argc, char** argv) {
         for (const Ephemeris& e : d.ephemerides) next.push_back(relabel(e, step));
         const EphemerisStore chained(next);
         std::vector<double> jump;
-        for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
-          const Ephemeris* a = day.select(prn, seam);
+        for (int i = 0; i < kNumSats; ++i) {
+          const SatId sat = SatId::from_index(i);
+          const Ephemeris* a = day.select(sat, seam);
           // The chained copy's earliest set (its toe 00:00 + step) at the seam.
-          const Ephemeris* b = chained.select(prn, seam + 7200.0);
+          const Ephemeris* b = chained.select(sat, seam + 7200.0);
           if (a == nullptr || b == nullptr) continue;
           jump.push_back((sat_state(*a, seam).pos_m - sat_state(*b, seam).pos_m).norm() / 1e3);
         }

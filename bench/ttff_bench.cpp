@@ -95,8 +95,8 @@ Blockage blockage(const orbit::EphemerisStore& store, const Options& o, const Tr
   truth.pos_m = tr.pos;
   const double settle_s = 300.0;
   Blockage b;
-  std::array<bool, kMaxGpsPrn> before{};
-  std::array<double, kMaxGpsPrn> back{};
+  std::array<bool, kNumSats> before{};  // by SatId::index()
+  std::array<double, kNumSats> back{};
   back.fill(std::nan(""));
   const int n = static_cast<int>((settle_s + outage_s + 120.0) * o.rate_hz);
   for (int k = 0; k <= n; ++k) {
@@ -107,7 +107,7 @@ Blockage blockage(const orbit::EphemerisStore& store, const Options& o, const Tr
     const bool fix = f.type == receiver::FixType::k2D || f.type == receiver::FixType::k3D;
     if (s < settle_s) {
       b.hacc_start_m = f.h_acc_m;
-      for (int i = 0; i < f.num_sats; ++i) before[f.sats[i].prn - 1] = f.sats[i].tracked;
+      for (int i = 0; i < f.num_sats; ++i) before[static_cast<std::size_t>(f.sats[i].sat.index())] = f.sats[i].tracked;
     } else if (!truth.valid) {
       if (f.type == receiver::FixType::kDeadReckoning) {
         b.coast_s = s - settle_s + 1.0 / o.rate_hz;
@@ -118,13 +118,14 @@ Blockage blockage(const orbit::EphemerisStore& store, const Options& o, const Tr
       if (fix && std::isnan(b.refix_s)) b.refix_s = since;
       for (int i = 0; i < f.num_sats; ++i) {
         const receiver::SatInfo& si = f.sats[i];
-        if (before[si.prn - 1] && si.tracked && std::isnan(back[si.prn - 1])) back[si.prn - 1] = since;
+        const auto j = static_cast<std::size_t>(si.sat.index());
+        if (before[j] && si.tracked && std::isnan(back[j])) back[j] = since;
       }
     }
   }
   double sum = 0.0;
   int count = 0;
-  for (int p = 0; p < kMaxGpsPrn; ++p)
+  for (std::size_t p = 0; p < before.size(); ++p)
     if (before[p] && !std::isnan(back[p])) {
       sum += back[p];
       ++count;

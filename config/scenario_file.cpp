@@ -7,6 +7,7 @@
 
 #include "config/toml_reader.hpp"
 #include "core/common/error.hpp"
+#include "core/common/sat_id.hpp"
 
 namespace gnssemu::config {
 
@@ -42,6 +43,21 @@ double number_of(const toml::node& n, const std::string& file, const std::string
   }
   if (!std::isfinite(*v)) throw Error(file, line_of(n), where + ": must be finite");
   return *v;
+}
+
+/// A parameter value: a number (true/false when allow_bool), or for a
+/// satellite parameter also a RINEX name ("G05", "E11").
+double value_of(const toml::node& n, const std::string& file, const std::string& where, const faults::ParamSpec& spec) {
+  if (spec.satellite && n.is_string()) {
+    const std::string& text = n.as_string()->get();
+    const auto sat = parse_sat(text);
+    if (!sat) {
+      throw Error(file, line_of(n), where + ": unknown satellite '" + text +
+                                        "' (a GPS PRN or a RINEX name: G05, R12, E30, C19, J02, S23)");
+    }
+    return faults::sat_param(*sat);
+  }
+  return number_of(n, file, where, spec.boolean);
 }
 
 FaultEvent read_event(const toml::table& t, const std::string& file, const std::string& where) {
@@ -95,10 +111,10 @@ FaultEvent read_event(const toml::table& t, const std::string& file, const std::
     faults::Ramp r;
     if (const auto* a = v.as_array()) {
       if (a->size() != 2) throw Error(file, line_of(v), at + ": a ramp is [from, to]");
-      r.from = number_of(*a->get(0), file, at, spec->boolean);
-      r.to = number_of(*a->get(1), file, at, spec->boolean);
+      r.from = value_of(*a->get(0), file, at, *spec);
+      r.to = value_of(*a->get(1), file, at, *spec);
     } else {
-      r.from = r.to = number_of(v, file, at, spec->boolean);
+      r.from = r.to = value_of(v, file, at, *spec);
     }
     e.put(spec->id, r);
     // Range and cross-field rules per key, so the message points at its line.

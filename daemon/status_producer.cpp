@@ -240,7 +240,8 @@ void StatusProducer::write_json(std::string& out, std::size_t history_max) const
   for (int i = 0; i < fix_.num_sats; ++i) {
     const receiver::SatInfo& s = fix_.sats[i];
     w.begin_object();
-    w.field_int("prn", s.prn);
+    w.field_string("sat", std::string_view(sat_name(s.sat).data(), 3));
+    w.field_int("prn", s.sat.prn());
     w.field("az_deg", s.az_rad * kRadToDeg, 1);
     w.field("el_deg", s.el_rad * kRadToDeg, 1);
     w.field("cn0_dbhz", s.tracked ? s.cn0_dbhz : 0.0, 1);

@@ -11,6 +11,7 @@
 
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
+#include "core/common/sat_id.hpp"
 #include "core/time/gps_time.hpp"
 
 namespace gnssemu::atmosphere {
@@ -20,7 +21,7 @@ enum class CacheMode {
   kLinear,  ///< last value plus the slope between the last two refreshes
 };
 
-/// N doubles per satellite, PRN 1..kMaxGpsPrn (other PRNs bypass the cache).
+/// N doubles per satellite (SatId::index(); an invalid id bypasses the cache).
 template <std::size_t N>
 class SlowTermCache {
 public:
@@ -35,12 +36,12 @@ public:
   double refresh_s() const noexcept { return refresh_s_; }
   CacheMode mode() const noexcept { return mode_; }
 
-  /// Terms for prn at t; compute() -> Values is called when a refresh is due
+  /// Terms for sat at t; compute() -> Values is called when a refresh is due
   /// (first use, interval elapsed, time went backwards, or after invalidate).
   template <class Compute>
-  Values get(int prn, const time::GpsTime& t, Compute&& compute) noexcept {
-    if (prn < 1 || prn > kMaxGpsPrn || refresh_s_ <= 0.0) return compute();
-    Slot& s = slots_[static_cast<std::size_t>(prn)];
+  Values get(SatId sat, const time::GpsTime& t, Compute&& compute) noexcept {
+    if (!sat.valid() || refresh_s_ <= 0.0) return compute();
+    Slot& s = slots_[static_cast<std::size_t>(sat.index())];
     const double age_s = s.valid ? t - s.t1 : 0.0;
     // Linear mode bootstraps its slope from the next call after a (re)start.
     const bool need_slope = mode_ == CacheMode::kLinear && s.valid && !s.has_slope && age_s > 0.0;
@@ -62,8 +63,8 @@ public:
     return out;
   }
 
-  void invalidate(int prn) noexcept {
-    if (prn >= 1 && prn <= kMaxGpsPrn) slots_[static_cast<std::size_t>(prn)] = Slot{};
+  void invalidate(SatId sat) noexcept {
+    if (sat.valid()) slots_[static_cast<std::size_t>(sat.index())] = Slot{};
   }
   void clear() noexcept { slots_.fill(Slot{}); }
   /// Number of compute() calls made through the cache (for benchmarks).
@@ -79,7 +80,7 @@ private:
   };
   double refresh_s_;
   CacheMode mode_;
-  std::array<Slot, kMaxGpsPrn + 1> slots_{};
+  std::array<Slot, kNumSats> slots_{};
   long refreshes_ = 0;
 };
 

@@ -54,7 +54,8 @@ constexpr ParamSpec kSpecs[] = {
     {Param::kElMaxDeg, "el_max_deg", {0.0, 90.0, "deg"}, kSky, true, false, false, "highest blocked elevation, deg"},
     {Param::kLossDb, "loss_db", {0.0, 100.0, "dB"}, kSky, true, false, false,
      "attenuation instead of full blockage, dB"},
-    {Param::kPrn, "prn", {1.0, 32.0, ""}, kSat, false, true, false, "GPS PRN of the faulty satellite"},
+    {Param::kPrn, "prn", {1.0, sat_param(SatId::from_index(kNumSats - 1)), ""}, kSat, false, true, false,
+     "the faulty satellite: a GPS PRN (5) or a RINEX name (\"G05\", \"R12\", \"E11\", \"C19\", \"J02\", \"S23\")", true},
     {Param::kBiasM, "bias_m", {-1.0e6, 1.0e6, "m"}, kSat, true, false, false,
      "pseudorange step (a [from, to] ramp is a ramp), m"},
     {Param::kRateMS, "rate_m_s", {-1.0e4, 1.0e4, "m/s"}, kSat, true, false, false,
@@ -127,6 +128,20 @@ std::span<const std::string_view> mode_names(FaultType t) noexcept {
   }
 }
 
+std::optional<SatId> sat_from_param(double v) noexcept {
+  if (!(v >= 0.0 && v < 256.0 * kNumSystems) || v != std::floor(v)) return std::nullopt;
+  const int code = static_cast<int>(v);
+  const SatId sat(static_cast<GnssSystem>(code >> 8), code & 0xFF);
+  if (!sat.valid()) return std::nullopt;
+  return sat;
+}
+
+std::string sat_param_text(double v) {
+  const auto sat = sat_from_param(v);
+  if (!sat || sat->system == GnssSystem::kGps) return format_number(v);
+  return std::string(sat_name(*sat).data());
+}
+
 double default_value(Param p) noexcept {
   switch (p) {
     case Param::kPowerAdvantageDb: return 6.0;
@@ -159,7 +174,8 @@ std::string describe(const FaultEvent& e, double s) {
     if (!e.has(p.id)) continue;
     if (!out.empty()) out += ' ';
     const double v = e.value(p.id, f);
-    out += std::string(p.name) + "=" + (p.boolean ? std::string(v >= 0.5 ? "true" : "false") : format_number(v));
+    out += std::string(p.name) + "=" +
+           (p.boolean ? std::string(v >= 0.5 ? "true" : "false") : p.satellite ? sat_param_text(v) : format_number(v));
   }
   return out;
 }
@@ -175,6 +191,10 @@ std::optional<std::string> check_event(const FaultEvent& e) {
     }
     const Ramp& r = e.param(s.id);
     for (double v : {r.from, r.to}) {
+      if (s.satellite && !sat_from_param(v)) {
+        return std::string(s.name) + ": " + sat_param_text(v) +
+               " is out of range: not a satellite (a GPS PRN 1..32 or a RINEX name such as G05, E11)";
+      }
       if (!s.range.contains(v)) {
         return std::string(s.name) + ": " + format_number(v) + " is out of range " + format_range(s.range);
       }

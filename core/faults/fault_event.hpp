@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "core/common/range.hpp"
+#include "core/common/sat_id.hpp"
 
 namespace gnssemu::faults {
 
@@ -60,7 +61,20 @@ struct ParamSpec {
   bool integer = false;            ///< whole numbers only
   bool boolean = false;            ///< true/false in the file (stored as 1/0)
   std::string_view doc;            ///< meaning, with unit
+  /// A satellite: a GPS PRN or a RINEX name in the file, stored as sat_param().
+  bool satellite = false;
 };
+
+/// A satellite as a parameter value: (system << 8) | RINEX number, so a GPS
+/// satellite is its PRN, the plain number a scenario file gives for it.
+constexpr double sat_param(SatId sat) noexcept {
+  return static_cast<double>((static_cast<int>(sat.system) << 8) | sat.number);
+}
+/// The satellite of a parameter value; nullopt when it names none.
+std::optional<SatId> sat_from_param(double v) noexcept;
+/// A satellite parameter in the scenario file's words: the PRN of a GPS
+/// satellite ("5"), the RINEX name of any other ("E11").
+std::string sat_param_text(double v);
 
 /// The table of every parameter (one row per Param, in Param order).
 std::span<const ParamSpec> param_specs() noexcept;
@@ -130,7 +144,8 @@ double default_value(Param p) noexcept;
 
 /// Cross-field and range rules of one event: each end of a ramp in range,
 /// ramps only over a finite duration, the parameters the type needs
-/// (jammer: js_db, or eirp_dbw with distance_m or lat/lon; satellite: prn).
+/// (jammer: js_db, or eirp_dbw with distance_m or lat/lon; satellite: prn,
+/// a valid satellite).
 /// Returns the first problem (naming the key) or nothing.
 std::optional<std::string> check_event(const FaultEvent& e);
 

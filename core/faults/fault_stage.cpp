@@ -111,7 +111,7 @@ void FaultStage::degrade(world::SatObservable& o, double cn0_dbhz) noexcept {
     const double s0 = sigma(o.cn0_dbhz), s1 = sigma(cn0_dbhz);
     return std::sqrt(std::max(s1 * s1 - s0 * s0, 0.0));
   };
-  const auto stream = static_cast<std::uint64_t>(o.prn);
+  const std::uint64_t stream = world::sat_stream(o.sat);
   const double extra_m = extra_sigma([&](double c) { return n.code_sigma_m(c); });
   if (extra_m > 0.0) o.pseudorange_m += extra_m * rng_.normal(stream, epoch_, world::Purpose::kThermal);
   const double extra_rr = extra_sigma([&](double c) { return n.range_rate_sigma_m_s(c); });
@@ -144,20 +144,21 @@ void FaultStage::break_lock(world::SatObservable& o) noexcept {
   ++o.carrier_discontinuities;
 }
 
-void FaultStage::let_go(const std::array<bool, kMaxGpsPrn>& held, world::Observables& obs) noexcept {
+void FaultStage::let_go(const std::array<bool, kNumSats>& held, world::Observables& obs) noexcept {
   for (int i = 0; i < obs.num_sats; ++i)
-    if (held[obs.sats[i].prn - 1] && obs.sats[i].received) break_lock(obs.sats[i]);
+    if (held[static_cast<std::size_t>(obs.sats[i].sat.index())] && obs.sats[i].received) break_lock(obs.sats[i]);
 }
 
 void FaultStage::satellite_fault(const FaultEvent& e, double f, double since_s, world::Observables& obs) noexcept {
-  const int prn = static_cast<int>(e.param(Param::kPrn).from);
+  const std::optional<SatId> sat = sat_from_param(e.param(Param::kPrn).from);
+  if (!sat) return;
   for (int i = 0; i < obs.num_sats; ++i) {
     world::SatObservable& o = obs.sats[i];
-    if (o.prn != prn || o.eph == nullptr) continue;
+    if (o.sat != *sat || o.eph == nullptr) continue;
     // Broadcast faults: the receiver decodes a falsified copy of the set.
     const bool eph_fault = e.has(Param::kEphRadialM) || e.has(Param::kEphAlongM) || e.has(Param::kUnhealthy);
     if (eph_fault) {
-      orbit::Ephemeris& c = eph_copy_[prn - 1];
+      orbit::Ephemeris& c = eph_copy_[static_cast<std::size_t>(sat->index())];
       c = *o.eph;
       const double a_m = c.sqrt_a_sqrtm * c.sqrt_a_sqrtm;
       const double da_m = e.value(Param::kEphRadialM, f);
@@ -267,8 +268,9 @@ void FaultStage::spoofer(const FaultEvent& e, SpoofState& s, double f, double dt
     world::SatObservable& o = obs.sats[i];
     if (!o.above_mask || !o.received) continue;
     const bool captured = level - o.cn0_dbhz >= margin;
-    const bool newly = captured && !s.captured[o.prn - 1];
-    s.captured[o.prn - 1] = captured;
+    const std::size_t k = static_cast<std::size_t>(o.sat.index());
+    const bool newly = captured && !s.captured[k];
+    s.captured[k] = captured;
     if (!captured) continue;
     ++effects_.captured;
     // Ranges as seen from the false position with the false clock: every

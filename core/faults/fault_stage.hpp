@@ -91,7 +91,7 @@ private:
     Enu rate_m_s;                   ///< its rate
     double clock_m = 0.0, clock_rate_m_s = 0.0;
     double drag_s = 0.0;            ///< time dragged so far, s
-    std::array<bool, kMaxGpsPrn> captured{};
+    std::array<bool, kNumSats> captured{};
     bool aligned = true;            ///< the spoofed signals start where the authentic ones are
   };
 
@@ -112,7 +112,7 @@ private:
   /// A spoofer that moved the loops it held stops (its end, or clear()):
   /// they find no signal where it was and lose lock on the received ones.
   static bool moved(const SpoofState& s) noexcept { return s.offset_m.norm() > 0.0 || s.clock_m != 0.0; }
-  static void let_go(const std::array<bool, kMaxGpsPrn>& held, world::Observables& obs) noexcept;
+  static void let_go(const std::array<bool, kNumSats>& held, world::Observables& obs) noexcept;
 
   FaultContext ctx_;
   double n0_dbw_hz_ = 0.0;
@@ -120,9 +120,9 @@ private:
   std::vector<FaultEvent> events_;          ///< reserved kMaxEvents
   std::vector<FaultStatus> status_;         ///< reserved kMaxEvents
   std::vector<SpoofState> spoof_;           ///< one per event, reserved kMaxEvents
-  std::array<bool, kMaxGpsPrn> released_{};  ///< loops cleared spoofers held: they let go next epoch
+  std::array<bool, kNumSats> released_{};  ///< loops cleared spoofers held: they let go next epoch
   bool releasing_ = false;
-  std::array<orbit::Ephemeris, kMaxGpsPrn> eph_copy_{};  ///< broadcast sets a fault falsified
+  std::array<orbit::Ephemeris, kNumSats> eph_copy_{};  ///< broadcast sets a fault falsified, per satellite
   FaultEffects effects_;
   bool started_ = false;
   time::GpsTime t0_, t_prev_;

@@ -40,11 +40,16 @@ int parse_int(std::string_view tok, const std::string& path, int line, const std
   return static_cast<int>(v);
 }
 
+/// The GPS satellite of an almanac PRN; throws out of range.
+SatId gps_sat(int prn, const std::string& path, int line) {
+  if (prn < 1 || prn > system_size(GnssSystem::kGps)) {
+    throw Error(path, line, "PRN " + std::to_string(prn) + " out of range 1..32");
+  }
+  return SatId::gps(prn);
+}
+
 /// Field lines: prn, e, sqrt(A) (1-based).
 void check_entry(const AlmanacEntry& a, const std::string& path, const int (&line)[3]) {
-  if (a.prn < 1 || a.prn > kMaxGpsPrn) {
-    throw Error(path, line[0], "PRN " + std::to_string(a.prn) + " out of range 1..32");
-  }
   if (a.e < 0.0 || a.e >= 1.0) throw Error(path, line[1], "eccentricity must be in [0, 1)");
   if (a.sqrt_a_sqrtm <= 0.0) throw Error(path, line[2], "sqrt(A) must be positive");
 }
@@ -78,7 +83,7 @@ std::vector<AlmanacEntry> read_yuma(const std::string& path, int reference_week)
     if (!(v[3] >= 0.0 && v[3] < kSecondsPerWeek)) throw Error(path, at[3], "toa outside the week");
     if (v[12] < 0.0) throw Error(path, at[12], "negative almanac week");
     AlmanacEntry a;
-    a.prn = static_cast<int>(v[0]);
+    a.sat = gps_sat(static_cast<int>(v[0]), path, at[0]);
     a.health = static_cast<int>(v[1]);
     a.e = v[2];
     const int week = time::resolve_week_nearest(static_cast<int32_t>(v[12]) % 1024, reference_week);
@@ -170,7 +175,7 @@ std::vector<AlmanacEntry> read_sem(const std::string& path, int reference_week) 
       return parse_real(toks[i + k].text, path, toks[i + k].line, what);
     };
     AlmanacEntry a;
-    a.prn = parse_int(toks[i].text, path, toks[i].line, "PRN");
+    a.sat = gps_sat(parse_int(toks[i].text, path, toks[i].line, "PRN"), path, toks[i].line);
     a.toa = t_toa;
     a.e = real(3, "eccentricity");
     a.i0_rad = (0.30 + real(4, "inclination offset")) * kPiGps;
@@ -202,7 +207,7 @@ std::vector<AlmanacEntry> read_almanac(const std::string& path, int reference_we
 
 Ephemeris to_ephemeris(const AlmanacEntry& alm) noexcept {
   Ephemeris e;
-  e.prn = alm.prn;
+  e.sat = alm.sat;
   e.toc = alm.toa;
   e.toe = alm.toa;
   e.af0_s = alm.af0_s;

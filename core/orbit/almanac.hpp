@@ -9,7 +9,7 @@
 namespace gnssemu::orbit {
 
 struct AlmanacEntry {
-  int prn = 0;
+  SatId sat;  ///< GPS satellite
   int health = 0;
   double e = 0.0;
   time::GpsTime toa;            ///< full week resolved against the reader's reference week

@@ -3,6 +3,7 @@
 // and clock (IS-GPS-200 §20.3.3.3.3 and Table 20-IV).
 #include <cstdint>
 
+#include "core/common/sat_id.hpp"
 #include "core/common/vec3.hpp"
 #include "core/time/gps_time.hpp"
 
@@ -10,7 +11,7 @@ namespace gnssemu::orbit {
 
 /// One broadcast ephemeris set, SI units and radians (as RINEX stores them).
 struct Ephemeris {
-  int prn = 0;                 ///< 1..32
+  SatId sat;                   ///< the satellite
   time::GpsTime toc;           ///< clock reference time
   time::GpsTime toe;           ///< ephemeris reference time (week from BO-5, continuous)
   double af0_s = 0.0;          ///< clock bias, s

@@ -21,16 +21,16 @@ double transmit_key(const Ephemeris* e) noexcept {
 
 EphemerisStore::EphemerisStore(const std::vector<Ephemeris>& ephemerides, StoreOptions options) : options_(options) {
   for (const Ephemeris& e : ephemerides) {
-    if (e.prn >= 1 && e.prn <= kMaxGpsPrn) by_prn_[static_cast<std::size_t>(e.prn)].push_back(e);
+    if (e.sat.valid()) by_sat_[static_cast<std::size_t>(e.sat.index())].push_back(e);
   }
-  for (std::size_t prn = 1; prn <= static_cast<std::size_t>(kMaxGpsPrn); ++prn) {
-    auto& v = by_prn_[prn];
+  for (std::size_t i_sat = 0; i_sat < by_sat_.size(); ++i_sat) {
+    auto& v = by_sat_[i_sat];
     // Stable: equal (toe, transmit) keep file order, so the later one is last.
     std::stable_sort(v.begin(), v.end(), [](const Ephemeris& a, const Ephemeris& b) {
       if (a.toe != b.toe) return a.toe < b.toe;
       return transmit_key(a) < transmit_key(b);
     });
-    auto& u = usable_[prn];
+    auto& u = usable_[i_sat];
     // Unhealthy sets stay candidates: they are the current broadcast.
     for (std::size_t i = 0; i < v.size(); ++i) {
       if (!u.empty() && v[u.back()].toe == v[i].toe) {
@@ -42,10 +42,10 @@ EphemerisStore::EphemerisStore(const std::vector<Ephemeris>& ephemerides, StoreO
   }
 }
 
-const Ephemeris* EphemerisStore::select(int prn, const time::GpsTime& t) const noexcept {
-  if (prn < 1 || prn > kMaxGpsPrn) return nullptr;
-  const auto& v = by_prn_[static_cast<std::size_t>(prn)];
-  const auto& u = usable_[static_cast<std::size_t>(prn)];
+const Ephemeris* EphemerisStore::select(SatId sat, const time::GpsTime& t) const noexcept {
+  if (!sat.valid()) return nullptr;
+  const auto& v = by_sat_[static_cast<std::size_t>(sat.index())];
+  const auto& u = usable_[static_cast<std::size_t>(sat.index())];
   if (u.empty()) return nullptr;
   // First usable set with toe >= t; its predecessor is the other candidate.
   const auto it = std::lower_bound(u.begin(), u.end(), t,
@@ -77,21 +77,21 @@ const Ephemeris* EphemerisStore::select(int prn, const time::GpsTime& t) const n
   return chosen != nullptr && chosen->health == 0 ? chosen : nullptr;
 }
 
-std::size_t EphemerisStore::count(int prn) const noexcept {
-  if (prn < 1 || prn > kMaxGpsPrn) return 0;
-  return by_prn_[static_cast<std::size_t>(prn)].size();
+std::size_t EphemerisStore::count(SatId sat) const noexcept {
+  if (!sat.valid()) return 0;
+  return by_sat_[static_cast<std::size_t>(sat.index())].size();
 }
 
 std::size_t EphemerisStore::size() const noexcept {
   std::size_t n = 0;
-  for (const auto& v : by_prn_) n += v.size();
+  for (const auto& v : by_sat_) n += v.size();
   return n;
 }
 
 time::GpsTime EphemerisStore::first_valid() const noexcept {
   bool any = false;
   time::GpsTime best;
-  for (const auto& v : by_prn_) {
+  for (const auto& v : by_sat_) {
     for (const Ephemeris& e : v) {
       const time::GpsTime s = e.toe - validity_half_window_s(e);
       if (!any || s < best) best = s;
@@ -104,7 +104,7 @@ time::GpsTime EphemerisStore::first_valid() const noexcept {
 time::GpsTime EphemerisStore::last_valid() const noexcept {
   bool any = false;
   time::GpsTime best;
-  for (const auto& v : by_prn_) {
+  for (const auto& v : by_sat_) {
     for (const Ephemeris& e : v) {
       const time::GpsTime s = e.toe + validity_half_window_s(e);
       if (!any || s > best) best = s;
@@ -120,7 +120,7 @@ namespace gnssemu::orbit {
 
 std::vector<TimeSpan> EphemerisStore::coverage() const {
   std::vector<TimeSpan> spans;
-  for (const auto& v : by_prn_) {
+  for (const auto& v : by_sat_) {
     for (const Ephemeris& e : v) {
       const double w = validity_half_window_s(e);
       spans.push_back({e.toe - w, e.toe + w});

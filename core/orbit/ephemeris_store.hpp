@@ -4,7 +4,7 @@
 // is healthy. Several files go into one store: their sets are simply pooled.
 //
 // Rules, in order:
-//  - duplicates (same PRN and toe, e.g. an IODE change, a merged file
+//  - duplicates (same satellite and toe, e.g. an IODE change, a merged file
 //    listing the same set twice, or two daily files both holding the
 //    midnight set): the one transmitted last wins; an unknown transmission
 //    time counts as earliest, equal ones fall back to input order (later
@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "core/common/constants.hpp"
+#include "core/common/sat_id.hpp"
 #include "core/orbit/ephemeris.hpp"
 
 namespace gnssemu::orbit {
@@ -48,12 +49,13 @@ public:
   /// Copies and indexes the ephemerides (load time; allocates).
   explicit EphemerisStore(const std::vector<Ephemeris>& ephemerides, StoreOptions options = {});
 
-  /// Ephemeris for prn (1..32) valid at t, or nullptr (none valid, or the
-  /// nearest valid set is unhealthy). No allocation; safe on the per-epoch path.
-  const Ephemeris* select(int prn, const time::GpsTime& t) const noexcept;
+  /// Ephemeris for sat valid at t, or nullptr (none valid, the nearest valid
+  /// set is unhealthy, or sat is not valid()). No allocation; safe on the
+  /// per-epoch path.
+  const Ephemeris* select(SatId sat, const time::GpsTime& t) const noexcept;
 
-  /// Number of ephemerides stored for prn (all, healthy or not).
-  std::size_t count(int prn) const noexcept;
+  /// Number of ephemerides stored for sat (all, healthy or not).
+  std::size_t count(SatId sat) const noexcept;
   std::size_t size() const noexcept;
   /// Earliest toe - validity and latest toe + validity over all sets, for
   /// picking a default epoch. Both are GpsTime{} when empty.
@@ -67,10 +69,10 @@ public:
 
 private:
   StoreOptions options_;
-  std::array<std::vector<Ephemeris>, kMaxGpsPrn + 1> by_prn_;  // sorted by toe
-  // Per PRN, indices into by_prn_ of the selectable sets (healthy or not):
-  // one per toe (the latest transmitted one), ascending toe.
-  std::array<std::vector<std::size_t>, kMaxGpsPrn + 1> usable_;
+  std::array<std::vector<Ephemeris>, kNumSats> by_sat_;  // by SatId::index(), sorted by toe
+  // Per satellite, indices into by_sat_ of the selectable sets (healthy or
+  // not): one per toe (the latest transmitted one), ascending toe.
+  std::array<std::vector<std::size_t>, kNumSats> usable_;
 };
 
 }  // namespace gnssemu::orbit

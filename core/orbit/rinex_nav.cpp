@@ -138,8 +138,9 @@ Ephemeris parse_gps_record(const Parser& p, const Record& lines, bool v3) {
   Ephemeris eph;
   time::CalendarTime c;
   std::size_t vcol = 0;  // column of the first value on every line
+  int prn = 0;
   if (v3) {
-    eph.prn = p.integer(e, 1, 2, "PRN");
+    prn = p.integer(e, 1, 2, "PRN");
     c.year = p.integer(e, 4, 4, "year");
     c.month = p.integer(e, 9, 2, "month");
     c.day = p.integer(e, 12, 2, "day");
@@ -148,7 +149,7 @@ Ephemeris parse_gps_record(const Parser& p, const Record& lines, bool v3) {
     c.second = p.integer(e, 21, 2, "second");
     vcol = 4;
   } else {
-    eph.prn = p.integer(e, 0, 2, "PRN");
+    prn = p.integer(e, 0, 2, "PRN");
     const int yy = p.integer(e, 3, 2, "year");
     if (yy < 0 || yy > 99) p.fail(e.number, "two-digit year out of range");
     c.year = time::year_from_two_digits(yy);
@@ -159,7 +160,10 @@ Ephemeris parse_gps_record(const Parser& p, const Record& lines, bool v3) {
     c.second = p.real(e, 17, 5, "second");
     vcol = 3;
   }
-  if (eph.prn < 1 || eph.prn > kMaxGpsPrn) p.fail(e.number, "GPS PRN " + std::to_string(eph.prn) + " out of range 1..32");
+  if (prn < 1 || prn > system_size(GnssSystem::kGps)) {
+    p.fail(e.number, "GPS PRN " + std::to_string(prn) + " out of range 1..32");
+  }
+  eph.sat = SatId::gps(prn);
   if (c.month < 1 || c.month > 12 || c.day < 1 || c.day > 31 || c.hour < 0 || c.hour > 23 || c.minute < 0 ||
       c.minute > 59 || c.second < 0.0 || c.second >= 61.0) {
     p.fail(e.number, "invalid epoch (toc)");

@@ -77,8 +77,8 @@ void Acquisition::restart(const StartState& keep) noexcept {
   almanac_tracking_s_ = 0.0;
 }
 
-Acquisition::Search Acquisition::classify(int prn) const noexcept {
-  const Channel& c = ch_[idx(prn)];
+Acquisition::Search Acquisition::classify(SatId sat) const noexcept {
+  const Channel& c = ch_[idx(sat)];
   if (!time_known_ || !position_known_) return Search::kCold;
   if (c.tracked_before && now_s_ - c.lost_at_s <= cfg_.reacq_window_s) return Search::kReacq;
   if (almanac_known_ || c.eph_until_s > now_s_) return Search::kAided;
@@ -94,12 +94,12 @@ double Acquisition::threshold_dbhz(Search s) const noexcept {
   return thr_.acquire_dbhz;
 }
 
-double Acquisition::search_time_s(int prn, Search s, double cn0_dbhz) noexcept {
+double Acquisition::search_time_s(SatId sat, Search s, double cn0_dbhz) noexcept {
   const double base = s == Search::kCold ? cfg_.cold_search_s : s == Search::kAided ? cfg_.aided_search_s : cfg_.reacq_search_s;
   // Below a strong signal the dwell per search cell grows with 1 / (C/N0).
   const double weak = std::pow(10.0, std::max(cfg_.strong_cn0_dbhz - cn0_dbhz, 0.0) / 10.0);
   const world::CounterRng rng(seed_);
-  const double u = rng.uniform(world::kAcquisitionStream + static_cast<std::uint64_t>(prn), searches_++,
+  const double u = rng.uniform(world::kAcquisitionStream + world::sat_stream(sat), searches_++,
                                world::Purpose::kAcquisition, 0);
   return base * weak * (1.0 + cfg_.search_spread * (2.0 * u - 1.0));
 }
@@ -124,9 +124,9 @@ void Acquisition::lose(Channel& c) noexcept {
   c.downloading = false;
 }
 
-void Acquisition::drop(int prn) noexcept {
-  Channel& c = ch_[idx(prn)];
-  instant_[idx(prn)].reset();
+void Acquisition::drop(SatId sat) noexcept {
+  Channel& c = ch_[idx(sat)];
+  instant_[idx(sat)].reset();
   if (c.state == State::kTracking) lose(c);
 }
 
@@ -142,9 +142,9 @@ void Acquisition::lose_all(double dt_s) noexcept {
 
 void Acquisition::step_instant(double dt_s, const world::Observables& obs) noexcept {
   // The receiver as it was before acquisition was modelled: C/N0 hysteresis only.
-  std::array<bool, kMaxGpsPrn> above{};
+  std::array<bool, kNumSats> above{};
   for (int i = 0; i < obs.num_sats; ++i)
-    if (obs.sats[i].above_mask) above[idx(obs.sats[i].prn)] = true;
+    if (obs.sats[i].above_mask) above[idx(obs.sats[i].sat)] = true;
   for (std::size_t k = 0; k < ch_.size(); ++k) {
     ch_[k].new_lock = false;
     if (!above[k]) instant_[k].reset();
@@ -152,7 +152,7 @@ void Acquisition::step_instant(double dt_s, const world::Observables& obs) noexc
   for (int i = 0; i < obs.num_sats; ++i) {
     const world::SatObservable& o = obs.sats[i];
     if (!o.above_mask) continue;
-    const std::size_t k = idx(o.prn);
+    const std::size_t k = idx(o.sat);
     bool ok = false;
     if (!obs.signal_modelled) {
       ok = o.received;
@@ -176,12 +176,12 @@ void Acquisition::step(const time::GpsTime& t, double dt_s, const world::Observa
     step_instant(dt_s, obs);
     return;
   }
-  std::array<bool, kMaxGpsPrn> seen{};
+  std::array<bool, kNumSats> seen{};
   bool any_tracked = false;
   for (int i = 0; i < obs.num_sats; ++i) {
     const world::SatObservable& o = obs.sats[i];
     if (!o.above_mask) continue;
-    const int p = o.prn;
+    const SatId p = o.sat;
     Channel& c = ch_[idx(p)];
     seen[idx(p)] = true;
     c.new_lock = false;

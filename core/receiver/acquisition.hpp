@@ -12,6 +12,7 @@
 
 #include "core/common/constants.hpp"
 #include "core/common/range.hpp"
+#include "core/common/sat_id.hpp"
 #include "core/common/vec3.hpp"
 #include "core/signal/tracking.hpp"
 #include "core/time/gps_time.hpp"
@@ -130,17 +131,17 @@ public:
   void lose_all(double dt_s) noexcept;
   /// A fix: the receiver knows time and position from now on.
   void on_fix() noexcept { time_known_ = position_known_ = true; }
-  /// Drop the lock of prn (the channel limit): it is searched again later.
-  void drop(int prn) noexcept;
+  /// Drop the lock of sat (the channel limit): it is searched again later.
+  void drop(SatId sat) noexcept;
 
-  /// prn (1..32) is tracked: code lock, a pseudorange.
-  bool tracked(int prn) const noexcept { return ch_[idx(prn)].state == State::kTracking; }
-  /// prn is tracked and its ephemeris is decoded: it can be used.
-  bool usable(int prn) const noexcept { return tracked(prn) && has_ephemeris(prn); }
-  /// The receiver has a decoded ephemeris of prn (always without modelled acquisition).
-  bool has_ephemeris(int prn) const noexcept { return !cfg_.modelled || ch_[idx(prn)].eph_until_s > now_s_; }
-  /// prn became tracked at this epoch.
-  bool new_lock(int prn) const noexcept { return ch_[idx(prn)].new_lock; }
+  /// sat (valid()) is tracked: code lock, a pseudorange.
+  bool tracked(SatId sat) const noexcept { return ch_[idx(sat)].state == State::kTracking; }
+  /// sat is tracked and its ephemeris is decoded: it can be used.
+  bool usable(SatId sat) const noexcept { return tracked(sat) && has_ephemeris(sat); }
+  /// The receiver has a decoded ephemeris of sat (always without modelled acquisition).
+  bool has_ephemeris(SatId sat) const noexcept { return !cfg_.modelled || ch_[idx(sat)].eph_until_s > now_s_; }
+  /// sat became tracked at this epoch.
+  bool new_lock(SatId sat) const noexcept { return ch_[idx(sat)].new_lock; }
   /// Searches begun so far (for tests and logs).
   std::uint64_t searches() const noexcept { return searches_; }
   bool time_known() const noexcept { return time_known_; }
@@ -165,10 +166,10 @@ private:
     bool new_lock = false;
   };
 
-  static std::size_t idx(int prn) noexcept { return static_cast<std::size_t>(prn - 1); }
-  Search classify(int prn) const noexcept;
+  static std::size_t idx(SatId sat) noexcept { return static_cast<std::size_t>(sat.index()); }
+  Search classify(SatId sat) const noexcept;
   double threshold_dbhz(Search s) const noexcept;
-  double search_time_s(int prn, Search s, double cn0_dbhz) noexcept;
+  double search_time_s(SatId sat, Search s, double cn0_dbhz) noexcept;
   /// The aided search of o would find it: its Doppler is within the window
   /// around the prediction from aiding (true without aiding).
   bool within_aided_window(const time::GpsTime& t, const world::SatObservable& o, const AidingState& aiding) const noexcept;
@@ -178,8 +179,8 @@ private:
   AcquisitionConfig cfg_;
   signal::TrackingThresholds thr_;
   std::uint64_t seed_;
-  std::array<Channel, kMaxGpsPrn> ch_{};
-  std::array<signal::TrackingState, kMaxGpsPrn> instant_{};  ///< hysteresis of the unmodelled mode
+  std::array<Channel, kNumSats> ch_{};  ///< per satellite (SatId::index())
+  std::array<signal::TrackingState, kNumSats> instant_{};  ///< hysteresis of the unmodelled mode
   bool time_known_ = true, position_known_ = true, almanac_known_ = true;
   double almanac_tracking_s_ = 0.0;  ///< tracking time towards the almanac download
   double now_s_ = 0.0;

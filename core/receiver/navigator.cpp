@@ -155,7 +155,7 @@ void Navigator::step(double dt_s, const SolverInput& in, const SolverOutput& sna
   const int n = solver.measurement_model(in, kf_.pos_m(), kf_.clock_m(), rows_);
   // A millisecond step of the receiver clock moves every pseudorange alike.
   if (n > 0) {
-    std::array<double, kMaxGpsPrn> r{};
+    std::array<double, kMaxSatsInView> r{};
     for (int i = 0; i < n; ++i) r[i] = rows_[i].range_resid_m;
     std::nth_element(r.begin(), r.begin() + n / 2, r.begin() + n);
     const double median = r[n / 2];

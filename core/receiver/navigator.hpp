@@ -54,7 +54,7 @@ private:
   double rate_sigma_m_s_;
   double height_sigma_m_;
   NavFilter kf_;
-  std::array<MeasurementRow, kMaxGpsPrn> rows_{};
+  std::array<MeasurementRow, kMaxSatsInView> rows_{};
   FixType last_type_ = FixType::kNone;
   double coast_s_ = 0.0;
   bool coasting_ = false;

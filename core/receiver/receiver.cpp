@@ -98,23 +98,27 @@ void Receiver::tracking_stage(const time::GpsTime& t, const world::Observables& 
   acq_.step(t, dt_s, obs, aiding);
   tracked_.fill(false);
   int n_tracked = 0;
-  std::array<int, kMaxGpsPrn> tracked_prn{};
+  std::array<SatId, kMaxSatsInView> tracked_sat{};
   for (int i = 0; i < obs.num_sats; ++i) {
     const world::SatObservable& o = obs.sats[i];
     if (!o.above_mask) continue;
-    el_rad_[o.prn - 1] = o.el_rad;
-    if (acq_.tracked(o.prn)) tracked_prn[n_tracked++] = o.prn;
+    el_rad_[static_cast<std::size_t>(o.sat.index())] = o.el_rad;
+    if (acq_.tracked(o.sat)) tracked_sat[static_cast<std::size_t>(n_tracked++)] = o.sat;
   }
   if (n_tracked > config_.max_channels) {
-    std::sort(tracked_prn.begin(), tracked_prn.begin() + n_tracked, [this](int a, int b) {
-      const double ea = el_rad_[a - 1], eb = el_rad_[b - 1];
+    std::sort(tracked_sat.begin(), tracked_sat.begin() + n_tracked, [this](SatId a, SatId b) {
+      const double ea = el_rad_[static_cast<std::size_t>(a.index())], eb = el_rad_[static_cast<std::size_t>(b.index())];
       return ea != eb ? ea > eb : a < b;
     });
-    for (int i = config_.max_channels; i < n_tracked; ++i) acq_.drop(tracked_prn[i]);
+    for (int i = config_.max_channels; i < n_tracked; ++i) acq_.drop(tracked_sat[static_cast<std::size_t>(i)]);
     n_tracked = config_.max_channels;
   }
-  for (int i = 0; i < n_tracked; ++i) tracked_[tracked_prn[i] - 1] = true;
-  for (int p = 1; p <= kMaxGpsPrn; ++p) usable_[p - 1] = tracked_[p - 1] && acq_.usable(p);
+  usable_.fill(false);
+  for (int i = 0; i < n_tracked; ++i) {
+    const SatId sat = tracked_sat[static_cast<std::size_t>(i)];
+    tracked_[static_cast<std::size_t>(sat.index())] = true;
+    usable_[static_cast<std::size_t>(sat.index())] = acq_.usable(sat);
+  }
 }
 
 void Receiver::measurement_stage(const world::Observables& obs, double dt_s) noexcept {
@@ -122,13 +126,14 @@ void Receiver::measurement_stage(const world::Observables& obs, double dt_s) noe
   in_.doy = in_.t_rx_local.fractional_day_of_year();
   in_.num_meas = 0;
   const bool smooth = config_.filter.type == NavFilterType::kKalman && config_.filter.smoothing_window_s > 0.0;
-  std::array<bool, kMaxGpsPrn> smoothed_now{};
+  std::array<bool, kNumSats> smoothed_now{};
   for (int i = 0; i < obs.num_sats; ++i) {
     const world::SatObservable& o = obs.sats[i];
-    const int p = o.prn;
+    const SatId p = o.sat;
+    const std::size_t k = static_cast<std::size_t>(p.index());
     SatInfo& si = fix_.sats[fix_.num_sats++];
     si = SatInfo{};
-    si.prn = p;
+    si.sat = p;
     si.az_rad = o.az_rad;
     si.el_rad = o.el_rad;
     si.healthy = o.eph != nullptr && o.eph->health == 0;  // a broadcast "unhealthy" is tracked, not used
@@ -139,29 +144,29 @@ void Receiver::measurement_stage(const world::Observables& obs, double dt_s) noe
     si.bounces = o.bounces;
     si.nlos_delay_m = o.nlos_delay_m;
     si.ephemeris = acq_.has_ephemeris(p);
-    if (!tracked_[p - 1]) continue;
+    if (!tracked_[k]) continue;
     si.tracked = true;
     si.cn0_dbhz = std::max(o.cn0_dbhz, kMinReportedCn0_dbhz);
     si.pseudorange_m = o.pseudorange_m;
     si.doppler_hz = o.doppler_hz;
     ++fix_.num_tracked;
-    if (!usable_[p - 1] || !si.healthy) continue;
+    if (!usable_[k] || !si.healthy) continue;
     double pr_m = si.pseudorange_m;
     if (smooth && o.carrier_valid) {
-      const bool restart = !smoothed_last_[p - 1] || acq_.new_lock(p) ||
-                           o.carrier_discontinuities != discontinuities_[p - 1] || dt_s > kMaxSmoothingGap_s;
-      pr_m = hatch_[p - 1].update(o.pseudorange_m, o.carrier_phase_cycles * kL1Wavelength_m, dt_s,
-                                  config_.filter.smoothing_window_s, restart);
-      discontinuities_[p - 1] = o.carrier_discontinuities;
-      smoothed_now[p - 1] = true;
-      si.smoothed = hatch_[p - 1].epochs() > 1.0;
+      const bool restart = !smoothed_last_[k] || acq_.new_lock(p) ||
+                           o.carrier_discontinuities != discontinuities_[k] || dt_s > kMaxSmoothingGap_s;
+      pr_m = hatch_[k].update(o.pseudorange_m, o.carrier_phase_cycles * kL1Wavelength_m, dt_s,
+                              config_.filter.smoothing_window_s, restart);
+      discontinuities_[k] = o.carrier_discontinuities;
+      smoothed_now[k] = true;
+      si.smoothed = hatch_[k].epochs() > 1.0;
     }
     Measurement& m = in_.meas[in_.num_meas];
     m.eph = o.eph;
     m.pseudorange_m = pr_m;
     m.doppler_hz = si.doppler_hz;
     m.cn0_dbhz = si.cn0_dbhz;
-    meas_prn_[in_.num_meas++] = p;
+    meas_sat_[static_cast<std::size_t>(in_.num_meas++)] = p;
   }
   smoothed_last_ = smoothed_now;
 }
@@ -278,11 +283,11 @@ void Receiver::fill_solution() noexcept {
   f.v_acc_m = f.sigma_u_m;
   f.speed_acc_m_s = std::sqrt(qv[0][0] + qv[1][1] + qv[2][2]);
   f.time_acc_s = std::sqrt(q[3][3]) / kSpeedOfLight_m_s;
-  // Measurements were taken in PRN order, as were fix_.sats.
+  // Measurements were taken in SatId order, as were fix_.sats.
   int k = 0;
   for (int i = 0; i < f.num_sats && k < in_.num_meas; ++i) {
     SatInfo& si = f.sats[i];
-    if (si.prn != meas_prn_[k]) continue;
+    if (si.sat != meas_sat_[static_cast<std::size_t>(k)]) continue;
     si.used = f.type != FixType::kDeadReckoning && !out_.excluded[k];  // excluded: tracked, not used
     si.excluded = out_.excluded[k];
     si.residual_m = out_.residual_m[k++];

@@ -75,18 +75,19 @@ private:
 
   // Tracking.
   Acquisition acq_;
-  std::array<bool, kMaxGpsPrn> tracked_{};
-  std::array<bool, kMaxGpsPrn> usable_{};
-  std::array<double, kMaxGpsPrn> el_rad_{};  ///< elevation per PRN this epoch (channel priority)
+  // Per satellite (SatId::index()).
+  std::array<bool, kNumSats> tracked_{};
+  std::array<bool, kNumSats> usable_{};
+  std::array<double, kNumSats> el_rad_{};  ///< elevation this epoch (channel priority)
   bool started_ = false;
   time::GpsTime t_prev_;
 
   SpoofMonitor spoof_;
 
   // Carrier smoothing.
-  std::array<HatchFilter, kMaxGpsPrn> hatch_{};
-  std::array<std::uint32_t, kMaxGpsPrn> discontinuities_{};  ///< the world's count at the last update
-  std::array<bool, kMaxGpsPrn> smoothed_last_{};  ///< smoothed at the previous epoch
+  std::array<HatchFilter, kNumSats> hatch_{};
+  std::array<std::uint32_t, kNumSats> discontinuities_{};  ///< the world's count at the last update
+  std::array<bool, kNumSats> smoothed_last_{};  ///< smoothed at the previous epoch
 
   // Solution.
   Solver solver_;
@@ -94,7 +95,7 @@ private:
   SolverInput in_;
   SolverOutput snap_;  ///< the snapshot solution of the epoch
   SolverOutput out_;   ///< the reported solution (snapshot or filter)
-  std::array<int, kMaxGpsPrn> meas_prn_{};  ///< PRN of each solver measurement
+  std::array<SatId, kMaxSatsInView> meas_sat_{};  ///< satellite of each solver measurement
   bool have_fix_ = false;
   time::GpsTime last_fix_t_;
   Ecef last_pos_m_, last_vel_m_s_;

@@ -8,6 +8,7 @@
 #include "core/atmosphere/receiver_corrections.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/range.hpp"
+#include "core/common/sat_id.hpp"
 #include "core/common/violation.hpp"
 #include "core/receiver/acquisition.hpp"
 #include "core/receiver/nav_filter.hpp"
@@ -76,7 +77,7 @@ struct SolverRanges {
   static constexpr Range sigma_range_rate_m_s{0.0, 10.0, "m/s", true};
   static constexpr Range height_hold_sigma_m{0.0, 1000.0, "m", true};
   static constexpr Range residual_test_pfa{0.0, 0.5, "", false, true};
-  static constexpr Range max_exclusions{0.0, 32.0, ""};  ///< integer
+  static constexpr Range max_exclusions{0.0, kMaxSatsInView, ""};  ///< integer
   static constexpr Range max_iterations{1.0, 100.0, ""};  ///< integer
 };
 
@@ -124,11 +125,11 @@ struct ReceiverConfig {
 
 /// Valid values of ReceiverConfig's own numbers (the mask in degrees, as
 /// configured; max_channels an integer of at least 4, the satellites of a
-/// 3D fix, and at most one channel per GPS PRN).
+/// 3D fix, and at most one channel per satellite in view).
 struct ReceiverRanges {
   static constexpr Range elevation_mask_deg{0.0, 90.0, "deg", false, true};
   static constexpr Range max_pdop{1.0, 1000.0, ""};
-  static constexpr Range max_channels{4.0, static_cast<double>(kMaxGpsPrn), ""};
+  static constexpr Range max_channels{4.0, kMaxSatsInView, ""};
 };
 
 /// Throws gnssemu::Error for a value out of its range anywhere in c.

@@ -231,8 +231,8 @@ bool Solver::finish(const SolverInput& in, const Ecef& pos, double clock_m, bool
 
 void Solver::solve(const SolverInput& in, SolverOutput& out) noexcept {
   // idx[j]: index in `in` of measurement j of the set being solved.
-  std::array<int, kMaxGpsPrn> idx{};
-  for (int i = 0; i < kMaxGpsPrn; ++i) idx[i] = i;
+  std::array<int, kMaxSatsInView> idx{};
+  for (int i = 0; i < kMaxSatsInView; ++i) idx[i] = i;
   const SolverInput* cur = &in;
   Outcome o = solve_all(*cur, out);
   // Every measurement of in, prepared: measurement_model reuses them.
@@ -262,8 +262,8 @@ void Solver::solve(const SolverInput& in, SolverOutput& out) noexcept {
   }
   if (cur == &in) return;
   // Back to the indices of `in`; the excluded ones are flagged.
-  const int n_in = std::clamp(in.num_meas, 0, kMaxGpsPrn);
-  std::array<double, kMaxGpsPrn> r{};
+  const int n_in = std::clamp(in.num_meas, 0, kMaxSatsInView);
+  std::array<double, kMaxSatsInView> r{};
   out.excluded.fill(false);
   for (int i = 0; i < n_in; ++i) out.excluded[i] = true;
   for (int j = 0; j < subset_.num_meas; ++j) {
@@ -296,7 +296,7 @@ int Solver::worst_residual(const SolverOutput& out) const noexcept {
 }
 
 bool Solver::prepare(const SolverInput& in) noexcept {
-  n_ = std::clamp(in.num_meas, 0, kMaxGpsPrn);
+  n_ = std::clamp(in.num_meas, 0, kMaxSatsInView);
   corr_valid_ = false;
   for (int i = 0; i < n_; ++i) {
     const Measurement& m = in.meas[i];
@@ -322,7 +322,7 @@ bool Solver::prepare(const SolverInput& in) noexcept {
 }
 
 int Solver::measurement_model(const SolverInput& in, const Ecef& pos_m, double clock_m,
-                              std::array<MeasurementRow, kMaxGpsPrn>& rows) noexcept {
+                              std::array<MeasurementRow, kMaxSatsInView>& rows) noexcept {
   if (solved_.in == &in && solved_.t_rx_local == in.t_rx_local && solved_.n == in.num_meas) {
     // The epoch solve() just prepared: same satellites, same corrections.
     n_ = solved_.n;

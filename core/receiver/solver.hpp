@@ -7,6 +7,7 @@
 #include <array>
 
 #include "core/common/constants.hpp"
+#include "core/common/sat_id.hpp"
 #include "core/common/vec3.hpp"
 #include "core/orbit/ephemeris.hpp"
 #include "core/orbit/nav_data.hpp"
@@ -30,7 +31,7 @@ struct Measurement {
 struct SolverInput {
   time::GpsTime t_rx_local;  ///< measurement time tag on the receiver's own clock
   double doy = 1.0;          ///< day of year of t_rx_local (fractional), for the Niell mapping
-  std::array<Measurement, kMaxGpsPrn> meas{};
+  std::array<Measurement, kMaxSatsInView> meas{};
   int num_meas = 0;
   bool have_prior = false;   ///< warm start from prior_pos_m / prior_clock_m
   Ecef prior_pos_m;
@@ -53,7 +54,7 @@ struct SolverOutput {
   /// and velocity solve (m^2/s^2).
   std::array<std::array<double, 4>, 4> cov_pos{};
   std::array<std::array<double, 4>, 4> cov_vel{};
-  std::array<double, kMaxGpsPrn> residual_m{};  ///< post-fit, per measurement index
+  std::array<double, kMaxSatsInView> residual_m{};  ///< post-fit, per measurement index
   int num_used = 0;
   double range_rms_m = 0.0;
   double sigma_uere_m = 0.0;     ///< RMS of the assumed 1-sigma over used satellites
@@ -61,7 +62,7 @@ struct SolverOutput {
   int dof = 0;
   /// Fault exclusion: per measurement index, true when the residual test
   /// excluded that satellite from the solution (residual_m is then 0).
-  std::array<bool, kMaxGpsPrn> excluded{};
+  std::array<bool, kMaxSatsInView> excluded{};
   int num_excluded = 0;
 };
 
@@ -107,7 +108,7 @@ public:
   /// filter's update). Returns the rows filled (in.num_meas; 0 for malformed
   /// input).
   int measurement_model(const SolverInput& in, const Ecef& pos_m, double clock_m,
-                        std::array<MeasurementRow, kMaxGpsPrn>& rows) noexcept;
+                        std::array<MeasurementRow, kMaxSatsInView>& rows) noexcept;
 
 private:
   struct Sat {
@@ -144,7 +145,7 @@ private:
   SolverConfig cfg_;
   double max_pdop_;
   double z_pfa_;  // standard-normal upper quantile of residual_test_pfa
-  std::array<Sat, kMaxGpsPrn> sats_{};
+  std::array<Sat, kMaxSatsInView> sats_{};
   SolverInput subset_;  ///< in without the excluded measurements (fault exclusion)
   /// The input solve() last prepared whole, its satellites and corrections
   /// (measurement_model at the same epoch starts from them).
@@ -153,7 +154,7 @@ private:
     time::GpsTime t_rx_local;
     int n = 0;
   } solved_;
-  std::array<Sat, kMaxGpsPrn> solved_sats_{};
+  std::array<Sat, kMaxSatsInView> solved_sats_{};
   bool solved_corr_valid_ = false;
   Ecef solved_corr_pos_;
   int n_ = 0;

@@ -37,12 +37,12 @@ std::uint8_t SpoofMonitor::update(const Fix& fix) noexcept {
   // C/N0: simultaneous jumps and the spread across tracked satellites.
   int jumps = 0, n = 0;
   double sum = 0.0, sum2 = 0.0, el_min = kPi, el_max = -kPi;
-  std::array<double, kMaxGpsPrn> cn0{};
+  std::array<double, kNumSats> cn0{};
   for (int i = 0; i < fix.num_sats; ++i) {
     const SatInfo& s = fix.sats[i];
     if (!s.tracked) continue;
-    cn0[s.prn - 1] = s.cn0_dbhz;
-    const double before = prev_cn0_[s.prn - 1];
+    cn0[static_cast<std::size_t>(s.sat.index())] = s.cn0_dbhz;
+    const double before = prev_cn0_[static_cast<std::size_t>(s.sat.index())];
     if (before > 0.0 && s.cn0_dbhz - before >= c_.cn0_jump_db) ++jumps;
     ++n;
     sum += s.cn0_dbhz;

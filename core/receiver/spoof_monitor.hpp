@@ -13,6 +13,7 @@
 
 #include "core/common/constants.hpp"
 #include "core/common/range.hpp"
+#include "core/common/sat_id.hpp"
 #include "core/common/violation.hpp"
 #include "core/receiver/fix.hpp"
 
@@ -30,10 +31,10 @@ struct SpoofDetectionConfig {
 
 struct SpoofDetectionRanges {
   static constexpr Range cn0_jump_db{0.0, 60.0, "dB", true};
-  static constexpr Range cn0_jump_sats{1.0, 32.0, ""};
+  static constexpr Range cn0_jump_sats{1.0, kMaxSatsInView, ""};
   static constexpr Range clock_jump_m{0.0, 3.0e8, "m", true};
   static constexpr Range uniform_std_db{0.0, 20.0, "dB"};
-  static constexpr Range uniform_min_sats{2.0, 32.0, ""};
+  static constexpr Range uniform_min_sats{2.0, kMaxSatsInView, ""};
   static constexpr Range hold_s{0.0, 86400.0, "s"};
 };
 
@@ -58,7 +59,7 @@ public:
 
 private:
   SpoofDetectionConfig c_;
-  std::array<double, kMaxGpsPrn> prev_cn0_{};  ///< last epoch's C/N0 of tracked satellites (0: not tracked)
+  std::array<double, kNumSats> prev_cn0_{};  ///< last epoch's C/N0 of tracked satellites (0: not tracked)
   bool have_clock_ = false;
   time::GpsTime prev_t_;
   double prev_clock_m_ = 0.0, prev_drift_m_s_ = 0.0;

@@ -111,11 +111,11 @@ void Propagator::compute(const Enu& rx_m, std::span<const SatQuery> sats, std::s
   const bool reuse = config_.reuse_distance_m > 0.0 || config_.reuse_angle_rad > 0.0;
   const double cos_reuse = std::cos(config_.reuse_angle_rad);
   int n_blocked = 0;
-  std::array<bool, kMaxIds> fresh{};  // slot got a full search (cache anchor moves)
+  std::array<bool, kMaxSats> fresh{};  // slot got a full search (cache anchor moves)
   for (std::size_t i = 0; i < n; ++i) {
     SatPath& o = out[i];
     o = SatPath{};
-    if (i >= static_cast<std::size_t>(kMaxIds)) {
+    if (i >= static_cast<std::size_t>(kMaxSats)) {
       o.kind = PathKind::kNone;
       continue;
     }
@@ -174,7 +174,7 @@ void Propagator::compute(const Enu& rx_m, std::span<const SatQuery> sats, std::s
   }
   stats_.searched = n_blocked;
   if (!reuse) return;
-  for (std::size_t i = 0; i < n && i < static_cast<std::size_t>(kMaxIds); ++i) {
+  for (std::size_t i = 0; i < n && i < static_cast<std::size_t>(kMaxSats); ++i) {
     const int id = sats[i].id;
     if (id < 0 || id >= kMaxIds || !fresh[i]) continue;
     Cached& c = cache_[static_cast<std::size_t>(id)];

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/common/range.hpp"
+#include "core/common/sat_id.hpp"
 #include "core/common/vec3.hpp"
 #include "core/scene/scene.hpp"
 
@@ -37,8 +38,8 @@ struct SatPath {
   Enu arrival_dir;             ///< unit ENU vector from the antenna towards where the signal arrives from
 };
 
-/// One satellite to evaluate: id (e.g. PRN) in [0, Propagator::kMaxIds) keys
-/// the reuse cache; dir is the unit ENU vector from the antenna to the satellite.
+/// One satellite to evaluate: id (SatId::index()) in [0, Propagator::kMaxIds)
+/// keys the reuse cache; dir is the unit ENU vector from the antenna to the satellite.
 struct SatQuery {
   int id = 0;
   Enu dir;
@@ -84,7 +85,8 @@ struct PropagatorStats {
 
 class Propagator {
 public:
-  static constexpr int kMaxIds = 64;
+  static constexpr int kMaxIds = kNumSats;          ///< reuse-cache slots: one per satellite
+  static constexpr int kMaxSats = kMaxSatsInView;   ///< satellites per compute() call at most
   static constexpr int kMaxBounces = 32;
   static constexpr int kMaxConeSats = 32;  ///< blocked satellites given cone rays per epoch at most
 
@@ -93,7 +95,8 @@ public:
 
   /// Paths for sats (out[i] for sats[i]) seen from the antenna at rx_m (ENU
   /// m). Directions need not be normalised; ids outside [0, kMaxIds) bypass
-  /// the reuse cache. Never throws, never allocates.
+  /// the reuse cache; satellites past kMaxSats are not received. Never
+  /// throws, never allocates.
   void compute(const Enu& rx_m, std::span<const SatQuery> sats, std::span<SatPath> out) noexcept;
 
   /// Forget the reuse cache (e.g. after a jump of the vehicle).
@@ -109,6 +112,8 @@ private:
     SatPath path;
     std::array<int32_t, kMaxBounces> prims{};  ///< planes of path (NLOS)
   };
+  /// Plane sequences remembered per blocked satellite so as not to refine one twice.
+  static constexpr std::size_t kMaxSeenSequences = 32;
   struct Blocked {
     int slot;          ///< index into sats/out
     Vec3 dir;          ///< unit
@@ -116,7 +121,7 @@ private:
     double cos_match = 1.0;        ///< candidate tolerance (cos of the angle)
     std::array<int32_t, kMaxBounces> best_prims{};
     int n_seen = 0;    ///< plane sequences already refined
-    std::array<uint64_t, 32> seen{};
+    std::array<uint64_t, kMaxSeenSequences> seen{};
   };
 
   void search(const Vec3& rx_m, int n_blocked) noexcept;
@@ -140,7 +145,7 @@ private:
   std::vector<int32_t> prims_;       ///< [launch index * max_bounces + bounce] plane sequence
   std::vector<Ray> next_rays_;
   std::vector<int32_t> next_id_;
-  std::array<Blocked, kMaxIds> blocked_{};
+  std::array<Blocked, kMaxSats> blocked_{};
   std::array<Cached, kMaxIds> cache_{};
   PropagatorStats stats_;
 };

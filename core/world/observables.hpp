@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "core/common/constants.hpp"
+#include "core/common/sat_id.hpp"
 #include "core/orbit/ephemeris.hpp"
 #include "core/time/gps_time.hpp"
 
@@ -21,7 +22,7 @@ enum class AntennaState : uint8_t { kOk, kShort, kOpen };
 
 /// One satellite above the horizon with a healthy ephemeris.
 struct SatObservable {
-  int prn = 0;                          ///< 1..32
+  SatId sat;                            ///< the satellite
   const orbit::Ephemeris* eph = nullptr;  ///< the broadcast set it transmits (the receiver decodes the same)
   double az_rad = 0.0;                  ///< [0, 2pi), from true north
   double el_rad = 0.0;                  ///< (0, pi/2]
@@ -37,7 +38,7 @@ struct SatObservable {
   /// Accumulated carrier phase, L1 cycles, with the sign of the pseudorange
   /// (grows with the range); an arbitrary whole number of cycles per lock.
   double carrier_phase_cycles = 0.0;
-  /// Carrier discontinuities of this PRN so far (new locks, cycle slips): a
+  /// Carrier discontinuities of this satellite so far (new locks, cycle slips): a
   /// change since the last epoch says the phase is not continuous (as the
   /// loss-of-lock indicator of RINEX), so carrier smoothing must restart.
   /// Counted only while [signal.carrier] is enabled.
@@ -70,7 +71,7 @@ struct Observables {
   time::GpsTime t_rx_local;             ///< the epoch on the receiver's own (biased) clock
   double clock_bias_s = 0.0;            ///< true receiver clock bias, s (analysis)
   double clock_drift_s_s = 0.0;         ///< true receiver clock drift, s/s (analysis)
-  std::array<SatObservable, kMaxGpsPrn> sats{};  ///< first num_sats valid, by PRN
+  std::array<SatObservable, kMaxSatsInView> sats{};  ///< first num_sats valid, in SatId order
   int num_sats = 0;
 };
 

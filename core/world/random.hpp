@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "core/common/constants.hpp"
+#include "core/common/sat_id.hpp"
 
 namespace gnssemu::world {
 
@@ -22,28 +23,38 @@ enum class Purpose : uint64_t {
   kIonoStep = 7,
   kTropoInit = 8,  ///< zenith wet delay perturbation (stream kClockStream)
   kTropoStep = 9,
-  kMultipathInit = 10,  ///< unit multipath process per PRN
+  kMultipathInit = 10,  ///< unit multipath process per satellite
   kMultipathStep = 11,
   kGradientInit = 12,   ///< azimuthal gradient, streams kGradientStream + 0 (N) / 1 (E)
   kGradientStep = 13,
   kIonoScaleInit = 14,  ///< common relative ionospheric error, stream kIonoScaleStream
   kIonoScaleStep = 15,
-  kCarrierNoise = 16,      ///< carrier phase jitter per PRN
-  kCycleSlip = 17,         ///< slip draw per PRN (uniform) and its size
+  kCarrierNoise = 16,      ///< carrier phase jitter per satellite
+  kCycleSlip = 17,         ///< slip draw per satellite (uniform) and its size
   kCarrierAmbiguity = 18,  ///< integer ambiguity of a new carrier lock
-  kAcquisition = 19,       ///< the receiver's search times (streams kAcquisitionStream + PRN)
+  kAcquisition = 19,       ///< the receiver's search times (streams kAcquisitionStream + sat_stream)
 };
 
-/// First stream of the two azimuthal-gradient processes (after the 32 PRNs).
+/// Random stream of a satellite: (system << 8) | RINEX number. GPS is system
+/// 0, so a GPS satellite's stream is its PRN (1..32) and GPS runs keep their
+/// draws; every other system's streams lie at 256 and above (numbers < 256),
+/// clear of the receiver's own streams below.
+constexpr uint64_t sat_stream(SatId sat) noexcept {
+  return (static_cast<uint64_t>(sat.system) << 8) | static_cast<uint64_t>(sat.number);
+}
+
+/// Stream id of the receiver clock (0: no satellite has number 0).
+inline constexpr uint64_t kClockStream = 0;
+/// First stream of the two azimuthal-gradient processes: 33 and 34, above
+/// every GPS number and below the first stream of another system.
 inline constexpr uint64_t kGradientStream = 33;
 /// Stream of the common relative ionospheric error (after the gradients).
 inline constexpr uint64_t kIonoScaleStream = 35;
+static_assert(kIonoScaleStream < sat_stream(SatId(GnssSystem::kGlonass, 0)));
 
-/// Streams of the receiver's acquisition draws: this + PRN.
+/// Streams of the receiver's acquisition draws: this + sat_stream(sat) (a
+/// purpose of their own, so they cannot meet the world's draws).
 inline constexpr uint64_t kAcquisitionStream = 100;
-
-/// Stream id of the receiver clock (satellites use their PRN 1..32).
-inline constexpr uint64_t kClockStream = 0;
 
 class CounterRng {
 public:

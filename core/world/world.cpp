@@ -70,6 +70,22 @@ void World::advance(const time::GpsTime& t) noexcept {
   const bool grad_gm = grad.sigma_m > 0.0;
   const bool iono_scale = atmosphere_.iono_on() && config_.errors.iono_scale.sigma > 0.0;
   const GaussMarkovConfig iono_scale_unit{1.0, config_.errors.iono_scale.tau_s};
+  // The satellites the store holds (it may be replaced between epochs, as
+  // the daemon re-dates it); a satellite's processes start when it first
+  // appears, and then follow it every epoch whether in view or not.
+  n_sats_ = 0;
+  for (int i = 0; i < kNumSats; ++i) {
+    const SatId sat = SatId::from_index(i);
+    if (store_.count(sat) > 0) sats_[static_cast<std::size_t>(n_sats_++)] = sat;
+  }
+  const auto init_sat = [&](SatId sat) {
+    const std::size_t k = static_cast<std::size_t>(sat.index());
+    const uint64_t stream = sat_stream(sat);
+    if (mp) multipath_unit_[k] = gauss_markov_init(mp_unit, rng_.normal(stream, 0, Purpose::kMultipathInit));
+    orbit_clock_m_[k] = gauss_markov_init(gm, rng_.normal(stream, 0, Purpose::kGaussMarkovInit));
+    if (iono_gm) iono_tecu_[k] = gauss_markov_init(iono_cfg, rng_.normal(stream, 0, Purpose::kIonoInit));
+    process_started_[k] = true;
+  };
   if (!started_) {
     if (iono_scale)
       iono_scale_unit_ =
@@ -77,27 +93,28 @@ void World::advance(const time::GpsTime& t) noexcept {
     if (grad_gm)
       for (int c = 0; c < 2; ++c)
         gradient_m_[c] = gauss_markov_init(grad, rng_.normal(kGradientStream + c, 0, Purpose::kGradientInit));
-    if (mp)
-      for (int p = 1; p <= kMaxGpsPrn; ++p)
-        multipath_unit_[p - 1] = gauss_markov_init(mp_unit, rng_.normal(p, 0, Purpose::kMultipathInit));
-    for (int p = 1; p <= kMaxGpsPrn; ++p)
-      orbit_clock_m_[p - 1] = gauss_markov_init(gm, rng_.normal(p, 0, Purpose::kGaussMarkovInit));
-    if (iono_gm)
-      for (int p = 1; p <= kMaxGpsPrn; ++p)
-        iono_tecu_[p - 1] = gauss_markov_init(iono_cfg, rng_.normal(p, 0, Purpose::kIonoInit));
+    for (int i = 0; i < n_sats_; ++i) init_sat(sats_[static_cast<std::size_t>(i)]);
     if (zwd_gm) zwd_pert_m_ = gauss_markov_init(zwd_cfg, rng_.normal(kClockStream, 0, Purpose::kTropoInit));
     started_ = true;
   } else {
     double dt_s = t - t_prev_;
     if (!std::isfinite(dt_s) || dt_s < 0.0) dt_s = 0.0;  // time going back: hold the processes
     dt_s_ = dt_s;
-    for (int p = 1; p <= kMaxGpsPrn; ++p)
-      orbit_clock_m_[p - 1] =
-          gauss_markov_step(orbit_clock_m_[p - 1], dt_s, gm, rng_.normal(p, epoch_, Purpose::kGaussMarkovStep));
-    if (iono_gm && dt_s > 0.0)
-      for (int p = 1; p <= kMaxGpsPrn; ++p)
-        iono_tecu_[p - 1] =
-            gauss_markov_step(iono_tecu_[p - 1], dt_s, iono_cfg, rng_.normal(p, epoch_, Purpose::kIonoStep));
+    for (int i = 0; i < n_sats_; ++i) {
+      const SatId sat = sats_[static_cast<std::size_t>(i)];
+      const std::size_t k = static_cast<std::size_t>(sat.index());
+      if (!process_started_[k]) {
+        init_sat(sat);
+        continue;
+      }
+      const uint64_t stream = sat_stream(sat);
+      orbit_clock_m_[k] = gauss_markov_step(orbit_clock_m_[k], dt_s, gm, rng_.normal(stream, epoch_, Purpose::kGaussMarkovStep));
+      if (iono_gm && dt_s > 0.0)
+        iono_tecu_[k] = gauss_markov_step(iono_tecu_[k], dt_s, iono_cfg, rng_.normal(stream, epoch_, Purpose::kIonoStep));
+      if (mp && dt_s > 0.0)
+        multipath_unit_[k] =
+            gauss_markov_step(multipath_unit_[k], dt_s, mp_unit, rng_.normal(stream, epoch_, Purpose::kMultipathStep));
+    }
     if (grad_gm && dt_s > 0.0)
       for (int c = 0; c < 2; ++c)
         gradient_m_[c] = gauss_markov_step(gradient_m_[c], dt_s, grad,
@@ -105,10 +122,6 @@ void World::advance(const time::GpsTime& t) noexcept {
     if (iono_scale && dt_s > 0.0)
       iono_scale_unit_ = gauss_markov_step(iono_scale_unit_, dt_s, iono_scale_unit,
                                            rng_.normal(kIonoScaleStream, epoch_, Purpose::kIonoScaleStep));
-    if (mp && dt_s > 0.0)
-      for (int p = 1; p <= kMaxGpsPrn; ++p)
-        multipath_unit_[p - 1] = gauss_markov_step(multipath_unit_[p - 1], dt_s, mp_unit,
-                                                   rng_.normal(p, epoch_, Purpose::kMultipathStep));
     if (zwd_gm && dt_s > 0.0)
       zwd_pert_m_ = gauss_markov_step(zwd_pert_m_, dt_s, zwd_cfg, rng_.normal(kClockStream, epoch_, Purpose::kTropoStep));
     clock_.advance(dt_s, rng_.normal(kClockStream, epoch_, Purpose::kClockDrift));
@@ -132,15 +145,18 @@ void World::gradient_now(const time::GpsTime& t, double lon_rad) noexcept {
 // above the mask are listed in above_.
 void World::sky_stage(const time::GpsTime& t, const Truth& truth, const Lla& rx_lla, double mask_rad) noexcept {
   n_above_ = 0;
-  for (int p = 1; p <= kMaxGpsPrn; ++p) {
-    const orbit::Ephemeris* eph = store_.select(p, t);
+  for (int i = 0; i < n_sats_ && n_in_sky_ < kMaxSatsInView; ++i) {
+    const SatId sat = sats_[static_cast<std::size_t>(i)];
+    const orbit::Ephemeris* eph = store_.select(sat, t);
     if (eph == nullptr) continue;
     const SkySat s = sky_sat(*eph, t, truth.pos_m, rx_lla, truth.vel_m_s);
     if (!(s.el_rad > 0.0)) continue;
-    sky_[p - 1] = s;
-    eph_[p - 1] = eph;
-    in_sky_[p - 1] = true;
-    if (s.el_rad >= mask_rad) above_[n_above_++] = p;
+    const std::size_t k = static_cast<std::size_t>(sat.index());
+    sky_[k] = s;
+    eph_[k] = eph;
+    scene_path_[k] = scene::SatPath{};
+    in_sky_[static_cast<std::size_t>(n_in_sky_++)] = sat;
+    if (s.el_rad >= mask_rad) above_[static_cast<std::size_t>(n_above_++)] = sat;
   }
 }
 
@@ -148,7 +164,7 @@ void World::sky_stage(const time::GpsTime& t, const Truth& truth, const Lla& rx_
 // above the mask. Slow terms come through the per-satellite cache; the
 // Gauss–Markov perturbations are added every epoch.
 void World::propagation_stage(const time::GpsTime& t, const Lla& rx_lla, const Ecef& rx_pos_m) noexcept {
-  for (int i = 0; i < n_above_; ++i) path_[above_[i] - 1] = PathEffects{};
+  for (int i = 0; i < n_above_; ++i) path_[static_cast<std::size_t>(above_[i].index())] = PathEffects{};
   if (!atmosphere_.any_on()) return;
   // Cached terms belong to a place: moving far enough (height matters most,
   // the 5-degree tropo delay changes ~3 mm per metre) starts the cache over.
@@ -163,16 +179,17 @@ void World::propagation_stage(const time::GpsTime& t, const Lla& rx_lla, const E
   const double doy = atmosphere_.tropo_on() ? t.fractional_day_of_year() : 1.0;
   const double iono_factor = 1.0 + config_.errors.iono_scale.sigma * iono_scale_unit_;
   for (int i = 0; i < n_above_; ++i) {
-    const int p = above_[i];
-    const SkySat& s = sky_[p - 1];
+    const SatId sat = above_[i];
+    const std::size_t k = static_cast<std::size_t>(sat.index());
+    const SkySat& s = sky_[k];
     const SlowTerms v =
-        cache_.get(p, t, [&] {
+        cache_.get(sat, t, [&] {
           ++atmosphere_evaluations_;
           return atmosphere_.slow_terms(rx_lla, s.az_rad, s.el_rad, tow_s, doy);
         });
-    PathEffects& e = path_[p - 1];
+    PathEffects& e = path_[k];
     if (atmosphere_.iono_on())
-      e.iono_m = std::max(v[kIonoM] * iono_factor + iono_tecu_[p - 1] * v[kIonoMPerTecu], 0.0);
+      e.iono_m = std::max(v[kIonoM] * iono_factor + iono_tecu_[k] * v[kIonoMPerTecu], 0.0);
     if (atmosphere_.tropo_on()) e.tropo_m = std::max(v[kTropoM] + zwd_pert_m_ * v[kNmfWet], 0.0);
     e.delay_m = e.iono_m + e.tropo_m;
     e.loss_db = v[kAttenDb];
@@ -182,19 +199,20 @@ void World::propagation_stage(const time::GpsTime& t, const Lla& rx_lla, const E
 // Stage 3b (propagation, buildings): direct, reflected only (extra path
 // length and reflection loss join the atmosphere's), or not received.
 void World::scene_stage(const Ecef& rx_pos_m) noexcept {
-  scene_path_.fill(scene::SatPath{});
   if (!propagator_) return;
   for (int i = 0; i < n_above_; ++i) {
-    const SkySat& s = sky_[above_[i] - 1];
-    scene_query_[i] = scene::SatQuery{above_[i], scene_frame_->vector_to_enu((s.pos_m - rx_pos_m) / s.range_m)};
+    const SkySat& s = sky_[static_cast<std::size_t>(above_[i].index())];
+    scene_query_[i] =
+        scene::SatQuery{above_[i].index(), scene_frame_->vector_to_enu((s.pos_m - rx_pos_m) / s.range_m)};
   }
   const auto n = static_cast<std::size_t>(n_above_);
   propagator_->compute(scene_frame_->to_enu(rx_pos_m), std::span<const scene::SatQuery>(scene_query_.data(), n),
                        std::span<scene::SatPath>(scene_out_.data(), n));
   for (int i = 0; i < n_above_; ++i) {
     const scene::SatPath& sp = scene_out_[i];
-    scene_path_[above_[i] - 1] = sp;
-    PathEffects& e = path_[above_[i] - 1];
+    const std::size_t k = static_cast<std::size_t>(above_[i].index());
+    scene_path_[k] = sp;
+    PathEffects& e = path_[k];
     if (sp.kind == scene::PathKind::kNone) {
       e.received = false;
     } else if (sp.kind == scene::PathKind::kNlos) {
@@ -208,66 +226,69 @@ void World::scene_stage(const Ecef& rx_pos_m) noexcept {
 // budget (0 when nothing is received), or the fixed elevation curve when the
 // signal stage is off.
 void World::signal_stage() noexcept {
-  cn0_dbhz_.fill(0.0);
   for (int i = 0; i < n_above_; ++i) {
-    const int p = above_[i];
-    const SkySat& s = sky_[p - 1];
-    const PathEffects& e = path_[p - 1];
+    const std::size_t k = static_cast<std::size_t>(above_[i].index());
+    const SkySat& s = sky_[k];
+    const PathEffects& e = path_[k];
     double cn0 = 0.0;
     if (!config_.signal.enabled) {
       const double one_m_sin = 1.0 - std::sin(s.el_rad);
-      cn0 = config_.nominal_cn0_dbhz - kCn0ElevationLoss_db * one_m_sin * one_m_sin - scene_path_[p - 1].loss_db;
+      cn0 = config_.nominal_cn0_dbhz - kCn0ElevationLoss_db * one_m_sin * one_m_sin - scene_path_[k].loss_db;
     } else if (e.received) {
       cn0 = link_.cn0_dbhz(s.range_m, s.el_rad, e.loss_db);
     }
-    cn0_dbhz_[p - 1] = cn0;
+    cn0_dbhz_[k] = cn0;
   }
 }
 
-// Stage 5 (observables): every satellite in view (PRN order) with its path
+// Stage 5 (observables): every satellite in view (SatId order) with its path
 // truth; pseudorange and Doppler of every received one.
 void World::observables_stage(const time::GpsTime& t, uint64_t epoch, double mask_rad) noexcept {
   const double rx_clock_s = clock_.bias_s();
   const double rx_drift_s_s = clock_.drift_s_s();
   obs_.t_rx_local = t + rx_clock_s;
-  for (int p = 1; p <= kMaxGpsPrn; ++p) {
-    if (!in_sky_[p - 1]) continue;
-    const SkySat& s = sky_[p - 1];
-    SatObservable& o = obs_.sats[obs_.num_sats++];
+  for (int i = 0; i < n_in_sky_; ++i) {
+    const SatId sat = in_sky_[static_cast<std::size_t>(i)];
+    const std::size_t k = static_cast<std::size_t>(sat.index());
+    const uint64_t stream = sat_stream(sat);
+    const SkySat& s = sky_[k];
+    SatObservable& o = obs_.sats[static_cast<std::size_t>(obs_.num_sats++)];
     o = SatObservable{};
-    o.prn = p;
-    o.eph = eph_[p - 1];
+    o.sat = sat;
+    o.eph = eph_[k];
     o.az_rad = s.az_rad;
     o.el_rad = s.el_rad;
     o.above_mask = s.el_rad >= mask_rad;
     if (!o.above_mask) continue;
-    const scene::SatPath& sp = scene_path_[p - 1];
+    const scene::SatPath& sp = scene_path_[k];
     o.blocked = sp.kind == scene::PathKind::kNone;
     o.nlos = sp.kind == scene::PathKind::kNlos;
     o.bounces = o.nlos ? sp.bounces : 0;
     o.nlos_delay_m = o.nlos ? sp.extra_delay_m : 0.0;
-    o.received = path_[p - 1].received;
-    o.cn0_dbhz = cn0_dbhz_[p - 1];
+    o.received = path_[k].received;
+    o.cn0_dbhz = cn0_dbhz_[k];
     if (!o.received) continue;
     const orbit::Ephemeris* eph = o.eph;
     const double cn0 = o.cn0_dbhz;
-    const double thermal_m = noise_.code_sigma_m(cn0) * rng_.normal(p, epoch, Purpose::kThermal);
+    const double thermal_m = noise_.code_sigma_m(cn0) * rng_.normal(stream, epoch, Purpose::kThermal);
     const double multipath_m =
         config_.errors.multipath.sigma_m > 0.0
-            ? config_.errors.multipath.sigma_m / multipath_sin_el(s.el_rad) * multipath_unit_[p - 1]
+            ? config_.errors.multipath.sigma_m / multipath_sin_el(s.el_rad) * multipath_unit_[k]
             : 0.0;
     const double gradient_m = gradient_now_m_[0] * std::cos(s.az_rad) + gradient_now_m_[1] * std::sin(s.az_rad);
-    const double rr_noise_m_s = noise_.range_rate_sigma_m_s(cn0) * rng_.normal(p, epoch, Purpose::kDoppler);
+    const double rr_noise_m_s = noise_.range_rate_sigma_m_s(cn0) * rng_.normal(stream, epoch, Purpose::kDoppler);
     // The satellite's actual L1 clock = broadcast (dt_sv - TGD) + residual.
     const double pr_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - eph->tgd_s)) +
-                        orbit_clock_m_[p - 1] + path_[p - 1].delay_m + thermal_m + multipath_m + gradient_m;
+                        orbit_clock_m_[k] + path_[k].delay_m + thermal_m + multipath_m + gradient_m;
     const double rr_m_s = s.range_rate_m_s + kSpeedOfLight_m_s * (rx_drift_s_s - s.clk_drift_s_s) + rr_noise_m_s;
     o.pseudorange_m = pr_m;
     o.doppler_hz = -rr_m_s / kL1Wavelength_m;
     carrier_observable(o, s, epoch, rx_clock_s, gradient_m);
   }
-  for (int p = 1; p <= kMaxGpsPrn; ++p)
-    if (!carrier_seen_[p - 1]) carrier_[p - 1].continuous = false;
+  for (int i = 0; i < n_sats_; ++i) {
+    const std::size_t k = static_cast<std::size_t>(sats_[static_cast<std::size_t>(i)].index());
+    if (!carrier_seen_[k]) carrier_[k].continuous = false;
+  }
 }
 
 // The carrier range has the code's delays except the ionosphere's, which
@@ -275,9 +296,10 @@ void World::observables_stage(const time::GpsTime& t, uint64_t epoch, double mas
 // thermal code noise are not in it, the NLOS path length is.
 void World::carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch, double rx_clock_s,
                                double gradient_m) noexcept {
-  const int p = o.prn;
-  CarrierTrack& c = carrier_[p - 1];
-  carrier_seen_[p - 1] = true;
+  const std::size_t k = static_cast<std::size_t>(o.sat.index());
+  const uint64_t stream = sat_stream(o.sat);
+  CarrierTrack& c = carrier_[k];
+  carrier_seen_[k] = true;
   const CarrierConfig& cc = config_.carrier;
   // No carrier tracking: no phase, so no lock breaks or slips to model.
   if (!cc.enabled) return;
@@ -293,14 +315,14 @@ void World::carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch
   if (!restart) {
     if (o.nlos != c.nlos) {
       restart = true;  // a different path: the loop re-locks on it
-    } else if (rng_.uniform(p, epoch, Purpose::kCycleSlip, 0) <
+    } else if (rng_.uniform(stream, epoch, Purpose::kCycleSlip, 0) <
                cycle_slip_probability(sigma_rad, cc.pll_bandwidth_hz, dt_s_)) {
-      slip_cycles = rng_.uniform(p, epoch, Purpose::kCycleSlip, 1) < 0.5 ? -0.5 : 0.5;
+      slip_cycles = rng_.uniform(stream, epoch, Purpose::kCycleSlip, 1) < 0.5 ? -0.5 : 0.5;
     }
   }
   if (restart) {
     // A new lock starts from an arbitrary whole number of cycles.
-    c.offset_cycles = std::floor(2.0e5 * rng_.uniform(p, epoch, Purpose::kCarrierAmbiguity, 0)) - 1.0e5;
+    c.offset_cycles = std::floor(2.0e5 * rng_.uniform(stream, epoch, Purpose::kCarrierAmbiguity, 0)) - 1.0e5;
     ++c.discontinuities;
   } else if (slip_cycles != 0.0) {
     c.offset_cycles += slip_cycles;
@@ -311,10 +333,11 @@ void World::carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch
   c.range_m = s.range_m;
   c.range_rate_m_s = s.range_rate_m_s;
   o.carrier_discontinuities = c.discontinuities;
-  const PathEffects& e = path_[p - 1];
-  const double phase_noise_m = sigma_rad / (2.0 * kPi) * kL1Wavelength_m * rng_.normal(p, epoch, Purpose::kCarrierNoise);
+  const PathEffects& e = path_[k];
+  const double phase_noise_m =
+      sigma_rad / (2.0 * kPi) * kL1Wavelength_m * rng_.normal(stream, epoch, Purpose::kCarrierNoise);
   const double carrier_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - o.eph->tgd_s)) +
-                           orbit_clock_m_[p - 1] + e.delay_m - 2.0 * e.iono_m + gradient_m + phase_noise_m;
+                           orbit_clock_m_[k] + e.delay_m - 2.0 * e.iono_m + gradient_m + phase_noise_m;
   o.carrier_valid = true;
   o.carrier_phase_cycles = carrier_m / kL1Wavelength_m + c.offset_cycles;
 }
@@ -330,7 +353,8 @@ const Observables& World::step(const time::GpsTime& t, const Truth& truth, doubl
   obs_.clock_bias_s = clock_.bias_s();
   obs_.clock_drift_s_s = clock_.drift_s_s();
   obs_.num_sats = 0;
-  in_sky_.fill(false);
+  n_in_sky_ = 0;
+  n_above_ = 0;
   carrier_seen_.fill(false);
   obs_.antenna_connected = truth.valid && truth.pos_m.finite() && truth.vel_m_s.finite();
   if (!obs_.antenna_connected) {

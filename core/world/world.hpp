@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "core/atmosphere/term_cache.hpp"
+#include "core/common/sat_id.hpp"
 #include "core/common/vec3.hpp"
 #include "core/geo/local_frame.hpp"
 #include "core/orbit/ephemeris_store.hpp"
@@ -62,9 +63,9 @@ public:
   /// The scene stage (null without a scene); its stats() describe the last epoch.
   const scene::Propagator* propagator() const noexcept { return propagator_.get(); }
 
-  /// The propagation effects on prn (1..32) at the last epoch with truth
+  /// The propagation effects on sat (valid()) at the last epoch with truth
   /// (zero when the satellite was not above the mask).
-  const PathEffects& path_effects(int prn) const noexcept { return path_[static_cast<std::size_t>(prn - 1)]; }
+  const PathEffects& path_effects(SatId sat) const noexcept { return path_[static_cast<std::size_t>(sat.index())]; }
   /// Evaluations of the slow atmospheric terms so far (one per satellite and
   /// refresh; every satellite every epoch without a cache). For benchmarks.
   long atmosphere_refreshes() const noexcept { return atmosphere_evaluations_; }
@@ -96,11 +97,14 @@ private:
   // Error processes.
   CounterRng rng_;
   ReceiverClock clock_;
-  std::array<double, kMaxGpsPrn> orbit_clock_m_{};  ///< Gauss–Markov state per PRN, m
-  std::array<double, kMaxGpsPrn> multipath_unit_{};  ///< unit multipath Gauss–Markov state per PRN
+  // Per satellite (by SatId::index()); the processes of the satellites in
+  // the store only (sats_), the others are never observed.
+  std::array<double, kNumSats> orbit_clock_m_{};  ///< Gauss–Markov state, m
+  std::array<double, kNumSats> multipath_unit_{};  ///< unit multipath Gauss–Markov state
+  std::array<bool, kNumSats> process_started_{};  ///< the processes above were initialised
   std::array<double, 2> gradient_m_{};  ///< azimuthal gradient processes g_N, g_E, m
   std::array<double, 2> gradient_now_m_{};  ///< G_N, G_E this epoch (mean + daily cycle + process), m
-  std::array<double, kMaxGpsPrn> iono_tecu_{};      ///< vertical TEC perturbation per line of sight, TECU
+  std::array<double, kNumSats> iono_tecu_{};        ///< vertical TEC perturbation per line of sight, TECU
   double iono_scale_unit_ = 0.0;                    ///< unit process of the common relative iono error
   double zwd_pert_m_ = 0.0;                         ///< zenith wet delay perturbation, m
   uint64_t epoch_ = 0;          ///< step() calls so far (random-stream counter)
@@ -108,10 +112,13 @@ private:
   time::GpsTime t_prev_;
   double dt_s_ = 0.0;           ///< time since the previous step, s (0 at the first)
   // Sky stage.
-  std::array<SkySat, kMaxGpsPrn> sky_{};
-  std::array<const orbit::Ephemeris*, kMaxGpsPrn> eph_{};
-  std::array<bool, kMaxGpsPrn> in_sky_{};
-  std::array<int, kMaxGpsPrn> above_{};             ///< PRNs above the mask this epoch
+  std::array<SatId, kNumSats> sats_{};              ///< satellites with an ephemeris in the store, in SatId order
+  int n_sats_ = 0;
+  std::array<SkySat, kNumSats> sky_{};
+  std::array<const orbit::Ephemeris*, kNumSats> eph_{};
+  std::array<SatId, kMaxSatsInView> in_sky_{};      ///< satellites above the horizon this epoch, in SatId order
+  int n_in_sky_ = 0;
+  std::array<SatId, kMaxSatsInView> above_{};       ///< satellites above the mask this epoch
   int n_above_ = 0;
   // Propagation stage.
   AtmospherePropagation atmosphere_;
@@ -120,19 +127,19 @@ private:
   double cache_height_m_ = 0.0;
   bool cache_pos_valid_ = false;
   long atmosphere_evaluations_ = 0;
-  std::array<PathEffects, kMaxGpsPrn> path_{};
+  std::array<PathEffects, kNumSats> path_{};
   // Scene (optional part of the propagation stage).
   std::unique_ptr<scene::Propagator> propagator_;
   std::unique_ptr<geo::LocalFrame> scene_frame_;
-  std::array<scene::SatQuery, kMaxGpsPrn> scene_query_{};
-  std::array<scene::SatPath, kMaxGpsPrn> scene_out_{};
-  std::array<scene::SatPath, kMaxGpsPrn> scene_path_{};  ///< per PRN, this epoch
+  std::array<scene::SatQuery, kMaxSatsInView> scene_query_{};
+  std::array<scene::SatPath, kMaxSatsInView> scene_out_{};
+  std::array<scene::SatPath, kNumSats> scene_path_{};  ///< per satellite, this epoch
   // Signal stage.
   signal::LinkBudgetModel link_;
-  std::array<double, kMaxGpsPrn> cn0_dbhz_{};
+  std::array<double, kNumSats> cn0_dbhz_{};
   // Carrier (observables stage).
-  std::array<CarrierTrack, kMaxGpsPrn> carrier_{};
-  std::array<bool, kMaxGpsPrn> carrier_seen_{};  ///< received this epoch
+  std::array<CarrierTrack, kNumSats> carrier_{};
+  std::array<bool, kNumSats> carrier_seen_{};  ///< received this epoch
 };
 
 }  // namespace gnssemu::world

@@ -18,7 +18,7 @@ using gnssemu::fuzz::expect;
 constexpr int kReferenceWeek = 2190;  // 2022-01-01, the shipped nav file's week
 
 void check(const orbit::AlmanacEntry& a) {
-  expect(a.prn >= 1 && a.prn <= kMaxGpsPrn, "almanac PRN 1..32");
+  expect(a.sat.prn() >= 1 && a.sat.prn() <= system_size(GnssSystem::kGps), "almanac PRN 1..32");
   for (double x : {a.e, a.toa.tow_s(), a.i0_rad, a.omega_dot_rad_s, a.sqrt_a_sqrtm, a.omega0_rad, a.omega_rad,
                    a.m0_rad, a.af0_s, a.af1_s_s}) {
     expect(std::isfinite(x), "almanac fields finite");

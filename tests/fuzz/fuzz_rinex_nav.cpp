@@ -25,7 +25,7 @@ bool finite_all(std::initializer_list<double> v) {
 }
 
 void check(const orbit::Ephemeris& e) {
-  expect(e.prn >= 1 && e.prn <= kMaxGpsPrn, "ephemeris PRN 1..32");
+  expect(e.sat.prn() >= 1 && e.sat.prn() <= system_size(GnssSystem::kGps), "ephemeris PRN 1..32");
   expect(finite_all({e.toc.tow_s(), e.toe.tow_s(), e.af0_s, e.af1_s_s, e.af2_s_s2, e.crs_m, e.crc_m, e.cus_rad,
                      e.cuc_rad, e.cis_rad, e.cic_rad, e.delta_n_rad_s, e.m0_rad, e.e, e.sqrt_a_sqrtm, e.omega0_rad,
                      e.i0_rad, e.omega_rad, e.omega_dot_rad_s, e.idot_rad_s, e.tgd_s, e.sv_accuracy_m,
@@ -52,8 +52,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const orbit::EphemerisStore store(nav.ephemerides);
   if (store.size() == 0) return 0;
   const time::GpsTime t = nav.ephemerides.front().toe;
-  for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
-    if (const orbit::Ephemeris* e = store.select(prn, t)) expect(e->prn == prn, "store selects the asked PRN");
+  for (int prn = 1; prn <= system_size(GnssSystem::kGps); ++prn) {
+    if (const orbit::Ephemeris* e = store.select(SatId::gps(prn), t)) expect(e->sat.prn() == prn, "store selects the asked PRN");
   }
   return 0;
 }

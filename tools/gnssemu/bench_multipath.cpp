@@ -82,8 +82,8 @@ double thread_cpu_us() {
 struct FixTrace {
   std::vector<Ecef> pos;
   std::vector<bool> ok;
-  std::vector<std::array<scene::PathKind, kMaxGpsPrn>> kind;
-  std::vector<std::array<double, kMaxGpsPrn>> delay;
+  std::vector<std::array<scene::PathKind, kNumSats>> kind;  ///< per epoch, by SatId::index()
+  std::vector<std::array<double, kNumSats>> delay;
 };
 
 FixTrace run_receiver(const orbit::EphemerisStore& store, const std::vector<Epoch>& epochs, const scene::Scene& s,
@@ -99,14 +99,15 @@ FixTrace run_receiver(const orbit::EphemerisStore& store, const std::vector<Epoc
     const receiver::Fix& f = rx.step(e.t, truth);
     tr.ok.push_back(f.type == receiver::FixType::k3D);
     tr.pos.push_back(f.pos_m);
-    std::array<scene::PathKind, kMaxGpsPrn> k{};
-    std::array<double, kMaxGpsPrn> d{};
+    std::array<scene::PathKind, kNumSats> k{};
+    std::array<double, kNumSats> d{};
     k.fill(scene::PathKind::kLos);
     for (int i = 0; i < f.num_sats; ++i) {
       const receiver::SatInfo& si = f.sats[i];
       if (!si.above_mask) continue;
-      k[si.prn - 1] = si.blocked ? scene::PathKind::kNone : si.nlos ? scene::PathKind::kNlos : scene::PathKind::kLos;
-      d[si.prn - 1] = si.nlos_delay_m;
+      const std::size_t j = static_cast<std::size_t>(si.sat.index());
+      k[j] = si.blocked ? scene::PathKind::kNone : si.nlos ? scene::PathKind::kNlos : scene::PathKind::kLos;
+      d[j] = si.nlos_delay_m;
     }
     tr.kind.push_back(k);
     tr.delay.push_back(d);
@@ -175,12 +176,13 @@ void run_bench_multipath(const BenchMultipathArgs& a, std::ostream& out, std::os
   int sat_sum = 0;
   for (Epoch& e : epochs) {
     const Lla lla = geo::lla_from_ecef(e.rx_ecef);
-    for (int p = 1; p <= kMaxGpsPrn; ++p) {
-      const orbit::Ephemeris* eph = store.select(p, e.t);
+    for (int i = 0; i < kNumSats; ++i) {
+      const SatId sat = SatId::from_index(i);
+      const orbit::Ephemeris* eph = store.select(sat, e.t);
       if (eph == nullptr) continue;
       const world::SkySat s = world::sky_sat(*eph, e.t, e.rx_ecef, lla, Ecef());
       if (!(s.el_rad >= mask_rad)) continue;
-      e.sats.push_back({p, frame.vector_to_enu((s.pos_m - e.rx_ecef) / s.range_m)});
+      e.sats.push_back({sat.index(), frame.vector_to_enu((s.pos_m - e.rx_ecef) / s.range_m)});
     }
     sat_sum += static_cast<int>(e.sats.size());
   }
@@ -204,8 +206,8 @@ void run_bench_multipath(const BenchMultipathArgs& a, std::ostream& out, std::os
     int fixes = 0;
     for (std::size_t k = 0; k < epochs.size(); ++k) {
       for (const scene::SatQuery& q : epochs[k].sats) {
-        nlos += reference.kind[k][q.id - 1] == scene::PathKind::kNlos;
-        none += reference.kind[k][q.id - 1] == scene::PathKind::kNone;
+        nlos += reference.kind[k][static_cast<std::size_t>(q.id)] == scene::PathKind::kNlos;
+        none += reference.kind[k][static_cast<std::size_t>(q.id)] == scene::PathKind::kNone;
       }
       if (reference.ok[k]) {
         const Enu d = frame.vector_to_enu(reference.pos[k] - epochs[k].rx_ecef);
@@ -263,7 +265,7 @@ void run_bench_multipath(const BenchMultipathArgs& a, std::ostream& out, std::os
     double rays_total = 0.0;
     for (int r = 0; r < std::max(1, a.repeats); ++r) {
       scene::Propagator prop(buildings, cfg);
-      std::vector<scene::SatPath> paths(kMaxGpsPrn);
+      std::vector<scene::SatPath> paths(kMaxSatsInView);
       std::vector<double> per_epoch_us(epochs.size());
       double sum_us = 0.0;
       rays_total = 0.0;
@@ -289,7 +291,7 @@ void run_bench_multipath(const BenchMultipathArgs& a, std::ostream& out, std::os
     int pn = 0;
     for (std::size_t k = 0; k < epochs.size(); ++k) {
       for (const scene::SatQuery& q : epochs[k].sats) {
-        const int i = q.id - 1;
+        const auto i = static_cast<std::size_t>(q.id);
         ++total;
         if (tr.kind[k][i] != reference.kind[k][i]) {
           ++mis;

@@ -173,9 +173,10 @@ std::string calibration_toml(const CalibrationResult& r, const std::string& out_
 
 void write_residuals_csv(const CalibrationResult& r, std::ostream& out) {
   const bool pooled = r.days.size() > 1;
-  out << "tow_s,prn,el_deg,az_deg,residual_m,cn0_dbhz,klobuchar_m,nmf_wet" << (pooled ? ",day" : "") << '\n';
+  out << "tow_s,sat,prn,el_deg,az_deg,residual_m,cn0_dbhz,klobuchar_m,nmf_wet" << (pooled ? ",day" : "") << '\n';
   for (const Residual& x : r.residual_rows) {
-    out << fmt::format("{:.1f},{},{:.3f},{:.3f},{:.4f},{:.2f},{:.4f},{:.4f}", x.tow_s, x.prn, x.el_rad / kDegToRad,
+    out << fmt::format("{:.1f},{},{},{:.3f},{:.3f},{:.4f},{:.2f},{:.4f},{:.4f}", x.tow_s, sat_name(x.sat).data(),
+                       x.sat.prn(), x.el_rad / kDegToRad,
                        x.az_rad / kDegToRad, x.value_m, x.cn0_dbhz, x.klobuchar_m, x.nmf_wet);
     if (pooled) out << ',' << x.day + 1;
     out << '\n';

@@ -57,7 +57,7 @@ world::WorldConfig fitted_world(const CalibrationResult& r, const world::WorldCo
 /// headed by comments with the fit.
 std::string calibration_toml(const CalibrationResult& r, const std::string& out_dir);
 
-/// `tow_s,prn,el_deg,az_deg,residual_m,cn0_dbhz,klobuchar_m,nmf_wet` rows.
+/// `tow_s,sat,prn,el_deg,az_deg,residual_m,cn0_dbhz,klobuchar_m,nmf_wet` rows.
 void write_residuals_csv(const CalibrationResult& r, std::ostream& out);
 
 /// `parameter,value,unit` rows of the fit and the data's SPP statistics

@@ -83,11 +83,11 @@ NoiseFit fit_gauss_markov(const std::vector<double>& acov, double step_s, double
 }
 
 std::vector<double> pooled_autocovariance(const std::vector<Residual>& res, int max_lag) {
-  std::map<int, std::map<int, double>> by_prn;  // prn -> grid -> value
-  for (const Residual& r : res) by_prn[r.prn][r.grid] = r.value_m;
+  std::map<SatId, std::map<int, double>> by_sat;  // satellite -> grid -> value
+  for (const Residual& r : res) by_sat[r.sat][r.grid] = r.value_m;
   std::vector<double> sum(static_cast<std::size_t>(max_lag + 1), 0.0);
   std::vector<double> cnt(sum.size(), 0.0);
-  for (const auto& [prn, series] : by_prn) {
+  for (const auto& [sat, series] : by_sat) {
     for (const auto& [g, v] : series) {
       for (int k = 0; k <= max_lag; ++k) {
         const auto it = series.find(g + k);
@@ -225,10 +225,10 @@ ProcessFit fit_processes(const std::vector<Residual>& res, const signal::LinkBud
   struct Row {
     double value_m, white_m2, mp, iono;
   };
-  std::map<int, std::map<int, Row>> by_prn;  // prn -> grid -> regressors (grids of days never meet)
+  std::map<SatId, std::map<int, Row>> by_sat;  // satellite -> grid -> regressors (grids of days never meet)
   for (const Residual& r : res) {
     const double s = signal::dll_thermal_sigma_m(budget.cn0_dbhz(r.range_m, r.el_rad, 0.0), unit);
-    by_prn[r.prn][r.grid] =
+    by_sat[r.sat][r.grid] =
         Row{r.value_m, s * s, multipath_factor(r.el_rad), m_per_tecu * atmosphere::iono_obliquity_factor(r.el_rad)};
   }
   // Lags: every step to 10 min, then sparser to 4 h (long lags are many and alike).
@@ -239,7 +239,7 @@ ProcessFit fit_processes(const std::vector<Residual>& res, const signal::LinkBud
   std::vector<Mat> a(lags.size(), Mat{});
   std::vector<Vec> b(lags.size(), Vec{});
   ProcessFit f;
-  for (const auto& [prn, series] : by_prn) {
+  for (const auto& [sat, series] : by_sat) {
     for (const auto& [g, r1] : series) {
       for (std::size_t li = 0; li < lags.size(); ++li) {
         const auto it = series.find(g + lags[li]);
@@ -313,10 +313,10 @@ void fit_common_processes(const std::vector<CommonEpoch>& epochs, const std::vec
   std::array<std::vector<double>, 2> acov{std::vector<double>(n_lags, 0.0), std::vector<double>(n_lags, 0.0)};
   std::array<std::vector<double>, 2> leak = acov;
   std::vector<double> cnt(n_lags, 0.0);
-  std::array<int, kMaxGpsPrn + 1> index_of{};  // PRN -> residual index in the later epoch, -1: absent
+  std::array<int, kNumSats> index_of{};  // SatId::index() -> residual index in the later epoch, -1: absent
   for (const CommonEpoch& h : epochs) {
     index_of.fill(-1);
-    for (std::size_t b = h.first; b < h.last; ++b) index_of[static_cast<std::size_t>(res[b].prn)] = static_cast<int>(b);
+    for (std::size_t b = h.first; b < h.last; ++b) index_of[static_cast<std::size_t>(res[b].sat.index())] = static_cast<int>(b);
     for (int k = 0; k <= max_lag; ++k) {
       const auto it = by_grid.find(h.grid - k);
       if (it == by_grid.end()) continue;
@@ -326,7 +326,7 @@ void fit_common_processes(const std::vector<CommonEpoch>& epochs, const std::vec
       acov[1][ks] += 0.5 * (g.value[1] * h.value[1] + g.value[2] * h.value[2]);
       double l0 = 0.0, l1 = 0.0;
       for (std::size_t a = g.first; a < g.last; ++a) {
-        const int b = index_of[static_cast<std::size_t>(res[a].prn)];
+        const int b = index_of[static_cast<std::size_t>(res[a].sat.index())];
         if (b < 0) continue;
         const auto& wa = g.weights[a - g.first];
         const auto& wb = h.weights[static_cast<std::size_t>(b) - h.first];

@@ -45,7 +45,8 @@ std::vector<Residual> station_residuals(const CalibrationInput& in, const orbit:
       if (s.sat.system != GnssSystem::kGps) continue;  // the GPS error model
       const observation::ObsValue* pr = s.get(c1c);
       if (pr == nullptr) continue;
-      const orbit::Ephemeris* eph = store.select(s.sat.number, e.t);
+      const SatId sat = s.sat;
+      const orbit::Ephemeris* eph = store.select(sat, e.t);
       if (eph == nullptr) continue;
       const orbit::SatState st = receiver::transmit_state(*eph, e.t, pr->value).state;
       // Sagnac at the known station: rotate by the geometric flight time (the
@@ -61,7 +62,7 @@ std::vector<Residual> station_residuals(const CalibrationInput& in, const orbit:
       Residual r;
       r.day = day;
       r.tow_s = e.t.tow_s();
-      r.prn = s.sat.number;
+      r.sat = sat;
       r.el_rad = look.el_rad;
       r.az_rad = look.az_rad;
       r.range_m = rho;

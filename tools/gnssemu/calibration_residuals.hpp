@@ -35,7 +35,7 @@ struct Residual {
   int grid = 0;               ///< epoch index on the regular grid (+ day * kDayGridStride)
   int day = 0;                ///< index of the station-day it came from
   double tow_s = 0.0;         ///< GPS time of week, s
-  int prn = 0;
+  SatId sat;
   double el_rad = 0.0, az_rad = 0.0;
   double range_m = 0.0;       ///< geometric range, m
   double value_m = 0.0;       ///< residual, m

@@ -159,8 +159,8 @@ orbit::EphemerisStore load_store(const NavArgs& a, const time::GpsTime& t,
   }
   if (klobuchar) *klobuchar = c.nav.klobuchar;
   orbit::EphemerisStore store(c.nav.ephemerides, c.store_options());
-  for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
-    if (store.select(prn, t) != nullptr) return store;
+  for (int i = 0; i < kNumSats; ++i) {
+    if (store.select(SatId::from_index(i), t) != nullptr) return store;
   }
   throw Error(c.source, 0,
               fmt::format("no healthy ephemeris valid at {}; the data cover {}{}", describe(t),
@@ -440,7 +440,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   batch_cmd->add_option("--errors", batch.errors_path, "write per-epoch fix errors CSV here ('-' = stdout)");
   batch_cmd->add_option("--scenario", batch.scenario_path, "fault scenario TOML ([[event]] tables, docs/faults.md)");
   batch_cmd->add_option("--sats", batch.sats_path,
-                        "write per epoch and satellite gps_week,tow_s,prn,az_deg,el_deg,cn0_dbhz,tracked,used here "
+                        "write per epoch and satellite gps_week,tow_s,sat,prn,az_deg,el_deg,cn0_dbhz,tracked,used here "
                         "('-' = stdout)");
   batch_cmd->add_option("--report", batch.report_dir, "write an HTML report with plots to DIR/report.html");
   batch_cmd->add_option("--cn0-reference", batch.reference_path,

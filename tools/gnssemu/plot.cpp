@@ -8,10 +8,12 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <string_view>
 #include <vector>
 
 #include "core/common/error.hpp"
+#include "core/common/sat_id.hpp"
 
 namespace gnssemu::cli {
 
@@ -181,6 +183,9 @@ void read_sats_csv(const std::string& path, ReportData& data) {
   const std::size_t week = r.column("gps_week"), tow = r.column("tow_s"), prn = r.column("prn"),
                     az = r.column("az_deg"), el = r.column("el_deg"), cn0 = r.column("cn0_dbhz"),
                     tracked = r.column("tracked"), used = r.column("used");
+  // sat (RINEX name) names the satellite; files without it are GPS by prn.
+  const bool has_sat = r.has("sat");
+  const std::size_t sat_col = has_sat ? r.column("sat") : 0;
   const bool know_fixes = !data.epochs.empty();
   const bool derive_counts =
       know_fixes && std::all_of(data.epochs.begin(), data.epochs.end(), [](const ReportEpoch& e) { return e.num_tracked < 0; });
@@ -190,7 +195,13 @@ void read_sats_csv(const std::string& path, ReportData& data) {
     ReportSat s;
     s.t = row_time(r, week, tow);
     if (data.sats.size() > first && s.t < data.sats.back().t) throw Error(path, r.line(), "rows must be in time order");
-    s.prn = r.integer(prn, "prn", 1, 32);
+    if (has_sat) {
+      const std::optional<SatId> sat = parse_sat(r.text(sat_col));
+      if (!sat) throw Error(path, r.line(), "column 'sat': '" + std::string(r.text(sat_col)) + "' is not a satellite");
+      s.sat = *sat;
+    } else {
+      s.sat = SatId::gps(r.integer(prn, "prn", 1, system_size(GnssSystem::kGps)));
+    }
     s.az_deg = r.number(az, "az_deg");
     s.el_deg = r.number(el, "el_deg");
     if (s.az_deg < 0.0 || s.az_deg >= 360.0 || s.el_deg < -90.0 || s.el_deg > 90.0) {
@@ -294,7 +305,7 @@ Cn0Reference read_cn0_reference(const std::string& path) {
           return !t.empty() && r.ec == std::errc() && r.ptr == t.data() + t.size();
         };
         if (!num(f[k], prn) || !num(f[k + 1], el) || !num(f[k + 3], snr)) continue;  // not tracked: empty SNR
-        if (prn < 1 || prn > 32 || el < 0 || el > 90 || snr <= 0 || snr > 99) continue;
+        if (prn < 1 || prn > system_size(GnssSystem::kGps) || el < 0 || el > 90 || snr <= 0 || snr > 99) continue;
         ref.el_deg.push_back(el);
         ref.cn0_dbhz.push_back(snr);
       }

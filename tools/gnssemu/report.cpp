@@ -153,7 +153,7 @@ std::string report_json(const ReportData& d) {
     w.end_array();
   };
   sky_column("t_s", [&](const ReportSat& s) { return s.t - t0; }, 1);
-  sky_column("prn", [](const ReportSat& s) { return static_cast<double>(s.prn); }, 0);
+  sky_column("prn", [](const ReportSat& s) { return static_cast<double>(s.sat.prn()); }, 0);
   sky_column("az", [](const ReportSat& s) { return s.az_deg; }, 1);
   sky_column("el", [](const ReportSat& s) { return s.el_deg; }, 1);
   sky_column("cn0", [](const ReportSat& s) { return s.cn0_dbhz; }, 1);
@@ -161,6 +161,10 @@ std::string report_json(const ReportData& d) {
   w.key("state");
   w.begin_array();
   for (const ReportSat* s : sky) w.string(s->state);
+  w.end_array();
+  w.key("sat");
+  w.begin_array();
+  for (const ReportSat* s : sky) w.string(std::string_view(sat_name(s->sat).data(), 3));
   w.end_array();
   w.end_object();
 
@@ -246,7 +250,7 @@ void ReportCollector::on_epoch(const time::GpsTime& t, const receiver::Fix& fix,
     const receiver::SatInfo& s = fix.sats[i];
     ReportSat r;
     r.t = t;
-    r.prn = s.prn;
+    r.sat = s.sat;
     r.az_deg = s.az_rad * kRadToDeg;
     r.el_deg = s.el_rad * kRadToDeg;
     r.cn0_dbhz = s.tracked ? s.cn0_dbhz : 0.0;

@@ -35,7 +35,7 @@ struct ReportEpoch {
 /// One satellite at one epoch.
 struct ReportSat {
   time::GpsTime t;
-  int prn = 0;
+  SatId sat;
   double az_deg = 0.0, el_deg = 0.0;
   double cn0_dbhz = 0.0;            ///< 0: not tracked
   std::string_view state;           ///< sat_state_name (static text)

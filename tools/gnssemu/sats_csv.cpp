@@ -14,7 +14,8 @@ void SatsCsvWriter::on_epoch(const time::GpsTime& t, const receiver::Fix& fix, c
   row_.clear();
   for (int i = 0; i < fix.num_sats; ++i) {
     const receiver::SatInfo& s = fix.sats[i];
-    fmt::format_to(std::back_inserter(row_), "{},{:.3f},{},{:.2f},{:.2f},{:.1f},{},{}\n", t.week(), t.tow_s(), s.prn,
+    fmt::format_to(std::back_inserter(row_), "{},{:.3f},{},{},{:.2f},{:.2f},{:.1f},{},{}\n", t.week(), t.tow_s(),
+                   sat_name(s.sat).data(), s.sat.prn(),
                    s.az_rad * kRadToDeg, s.el_rad * kRadToDeg, s.tracked ? s.cn0_dbhz : 0.0, s.tracked ? 1 : 0,
                    s.used ? 1 : 0);
   }

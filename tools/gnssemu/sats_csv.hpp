@@ -1,6 +1,6 @@
 #pragma once
 // `gnssemu batch --sats FILE`: per epoch and satellite in view (above the
-// horizon with a healthy ephemeris) `gps_week,tow_s,prn,az_deg,el_deg,
+// horizon with a healthy ephemeris) `gps_week,tow_s,sat,prn,az_deg,el_deg,
 // cn0_dbhz,tracked,used` (docs/cli.md). cn0_dbhz 0 when not tracked;
 // tracked, used 1/0.
 #include <ostream>
@@ -9,7 +9,7 @@
 
 namespace gnssemu::cli {
 
-inline constexpr const char* kSatsCsvHeader = "gps_week,tow_s,prn,az_deg,el_deg,cn0_dbhz,tracked,used";
+inline constexpr const char* kSatsCsvHeader = "gps_week,tow_s,sat,prn,az_deg,el_deg,cn0_dbhz,tracked,used";
 
 class SatsCsvWriter final : public BatchObserver {
 public:

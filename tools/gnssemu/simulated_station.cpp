@@ -27,9 +27,9 @@ observation::ObsData simulate_station(const observation::ObsData& real, const or
     sim.t = o.t_rx_local;
     for (int i = 0; i < o.num_sats; ++i) {
       const world::SatObservable& s = o.sats[static_cast<std::size_t>(i)];
-      if (!s.above_mask || !s.received) continue;
+      if (!s.above_mask || !s.received || s.sat.system != GnssSystem::kGps) continue;  // GPS observations only
       observation::SatObs so;
-      so.sat = SatId::gps(s.prn);
+      so.sat = s.sat;
       so.values = {observation::ObsValue{s.pseudorange_m, true, 0, 0}, observation::ObsValue{s.cn0_dbhz, true, 0, 0}};
       sim.sats.push_back(std::move(so));
     }

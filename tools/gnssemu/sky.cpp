@@ -26,7 +26,7 @@ pipeline::PipelineConfig geometry_config(double mask_rad) {
   c.world.errors.orbit_clock.sigma_m = 0.0;
   c.world.errors.doppler_sigma_m_s = 0.0;
   c.world.clock.drift_noise_s_s_sqrt_s = 0.0;
-  c.receiver.max_channels = kMaxGpsPrn;
+  c.receiver.max_channels = kMaxSatsInView;
   c.receiver.max_pdop = receiver::ReceiverRanges::max_pdop.max;  // report poor geometry rather than drop the fix
   c.receiver.solver.residual_test_pfa = 0.0;  // nothing to detect without errors
   // One epoch of geometry: the solver alone, every satellite at once.
@@ -36,7 +36,7 @@ pipeline::PipelineConfig geometry_config(double mask_rad) {
 }
 
 int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out) {
-  out << "prn,az_deg,el_deg,range_m,iono_klobuchar_m,tropo_zhd_m,nmf_hydro,nmf_wet,atten_db,cn0_dbhz"
+  out << "sat,prn,az_deg,el_deg,range_m,iono_klobuchar_m,tropo_zhd_m,nmf_hydro,nmf_wet,atten_db,cn0_dbhz"
       << (req.scene ? ",los,bounces,nlos_delay_m,path_loss_db\n" : "\n");
   const Ecef rx = geo::ecef_from_lla(req.rx_lla);
   const world::WorldConfig defaults;
@@ -49,8 +49,9 @@ int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::os
   if (req.scene) prop.emplace(*req.scene, req.search);
   int rows = 0;
   fmt::memory_buffer buf;
-  for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
-    const orbit::Ephemeris* eph = store.select(prn, req.t);
+  for (int i = 0; i < kNumSats; ++i) {
+    const SatId sat = SatId::from_index(i);
+    const orbit::Ephemeris* eph = store.select(sat, req.t);
     if (eph == nullptr) continue;
     const world::SkySat s = world::sky_sat(*eph, req.t, rx, req.rx_lla, Ecef());
     if (!(s.el_rad >= req.mask_rad)) continue;
@@ -61,11 +62,12 @@ int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::os
     const double atten_db =
         world.slow_terms(req.rx_lla, s.az_rad, s.el_rad, req.t.tow_s(), doy)[world::kAttenDb];
     buf.clear();
-    fmt::format_to(std::back_inserter(buf), "{},{:.6f},{:.6f},{:.4f},{:.4f},{:.4f},{:.5f},{:.5f},{:.4f},{:.2f}", prn,
+    fmt::format_to(std::back_inserter(buf), "{},{},{:.6f},{:.6f},{:.4f},{:.4f},{:.4f},{:.5f},{:.5f},{:.4f},{:.2f}",
+                   sat_name(sat).data(), sat.prn(),
                    s.az_rad * kRadToDeg, s.el_rad * kRadToDeg, s.range_m, iono_m, zhd_m, nmf.hydro, nmf.wet, atten_db,
                    link.cn0_dbhz(s.range_m, s.el_rad, atten_db));
     if (prop) {
-      const scene::SatQuery q{prn, frame.vector_to_enu((s.pos_m - rx) / s.range_m)};
+      const scene::SatQuery q{sat.index(), frame.vector_to_enu((s.pos_m - rx) / s.range_m)};
       scene::SatPath p;
       prop->compute(frame.to_enu(rx), std::span<const scene::SatQuery>(&q, 1), std::span<scene::SatPath>(&p, 1));
       if (p.kind == scene::PathKind::kNone) {

@@ -22,8 +22,9 @@ struct SkyRequest {
   scene::SearchConfig search;           ///< reflection search effort
 };
 
-/// Writes `prn,az_deg,el_deg,range_m,iono_klobuchar_m,tropo_zhd_m,nmf_hydro,
-/// nmf_wet,atten_db,cn0_dbhz` per healthy satellite at or above the mask:
+/// Writes `sat,prn,az_deg,el_deg,range_m,iono_klobuchar_m,tropo_zhd_m,
+/// nmf_hydro,nmf_wet,atten_db,cn0_dbhz` (sat: RINEX name, G05) per healthy
+/// satellite at or above the mask, in SatId order:
 /// satellite at its transmit time, rotated for Earth rotation during the
 /// signal flight (Sagnac), geometric range; then the broadcast Klobuchar delay
 /// at L1 (req.klobuchar), the receiver's standard-atmosphere zenith

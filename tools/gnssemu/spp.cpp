@@ -66,7 +66,8 @@ bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
     if (s.sat.system != GnssSystem::kGps) continue;  // GPS-only solution
     const observation::ObsValue* pr = s.get(c1c_);
     if (pr == nullptr) continue;
-    const orbit::Ephemeris* eph = store_.select(s.sat.number, epoch.t);
+    const SatId sat = s.sat;
+    const orbit::Ephemeris* eph = store_.select(sat, epoch.t);
     if (eph == nullptr) continue;
     double corr_m = 0.0, corr_var_m2 = 0.0;
     if (site != nullptr) {
@@ -84,7 +85,7 @@ bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
     // S1C gives the solver's C/N0 weight term, as the live receiver's tracking does.
     const observation::ObsValue* sn = s1c_ >= 0 ? s.get(s1c_) : nullptr;
     m.cn0_dbhz = sn != nullptr && std::isfinite(sn->value) ? sn->value : 0.0;
-    meas_prn_[static_cast<std::size_t>(in_.num_meas++)] = s.sat.number;
+    meas_sat_[static_cast<std::size_t>(in_.num_meas++)] = sat;
   }
   if (last_pos_m_) {
     in_.have_prior = true;
@@ -125,7 +126,7 @@ const SppEpoch& SppEngine::solve(const observation::ObsEpoch& epoch) {
   for (int i = 0; i < in_.num_meas; ++i) {
     const std::size_t k = static_cast<std::size_t>(i);
     if (out_.excluded[k]) continue;
-    result_.prn[n] = meas_prn_[k];
+    result_.sat[n] = meas_sat_[k];
     result_.residual_m[n] = out_.residual_m[k];
     result_.el_rad[n] = world::sky_sat(*in_.meas[k].eph, epoch.t, out_.pos_m, lla, Ecef{}).el_rad;
     ++n;

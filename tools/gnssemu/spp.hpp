@@ -37,9 +37,9 @@ struct SppEpoch {
   double clock_m = 0.0;        ///< c * receiver clock bias, m
   double pdop = 0.0;
   int nsat = 0;                ///< satellites used
-  std::array<int, kMaxGpsPrn> prn{};          ///< used satellites, first nsat entries
-  std::array<double, kMaxGpsPrn> el_rad{};    ///< their elevation at the fix
-  std::array<double, kMaxGpsPrn> residual_m{};///< their post-fit residuals
+  std::array<SatId, kMaxSatsInView> sat{};          ///< used satellites, first nsat entries
+  std::array<double, kMaxSatsInView> el_rad{};      ///< their elevation at the fix
+  std::array<double, kMaxSatsInView> residual_m{};  ///< their post-fit residuals
 };
 
 /// Single-point solutions epoch by epoch (warm start from the previous fix).
@@ -68,7 +68,7 @@ private:
   receiver::Solver cold_solver_;  ///< first solution of a cold start: no residual test
   receiver::SolverInput in_;
   receiver::SolverOutput out_;
-  std::array<int, kMaxGpsPrn> meas_prn_{};
+  std::array<SatId, kMaxSatsInView> meas_sat_{};
   SppEpoch result_;
   std::optional<Ecef> last_pos_m_;
   double last_clock_m_ = 0.0;

@@ -81,8 +81,9 @@ const GnssCharts = (() => {
           if (ds.gridLine || ds.mask || !chart.isDatasetVisible(i)) return;
           const meta = chart.getDatasetMeta(i);
           meta.data.forEach((el, k) => {
-            const prn = ds.data[k] && ds.data[k].prn;
-            if (prn !== undefined) ctx.fillText(String(prn), el.x + 8, el.y - 7);
+            const p = ds.data[k];
+            const name = p && (p.sat !== undefined ? p.sat : p.prn);
+            if (name !== undefined) ctx.fillText(String(name), el.x + 8, el.y - 7);
           });
         });
       }
@@ -137,7 +138,7 @@ const GnssCharts = (() => {
           tooltip: { callbacks: { label: (c) => {
             const p = c.raw;
             if (p.prn === undefined) return c.dataset.label;
-            return `PRN ${p.prn}: az ${p.az.toFixed(0)}°, el ${p.el.toFixed(0)}°` +
+            return `${p.sat !== undefined ? p.sat : 'PRN ' + p.prn}: az ${p.az.toFixed(0)}°, el ${p.el.toFixed(0)}°` +
               (p.cn0 ? `, ${p.cn0.toFixed(1)} dB-Hz` : '') + ` (${c.dataset.label})`;
           } } },
         },
@@ -195,7 +196,7 @@ const GnssCharts = (() => {
 
   function cn0Data(sats, acquireDbhz, loseDbhz) {
     const shown = sats.filter((s) => s.state !== 'below_mask');
-    const labels = shown.map((s) => String(s.prn));
+    const labels = shown.map((s) => String(s.sat !== undefined ? s.sat : s.prn));
     const flat = (v) => labels.map(() => v);
     return {
       labels,

@@ -54,7 +54,7 @@
 
   if (hasSky) {
     const sky = G.skyChart(panel('sky', 'Sky over the run', 'sky'));
-    const pts = d.sky.t_s.map((t, i) => ({ prn: d.sky.prn[i], az: d.sky.az[i], el: d.sky.el[i], cn0: d.sky.cn0[i],
+    const pts = d.sky.t_s.map((t, i) => ({ sat: d.sky.sat ? d.sky.sat[i] : undefined, prn: d.sky.prn[i], az: d.sky.az[i], el: d.sky.el[i], cn0: d.sky.cn0[i],
                                            state: d.sky.state[i], used: d.sky.used[i] === 1 }));
     // Short runs draw short tracks: bigger points keep them visible.
     sky.data.datasets = G.skyDatasets(pts, Number.isFinite(d.elevation_mask_deg) ? d.elevation_mask_deg : 0,

@@ -79,7 +79,7 @@
   }
 
   function renderSats(s) {
-    const pts = s.satellites.map((x) => ({ prn: x.prn, az: x.az_deg, el: x.el_deg, cn0: x.cn0_dbhz, state: x.state, used: x.used }));
+    const pts = s.satellites.map((x) => ({ sat: x.sat, prn: x.prn, az: x.az_deg, el: x.el_deg, cn0: x.cn0_dbhz, state: x.state, used: x.used }));
     sky.data.datasets = G.skyDatasets(pts, s.settings.elevation_mask_deg, 7);
     sky.update('none');
     cn0.data = G.cn0Data(s.satellites, s.settings.acquire_dbhz, s.settings.lose_dbhz);
@@ -88,9 +88,10 @@
     const rows = s.satellites.map((x) => {
       const tr = document.createElement('tr');
       tr.dataset.prn = String(x.prn);
+      tr.dataset.sat = x.sat;
       tr.dataset.state = x.state;
       const cells = [
-        `<span class="state" style="background:${G.stateColors[x.state]}"></span>${x.prn}`,
+        `<span class="state" style="background:${G.stateColors[x.state]}"></span>${x.sat}`,
         G.stateLabels[x.state] || x.state,
         G.fmt(x.az_deg, 1), G.fmt(x.el_deg, 1), x.tracked ? G.fmt(x.cn0_dbhz, 1) : '—',
         G.fmt(x.residual_m, 2), G.fmt(x.nlos_delay_m, 1),

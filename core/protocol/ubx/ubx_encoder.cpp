@@ -423,17 +423,17 @@ std::size_t UbxEncoder::nav_timeutc(const Fix& fix, std::string& out) const {
 std::size_t UbxEncoder::nav_sat(const Fix& fix, std::string& out) const {
   const Common c = derive(fix);
   const int n = num_sats(fix);
-  std::uint8_t buf[sizeof(wire::NavSatHeader) + kMaxGpsPrn * sizeof(wire::NavSatSv)];
+  std::uint8_t buf[sizeof(wire::NavSatHeader) + kMaxSatsInView * sizeof(wire::NavSatSv)];
   wire::NavSatHeader h{};
   h.iTOW = c.itow;
   h.version = 1;
   std::size_t len = sizeof h;
   for (int i = 0; i < n; ++i) {
     const SatInfo& s = fix.sats[static_cast<std::size_t>(i)];
-    if (s.prn < 1 || s.prn > kMaxGpsPrn) continue;
+    if (s.sat.system != GnssSystem::kGps || !s.sat.valid()) continue;
     wire::NavSatSv sv{};
     sv.gnssId = 0;
-    sv.svId = static_cast<std::uint8_t>(s.prn);
+    sv.svId = static_cast<std::uint8_t>(s.sat.prn());
     sv.cno = cno_u1(s);
     sv.elev = elev_i1(s);
     sv.azim = azim_i2(s);
@@ -457,7 +457,7 @@ std::size_t UbxEncoder::nav_sat(const Fix& fix, std::string& out) const {
 std::size_t UbxEncoder::nav_svinfo(const Fix& fix, std::string& out) const {
   const Common c = derive(fix);
   const int n = num_sats(fix);
-  std::uint8_t buf[sizeof(wire::NavSvinfoHeader) + kMaxGpsPrn * sizeof(wire::NavSvinfoCh)];
+  std::uint8_t buf[sizeof(wire::NavSvinfoHeader) + kMaxSatsInView * sizeof(wire::NavSvinfoCh)];
   wire::NavSvinfoHeader h{};
   h.iTOW = c.itow;
   h.globalFlags = kChipGenM8;
@@ -465,11 +465,11 @@ std::size_t UbxEncoder::nav_svinfo(const Fix& fix, std::string& out) const {
   std::uint8_t channel = 0;
   for (int i = 0; i < n; ++i) {
     const SatInfo& s = fix.sats[static_cast<std::size_t>(i)];
-    if (s.prn < 1 || s.prn > kMaxGpsPrn) continue;
+    if (s.sat.system != GnssSystem::kGps || !s.sat.valid()) continue;
     wire::NavSvinfoCh ch{};
     const bool tracked = s.tracked && s.cn0_dbhz > 0.0;
     ch.chn = tracked ? channel++ : 255;  // 255: not assigned to a channel (real M8 logs)
-    ch.svid = static_cast<std::uint8_t>(s.prn);
+    ch.svid = static_cast<std::uint8_t>(s.sat.prn());
     const bool used = s.used && c.has_fix;
     std::uint8_t flags = used ? 0x01 : 0x00;
     // orbitAvail + orbitEph (or orbitAlm without its ephemeris), or unhealthy; b7 smoothed

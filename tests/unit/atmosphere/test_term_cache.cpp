@@ -28,32 +28,32 @@ TEST(TermCache, RefreshHoldAndLinear) {
   SlowTermCache<1> hold(10.0, CacheMode::kHold);
   const time::GpsTime t0(2190, 0.0);
   value = 1.0;
-  EXPECT_EQ(hold.get(5, t0, compute)[0], 1.0);
+  EXPECT_EQ(hold.get(SatId::gps(5), t0, compute)[0], 1.0);
   value = 2.0;
-  EXPECT_EQ(hold.get(5, t0 + 9.9, compute)[0], 1.0);  // held
+  EXPECT_EQ(hold.get(SatId::gps(5), t0 + 9.9, compute)[0], 1.0);  // held
   EXPECT_EQ(calls, 1);
-  EXPECT_EQ(hold.get(5, t0 + 10.0, compute)[0], 2.0);  // refreshed
+  EXPECT_EQ(hold.get(SatId::gps(5), t0 + 10.0, compute)[0], 2.0);  // refreshed
   EXPECT_EQ(calls, 2);
-  EXPECT_EQ(hold.get(5, t0 + 5.0, compute)[0], 2.0);   // time went back: refresh
+  EXPECT_EQ(hold.get(SatId::gps(5), t0 + 5.0, compute)[0], 2.0);   // time went back: refresh
   EXPECT_EQ(calls, 3);
-  EXPECT_EQ(hold.get(6, t0, compute)[0], 2.0);         // other satellite: own slot
+  EXPECT_EQ(hold.get(SatId::gps(6), t0, compute)[0], 2.0);         // other satellite: own slot
   EXPECT_EQ(calls, 4);
-  EXPECT_EQ(hold.get(0, t0, compute)[0], 2.0);         // out of range: bypass
-  EXPECT_EQ(hold.get(0, t0, compute)[0], 2.0);
+  EXPECT_EQ(hold.get(SatId::gps(0), t0, compute)[0], 2.0);         // out of range: bypass
+  EXPECT_EQ(hold.get(SatId::gps(0), t0, compute)[0], 2.0);
   EXPECT_EQ(calls, 6);
 
   SlowTermCache<1> lin(10.0, CacheMode::kLinear);
   value = 1.0;
-  lin.get(3, t0, compute);
+  lin.get(SatId::gps(3), t0, compute);
   value = 3.0;
-  lin.get(3, t0 + 10.0, compute);
-  EXPECT_NEAR(lin.get(3, t0 + 15.0, compute)[0], 4.0, 1e-12);  // 3 + 0.2 * 5
-  lin.invalidate(3);
+  lin.get(SatId::gps(3), t0 + 10.0, compute);
+  EXPECT_NEAR(lin.get(SatId::gps(3), t0 + 15.0, compute)[0], 4.0, 1e-12);  // 3 + 0.2 * 5
+  lin.invalidate(SatId::gps(3));
   value = 7.0;
-  EXPECT_EQ(lin.get(3, t0 + 16.0, compute)[0], 7.0);
+  EXPECT_EQ(lin.get(SatId::gps(3), t0 + 16.0, compute)[0], 7.0);
   value = 8.0;
-  EXPECT_EQ(lin.get(3, t0 + 17.0, compute)[0], 8.0);  // slope bootstrap: refreshed one call later
-  EXPECT_NEAR(lin.get(3, t0 + 20.0, compute)[0], 11.0, 1e-12);  // 8 + 1 * 3
+  EXPECT_EQ(lin.get(SatId::gps(3), t0 + 17.0, compute)[0], 8.0);  // slope bootstrap: refreshed one call later
+  EXPECT_NEAR(lin.get(SatId::gps(3), t0 + 20.0, compute)[0], 11.0, 1e-12);  // 8 + 1 * 3
   EXPECT_THROW(SlowTermCache<1>(-1.0), Error);
   EXPECT_THROW(SlowTermCache<1>(NAN), Error);
 }
@@ -75,7 +75,7 @@ TEST(TermCache, MeasuredErrorOnRealGeometry) {
   auto terms_at = [&](int prn, const time::GpsTime& t, bool& visible) {
     std::array<double, 3> v{0.0, 0.0, 0.0};
     visible = false;
-    const orbit::Ephemeris* e = store.select(prn, t);
+    const orbit::Ephemeris* e = store.select(SatId::gps(prn), t);
     if (!e) return v;
     const geo::LookAngles la = geo::look_angles(rx_ecef, rx, orbit::sat_state(*e, t).pos_m);
     if (la.el_rad < kMaskRad) return v;
@@ -95,15 +95,15 @@ TEST(TermCache, MeasuredErrorOnRealGeometry) {
       long samples = 0;
       for (int s = 0; s < 7200; ++s) {
         const time::GpsTime t = start + static_cast<double>(s);
-        for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
+        for (int prn = 1; prn <= system_size(GnssSystem::kGps); ++prn) {
           bool vis = false;
           const std::array<double, 3> truth = terms_at(prn, t, vis);
           if (!vis) {
-            cache.invalidate(prn);
+            cache.invalidate(SatId::gps(prn));
             continue;
           }
           bool dummy = false;
-          const std::array<double, 3> c = cache.get(prn, t, [&]() { return terms_at(prn, t, dummy); });
+          const std::array<double, 3> c = cache.get(SatId::gps(prn), t, [&]() { return terms_at(prn, t, dummy); });
           for (int j = 0; j < 3; ++j) worst[mode][k][j] = std::max(worst[mode][k][j], std::fabs(c[j] - truth[j]));
           ++samples;
         }

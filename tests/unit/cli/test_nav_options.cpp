@@ -139,9 +139,9 @@ TEST(NavFiles, RelabelledDateHasTheOriginalGeometry) {
   for (double dt = 0.0; dt < 86400.0; dt += 3.0 * 3600.0 + 7.0) {
     const time::GpsTime t = time::GpsTime(2190, 518400.0 + 300.0) + dt;
     int n = 0;
-    for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
-      const orbit::Ephemeris* e0 = original.select(prn, t);
-      const orbit::Ephemeris* e1 = relabelled.select(prn, t + shift);
+    for (int prn = 1; prn <= system_size(GnssSystem::kGps); ++prn) {
+      const orbit::Ephemeris* e0 = original.select(SatId::gps(prn), t);
+      const orbit::Ephemeris* e1 = relabelled.select(SatId::gps(prn), t + shift);
       ASSERT_EQ(e0 == nullptr, e1 == nullptr) << prn;
       if (e0 == nullptr) continue;
       const world::SkySat s0 = world::sky_sat(*e0, t, rx, rx_lla, Ecef());

@@ -36,7 +36,7 @@ TEST(BatchSats, ExactColumnsOneRowPerEpochAndSatelliteAgreeingWithErrors) {
                            dir.file("e.csv")});
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string text = read_file(dir.file("s.csv"));
-  EXPECT_EQ(text.substr(0, text.find('\n')), "gps_week,tow_s,prn,az_deg,el_deg,cn0_dbhz,tracked,used");
+  EXPECT_EQ(text.substr(0, text.find('\n')), "gps_week,tow_s,sat,prn,az_deg,el_deg,cn0_dbhz,tracked,used");
   const Csv sats = parse_csv(text);
   const Csv errors = parse_csv(read_file(dir.file("e.csv")));
   ASSERT_EQ(errors.rows.size(), 61u);
@@ -81,6 +81,8 @@ TEST(BatchReport, SelfContainedHtmlWithTheRunsStatisticsAndAReference) {
   EXPECT_EQ(d["epochs"]["t_s"].size(), 121u);
   EXPECT_EQ(d["epochs"]["t_s"][120], 120.0);
   EXPECT_FALSE(d["sky"]["prn"].empty());
+  ASSERT_EQ(d["sky"]["sat"].size(), d["sky"]["prn"].size());
+  EXPECT_EQ(d["sky"]["sat"][0].get<std::string>().substr(0, 1), "G");
   EXPECT_EQ(d["reference"]["source"], "ublox-8-excerpt.log");
   EXPECT_GT(d["reference"]["samples"].get<int>(), 100);
   EXPECT_EQ(d["elevation_mask_deg"], 5.0);
@@ -180,6 +182,10 @@ TEST(Plot, BadInputIsAnErrorNamingFileAndLine) {
   CliResult r = run({"plot", "--sats", sats, "--out", dir.file("o")});
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("s.csv:3: column 'prn'"), std::string::npos) << r.err;
+  const std::string bad_sat = dir.write("b.csv", "gps_week,tow_s,sat,prn,az_deg,el_deg,cn0_dbhz,tracked,used\n"
+                                                 "2190,1.0,E11,11,10,20,40,1,1\n2190,1.0,X05,5,10,20,40,1,1\n");
+  r = run({"plot", "--sats", bad_sat, "--out", dir.file("o")});
+  EXPECT_NE(r.err.find("b.csv:3: column 'sat': 'X05' is not a satellite"), std::string::npos) << r.err;
   const std::string short_row = dir.write("e.csv", "gps_week,tow_s,fix_type,nsat,e_m,n_m,u_m,hdop,vdop,pdop\n2190,1,3\n");
   r = run({"plot", "--errors", short_row, "--out", dir.file("o")});
   EXPECT_NE(r.err.find("e.csv:2: 3 fields, the header has 10"), std::string::npos) << r.err;

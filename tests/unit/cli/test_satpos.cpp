@@ -98,7 +98,7 @@ TEST(Satpos, CommandLineEndToEnd) {
   const CliResult r = run({"satpos", "--nav", nav_path("brdc0010.22n"), "--week", "2190", "--tow", "521233.25"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err, "");
-  EXPECT_EQ(r.out.substr(0, r.out.find('\n')), "prn,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s,clk_bias_s,toe_tow_s,iode");
+  EXPECT_EQ(r.out.substr(0, r.out.find('\n')), "sat,prn,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s,clk_bias_s,toe_tow_s,iode");
   const Csv csv = parse_csv(r.out);
   // 32 PRNs in the file, G11, G22 and G28 unhealthy (health 63) all day.
   ASSERT_EQ(csv.rows.size(), 29u);
@@ -112,6 +112,7 @@ TEST(Satpos, CommandLineEndToEnd) {
   }
   // Spot value from the reference CSV (G01, first row).
   EXPECT_EQ(csv.cell(0, "prn"), "1");
+  EXPECT_EQ(csv.cell(0, "sat"), "G01");
   EXPECT_NEAR(csv.num(0, "x_m"), 13341779.092132412, 1e-4);
   EXPECT_NEAR(csv.num(0, "clk_bias_s"), 0.00046910383386010831, 1e-15);
   EXPECT_EQ(csv.cell(0, "iode"), "39");

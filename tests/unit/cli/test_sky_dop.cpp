@@ -67,7 +67,7 @@ TEST(Sky, SolvesTheLightTimeEquationWithSagnac) {
   const CliResult r = run(site_args("sky", "5"));
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.out.substr(0, r.out.find('\n')),
-            "prn,az_deg,el_deg,range_m,iono_klobuchar_m,tropo_zhd_m,nmf_hydro,nmf_wet,atten_db,cn0_dbhz");
+            "sat,prn,az_deg,el_deg,range_m,iono_klobuchar_m,tropo_zhd_m,nmf_hydro,nmf_wet,atten_db,cn0_dbhz");
   const Csv sky = parse_csv(r.out);
   ASSERT_GE(sky.rows.size(), 6u);
   const Ecef rx = geo::ecef_from_lla(kParis);
@@ -84,7 +84,7 @@ TEST(Sky, SolvesTheLightTimeEquationWithSagnac) {
     EXPECT_LT(range, 26.0e6);
     // Satellite at t - range/c, rotated into the receive-time frame by the
     // Earth's rotation during the flight, lies exactly `range` away.
-    const orbit::Ephemeris* eph = store().select(prn, t);
+    const orbit::Ephemeris* eph = store().select(SatId::gps(prn), t);
     ASSERT_NE(eph, nullptr);
     const double tau_s = range / kSpeedOfLight_m_s;
     const Ecef s = orbit::sat_state(*eph, t - tau_s).pos_m;
@@ -120,7 +120,7 @@ TEST(Sky, MaskSelectsBySatelliteElevation) {
 
 TEST(Sky, SatelliteAtZenith) {
   const time::GpsTime t(kWeek, kTow);
-  const orbit::Ephemeris* eph = store().select(1, t);
+  const orbit::Ephemeris* eph = store().select(SatId::gps(1), t);
   ASSERT_NE(eph, nullptr);
   const Lla sub = geo::lla_from_ecef(orbit::sat_state(*eph, t).pos_m);
   const CliResult r = run({"sky", "--nav", nav_path("brdc0010.22n"), "--week", "2190", "--tow", "521233.25",
@@ -130,6 +130,7 @@ TEST(Sky, SatelliteAtZenith) {
   const Csv sky = parse_csv(r.out);
   ASSERT_EQ(sky.rows.size(), 1u);
   EXPECT_EQ(sky.cell(0, "prn"), "1");
+  EXPECT_EQ(sky.cell(0, "sat"), "G01");
   // The satellite moves ~270 m during the flight time: ~0.01 deg off zenith.
   EXPECT_GT(sky.num(0, "el_deg"), 89.9);
   EXPECT_NEAR(sky.num(0, "range_m"), 20.2e6, 0.6e6);  // a - R_E, e up to 0.02

@@ -217,7 +217,7 @@ struct Lcg {
 cli::Residual synthetic_residual(Lcg& uniform, int grid, int prn) {
   cli::Residual r;
   r.grid = grid;
-  r.prn = prn;
+  r.sat = SatId::gps(prn);
   r.el_rad = (10.0 + 70.0 * uniform()) * 3.14159265358979 / 180.0;
   r.az_rad = 2.0 * 3.14159265358979 * uniform();
   r.klobuchar_m = 1.5 + 3.0 * uniform() / std::sin(r.el_rad + 0.2);

@@ -74,7 +74,7 @@ TEST(ConfigValidation, ClockOutOfRange) {
 
 TEST(ConfigValidation, ReceiverLimits) {
   EXPECT_EQ(error_of(kBase + "[receiver]\nmax_channels = 3\n"),
-            "t.toml:8: receiver.max_channels: 3 is out of range [4, 32]");
+            "t.toml:8: receiver.max_channels: 3 is out of range [4, 96]");
   EXPECT_EQ(error_of(kBase + "[receiver]\nseed = -1\n"),
             "t.toml:8: receiver.seed: -1 is out of range [0, 9223372036854775807]");
   EXPECT_EQ(error_of(kBase + "[receiver]\nmax_pdop = 0.5\n"),
@@ -86,8 +86,8 @@ TEST(ConfigValidation, ReceiverLimits) {
 TEST(ConfigValidation, CoreRangesAreTheConfigRanges) {
   // One range per setting, owned by the core: what the file accepts, the
   // receiver accepts; what the receiver rejects is named at its file:line.
-  EXPECT_EQ(error_of(kBase + "[receiver]\nmax_channels = 40\n"),
-            "t.toml:8: receiver.max_channels: 40 is out of range [4, 32]");
+  EXPECT_EQ(error_of(kBase + "[receiver]\nmax_channels = 100\n"),
+            "t.toml:8: receiver.max_channels: 100 is out of range [4, 96]");
   EXPECT_EQ(parse(kBase + "[receiver]\nmax_channels = 32\n").receiver.max_channels, 32);
   EXPECT_EQ(error_of(kBase + "[receiver.solver]\nresidual_test_pfa = 0.7\n"),
             "t.toml:8: receiver.solver.residual_test_pfa: 0.7 is out of range [0, 0.5)");

@@ -66,7 +66,11 @@ TEST(ScenarioFile, ErrorsNameTheLineAndTheReason) {
   expect_error([] { parse("[[event]]\ntype = \"jammer\"\nstart_s = 0\njs_db = 10\nfoo = 1\n"); },
                {"s.toml:5", "unknown key 'foo' for type jammer", "js_db"});
   expect_error([] { parse("[[event]]\ntype = \"satellite\"\nstart_s = 0\nprn = 40\n"); },
-               {"s.toml:4", "prn: 40 is out of range [1, 32]"});
+               {"s.toml:4", "prn: 40 is out of range: not a satellite"});
+  expect_error([] { parse("[[event]]\ntype = \"satellite\"\nstart_s = 0\nprn = \"I05\"\n"); },
+               {"s.toml:4", "prn: unknown satellite 'I05'"});
+  expect_error([] { parse("[[event]]\ntype = \"satellite\"\nstart_s = 0\nprn = \"R40\"\n"); },
+               {"s.toml:4", "prn: unknown satellite 'R40'"});
   expect_error([] { parse("[[event]]\ntype = \"jammer\"\nstart_s = 0\njs_db = [0, 60]\n"); },
                {"s.toml:4", "js_db: a [from, to] ramp needs a finite duration_s"});
   expect_error([] { parse("[[event]]\ntype = \"spoofer\"\nstart_s = 0\nmode = \"warp\"\n"); },
@@ -84,6 +88,31 @@ TEST(ScenarioFile, ErrorsNameTheLineAndTheReason) {
                {"s.toml:4", "expected a number"});
   expect_error([] { parse("[events]\n"); }, {"s.toml:1", "a scenario is a list of [[event]] tables"});
   expect_error([] { parse("[[event]\n"); }, {"s.toml:1", "TOML syntax error"});
+}
+
+TEST(ScenarioFile, SatellitesByNumberOrRinexName) {
+  const auto ev = parse(R"([[event]]
+type = "satellite"
+start_s = 0
+prn = "E11"
+
+[[event]]
+type = "satellite"
+start_s = 0
+prn = "G05"
+
+[[event]]
+type = "satellite"
+start_s = 0
+prn = 5
+)");
+  ASSERT_EQ(ev.size(), 3u);
+  EXPECT_EQ(faults::sat_from_param(ev[0].param(Param::kPrn).from), SatId(GnssSystem::kGalileo, 11));
+  EXPECT_EQ(faults::describe(ev[0], 0.0), "prn=E11");
+  // A plain number is a GPS PRN, the same satellite as its RINEX name.
+  EXPECT_EQ(ev[1].param(Param::kPrn).from, 5.0);
+  EXPECT_EQ(ev[2].param(Param::kPrn).from, 5.0);
+  EXPECT_EQ(faults::describe(ev[2], 0.0), "prn=5");
 }
 
 TEST(ScenarioFile, ShippedExamplesAreValid) {

@@ -75,7 +75,7 @@ inline receiver::Fix good_fix(double tow_s) {
   f.num_used = 8;
   f.num_sats = 8;
   for (int i = 0; i < 8; ++i) {
-    f.sats[static_cast<std::size_t>(i)] = {i + 1, 0.5 * i, 0.3 + 0.1 * i, 40.0, true, true, true, true};
+    f.sats[static_cast<std::size_t>(i)] = {SatId::gps(i + 1), 0.5 * i, 0.3 + 0.1 * i, 40.0, true, true, true, true};
   }
   f.dop = {1.9, 1.6, 0.9, 1.3, 0.8};
   return f;

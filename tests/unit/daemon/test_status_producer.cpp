@@ -33,7 +33,7 @@ receiver::Fix fix_at(double tow_s, const Enu& offset_m) {
   f.num_sats = 5;
   auto sat = [](int prn, double az, double el) {
     receiver::SatInfo s;
-    s.prn = prn;
+    s.sat = SatId::gps(prn);
     s.az_rad = az * kDegToRad;
     s.el_rad = el * kDegToRad;
     s.healthy = true;

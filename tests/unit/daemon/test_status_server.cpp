@@ -33,7 +33,7 @@ protected:
     f.t = time::GpsTime(2190, 1000.0);
     f.type = receiver::FixType::k3D;
     f.num_sats = 1;
-    f.sats[0].prn = 7;
+    f.sats[0].sat = SatId::gps(7);
     f.sats[0].above_mask = f.sats[0].tracked = f.sats[0].used = true;
     f.sats[0].cn0_dbhz = 44.0;
     f.sats[0].el_rad = 0.5;
@@ -97,6 +97,7 @@ TEST_F(ServerFixture, ServesStatusJsonThePageAndChartJs) {
   EXPECT_NE(r.find("application/json"), std::string::npos);
   const nlohmann::json j = nlohmann::json::parse(body_of(r));
   EXPECT_EQ(j["satellites"][0]["prn"], 7);
+  EXPECT_EQ(j["satellites"][0]["sat"], "G07");
   EXPECT_TRUE(j["history"]["t_s"].empty());
   const std::string page = exchange("GET / HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
   EXPECT_NE(page.find("text/html"), std::string::npos);

@@ -60,6 +60,9 @@ TEST(FaultEvent, DescribeSaysTheParametersNow) {
   s.put(Param::kPrn, 8);
   s.put(Param::kUnhealthy, 1.0);
   EXPECT_EQ(describe(s, 5.0), "prn=8 unhealthy=true");
+  s.put(Param::kPrn, sat_param(SatId(GnssSystem::kBeiDou, 19)));
+  EXPECT_EQ(describe(s, 5.0), "prn=C19 unhealthy=true");
+  EXPECT_FALSE(check_event(s));
 }
 
 TEST(FaultEvent, EveryParameterHasANameARangeAndADoc) {

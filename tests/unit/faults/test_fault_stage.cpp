@@ -24,13 +24,13 @@ double n0_dbw_hz(const Rig& r) {
 
 int first_used_prn(const receiver::Fix& f) {
   for (int i = 0; i < f.num_sats; ++i)
-    if (f.sats[i].used) return f.sats[i].prn;
+    if (f.sats[i].used) return f.sats[i].sat.prn();
   return 0;
 }
 
 const receiver::SatInfo* sat(const receiver::Fix& f, int prn) {
   for (int i = 0; i < f.num_sats; ++i)
-    if (f.sats[i].prn == prn) return &f.sats[i];
+    if (f.sats[i].sat.prn() == prn) return &f.sats[i];
   return nullptr;
 }
 
@@ -44,7 +44,7 @@ TEST(FaultStage, JammerFollowsTheInterferenceRelation) {
     const receiver::Fix& j = jammed.step(s);
     int compared = 0;
     for (int i = 0; i < c.num_sats; ++i) {
-      const receiver::SatInfo* js = sat(j, c.sats[i].prn);
+      const receiver::SatInfo* js = sat(j, c.sats[i].sat.prn());
       if (!c.sats[i].tracked || js == nullptr || !js->tracked) continue;
       EXPECT_NEAR(js->cn0_dbhz, effective_cn0_dbhz(c.sats[i].cn0_dbhz, n0_dbw_hz(clean), i0), 1e-9);
       ++compared;
@@ -267,7 +267,7 @@ TEST(FaultStage, SkyBlockRemovesTheSectorOnly) {
     if (!s.above_mask) continue;
     const double az = s.az_rad / kDegToRad;
     if (az >= 270.0 || az <= 90.0) {
-      EXPECT_FALSE(s.tracked) << s.prn;
+      EXPECT_FALSE(s.tracked) << s.sat.prn();
       ++north;
     } else {
       south += s.tracked;

@@ -48,7 +48,7 @@ receiver::Fix fix_from_json(const nlohmann::json& j) {
     for (const auto& js : j.at("sats")) {
       if (f.num_sats >= static_cast<int>(f.sats.size())) throw std::runtime_error("too many sats");
       receiver::SatInfo& s = f.sats[static_cast<std::size_t>(f.num_sats++)];
-      s.prn = js.at("prn").get<int>();
+      s.sat = SatId::gps(js.at("prn").get<int>());
       s.el_rad = js.at("el_deg").get<double>() * kDegToRad;
       s.az_rad = js.at("az_deg").get<double>() * kDegToRad;
       s.cn0_dbhz = js.value("cn0_dbhz", 0.0);

@@ -22,7 +22,7 @@ double wrap(double a) { return std::remainder(a, 2.0 * kPi); }
 // the terms an almanac lacks (delta n, IDOT, harmonics, af2) dropped.
 AlmanacEntry from_broadcast(const Ephemeris& e) {
   AlmanacEntry a;
-  a.prn = e.prn;
+  a.sat = e.sat;
   a.health = e.health;
   a.e = e.e;
   a.toa = e.toe;
@@ -42,7 +42,7 @@ TEST(Almanac, YumaFields) {
   const auto y = read_yuma(kYuma, 1886);
   ASSERT_EQ(y.size(), 31u);
   const AlmanacEntry& a = y.front();  // PRN 01 block, lines 1-14
-  EXPECT_EQ(a.prn, 1);
+  EXPECT_EQ(a.sat.prn(), 1);
   EXPECT_EQ(a.health, 0);
   EXPECT_DOUBLE_EQ(a.e, 0.5100727081E-002);
   EXPECT_EQ(a.toa, time::GpsTime(1886, 319488.0));  // week 862 mod 1024 -> 1886
@@ -70,7 +70,7 @@ TEST(Almanac, SemFields) {
   const auto s = read_sem(kSem, 1886);
   ASSERT_EQ(s.size(), 31u);
   const AlmanacEntry& a = s.front();
-  EXPECT_EQ(a.prn, 1);
+  EXPECT_EQ(a.sat.prn(), 1);
   EXPECT_EQ(a.toa, time::GpsTime(1886, 319488.0));
   EXPECT_DOUBLE_EQ(a.e, 5.10072708129883E-03);
   EXPECT_DOUBLE_EQ(a.i0_rad, (0.30 + 6.84547424316406E-03) * kPiGps);
@@ -89,23 +89,23 @@ TEST(Almanac, YumaAndSemAgree) {
   for (std::size_t i = 0; i < y.size(); ++i) {
     const AlmanacEntry& a = y[i];
     const AlmanacEntry& b = s[i];
-    ASSERT_EQ(a.prn, b.prn);
-    EXPECT_EQ(a.health, b.health) << a.prn;
+    ASSERT_EQ(a.sat.prn(), b.sat.prn());
+    EXPECT_EQ(a.health, b.health) << a.sat.prn();
     EXPECT_EQ(a.toa, b.toa);
     // YUMA prints 10 significant digits; SEM is the binary value.
-    EXPECT_NEAR(a.e, b.e, 1e-10) << a.prn;
-    EXPECT_NEAR(a.sqrt_a_sqrtm, b.sqrt_a_sqrtm, 1e-6) << a.prn;
-    EXPECT_NEAR(a.i0_rad, b.i0_rad, 1e-9) << a.prn;
-    EXPECT_NEAR(a.omega_dot_rad_s, b.omega_dot_rad_s, 1e-17) << a.prn;
-    EXPECT_NEAR(wrap(a.omega0_rad - b.omega0_rad), 0.0, 1e-9) << a.prn;
-    EXPECT_NEAR(wrap(a.omega_rad - b.omega_rad), 0.0, 1e-9) << a.prn;
-    EXPECT_NEAR(wrap(a.m0_rad - b.m0_rad), 0.0, 1e-9) << a.prn;
-    EXPECT_NEAR(a.af0_s, b.af0_s, 1e-13) << a.prn;
-    EXPECT_NEAR(a.af1_s_s, b.af1_s_s, 1e-20) << a.prn;
+    EXPECT_NEAR(a.e, b.e, 1e-10) << a.sat.prn();
+    EXPECT_NEAR(a.sqrt_a_sqrtm, b.sqrt_a_sqrtm, 1e-6) << a.sat.prn();
+    EXPECT_NEAR(a.i0_rad, b.i0_rad, 1e-9) << a.sat.prn();
+    EXPECT_NEAR(a.omega_dot_rad_s, b.omega_dot_rad_s, 1e-17) << a.sat.prn();
+    EXPECT_NEAR(wrap(a.omega0_rad - b.omega0_rad), 0.0, 1e-9) << a.sat.prn();
+    EXPECT_NEAR(wrap(a.omega_rad - b.omega_rad), 0.0, 1e-9) << a.sat.prn();
+    EXPECT_NEAR(wrap(a.m0_rad - b.m0_rad), 0.0, 1e-9) << a.sat.prn();
+    EXPECT_NEAR(a.af0_s, b.af0_s, 1e-13) << a.sat.prn();
+    EXPECT_NEAR(a.af1_s_s, b.af1_s_s, 1e-20) << a.sat.prn();
     for (double dt : {0.0, 86400.0, -86400.0}) {
       const double d = (almanac_state(a, a.toa + dt).pos_m - almanac_state(b, b.toa + dt).pos_m).norm();
       worst_pos = std::max(worst_pos, d);
-      EXPECT_LT(d, 1.0) << a.prn;
+      EXPECT_LT(d, 1.0) << a.sat.prn();
     }
   }
   std::printf("YUMA vs SEM: worst position difference %.3f m over +-1 day\n", worst_pos);
@@ -124,7 +124,7 @@ TEST(Almanac, AgreesWithBroadcastEphemerisAtKmLevel) {
       const SatState se = sat_state(e, t);
       const double dp = (sa.pos_m - se.pos_m).norm();
       worst = std::max(worst, dp);
-      EXPECT_LT(dp, 5000.0) << "PRN " << e.prn << " dt " << dt;
+      EXPECT_LT(dp, 5000.0) << "PRN " << e.sat.prn() << " dt " << dt;
       EXPECT_GT(dp, 0.0);
       // No relativistic term in the almanac clock (RTKLIB alm2pos).
       EXPECT_EQ(sa.relativity_s, 0.0);
@@ -138,14 +138,14 @@ TEST(Almanac, VelocityMatchesFiniteDifference) {
   for (const AlmanacEntry& a : read_yuma(kYuma, 1886)) {
     const time::GpsTime t = a.toa + 5000.0;
     const Vec3 fd = (almanac_state(a, t + 0.5).pos_m - almanac_state(a, t - 0.5).pos_m) / 1.0;
-    EXPECT_LE((almanac_state(a, t).vel_m_s - fd).norm(), 1e-3) << a.prn;
+    EXPECT_LE((almanac_state(a, t).vel_m_s - fd).norm(), 1e-3) << a.sat.prn();
   }
 }
 
 TEST(Almanac, ToEphemeris) {
   const AlmanacEntry a = read_yuma(kYuma, 1886).front();
   const Ephemeris e = to_ephemeris(a);
-  EXPECT_EQ(e.prn, 1);
+  EXPECT_EQ(e.sat.prn(), 1);
   EXPECT_EQ(e.toe, a.toa);
   EXPECT_EQ(e.toc, a.toa);
   EXPECT_EQ(e.crs_m, 0.0);
@@ -201,7 +201,7 @@ INSTANTIATE_TEST_SUITE_P(Files, AlmanacBad,
 TEST(Almanac, ReadAlmanacTellsYumaFromSem) {
   const std::vector<AlmanacEntry> y = read_almanac(kYuma, 1886), s = read_almanac(kSem, 1886);
   ASSERT_EQ(y.size(), s.size());
-  EXPECT_EQ(y.front().prn, s.front().prn);
+  EXPECT_EQ(y.front().sat, s.front().sat);
   EXPECT_EQ(y.front().toa, s.front().toa);
   EXPECT_EQ(y.size(), read_yuma(kYuma, 1886).size());
 }

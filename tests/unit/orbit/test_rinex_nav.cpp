@@ -21,13 +21,13 @@ const std::string kBad = std::string(GNSSEMU_TEST_DATA) + "/bad/";
 
 std::size_t prn_count(const NavData& d) {
   std::set<int> s;
-  for (const auto& e : d.ephemerides) s.insert(e.prn);
+  for (const auto& e : d.ephemerides) s.insert(e.sat.prn());
   return s.size();
 }
 
 const Ephemeris& find(const NavData& d, int prn, int toe_week, double toe_tow) {
   for (const auto& e : d.ephemerides) {
-    if (e.prn == prn && e.toe == time::GpsTime(toe_week, toe_tow)) return e;
+    if (e.sat.prn() == prn && e.toe == time::GpsTime(toe_week, toe_tow)) return e;
   }
   throw std::runtime_error("set not found");
 }
@@ -110,7 +110,7 @@ TEST(RinexNav, HeaderRinex3) {
 TEST(RinexNav, KnownRecordRinex2) {
   const NavData d = read_rinex_nav(kNav + "brdc0010.22n");
   const Ephemeris& e = d.ephemerides.front();
-  EXPECT_EQ(e.prn, 1);
+  EXPECT_EQ(e.sat.prn(), 1);
   EXPECT_EQ(e.toc, time::GpsTime(2190, 518400.0));  // 2022-01-01 00:00:00 GPST (Saturday)
   EXPECT_DOUBLE_EQ(e.af0_s, 0.469126738608e-03);
   EXPECT_DOUBLE_EQ(e.af1_s_s, -0.100044417195e-10);
@@ -144,7 +144,7 @@ TEST(RinexNav, KnownRecordRinex2) {
 TEST(RinexNav, KnownRecordRinex3) {
   const NavData d = read_rinex_nav(kNav + "NYA100NOR_S_20241240000_01D_GN.rnx");
   const Ephemeris& e = d.ephemerides.front();  // G27 2024 05 03 02 00 00
-  EXPECT_EQ(e.prn, 27);
+  EXPECT_EQ(e.sat.prn(), 27);
   EXPECT_EQ(e.toc, time::GpsTime(2312, 5 * 86400.0 + 7200.0));
   EXPECT_DOUBLE_EQ(e.af0_s, -2.202996984124e-05);
   EXPECT_DOUBLE_EQ(e.af1_s_s, -2.046363078989e-12);
@@ -165,7 +165,7 @@ TEST(RinexNav, Rinex305GlonassFiveLineRecords) {
   EXPECT_EQ(d.skipped_records, 2);
   ASSERT_EQ(d.ephemerides.size(), 1u);
   const Ephemeris& e = d.ephemerides.front();
-  EXPECT_EQ(e.prn, 27);
+  EXPECT_EQ(e.sat.prn(), 27);
   EXPECT_EQ(e.toc, time::GpsTime(2312, 5 * 86400.0 + 7200.0));
   EXPECT_DOUBLE_EQ(e.af0_s, -2.202996984124e-05);
   EXPECT_EQ(e.iode, 42);

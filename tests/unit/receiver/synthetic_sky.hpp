@@ -27,7 +27,7 @@ inline const Lla kSite{45.0 * kDegToRad, 7.0 * kDegToRad, 300.0};
 
 inline orbit::Ephemeris base_eph(int prn, const time::GpsTime& toe) {
   orbit::Ephemeris e;
-  e.prn = prn;
+  e.sat = SatId::gps(prn);
   e.toe = toe;
   e.toc = toe;
   // Realistic magnitudes of broadcast clock terms and TGD, varied per PRN.
@@ -46,7 +46,7 @@ inline std::vector<orbit::Ephemeris> nominal_constellation(const time::GpsTime& 
   std::vector<orbit::Ephemeris> v;
   int prn = 1;
   for (int plane = 0; plane < 6; ++plane) {
-    for (int slot = 0; slot < sats_per_plane && prn <= kMaxGpsPrn; ++slot, ++prn) {
+    for (int slot = 0; slot < sats_per_plane && prn <= system_size(GnssSystem::kGps); ++slot, ++prn) {
       orbit::Ephemeris e = base_eph(prn, toe);
       e.sqrt_a_sqrtm = kGpsSqrtA_sqrtm;
       e.e = 0.005;
@@ -177,7 +177,7 @@ inline void expect_consistent(const Fix& f) {
   for (int i = 0; i < f.num_sats; ++i) {
     const SatInfo& s = f.sats[i];
     if (i > 0) {
-      EXPECT_LT(f.sats[i - 1].prn, s.prn);
+      EXPECT_LT(f.sats[i - 1].sat.prn(), s.sat.prn());
     }
     EXPECT_GT(s.el_rad, 0.0);
     used += s.used;

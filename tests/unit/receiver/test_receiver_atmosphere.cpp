@@ -57,7 +57,7 @@ TEST(ReceiverAtmosphere, WorldDelaysAreTheConfiguredModels) {
   for (int i = 0; i < f.num_sats; ++i) {
     const SatInfo& s = f.sats[i];
     if (!s.tracked) continue;
-    const PathEffects& e = rx.world().path_effects(s.prn);
+    const PathEffects& e = rx.world().path_effects(s.sat);
     // 25 TECU x 0.16237 m/TECU x (1 + 16 (0.53 - E)^3).
     EXPECT_NEAR(e.iono_m, 25.0 * 0.1623718 * atmosphere::klobuchar_slant_factor(s.el_rad), 1e-4);
     EXPECT_NEAR(e.tropo_m, tropo.slant_delay_m(kSite.lat_rad, kSite.height_m, s.el_rad, kToe.fractional_day_of_year()), 1e-9);
@@ -87,7 +87,7 @@ TEST(ReceiverAtmosphere, ExactWhenTheWorldIsTheReceiversModel) {
     EXPECT_LT((f.pos_m - larm).norm(), 0.02) << k;
     double max_delay = 0.0;
     for (int i = 0; i < f.num_sats; ++i)
-      if (f.sats[i].used) max_delay = std::max(max_delay, rx.world().path_effects(f.sats[i].prn).delay_m);
+      if (f.sats[i].used) max_delay = std::max(max_delay, rx.world().path_effects(f.sats[i].sat).delay_m);
     EXPECT_GT(max_delay, 10.0);
   }
 }
@@ -125,21 +125,21 @@ TEST(ReceiverAtmosphere, TrackingThresholdsAndHysteresis) {
   cfg.receiver.elevation_mask_rad = 0.0;
   Pipeline rx(store, cfg);
   const Ecef pos = geo::ecef_from_lla(kSite);
-  std::array<bool, kMaxGpsPrn + 1> was_tracked{};
+  std::array<bool, system_size(GnssSystem::kGps) + 1> was_tracked{};
   int kept_below_acquire = 0;
   for (int k = 0; k < 120; ++k) {
     const time::GpsTime t = kToe + 30.0 * k;
     const Fix& f = rx.step(t, truth_at(pos, t));
     expect_consistent(f);
-    std::array<bool, kMaxGpsPrn + 1> now{};
+    std::array<bool, system_size(GnssSystem::kGps) + 1> now{};
     for (int i = 0; i < f.num_sats; ++i) {
       const SatInfo& s = f.sats[i];
       if (!s.tracked) {
         EXPECT_EQ(s.cn0_dbhz, 0.0);  // GSV shows it without C/N0
         continue;
       }
-      now[s.prn] = true;
-      if (!was_tracked[s.prn]) {
+      now[s.sat.prn()] = true;
+      if (!was_tracked[s.sat.prn()]) {
         EXPECT_GE(s.cn0_dbhz, 44.0) << "acquired below the threshold";
       }
       EXPECT_GE(s.cn0_dbhz, 20.0);
@@ -230,7 +230,7 @@ TEST(ReceiverAtmosphere, AllStagesOffIsExactAndCostsNothing) {
     const Fix& f = rx.step(t, truth_at(pos, t));
     ASSERT_EQ(f.type, FixType::k3D);
     EXPECT_LT((f.pos_m - pos).norm(), 1e-3);
-    for (int i = 0; i < f.num_sats; ++i) EXPECT_EQ(rx.world().path_effects(f.sats[i].prn).delay_m, 0.0);
+    for (int i = 0; i < f.num_sats; ++i) EXPECT_EQ(rx.world().path_effects(f.sats[i].sat).delay_m, 0.0);
   }
   EXPECT_EQ(rx.world().atmosphere_refreshes(), 0);
 }

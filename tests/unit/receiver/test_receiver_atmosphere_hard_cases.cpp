@@ -80,7 +80,7 @@ TEST_P(AtmosphereHardCases, NoNanNoConfidentWrongFix) {
     const Fix& f = rx.step(t, tr);
     expect_consistent(f);
     for (int i = 0; i < f.num_sats; ++i) {
-      const PathEffects& e = rx.world().path_effects(f.sats[i].prn);
+      const PathEffects& e = rx.world().path_effects(f.sats[i].sat);
       ASSERT_TRUE(std::isfinite(e.delay_m) && std::isfinite(e.loss_db)) << k;
       EXPECT_GE(e.delay_m, 0.0);
       EXPECT_GE(e.loss_db, 0.0);
@@ -156,8 +156,8 @@ TEST(AtmosphereHardCases, SatellitesAtTheMaskAndAtZenith) {
   ASSERT_EQ(f.num_sats, 5);
   for (int i = 0; i < f.num_sats; ++i) {
     EXPECT_NEAR(f.sats[i].el_rad * kRadToDeg, el_deg[i], 0.005);
-    EXPECT_TRUE(f.sats[i].tracked) << f.sats[i].prn;
-    const PathEffects& e = rx.world().path_effects(f.sats[i].prn);
+    EXPECT_TRUE(f.sats[i].tracked) << f.sats[i].sat.prn();
+    const PathEffects& e = rx.world().path_effects(f.sats[i].sat);
     EXPECT_GT(e.tropo_m, 2.2);
     EXPECT_LT(e.tropo_m, 14.0);
   }

@@ -149,7 +149,7 @@ TEST(ReceiverBasic, NoiseOfOneSatelliteDoesNotDependOnOthersVisible) {
     ASSERT_LT(fb.num_tracked, fa.num_tracked);
     for (int i = 0; i < fa.num_sats; ++i) {
       for (int j = 0; j < fb.num_sats; ++j) {
-        if (fa.sats[i].prn != fb.sats[j].prn || !fb.sats[j].tracked) continue;
+        if (fa.sats[i].sat.prn() != fb.sats[j].sat.prn() || !fb.sats[j].tracked) continue;
         EXPECT_EQ(fa.sats[i].pseudorange_m, fb.sats[j].pseudorange_m);
         EXPECT_EQ(fa.sats[i].doppler_hz, fb.sats[j].doppler_hz);
         ++compared;
@@ -211,7 +211,7 @@ TEST(ReceiverBasic, InvalidConfigThrows) {
   bad([](PipelineConfig& c) { c.world.errors.orbit_clock.tau_s = 0.0; });
   bad([](PipelineConfig& c) { c.world.errors.orbit_clock.sigma_m = std::nan(""); });
   bad([](PipelineConfig& c) { c.receiver.max_channels = 0; });
-  bad([](PipelineConfig& c) { c.receiver.max_channels = 33; });
+  bad([](PipelineConfig& c) { c.receiver.max_channels = kMaxSatsInView + 1; });
   bad([](PipelineConfig& c) { c.receiver.max_pdop = 0.0; });
   bad([](PipelineConfig& c) { c.receiver.solver.sigma_a_m = 0.0, c.receiver.solver.sigma_b_m = 0.0; });
   bad([](PipelineConfig& c) { c.receiver.solver.residual_test_pfa = 0.7; });

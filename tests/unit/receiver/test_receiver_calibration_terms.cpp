@@ -37,7 +37,7 @@ TEST(ReceiverCalibrationTerms, ConstantGradientIsNorthCosAzPlusEastSinAz) {
   int checked = 0;
   for (int i = 0; i < fb.num_sats; ++i) {
     if (!fb.sats[i].tracked) continue;
-    ASSERT_EQ(fa.sats[i].prn, fb.sats[i].prn);
+    ASSERT_EQ(fa.sats[i].sat.prn(), fb.sats[i].sat.prn());
     const double az = fb.sats[i].az_rad;
     EXPECT_NEAR(fb.sats[i].pseudorange_m - fa.sats[i].pseudorange_m, 0.7 * std::cos(az) - 0.4 * std::sin(az), 1e-6);
     ++checked;
@@ -95,7 +95,7 @@ TEST(ReceiverCalibrationTerms, MultipathScalesWithOneOverSinElevationAndDecorrel
     for (int i = 0; i < fb.num_sats; ++i) {
       if (!fb.sats[i].tracked || !fa.sats[i].tracked) continue;
       const double d = fb.sats[i].pseudorange_m - fa.sats[i].pseudorange_m;
-      z[fb.sats[i].prn].push_back(d * std::sin(std::max(fb.sats[i].el_rad, 5.0 * kDegToRad)) / 0.2);
+      z[fb.sats[i].sat.prn()].push_back(d * std::sin(std::max(fb.sats[i].el_rad, 5.0 * kDegToRad)) / 0.2);
     }
   }
   double s0 = 0, s60 = 0, n0 = 0, n60 = 0;
@@ -161,10 +161,10 @@ TEST(ReceiverCalibrationTerms, IonoScaleIsOneFactorForTheWholeSky) {
     int n = 0;
     for (int i = 0; i < fb.num_sats; ++i) {
       if (!fb.sats[i].tracked) continue;
-      const int prn = fb.sats[i].prn;
-      const double base_m = a.world().path_effects(prn).iono_m;
+      const int prn = fb.sats[i].sat.prn();
+      const double base_m = a.world().path_effects(SatId::gps(prn)).iono_m;
       ASSERT_GT(base_m, 0.5);
-      const double f = b.world().path_effects(prn).iono_m / base_m - 1.0;
+      const double f = b.world().path_effects(SatId::gps(prn)).iono_m / base_m - 1.0;
       if (n > 0) {
         EXPECT_NEAR(f, factor, 1e-9) << "one factor for every line of sight";
       }

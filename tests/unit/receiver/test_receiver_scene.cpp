@@ -89,7 +89,7 @@ TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
     for (int i = 0; i < a.num_sats; ++i) {
       const SatInfo& sa = a.sats[i];
       const SatInfo& sb = b.sats[i];
-      ASSERT_EQ(sa.prn, sb.prn);
+      ASSERT_EQ(sa.sat.prn(), sb.sat.prn());
       if (!sa.tracked) continue;
       if (sb.blocked) {
         EXPECT_FALSE(sb.tracked);

@@ -21,7 +21,7 @@ using test::truth_at;
 
 const world::SatObservable* find(const world::Observables& o, int prn) {
   for (int i = 0; i < o.num_sats; ++i)
-    if (o.sats[i].prn == prn && o.sats[i].received) return &o.sats[i];
+    if (o.sats[i].sat.prn() == prn && o.sats[i].received) return &o.sats[i];
   return nullptr;
 }
 
@@ -38,22 +38,22 @@ TEST(WorldCarrier, PhaseFollowsTheRangeAndTheIonosphereAdvancesIt) {
   int checked = 0;
   for (int i = 0; i < first.num_sats; ++i) {
     const world::SatObservable& a = first.sats[i];
-    const world::SatObservable* b = find(later, a.prn);
+    const world::SatObservable* b = find(later, a.sat.prn());
     if (!a.received || b == nullptr) continue;
     ASSERT_TRUE(a.carrier_valid && b->carrier_valid);
-    EXPECT_EQ(a.carrier_discontinuities, b->carrier_discontinuities) << a.prn;
+    EXPECT_EQ(a.carrier_discontinuities, b->carrier_discontinuities) << a.sat.prn();
     // Code minus carrier is twice the ionosphere plus the ambiguity: over 30 s
     // it changes by twice the ionosphere's change, which is small but not 0.
     const double cmc_a = a.pseudorange_m - a.carrier_phase_cycles * kL1Wavelength_m;
     const double cmc_b = b->pseudorange_m - b->carrier_phase_cycles * kL1Wavelength_m;
-    const double d_iono = rx.world().path_effects(a.prn).iono_m;
-    EXPECT_LT(std::fabs(cmc_b - cmc_a), 1.0) << a.prn;
-    EXPECT_GT(d_iono, 0.5) << a.prn;
+    const double d_iono = rx.world().path_effects(a.sat).iono_m;
+    EXPECT_LT(std::fabs(cmc_b - cmc_a), 1.0) << a.sat.prn();
+    EXPECT_GT(d_iono, 0.5) << a.sat.prn();
     // The carrier's change is the range's (same clock, same orbit error, the
     // ionosphere's change of sign): the Doppler integrates to it.
     const double carrier_change = (b->carrier_phase_cycles - a.carrier_phase_cycles) * kL1Wavelength_m;
     const double mean_rate = -0.5 * (a.doppler_hz + b->doppler_hz) * kL1Wavelength_m;
-    EXPECT_NEAR(carrier_change, mean_rate * 30.0, 2.0) << a.prn;
+    EXPECT_NEAR(carrier_change, mean_rate * 30.0, 2.0) << a.sat.prn();
     ++checked;
   }
   EXPECT_GE(checked, 6);
@@ -76,7 +76,7 @@ TEST(WorldCarrier, NewLockAfterLossAndLockBreakOnAJump) {
   const world::Observables o4 = w.step(kToe + 4.0, truth_at(moved, kToe + 4.0), 0.1);
   int checked = 0, breaks = 0;
   for (int i = 0; i < o0.num_sats; ++i) {
-    const int p = o0.sats[i].prn;
+    const int p = o0.sats[i].sat.prn();
     const world::SatObservable* a = find(o0, p);
     const world::SatObservable* b = find(o1, p);
     const world::SatObservable* c = find(o3, p);

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <set>
 
 #include "core/world/random.hpp"
 
@@ -26,6 +27,14 @@ TEST(CounterRng, StandardNormalMomentsAndKeyIndependence) {
   EXPECT_EQ(rng.normal(3, 17, Purpose::kThermal), CounterRng(99).normal(3, 17, Purpose::kThermal));
   EXPECT_NE(rng.normal(3, 17, Purpose::kThermal), rng.normal(3, 17, Purpose::kDoppler));
   EXPECT_NE(rng.normal(3, 17, Purpose::kThermal), CounterRng(100).normal(3, 17, Purpose::kThermal));
+}
+
+TEST(CounterRng, SatelliteStreamsKeepGpsAndSeparateEverySatellite) {
+  // GPS draws stay those of the PRN-numbered streams: stream = PRN.
+  for (int prn = 1; prn <= system_size(GnssSystem::kGps); ++prn) EXPECT_EQ(sat_stream(SatId::gps(prn)), uint64_t(prn));
+  std::set<uint64_t> streams{kClockStream, kGradientStream, kGradientStream + 1, kIonoScaleStream};
+  for (int i = 0; i < kNumSats; ++i) EXPECT_TRUE(streams.insert(sat_stream(SatId::from_index(i))).second) << i;
+  EXPECT_EQ(sat_stream(SatId(GnssSystem::kGalileo, 11)), 2u * 256u + 11u);
 }
 
 }  // namespace
