@@ -202,7 +202,7 @@ std::vector<AlmanacEntry> read_almanac(const std::string& path, int reference_we
 
 Ephemeris to_ephemeris(const AlmanacEntry& alm) noexcept {
   Ephemeris e;
-  e.prn = alm.prn;
+  e.sat = SatId::gps(alm.prn);
   e.toc = alm.toa;
   e.toe = alm.toa;
   e.af0_s = alm.af0_s;

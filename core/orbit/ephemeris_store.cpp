@@ -5,6 +5,8 @@
 #include <limits>
 #include <numeric>
 
+#include "core/common/constants.hpp"
+
 namespace gnssemu::orbit {
 
 namespace {
@@ -17,35 +19,50 @@ double transmit_key(const Ephemeris* e) noexcept {
   return e->transmit_known ? e->toe.week() * kSecondsPerWeek + e->transmit_tow_s
                            : -std::numeric_limits<double>::infinity();
 }
+
+/// Kept for selection: Galileo I/NAV sets only (clock for (E1,E5b), RTKLIB
+/// 2.4.3's default); every set of the other systems.
+bool selectable(const Ephemeris& e) noexcept {
+  return e.sat.system != GnssSystem::kGalileo || (e.gal_data_sources & kGalClockE5b) != 0;
+}
+
+/// Health for the L1-band single-frequency user: Galileo E1-B DVS (bit 0)
+/// and HS (bits 1-2) of the RINEX health field (multi-gnss.md §5); the
+/// others' whole health value (GPS/QZSS SV health, BeiDou SatH1, GLONASS Bn,
+/// SBAS).
+bool healthy(const Ephemeris& e) noexcept {
+  if (e.sat.system == GnssSystem::kGalileo) return (e.health & 0x7) == 0;
+  return e.health == 0;
+}
 }  // namespace
 
 EphemerisStore::EphemerisStore(const std::vector<Ephemeris>& ephemerides, StoreOptions options) : options_(options) {
   for (const Ephemeris& e : ephemerides) {
-    if (e.prn >= 1 && e.prn <= kMaxGpsPrn) by_prn_[static_cast<std::size_t>(e.prn)].push_back(e);
+    if (e.sat.valid() && selectable(e)) by_sat_[static_cast<std::size_t>(e.sat.index())].push_back(e);
   }
-  for (std::size_t prn = 1; prn <= static_cast<std::size_t>(kMaxGpsPrn); ++prn) {
-    auto& v = by_prn_[prn];
+  for (std::size_t i = 0; i < by_sat_.size(); ++i) {
+    auto& v = by_sat_[i];
     // Stable: equal (toe, transmit) keep file order, so the later one is last.
     std::stable_sort(v.begin(), v.end(), [](const Ephemeris& a, const Ephemeris& b) {
       if (a.toe != b.toe) return a.toe < b.toe;
       return transmit_key(a) < transmit_key(b);
     });
-    auto& u = usable_[prn];
+    auto& u = usable_[i];
     // Unhealthy sets stay candidates: they are the current broadcast.
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      if (!u.empty() && v[u.back()].toe == v[i].toe) {
-        u.back() = i;  // later transmitted duplicate replaces the earlier one
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      if (!u.empty() && v[u.back()].toe == v[k].toe) {
+        u.back() = k;  // later transmitted duplicate replaces the earlier one
       } else {
-        u.push_back(i);
+        u.push_back(k);
       }
     }
   }
 }
 
-const Ephemeris* EphemerisStore::select(int prn, const time::GpsTime& t) const noexcept {
-  if (prn < 1 || prn > kMaxGpsPrn) return nullptr;
-  const auto& v = by_prn_[static_cast<std::size_t>(prn)];
-  const auto& u = usable_[static_cast<std::size_t>(prn)];
+const Ephemeris* EphemerisStore::select(SatId sat, const time::GpsTime& t) const noexcept {
+  if (!sat.valid()) return nullptr;
+  const auto& v = by_sat_[static_cast<std::size_t>(sat.index())];
+  const auto& u = usable_[static_cast<std::size_t>(sat.index())];
   if (u.empty()) return nullptr;
   // First usable set with toe >= t; its predecessor is the other candidate.
   const auto it = std::lower_bound(u.begin(), u.end(), t,
@@ -68,30 +85,35 @@ const Ephemeris* EphemerisStore::select(int prn, const time::GpsTime& t) const n
     first = before;
     second = nullptr;
   }
+  if (sat.system == GnssSystem::kGalileo) {
+    // Only sets with toe < t (RTKLIB 2.4.3 seleph: "AOD <= 0" skipped).
+    first = before;
+    second = nullptr;
+  }
   const Ephemeris* chosen = valid(first) ? first : valid(second) ? second : nullptr;
   if (chosen == nullptr && options_.continue_after_data && after == nullptr && before != nullptr) {
     chosen = before;  // past the satellite's last set: its orbit goes on
   }
   // A satellite flagged unhealthy in its current set is not used, even if
   // an older healthy set is still within its validity window.
-  return chosen != nullptr && chosen->health == 0 ? chosen : nullptr;
+  return chosen != nullptr && healthy(*chosen) ? chosen : nullptr;
 }
 
-std::size_t EphemerisStore::count(int prn) const noexcept {
-  if (prn < 1 || prn > kMaxGpsPrn) return 0;
-  return by_prn_[static_cast<std::size_t>(prn)].size();
+std::size_t EphemerisStore::count(SatId sat) const noexcept {
+  if (!sat.valid()) return 0;
+  return by_sat_[static_cast<std::size_t>(sat.index())].size();
 }
 
 std::size_t EphemerisStore::size() const noexcept {
   std::size_t n = 0;
-  for (const auto& v : by_prn_) n += v.size();
+  for (const auto& v : by_sat_) n += v.size();
   return n;
 }
 
 time::GpsTime EphemerisStore::first_valid() const noexcept {
   bool any = false;
   time::GpsTime best;
-  for (const auto& v : by_prn_) {
+  for (const auto& v : by_sat_) {
     for (const Ephemeris& e : v) {
       const time::GpsTime s = e.toe - validity_half_window_s(e);
       if (!any || s < best) best = s;
@@ -104,7 +126,7 @@ time::GpsTime EphemerisStore::first_valid() const noexcept {
 time::GpsTime EphemerisStore::last_valid() const noexcept {
   bool any = false;
   time::GpsTime best;
-  for (const auto& v : by_prn_) {
+  for (const auto& v : by_sat_) {
     for (const Ephemeris& e : v) {
       const time::GpsTime s = e.toe + validity_half_window_s(e);
       if (!any || s > best) best = s;
@@ -120,7 +142,7 @@ namespace gnssemu::orbit {
 
 std::vector<TimeSpan> EphemerisStore::coverage() const {
   std::vector<TimeSpan> spans;
-  for (const auto& v : by_prn_) {
+  for (const auto& v : by_sat_) {
     for (const Ephemeris& e : v) {
       const double w = validity_half_window_s(e);
       spans.push_back({e.toe - w, e.toe + w});

@@ -1,21 +1,29 @@
 #pragma once
 // EphemerisStore: per satellite, the ephemeris whose toe is nearest to the
-// requested time and within its validity window (RTKLIB seleph rule), if it
-// is healthy. Several files go into one store: their sets are simply pooled.
+// requested time and within its validity window (RTKLIB seleph/selgeph/
+// selseph rules), if it is healthy. Several files go into one store: their
+// sets are simply pooled.
 //
 // Rules, in order:
-//  - duplicates (same PRN and toe, e.g. an IODE change, a merged file
+//  - Galileo: only I/NAV sets (data-source bit 9, clock for (E1,E5b)) are
+//    kept, what an E1 receiver decodes and RTKLIB 2.4.3 selects by default;
+//    F/NAV-only sets are not used;
+//  - duplicates (same satellite and toe, e.g. an IODE change, a merged file
 //    listing the same set twice, or two daily files both holding the
 //    midnight set): the one transmitted last wins; an unknown transmission
 //    time counts as earliest, equal ones fall back to input order (later
 //    wins);
 //  - among the remaining sets whose validity window covers t
-//    (|t - toe| <= validity_half_window_s()), the nearest toe wins; at equal
+//    (|t - toe| <= validity_half_window_s(): GPS half the fit interval, the
+//    others their system's maximum age), the nearest toe wins (GLONASS: the
+//    nearest tb; Galileo: only toe < t, as RTKLIB 2.4.3); at equal
 //    distance the one transmitted later wins, then the later toe. This is
 //    RTKLIB's tie: uniqeph() (src/rtkcmn.c) sorts the sets by transmission
 //    time, then toe, and seleph() (src/ephemeris.c) keeps the last set with
 //    |t - toe| <= its best so far ("if (t<=tmin)");
-//  - if that set is unhealthy (health != 0) the satellite is not used, and
+//  - if that set is unhealthy the satellite is not used (GPS/QZSS health
+//    != 0; Galileo E1-B HS or DVS set, the E1 user's signal; BeiDou SatH1
+//    != 0; GLONASS Bn != 0; SBAS health != 0), and
 //    an older healthy set is not used in its place. The choice is by toe,
 //    not by transmission time: a set whose toe is nearer decides even in the
 //    hour before it is broadcast (RINEX files hold the whole day);
@@ -25,7 +33,7 @@
 #include <array>
 #include <vector>
 
-#include "core/common/constants.hpp"
+#include "core/common/sat_id.hpp"
 #include "core/orbit/ephemeris.hpp"
 
 namespace gnssemu::orbit {
@@ -48,12 +56,14 @@ public:
   /// Copies and indexes the ephemerides (load time; allocates).
   explicit EphemerisStore(const std::vector<Ephemeris>& ephemerides, StoreOptions options = {});
 
-  /// Ephemeris for prn (1..32) valid at t, or nullptr (none valid, or the
-  /// nearest valid set is unhealthy). No allocation; safe on the per-epoch path.
-  const Ephemeris* select(int prn, const time::GpsTime& t) const noexcept;
+  /// Ephemeris for sat valid at t, or nullptr (none valid, an invalid sat,
+  /// or the nearest valid set is unhealthy). No allocation; safe on the
+  /// per-epoch path.
+  const Ephemeris* select(SatId sat, const time::GpsTime& t) const noexcept;
 
-  /// Number of ephemerides stored for prn (all, healthy or not).
-  std::size_t count(int prn) const noexcept;
+  /// Number of ephemerides stored for sat (all, healthy or not; Galileo:
+  /// the I/NAV sets).
+  std::size_t count(SatId sat) const noexcept;
   std::size_t size() const noexcept;
   /// Earliest toe - validity and latest toe + validity over all sets, for
   /// picking a default epoch. Both are GpsTime{} when empty.
@@ -67,10 +77,10 @@ public:
 
 private:
   StoreOptions options_;
-  std::array<std::vector<Ephemeris>, kMaxGpsPrn + 1> by_prn_;  // sorted by toe
-  // Per PRN, indices into by_prn_ of the selectable sets (healthy or not):
-  // one per toe (the latest transmitted one), ascending toe.
-  std::array<std::vector<std::size_t>, kMaxGpsPrn + 1> usable_;
+  std::array<std::vector<Ephemeris>, kNumSats> by_sat_;  // by SatId::index(), sorted by toe
+  // Per satellite, indices into by_sat_ of the selectable sets (healthy or
+  // not): one per toe (the latest transmitted one), ascending toe.
+  std::array<std::vector<std::size_t>, kNumSats> usable_;
 };
 
 }  // namespace gnssemu::orbit

@@ -22,7 +22,7 @@ double wrap(double a) { return std::remainder(a, 2.0 * kPi); }
 // the terms an almanac lacks (delta n, IDOT, harmonics, af2) dropped.
 AlmanacEntry from_broadcast(const Ephemeris& e) {
   AlmanacEntry a;
-  a.prn = e.prn;
+  a.prn = e.sat.number;
   a.health = e.health;
   a.e = e.e;
   a.toa = e.toe;
@@ -124,7 +124,7 @@ TEST(Almanac, AgreesWithBroadcastEphemerisAtKmLevel) {
       const SatState se = sat_state(e, t);
       const double dp = (sa.pos_m - se.pos_m).norm();
       worst = std::max(worst, dp);
-      EXPECT_LT(dp, 5000.0) << "PRN " << e.prn << " dt " << dt;
+      EXPECT_LT(dp, 5000.0) << "PRN " << int(e.sat.number) << " dt " << dt;
       EXPECT_GT(dp, 0.0);
       // No relativistic term in the almanac clock (RTKLIB alm2pos).
       EXPECT_EQ(sa.relativity_s, 0.0);
@@ -145,7 +145,7 @@ TEST(Almanac, VelocityMatchesFiniteDifference) {
 TEST(Almanac, ToEphemeris) {
   const AlmanacEntry a = read_yuma(kYuma, 1886).front();
   const Ephemeris e = to_ephemeris(a);
-  EXPECT_EQ(e.prn, 1);
+  EXPECT_EQ(e.sat, SatId::gps(1));
   EXPECT_EQ(e.toe, a.toa);
   EXPECT_EQ(e.toc, a.toa);
   EXPECT_EQ(e.crs_m, 0.0);

@@ -43,9 +43,9 @@ Steps walk(const EphemerisStore& store, const time::GpsTime& from, double span_s
     int n = 0;
     for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
       const time::GpsTime tm = t0 + dt_s / 2.0;
-      const Ephemeris* e0 = store.select(prn, t0);
-      const Ephemeris* em = store.select(prn, tm);
-      const Ephemeris* e1 = store.select(prn, t1);
+      const Ephemeris* e0 = store.select(SatId::gps(prn), t0);
+      const Ephemeris* em = store.select(SatId::gps(prn), tm);
+      const Ephemeris* e1 = store.select(SatId::gps(prn), t1);
       if (e0 == nullptr || em == nullptr || e1 == nullptr) continue;
       ++n;
       const SatState a = sat_state(*e0, t0), m = sat_state(*em, tm), b = sat_state(*e1, t1);
@@ -89,8 +89,8 @@ TEST(Constellation, AutoMovesOldDataToTodayByWholeDays) {
   // The sky at the start is the data's sky at the same time of day.
   const EphemerisStore moved(c.nav.ephemerides, c.store_options()), original(brdc().ephemerides);
   for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
-    const Ephemeris* a = moved.select(prn, kToday);
-    const Ephemeris* b = original.select(prn, kToday - c.shift_s);
+    const Ephemeris* a = moved.select(SatId::gps(prn), kToday);
+    const Ephemeris* b = original.select(SatId::gps(prn), kToday - c.shift_s);
     ASSERT_EQ(a == nullptr, b == nullptr) << prn;
     if (a == nullptr) continue;
     EXPECT_LT((sat_state(*a, kToday).pos_m - sat_state(*b, kToday - c.shift_s).pos_m).norm(), 1e-3) << prn;
@@ -125,7 +125,7 @@ TEST(Constellation, RelabelOfDataStartingLateInTheDay) {
   EXPECT_EQ(c.shift_s, (1788.0 - 1.0) * kSecondsPerDay);
   const EphemerisStore store(c.nav.ephemerides, c.store_options());
   int served = 0;
-  for (int prn = 1; prn <= kMaxGpsPrn; ++prn) served += store.select(prn, early_morning) != nullptr;
+  for (int prn = 1; prn <= kMaxGpsPrn; ++prn) served += store.select(SatId::gps(prn), early_morning) != nullptr;
   EXPECT_GE(served, 28);
 }
 
@@ -187,7 +187,7 @@ TEST(Constellation, AlmanacMovedToTheStartAndPropagated) {
   EXPECT_TRUE(c.nav.klobuchar.valid);  // from the nav header given
   const EphemerisStore store(c.nav.ephemerides, c.store_options());
   // Geometry at the start: the almanac's at the start minus the shift.
-  const Ephemeris* e = store.select(alm.front().prn, kToday);
+  const Ephemeris* e = store.select(SatId::gps(alm.front().prn), kToday);
   ASSERT_NE(e, nullptr);
   EXPECT_LT((sat_state(*e, kToday).pos_m - almanac_state(alm.front(), kToday - c.shift_s).pos_m).norm(), 1e-3);
   // Weeks on, without a jump (an almanac is one orbit per satellite).

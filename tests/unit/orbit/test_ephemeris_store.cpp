@@ -22,7 +22,7 @@ Ephemeris base() {
 
 Ephemeris at(int prn, int week, double toe_tow, int iode, int health = 0) {
   Ephemeris e = base();
-  e.prn = prn;
+  e.sat = SatId::gps(prn);
   e.toe = time::GpsTime(week, toe_tow);
   e.toc = e.toe;
   e.iode = iode;
@@ -34,7 +34,7 @@ Ephemeris at(int prn, int week, double toe_tow, int iode, int health = 0) {
 }
 
 int iode_at(const EphemerisStore& s, int prn, const time::GpsTime& t) {
-  const Ephemeris* e = s.select(prn, t);
+  const Ephemeris* e = s.select(SatId::gps(prn), t);
   return e ? e->iode : -1;
 }
 
@@ -42,7 +42,7 @@ int iode_at(const EphemerisStore& s, int prn, const time::GpsTime& t) {
 
 TEST(EphemerisStore, NearestToe) {
   const EphemerisStore s({at(5, 2000, 14400, 3), at(5, 2000, 0, 1), at(5, 2000, 7200, 2)});
-  EXPECT_EQ(s.count(5), 3u);
+  EXPECT_EQ(s.count(SatId::gps(5)), 3u);
   EXPECT_EQ(s.size(), 3u);
   EXPECT_EQ(iode_at(s, 5, time::GpsTime(2000, 0)), 1);
   EXPECT_EQ(iode_at(s, 5, time::GpsTime(2000, 3599.9)), 1);
@@ -50,9 +50,9 @@ TEST(EphemerisStore, NearestToe) {
   EXPECT_EQ(iode_at(s, 5, time::GpsTime(2000, 3600.0)), 2);  // tie: later toe
   EXPECT_EQ(iode_at(s, 5, time::GpsTime(2000, 11000)), 3);
   EXPECT_EQ(iode_at(s, 6, time::GpsTime(2000, 0)), -1);      // no sets for PRN 6
-  EXPECT_EQ(s.select(0, time::GpsTime(2000, 0)), nullptr);
-  EXPECT_EQ(s.select(33, time::GpsTime(2000, 0)), nullptr);
-  EXPECT_EQ(s.count(33), 0u);
+  EXPECT_EQ(s.select(SatId::gps(0), time::GpsTime(2000, 0)), nullptr);
+  EXPECT_EQ(s.select(SatId::gps(33), time::GpsTime(2000, 0)), nullptr);
+  EXPECT_EQ(s.count(SatId::gps(33)), 0u);
 }
 
 TEST(EphemerisStore, ValidityEdges) {
@@ -81,7 +81,7 @@ TEST(EphemerisStore, UnhealthySkipped) {
   EXPECT_EQ(iode_at(s, 9, time::GpsTime(2000, 7000)), -1);
   EXPECT_EQ(iode_at(s, 9, time::GpsTime(2000, 7400)), -1);
   EXPECT_EQ(iode_at(s, 9, time::GpsTime(2000, 10900)), 3);  // healthy again
-  EXPECT_EQ(s.count(9), 3u);
+  EXPECT_EQ(s.count(SatId::gps(9)), 3u);
   const EphemerisStore only_bad({at(9, 2000, 7200, 2, 63)});
   EXPECT_EQ(iode_at(only_bad, 9, time::GpsTime(2000, 7200)), -1);
 }
@@ -91,7 +91,7 @@ TEST(EphemerisStore, UnhealthySkipped) {
 TEST(EphemerisStore, NewlyUnhealthyNotUsed) {
   const EphemerisStore s({at(10, 2000, 0, 1), at(10, 2000, 7200, 2, 1)});
   EXPECT_EQ(iode_at(s, 10, time::GpsTime(2000, 0)), 1);
-  EXPECT_EQ(s.select(10, time::GpsTime(2000, 7200)), nullptr);
+  EXPECT_EQ(s.select(SatId::gps(10), time::GpsTime(2000, 7200)), nullptr);
 }
 
 TEST(EphemerisStore, DuplicateToePrefersLaterTransmission) {
@@ -102,7 +102,7 @@ TEST(EphemerisStore, DuplicateToePrefersLaterTransmission) {
   for (const auto& list : {std::vector<Ephemeris>{early, late}, std::vector<Ephemeris>{late, early}}) {
     const EphemerisStore s(list);
     EXPECT_EQ(iode_at(s, 11, time::GpsTime(2000, 7200)), 11);
-    EXPECT_EQ(s.count(11), 2u);
+    EXPECT_EQ(s.count(SatId::gps(11)), 2u);
   }
   // Unknown transmission time counts as earliest.
   Ephemeris unknown = at(11, 2000, 7200, 12);
@@ -143,7 +143,7 @@ TEST(EphemerisStore, RealFileAndNoAllocation) {
   int selected = 0;
   const long before = gnssemu::support::allocation_count();
   for (int prn = 1; prn <= 32; ++prn) {
-    const Ephemeris* e = s.select(prn, noon);
+    const Ephemeris* e = s.select(SatId::gps(prn), noon);
     if (e == nullptr) continue;
     ++selected;
     EXPECT_LE(std::fabs(noon - e->toe), 3600.0) << prn;  // brdc has a set every 2 h
@@ -193,9 +193,9 @@ TEST(EphemerisStore, ContinuesAfterTheLastSet) {
   EXPECT_EQ(iode_at(open, 14, time::GpsTime(1999, 500000)), -1);  // nothing before the data
   EXPECT_EQ(iode_at(open, 15, days_later), -1);                   // last set unhealthy
   const long before = gnssemu::support::allocation_count();
-  for (int k = 0; k < 100; ++k) (void)open.select(14, days_later + 60.0 * k);  // per-epoch path
+  for (int k = 0; k < 100; ++k) (void)open.select(SatId::gps(14), days_later + 60.0 * k);  // per-epoch path
   EXPECT_EQ(gnssemu::support::allocation_count(), before);
-  const Ephemeris* e = open.select(14, days_later);
+  const Ephemeris* e = open.select(SatId::gps(14), days_later);
   ASSERT_NE(e, nullptr);
   const SatState s = sat_state(*e, days_later);
   EXPECT_NEAR(s.pos_m.norm(), 26.56e6, 0.4e6);  // still a GPS orbit a week on (e ~ 0.01: +-0.27e6)
@@ -234,8 +234,8 @@ TEST(EphemerisStore, MergedFilesActAsOne) {
   const EphemerisStore one(whole.ephemerides), two(both.ephemerides);
   for (double tow = 518400 - 7200; tow <= 518400 + 86400 + 7200; tow += 450) {
     for (int prn = 1; prn <= 32; ++prn) {
-      const Ephemeris* a = one.select(prn, time::GpsTime(2190, tow));
-      const Ephemeris* b = two.select(prn, time::GpsTime(2190, tow));
+      const Ephemeris* a = one.select(SatId::gps(prn), time::GpsTime(2190, tow));
+      const Ephemeris* b = two.select(SatId::gps(prn), time::GpsTime(2190, tow));
       ASSERT_EQ(a == nullptr, b == nullptr) << prn << " " << tow;
       if (a) {
         EXPECT_EQ(a->iode, b->iode) << prn << " " << tow;

@@ -100,7 +100,7 @@ TEST_P(ReferenceSatpos, MatchesIndependentImplementation) {
     const time::GpsTime toe(r.toe_week, r.toe_tow_s);
     const Ephemeris* eph = nullptr;
     for (const Ephemeris& e : data.ephemerides) {
-      if (e.prn == r.prn && e.toe == toe && e.iode == r.iode && e.health == 0) eph = &e;
+      if (e.sat == SatId::gps(r.prn) && e.toe == toe && e.iode == r.iode && e.health == 0) eph = &e;
     }
     ASSERT_NE(eph, nullptr) << nav << ": no set PRN " << r.prn << " toe " << r.toe_week << "/" << r.toe_tow_s;
     const SatState s = sat_state(*eph, t);
@@ -114,7 +114,7 @@ TEST_P(ReferenceSatpos, MatchesIndependentImplementation) {
     EXPECT_LE(dv, 1e-4) << nav << " PRN " << r.prn << " t " << r.week << "/" << r.tow_s;
     EXPECT_LE(dc, 1e-12) << nav << " PRN " << r.prn << " t " << r.week << "/" << r.tow_s;
 
-    const Ephemeris* sel = store.select(r.prn, t);
+    const Ephemeris* sel = store.select(SatId::gps(r.prn), t);
     ASSERT_NE(sel, nullptr) << nav << " PRN " << r.prn << " t " << r.week << "/" << r.tow_s;
     EXPECT_EQ(sel->toe, toe) << nav << " PRN " << r.prn << " t " << r.week << "/" << r.tow_s;
     EXPECT_EQ(sel->iode, r.iode) << nav << " PRN " << r.prn << " t " << r.week << "/" << r.tow_s;
@@ -123,7 +123,7 @@ TEST_P(ReferenceSatpos, MatchesIndependentImplementation) {
   const std::vector<NoEphCase> none = read_no_ephemeris_cases(nav);
   ASSERT_GE(none.size(), 58u) << nav << ": no 'Expected NO ephemeris' list in reference/README.md";
   for (const NoEphCase& c : none) {
-    EXPECT_EQ(store.select(c.prn, time::GpsTime(c.week, c.tow_s)), nullptr)
+    EXPECT_EQ(store.select(SatId::gps(c.prn), time::GpsTime(c.week, c.tow_s)), nullptr)
         << nav << " PRN " << c.prn << " t " << c.week << "/" << c.tow_s;
   }
   std::printf("%s: %zu rows, max |dpos| %.3g m, |dvel| %.3g m/s, |dclk| %.3g s\n", nav.c_str(), rows.size(), max_pos,

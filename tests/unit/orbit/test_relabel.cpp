@@ -47,9 +47,9 @@ TEST(Relabel, SameGeometryShiftLater) {
       EXPECT_EQ(m.toc, e.toc + shift);
       EXPECT_EQ(m.iode, e.iode);
       const Diff d = compare(e, m, shift);
-      ASSERT_LT(d.pos_m, 1e-3) << "PRN " << e.prn << " shift " << shift;
-      ASSERT_LT(d.vel_m_s, 1e-6) << "PRN " << e.prn << " shift " << shift;
-      ASSERT_LT(d.clk_s, 1e-15) << "PRN " << e.prn << " shift " << shift;
+      ASSERT_LT(d.pos_m, 1e-3) << "PRN " << int(e.sat.number) << " shift " << shift;
+      ASSERT_LT(d.vel_m_s, 1e-6) << "PRN " << int(e.sat.number) << " shift " << shift;
+      ASSERT_LT(d.clk_s, 1e-15) << "PRN " << int(e.sat.number) << " shift " << shift;
     }
   }
 }
@@ -77,7 +77,7 @@ TEST(Relabel, TransmissionTimeKeepsItsInstant) {
     const Ephemeris m = relabel(e, 5.0 * kSecondsPerDay + 3.0);  // crosses into week 2191
     const double before = (time::GpsTime(e.toe.week(), 0.0) + e.transmit_tow_s) - e.toe;
     const double after = (time::GpsTime(m.toe.week(), 0.0) + m.transmit_tow_s) - m.toe;
-    EXPECT_NEAR(after, before, 1e-6) << e.prn;
+    EXPECT_NEAR(after, before, 1e-6) << int(e.sat.number);
   }
 }
 
