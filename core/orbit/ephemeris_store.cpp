@@ -49,9 +49,13 @@ EphemerisStore::EphemerisStore(const std::vector<Ephemeris>& ephemerides, StoreO
     });
     auto& u = usable_[i];
     // Unhealthy sets stay candidates: they are the current broadcast.
+    // Galileo: the first transmitted of equal toes, as RTKLIB 2.4.3's
+    // uniqeph() keeps the first set of an IODnav (I/NAV E1-B, E5b and merged
+    // records of one toe differ in af0 by up to ~6e-11 s).
+    const bool first_wins = !v.empty() && v.front().sat.system == GnssSystem::kGalileo;
     for (std::size_t k = 0; k < v.size(); ++k) {
       if (!u.empty() && v[u.back()].toe == v[k].toe) {
-        u.back() = k;  // later transmitted duplicate replaces the earlier one
+        if (!first_wins) u.back() = k;  // later transmitted duplicate replaces the earlier one
       } else {
         u.push_back(k);
       }

@@ -12,7 +12,8 @@
 //    listing the same set twice, or two daily files both holding the
 //    midnight set): the one transmitted last wins; an unknown transmission
 //    time counts as earliest, equal ones fall back to input order (later
-//    wins);
+//    wins). Galileo: the one transmitted first (RTKLIB 2.4.3 uniqeph()
+//    keeps a satellite's first set of an IODnav);
 //  - among the remaining sets whose validity window covers t
 //    (|t - toe| <= validity_half_window_s(): GPS half the fit interval, the
 //    others their system's maximum age), the nearest toe wins (GLONASS: the
