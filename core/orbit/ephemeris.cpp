@@ -25,13 +25,6 @@ double relativity_f(GnssSystem sys, double mu) noexcept {
   return -2.0 * std::sqrt(mu) / (kSpeedOfLight_m_s * kSpeedOfLight_m_s);
 }
 
-/// Seconds of toe in the system's own week: BDT for BeiDou, GPST otherwise
-/// (GST weeks start with GPS weeks). Omega0 is referred to that week's start.
-double toe_of_week_s(const Ephemeris& eph) noexcept {
-  if (eph.sat.system == GnssSystem::kBeiDou) return (eph.toe - time::kGpsMinusBdt_s).tow_s();
-  return eph.toe.tow_s();
-}
-
 SatState kepler_state(const Ephemeris& eph, const time::GpsTime& t) noexcept {
   const SystemInfo& info = system_info(eph.sat.system);
   const double mu = info.mu_m3_s2;
@@ -170,6 +163,11 @@ SatState sbas_state(const Ephemeris& eph, const time::GpsTime& t) noexcept {
 }
 
 }  // namespace
+
+double toe_of_week_s(const Ephemeris& eph) noexcept {
+  if (eph.sat.system == GnssSystem::kBeiDou) return (eph.toe - time::kGpsMinusBdt_s).tow_s();
+  return eph.toe.tow_s();
+}
 
 SatState glonass_state(const Ephemeris& eph, const time::GpsTime& t, double step_s) noexcept {
   SatState out;

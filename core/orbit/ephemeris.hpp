@@ -97,6 +97,11 @@ double sat_clock_at_sv_time(const Ephemeris& eph, const time::GpsTime& t_sv) noe
 /// maximum age (system_info().max_ephemeris_age_s).
 double validity_half_window_s(const Ephemeris& eph) noexcept;
 
+/// Seconds of toe in the system's own week (BDT for BeiDou; GST and QZSS
+/// weeks start with GPS weeks): Omega0 of a Keplerian set is referred to
+/// that week's start (the -omega_e toe term of IS-GPS-200 Table 20-IV).
+double toe_of_week_s(const Ephemeris& eph) noexcept;
+
 /// Step of the GLONASS orbit integration, s (ICD GLONASS Ed. 5.1 App. A.3.1.2; RTKLIB TSTEP).
 inline constexpr double kGlonassStep_s = 60.0;
 

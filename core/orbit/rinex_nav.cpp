@@ -50,7 +50,7 @@ constexpr double field_max(int bits, int scale_log2) {
 void check_broadcast_range(const Parser& p, int line, double value, double max_abs, const char* field,
                            const char* icd = "IS-GPS-200 Table 20-III") {
   // The relative slack admits the extreme value printed with 12 decimals.
-  if (!(std::fabs(value) <= max_abs * (1.0 + 1e-9))) {
+  if (!(std::fabs(value) <= max_abs * (1.0 + 1e-11))) {
     char msg[200];
     std::snprintf(msg, sizeof msg, "%s %.6g outside what the broadcast message carries (|x| <= %.6g, %s)", field, value,
                   max_abs, icd);
