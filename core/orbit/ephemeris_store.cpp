@@ -34,6 +34,27 @@ bool healthy(const Ephemeris& e) noexcept {
   if (e.sat.system == GnssSystem::kGalileo) return (e.health & 0x7) == 0;
   return e.health == 0;
 }
+/// The GLONASS set `last` integrated forward: a set every
+/// kGlonassContinuationStep_s up to kGlonassMaxSpan_s past its tb, each the
+/// state of the previous one 30 min on, the clock carried along
+/// (-tau_n + gamma_n (t - tb) unchanged).
+void continue_glonass(const Ephemeris& last, std::vector<Ephemeris>& out) {
+  const int n = static_cast<int>(kGlonassMaxSpan_s / kGlonassContinuationStep_s);
+  out.reserve(static_cast<std::size_t>(n));
+  Ephemeris e = last;
+  for (int k = 1; k <= n; ++k) {
+    const time::GpsTime tb = last.toe + k * kGlonassContinuationStep_s;
+    const SatState s = glonass_state(e, tb, kGlonassStep_s);
+    e.tau_n_s -= e.gamma_n * (tb - e.toe);
+    e.pos_m = s.pos_m;
+    e.vel_m_s = s.vel_m_s;
+    e.toe = tb;
+    e.toc = tb;
+    e.transmit_known = false;
+    e.transmit_tow_s = 0.0;
+    out.push_back(e);
+  }
+}
 }  // namespace
 
 EphemerisStore::EphemerisStore(const std::vector<Ephemeris>& ephemerides, StoreOptions options) : options_(options) {
@@ -59,6 +80,9 @@ EphemerisStore::EphemerisStore(const std::vector<Ephemeris>& ephemerides, StoreO
       } else {
         u.push_back(k);
       }
+    }
+    if (options_.continue_after_data && !u.empty() && v[u.back()].sat.system == GnssSystem::kGlonass) {
+      continue_glonass(v[u.back()], continued_[i]);
     }
   }
 }
@@ -97,6 +121,11 @@ const Ephemeris* EphemerisStore::select(SatId sat, const time::GpsTime& t) const
   const Ephemeris* chosen = valid(first) ? first : valid(second) ? second : nullptr;
   if (chosen == nullptr && options_.continue_after_data && after == nullptr && before != nullptr) {
     chosen = before;  // past the satellite's last set: its orbit goes on
+    const auto& c = continued_[static_cast<std::size_t>(sat.index())];
+    if (!c.empty()) {  // GLONASS: the nearest continued set
+      const double k = std::round((t - before->toe) / kGlonassContinuationStep_s);
+      if (k >= 1.0) chosen = &c[static_cast<std::size_t>(std::min(k, static_cast<double>(c.size()))) - 1];
+    }
   }
   // A satellite flagged unhealthy in its current set is not used, even if
   // an older healthy set is still within its validity window.

@@ -31,6 +31,9 @@
 //  - with StoreOptions::continue_after_data, past the end of a satellite's
 //    last set's window that set stays in use (its orbit propagated; see
 //    docs/models.md), so the constellation does not vanish when the data end.
+//    GLONASS: the last set is integrated once, at construction, into sets
+//    every 30 min for 8 days (the same trajectory), so that a state past
+//    the data costs at most 15 min of integration, not days of it.
 #include <array>
 #include <vector>
 
@@ -45,6 +48,9 @@ struct TimeSpan {
   time::GpsTime end;
   bool contains(const time::GpsTime& t) const noexcept { return !(t < begin) && !(end < t); }
 };
+
+/// Spacing of the continued GLONASS sets, s (the broadcast tb spacing).
+inline constexpr double kGlonassContinuationStep_s = 1800.0;
 
 struct StoreOptions {
   /// After a satellite's last set, keep using it (true) or have no set (false, RTKLIB).
@@ -82,6 +88,9 @@ private:
   // Per satellite, indices into by_sat_ of the selectable sets (healthy or
   // not): one per toe (the latest transmitted one), ascending toe.
   std::array<std::vector<std::size_t>, kNumSats> usable_;
+  // GLONASS with continue_after_data: the last set continued, tb every
+  // kGlonassContinuationStep_s after it.
+  std::array<std::vector<Ephemeris>, kNumSats> continued_;
 };
 
 }  // namespace gnssemu::orbit

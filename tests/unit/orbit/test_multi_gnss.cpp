@@ -251,3 +251,32 @@ TEST(MultiGnss, ConstellationWithoutGps) {
   EXPECT_EQ(moved.mode, NavMode::kRelabel);
   EXPECT_EQ(moved.shift_s, 30.0 * kSecondsPerDay);
 }
+
+// Past the data a GLONASS satellite flies on along its last set's
+// trajectory, from continued sets 30 min apart: the same positions as one
+// long integration, no jump where one continued set hands over to the next.
+TEST(MultiGnss, GlonassContinuesPastTheData) {
+  const SatId r01(GnssSystem::kGlonass, 1);
+  const EphemerisStore store(igs().ephemerides, StoreOptions{true});
+  const EphemerisStore plain(igs().ephemerides);
+  const Ephemeris* last = nullptr;
+  for (const Ephemeris& e : igs().ephemerides)
+    if (e.sat == r01 && (last == nullptr || last->toe < e.toe)) last = &e;
+  ASSERT_NE(last, nullptr);
+  for (double dt : {2000.0, 3.0 * 3600.0 + 900.0, 26.0 * 3600.0, 72.0 * 3600.0 + 17.0}) {
+    const time::GpsTime t = last->toe + dt;
+    EXPECT_EQ(plain.select(r01, t), nullptr);
+    const Ephemeris* e = store.select(r01, t);
+    ASSERT_NE(e, nullptr);
+    EXPECT_LE(std::fabs(t - e->toe), kGlonassContinuationStep_s / 2.0) << dt;
+    const SatState a = sat_state(*e, t), b = glonass_state(*last, t, kGlonassStep_s);
+    EXPECT_LT((a.pos_m - b.pos_m).norm(), 1e-3) << dt;
+    EXPECT_NEAR(a.clk_bias_s, b.clk_bias_s, 1e-15) << dt;
+  }
+  // Hand-over between two continued sets (tb + 45 min: 15 min from each).
+  const time::GpsTime mid = last->toe + 2700.0;
+  const SatState before = sat_state(*store.select(r01, mid - 0.001), mid);
+  const SatState after = sat_state(*store.select(r01, mid + 0.001), mid);
+  EXPECT_NE(store.select(r01, mid - 0.001), store.select(r01, mid + 0.001));
+  EXPECT_LT((before.pos_m - after.pos_m).norm(), 1e-4);
+}
