@@ -27,11 +27,14 @@ bool selectable(const Ephemeris& e) noexcept {
 }
 
 /// Health for the L1-band single-frequency user: Galileo E1-B DVS (bit 0)
-/// and HS (bits 1-2) of the RINEX health field (multi-gnss.md §5); the
-/// others' whole health value (GPS/QZSS SV health, BeiDou SatH1, GLONASS Bn,
-/// SBAS).
+/// and HS (bits 1-2) of the RINEX health field (multi-gnss.md §5); QZSS
+/// without bit 0; the others' whole health value (GPS SV health, BeiDou
+/// SatH1, GLONASS Bn, SBAS).
 bool healthy(const Ephemeris& e) noexcept {
   if (e.sat.system == GnssSystem::kGalileo) return (e.health & 0x7) == 0;
+  // QZSS: bit 0 is not the L1 signal's (RTKLIB 2.4.3 satexclude masks it;
+  // every QZSS set of the 2024 IGS files has health 1).
+  if (e.sat.system == GnssSystem::kQzss) return (e.health & ~1) == 0;
   return e.health == 0;
 }
 /// The GLONASS set `last` integrated forward: a set every

@@ -22,9 +22,10 @@
 //    RTKLIB's tie: uniqeph() (src/rtkcmn.c) sorts the sets by transmission
 //    time, then toe, and seleph() (src/ephemeris.c) keeps the last set with
 //    |t - toe| <= its best so far ("if (t<=tmin)");
-//  - if that set is unhealthy the satellite is not used (GPS/QZSS health
-//    != 0; Galileo E1-B HS or DVS set, the E1 user's signal; BeiDou SatH1
-//    != 0; GLONASS Bn != 0; SBAS health != 0), and
+//  - if that set is unhealthy the satellite is not used (GPS health != 0;
+//    QZSS health other than bit 0, which RTKLIB 2.4.3 masks; Galileo E1-B
+//    HS or DVS set, the E1 user's signal; BeiDou SatH1 != 0; GLONASS Bn !=
+//    0; SBAS health != 0), and
 //    an older healthy set is not used in its place. The choice is by toe,
 //    not by transmission time: a set whose toe is nearer decides even in the
 //    hour before it is broadcast (RINEX files hold the whole day);

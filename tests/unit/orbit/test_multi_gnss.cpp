@@ -193,6 +193,17 @@ TEST(MultiGnss, GalileoSelection) {
   }
 }
 
+// QZSS: bit 0 of the health does not keep the satellite out (RTKLIB masks
+// it; the IGS files give 1 for every QZSS set), other bits do.
+TEST(MultiGnss, QzssHealthBitZeroMasked) {
+  const SatId j02(GnssSystem::kQzss, 2);
+  Ephemeris e = first_of(j02);
+  EXPECT_EQ(e.health, 1);
+  EXPECT_NE(EphemerisStore({e}).select(j02, e.toe), nullptr);
+  e.health = 3;
+  EXPECT_EQ(EphemerisStore({e}).select(j02, e.toe), nullptr);
+}
+
 // The store's windows per system: GLONASS 30 min about the nearest tb,
 // BeiDou 6 h, QZSS 2 h (the table's ages); GPS keeps its fit-interval rule.
 TEST(MultiGnss, StoreWindowsPerSystem) {
