@@ -132,3 +132,17 @@ TEST(GlonassTime, InsertedLeapSecondIs025960Glonasst) {
   EXPECT_EQ(gps_from_glonass(before), step - 1.5);
   EXPECT_EQ(gps_from_glonass(after), step + 0.5);
 }
+
+// The broadcast week numbers are truncated (GST 12 bits, BDT 13 bits):
+// resolved against a reference week as GPS's 10-bit one.
+TEST(SystemWeeks, TruncatedWeeksResolve) {
+  const GpsTime t(2296, 302400.0);
+  const WeekTime gst = gst_from_gps(t);
+  EXPECT_EQ(resolve_week_nearest(gst.week % kGalileoWeekModulus, 1200, kGalileoWeekModulus), gst.week);
+  const WeekTime bdt = bdt_from_gps(t);
+  EXPECT_EQ(bdt.week, 940);
+  EXPECT_EQ(resolve_week_nearest(bdt.week % kBeiDouWeekModulus, 900, kBeiDouWeekModulus), bdt.week);
+  EXPECT_EQ(resolve_week_nearest(t.week() % kGpsWeekModulus, 2200), t.week());
+  // After the GST rollover (GPS week 5120, 2078) the 12-bit week starts at 0 again.
+  EXPECT_EQ(gst_from_gps(GpsTime(1024 + 4096, 0.0)).week % kGalileoWeekModulus, 0);
+}
