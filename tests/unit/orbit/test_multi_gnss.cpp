@@ -291,3 +291,34 @@ TEST(MultiGnss, GlonassContinuesPastTheData) {
   EXPECT_NE(store.select(r01, mid - 0.001), store.select(r01, mid + 0.001));
   EXPECT_LT((before.pos_m - after.pos_m).norm(), 1e-4);
 }
+
+// RINEX 2.11 GEO navigation (H): PRN - 100, GPST epoch, km.
+TEST(MultiGnss, SbasRinex2) {
+  std::istringstream in(
+      "     2.11           H: GEO NAV MSG DATA                     RINEX VERSION / TYPE\n"
+      "                                                            END OF HEADER\n"
+      "27 24  1 10  0 58 15.0 0.289641320705D-06 0.864019966684D-10 0.262695000000D+06\n"
+      "    0.242032531200D+05-0.107499992847D-02-0.299999985145D-06 0.000000000000D+00\n"
+      "    0.345317626400D+05-0.244312500954D-02 0.187500001630D-06 0.150000000000D+02\n"
+      "   -0.110240000000D+01-0.106000006199D-02 0.000000000000D+00 0.220000000000D+03\n");
+  const NavData d = read_rinex_nav(in, "mem.24h");
+  ASSERT_EQ(d.ephemerides.size(), 1u);
+  const Ephemeris& e = d.ephemerides.front();
+  EXPECT_EQ(e.sat, SatId(GnssSystem::kSbas, 27));
+  EXPECT_EQ(e.sat.prn(), 127);
+  const Ephemeris& e3 = first_of(SatId(GnssSystem::kSbas, 27));
+  EXPECT_EQ(e.toe, e3.toe);
+  EXPECT_LT((sat_state(e, e.toe + 100.0).pos_m - sat_state(e3, e3.toe + 100.0).pos_m).norm(), 1e-3);
+  EXPECT_EQ(e.iode, 220);
+}
+
+// Per-system files read together: GPS (.n) and GLONASS (.g) in one store.
+TEST(MultiGnss, GpsAndGlonassFilesTogether) {
+  const NavData d = read_rinex_nav_files({test::kNav + "brdc0010.22n", test::kNav + "SYNT0100.24g"});
+  EXPECT_EQ(d.ephemerides.size(), 422u + 2u);
+  const EphemerisStore store(d.ephemerides);
+  EXPECT_EQ(store.count(SatId(GnssSystem::kGlonass, 1)), 2u);
+  EXPECT_EQ(store.count(SatId::gps(1)), EphemerisStore(test::brdc().ephemerides).count(SatId::gps(1)));
+  EXPECT_NE(store.select(SatId(GnssSystem::kGlonass, 1), gps_cal(2024, 1, 10, 0, 20, 0.0)), nullptr);
+  EXPECT_TRUE(d.klobuchar.valid);  // from the GPS file
+}
