@@ -58,6 +58,25 @@ void continue_glonass(const Ephemeris& last, std::vector<Ephemeris>& out) {
     out.push_back(e);
   }
 }
+
+/// The SBAS set `last` held where it is at the end of its window: its
+/// polynomial is a fit for minutes (its acceleration held for a day moves a
+/// GEO by ~1000 km), a GEO stands nearly still in ECEF.
+Ephemeris hold_sbas(const Ephemeris& last) {
+  Ephemeris e = last;
+  const time::GpsTime end = last.toe + validity_half_window_s(last);
+  const SatState s = sat_state(last, end);
+  e.toe = end;
+  e.toc = end;
+  e.pos_m = s.pos_m;
+  e.vel_m_s = Ecef();
+  e.acc_m_s2 = Ecef();
+  e.af0_s = s.clk_bias_s;
+  e.af1_s_s = 0.0;
+  e.transmit_known = false;
+  e.transmit_tow_s = 0.0;
+  return e;
+}
 }  // namespace
 
 EphemerisStore::EphemerisStore(const std::vector<Ephemeris>& ephemerides, StoreOptions options) : options_(options) {
@@ -86,6 +105,9 @@ EphemerisStore::EphemerisStore(const std::vector<Ephemeris>& ephemerides, StoreO
     }
     if (options_.continue_after_data && !u.empty() && v[u.back()].sat.system == GnssSystem::kGlonass) {
       continue_glonass(v[u.back()], continued_[i]);
+    }
+    if (options_.continue_after_data && !u.empty() && v[u.back()].sat.system == GnssSystem::kSbas) {
+      continued_[i].push_back(hold_sbas(v[u.back()]));
     }
   }
 }
@@ -125,7 +147,9 @@ const Ephemeris* EphemerisStore::select(SatId sat, const time::GpsTime& t) const
   if (chosen == nullptr && options_.continue_after_data && after == nullptr && before != nullptr) {
     chosen = before;  // past the satellite's last set: its orbit goes on
     const auto& c = continued_[static_cast<std::size_t>(sat.index())];
-    if (!c.empty()) {  // GLONASS: the nearest continued set
+    if (!c.empty() && sat.system == GnssSystem::kSbas) {
+      chosen = &c.front();
+    } else if (!c.empty()) {  // GLONASS: the nearest continued set
       const double k = std::round((t - before->toe) / kGlonassContinuationStep_s);
       if (k >= 1.0) chosen = &c[static_cast<std::size_t>(std::min(k, static_cast<double>(c.size()))) - 1];
     }

@@ -35,6 +35,8 @@
 //    GLONASS: the last set is integrated once, at construction, into sets
 //    every 30 min for 8 days (the same trajectory), so that a state past
 //    the data costs at most 15 min of integration, not days of it.
+//    SBAS: the last set's state at the end of its window, held (no
+//    velocity, acceleration or clock drift).
 #include <array>
 #include <vector>
 
@@ -89,8 +91,8 @@ private:
   // Per satellite, indices into by_sat_ of the selectable sets (healthy or
   // not): one per toe (the latest transmitted one), ascending toe.
   std::array<std::vector<std::size_t>, kNumSats> usable_;
-  // GLONASS with continue_after_data: the last set continued, tb every
-  // kGlonassContinuationStep_s after it.
+  // With continue_after_data: GLONASS's last set continued, tb every
+  // kGlonassContinuationStep_s after it; SBAS's held.
   std::array<std::vector<Ephemeris>, kNumSats> continued_;
 };
 

@@ -322,3 +322,29 @@ TEST(MultiGnss, GpsAndGlonassFilesTogether) {
   EXPECT_NE(store.select(SatId(GnssSystem::kGlonass, 1), gps_cal(2024, 1, 10, 0, 20, 0.0)), nullptr);
   EXPECT_TRUE(d.klobuchar.valid);  // from the GPS file
 }
+
+// Past the data an SBAS GEO stays where its last set's window ends (its
+// polynomial's acceleration would carry it ~1000 km a day); the position
+// and the clock continue at the hand-over.
+TEST(MultiGnss, SbasHeldPastTheData) {
+  const SatId s27(GnssSystem::kSbas, 27);
+  std::vector<Ephemeris> sets;
+  for (const Ephemeris& e : igs().ephemerides)
+    if (e.sat == s27) sets.push_back(e);
+  for (Ephemeris& e : sets) e.health = 0;  // the file flags some sets 63
+  const EphemerisStore store(sets, StoreOptions{true});
+  const Ephemeris* last = nullptr;
+  for (const Ephemeris& e : sets)
+    if (last == nullptr || last->toe < e.toe) last = &e;
+  ASSERT_NE(last, nullptr);
+  const time::GpsTime end = last->toe + validity_half_window_s(*last);
+  const Ephemeris* held = store.select(s27, end + 1.0);
+  ASSERT_NE(held, nullptr);
+  ASSERT_NE(store.select(s27, end), nullptr);
+  const SatState a = sat_state(*store.select(s27, end), end), b = sat_state(*held, end + 1.0);
+  EXPECT_LT((a.pos_m - b.pos_m).norm(), 1e-6);
+  EXPECT_NEAR(a.clk_bias_s, b.clk_bias_s, 1e-18);
+  const SatState c = sat_state(*store.select(s27, end + 3.0 * kSecondsPerDay), end + 3.0 * kSecondsPerDay);
+  EXPECT_EQ(c.pos_m, b.pos_m);
+  EXPECT_NEAR(c.pos_m.norm(), 42164e3, 100e3);
+}
