@@ -37,6 +37,7 @@ bool healthy(const Ephemeris& e) noexcept {
   if (e.sat.system == GnssSystem::kQzss) return (e.health & ~1) == 0;
   return e.health == 0;
 }
+
 /// The GLONASS set `last` integrated forward: a set every
 /// kGlonassContinuationStep_s up to kGlonassMaxSpan_s past its tb, each the
 /// state of the previous one 30 min on, the clock carried along

@@ -359,9 +359,9 @@ Ephemeris parse_kepler_record(const Parser& p, const Record& lines, bool v3, Gns
   const int64_t week_diff = static_cast<int64_t>(week) - own_toe_week;
   const int64_t off = ((week_diff % 1024) + 1024 + 512) % 1024 - 512;  // in [-512, 512)
   if (off < -1 || off > 1) {
-    p.fail(line_no(5), std::string(system_name(sys)) + " week " + std::to_string(static_cast<int64_t>(week)) + " does not match toc: toe is in week " +
-                           std::to_string(own_toe_week) + " (mod 1024: " + std::to_string(own_toe_week % 1024) +
-                           "), allowed are that week +-1, also mod 1024");
+    p.fail(line_no(5), std::string(system_name(sys)) + " week " + std::to_string(static_cast<int64_t>(week)) +
+                           " does not match toc: toe is in week " + std::to_string(own_toe_week) + " (mod 1024: " +
+                           std::to_string(own_toe_week % 1024) + "), allowed are that week +-1, also mod 1024");
   }
   const double file_week = static_cast<double>(toe_week + off);  // week with 1024 rollovers undone, grid
   const double to_gpst_s = bds ? time::kGpsMinusBdt_s : 0.0;

@@ -30,7 +30,9 @@ const Ephemeris& first_of(SatId sat) {
   throw std::runtime_error("no set");
 }
 
-time::GpsTime gps_cal(int y, int mo, int d, int h, int mi, double s) { return time::GpsTime::from_calendar({y, mo, d, h, mi, s}); }
+time::GpsTime gps_cal(int y, int mo, int d, int h, int mi, double s) {
+  return time::GpsTime::from_calendar({y, mo, d, h, mi, s});
+}
 
 }  // namespace
 
@@ -177,7 +179,8 @@ Ephemeris gal(double toe_tow, int sources, int health = 0, double transmit = 0.0
 // I/NAV sets the first transmitted.
 TEST(MultiGnss, GalileoSelection) {
   const SatId sat(GnssSystem::kGalileo, 2);
-  const EphemerisStore s({gal(3000.0, 513), gal(3600.0, 258), gal(3600.0, 516, 0, 3700.0), gal(3600.0, 517, 0, 3650.0)});
+  const EphemerisStore s(
+      {gal(3000.0, 513), gal(3600.0, 258), gal(3600.0, 516, 0, 3700.0), gal(3600.0, 517, 0, 3650.0)});
   EXPECT_EQ(s.count(sat), 3u);  // the F/NAV set is not kept
   EXPECT_EQ(s.select(sat, time::GpsTime(2296, 3600.0))->toe.tow_s(), 3000.0);  // toe == t not yet
   const Ephemeris* e = s.select(sat, time::GpsTime(2296, 3601.0));

@@ -56,9 +56,10 @@ int main(int argc, char** argv) {
                         (f.gal_data_sources & orbit::kGalClockE5a) != 0 && f.transmit_known &&
                         (!e->transmit_known || f.transmit_tow_s < e->transmit_tow_s);
         }
-        std::printf("%s,%d,%.17g,%d,%.17g,%d,%.17g,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n", sat_name(sat).data(),
-                    rx.week(), rx.tow_s(), tx.week(), tx.tow_s(), e->toe.week(), e->toe.tow_s(), e->iode, s.pos_m.x,
-                    s.pos_m.y, s.pos_m.z, s.clk_bias_s, s.clk_bias_s - s.relativity_s, fnav_first);
+        std::printf("%s,%d,%.17g,%d,%.17g,%d,%.17g,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n",
+                    sat_name(sat).data(), rx.week(), rx.tow_s(), tx.week(), tx.tow_s(), e->toe.week(),
+                    e->toe.tow_s(), e->iode, s.pos_m.x, s.pos_m.y, s.pos_m.z, s.clk_bias_s,
+                    s.clk_bias_s - s.relativity_s, fnav_first);
       }
     }
   } catch (const Error& e) {
