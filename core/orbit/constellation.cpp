@@ -101,7 +101,7 @@ bool Constellation::serves(const time::GpsTime& t) const noexcept {
 }
 
 Constellation build_constellation(const NavData& data, const ConstellationRequest& request) {
-  if (data.ephemerides.empty()) throw Error(data.source, 0, "no GPS ephemerides in the nav data");
+  if (data.ephemerides.empty()) throw Error(data.source, 0, "no ephemerides in the nav data");
   if (request.mode == NavMode::kAlmanac) throw Error("nav mode almanac needs an almanac file");
   Constellation c;
   c.source = data.source;

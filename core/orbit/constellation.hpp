@@ -54,7 +54,7 @@ struct Constellation {
 std::string spans_text(const std::vector<TimeSpan>& spans);
 
 /// From RINEX nav data (several files merged). Throws gnssemu::Error when
-/// there are no GPS ephemerides, or when mode kAsIs cannot serve
+/// there are no ephemerides (of any system), or when mode kAsIs cannot serve
 /// request.start (the message names the data's coverage). kAlmanac is
 /// refused here (it needs the almanac overload).
 Constellation build_constellation(const NavData& data, const ConstellationRequest& request);

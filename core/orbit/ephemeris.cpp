@@ -3,13 +3,35 @@
 #include <cmath>
 
 #include "core/common/constants.hpp"
+#include "core/time/beidou_time.hpp"
 
 namespace gnssemu::orbit {
 
-SatState sat_state(const Ephemeris& eph, const time::GpsTime& t) noexcept {
+namespace {
+
+// PZ-90.11 (ICD GLONASS Ed. 5.1 §3.1.3; multi-gnss.md §1.1): J2 and the
+// equatorial radius of the GLONASS force model. mu and omega_e come from
+// the system table. RTKLIB 2.4.3 uses mu = 3.9860044e14, J2 = 1.0826257e-3.
+constexpr double kGlonassJ2 = 1.08262575e-3;
+constexpr double kGlonassAe_m = 6378136.0;
+// BeiDou GEO: the broadcast frame is tilted by -5 degrees about x (BDS-SIS-ICD-B1I 3.0).
+constexpr double kSinMinus5 = -0.0871557427476582;
+constexpr double kCosMinus5 = 0.9961946980917456;
+
+/// Relativistic clock constant F = -2 sqrt(mu) / c^2 of a system: IS-GPS-200's
+/// rounded value for GPS and QZSS, computed from mu for the others.
+double relativity_f(GnssSystem sys, double mu) noexcept {
+  if (sys == GnssSystem::kGps || sys == GnssSystem::kQzss) return kRelativityF_s_sqrtm;
+  return -2.0 * std::sqrt(mu) / (kSpeedOfLight_m_s * kSpeedOfLight_m_s);
+}
+
+SatState kepler_state(const Ephemeris& eph, const time::GpsTime& t) noexcept {
+  const SystemInfo& info = system_info(eph.sat.system);
+  const double mu = info.mu_m3_s2;
+  const double omega_e = info.omega_e_rad_s;
   SatState s;
   const double a = eph.sqrt_a_sqrtm * eph.sqrt_a_sqrtm;
-  const double n0 = std::sqrt(kMuGps_m3_s2 / (a * a * a));
+  const double n0 = std::sqrt(mu / (a * a * a));
   const double n = n0 + eph.delta_n_rad_s;
   // Continuous times make the ±302400 s crossover rule unnecessary.
   const double tk = t - eph.toe;
@@ -34,11 +56,14 @@ SatState sat_state(const Ephemeris& eph, const time::GpsTime& t) noexcept {
   const double r = a * one_m_ecos + dr;
   const double inc = eph.i0_rad + eph.idot_rad_s * tk + di;
   const double xp = r * std::cos(u), yp = r * std::sin(u);
-  const double omega_k =
-      eph.omega0_rad + (eph.omega_dot_rad_s - kOmegaEarth_rad_s) * tk - kOmegaEarth_rad_s * eph.toe.tow_s();
+  // BeiDou GEO: the node in the inertial-like GK frame, no -omega_e tk term;
+  // Earth rotation enters through the final R_z(omega_e tk).
+  const bool geo = is_beidou_geo(eph.sat);
+  const double omega_k_dot = geo ? eph.omega_dot_rad_s : eph.omega_dot_rad_s - omega_e;
+  const double omega_k = eph.omega0_rad + omega_k_dot * tk - omega_e * toe_of_week_s(eph);
   const double so = std::sin(omega_k), co = std::cos(omega_k);
   const double si = std::sin(inc), ci = std::cos(inc);
-  s.pos_m = Ecef(xp * co - yp * ci * so, xp * so + yp * ci * co, yp * si);
+  Ecef pos(xp * co - yp * ci * so, xp * so + yp * ci * co, yp * si);
 
   // Velocity: analytic derivative (NGS bc_velo form).
   const double e_dot = n / one_m_ecos;
@@ -48,27 +73,145 @@ SatState sat_state(const Ephemeris& eph, const time::GpsTime& t) noexcept {
   const double i_dot = eph.idot_rad_s + 2.0 * phi_dot * (eph.cis_rad * c2 - eph.cic_rad * s2);
   const double xp_dot = r_dot * std::cos(u) - yp * u_dot;
   const double yp_dot = r_dot * std::sin(u) + xp * u_dot;
-  const double omega_k_dot = eph.omega_dot_rad_s - kOmegaEarth_rad_s;
   const double q = yp_dot * ci - yp * si * i_dot;
-  s.vel_m_s = Ecef(-omega_k_dot * s.pos_m.y + xp_dot * co - q * so,
-                   omega_k_dot * s.pos_m.x + xp_dot * so + q * co,
-                   yp * ci * i_dot + yp_dot * si);
+  Ecef vel(-omega_k_dot * pos.y + xp_dot * co - q * so, omega_k_dot * pos.x + xp_dot * so + q * co,
+           yp * ci * i_dot + yp_dot * si);
+  if (geo) {
+    // r = R_z(omega_e tk) R_x(-5 deg) r_GK (multi-gnss.md §4); dR_z/dt adds omega_e (Y, -X, 0).
+    const double f = omega_e * tk;
+    const double sf = std::sin(f), cf = std::cos(f);
+    auto rotate = [&](const Ecef& g) {
+      const double y1 = g.y * kCosMinus5 + g.z * kSinMinus5;
+      const double z1 = -g.y * kSinMinus5 + g.z * kCosMinus5;
+      return Ecef(g.x * cf + y1 * sf, -g.x * sf + y1 * cf, z1);
+    };
+    pos = rotate(pos);
+    const Ecef v = rotate(vel);
+    vel = Ecef(v.x + omega_e * pos.y, v.y - omega_e * pos.x, v.z);
+  }
+  s.pos_m = pos;
+  s.vel_m_s = vel;
 
+  const double f_rel = relativity_f(eph.sat.system, mu);
   const double dtc = t - eph.toc;
-  s.relativity_s = kRelativityF_s_sqrtm * eph.e * eph.sqrt_a_sqrtm * sin_e;
-  const double rel_rate = kRelativityF_s_sqrtm * eph.e * eph.sqrt_a_sqrtm * cos_e * e_dot;
+  s.relativity_s = f_rel * eph.e * eph.sqrt_a_sqrtm * sin_e;
+  const double rel_rate = f_rel * eph.e * eph.sqrt_a_sqrtm * cos_e * e_dot;
   s.clk_bias_s = eph.af0_s + eph.af1_s_s * dtc + eph.af2_s_s2 * dtc * dtc + s.relativity_s;
   s.clk_drift_s_s = eph.af1_s_s + 2.0 * eph.af2_s_s2 * dtc + rel_rate;
   return s;
 }
 
+struct GloState {
+  double x[6];  // position m, velocity m/s
+};
+
+/// ICD GLONASS Ed. 5.1 App. A.3.1.2 in the rotating PZ-90 frame (central
+/// term, J2, centrifugal and Coriolis terms; luni-solar acceleration held
+/// constant), as multi-gnss.md §3 writes it.
+GloState glonass_derivative(const GloState& s, const Ecef& acc) noexcept {
+  const SystemInfo& info = system_info(GnssSystem::kGlonass);
+  const double mu = info.mu_m3_s2, w = info.omega_e_rad_s;
+  const double r2 = s.x[0] * s.x[0] + s.x[1] * s.x[1] + s.x[2] * s.x[2];
+  GloState d{};
+  if (!(r2 > 0.0)) return d;
+  const double r = std::sqrt(r2), r3 = r2 * r;
+  const double a = 1.5 * kGlonassJ2 * mu * kGlonassAe_m * kGlonassAe_m / (r3 * r2);
+  const double b = 5.0 * s.x[2] * s.x[2] / r2;
+  const double c = -mu / r3 - a * (1.0 - b);
+  d.x[0] = s.x[3];
+  d.x[1] = s.x[4];
+  d.x[2] = s.x[5];
+  d.x[3] = (c + w * w) * s.x[0] + 2.0 * w * s.x[4] + acc.x;
+  d.x[4] = (c + w * w) * s.x[1] - 2.0 * w * s.x[3] + acc.y;
+  d.x[5] = (c - 2.0 * a) * s.x[2] + acc.z;
+  return d;
+}
+
+void rk4_step(GloState& s, const Ecef& acc, double h) noexcept {
+  auto add = [](const GloState& a, const GloState& k, double f) {
+    GloState o;
+    for (int i = 0; i < 6; ++i) o.x[i] = a.x[i] + k.x[i] * f;
+    return o;
+  };
+  const GloState k1 = glonass_derivative(s, acc);
+  const GloState k2 = glonass_derivative(add(s, k1, h / 2.0), acc);
+  const GloState k3 = glonass_derivative(add(s, k2, h / 2.0), acc);
+  const GloState k4 = glonass_derivative(add(s, k3, h), acc);
+  for (int i = 0; i < 6; ++i) s.x[i] += (k1.x[i] + 2.0 * k2.x[i] + 2.0 * k3.x[i] + k4.x[i]) * h / 6.0;
+}
+
+/// Clock without relativity: GLONASS -tau_n + gamma_n (t - tb); SBAS
+/// aGf0 + aGf1 (t - t0) (multi-gnss.md §2).
+void state_vector_clock(const Ephemeris& eph, const time::GpsTime& t, SatState& s) noexcept {
+  const double dt = t - eph.toc;
+  if (eph.sat.system == GnssSystem::kGlonass) {
+    s.clk_bias_s = -eph.tau_n_s + eph.gamma_n * dt;
+    s.clk_drift_s_s = eph.gamma_n;
+  } else {
+    s.clk_bias_s = eph.af0_s + eph.af1_s_s * dt;
+    s.clk_drift_s_s = eph.af1_s_s;
+  }
+}
+
+SatState sbas_state(const Ephemeris& eph, const time::GpsTime& t) noexcept {
+  SatState s;
+  const double dt = t - eph.toe;
+  s.pos_m = Ecef(eph.pos_m + eph.vel_m_s * dt + eph.acc_m_s2 * (0.5 * dt * dt));
+  s.vel_m_s = Ecef(eph.vel_m_s + eph.acc_m_s2 * dt);
+  state_vector_clock(eph, t, s);
+  return s;
+}
+
+}  // namespace
+
+double toe_of_week_s(const Ephemeris& eph) noexcept {
+  if (eph.sat.system == GnssSystem::kBeiDou) return (eph.toe - time::kGpsMinusBdt_s).tow_s();
+  return eph.toe.tow_s();
+}
+
+SatState glonass_state(const Ephemeris& eph, const time::GpsTime& t, double step_s) noexcept {
+  SatState out;
+  GloState s{{eph.pos_m.x, eph.pos_m.y, eph.pos_m.z, eph.vel_m_s.x, eph.vel_m_s.y, eph.vel_m_s.z}};
+  double left = t - eph.toe;
+  const double h = std::fabs(step_s) > 0.0 && std::isfinite(step_s) ? std::fabs(step_s) : kGlonassStep_s;
+  // A set is used within 30 min of tb, a continued one for days; beyond
+  // kGlonassMaxSpan_s the state is held, so no call runs unbounded.
+  if (std::isfinite(left)) {
+    left = std::fmax(-kGlonassMaxSpan_s, std::fmin(kGlonassMaxSpan_s, left));
+    while (std::fabs(left) > 1e-9) {
+      const double step = std::fabs(left) < h ? left : std::copysign(h, left);
+      rk4_step(s, eph.acc_m_s2, step);
+      left -= step;
+    }
+  }
+  out.pos_m = Ecef(s.x[0], s.x[1], s.x[2]);
+  out.vel_m_s = Ecef(s.x[3], s.x[4], s.x[5]);
+  state_vector_clock(eph, t, out);
+  return out;
+}
+
+SatState sat_state(const Ephemeris& eph, const time::GpsTime& t) noexcept {
+  switch (system_info(eph.sat.system).orbit) {
+    case OrbitKind::kStateVector: return glonass_state(eph, t, kGlonassStep_s);
+    case OrbitKind::kSbasPoly: return sbas_state(eph, t);
+    case OrbitKind::kKepler: break;
+  }
+  return kepler_state(eph, t);
+}
+
 double sat_clock_at_sv_time(const Ephemeris& eph, const time::GpsTime& t_sv) noexcept {
   double dt = 0.0;
-  for (int i = 0; i < 3; ++i) dt = sat_state(eph, t_sv - dt).clk_bias_s;
+  if (system_info(eph.sat.system).orbit != OrbitKind::kKepler) {
+    SatState s;
+    for (int i = 0; i < 3; ++i) state_vector_clock(eph, t_sv - dt, s), dt = s.clk_bias_s;
+    return dt;
+  }
+  for (int i = 0; i < 3; ++i) dt = kepler_state(eph, t_sv - dt).clk_bias_s;
   return dt;
 }
 
 double validity_half_window_s(const Ephemeris& eph) noexcept {
+  if (eph.sat.system != GnssSystem::kGps) return system_info(eph.sat.system).max_ephemeris_age_s;
   if (eph.fit_interval_h > 4.0) return eph.fit_interval_h * 1800.0;
   return 7200.0;
 }

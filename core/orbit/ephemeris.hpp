@@ -1,24 +1,39 @@
 #pragma once
-// GPS LNAV broadcast ephemeris and its evaluation to ECEF position, velocity
-// and clock (IS-GPS-200 §20.3.3.3.3 and Table 20-IV).
+// Broadcast ephemeris of every system and its evaluation to ECEF position,
+// velocity and clock. One struct for all systems, so every caller holds a
+// const Ephemeris*: Keplerian elements for GPS, Galileo, BeiDou and QZSS
+// (IS-GPS-200 §20.3.3.3.3, Table 20-IV; per-system constants from
+// system_info()), a state vector for GLONASS (ICD GLONASS Ed. 5.1 App.
+// A.3.1.2) and SBAS (RTCA DO-229). Sources: shared/reference/gps-orbits.md,
+// multi-gnss.md §1-5.
 #include <cstdint>
 
+#include "core/common/gnss_systems.hpp"
 #include "core/common/sat_id.hpp"
 #include "core/common/vec3.hpp"
 #include "core/time/gps_time.hpp"
 
 namespace gnssemu::orbit {
 
-/// One broadcast ephemeris set, SI units and radians (as RINEX stores them).
+/// Galileo RINEX "data sources" bits (RINEX 3.04 Table A8).
+inline constexpr int kGalInavE1b = 1 << 0;   ///< I/NAV on E1-B
+inline constexpr int kGalFnavE5a = 1 << 1;   ///< F/NAV on E5a-I
+inline constexpr int kGalInavE5b = 1 << 2;   ///< I/NAV on E5b-I
+inline constexpr int kGalClockE5a = 1 << 8;  ///< clock and BGD for (E1,E5a)
+inline constexpr int kGalClockE5b = 1 << 9;  ///< clock and BGD for (E1,E5b)
+
+/// One broadcast ephemeris set, SI units and radians (as RINEX stores them,
+/// km converted to m). Every time is GPST, converted on reading (BDT + 14 s;
+/// GLONASS from UTC(SU) with the leap seconds of its date).
 struct Ephemeris {
-  SatId sat;                   ///< the satellite
-  time::GpsTime toc;           ///< clock reference time
-  time::GpsTime toe;           ///< ephemeris reference time (week from BO-5, continuous)
-  double af0_s = 0.0;          ///< clock bias, s
-  double af1_s_s = 0.0;        ///< clock drift, s/s
+  SatId sat;                   ///< system and RINEX number
+  time::GpsTime toc;           ///< clock reference time (GLONASS: tb; SBAS: t0)
+  time::GpsTime toe;           ///< ephemeris reference time (GLONASS: tb; SBAS: t0)
+  double af0_s = 0.0;          ///< clock bias, s (SBAS: aGf0)
+  double af1_s_s = 0.0;        ///< clock drift, s/s (SBAS: aGf1)
   double af2_s_s2 = 0.0;       ///< clock drift rate, s/s^2
-  int iode = 0;                ///< issue of data, ephemeris
-  int iodc = 0;                ///< issue of data, clock
+  int iode = 0;                ///< issue of data, ephemeris (Galileo IODnav, BeiDou AODE, GLONASS tb index)
+  int iodc = 0;                ///< issue of data, clock (BeiDou AODC)
   double crs_m = 0.0, crc_m = 0.0;       ///< radius harmonic corrections, m
   double cus_rad = 0.0, cuc_rad = 0.0;   ///< argument-of-latitude corrections, rad
   double cis_rad = 0.0, cic_rad = 0.0;   ///< inclination corrections, rad
@@ -26,39 +41,76 @@ struct Ephemeris {
   double m0_rad = 0.0;         ///< mean anomaly at toe, rad
   double e = 0.0;              ///< eccentricity, dimensionless
   double sqrt_a_sqrtm = 0.0;   ///< square root of the semi-major axis, m^0.5
-  double omega0_rad = 0.0;     ///< longitude of ascending node at weekly epoch, rad
+  double omega0_rad = 0.0;     ///< longitude of ascending node at the start of the system's week, rad
   double i0_rad = 0.0;         ///< inclination at toe, rad
   double omega_rad = 0.0;      ///< argument of perigee, rad
   double omega_dot_rad_s = 0.0;///< rate of right ascension, rad/s
   double idot_rad_s = 0.0;     ///< rate of inclination, rad/s
-  double tgd_s = 0.0;          ///< L1/L2 group delay, s (subtract for L1 C/A users)
-  double sv_accuracy_m = 0.0;  ///< URA, m
-  int health = 0;              ///< SV health word, 0 = healthy
-  double fit_interval_h = 0.0; ///< curve-fit interval, h; 0 = unknown (4 h assumed)
-  double transmit_tow_s = 0.0; ///< transmission time of message, s from the start of toe's week
+  /// Group delay the single-frequency L1-band user subtracts, s: GPS/QZSS
+  /// TGD, Galileo BGD(E1,E5b) (I/NAV), BeiDou TGD1 (B1I), GLONASS and SBAS 0.
+  double tgd_s = 0.0;
+  /// Second group delay, s: Galileo BGD(E1,E5a), BeiDou TGD2 (B2I); else 0.
+  double tgd2_s = 0.0;
+  double sv_accuracy_m = 0.0;  ///< URA / SISA / URA index as metres, m
+  /// Health as broadcast: GPS/QZSS SV health, Galileo SV health bits
+  /// (bit 0 E1-B DVS, 1-2 E1-B HS, ...), BeiDou SatH1, GLONASS Bn, SBAS
+  /// health; 0 = healthy.
+  int health = 0;
+  double fit_interval_h = 0.0; ///< GPS curve-fit interval, h; 0 = unknown (4 h assumed)
+  double transmit_tow_s = 0.0; ///< transmission time of message, s from the start of toe's GPS week
                                ///< (negative = previous week); 0 when !transmit_known
   bool transmit_known = false; ///< false when the file gave 0.9999e9 (unknown) or for almanacs
+  int gal_data_sources = 0;    ///< Galileo data-source bits (kGal*); 0 for other systems
+
+  // State-vector systems (GLONASS, SBAS): the state at toe, ECEF (PZ-90.11
+  // for GLONASS, taken as WGS 84).
+  Ecef pos_m;                  ///< position at toe, m
+  Ecef vel_m_s;                ///< velocity at toe, m/s
+  Ecef acc_m_s2;               ///< GLONASS: luni-solar acceleration; SBAS: acceleration, m/s^2
+  double tau_n_s = 0.0;        ///< GLONASS clock offset tau_n (clock = -tau_n + gamma_n (t - tb)), s
+  double gamma_n = 0.0;        ///< GLONASS relative frequency offset gamma_n, dimensionless
+  int glo_channel = 0;         ///< GLONASS FDMA channel k, -7..+6
+  int glo_age_days = 0;        ///< GLONASS age of the data E, days
 };
 
 /// Satellite state at a GPS time.
 struct SatState {
   Ecef pos_m;                  ///< ECEF position at t, in the ECEF frame of time t
   Ecef vel_m_s;                ///< ECEF velocity (includes Earth-rotation terms)
-  double clk_bias_s = 0.0;     ///< af0 + af1 dt + af2 dt^2 + relativistic term; excludes TGD
-  double clk_drift_s_s = 0.0;  ///< af1 + 2 af2 dt (+ relativistic rate)
-  double relativity_s = 0.0;   ///< F e sqrt(A) sin(E), included in clk_bias_s
+  double clk_bias_s = 0.0;     ///< clock offset incl. the relativistic term (Kepler systems); excludes TGD
+  double clk_drift_s_s = 0.0;  ///< its rate, s/s
+  double relativity_s = 0.0;   ///< F e sqrt(A) sin(E), included in clk_bias_s; 0 for GLONASS/SBAS
 };
 
-/// Evaluate an ephemeris at GPS system time t (the transmission time).
-/// Never throws; crossover of weeks is handled through continuous GpsTime.
+/// Evaluate an ephemeris at GPS system time t (the transmission time), by
+/// the orbit kind of its system. Never throws; crossover of weeks is handled
+/// through continuous GpsTime. GLONASS: RK4 with 60 s steps from tb.
 SatState sat_state(const Ephemeris& eph, const time::GpsTime& t) noexcept;
 
-/// Satellite clock correction (s, relativistic term included, TGD excluded) at
-/// satellite time t_sv, solved for t = t_sv - dt (IS-GPS-200 §20.3.3.3.3.1).
+/// Satellite clock correction (s, relativistic term included for Kepler
+/// systems, TGD excluded) at satellite time t_sv, solved for t = t_sv - dt
+/// (IS-GPS-200 §20.3.3.3.3.1). Cheap for every system: no orbit integration.
 double sat_clock_at_sv_time(const Ephemeris& eph, const time::GpsTime& t_sv) noexcept;
 
-/// Validity half-window of an ephemeris around toe, s: half its fit interval,
-/// 2 h when unknown (RTKLIB MAXDTOE).
+/// Validity half-window of an ephemeris around toe, s: GPS half its fit
+/// interval, 2 h when unknown (RTKLIB MAXDTOE); the others the system's
+/// maximum age (system_info().max_ephemeris_age_s).
 double validity_half_window_s(const Ephemeris& eph) noexcept;
+
+/// Seconds of toe in the system's own week (BDT for BeiDou; GST and QZSS
+/// weeks start with GPS weeks): Omega0 of a Keplerian set is referred to
+/// that week's start (the -omega_e toe term of IS-GPS-200 Table 20-IV).
+double toe_of_week_s(const Ephemeris& eph) noexcept;
+
+/// Step of the GLONASS orbit integration, s (ICD GLONASS Ed. 5.1 App. A.3.1.2; RTKLIB TSTEP).
+inline constexpr double kGlonassStep_s = 60.0;
+
+/// Longest GLONASS integration, s: further from tb the state at this span is returned.
+inline constexpr double kGlonassMaxSpan_s = 8.0 * 86400.0;
+
+/// GLONASS state vector integrated from the ephemeris' tb to t with RK4 and
+/// steps of at most step_s (the last one shortened). For tests of the step
+/// size; sat_state() uses kGlonassStep_s.
+SatState glonass_state(const Ephemeris& eph, const time::GpsTime& t, double step_s) noexcept;
 
 }  // namespace gnssemu::orbit

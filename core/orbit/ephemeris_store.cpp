@@ -5,6 +5,8 @@
 #include <limits>
 #include <numeric>
 
+#include "core/common/constants.hpp"
+
 namespace gnssemu::orbit {
 
 namespace {
@@ -17,27 +19,96 @@ double transmit_key(const Ephemeris* e) noexcept {
   return e->transmit_known ? e->toe.week() * kSecondsPerWeek + e->transmit_tow_s
                            : -std::numeric_limits<double>::infinity();
 }
+
+/// Kept for selection: Galileo I/NAV sets only (clock for (E1,E5b), RTKLIB
+/// 2.4.3's default); every set of the other systems.
+bool selectable(const Ephemeris& e) noexcept {
+  return e.sat.system != GnssSystem::kGalileo || (e.gal_data_sources & kGalClockE5b) != 0;
+}
+
+/// Health for the L1-band single-frequency user: Galileo E1-B DVS (bit 0)
+/// and HS (bits 1-2) of the RINEX health field (multi-gnss.md §5); QZSS
+/// without bit 0; the others' whole health value (GPS SV health, BeiDou
+/// SatH1, GLONASS Bn, SBAS).
+bool healthy(const Ephemeris& e) noexcept {
+  if (e.sat.system == GnssSystem::kGalileo) return (e.health & 0x7) == 0;
+  // QZSS: bit 0 is not the L1 signal's (RTKLIB 2.4.3 satexclude masks it;
+  // every QZSS set of the 2024 IGS files has health 1).
+  if (e.sat.system == GnssSystem::kQzss) return (e.health & ~1) == 0;
+  return e.health == 0;
+}
+
+/// The GLONASS set `last` integrated forward: a set every
+/// kGlonassContinuationStep_s up to kGlonassMaxSpan_s past its tb, each the
+/// state of the previous one 30 min on, the clock carried along
+/// (-tau_n + gamma_n (t - tb) unchanged).
+void continue_glonass(const Ephemeris& last, std::vector<Ephemeris>& out) {
+  const int n = static_cast<int>(kGlonassMaxSpan_s / kGlonassContinuationStep_s);
+  out.reserve(static_cast<std::size_t>(n));
+  Ephemeris e = last;
+  for (int k = 1; k <= n; ++k) {
+    const time::GpsTime tb = last.toe + k * kGlonassContinuationStep_s;
+    const SatState s = glonass_state(e, tb, kGlonassStep_s);
+    e.tau_n_s -= e.gamma_n * (tb - e.toe);
+    e.pos_m = s.pos_m;
+    e.vel_m_s = s.vel_m_s;
+    e.toe = tb;
+    e.toc = tb;
+    e.transmit_known = false;
+    e.transmit_tow_s = 0.0;
+    out.push_back(e);
+  }
+}
+
+/// The SBAS set `last` held where it is at the end of its window: its
+/// polynomial is a fit for minutes (its acceleration held for a day moves a
+/// GEO by ~1000 km), a GEO stands nearly still in ECEF.
+Ephemeris hold_sbas(const Ephemeris& last) {
+  Ephemeris e = last;
+  const time::GpsTime end = last.toe + validity_half_window_s(last);
+  const SatState s = sat_state(last, end);
+  e.toe = end;
+  e.toc = end;
+  e.pos_m = s.pos_m;
+  e.vel_m_s = Ecef();
+  e.acc_m_s2 = Ecef();
+  e.af0_s = s.clk_bias_s;
+  e.af1_s_s = 0.0;
+  e.transmit_known = false;
+  e.transmit_tow_s = 0.0;
+  return e;
+}
 }  // namespace
 
 EphemerisStore::EphemerisStore(const std::vector<Ephemeris>& ephemerides, StoreOptions options) : options_(options) {
   for (const Ephemeris& e : ephemerides) {
-    if (e.sat.valid()) by_sat_[static_cast<std::size_t>(e.sat.index())].push_back(e);
+    if (e.sat.valid() && selectable(e)) by_sat_[static_cast<std::size_t>(e.sat.index())].push_back(e);
   }
-  for (std::size_t i_sat = 0; i_sat < by_sat_.size(); ++i_sat) {
-    auto& v = by_sat_[i_sat];
+  for (std::size_t i = 0; i < by_sat_.size(); ++i) {
+    auto& v = by_sat_[i];
     // Stable: equal (toe, transmit) keep file order, so the later one is last.
     std::stable_sort(v.begin(), v.end(), [](const Ephemeris& a, const Ephemeris& b) {
       if (a.toe != b.toe) return a.toe < b.toe;
       return transmit_key(a) < transmit_key(b);
     });
-    auto& u = usable_[i_sat];
+    auto& u = usable_[i];
     // Unhealthy sets stay candidates: they are the current broadcast.
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      if (!u.empty() && v[u.back()].toe == v[i].toe) {
-        u.back() = i;  // later transmitted duplicate replaces the earlier one
+    // Galileo: the first transmitted of equal toes, as RTKLIB 2.4.3's
+    // uniqeph() keeps the first set of an IODnav (I/NAV E1-B, E5b and merged
+    // records of one toe differ in af0 by up to ~6e-11 s).
+    const bool first_wins = !v.empty() && v.front().sat.system == GnssSystem::kGalileo;
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      if (!u.empty() && v[u.back()].toe == v[k].toe) {
+        if (!first_wins) u.back() = k;  // later transmitted duplicate replaces the earlier one
       } else {
-        u.push_back(i);
+        u.push_back(k);
       }
+    }
+    if (options_.continue_after_data && !u.empty() && v[u.back()].sat.system == GnssSystem::kGlonass) {
+      continue_glonass(v[u.back()], continued_[i]);
+    }
+    if (options_.continue_after_data && !u.empty() && v[u.back()].sat.system == GnssSystem::kSbas) {
+      continued_[i].push_back(hold_sbas(v[u.back()]));
     }
   }
 }
@@ -68,13 +139,25 @@ const Ephemeris* EphemerisStore::select(SatId sat, const time::GpsTime& t) const
     first = before;
     second = nullptr;
   }
+  if (sat.system == GnssSystem::kGalileo) {
+    // Only sets with toe < t (RTKLIB 2.4.3 seleph: "AOD <= 0" skipped).
+    first = before;
+    second = nullptr;
+  }
   const Ephemeris* chosen = valid(first) ? first : valid(second) ? second : nullptr;
   if (chosen == nullptr && options_.continue_after_data && after == nullptr && before != nullptr) {
     chosen = before;  // past the satellite's last set: its orbit goes on
+    const auto& c = continued_[static_cast<std::size_t>(sat.index())];
+    if (!c.empty() && sat.system == GnssSystem::kSbas) {
+      chosen = &c.front();
+    } else if (!c.empty()) {  // GLONASS: the nearest continued set
+      const double k = std::round((t - before->toe) / kGlonassContinuationStep_s);
+      if (k >= 1.0) chosen = &c[static_cast<std::size_t>(std::min(k, static_cast<double>(c.size()))) - 1];
+    }
   }
   // A satellite flagged unhealthy in its current set is not used, even if
   // an older healthy set is still within its validity window.
-  return chosen != nullptr && chosen->health == 0 ? chosen : nullptr;
+  return chosen != nullptr && healthy(*chosen) ? chosen : nullptr;
 }
 
 std::size_t EphemerisStore::count(SatId sat) const noexcept {

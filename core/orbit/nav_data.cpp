@@ -12,6 +12,9 @@ NavData merge(const std::vector<NavData>& files) {
     out.ephemerides.insert(out.ephemerides.end(), f.ephemerides.begin(), f.ephemerides.end());
     if (!out.klobuchar.valid && f.klobuchar.valid) out.klobuchar = f.klobuchar;
     if (!out.utc.valid && f.utc.valid) out.utc = f.utc;
+    if (!out.beidou_klobuchar.valid && f.beidou_klobuchar.valid) out.beidou_klobuchar = f.beidou_klobuchar;
+    if (!out.galileo_nequick.valid && f.galileo_nequick.valid) out.galileo_nequick = f.galileo_nequick;
+    if (!out.glonass_utc.valid && f.glonass_utc.valid) out.glonass_utc = f.glonass_utc;
     if (f.leap_seconds) {
       if (out.leap_seconds && *out.leap_seconds != *f.leap_seconds) leap_conflict = true;
       if (!out.leap_seconds) out.leap_seconds = f.leap_seconds;

@@ -1,6 +1,7 @@
 #pragma once
-// Contents of a navigation message file: GPS ephemerides plus the header's
-// broadcast ionosphere, UTC and leap-second parameters.
+// Contents of a navigation message file: the ephemerides of every system
+// plus the header's broadcast ionosphere, UTC, GLONASS time correction and
+// leap-second parameters.
 #include <array>
 #include <optional>
 #include <string>
@@ -26,19 +27,30 @@ struct UtcParams {
   bool valid = false;
 };
 
+/// Galileo NeQuick G broadcast coefficients (RINEX 3 IONOSPHERIC CORR GAL).
+struct NequickParams {
+  std::array<double, 3> ai{};  ///< ai0 sfu, ai1 sfu/deg, ai2 sfu/deg^2
+  bool valid = false;
+};
+
 struct NavData {
   std::string source;                ///< file name it was read from
   double rinex_version = 0.0;
-  std::vector<Ephemeris> ephemerides;  ///< GPS only, in file order
-  KlobucharParams klobuchar;
-  UtcParams utc;
+  std::vector<Ephemeris> ephemerides;  ///< every system, in file order
+  KlobucharParams klobuchar;         ///< GPS (GPSA/GPSB, RINEX 2 ION ALPHA/BETA)
+  KlobucharParams beidou_klobuchar;  ///< BeiDou (BDSA/BDSB; the first of a merged file's per-satellite lines)
+  NequickParams galileo_nequick;     ///< Galileo (GAL)
+  UtcParams utc;                     ///< GPS - UTC
+  /// GLONASS time scale correction tau_c as a0 (RINEX 3 GLUT; RINEX 2 CORR
+  /// TO SYSTEM TIME, whose sign is -tau_c), s; UTC(SU) - GLONASST + 3 h.
+  UtcParams glonass_utc;
   std::optional<int> leap_seconds;   ///< GPS - UTC from the header, if present
-  int skipped_records = 0;           ///< non-GPS records skipped (mixed files)
+  int skipped_records = 0;           ///< records of systems not handled (I/NavIC, ...), skipped
 };
 
 /// Several files as one: every file's ephemerides (the store sorts them and
-/// resolves duplicates); Klobuchar and GPS-UTC from the first file that has
-/// them; the leap-second count if every file that gives one agrees (else
+/// resolves duplicates); each header parameter from the first file that has
+/// it; the leap-second count if every file that gives one agrees (else
 /// none: the built-in table decides); source names joined with " + ".
 NavData merge(const std::vector<NavData>& files);
 

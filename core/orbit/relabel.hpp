@@ -12,9 +12,12 @@
 namespace gnssemu::orbit {
 
 /// eph moved by shift_s (s, any finite value): toc, toe and the transmission
-/// time move by shift_s and Ω0 by ω̇e·(toe'.tow − toe.tow), so
-/// sat_state(result, t + shift_s) equals sat_state(eph, t) (positions to
-/// rounding, ~1e-8 m; clock and velocity alike).
+/// time move by shift_s; for the Keplerian systems Ω0 moves by
+/// ω̇e·(toe'.tow − toe.tow) (the system's own ω̇e and week: BDT for
+/// BeiDou); GLONASS and SBAS state vectors stay as they are (ECEF, and
+/// their ECEF motion does not depend on the date). So
+/// sat_state(result, t + shift_s) equals sat_state(eph, t) for every system
+/// (positions to rounding, ~1e-8 m; clock and velocity alike).
 Ephemeris relabel(const Ephemeris& eph, double shift_s) noexcept;
 
 /// An almanac entry moved by shift_s, as relabel() for an ephemeris (toa

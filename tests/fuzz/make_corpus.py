@@ -205,7 +205,11 @@ def dictionaries():
             if "END OF HEADER" in line:
                 break
     for target in ("rinex_nav", "rinex_obs"):
-        write_dict(target, sorted(labels) + ["G01", "G32", "R01", "E11", "> 2024", "D+00", "E-01", "0.9999e9"])
+        write_dict(target, sorted(labels) + ["G01", "G32", "R01", "E11", "> 2024", "D+00", "E-01", "0.9999e9",
+                                             "C01", "C59", "J02", "S27", "I02", "X01", "N: GNSS NAV DATA",
+                                             "G: GLONASS NAV DATA", "H: GEO NAV MSG DATA", "M: MIXED", "E: GALILEO",
+                                             "BDSA", "BDSB", "GAL ", "GLUT", "CORR TO SYSTEM TIME",
+                                             "5.130000000000E+02", "7.730000000000E+02", "-7.000000000000E+00"])
     write_dict("almanac", ["******** Week", "ID:", "Health:", "Eccentricity:", "Time of Applicability(s):",
                            "Orbital Inclination(rad):", "Rate of Right Ascen(r/s):", "SQRT(A)  (m 1/2):",
                            "Right Ascen at Week(rad):", "Argument of Perigee(rad):", "Mean Anom(rad):", "Af0(s):",
@@ -225,9 +229,60 @@ def dictionaries():
                               "half_size_m", "[[", "]]", "1e308", "nan", "inf"])
 
 
+# --- multi-GNSS navigation files (one record of every system) ----------------
+
+def nav_corpus():
+    """Mixed RINEX 3 (3.04 and 3.05 with 5-line GLONASS), RINEX 2 GLONASS (.g)
+    and SBAS (.h): one record of each system, taken from the cut IGS file."""
+    src = gzip.open(ROOT / "tests/data/nav/BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz", "rt").read().splitlines()
+    end = next(i for i, l in enumerate(src) if "END OF HEADER" in l)
+    first = {}
+    i = end + 1
+    while i < len(src):
+        j = i + 1
+        while j < len(src) and src[j][:1] == " ":
+            j += 1
+        first.setdefault(src[i][0], src[i:j])
+        i = j
+    irnss = ["I02 2024 01 10 00 00 00 4.565306007862E-04 1.591615728103E-11 0.000000000000E+00"] + \
+        ["     1.000000000000E+00-2.153125000000E+02 2.960837010622E-09 1.270870789390E+00"] * 6 + \
+        ["     2.592000000000E+05"]
+    head = ["     3.04           N: GNSS NAV DATA    M: MIXED            RINEX VERSION / TYPE",
+            "BDSA   3.8184E-08 -6.7055E-08 -2.9802E-07  5.9605E-07 W 02  IONOSPHERIC CORR",
+            "GAL    4.6250E+01  2.1094E-01  3.2349E-03  0.0000E+00       IONOSPHERIC CORR",
+            "%-60sTIME SYSTEM CORR" % ("GLUT %17.10E%16.9E%7d%5d" % (-9.3132257462e-10, 0.0, 0, 0)),
+            "    18                                                      LEAP SECONDS",
+            "                                                            END OF HEADER"]
+    body = [l for k in "GRECJS" for l in first[k]] + irnss
+    mixed = "\n".join(head + body) + "\n"
+    write("rinex_nav", "mixed_every_system.rnx", mixed)
+    write("rinex_nav", "mixed_every_system.rnx.gz", gzip.compress(mixed.encode(), mtime=0))
+    glo5 = first["R"] + ["     1.790000000000E+02-2.793967723846E-09 2.000000000000E+00 0.000000000000E+00"]
+    v305 = [head[0].replace("3.04", "3.05")] + head[1:] + glo5 + first["G"]
+    write("rinex_nav", "mixed_v305_glonass.rnx", "\n".join(v305) + "\n")
+    v2g = (ROOT / "tests/data/nav/SYNT0100.24g").read_text()
+    write("rinex_nav", "glonass_v2.g", v2g)
+    # RINEX 2.11 Table A16: GEO navigation (H), PRN - 100, D19.12 values.
+    s = first["S"]
+    def d19(x):
+        v = float(x)
+        exp = 0 if v == 0.0 else int(math.floor(math.log10(abs(v)))) + 1
+        return ("%15.12f" % (v / 10 ** exp)).rjust(15) + "D%+03d" % exp
+    f = s[0][4:23].split()
+    vals0 = [s[0][23 + 19 * k:42 + 19 * k] for k in range(3)]
+    rec = ["%2d %02d %2d %2d %2d %2d%5.1f" % (int(s[0][1:3]), int(f[0]) % 100, int(f[1]), int(f[2]), int(f[3]),
+                                             int(f[4]), float(f[5])) + "".join(d19(v) for v in vals0)]
+    for line in s[1:]:
+        rec.append("   " + "".join(d19(line[4 + 19 * k:23 + 19 * k]) for k in range(4)))
+    h = ["     2.11           H: GEO NAV MSG DATA                     RINEX VERSION / TYPE",
+         "                                                            END OF HEADER"]
+    write("rinex_nav", "sbas_v2.h", "\n".join(h + rec) + "\n")
+
+
 if __name__ == "__main__":
     truth_corpus()
     ubx_corpus()
     obs_corpus()
     mesh_corpus()
+    nav_corpus()
     dictionaries()

@@ -88,7 +88,7 @@ TEST(Constellation, AutoMovesOldDataToTodayByWholeDays) {
   EXPECT_NE(c.describe().find("nav data moved +1788 days"), std::string::npos) << c.describe();
   // The sky at the start is the data's sky at the same time of day.
   const EphemerisStore moved(c.nav.ephemerides, c.store_options()), original(brdc().ephemerides);
-  for (int prn = 1; prn <= system_size(GnssSystem::kGps); ++prn) {
+  for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
     const Ephemeris* a = moved.select(SatId::gps(prn), kToday);
     const Ephemeris* b = original.select(SatId::gps(prn), kToday - c.shift_s);
     ASSERT_EQ(a == nullptr, b == nullptr) << prn;
@@ -125,7 +125,7 @@ TEST(Constellation, RelabelOfDataStartingLateInTheDay) {
   EXPECT_EQ(c.shift_s, (1788.0 - 1.0) * kSecondsPerDay);
   const EphemerisStore store(c.nav.ephemerides, c.store_options());
   int served = 0;
-  for (int prn = 1; prn <= system_size(GnssSystem::kGps); ++prn) served += store.select(SatId::gps(prn), early_morning) != nullptr;
+  for (int prn = 1; prn <= kMaxGpsPrn; ++prn) served += store.select(SatId::gps(prn), early_morning) != nullptr;
   EXPECT_GE(served, 28);
 }
 
@@ -187,7 +187,7 @@ TEST(Constellation, AlmanacMovedToTheStartAndPropagated) {
   EXPECT_TRUE(c.nav.klobuchar.valid);  // from the nav header given
   const EphemerisStore store(c.nav.ephemerides, c.store_options());
   // Geometry at the start: the almanac's at the start minus the shift.
-  const Ephemeris* e = store.select(alm.front().sat, kToday);
+  const Ephemeris* e = store.select(SatId::gps(alm.front().prn), kToday);
   ASSERT_NE(e, nullptr);
   EXPECT_LT((sat_state(*e, kToday).pos_m - almanac_state(alm.front(), kToday - c.shift_s).pos_m).norm(), 1e-3);
   // Weeks on, without a jump (an almanac is one orbit per satellite).

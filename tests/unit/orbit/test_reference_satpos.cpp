@@ -100,7 +100,7 @@ TEST_P(ReferenceSatpos, MatchesIndependentImplementation) {
     const time::GpsTime toe(r.toe_week, r.toe_tow_s);
     const Ephemeris* eph = nullptr;
     for (const Ephemeris& e : data.ephemerides) {
-      if (e.sat.prn() == r.prn && e.toe == toe && e.iode == r.iode && e.health == 0) eph = &e;
+      if (e.sat == SatId::gps(r.prn) && e.toe == toe && e.iode == r.iode && e.health == 0) eph = &e;
     }
     ASSERT_NE(eph, nullptr) << nav << ": no set PRN " << r.prn << " toe " << r.toe_week << "/" << r.toe_tow_s;
     const SatState s = sat_state(*eph, t);

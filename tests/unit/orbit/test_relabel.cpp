@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "core/common/constants.hpp"
@@ -21,9 +22,9 @@ namespace {
 struct Diff {
   double pos_m = 0.0, vel_m_s = 0.0, clk_s = 0.0;
 };
-Diff compare(const Ephemeris& eph, const Ephemeris& moved, double shift_s) {
+Diff compare(const Ephemeris& eph, const Ephemeris& moved, double shift_s, double window_s = 7200.0) {
   Diff d;
-  for (double dt = -7200.0; dt <= 7200.0; dt += 600.0) {
+  for (double dt = -window_s; dt <= window_s; dt += window_s / 12.0) {
     const time::GpsTime t = eph.toe + dt;
     const SatState a = sat_state(eph, t), b = sat_state(moved, t + shift_s);
     d.pos_m = std::max(d.pos_m, (a.pos_m - b.pos_m).norm());
@@ -47,10 +48,46 @@ TEST(Relabel, SameGeometryShiftLater) {
       EXPECT_EQ(m.toc, e.toc + shift);
       EXPECT_EQ(m.iode, e.iode);
       const Diff d = compare(e, m, shift);
-      ASSERT_LT(d.pos_m, 1e-3) << "PRN " << e.sat.prn() << " shift " << shift;
-      ASSERT_LT(d.vel_m_s, 1e-6) << "PRN " << e.sat.prn() << " shift " << shift;
-      ASSERT_LT(d.clk_s, 1e-15) << "PRN " << e.sat.prn() << " shift " << shift;
+      ASSERT_LT(d.pos_m, 1e-3) << "PRN " << int(e.sat.number) << " shift " << shift;
+      ASSERT_LT(d.vel_m_s, 1e-6) << "PRN " << int(e.sat.number) << " shift " << shift;
+      ASSERT_LT(d.clk_s, 1e-15) << "PRN " << int(e.sat.number) << " shift " << shift;
     }
+  }
+}
+
+// Every system of an IGS mixed file (GLONASS RK4 and SBAS over their
+// windows; BeiDou GEO and MEO; Galileo; QZSS): the same geometry shift_s later.
+TEST(Relabel, EverySystemSameGeometryShiftLater) {
+  const NavData nav = read_rinex_nav(test::kNav + "BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz");
+  const double day = kSecondsPerDay;
+  std::array<int, kNumSystems> n{};
+  for (const double shift : {day, 1788.0 * day, -636.0 * day, 0.5 * day + 17.25, 3.0 * 7.0 * day + 1.0, 1e8}) {
+    for (const Ephemeris& e : nav.ephemerides) {
+      const Ephemeris m = relabel(e, shift);
+      EXPECT_EQ(m.toe, e.toe + shift);
+      const Diff d = compare(e, m, shift, validity_half_window_s(e));
+      const char* name = sat_name(e.sat).data();
+      ASSERT_LT(d.pos_m, 1e-3) << name << " shift " << shift;
+      ASSERT_LT(d.vel_m_s, 1e-6) << name << " shift " << shift;
+      ASSERT_LT(d.clk_s, 1e-15) << name << " shift " << shift;
+      ++n[static_cast<std::size_t>(e.sat.system)];
+    }
+  }
+  for (int k : n) EXPECT_GT(k, 0);
+}
+
+// GLONASS: the ECEF state at tb is the geometry; any turn about z would
+// move the satellite (the brief's ω̇e·shift rotation is 6.3 rad a day).
+TEST(Relabel, GlonassStateVectorIsNotRotated) {
+  const NavData nav = read_rinex_nav(test::kNav + "BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz");
+  for (const Ephemeris& e : nav.ephemerides) {
+    if (e.sat.system != GnssSystem::kGlonass) continue;
+    const Ephemeris m = relabel(e, 3.0 * kSecondsPerDay + 5.0);
+    EXPECT_EQ(m.pos_m, e.pos_m);
+    EXPECT_EQ(m.vel_m_s, e.vel_m_s);
+    EXPECT_EQ(m.acc_m_s2, e.acc_m_s2);
+    EXPECT_EQ(m.tau_n_s, e.tau_n_s);
+    EXPECT_EQ(m.glo_channel, e.glo_channel);
   }
 }
 
@@ -77,7 +114,7 @@ TEST(Relabel, TransmissionTimeKeepsItsInstant) {
     const Ephemeris m = relabel(e, 5.0 * kSecondsPerDay + 3.0);  // crosses into week 2191
     const double before = (time::GpsTime(e.toe.week(), 0.0) + e.transmit_tow_s) - e.toe;
     const double after = (time::GpsTime(m.toe.week(), 0.0) + m.transmit_tow_s) - m.toe;
-    EXPECT_NEAR(after, before, 1e-6) << e.sat.prn();
+    EXPECT_NEAR(after, before, 1e-6) << int(e.sat.number);
   }
 }
 

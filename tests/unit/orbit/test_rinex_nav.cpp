@@ -21,13 +21,13 @@ const std::string kBad = std::string(GNSSEMU_TEST_DATA) + "/bad/";
 
 std::size_t prn_count(const NavData& d) {
   std::set<int> s;
-  for (const auto& e : d.ephemerides) s.insert(e.sat.prn());
+  for (const auto& e : d.ephemerides) s.insert(e.sat.index());
   return s.size();
 }
 
 const Ephemeris& find(const NavData& d, int prn, int toe_week, double toe_tow) {
   for (const auto& e : d.ephemerides) {
-    if (e.sat.prn() == prn && e.toe == time::GpsTime(toe_week, toe_tow)) return e;
+    if (e.sat == SatId::gps(prn) && e.toe == time::GpsTime(toe_week, toe_tow)) return e;
   }
   throw std::runtime_error("set not found");
 }
@@ -41,7 +41,7 @@ const char* kV2Header =
 TEST(RinexNav, RecordAndPrnCounts) {
   for (auto [f, n, p, sk] : {std::tuple{"brdc0010.22n", 422, 32, 0}, {"ab422100.18n", 206, 31, 0},
                             {"NYA100NOR_S_20241240000_01D_GN.rnx", 215, 31, 0},
-                            {"ELKO00USA_R_20182100000_01D_MN.rnx", 225, 32, 494 + 1293 + 106}}) {
+                            {"ELKO00USA_R_20182100000_01D_MN.rnx", 225 + 494 + 1293 + 106, 32 + 24 + 20 + 13, 0}}) {
     const NavData d = read_rinex_nav(kNav + f);
     EXPECT_EQ(d.ephemerides.size(), static_cast<std::size_t>(n)) << f;
     EXPECT_EQ(prn_count(d), static_cast<std::size_t>(p)) << f;
@@ -110,7 +110,7 @@ TEST(RinexNav, HeaderRinex3) {
 TEST(RinexNav, KnownRecordRinex2) {
   const NavData d = read_rinex_nav(kNav + "brdc0010.22n");
   const Ephemeris& e = d.ephemerides.front();
-  EXPECT_EQ(e.sat.prn(), 1);
+  EXPECT_EQ(int(e.sat.number), 1);
   EXPECT_EQ(e.toc, time::GpsTime(2190, 518400.0));  // 2022-01-01 00:00:00 GPST (Saturday)
   EXPECT_DOUBLE_EQ(e.af0_s, 0.469126738608e-03);
   EXPECT_DOUBLE_EQ(e.af1_s_s, -0.100044417195e-10);
@@ -144,7 +144,7 @@ TEST(RinexNav, KnownRecordRinex2) {
 TEST(RinexNav, KnownRecordRinex3) {
   const NavData d = read_rinex_nav(kNav + "NYA100NOR_S_20241240000_01D_GN.rnx");
   const Ephemeris& e = d.ephemerides.front();  // G27 2024 05 03 02 00 00
-  EXPECT_EQ(e.sat.prn(), 27);
+  EXPECT_EQ(int(e.sat.number), 27);
   EXPECT_EQ(e.toc, time::GpsTime(2312, 5 * 86400.0 + 7200.0));
   EXPECT_DOUBLE_EQ(e.af0_s, -2.202996984124e-05);
   EXPECT_DOUBLE_EQ(e.af1_s_s, -2.046363078989e-12);
@@ -162,10 +162,13 @@ TEST(RinexNav, KnownRecordRinex3) {
 TEST(RinexNav, Rinex305GlonassFiveLineRecords) {
   const NavData d = read_rinex_nav(kNav + "SYNT00XXX_R_20241240000_01H_MN_v305.rnx");
   EXPECT_DOUBLE_EQ(d.rinex_version, 3.05);
-  EXPECT_EQ(d.skipped_records, 2);
-  ASSERT_EQ(d.ephemerides.size(), 1u);
-  const Ephemeris& e = d.ephemerides.front();
-  EXPECT_EQ(e.sat.prn(), 27);
+  EXPECT_EQ(d.skipped_records, 0);
+  ASSERT_EQ(d.ephemerides.size(), 3u);
+  EXPECT_EQ(d.ephemerides[0].sat, SatId(GnssSystem::kGlonass, 1));
+  EXPECT_EQ(d.ephemerides[2].sat, SatId(GnssSystem::kGlonass, 2));
+  EXPECT_EQ(d.ephemerides[2].glo_channel, -4);
+  const Ephemeris& e = d.ephemerides[1];
+  EXPECT_EQ(int(e.sat.number), 27);
   EXPECT_EQ(e.toc, time::GpsTime(2312, 5 * 86400.0 + 7200.0));
   EXPECT_DOUBLE_EQ(e.af0_s, -2.202996984124e-05);
   EXPECT_EQ(e.iode, 42);
@@ -368,7 +371,12 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(BadCase{"v2_missing_end_of_header.n", 23, "END OF HEADER"},
                       BadCase{"v4_version.rnx", 1, "unsupported RINEX version 4.00"},
                       BadCase{"v3_obs_type.rnx", 1, "not a navigation file"},
-                      BadCase{"v3_galileo_only.rnx", 1, "need GPS"},
+                      BadCase{"v3_galileo_only.rnx", 8, "record of system 'G' in a navigation file for system 'E'"},
+                      BadCase{"v3_glonass_channel.rnx", 10, "GLONASS frequency number 9 out of range -7..+6"},
+                      BadCase{"v2_glonass_channel.g", 6, "GLONASS frequency number -8 out of range"},
+                      BadCase{"v3_galileo_both_clock_bits.rnx", 9, "bits 8 (E5a clock) and 9 (E5b clock) exclude"},
+                      BadCase{"v3_sbas_number.rnx", 8, "SBAS satellite number 99 out of range 20..58"},
+                      BadCase{"v3_beidou_week.rnx", 9, "BeiDou week 2297 does not match toc"},
                       BadCase{"v2_truncated_eof.n", 17, "truncated record"},
                       BadCase{"v3_truncated_next_record.rnx", 14, "truncated record"},
                       BadCase{"v2_bad_number.n", 10, "unparsable number '-0.1411x5000000D+03'"},
@@ -476,7 +484,7 @@ TEST(RinexNav, FilesAreMergedAndAnEmptyOrMissingOneIsNamed) {
   const std::string empty =
       (std::filesystem::temp_directory_path() / ("gnssemu-nav-empty-" + std::to_string(::getpid()) + ".22n")).string();
   std::ofstream(empty) << kV2Header;
-  for (const auto& [path, why] : {std::pair{empty, "no GPS ephemerides"}, {kNav + "missing.22n", "not found"}}) {
+  for (const auto& [path, why] : {std::pair{empty, "no ephemerides"}, {kNav + "missing.22n", "not found"}}) {
     try {
       (void)read_rinex_nav_files({kNav + "brdc0010.22n", path});
       ADD_FAILURE() << path;
