@@ -254,7 +254,7 @@ TEST(NmeaEncoder, GsaAndGgaCapAtTwelveSatellites) {
   f.num_sats = 0;
   for (int prn = 1; prn <= 14; ++prn) {
     receiver::SatInfo& s = f.sats[static_cast<std::size_t>(f.num_sats++)];
-    s.prn = prn;
+    s.sat = SatId::gps(prn);
     s.el_rad = (10.0 + 5.0 * prn) * kDegToRad;
     s.az_rad = (25.0 * prn) * kDegToRad;
     s.cn0_dbhz = 40.0;
@@ -273,13 +273,13 @@ TEST(NmeaEncoder, GsvSelectionAndRounding) {
   f.num_sats = 0;
   auto add = [&](int prn, double el_deg, double az_deg, double cn0, bool healthy, bool tracked) {
     receiver::SatInfo& s = f.sats[static_cast<std::size_t>(f.num_sats++)];
-    s.prn = prn;
+    s.sat = SatId::gps(prn);
     s.el_rad = el_deg * kDegToRad;
     s.az_rad = az_deg * kDegToRad;
     s.cn0_dbhz = cn0;
     s.healthy = healthy;
     s.tracked = tracked;
-    s.used = tracked;
+    s.used = tracked && healthy;
   };
   add(2, -0.5, 10.0, 0.0, true, false);   // below horizon: not in view
   add(4, 0.0, 359.6, 22.4, true, true);   // az rounds to 360 -> 000
@@ -289,6 +289,13 @@ TEST(NmeaEncoder, GsvSelectionAndRounding) {
   const auto lines = encode(f, NmeaConfig{});
   expect_well_formed(lines);
   EXPECT_EQ(lines[4].substr(0, lines[4].find('*')), "$GPGSV,1,1,03,04,00,000,22,05,90,000,52,07,45,180,99,1");
+  // A satellite the solution uses is always listed, so used <= in view in
+  // every sentence; with no position known its el/az fields stay empty.
+  f.sats[3].used = true;
+  f.sats[3].el_rad = std::nan("");
+  const auto used = encode(f, NmeaConfig{});
+  EXPECT_EQ(used[4].substr(0, used[4].find('*')), "$GPGSV,1,1,04,04,00,000,22,05,90,000,52,06,,,40,07,45,180,99,1");
+  EXPECT_EQ(parse_sentence(used[3]).fields[4], "06");
 }
 
 // Parses the epoch back and checks that every sentence tells the same story.
@@ -409,12 +416,12 @@ TEST(NmeaEncoder, ExtremeAndNonFiniteInputsStayWellFormed) {
   expect_well_formed(encode(f, cfg));
 }
 
-TEST(NmeaEncoder, ThirtyTwoSatellitesFitTheEpochBudget) {
+TEST(NmeaEncoder, ThirtyTwoGpsSatellitesFitTheEpochBudget) {
   receiver::Fix f = sample_fix_3d();
   f.num_sats = 0;
   for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
     receiver::SatInfo& s = f.sats[static_cast<std::size_t>(f.num_sats++)];
-    s.prn = prn;
+    s.sat = SatId::gps(prn);
     s.el_rad = 45.0 * kDegToRad;
     s.az_rad = 3.0 * kDegToRad;
     s.cn0_dbhz = 45.0;
@@ -429,7 +436,7 @@ TEST(NmeaEncoder, ThirtyTwoSatellitesFitTheEpochBudget) {
   const std::size_t n = NmeaEncoder(all_sentences(NmeaVersion::k411)).encode_epoch(f, out);
   EXPECT_LE(n, kMaxEpochBytes);
   const auto lines = split_lines(out);
-  EXPECT_EQ(lines.size(), 7u + 8u);
+  EXPECT_EQ(lines.size(), 7u + 8u);  // RMC VTG GGA GSA GLL GST ZDA, 8 GSV
   expect_well_formed(lines);
 }
 
