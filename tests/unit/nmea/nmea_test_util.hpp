@@ -33,6 +33,7 @@ struct Sentence {
   std::string address;
   std::string type;
   std::vector<std::string> fields;
+  std::string talker() const { return address.substr(0, 2); }  ///< "GN"
 };
 /// Splits "$ADDR,f1,...*hh"; the checksum is not verified here.
 Sentence parse_sentence(std::string_view line);
