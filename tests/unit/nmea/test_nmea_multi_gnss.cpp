@@ -230,6 +230,38 @@ TEST(NmeaMultiGnss, GgaCapsAtTwelveGnsDoesNot) {
   EXPECT_EQ(v40[2].fields.size(), 12u);
 }
 
+TEST(NmeaMultiGnss, GnsWithoutFix) {
+  // The no-fix GNS of a GPS + GLONASS receiver at 4.0 in a public parser test:
+  // "$GNGNS,181604.00,,,,,NN,00,99.99,,,,*59".
+  NmeaConfig c = device_config(NmeaDevice::kM8);
+  c.sentences = SentenceSet();
+  c.sentences.set(nmea::Sentence::kGns);
+  receiver::Fix f;
+  f.t = time::GpsTime::from_calendar({2019, 11, 6, 18, 16, 4.0 + 18.0});
+  f.time_valid = true;
+  std::string out;
+  NmeaEncoder(c).encode_epoch(f, out);
+  EXPECT_EQ(out, "$GNGNS,181604.00,,,,,NN,00,99.99,,,,*59\r\n");
+}
+
+TEST(NmeaMultiGnss, M8NoFixEpochAsTheRealOne) {
+  // The M8 no-fix epoch of ref §6 (GPS + GLONASS, time known), every checksum
+  // as there; its GSV lists tracked satellites without a position, which a Fix
+  // never has, and its RMC is from the next second.
+  receiver::Fix f;
+  f.t = time::GpsTime::from_calendar({2019, 11, 6, 18, 42, 8.0 + 18.0});
+  f.time_valid = true;
+  std::string out;
+  NmeaEncoder(device_config(NmeaDevice::kM8)).encode_epoch(f, out);
+  const auto lines = test::split_lines(out);
+  ASSERT_EQ(lines.size(), 8u);
+  EXPECT_EQ(lines[1], "$GNVTG,,,,,,,,,N*2E");
+  EXPECT_EQ(lines[2], "$GNGGA,184208.00,,,,,0,00,99.99,,,,,,*7F");
+  EXPECT_EQ(lines[3], "$GNGSA,A,1,,,,,,,,,,,,,99.99,99.99,99.99*2E");
+  EXPECT_EQ(lines[4], "$GNGSA,A,1,,,,,,,,,,,,,99.99,99.99,99.99*2E");
+  EXPECT_EQ(lines[7], "$GNGLL,,,,,184208.00,V,N*53");
+}
+
 TEST(NmeaMultiGnss, GsaListsTheFirstTwelveUsedPerSystem) {
   std::vector<const char*> names{"R01", "R02", "R03", "R04", "R05", "R06", "R07", "R08", "R09", "R10", "R11", "R12",
                                  "R13", "R14"};
