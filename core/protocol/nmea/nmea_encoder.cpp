@@ -261,7 +261,9 @@ void write_gns(const Epoch& e, const NmeaSky& sky, const Emit& emit) {
   w.integer(sky.total_used(), 2);
   w.fixed(e.hdop, 2);
   if (e.has_fix) {
-    w.fixed(e.alt_msl_m, 1);
+    // Deeper than -9999.9 m MSL is off the Earth; the clamp keeps 4.11's six
+    // mode characters within 82 characters.
+    w.fixed(std::max(e.alt_msl_m, -9999.9), 1);
     w.fixed(e.geoid_sep_m, 1);
   } else {
     w.empty();
@@ -296,26 +298,34 @@ void write_gga(const Epoch& e, const NmeaSky& sky, const Emit& emit) {
 }
 
 // GSA opMode,navMode,sv1..sv12,PDOP,HDOP,VDOP[,systemId]: one per NMEA system
-// (the M8 in 4.0 mode too, without systemId: ublox-8.log); the first 12 used.
+// (the M8 in 4.0 mode too, without systemId: ublox-8.log); the first 12 used,
+// fewer if twelve three-digit numbers (extended SBAS/QZSS) would pass 82 characters.
+SentenceWriter gsa_sentence(const Epoch& e, const NmeaSky& sky, NmeaSystem s, int max_listed) {
+  SentenceWriter w(Address(e.main, "GSA"));
+  w.character('A');
+  w.integer(e.nav_mode, 1);
+  int slot = 0;
+  const ReportedSv* sv = sky.begin(s);
+  for (int i = 0; i < sky.count(s) && slot < max_listed; ++i) {
+    if (!sv[i].used) continue;
+    w.integer(sv[i].number, 2);
+    ++slot;
+  }
+  for (; slot < NmeaSky::kGsaSlots; ++slot) w.empty();
+  w.fixed(e.pdop, 2);
+  w.fixed(e.hdop, 2);
+  w.fixed(e.vdop, 2);
+  if (e.v4) w.integer(system_id(s), 1);
+  return w;
+}
+
 void write_gsa(const Epoch& e, const NmeaSky& sky, const Emit& emit) {
   for (int k = 0; k < kNumNmeaSystems; ++k) {
     const auto s = static_cast<NmeaSystem>(k);
     if (!sky.present(s)) continue;
-    SentenceWriter w(Address(e.main, "GSA"));
-    w.character('A');
-    w.integer(e.nav_mode, 1);
-    int slot = 0;
-    const ReportedSv* sv = sky.begin(s);
-    for (int i = 0; i < sky.count(s) && slot < NmeaSky::kGsaSlots; ++i) {
-      if (!sv[i].used) continue;
-      w.integer(sv[i].number, 2);
-      ++slot;
-    }
-    for (; slot < NmeaSky::kGsaSlots; ++slot) w.empty();
-    w.fixed(e.pdop, 2);
-    w.fixed(e.hdop, 2);
-    w.fixed(e.vdop, 2);
-    if (e.v4) w.integer(system_id(s), 1);
+    int listed = NmeaSky::kGsaSlots;
+    SentenceWriter w = gsa_sentence(e, sky, s, listed);
+    while (w.finished_size() > kMaxSentenceLength && listed > 0) w = gsa_sentence(e, sky, s, --listed);
     emit(w);
   }
 }

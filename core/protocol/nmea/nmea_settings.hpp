@@ -56,7 +56,8 @@ struct NmeaSettings {
   /// (RAIM) count as used in GGA/GNS numSV and GSA.
   bool consider = false;
   /// Strict 82-character limit. Every sentence we write fits in 82
-  /// characters in every mode, so it changes nothing (docs/nmea.md).
+  /// characters in every mode (a GSA of twelve three-digit numbers lists
+  /// eleven), so it changes nothing (docs/nmea.md).
   bool limit82 = false;
   MainTalker main_talker = MainTalker::kAuto;
   GsvTalker gsv_talker = GsvTalker::kPerSystem;

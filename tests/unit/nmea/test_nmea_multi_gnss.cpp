@@ -428,8 +428,27 @@ TEST(NmeaMultiGnss, LongestSentencesStayWithin82Characters) {
     c.sentences.set(nmea::Sentence::kGns);
     encode_parsed(f, c);  // checks every length
   }
+  // Twelve used with three-digit numbers under GPS at 4.10 (SBAS 152-158 and
+  // QZSS 193-202, extended): GSA lists those that fit in 82 characters.
   c.version = NmeaVersion::k410;
-  encode_parsed(fix_with({"S52", "S53", "S54", "S55", "J01", "J02", "J03", "J04"}), c);
+  c.systems = SystemSet::only(GnssSystem::kGps).with(GnssSystem::kSbas).with(GnssSystem::kQzss);
+  receiver::Fix many = fix_with({"J01", "J02", "J03", "J04", "J05", "J06", "J07", "S52", "S53", "S54", "S55", "S56"});
+  many.dop.pdop = many.dop.hdop = many.dop.vdop = 12.5;
+  const auto v = encode_parsed(many, c);
+  const Sentence& gsa = v[4];
+  ASSERT_EQ(gsa.type, "GSA");
+  int listed = 0;
+  for (int k = 2; k < 14; ++k) listed += gsa.fields[static_cast<std::size_t>(k)].empty() ? 0 : 1;
+  EXPECT_EQ(listed, 11);  // 11 + 11 * 4 + 1 + 3 * 6 + 2 + 5 = 81; a twelfth would make 85
+  EXPECT_EQ(gsa.fields[2], "152");
+  // GNS at 4.11 (six mode characters) with the most negative heights.
+  c.version = NmeaVersion::k411;
+  c.sentences.set(nmea::Sentence::kGns);
+  receiver::Fix deep = fix_with({"G01"});
+  deep.lla.height_m = -1e6;
+  deep.geoid_sep_m = -1e6;
+  deep.speed_m_s = 1e6;
+  encode_parsed(deep, c);
 }
 
 TEST(NmeaMultiGnss, SettingsChangeBetweenEpochs) {
