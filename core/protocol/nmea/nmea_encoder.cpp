@@ -7,6 +7,8 @@
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
 #include "core/protocol/nmea/nmea_format.hpp"
+#include "core/protocol/nmea/nmea_numbering.hpp"
+#include "core/protocol/nmea/nmea_sky.hpp"
 #include "core/protocol/nmea/nmea_utc.hpp"
 
 namespace gnssemu::protocol::nmea {
@@ -17,7 +19,7 @@ using receiver::Fix;
 using receiver::FixType;
 using receiver::SatInfo;
 
-constexpr int kMaxGsaSlots = 12;  // GSA has 12 SV fields; u-blox GGA numSV is 0-12 too.
+constexpr int kMaxGgaSats = 12;  // u-blox GGA numSV is 0-12 (every u-blox log: 12 with up to 25 used)
 constexpr int kSatsPerGsv = 4;
 constexpr double kKnotsPerMps = 3600.0 / 1852.0;
 constexpr double kKmhPerMps = 3.6;
@@ -28,9 +30,13 @@ constexpr double kMaxAbsGeoidSep_m = 999.9;
 constexpr double kMaxSpeed_m_s = 5000.0;
 constexpr double kMaxSigma_m = 99999.9;
 
+using Talker = std::array<char, 2>;
+
 /// Everything the sentences print, derived once from the Fix.
 struct Epoch {
+  NmeaVersion version = NmeaVersion::k411;
   bool v4 = false;        // NMEA 4.10 / 4.11 extra fields
+  bool pos_mode_field = true;  // RMC, VTG, GLL posMode (NMEA 2.3 and later)
   bool has_time = false;
   bool has_fix = false;   // a position to print (a GNSS fix or dead reckoning)
   // The fix type as the sentences report it (u-blox NMEA position fix flags).
@@ -38,6 +44,7 @@ struct Epoch {
   char status = 'V';      // RMC, GLL: A valid, V invalid
   char pos_mode = 'N';    // RMC, VTG, GLL: N none, A autonomous, E estimated (dead reckoning)
   int nav_mode = 1;       // GSA: 1 none, 2 2D, 3 3D
+  Talker main{'G', 'P'};  // talker of every sentence but GSV
   UtcStamp utc;
   double lat_deg = 0.0, lon_deg = 0.0;
   double alt_msl_m = 0.0, geoid_sep_m = 0.0;
@@ -45,11 +52,34 @@ struct Epoch {
   bool course_valid = false;
   double course_deg = 0.0;
   double pdop = receiver::Dop::kNoDop, hdop = receiver::Dop::kNoDop, vdop = receiver::Dop::kNoDop;
-  std::array<int, kMaxGsaSlots> used_prn{};
-  int num_used = 0;
-  std::array<const SatInfo*, kMaxSatsInView> in_view{};
-  int num_in_view = 0;
 };
+
+/// "GP" + "RMC".
+struct Address {
+  std::array<char, 5> chars{};
+  Address(Talker t, std::string_view formatter) noexcept : chars{t[0], t[1], formatter[0], formatter[1], formatter[2]} {}
+  operator std::string_view() const noexcept { return {chars.data(), chars.size()}; }
+};
+
+/// The main talker: CFG-NMEA's override, else GN when more than one NMEA
+/// system is enabled, else that system's talker (u-blox "Multi-GNSS
+/// considerations": the talker follows the GNSS the channels are assigned to).
+Talker main_talker(const NmeaSky& sky, const NmeaSettings& cfg) {
+  switch (cfg.main_talker) {
+    case MainTalker::kGp: return {'G', 'P'};
+    case MainTalker::kGl: return {'G', 'L'};
+    case MainTalker::kGn: return {'G', 'N'};
+    case MainTalker::kGa: return {'G', 'A'};
+    case MainTalker::kGb: return cfg.beidou_talker;
+    case MainTalker::kGq: return {'G', 'Q'};
+    case MainTalker::kAuto: break;
+  }
+  if (sky.num_present() > 1) return {'G', 'N'};
+  for (int k = 0; k < kNumNmeaSystems; ++k) {
+    if (sky.present(static_cast<NmeaSystem>(k))) return system_talker(static_cast<NmeaSystem>(k), cfg);
+  }
+  return {'G', 'P'};
+}
 
 double clamp_finite(double v, double lo, double hi) {
   return std::isfinite(v) ? std::clamp(v, lo, hi) : v;
@@ -82,7 +112,9 @@ void set_fix_flags(Epoch& e, ReportedFix f) {
 
 Epoch derive(const Fix& fix, const NmeaConfig& cfg, FixOverride reported) {
   Epoch e;
-  e.v4 = cfg.version != NmeaVersion::k23;
+  e.version = cfg.version;
+  e.v4 = has_system_ids(cfg.version);
+  e.pos_mode_field = cfg.version != NmeaVersion::k21;
   e.has_time = fix.time_valid;
   if (e.has_time) e.utc = utc_stamp(fix.t, fix.leap_seconds, fix.in_leap_second);
   // A position needs time (a receiver cannot navigate without it) and finite numbers.
@@ -114,15 +146,8 @@ Epoch derive(const Fix& fix, const NmeaConfig& cfg, FixOverride reported) {
                      : fix.type == FixType::k3D          ? ReportedFix::k3D
                                                          : ReportedFix::k2D);
   }
-  const int n = std::clamp(fix.num_sats, 0, static_cast<int>(fix.sats.size()));
-  for (int i = 0; i < n; ++i) {
-    const SatInfo& s = fix.sats[static_cast<std::size_t>(i)];
-    if (s.sat.system != GnssSystem::kGps || !s.sat.valid()) continue;  // GPS talker and numbering only
-    if (e.has_fix && s.used && e.num_used < kMaxGsaSlots) e.used_prn[static_cast<std::size_t>(e.num_used++)] = s.sat.prn();
-    if (s.healthy && std::isfinite(s.el_rad) && s.el_rad >= 0.0 && std::isfinite(s.az_rad)) {
-      e.in_view[static_cast<std::size_t>(e.num_in_view++)] = &s;
-    }
-  }
+  // NMEA 2.1 has no dead-reckoning quality: u-blox reports 1 (position fix flags).
+  if (!e.pos_mode_field && e.quality == 6) e.quality = 1;
   return e;
 }
 
@@ -156,9 +181,9 @@ struct Emit {
   }
 };
 
-// RMC time,status,lat,NS,lon,EW,spd,cog,date,mv,mvEW,posMode[,navStatus] (ref §3).
+// RMC time,status,lat,NS,lon,EW,spd,cog,date,mv,mvEW[,posMode][,navStatus] (ref §3).
 void write_rmc(const Epoch& e, const Emit& emit) {
-  SentenceWriter w("GPRMC");
+  SentenceWriter w(Address(e.main, "RMC"));
   put_time(w, e);
   w.character(e.status);
   put_position(w, e);
@@ -179,14 +204,14 @@ void write_rmc(const Epoch& e, const Emit& emit) {
   }
   w.empty();  // magnetic variation: u-blox leaves it empty
   w.empty();
-  w.character(e.pos_mode);
+  if (e.pos_mode_field) w.character(e.pos_mode);
   if (e.v4) w.character('V');  // navStatus: u-blox always sends V
   emit(w);
 }
 
-// VTG cogt,T,cogm,M,sogn,N,sogk,K,posMode; all units empty without a fix (ref §6).
+// VTG cogt,T,cogm,M,sogn,N,sogk,K[,posMode]; all units empty without a fix (ref §6).
 void write_vtg(const Epoch& e, const Emit& emit) {
-  SentenceWriter w("GPVTG");
+  SentenceWriter w(Address(e.main, "VTG"));
   if (e.has_fix) {
     if (e.course_valid) {
       w.fixed(e.course_deg, 2);
@@ -203,18 +228,61 @@ void write_vtg(const Epoch& e, const Emit& emit) {
   } else {
     for (int i = 0; i < 8; ++i) w.empty();
   }
-  w.character(e.pos_mode);
+  if (e.pos_mode_field) w.character(e.pos_mode);
+  emit(w);
+}
+
+// GNS posMode characters: GPS, GLONASS up to 4.0; + Galileo, BeiDou in 4.10;
+// + QZSS, NavIC in 4.11 (the systems each NMEA version defines; docs/nmea.md).
+int gns_mode_chars(NmeaVersion v) {
+  return v == NmeaVersion::k411 ? 6 : v == NmeaVersion::k410 ? 4 : 2;
+}
+
+// GNS time,lat,NS,lon,EW,posMode,numSV,HDOP,alt,sep,diffAge,diffStation[,navStatus]
+// (ref §3). numSV is not capped (a u-blox M8 log shows 16 and 19 beside GGA's 12).
+void write_gns(const Epoch& e, const NmeaSky& sky, const Emit& emit) {
+  SentenceWriter w(Address(e.main, "GNS"));
+  put_time(w, e);
+  put_position(w, e);
+  std::array<char, 6> mode{};
+  const int chars = gns_mode_chars(e.version);
+  for (int k = 0; k < chars; ++k) {
+    const auto s = static_cast<NmeaSystem>(k);
+    const bool listed = k < kNumNmeaSystems && sky.present(s);
+    char c = 'N';
+    if (e.pos_mode == 'E') {
+      c = listed ? 'E' : 'N';
+    } else if (e.pos_mode != 'N' && listed && sky.used(s) > 0) {
+      c = e.pos_mode;
+    }
+    mode[static_cast<std::size_t>(k)] = c;
+  }
+  w.text(std::string_view(mode.data(), static_cast<std::size_t>(chars)));
+  w.integer(sky.total_used(), 2);
+  w.fixed(e.hdop, 2);
+  if (e.has_fix) {
+    // Deeper than -9999.9 m MSL is off the Earth; the clamp keeps 4.11's six
+    // mode characters within 82 characters.
+    w.fixed(std::max(e.alt_msl_m, -9999.9), 1);
+    w.fixed(e.geoid_sep_m, 1);
+  } else {
+    w.empty();
+    w.empty();
+  }
+  w.empty();  // no differential corrections
+  w.empty();
+  if (e.v4) w.character('V');
   emit(w);
 }
 
 // GGA time,lat,NS,lon,EW,quality,numSV,HDOP,alt,M,sep,M,diffAge,diffStation.
 // u-blox reports quality 1 for both 2D and 3D fixes (ref §4).
-void write_gga(const Epoch& e, const Emit& emit) {
-  SentenceWriter w("GPGGA");
+void write_gga(const Epoch& e, const NmeaSky& sky, const Emit& emit) {
+  SentenceWriter w(Address(e.main, "GGA"));
   put_time(w, e);
   put_position(w, e);
   w.integer(e.quality, 1);
-  w.integer(e.num_used, 2);
+  w.integer(std::min(sky.total_used(), kMaxGgaSats), 2);
   w.fixed(e.hdop, 2);
   if (e.has_fix) {
     w.fixed(e.alt_msl_m, 1);
@@ -229,61 +297,97 @@ void write_gga(const Epoch& e, const Emit& emit) {
   emit(w);
 }
 
-// GSA opMode,navMode,sv1..sv12,PDOP,HDOP,VDOP[,systemId].
-void write_gsa(const Epoch& e, const Emit& emit) {
-  SentenceWriter w("GPGSA");
+// GSA opMode,navMode,sv1..sv12,PDOP,HDOP,VDOP[,systemId]: one per NMEA system
+// (the M8 in 4.0 mode too, without systemId: ublox-8.log); the first 12 used,
+// fewer if twelve three-digit numbers (extended SBAS/QZSS) would pass 82 characters.
+SentenceWriter gsa_sentence(const Epoch& e, const NmeaSky& sky, NmeaSystem s, int max_listed) {
+  SentenceWriter w(Address(e.main, "GSA"));
   w.character('A');
   w.integer(e.nav_mode, 1);
-  for (int i = 0; i < kMaxGsaSlots; ++i) {
-    if (i < e.num_used) {
-      w.integer(e.used_prn[static_cast<std::size_t>(i)], 2);
-    } else {
-      w.empty();
-    }
+  int slot = 0;
+  const ReportedSv* sv = sky.begin(s);
+  for (int i = 0; i < sky.count(s) && slot < max_listed; ++i) {
+    if (!sv[i].used) continue;
+    w.integer(sv[i].number, 2);
+    ++slot;
   }
+  for (; slot < NmeaSky::kGsaSlots; ++slot) w.empty();
   w.fixed(e.pdop, 2);
   w.fixed(e.hdop, 2);
   w.fixed(e.vdop, 2);
-  if (e.v4) w.integer(1, 1);  // systemId 1 = GPS
-  emit(w);
+  if (e.v4) w.integer(system_id(s), 1);
+  return w;
 }
 
-// GSV numMsg,msgNum,numSV,{svid,elv,az,cno}x1..4[,signalId]; cno empty when not tracked.
-void write_gsv(const Epoch& e, const Emit& emit) {
-  const int num_msg = std::max(1, (e.num_in_view + kSatsPerGsv - 1) / kSatsPerGsv);
-  for (int m = 0; m < num_msg; ++m) {
-    SentenceWriter w("GPGSV");
-    w.integer(num_msg, 1);
-    w.integer(m + 1, 1);
-    w.integer(e.num_in_view, 2);
-    const int first = m * kSatsPerGsv;
-    const int last = std::min(first + kSatsPerGsv, e.num_in_view);
-    for (int i = first; i < last; ++i) {
-      const SatInfo& s = *e.in_view[static_cast<std::size_t>(i)];
-      w.integer(s.sat.prn(), 2);
-      w.integer(std::clamp(rounded_deg(s.el_rad), 0, 90), 2);
-      int az = rounded_deg(s.az_rad) % 360;
-      if (az < 0) az += 360;
-      w.integer(az, 3);
-      if (s.tracked && std::isfinite(s.cn0_dbhz)) {
-        w.integer(std::clamp(static_cast<int>(std::lround(s.cn0_dbhz)), 0, 99), 2);
-      } else {
-        w.empty();
-      }
-    }
-    if (e.v4) w.integer(1, 1);  // signalId 1 = GPS L1 C/A
+void write_gsa(const Epoch& e, const NmeaSky& sky, const Emit& emit) {
+  for (int k = 0; k < kNumNmeaSystems; ++k) {
+    const auto s = static_cast<NmeaSystem>(k);
+    if (!sky.present(s)) continue;
+    int listed = NmeaSky::kGsaSlots;
+    SentenceWriter w = gsa_sentence(e, sky, s, listed);
+    while (w.finished_size() > kMaxSentenceLength && listed > 0) w = gsa_sentence(e, sky, s, --listed);
     emit(w);
   }
 }
 
-// GLL lat,NS,lon,EW,time,status,posMode.
+void put_sv(SentenceWriter& w, const ReportedSv& r) {
+  const SatInfo& s = *r.sat;
+  w.integer(r.number, 2);
+  if (std::isfinite(s.el_rad) && std::isfinite(s.az_rad)) {
+    w.integer(std::clamp(rounded_deg(s.el_rad), 0, 90), 2);
+    int az = rounded_deg(s.az_rad) % 360;
+    if (az < 0) az += 360;
+    w.integer(az, 3);
+  } else {  // position unknown (u-blox: "39,,,42")
+    w.empty();
+    w.empty();
+  }
+  if (s.tracked && std::isfinite(s.cn0_dbhz)) {
+    w.integer(std::clamp(static_cast<int>(std::lround(s.cn0_dbhz)), 0, 99), 2);
+  } else {
+    w.empty();
+  }
+}
+
+// GSV numMsg,msgNum,numSV,{svid,elv,az,cno}x1..4[,signalId]; cno empty when
+// not tracked. One group per NMEA system, in the system's talker (ref §2).
+void write_gsv(const Epoch& e, const NmeaSky& sky, const NmeaSettings& cfg, const Emit& emit) {
+  constexpr GnssSystem kSignalOf[kNumNmeaSystems] = {GnssSystem::kGps, GnssSystem::kGlonass, GnssSystem::kGalileo,
+                                                     GnssSystem::kBeiDou, GnssSystem::kQzss};
+  for (int k = 0; k < kNumNmeaSystems; ++k) {
+    const auto s = static_cast<NmeaSystem>(k);
+    if (!sky.present(s)) continue;
+    const Talker talker = cfg.gsv_talker == GsvTalker::kMain ? e.main : system_talker(s, cfg);
+    const int n = sky.count(s);
+    const int num_msg = std::max(1, (n + kSatsPerGsv - 1) / kSatsPerGsv);
+    for (int m = 0; m < num_msg; ++m) {
+      SentenceWriter w(Address(talker, "GSV"));
+      w.integer(num_msg, 1);
+      w.integer(m + 1, 1);
+      w.integer(n, 2);
+      const int first = m * kSatsPerGsv;
+      const int last = std::min(first + kSatsPerGsv, n);
+      for (int i = first; i < last; ++i) put_sv(w, sky.begin(s)[i]);
+      if (e.v4) w.integer(l1_signal_id(kSignalOf[k], cfg.device), 1);
+      emit(w);
+    }
+  }
+}
+
+// GLL lat,NS,lon,EW,time,status[,posMode].
 void write_gll(const Epoch& e, const Emit& emit) {
-  SentenceWriter w("GPGLL");
+  SentenceWriter w(Address(e.main, "GLL"));
   put_position(w, e);
   put_time(w, e);
   w.character(e.status);
-  w.character(e.pos_mode);
+  if (e.pos_mode_field) w.character(e.pos_mode);
   emit(w);
+}
+
+void put_sigmas(SentenceWriter& w, const Fix& fix) {
+  w.fixed(clamp_finite(fix.sigma_n_m, 0.0, kMaxSigma_m), 1);
+  w.fixed(clamp_finite(fix.sigma_e_m, 0.0, kMaxSigma_m), 1);
+  w.fixed(clamp_finite(fix.sigma_u_m, 0.0, kMaxSigma_m), 1);
 }
 
 // GST time,rangeRms,stdMajor,stdMinor,orient,stdLat,stdLong,stdAlt. The
@@ -291,16 +395,14 @@ void write_gll(const Epoch& e, const Emit& emit) {
 // east-north covariance, and an ellipse from sigma_e / sigma_n alone would
 // claim an orientation the solver never computed. Empty values without a fix.
 void write_gst(const Epoch& e, const Fix& fix, const Emit& emit) {
-  SentenceWriter w("GPGST");
+  SentenceWriter w(Address(e.main, "GST"));
   put_time(w, e);
   if (e.has_fix) {
     w.fixed(clamp_finite(fix.range_rms_m, 0.0, kMaxSigma_m), 1);
     w.empty();
     w.empty();
     w.empty();
-    w.fixed(clamp_finite(fix.sigma_n_m, 0.0, kMaxSigma_m), 1);
-    w.fixed(clamp_finite(fix.sigma_e_m, 0.0, kMaxSigma_m), 1);
-    w.fixed(clamp_finite(fix.sigma_u_m, 0.0, kMaxSigma_m), 1);
+    put_sigmas(w, fix);
   } else {
     for (int i = 0; i < 7; ++i) w.empty();
   }
@@ -309,7 +411,7 @@ void write_gst(const Epoch& e, const Fix& fix, const Emit& emit) {
 
 // ZDA time,day,month,year,ltzh,ltzn (local zone always 00,00).
 void write_zda(const Epoch& e, const Emit& emit) {
-  SentenceWriter w("GPZDA");
+  SentenceWriter w(Address(e.main, "ZDA"));
   put_time(w, e);
   if (e.has_time) {
     w.integer(e.utc.day, 2);
@@ -320,6 +422,22 @@ void write_zda(const Epoch& e, const Emit& emit) {
   }
   w.integer(0, 2);
   w.integer(0, 2);
+  emit(w);
+}
+
+// GBS time,errLat,errLon,errAlt,svid,prob,bias,stddev[,systemId,signalId]:
+// the expected errors are GST's sigmas (the NEO-M9N and ZED-F9P logs print
+// the same values in both); no satellite is flagged, so the rest is empty
+// as in every real epoch.
+void write_gbs(const Epoch& e, const Fix& fix, const Emit& emit) {
+  SentenceWriter w(Address(e.main, "GBS"));
+  put_time(w, e);
+  if (e.has_fix) {
+    put_sigmas(w, fix);
+  } else {
+    for (int i = 0; i < 3; ++i) w.empty();
+  }
+  for (int i = 0; i < (e.v4 ? 6 : 4); ++i) w.empty();
   emit(w);
 }
 
@@ -342,17 +460,21 @@ std::size_t NmeaEncoder::encode_epoch(const receiver::Fix& fix, std::string& out
 std::size_t NmeaEncoder::encode_epoch(const receiver::Fix& fix, SentenceSet set, std::string& out,
                                       SentenceSink* sink, FixOverride reported) const {
   const std::size_t before = out.size();
-  const Epoch e = derive(fix, config_, reported);
+  Epoch e = derive(fix, config_, reported);
+  const NmeaSky sky(fix, config_, e.has_fix);
+  e.main = main_talker(sky, config_);
   const auto emit = [&](Sentence s) { return Emit{out, sink, s}; };
-  // u-blox epoch order (ref §6).
+  // u-blox epoch order (ref §6; GNS between VTG and GGA, GBS last: docs/nmea.md).
   if (set.has(Sentence::kRmc)) write_rmc(e, emit(Sentence::kRmc));
   if (set.has(Sentence::kVtg)) write_vtg(e, emit(Sentence::kVtg));
-  if (set.has(Sentence::kGga)) write_gga(e, emit(Sentence::kGga));
-  if (set.has(Sentence::kGsa)) write_gsa(e, emit(Sentence::kGsa));
-  if (set.has(Sentence::kGsv)) write_gsv(e, emit(Sentence::kGsv));
+  if (set.has(Sentence::kGns)) write_gns(e, sky, emit(Sentence::kGns));
+  if (set.has(Sentence::kGga)) write_gga(e, sky, emit(Sentence::kGga));
+  if (set.has(Sentence::kGsa)) write_gsa(e, sky, emit(Sentence::kGsa));
+  if (set.has(Sentence::kGsv)) write_gsv(e, sky, config_, emit(Sentence::kGsv));
   if (set.has(Sentence::kGll)) write_gll(e, emit(Sentence::kGll));
   if (set.has(Sentence::kGst)) write_gst(e, fix, emit(Sentence::kGst));
   if (set.has(Sentence::kZda)) write_zda(e, emit(Sentence::kZda));
+  if (set.has(Sentence::kGbs)) write_gbs(e, fix, emit(Sentence::kGbs));
   return out.size() - before;
 }
 

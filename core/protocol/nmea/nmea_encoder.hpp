@@ -1,24 +1,23 @@
 #pragma once
-// NMEA 0183 encoder formatted like a u-blox M8 (shared/reference/nmea0183.md).
-// One Fix in, one epoch of sentences out; checksums, <= 82 characters.
-// GPS only, so the talker is GP everywhere. Choices where u-blox is not
-// documented are listed in docs/nmea.md.
+// NMEA 0183 encoder formatted like a u-blox M8 / NEO-M9N
+// (shared/reference/nmea0183.md, multi-gnss.md §7). One Fix in, one epoch
+// of sentences out; checksums, <= 82 characters. Talkers, satellite numbers,
+// GSA per system and GSV per talker follow the NmeaSettings (CFG-NMEA).
+// Choices where u-blox is not documented are listed in docs/nmea.md.
 #include <cstddef>
 #include <string>
 
 #include "core/protocol/nmea/nmea_sentences.hpp"
+#include "core/protocol/nmea/nmea_settings.hpp"
 #include "core/protocol/nmea/reported_fix.hpp"
 #include "core/receiver/fix.hpp"
 
 namespace gnssemu::protocol::nmea {
 
-/// NMEA standard version (u-blox CFG-NMEA nmeaVersion). 4.10 and 4.11 add
-/// RMC navStatus, GSA systemId and GSV signalId; for a GPS-only receiver the
-/// two print the same sentences (4.11 only changes QZSS/NavIC talkers and ids).
-enum class NmeaVersion { k23, k410, k411 };
-
-struct NmeaConfig {
-  NmeaVersion version = NmeaVersion::k411;
+/// The encoder's configuration: the CFG-NMEA settings (base), the sentence
+/// set and the course blanking. Defaults: NmeaSettings{} (GPS at 4.11 with
+/// the M9's signal ids), u-blox's factory sentence set.
+struct NmeaConfig : NmeaSettings {
   SentenceSet sentences = SentenceSet::ublox_default();  ///< what encode_epoch(fix, out) writes
   /// Below this horizontal speed (m/s) the course fields of RMC and VTG are
   /// left empty, as u-blox does when its heading is not valid. Static u-blox
@@ -26,9 +25,11 @@ struct NmeaConfig {
   double course_min_speed_m_s = 0.5;
 };
 
-/// Largest epoch encode_epoch can produce: 7 sentences plus 8 GSV
-/// (32 satellites), each at most 82 bytes. Reserve this much to never allocate.
-inline constexpr std::size_t kMaxEpochBytes = 15 * 82;
+/// Largest epoch encode_epoch can produce, each sentence at most 82 bytes:
+/// RMC VTG GNS GGA GLL GST ZDA GBS, a GSA per NMEA system (5) and the GSV
+/// of kMaxSatsInView satellites in at most 5 talker groups (96 / 4 + 5).
+/// Reserve this much to never allocate.
+inline constexpr std::size_t kMaxEpochBytes = (8 + 5 + kMaxSatsInView / 4 + 5) * 82;
 
 /// Told where each sentence an encoder appends ends, so a caller can treat
 /// every sentence as a message of its own (a transmit budget drops whole
@@ -48,7 +49,7 @@ public:
   explicit NmeaEncoder(const NmeaConfig& config);
 
   /// Append one epoch of the config's sentences (CR LF terminated) to out,
-  /// in u-blox order (RMC, VTG, GGA, GSA, GSV, GLL, GST, ZDA). Returns bytes
+  /// in u-blox order (RMC, VTG, GNS, GGA, GSA, GSV, GLL, GST, ZDA, GBS). Returns bytes
   /// appended. No allocation once out has capacity (out.size() +
   /// kMaxEpochBytes). Never throws; non-finite inputs give empty fields, a
   /// fix with a non-finite position or without valid time is sent as no fix.
@@ -61,6 +62,8 @@ public:
                            SentenceSink* sink = nullptr, FixOverride reported = std::nullopt) const;
 
   const NmeaConfig& config() const noexcept { return config_; }
+  /// Takes new CFG-NMEA settings (and enabled systems) from the next epoch on.
+  void set_settings(const NmeaSettings& settings) noexcept { static_cast<NmeaSettings&>(config_) = settings; }
 
 private:
   NmeaConfig config_;

@@ -48,6 +48,8 @@ public:
 
   /// Call once: appends "*hh" CR LF and returns the whole sentence (valid while *this lives).
   std::string_view finish() noexcept;
+  /// Length finish() will return (fields so far plus "*hh" CR LF).
+  std::size_t finished_size() const noexcept { return len_ + 5; }
   /// True if some field did not fit in the buffer (it was cut).
   bool overflowed() const noexcept { return overflow_; }
 

@@ -48,7 +48,13 @@ receiver::Fix fix_from_json(const nlohmann::json& j) {
     for (const auto& js : j.at("sats")) {
       if (f.num_sats >= static_cast<int>(f.sats.size())) throw std::runtime_error("too many sats");
       receiver::SatInfo& s = f.sats[static_cast<std::size_t>(f.num_sats++)];
-      s.sat = SatId::gps(js.at("prn").get<int>());
+      if (js.contains("sat")) {
+        const auto id = parse_sat(js.at("sat").get<std::string>());
+        if (!id) throw std::runtime_error("bad sat " + js.at("sat").get<std::string>());
+        s.sat = *id;
+      } else {
+        s.sat = SatId::gps(js.at("prn").get<int>());
+      }
       s.el_rad = js.at("el_deg").get<double>() * kDegToRad;
       s.az_rad = js.at("az_deg").get<double>() * kDegToRad;
       s.cn0_dbhz = js.value("cn0_dbhz", 0.0);
@@ -56,6 +62,7 @@ receiver::Fix fix_from_json(const nlohmann::json& j) {
       s.above_mask = js.value("above_mask", s.el_rad >= 5.0 * kDegToRad);
       s.tracked = js.value("tracked", s.cn0_dbhz > 0.0);
       s.used = js.value("used", false);
+      s.excluded = js.value("excluded", false);
       used += s.used ? 1 : 0;
       tracked += s.tracked ? 1 : 0;
       visible += (s.healthy && s.above_mask) ? 1 : 0;
@@ -69,15 +76,22 @@ receiver::Fix fix_from_json(const nlohmann::json& j) {
 
 NmeaConfig config_from_json(const nlohmann::json& j) {
   NmeaConfig c;
-  const std::string v = j.value("version", "4.11");
-  if (v == "2.3") {
-    c.version = NmeaVersion::k23;
-  } else if (v == "4.10") {
-    c.version = NmeaVersion::k410;
-  } else if (v == "4.11") {
-    c.version = NmeaVersion::k411;
-  } else {
-    throw std::runtime_error("bad NMEA version " + v);
+  if (j.contains("device")) {
+    const std::string d = j.at("device").get<std::string>();
+    if (d != "m8" && d != "m9") throw std::runtime_error("bad device " + d);
+    static_cast<NmeaSettings&>(c) = factory_settings(d == "m8" ? NmeaDevice::kM8 : NmeaDevice::kM9);
+  }
+  if (j.contains("version")) c.version = version_from_text(j.at("version").get<std::string>());
+  if (j.contains("sv_numbering")) {
+    const std::string n = j.at("sv_numbering").get<std::string>();
+    c.sv_numbering = n == "extended" ? SvNumbering::kExtended : SvNumbering::kStrict;
+  }
+  c.max_svs = j.value("max_svs", c.max_svs);
+  c.consider = j.value("consider", c.consider);
+  if (j.contains("systems")) {
+    const auto set = parse_systems(j.at("systems").get<std::string>());
+    if (!set) throw std::runtime_error("bad systems");
+    c.systems = *set;
   }
   SentenceSet& s = c.sentences;
   for (const SentenceInfo& info : kSentences) {
@@ -87,6 +101,15 @@ NmeaConfig config_from_json(const nlohmann::json& j) {
   }
   c.course_min_speed_m_s = j.value("course_min_speed_m_s", c.course_min_speed_m_s);
   return c;
+}
+
+NmeaVersion version_from_text(const std::string& v) {
+  if (v == "2.1") return NmeaVersion::k21;
+  if (v == "2.3") return NmeaVersion::k23;
+  if (v == "4.0") return NmeaVersion::k40;
+  if (v == "4.10") return NmeaVersion::k410;
+  if (v == "4.11") return NmeaVersion::k411;
+  throw std::runtime_error("bad NMEA version " + v);
 }
 
 std::vector<std::string> split_lines(std::string_view stream) {

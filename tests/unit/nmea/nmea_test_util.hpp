@@ -15,9 +15,14 @@ namespace gnssemu::protocol::nmea::test {
 /// `el_deg`, `az_deg`), time as GPS `week` + `tow_s`, `type` "none"/"2d"/"3d".
 /// num_used / num_tracked / num_visible are counted from `sats` unless given.
 receiver::Fix fix_from_json(const nlohmann::json& j);
-/// Encoder config from the optional "config" object: `version` "2.3"/"4.10"/"4.11",
-/// booleans per sentence (`gga`, ..., `gst`, `zda`), `course_min_speed_m_s`.
+/// Encoder config from the optional "config" object: `device` "m8"/"m9"
+/// (factory_settings), `version` "2.1"/"2.3"/"4.0"/"4.10"/"4.11",
+/// `sv_numbering` "strict"/"extended", `max_svs`, `consider`, `systems`
+/// ("G,R,E"), booleans per sentence (`gga`, ..., `gns`, `gbs`),
+/// `course_min_speed_m_s`. A satellite is `prn` (GPS) or `sat` ("R05").
 NmeaConfig config_from_json(const nlohmann::json& j);
+/// "2.1", "2.3", "4.0", "4.10", "4.11".
+NmeaVersion version_from_text(const std::string& v);
 
 /// Sentences of a CR LF separated stream (CR LF removed).
 std::vector<std::string> split_lines(std::string_view stream);
@@ -28,6 +33,7 @@ struct Sentence {
   std::string address;
   std::string type;
   std::vector<std::string> fields;
+  std::string talker() const { return address.substr(0, 2); }  ///< "GN"
 };
 /// Splits "$ADDR,f1,...*hh"; the checksum is not verified here.
 Sentence parse_sentence(std::string_view line);

@@ -42,5 +42,39 @@ TEST(NmeaAlloc, EncodeEpochDoesNotAllocateWithCapacity) {
   }
 }
 
+// The largest sky (kMaxSatsInView satellites of every system) with every
+// sentence, on both devices and every version: still no allocation.
+TEST(NmeaAlloc, FullMultiGnssSkyDoesNotAllocate) {
+  receiver::Fix fix = test::sample_fix_3d();
+  fix.num_sats = 0;
+  for (int i = 0; i < kNumSats && fix.num_sats < kMaxSatsInView; i += 2) {
+    receiver::SatInfo& s = fix.sats[static_cast<std::size_t>(fix.num_sats++)];
+    s.sat = SatId::from_index(i);
+    s.el_rad = 0.1 * (i % 15);
+    s.az_rad = 0.05 * i;
+    s.cn0_dbhz = 40.0;
+    s.healthy = s.tracked = s.used = true;
+  }
+  for (NmeaDevice d : {NmeaDevice::kM8, NmeaDevice::kM9}) {
+    for (int v = 0; v < 5; ++v) {
+      NmeaConfig c;
+      static_cast<NmeaSettings&>(c) = factory_settings(d);
+      c.version = static_cast<NmeaVersion>(v);
+      c.sv_numbering = SvNumbering::kExtended;
+      for (const SentenceInfo& info : kSentences) c.sentences.set(info.sentence);
+      const NmeaEncoder enc(c);
+      std::string out;
+      out.reserve(kMaxEpochBytes);
+      enc.encode_epoch(fix, out);  // warm-up
+      const long before = gnssemu::support::allocation_count();
+      for (int i = 0; i < 20; ++i) {
+        out.clear();
+        EXPECT_LE(enc.encode_epoch(fix, out), kMaxEpochBytes);
+      }
+      EXPECT_EQ(gnssemu::support::allocation_count(), before);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace gnssemu::protocol::nmea

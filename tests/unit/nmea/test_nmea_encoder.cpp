@@ -279,7 +279,7 @@ TEST(NmeaEncoder, GsvSelectionAndRounding) {
     s.cn0_dbhz = cn0;
     s.healthy = healthy;
     s.tracked = tracked;
-    s.used = tracked;
+    s.used = tracked && healthy;
   };
   add(2, -0.5, 10.0, 0.0, true, false);   // below horizon: not in view
   add(4, 0.0, 359.6, 22.4, true, true);   // az rounds to 360 -> 000
@@ -289,6 +289,13 @@ TEST(NmeaEncoder, GsvSelectionAndRounding) {
   const auto lines = encode(f, NmeaConfig{});
   expect_well_formed(lines);
   EXPECT_EQ(lines[4].substr(0, lines[4].find('*')), "$GPGSV,1,1,03,04,00,000,22,05,90,000,52,07,45,180,99,1");
+  // A satellite the solution uses is always listed, so used <= in view in
+  // every sentence; with no position known its el/az fields stay empty.
+  f.sats[3].used = true;
+  f.sats[3].el_rad = std::nan("");
+  const auto used = encode(f, NmeaConfig{});
+  EXPECT_EQ(used[4].substr(0, used[4].find('*')), "$GPGSV,1,1,04,04,00,000,22,05,90,000,52,06,,,40,07,45,180,99,1");
+  EXPECT_EQ(parse_sentence(used[3]).fields[4], "06");
 }
 
 // Parses the epoch back and checks that every sentence tells the same story.
@@ -409,7 +416,7 @@ TEST(NmeaEncoder, ExtremeAndNonFiniteInputsStayWellFormed) {
   expect_well_formed(encode(f, cfg));
 }
 
-TEST(NmeaEncoder, ThirtyTwoSatellitesFitTheEpochBudget) {
+TEST(NmeaEncoder, ThirtyTwoGpsSatellitesFitTheEpochBudget) {
   receiver::Fix f = sample_fix_3d();
   f.num_sats = 0;
   for (int prn = 1; prn <= system_size(GnssSystem::kGps); ++prn) {
@@ -429,7 +436,7 @@ TEST(NmeaEncoder, ThirtyTwoSatellitesFitTheEpochBudget) {
   const std::size_t n = NmeaEncoder(all_sentences(NmeaVersion::k411)).encode_epoch(f, out);
   EXPECT_LE(n, kMaxEpochBytes);
   const auto lines = split_lines(out);
-  EXPECT_EQ(lines.size(), 7u + 8u);
+  EXPECT_EQ(lines.size(), 7u + 8u);  // RMC VTG GGA GSA GLL GST ZDA, 8 GSV
   expect_well_formed(lines);
 }
 

@@ -54,7 +54,7 @@ TEST(NmeaGolden, AllCasesMatchByteForByte) {
   const char* rebuild_env = std::getenv("GNSSEMU_REBUILD_GOLDEN");
   const bool rebuild = rebuild_env != nullptr && std::string(rebuild_env) == "1";
   const auto dirs = cases();
-  EXPECT_GE(dirs.size(), 12u);
+  EXPECT_GE(dirs.size(), 15u);
   for (const auto& dir : dirs) {
     SCOPED_TRACE(dir.filename().string());
     const std::string got = encode_case(dir);

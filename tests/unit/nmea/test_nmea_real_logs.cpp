@@ -143,8 +143,9 @@ void compare_with_log(const Expectations& x) {
   EXPECT_GE(compared, 6);
 }
 
-// M8 default is NMEA 4.0: for GPS the fields of 2.3 (no navStatus, systemId, signalId).
-TEST(NmeaRealLogs, MatchesUblox8InNmea23Mode) {
+// M8 default is NMEA 4.0: the fields of 2.3 (no navStatus, systemId, signalId).
+TEST(NmeaRealLogs, MatchesUblox8InNmea40Mode) {
+  compare_with_log({"ublox-8-excerpt.log", NmeaVersion::k40, {}});
   compare_with_log({"ublox-8-excerpt.log", NmeaVersion::k23, {}});
 }
 
