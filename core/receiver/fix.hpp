@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "core/common/constants.hpp"
+#include "core/common/sat_id.hpp"
 #include "core/common/vec3.hpp"
 #include "core/time/gps_time.hpp"
 
@@ -48,7 +49,8 @@ struct Dop {
 
 /// Per-satellite state of one epoch (for GSV/GSA, NAV-SAT, NAV-SVINFO).
 struct SatInfo {
-  int prn = 0;                ///< 1..32
+  SatId sat;                  ///< system and RINEX number
+  int glonass_channel = 0;   ///< GLONASS FDMA channel k (-7..6); 0 for other systems
   double az_rad = 0.0;        ///< [0, 2pi), from true north
   double el_rad = 0.0;        ///< [-pi/2, pi/2]
   double cn0_dbhz = 0.0;      ///< 0 when not tracked
@@ -114,7 +116,7 @@ struct Fix {
   /// indicated, 2 spoofing indicated, 3 multiple indications.
   uint8_t spoof_det_state = 1;
 
-  std::array<SatInfo, kMaxGpsPrn> sats{};  ///< first num_sats entries valid, sorted by PRN
+  std::array<SatInfo, kMaxSatsInView> sats{};  ///< first num_sats entries valid, sorted by SatId order
   int num_sats = 0;
 };
 

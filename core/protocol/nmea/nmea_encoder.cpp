@@ -47,7 +47,7 @@ struct Epoch {
   double pdop = receiver::Dop::kNoDop, hdop = receiver::Dop::kNoDop, vdop = receiver::Dop::kNoDop;
   std::array<int, kMaxGsaSlots> used_prn{};
   int num_used = 0;
-  std::array<const SatInfo*, kMaxGpsPrn> in_view{};
+  std::array<const SatInfo*, kMaxSatsInView> in_view{};
   int num_in_view = 0;
 };
 
@@ -117,8 +117,8 @@ Epoch derive(const Fix& fix, const NmeaConfig& cfg, FixOverride reported) {
   const int n = std::clamp(fix.num_sats, 0, static_cast<int>(fix.sats.size()));
   for (int i = 0; i < n; ++i) {
     const SatInfo& s = fix.sats[static_cast<std::size_t>(i)];
-    if (s.prn < 1 || s.prn > 99) continue;  // two-digit svid field
-    if (e.has_fix && s.used && e.num_used < kMaxGsaSlots) e.used_prn[static_cast<std::size_t>(e.num_used++)] = s.prn;
+    if (s.sat.system != GnssSystem::kGps || !s.sat.valid()) continue;  // GPS-only output until the multi-GNSS encoder
+    if (e.has_fix && s.used && e.num_used < kMaxGsaSlots) e.used_prn[static_cast<std::size_t>(e.num_used++)] = s.sat.prn();
     if (s.healthy && std::isfinite(s.el_rad) && s.el_rad >= 0.0 && std::isfinite(s.az_rad)) {
       e.in_view[static_cast<std::size_t>(e.num_in_view++)] = &s;
     }
@@ -260,7 +260,7 @@ void write_gsv(const Epoch& e, const Emit& emit) {
     const int last = std::min(first + kSatsPerGsv, e.num_in_view);
     for (int i = first; i < last; ++i) {
       const SatInfo& s = *e.in_view[static_cast<std::size_t>(i)];
-      w.integer(s.prn, 2);
+      w.integer(s.sat.prn(), 2);
       w.integer(std::clamp(rounded_deg(s.el_rad), 0, 90), 2);
       int az = rounded_deg(s.az_rad) % 360;
       if (az < 0) az += 360;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/protocol/ubx/ubx_frame.hpp"
+#include "core/protocol/ubx/ubx_generation.hpp"
 #include "core/protocol/ubx/ubx_messages.hpp"
 #include "core/protocol/ubx/ubx_ports.hpp"
 
@@ -62,8 +63,9 @@ public:
   /// Factory defaults of a NEO-M8N (docs/ubx.md) with uarts UART1s (one per
   /// output; 0 counts as 1): UART1 9600 8N1 in UBX+NMEA+RTCM2 out UBX+NMEA;
   /// NMEA GGA GLL GSA GSV RMC VTG at 1 on DDC/UART1/USB/SPI; no UBX output;
-  /// 1 Hz, GPS time; NAV5 portable/auto.
-  static DeviceConfig factory_defaults(std::size_t uarts = 1);
+  /// 1 Hz, GPS time; NAV5 portable/auto; the generation's factory CFG-GNSS
+  /// (ubx_gnss.hpp: M8 GPS+GLONASS+QZSS+SBAS, NEO-M9N every system).
+  static DeviceConfig factory_defaults(std::size_t uarts = 1, Generation generation = Generation::kM8);
 
   wire::CfgRate rate{};
   wire::CfgNav5 nav5{};

@@ -170,9 +170,9 @@ TEST(UbxEncoder, NavSatPerSatellite) {
   for (int i = 0; i < 10; ++i) {
     const auto& s = f.sats[static_cast<std::size_t>(i)];
     const std::size_t o = 8 + 12 * static_cast<std::size_t>(i);
-    SCOPED_TRACE(s.prn);
+    SCOPED_TRACE(s.sat.prn());
     EXPECT_EQ(p[o], 0);  // GPS
-    EXPECT_EQ(p[o + 1], s.prn);
+    EXPECT_EQ(p[o + 1], s.sat.prn());
     EXPECT_EQ(p[o + 2], s.tracked ? std::lround(s.cn0_dbhz) : 0);
     EXPECT_EQ(static_cast<std::int8_t>(p[o + 3]), std::lround(s.el_rad * kRadToDeg));
     EXPECT_EQ(test::u2(p, o + 4), std::lround(s.az_rad * kRadToDeg));

@@ -115,8 +115,8 @@ TEST(UbxGpsdecode, TpvAndSkyMatchTheFix) {
   for (std::size_t k = 0; k < 10; ++k) {
     const auto& js = s["satellites"][k];
     const auto& sat = f.sats[k];
-    SCOPED_TRACE(sat.prn);
-    EXPECT_EQ(js.value("PRN", 0), sat.prn);
+    SCOPED_TRACE(sat.sat.prn());
+    EXPECT_EQ(js.value("PRN", 0), sat.sat.prn());
     EXPECT_EQ(js.value("used", !sat.used), sat.used);
     EXPECT_NEAR(js.value("ss", -1.0), sat.tracked ? std::round(sat.cn0_dbhz) : 0.0, 1e-9);
     EXPECT_NEAR(js.value("el", -100.0), std::round(sat.el_rad * kRadToDeg), 1e-9);
