@@ -10,6 +10,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/protocol/ubx/ubx_frame.hpp"
@@ -115,6 +117,15 @@ public:
   /// from src (a configuration of the same chip) into this. The plain
   /// values, which no M8 section holds, travel with any non-zero mask.
   void copy_sections(const DeviceConfig& src, std::uint32_t mask) noexcept;
+
+  /// The configuration as text, one setting per line (ubx_state_text.cpp):
+  /// what a state file holds of a chip's BBR/flash. Allocates (load/save time only).
+  std::string to_text() const;
+  /// Read to_text() output into this configuration (a factory one of the
+  /// same chip): ports and columns beyond this chip's are skipped. Throws
+  /// gnssemu::Error("source:line: reason") on a malformed line; nothing is
+  /// changed then.
+  void read_text(std::string_view text, const std::string& source);
 
 private:
   DeviceConfig() = default;

@@ -254,7 +254,7 @@ TEST(NmeaEncoder, GsaAndGgaCapAtTwelveSatellites) {
   f.num_sats = 0;
   for (int prn = 1; prn <= 14; ++prn) {
     receiver::SatInfo& s = f.sats[static_cast<std::size_t>(f.num_sats++)];
-    s.prn = prn;
+    s.sat = SatId::gps(prn);
     s.el_rad = (10.0 + 5.0 * prn) * kDegToRad;
     s.az_rad = (25.0 * prn) * kDegToRad;
     s.cn0_dbhz = 40.0;
@@ -273,7 +273,7 @@ TEST(NmeaEncoder, GsvSelectionAndRounding) {
   f.num_sats = 0;
   auto add = [&](int prn, double el_deg, double az_deg, double cn0, bool healthy, bool tracked) {
     receiver::SatInfo& s = f.sats[static_cast<std::size_t>(f.num_sats++)];
-    s.prn = prn;
+    s.sat = SatId::gps(prn);
     s.el_rad = el_deg * kDegToRad;
     s.az_rad = az_deg * kDegToRad;
     s.cn0_dbhz = cn0;
@@ -414,7 +414,7 @@ TEST(NmeaEncoder, ThirtyTwoSatellitesFitTheEpochBudget) {
   f.num_sats = 0;
   for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
     receiver::SatInfo& s = f.sats[static_cast<std::size_t>(f.num_sats++)];
-    s.prn = prn;
+    s.sat = SatId::gps(prn);
     s.el_rad = 45.0 * kDegToRad;
     s.az_rad = 3.0 * kDegToRad;
     s.cn0_dbhz = 45.0;
