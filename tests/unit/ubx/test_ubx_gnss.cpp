@@ -5,6 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "core/common/error.hpp"
@@ -455,6 +459,45 @@ TEST(UbxGnss, StateTextRoundTripsAndRejectsGarbage) {
     EXPECT_THROW(x.read_text(bad, "s"), Error) << bad;
     EXPECT_TRUE(x == DeviceConfig::factory_defaults(2, Generation::kM9)) << bad;
   }
+}
+
+}  // namespace
+}  // namespace gnssemu::protocol::ubx::gnss_test
+
+namespace gnssemu::protocol::ubx::gnss_test {
+namespace {
+
+/// Every NAV-SAT entry of the pyubx2 MIXED log (an M8: GPS, SBAS, GLONASS) has
+/// the NAV-SVINFO svid of the same epoch, in the same place, that
+/// svinfo_svid() gives its (gnssId, svId): the M8 numbering is the log's.
+TEST(UbxGnss, SvinfoNumbersMatchTheRealLog) {
+  std::ifstream in(std::string(GNSSEMU_TEST_DATA) + "/receiver-logs/pygpsdata-MIXED-excerpt.log", std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::map<std::uint32_t, std::vector<std::uint8_t>> svinfo;  // iTOW -> svids
+  int compared = 0;
+  for (const Frame& f : split_frames(ss.str())) {
+    if (f.payload.size() < 8) continue;
+    std::uint32_t itow = 0;
+    std::memcpy(&itow, f.payload.data(), 4);
+    if (f.id == msg::kNavSvinfo) {
+      for (std::size_t i = 0; i < f.payload[4]; ++i) svinfo[itow].push_back(f.payload[8 + 12 * i + 1]);
+    } else if (f.id == msg::kNavSat && svinfo.count(itow) != 0) {
+      const auto& ids = svinfo[itow];
+      ASSERT_EQ(ids.size(), f.payload[5]);
+      for (std::size_t i = 0; i < ids.size(); ++i) {
+        const std::uint8_t gnss_id = f.payload[8 + 12 * i], sv_id = f.payload[8 + 12 * i + 1];
+        const auto sys = system_of_gnss_id(gnss_id);
+        ASSERT_TRUE(sys.has_value());
+        const auto id = *sys == GnssSystem::kSbas ? SatId::from_prn(*sys, sv_id) : std::optional<SatId>(SatId(*sys, sv_id));
+        ASSERT_TRUE(id && id->valid());
+        EXPECT_EQ(svinfo_svid(*id), ids[i]) << int(gnss_id) << " " << int(sv_id);
+        EXPECT_EQ(ubx_sv_id(*id), sv_id);
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GT(compared, 50);
 }
 
 }  // namespace
