@@ -183,6 +183,13 @@ void Device::diff(Link at, InputResult& r) const noexcept {
   if (gnss_before != nullptr && gnss_now != nullptr && !same_signals(gnss_before->payload(), gnss_now->payload())) {
     r.gnss_changed = true;
   }
+  const StoredBlock* nmea_before = before_.stored(msg::kCfgNmea);
+  const StoredBlock* nmea_now = current_.stored(msg::kCfgNmea);
+  if (nmea_before != nullptr && nmea_now != nullptr &&
+      !std::equal(nmea_before->payload().begin(), nmea_before->payload().end(), nmea_now->payload().begin(),
+                  nmea_now->payload().end())) {
+    r.nmea_config_changed = true;
+  }
   if (!(saved_before_ == saved_)) r.saved_changed = true;
 }
 

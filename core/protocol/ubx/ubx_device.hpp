@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "core/protocol/nmea/nmea_encoder.hpp"
+#include "core/protocol/ubx/ubx_cfg_nmea.hpp"
 #include "core/protocol/ubx/ubx_config_keys.hpp"
 #include "core/protocol/ubx/ubx_device_config.hpp"
 #include "core/protocol/ubx/ubx_encoder.hpp"
@@ -110,6 +111,8 @@ struct InputResult {
   /// saved configuration): a real chip restarts its GNSS engine; the
   /// receiver restarts tracking with Device::enabled_systems().
   bool gnss_changed = false;
+  /// The NMEA settings changed (CFG-NMEA, CFG-NMEA-* keys): Device::nmea_settings().
+  bool nmea_config_changed = false;
   /// The saved (BBR/flash) configuration changed (CFG-CFG save or clear,
   /// VALSET/VALDEL to BBR or Flash): write the state file (Device::saved()).
   bool saved_changed = false;
@@ -188,6 +191,8 @@ public:
   /// Power up from a saved configuration (a state file's): it becomes the
   /// saved and the current one, as a module loads BBR/flash at boot.
   void load_saved(const DeviceConfig& saved);
+  /// The NMEA output settings as CFG-NMEA now holds them (the chip's, every UART1).
+  CfgNmeaSettings nmea_settings() const noexcept { return cfg_nmea_settings(current_); }
   /// The systems the receiver tracks (CFG-GNSS / CFG-SIGNAL-* as now set).
   SystemSet enabled_systems() const noexcept;
   /// Navigation rate limits of the chip with those systems (ubx_gnss.hpp).

@@ -502,3 +502,43 @@ TEST(UbxGnss, SvinfoNumbersMatchTheRealLog) {
 
 }  // namespace
 }  // namespace gnssemu::protocol::ubx::gnss_test
+
+namespace gnssemu::protocol::ubx::gnss_test {
+namespace {
+
+TEST(UbxGnss, CfgNmeaEveryFormAndKeyReachesTheSettings) {
+  Device m8(setup_of(Generation::kM8));
+  EXPECT_EQ(m8.nmea_settings().nmea_version, 0x40);  // NMEA 4.0 from the factory (the M8 logs)
+  EXPECT_EQ(Device(setup_of(Generation::kM9)).nmea_settings().nmea_version, 0x41);
+  Host h{m8};
+  // Version 1 (20 bytes): NMEA 4.11, 12 SVs, compat + limit82, Galileo filtered, extended numbering, GN main talker.
+  std::vector<std::uint8_t> v1{0x00, 0x4B, 12, 0x05, 0x04, 0, 0, 0, 1, 3, 1, 1, 'G', 'B', 0, 0, 0, 0, 0, 0};
+  EXPECT_TRUE(h.acked(msg::kCfgNmea, v1));
+  EXPECT_TRUE(h.last.nmea_config_changed);
+  CfgNmeaSettings s = m8.nmea_settings();
+  EXPECT_EQ(s.nmea_version, 0x4B);
+  EXPECT_EQ(s.max_svs, 12);
+  EXPECT_TRUE(s.compat && s.limit82 && !s.consider);
+  EXPECT_EQ(s.gnss_to_filter, 0x04u);
+  EXPECT_EQ(s.sv_numbering, 1);
+  EXPECT_EQ(s.main_talker_id, 3);
+  EXPECT_EQ(s.gsv_talker_id, 1);
+  // The 4-byte form sets only its prefix.
+  EXPECT_TRUE(h.acked(msg::kCfgNmea, {0x00, 0x23, 0, 0x02}));
+  s = m8.nmea_settings();
+  EXPECT_EQ(s.nmea_version, 0x23);
+  EXPECT_TRUE(s.consider && !s.compat);
+  EXPECT_EQ(s.main_talker_id, 3);
+  // The M9's keys: CFG-NMEA-SVNUMBERING, -MAXSVS, -MAINTALKERID.
+  Device m9(setup_of(Generation::kM9));
+  Host h9{m9};
+  EXPECT_TRUE(h9.acked(msg::kCfgValset, valset_l({{0x20930007, 1}, {0x20930002, 16}, {0x20930031, 7}})));
+  EXPECT_TRUE(h9.last.nmea_config_changed);
+  EXPECT_EQ(m9.nmea_settings().sv_numbering, 1);
+  EXPECT_EQ(m9.nmea_settings().max_svs, 16);
+  EXPECT_EQ(m9.nmea_settings().main_talker_id, 7);
+  EXPECT_FALSE(h9.acked(msg::kCfgValset, valset_l({{0x20930002, 10}})));  // MAXSVS only 0, 8, 12, 16
+}
+
+}  // namespace
+}  // namespace gnssemu::protocol::ubx::gnss_test
