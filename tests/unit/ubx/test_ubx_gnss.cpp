@@ -443,6 +443,16 @@ TEST(UbxGnss, SavedConfigurationSurvivesARestart) {
   EXPECT_TRUE(h2.acked(msg::kCfgCfg, {0xFF, 0xFF, 0, 0, 0, 0, 0, 0, 0xFF, 0xFF, 0, 0}));
   EXPECT_TRUE(h2.last.saved_changed);
   EXPECT_EQ(d2.config().rate.measRate, 1000);
+  // On the M9, a VALSET to BBR/Flash changes the saved configuration too; to RAM it does not.
+  Device m9(setup_of(Generation::kM9));
+  Host h9{m9};
+  EXPECT_TRUE(h9.acked(msg::kCfgValset, valset_l({{kKeyGal, 0}, {kKeyGalE1, 0}})));
+  EXPECT_FALSE(h9.last.saved_changed);
+  std::vector<std::uint8_t> to_flash = valset_l({{kKeyGal, 0}, {kKeyGalE1, 0}});
+  to_flash[1] = 0x06;  // BBR + Flash
+  EXPECT_TRUE(h9.acked(msg::kCfgValset, to_flash));
+  EXPECT_TRUE(h9.last.saved_changed);
+  EXPECT_FALSE(enabled_systems(m9.saved()).has(kGalileo));
 }
 
 TEST(UbxGnss, StateTextRoundTripsAndRejectsGarbage) {
