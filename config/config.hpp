@@ -191,6 +191,9 @@ struct Config {
   receiver::ReceiverConfig receiver;  ///< the receiver's own settings ([receiver], [receiver.solver], [receiver.corrections] ...)
   /// [receiver] generation: the u-blox chip the outputs present (MON-VER, CFG-VAL*, MON-RF)
   protocol::ubx::Generation generation = protocol::ubx::Generation::kM8;
+  /// [receiver] state_file: the chip's saved configuration (BBR/flash) across
+  /// restarts, absolute; "" none (every start factory-fresh)
+  std::string state_file;
   /// [receiver] profile: the profile whose values world and receiver started from
   std::optional<pipeline::ReceiverProfile> profile;
   TruthInputConfig truth;

@@ -343,6 +343,18 @@ constexpr Field<Config> profile_field() {
   return row;
 }
 
+void read_state_file(TableReader& t, const Field<Config>& f, Config& c) {
+  const toml::node* n = t.find(f.key);
+  if (n == nullptr) return;
+  const std::string given = t.string(f.key, std::nullopt);
+  if (given.empty()) t.fail(*n, t.full_name(f.key) + ": must not be empty (leave it out: no state file)");
+  c.state_file = resolve_path(given, t.base_dir());
+}
+
+void write_state_file(TomlWriter& w, const Field<Config>& f, const Config& c) {
+  if (!c.state_file.empty()) w.key(f.key, string_text(w.path_text(c.state_file)), f.note);
+}
+
 using Rr = receiver::ReceiverRanges;
 constexpr Field<Config> kReceiverFields[] = {
     profile_field(),
@@ -362,6 +374,12 @@ constexpr Field<Config> kReceiverFields[] = {
         "generation", "the u-blox chip every output presents (docs/ubx.md \"Generations\"): `m8` a NEO-M8N "
                       "(protocol 18, legacy CFG messages only, MON-HW), `m9` a NEO-M9N (protocol 32.01: CFG-VALSET/"
                       "VALGET/VALDEL beside the legacy CFG messages, MON-RF, SEC-SIG; no NAV-SVINFO)"),
+    custom<Config>("state_file", "path", "a file the daemon may write (relative: to the config file's folder)",
+                   "the emulated chip's saved configuration across gnssemud restarts, as a real module's "
+                   "flash/BBR (docs/ubx.md \"Saved configuration\"): written when a host saves (CFG-CFG save or "
+                   "clear, CFG-VALSET/VALDEL to BBR or Flash), loaded at start. Unset: every start is factory-fresh",
+                   read_state_file, write_state_file)
+        .default_doc("unset"),
     either<kFilterTypes, &Config::receiver, &ReceiverConfig::filter, &NavFilterConfig::type>(
         "filter", "`kalman`: the navigation filter of a u-blox M8 (position, velocity, clock; `[receiver.nav]`); "
                   "`none`: a snapshot least-squares fix on raw code every epoch"),

@@ -14,6 +14,7 @@
 #include "core/common/error.hpp"
 #include "daemon/epoch_schedule.hpp"
 #include "daemon/scene_setup.hpp"
+#include "daemon/state_file.hpp"
 #include "daemon/status_setup.hpp"
 #include "daemon/truth_packet.hpp"
 
@@ -73,6 +74,17 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
   check_range(output_delay_s_, config::TimeRanges::output_delay_s, cfg.source, "time.output_delay_s");
   power_on_ = kProcessStart;
+  if (!cfg_.state_file.empty()) {
+    // A module boots with what it saved: rate, ports, messages, GNSS.
+    if (load_state_file(cfg_.state_file, device_)) {
+      period_s_ = device_.epoch_period_s();
+      rate_hz_ = 1.0 / period_s_;
+      spdlog::info("receiver: saved configuration loaded from {} ({:.0f} Hz)", cfg_.state_file,
+                   1.0 / device_.epoch_period_s());
+    } else {
+      spdlog::info("receiver: no saved configuration yet in {}: factory settings", cfg_.state_file);
+    }
+  }
   restart_receiver(cfg_.receiver.acquisition.start);
   spdlog::info("receiver: {} start at power-on", start_name(cfg_.receiver.acquisition.start));
   if (scene_) spdlog::info("scene {}: {} triangles", cfg_.scene->mesh_file, scene_->triangle_count());
@@ -115,6 +127,19 @@ void Daemon::apply_nav5() {
 
 void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& result) {
   if (result.nav_rate_changed || result.reset) on_nav_period(src);
+  if (result.saved_changed && !cfg_.state_file.empty()) {
+    if (const std::string err = save_state_file(cfg_.state_file, device_); !err.empty()) {
+      spdlog::warn("output {}: saved configuration not written: {}", cfg_.outputs[src].name, err);
+    }
+  }
+  if (result.gnss_changed) {
+    // A real chip restarts its GNSS engine after a change of the GNSS
+    // selection (M8 spec CFG-GNSS; satpulse#108): tracking starts over with
+    // what it knew, on the systems now enabled.
+    spdlog::info("output {}: GNSS selection changed to {}: the receiver restarts tracking", cfg_.outputs[src].name,
+                 systems_text(device_.enabled_systems()).data());
+    receiver_->receiver().restart(receiver::StartState{true, true, true, true});
+  }
   if (result.nav_config_changed) {
     const protocol::ubx::wire::CfgNav5& n = device_.config().nav5;
     spdlog::info("output {}: CFG-NAV5 dynModel {}, static hold {} cm/s / {} m", cfg_.outputs[src].name,
@@ -191,6 +216,10 @@ void Daemon::start() {
   channels_.resize(cfg_.outputs.size());
   for (std::size_t i = 0; i < cfg_.outputs.size(); ++i) open_channel(i, open_port(cfg_.outputs[i], io_));
   for (const auto& c : channels_) c->start();
+  // Lines follow the chip's UART1s (a saved configuration may have changed their bauds).
+  if (!cfg_.state_file.empty()) {
+    for (const auto& c : channels_) c->follow_device(false);
+  }
   for (const auto& c : channels_) out_summary_.emplace_back(c->output_summary());
 
   boost::system::error_code ec;

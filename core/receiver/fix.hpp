@@ -50,6 +50,7 @@ struct Dop {
 /// Per-satellite state of one epoch (for GSV/GSA, NAV-SAT, NAV-SVINFO).
 struct SatInfo {
   SatId sat;                  ///< system and RINEX number
+  int glonass_channel = 0;   ///< GLONASS FDMA channel k (-7..6); 0 for other systems
   double az_rad = 0.0;        ///< [0, 2pi), from true north
   double el_rad = 0.0;        ///< [-pi/2, pi/2]
   double cn0_dbhz = 0.0;      ///< 0 when not tracked
@@ -115,7 +116,7 @@ struct Fix {
   /// indicated, 2 spoofing indicated, 3 multiple indications.
   uint8_t spoof_det_state = 1;
 
-  std::array<SatInfo, kMaxSatsInView> sats{};  ///< first num_sats entries valid, sorted by SatId (G, R, E, C, J, S, then number)
+  std::array<SatInfo, kMaxSatsInView> sats{};  ///< first num_sats entries valid, sorted by SatId order
   int num_sats = 0;
 };
 

@@ -91,10 +91,11 @@ receiver::Fix make_fix(gnssemu::fuzz::InputSplitter& in, int epoch) {
   f.h_acc_m = in.control_in(0, 10000) * 0.1;
   f.v_acc_m = f.h_acc_m * 1.5;
   f.noise_rise_db = in.control_in(0, 60);
-  f.num_sats = in.control_in(0, system_size(GnssSystem::kGps));
+  f.num_sats = in.control_in(0, kMaxSatsInView);
   for (int k = 0; k < f.num_sats; ++k) {
     receiver::SatInfo& s = f.sats[static_cast<std::size_t>(k)];
-    s.sat = SatId::gps(k + 1);
+    s.sat = SatId::from_index(k * (kNumSats / kMaxSatsInView));  // every system, in SatId order
+    s.glonass_channel = s.sat.system == GnssSystem::kGlonass ? in.control_in(0, 13) - 7 : 0;
     s.el_rad = (in.control_in(0, 180) - 90) * kDegToRad;
     s.az_rad = in.control_in(0, 359) * kDegToRad;
     s.healthy = true;

@@ -133,6 +133,34 @@ def ubx_corpus():
     m9 += ubx(0x06, 0x8C, struct.pack("<BBHI", 0, 2, 0, 0x0091FFFF)) + ubx(0x06, 0x09, struct.pack("<III", 0, 0, 0xFFFF))
     write("ubx_device", "px4_m9_valset_valget.bin", m9 + b"\x02")
 
+    # CFG-GNSS (M8) as PX4 sends it (GPS + SBAS + GLONASS), then impossible sets:
+    # four major GNSS, more channels than the chip has, numTrkChUse > numTrkChHw,
+    # an enabled system without a signal, GPS L2C, unknown gnssId 7, 8 blocks;
+    # MON-GNSS and MON-HW2 polls; CFG-MSG MON-HW2 at 5 (docs/ubx.md "Multi-GNSS").
+    def blk(gnss_id, res, mx, flags):
+        return struct.pack("<BBBBI", gnss_id, res, mx, 0, flags)
+    good = bytes([0, 0, 0xFF, 3]) + blk(0, 8, 16, 0x10001) + blk(1, 1, 3, 0x10001) + blk(6, 8, 14, 0x10001)
+    gnss = ubx(0x06, 0x3E) + ubx(0x06, 0x3E, good) + ubx(0x0A, 0x28)
+    gnss += ubx(0x06, 0x3E, bytes([0, 32, 32, 2]) + blk(2, 4, 8, 0x10001) + blk(3, 8, 16, 0x10001))
+    gnss += ubx(0x06, 0x3E, bytes([0, 32, 32, 1]) + blk(0, 200, 255, 0x10001))
+    gnss += ubx(0x06, 0x3E, bytes([0, 32, 99, 1]) + blk(0, 8, 16, 0x10001))
+    gnss += ubx(0x06, 0x3E, bytes([0, 32, 32, 1]) + blk(0, 8, 16, 0x00001))
+    gnss += ubx(0x06, 0x3E, bytes([0, 32, 32, 1]) + blk(0, 8, 16, 0x110001))
+    gnss += ubx(0x06, 0x3E, bytes([0, 32, 32, 1]) + blk(7, 0, 8, 0x10001))
+    gnss += ubx(0x06, 0x3E, bytes([0, 32, 32, 8]) + b"".join(blk(i % 7, 1, 4, 0x10001) for i in range(8)))
+    gnss += ubx(0x06, 0x01, bytes([0x0A, 0x0B, 5])) + ubx(0x0A, 0x0B) + ubx(0x01, 0x23) + ubx(0x01, 0x24)
+    write("ubx_device", "cfg_gnss_impossible.bin", gnss)
+
+    # CFG-SIGNAL VALSETs on the M9: PX4's five ENA keys, SBAS alone, then a key the
+    # M9 lacks (QZSS_L1S_ENA), Galileo on without E1, every major GNSS off.
+    def sig(*kv):
+        return ubx(0x06, 0x8A, bytes([0, 1, 0, 0]) + b"".join(struct.pack("<IB", k, v) for k, v in kv))
+    sigs = sig((0x1031001F, 1), (0x10310024, 1), (0x10310021, 0), (0x10310022, 0), (0x10310025, 1))
+    sigs += sig((0x10310020, 0)) + sig((0x10310014, 1)) + sig((0x10310007, 0), (0x10310021, 1))
+    sigs += sig((0x1031001F, 0), (0x10310021, 0), (0x10310022, 0), (0x10310025, 0)) + ubx(0x0A, 0x28) + ubx(0x01, 0x43)
+    sigs += ubx(0x06, 0x8B, struct.pack("<BBHI", 0, 0, 0, 0x1031FFFF))
+    write("ubx_device", "cfg_signal_impossible.bin", sigs + b"\x02")
+
 
 # --- RINEX observation files, gzip (as spp / calibrate read them) -----------
 

@@ -269,13 +269,11 @@ def case_ardupilot_m9(rig):
     sw, hw = mv[6:6 + 30].rstrip(b"\0"), mv[6 + 30:6 + 40].rstrip(b"\0")
     assert sw.startswith(b"EXT CORE 4") and hw == b"00190000", (sw, hw)
     seconds = 3.0
-    # MON-HW2 takes its rate but is never sent (docs/ubx.md): not counted.
-    sent = {key: rate for key, rate in ARDUPILOT_M9_RATES.items() if key != (0x0A, 0x0B)}
-    msgs = ardupilot_rates(s, seconds, sent)
+    msgs = ardupilot_rates(s, seconds, ARDUPILOT_M9_RATES)  # MON-HW2 included (docs/ubx.md "MON-HW2")
     count = lambda c, i: sum(1 for _, k, m in msgs if k == "ubx" and m[2] == c and m[3] == i)
     print(f"  ardupilot_m9: {sw.decode()} / {hw.decode()}; every step answered, nothing NAKed "
           f"({replies.summary()}); {count(1, 7)} NAV-PVT, {count(1, 4)} NAV-DOP, {count(1, 0x20)} NAV-TIMEGPS, "
-          f"{count(0x0A, 9)} MON-HW in {seconds:.0f} s")
+          f"{count(0x0A, 9)} MON-HW, {count(0x0A, 0x0B)} MON-HW2 in {seconds:.0f} s")
 
 
 def gpsd_rig(rig, path, readonly):

@@ -2,6 +2,7 @@
 // (UBX-13003221 CFG-RATE, CFG-NAV5, CFG-GNSS).
 #include <algorithm>
 
+#include "core/protocol/ubx/ubx_gnss.hpp"
 #include "core/protocol/ubx/ubx_handlers.hpp"
 
 namespace gnssemu::protocol::ubx {
@@ -10,7 +11,6 @@ namespace {
 
 constexpr std::uint16_t kMinMeasRate_ms = 25;  // M8: up to 40 Hz measurement rate (GPS only)
 constexpr std::uint16_t kMaxNavRate = 127;
-constexpr std::uint8_t kMaxGnssId = 6;       // GPS, SBAS, Galileo, BeiDou, IMES, QZSS, GLONASS
 constexpr std::uint8_t kMaxGnssBlocks = 7;
 
 /// NAV5 dynModel values an M8 accepts (1 is reserved).
@@ -83,23 +83,29 @@ Reply handle_cfg_gnss(HandlerContext& ctx, const FrameView& frame) {
     return ack(ctx, frame.id, false);
   }
   // Merge the given blocks by gnssId into the stored set (an M8 keeps the
-  // systems a host does not mention).
+  // systems a host does not mention), then judge the whole: a configuration
+  // the chip cannot run is NAKed and the old one kept (UBX-13003221 CFG-GNSS).
   std::array<std::uint8_t, kMaxStoredBytes> merged{};
   std::copy(cur->bytes.begin(), cur->bytes.begin() + cur->size, merged.begin());
   std::size_t n = merged[3];
   for (std::size_t b = 0; b < p[3]; ++b) {
     const std::uint8_t* blk = p.data() + 4 + 8 * b;
-    if (blk[0] > kMaxGnssId) return ack(ctx, frame.id, false);
+    if (blk[0] > kMaxCfgGnssId) return ack(ctx, frame.id, false);
     std::size_t slot = n;
     for (std::size_t k = 0; k < n; ++k) {
       if (merged[4 + 8 * k] == blk[0]) slot = k;
     }
+    if (slot == kMaxGnssBlocks) return ack(ctx, frame.id, false);
     if (slot == n) ++n;
     std::copy(blk, blk + 8, merged.begin() + 4 + 8 * slot);
   }
-  if (p[2] != 0 && p[2] != 0xFF) merged[2] = p[2];  // numTrkChUse (0xFF = max)
+  // numTrkChUse: 0xFF = all the hardware has; 0 keeps the current value.
+  if (p[2] == 0xFF) merged[2] = merged[1];
+  else if (p[2] != 0) merged[2] = p[2];
   merged[3] = static_cast<std::uint8_t>(n);
-  ctx.current.store(msg::kCfgGnss, 0, {merged.data(), 4 + 8 * n});
+  const std::span<const std::uint8_t> config{merged.data(), 4 + 8 * n};
+  if (!cfg_gnss_valid(config, ctx.generation)) return ack(ctx, frame.id, false);
+  ctx.current.store(msg::kCfgGnss, 0, config);
   return ack(ctx, frame.id, true);
 }
 

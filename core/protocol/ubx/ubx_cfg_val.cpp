@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "core/protocol/ubx/ubx_config_keys.hpp"
+#include "core/protocol/ubx/ubx_gnss.hpp"
 #include "core/protocol/ubx/ubx_handlers.hpp"
 
 namespace gnssemu::protocol::ubx {
@@ -65,6 +66,15 @@ bool apply_pairs(HandlerContext& ctx, std::uint8_t layers, Pairs pairs) noexcept
   ValTransaction& t = *ctx.transaction;
   if ((layers & kLayerSaved) && !stage(ctx.saved, t.scratch, ctx.uart, pairs)) return false;
   if ((layers & kLayerRam) && !stage(ctx.current, t.scratch_ram, ctx.uart, pairs)) return false;
+  // The CFG-SIGNAL keys must leave a signal configuration the chip can run
+  // (at least one major GNSS and a signal per enabled system); else the
+  // whole VALSET is NAKed (PX4-GPSDrivers#225: "rejected as a whole").
+  const auto gnss_ok = [&](const DeviceConfig& c) {
+    const StoredBlock* b = c.stored(msg::kCfgGnss);
+    return b == nullptr || cfg_gnss_valid(b->payload(), ctx.generation);
+  };
+  if ((layers & kLayerSaved) && !gnss_ok(t.scratch)) return false;
+  if ((layers & kLayerRam) && !gnss_ok(t.scratch_ram)) return false;
   if (layers & kLayerSaved) ctx.saved = t.scratch;
   if (layers & kLayerRam) ctx.current = t.scratch_ram;
   return true;

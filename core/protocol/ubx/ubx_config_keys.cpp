@@ -65,6 +65,11 @@ constexpr MsgOutRow kMsgOutRows[] = {
     {0x2091005B, "CFG-MSGOUT-UBX_NAV_TIMEUTC", msg::kNavTimeutc},
     {0x20910047, "CFG-MSGOUT-UBX_NAV_TIMEGPS", msg::kNavTimegps},
     {0x20910015, "CFG-MSGOUT-UBX_NAV_SAT", msg::kNavSat},
+    {0x20910345, "CFG-MSGOUT-UBX_NAV_SIG", msg::kNavSig},
+    {0x2091004C, "CFG-MSGOUT-UBX_NAV_TIMEGLO", msg::kNavTimeglo},
+    {0x20910056, "CFG-MSGOUT-UBX_NAV_TIMEGAL", msg::kNavTimegal},
+    {0x20910051, "CFG-MSGOUT-UBX_NAV_TIMEBDS", msg::kNavTimebds},
+    {0x209101B9, "CFG-MSGOUT-UBX_MON_HW2", msg::kMonHw2},
     {0x2091015F, "CFG-MSGOUT-UBX_NAV_EOE", msg::kNavEoe},
     {0x209101B4, "CFG-MSGOUT-UBX_MON_HW", msg::kMonHw},
     {0x20910359, "CFG-MSGOUT-UBX_MON_RF", msg::kMonRf},
@@ -170,7 +175,8 @@ constexpr ConfigKey kFixedKeys[] = {
     field(0x10360003, "CFG-SBAS-USE_RANGING", kBlock, msg::kCfgSbas, 1, 0, 1, 0, 1),
     field(0x10360004, "CFG-SBAS-USE_DIFFCORR", kBlock, msg::kCfgSbas, 1, 1, 1, 0, 1),
     field(0x10360005, "CFG-SBAS-USE_INTEGRITY", kBlock, msg::kCfgSbas, 1, 2, 1, 0, 1),
-    // CFG-SIGNAL: CFG-GNSS enable (flags b0) and signal (sigCfgMask b16, QZSS L1S b18) per gnssId.
+    // CFG-SIGNAL: CFG-GNSS enable (flags b0) and signal (sigCfgMask b16) per gnssId. No
+    // QZSS_L1S_ENA: a NEO-M9N does not know it and NAKs a VALSET carrying it (PX4-GPSDrivers#225).
     gnss(0x1031001F, "CFG-SIGNAL-GPS_ENA", 0, 0),
     gnss(0x10310001, "CFG-SIGNAL-GPS_L1CA_ENA", 0, 16),
     gnss(0x10310020, "CFG-SIGNAL-SBAS_ENA", 1, 0),
@@ -181,11 +187,33 @@ constexpr ConfigKey kFixedKeys[] = {
     gnss(0x1031000D, "CFG-SIGNAL-BDS_B1_ENA", 3, 16),
     gnss(0x10310024, "CFG-SIGNAL-QZSS_ENA", 5, 0),
     gnss(0x10310012, "CFG-SIGNAL-QZSS_L1CA_ENA", 5, 16),
-    gnss(0x10310014, "CFG-SIGNAL-QZSS_L1S_ENA", 5, 18),
     gnss(0x10310025, "CFG-SIGNAL-GLO_ENA", 6, 0),
     gnss(0x10310018, "CFG-SIGNAL-GLO_L1_ENA", 6, 16),
     // CFG-NMEA-PROTVER: 21, 23, 40, 41, 42 (= 4.11) for nmeaVersion 0x21 .. 0x4B.
     field(0x20930001, "CFG-NMEA-PROTVER", kNmeaProtver, msg::kCfgNmea, 1, 0, 8, 21, 42, bits_of({21, 23, 40, 41, 42})),
+    // The other CFG-NMEA fields (legacy CFG-NMEA v1: filter 0, numSV 2, flags 3, gnssToFilter 4,
+    // svNumbering 8, mainTalkerId 9, gsvTalkerId 10, bdsTalkerId 12).
+    field(0x20930002, "CFG-NMEA-MAXSVS", kBlock, msg::kCfgNmea, 2, 0, 8, 0, 16, bits_of({0, 8, 12, 16})),
+    field(0x10930003, "CFG-NMEA-COMPAT", kBlock, msg::kCfgNmea, 3, 0, 1, 0, 1),
+    field(0x10930004, "CFG-NMEA-CONSIDER", kBlock, msg::kCfgNmea, 3, 1, 1, 0, 1),
+    field(0x10930005, "CFG-NMEA-LIMIT82", kBlock, msg::kCfgNmea, 3, 2, 1, 0, 1),
+    field(0x10930006, "CFG-NMEA-HIGHPREC", kBlock, msg::kCfgNmea, 3, 3, 1, 0, 1),
+    field(0x20930007, "CFG-NMEA-SVNUMBERING", kBlock, msg::kCfgNmea, 8, 0, 8, 0, 1),
+    field(0x10930011, "CFG-NMEA-FILT_GPS", kBlock, msg::kCfgNmea, 4, 0, 1, 0, 1),
+    field(0x10930012, "CFG-NMEA-FILT_SBAS", kBlock, msg::kCfgNmea, 4, 1, 1, 0, 1),
+    field(0x10930013, "CFG-NMEA-FILT_GAL", kBlock, msg::kCfgNmea, 4, 2, 1, 0, 1),
+    field(0x10930015, "CFG-NMEA-FILT_QZSS", kBlock, msg::kCfgNmea, 4, 4, 1, 0, 1),
+    field(0x10930016, "CFG-NMEA-FILT_GLO", kBlock, msg::kCfgNmea, 4, 5, 1, 0, 1),
+    field(0x10930017, "CFG-NMEA-FILT_BDS", kBlock, msg::kCfgNmea, 4, 6, 1, 0, 1),
+    field(0x10930021, "CFG-NMEA-OUT_INVFIX", kBlock, msg::kCfgNmea, 0, 0, 1, 0, 1),
+    field(0x10930022, "CFG-NMEA-OUT_MSKFIX", kBlock, msg::kCfgNmea, 0, 1, 1, 0, 1),
+    field(0x10930023, "CFG-NMEA-OUT_INVTIME", kBlock, msg::kCfgNmea, 0, 2, 1, 0, 1),
+    field(0x10930024, "CFG-NMEA-OUT_INVDATE", kBlock, msg::kCfgNmea, 0, 3, 1, 0, 1),
+    field(0x10930025, "CFG-NMEA-OUT_ONLYGPS", kBlock, msg::kCfgNmea, 0, 4, 1, 0, 1),
+    field(0x10930026, "CFG-NMEA-OUT_FROZENCOG", kBlock, msg::kCfgNmea, 0, 5, 1, 0, 1),
+    field(0x20930031, "CFG-NMEA-MAINTALKERID", kBlock, msg::kCfgNmea, 9, 0, 8, 0, 7, bits_of({0, 1, 2, 3, 4, 5, 7})),
+    field(0x20930032, "CFG-NMEA-GSVTALKERID", kBlock, msg::kCfgNmea, 10, 0, 8, 0, 1),
+    field(0x30930033, "CFG-NMEA-BDSTALKERID", kBlock, msg::kCfgNmea, 12, 0, 16, 0, kU2),
 };
 
 constexpr std::size_t kNumKeys = std::size(kFixedKeys) + std::size(kMsgOutRows) * kMsgOutPorts;

@@ -113,7 +113,7 @@ struct ValTransaction {
   bool open = false;
   std::uint8_t layers = 0;   ///< VALSET layers bits of the transaction
   std::size_t size = 0;      ///< pending pairs
-  std::array<Pending, 256> pending{};  ///< last value per key (a transaction holds at most every key once)
+  std::array<Pending, 384> pending{};  ///< last value per key (a transaction holds at most every key once)
   DeviceConfig scratch, scratch_ram;  ///< staged saved and RAM configurations
 
   void cancel() noexcept {

@@ -53,10 +53,11 @@ Device::Device(const DeviceSetup& setup)
       coast_as_no_fix_(setup.coast_as_no_fix),
       encoder_(setup.mon_ver),
       nmea_(nmea_encoders(setup)),
-      defaults_(DeviceConfig::factory_defaults(nmea_.size())),
+      defaults_(DeviceConfig::factory_defaults(nmea_.size(), setup.mon_ver.generation)),
       saved_(defaults_),
       current_(defaults_),
       before_(defaults_),
+      saved_before_(defaults_),
       val_(defaults_),
       epoch_period_s_(setup.nav_period_s) {
   for (std::size_t k = 0; k < setup.outputs.size(); ++k) {
@@ -87,7 +88,10 @@ InputResult Device::handle_ubx(Link at, const FrameView& frame, double now_s, st
   }
   const std::size_t start = out.size();
   const bool cfg = frame.id.cls == cls::kCfg;
-  if (cfg) before_ = current_;
+  if (cfg) {
+    before_ = current_;
+    saved_before_ = saved_;
+  }
   // Any other CFG message cancels a started VALSET transaction (UBX-18010854 CFG-VALSET v1).
   if (cfg && frame.id != msg::kCfgValset) val_.cancel();
   HandlerContext ctx{current_, saved_, defaults_, at.output, at.port_id, out, encoder_, last_fix_, info_,
@@ -128,6 +132,7 @@ InputResult Device::handle_nmea(Link at, std::string_view sentence, std::string&
     return r;
   }
   before_ = current_;
+  saved_before_ = saved_;
   if (const auto p41 = parse_pubx41(sentence)) {
     PortSettings& s = current_.port(current_.column(at.output, p41->port_id));
     if (s.exists) {
@@ -173,6 +178,33 @@ void Device::diff(Link at, InputResult& r) const noexcept {
   if (!before_.same_rates(current_)) r.rates_changed = true;
   if (before_.nav_period_s() != current_.nav_period_s()) r.nav_rate_changed = true;
   if (std::memcmp(&before_.nav5, &current_.nav5, sizeof current_.nav5) != 0) r.nav_config_changed = true;
+  const StoredBlock* gnss_before = before_.stored(msg::kCfgGnss);
+  const StoredBlock* gnss_now = current_.stored(msg::kCfgGnss);
+  if (gnss_before != nullptr && gnss_now != nullptr && !same_signals(gnss_before->payload(), gnss_now->payload())) {
+    r.gnss_changed = true;
+  }
+  const StoredBlock* nmea_before = before_.stored(msg::kCfgNmea);
+  const StoredBlock* nmea_now = current_.stored(msg::kCfgNmea);
+  if (nmea_before != nullptr && nmea_now != nullptr &&
+      !std::equal(nmea_before->payload().begin(), nmea_before->payload().end(), nmea_now->payload().begin(),
+                  nmea_now->payload().end())) {
+    r.nmea_config_changed = true;
+  }
+  if (!(saved_before_ == saved_)) r.saved_changed = true;
+}
+
+void Device::load_saved(const DeviceConfig& saved) {
+  saved_ = saved;
+  current_ = saved;
+  InputResult boot;
+  boot.reset = Reset{};
+  after_input(boot);  // the saved CFG-RATE sets the epoch period
+}
+
+SystemSet Device::enabled_systems() const noexcept { return ubx::enabled_systems(current_); }
+
+NavRateLimits Device::nav_rate_limits() const noexcept {
+  return ubx::nav_rate_limits(generation(), enabled_systems());
 }
 
 void Device::after_input(const InputResult& r) noexcept {

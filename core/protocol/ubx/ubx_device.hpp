@@ -23,10 +23,12 @@
 #include <vector>
 
 #include "core/protocol/nmea/nmea_encoder.hpp"
+#include "core/protocol/ubx/ubx_cfg_nmea.hpp"
 #include "core/protocol/ubx/ubx_config_keys.hpp"
 #include "core/protocol/ubx/ubx_device_config.hpp"
 #include "core/protocol/ubx/ubx_encoder.hpp"
 #include "core/protocol/ubx/ubx_frame.hpp"
+#include "core/protocol/ubx/ubx_gnss.hpp"
 #include "core/protocol/ubx/ubx_handlers.hpp"
 #include "core/protocol/ubx/ubx_message_list.hpp"
 #include "core/protocol/ubx/ubx_reset.hpp"
@@ -105,6 +107,15 @@ struct InputResult {
   bool nav_rate_changed = false;  ///< CFG-RATE changed, see Device::epoch_period_s()
   bool ports_changed = false;   ///< some port's protocol masks, mode or baud changed (any output's UART1)
   bool nav_config_changed = false;  ///< CFG-NAV5 changed
+  /// The GNSS selection changed (CFG-GNSS, CFG-SIGNAL-* or a load of the
+  /// saved configuration): a real chip restarts its GNSS engine; the
+  /// receiver restarts tracking with Device::enabled_systems().
+  bool gnss_changed = false;
+  /// The NMEA settings changed (CFG-NMEA, CFG-NMEA-* keys): Device::nmea_settings().
+  bool nmea_config_changed = false;
+  /// The saved (BBR/flash) configuration changed (CFG-CFG save or clear,
+  /// VALSET/VALDEL to BBR or Flash): write the state file (Device::saved()).
+  bool saved_changed = false;
   /// Non-zero: switch the host's line (the UART1 of its output) to this baud
   /// (bit/s) once the bytes already queued on it, this reply included, are sent.
   std::uint32_t new_baud_bps = 0;
@@ -177,6 +188,15 @@ public:
   /// The saved (BBR/flash) configuration loaded at start-up and reset.
   const DeviceConfig& saved() const noexcept { return saved_; }
   void save_config() { saved_ = current_; }
+  /// Power up from a saved configuration (a state file's): it becomes the
+  /// saved and the current one, as a module loads BBR/flash at boot.
+  void load_saved(const DeviceConfig& saved);
+  /// The NMEA output settings as CFG-NMEA now holds them (the chip's, every UART1).
+  CfgNmeaSettings nmea_settings() const noexcept { return cfg_nmea_settings(current_); }
+  /// The systems the receiver tracks (CFG-GNSS / CFG-SIGNAL-* as now set).
+  SystemSet enabled_systems() const noexcept;
+  /// Navigation rate limits of the chip with those systems (ubx_gnss.hpp).
+  NavRateLimits nav_rate_limits() const noexcept;
 
   /// Settings of the port at at.
   const PortSettings& port(Link at) const noexcept { return current_.port(column(at)); }
@@ -204,6 +224,7 @@ private:
   std::vector<nmea::NmeaEncoder> nmea_;  ///< per output
   DeviceConfig defaults_, saved_, current_;
   DeviceConfig before_;  ///< current_ before the input being handled (no allocation per input)
+  DeviceConfig saved_before_;  ///< saved_ before it
   ValTransaction val_;   ///< CFG-VALSET transaction and scratch configurations (M9)
   double epoch_period_s_;
   double uptime_origin_s_ = 0.0;  ///< power-on or the last reset that restarted navigation

@@ -6,6 +6,7 @@
 
 #include "core/protocol/ubx/ubx_config_keys.hpp"
 #include "core/protocol/ubx/ubx_encoder.hpp"
+#include "core/protocol/ubx/ubx_gnss.hpp"
 
 namespace gnssemu::protocol::ubx {
 
@@ -51,7 +52,7 @@ std::uint32_t section_of(MsgId id) noexcept {
 
 }  // namespace
 
-DeviceConfig DeviceConfig::factory_defaults(std::size_t uarts) {
+DeviceConfig DeviceConfig::factory_defaults(std::size_t uarts, Generation generation) {
   DeviceConfig c;
   // Ports (NEO-M8N: DDC, UART1, USB, SPI; no UART2). UART 8N1 = mode 0x8C0.
   c.ports_.resize(kNumPorts + std::max<std::size_t>(uarts, 1) - 1);
@@ -84,17 +85,7 @@ DeviceConfig DeviceConfig::factory_defaults(std::size_t uarts) {
   c.nav5.dgnssTimeout = 60;
 
   Bytes b;
-  // CFG-GNSS: 32 channels; GPS, SBAS, QZSS, GLONASS on; Galileo, BeiDou, IMES off.
-  b = {};
-  b.u1(0).u1(32).u1(32).u1(7);
-  b.u1(0).u1(8).u1(16).u1(0).u4(0x01010001);   // GPS L1C/A
-  b.u1(1).u1(1).u1(3).u1(0).u4(0x01010001);    // SBAS L1C/A
-  b.u1(2).u1(4).u1(8).u1(0).u4(0x01010000);    // Galileo E1 (off)
-  b.u1(3).u1(8).u1(16).u1(0).u4(0x01010000);   // BeiDou B1I (off)
-  b.u1(4).u1(0).u1(8).u1(0).u4(0x01010000);    // IMES (off)
-  b.u1(5).u1(0).u1(3).u1(0).u4(0x01010001);    // QZSS L1C/A
-  b.u1(6).u1(8).u1(14).u1(0).u4(0x01010001);   // GLONASS L1OF
-  c.store(msg::kCfgGnss, 0, b.span());
+  c.store(msg::kCfgGnss, 0, factory_cfg_gnss(generation));
   b = {};  // CFG-SBAS: enabled, range + corrections, 3 channels, auto scan
   b.u1(1).u1(3).u1(3).u1(0).u4(0);
   c.store(msg::kCfgSbas, 0, b.span());
@@ -133,8 +124,8 @@ DeviceConfig DeviceConfig::factory_defaults(std::size_t uarts) {
   b = {};  // CFG-ODO: off
   b.u1(0).zeros(3).u1(0).u1(0).zeros(6).u1(10).u1(50).zeros(2).u1(153).u1(76).zeros(2);
   c.store(msg::kCfgOdo, 0, b.span());
-  b = {};  // CFG-NMEA version 1: NMEA 4.1
-  b.u1(0).u1(0x41).u1(0).u1(0).u4(0).u1(0).u1(0).u1(0).u1(1).zeros(2).zeros(6);
+  b = {};  // CFG-NMEA version 1: NMEA 4.0 on the M8, 4.10 on the NEO-M9N (their logs, multi-gnss.md §7)
+  b.u1(0).u1(generation == Generation::kM9 ? 0x41 : 0x40).u1(0).u1(0).u4(0).u1(0).u1(0).u1(0).u1(1).zeros(2).zeros(6);
   c.store(msg::kCfgNmea, 0, b.span());
   b = {};  // CFG-PMS: full power
   b.u1(0).u1(0).u2(0).u2(0).zeros(2);

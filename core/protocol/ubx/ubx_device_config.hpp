@@ -10,9 +10,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/protocol/ubx/ubx_frame.hpp"
+#include "core/protocol/ubx/ubx_generation.hpp"
 #include "core/protocol/ubx/ubx_messages.hpp"
 #include "core/protocol/ubx/ubx_ports.hpp"
 
@@ -62,8 +65,9 @@ public:
   /// Factory defaults of a NEO-M8N (docs/ubx.md) with uarts UART1s (one per
   /// output; 0 counts as 1): UART1 9600 8N1 in UBX+NMEA+RTCM2 out UBX+NMEA;
   /// NMEA GGA GLL GSA GSV RMC VTG at 1 on DDC/UART1/USB/SPI; no UBX output;
-  /// 1 Hz, GPS time; NAV5 portable/auto.
-  static DeviceConfig factory_defaults(std::size_t uarts = 1);
+  /// 1 Hz, GPS time; NAV5 portable/auto; the generation's factory CFG-GNSS
+  /// (ubx_gnss.hpp: M8 GPS+GLONASS+QZSS+SBAS, NEO-M9N every system).
+  static DeviceConfig factory_defaults(std::size_t uarts = 1, Generation generation = Generation::kM8);
 
   wire::CfgRate rate{};
   wire::CfgNav5 nav5{};
@@ -113,6 +117,15 @@ public:
   /// from src (a configuration of the same chip) into this. The plain
   /// values, which no M8 section holds, travel with any non-zero mask.
   void copy_sections(const DeviceConfig& src, std::uint32_t mask) noexcept;
+
+  /// The configuration as text, one setting per line (ubx_state_text.cpp):
+  /// what a state file holds of a chip's BBR/flash. Allocates (load/save time only).
+  std::string to_text() const;
+  /// Read to_text() output into this configuration (a factory one of the
+  /// same chip): ports and columns beyond this chip's are skipped. Throws
+  /// gnssemu::Error("source:line: reason") on a malformed line; nothing is
+  /// changed then.
+  void read_text(std::string_view text, const std::string& source);
 
 private:
   DeviceConfig() = default;

@@ -71,9 +71,10 @@ struct EpochInfo {
   FixOverride reported_fix;
 };
 
-/// Largest output of one epoch with every message enabled and 32 satellites
-/// (about 1.4 KB). Reserve out.size() + this to never allocate.
-inline constexpr std::size_t kMaxEpochBytes = 2048;
+/// Largest output of one epoch with every message enabled and
+/// kMaxSatsInView satellites (NAV-SAT, NAV-SVINFO, NAV-SIG about 1.2-1.6 KB
+/// each). Reserve out.size() + this to never allocate.
+inline constexpr std::size_t kMaxEpochBytes = 8192;
 
 /// Encoders append one complete frame to out and return the bytes appended.
 /// They never throw; they allocate only when out lacks capacity. A Fix
@@ -92,10 +93,26 @@ public:
   std::size_t nav_velned(const receiver::Fix& fix, std::string& out) const;
   std::size_t nav_timegps(const receiver::Fix& fix, std::string& out) const;
   std::size_t nav_timeutc(const receiver::Fix& fix, std::string& out) const;
-  /// One entry per satellite in fix.sats[0..num_sats) (GPS, gnssId 0).
+  /// One entry per satellite in fix.sats[0..num_sats), every system, by
+  /// gnssId then svId (QZSS 1-10, SBAS 120-158, GLONASS slot).
   std::size_t nav_sat(const receiver::Fix& fix, std::string& out) const;
-  /// One channel per satellite in fix.sats[0..num_sats); chipGen 4 (M8).
+  /// One channel per satellite in fix.sats[0..num_sats) as an M8 numbers it
+  /// (svinfo_svid in ubx_gnss.hpp); chipGen 4 (M8).
   std::size_t nav_svinfo(const receiver::Fix& fix, std::string& out) const;
+  /// NAV-SIG version 0 (M9): one L1-band signal per satellite (sigId 0;
+  /// BeiDou GEOs 1 = B1I D2), GLONASS freqId k + 7, C/N0, quality, and
+  /// which measurements and corrections the solution used.
+  std::size_t nav_sig(const receiver::Fix& fix, std::string& out) const;
+  /// NAV-TIMEGLO: GLONASS time (UTC + 3 h) as time of day, day in the four-year
+  /// period and period number since 1996 (ICD GLONASS 5.1 N4, NT).
+  std::size_t nav_timeglo(const receiver::Fix& fix, std::string& out) const;
+  /// NAV-TIMEGAL: GST = GPST with weeks counted from GPS week 1024.
+  std::size_t nav_timegal(const receiver::Fix& fix, std::string& out) const;
+  /// NAV-TIMEBDS: BDT = GPST - 14 s with weeks counted from GPS week 1356.
+  std::size_t nav_timebds(const receiver::Fix& fix, std::string& out) const;
+  /// MON-HW2: I/Q imbalance and magnitude from the front end of MON-HW;
+  /// configuration source flash, POST status 0 (constants).
+  std::size_t mon_hw2(const receiver::Fix& fix, const EpochInfo& info, std::string& out) const;
   std::size_t nav_eoe(const receiver::Fix& fix, std::string& out) const;
   /// Noise level, AGC, jamming indicator and monitor state (ubx_front_end.hpp).
   std::size_t mon_hw(const receiver::Fix& fix, const EpochInfo& info, std::string& out) const;
@@ -104,6 +121,8 @@ public:
   /// SEC-SIG version 1: jamming monitor as MON-RF, spoofing as NAV-STATUS.
   std::size_t sec_sig(const receiver::Fix& fix, const EpochInfo& info, std::string& out) const;
   std::size_t mon_ver(std::string& out) const;
+  /// MON-GNSS version 1 of generation g with enabled the systems switched on.
+  static std::size_t mon_gnss(Generation g, SystemSet enabled, std::string& out);
   /// ACK-ACK (ack = true) or ACK-NAK for the input message acked.
   static std::size_t ack(MsgId acked, bool ack, std::string& out);
 

@@ -1,5 +1,7 @@
 #include "core/protocol/ubx/ubx_handlers.hpp"
 
+#include "core/protocol/ubx/ubx_gnss.hpp"
+
 namespace gnssemu::protocol::ubx {
 
 namespace {
@@ -39,6 +41,7 @@ constexpr HandlerRow kHandlers[] = {
     {msg::kCfgValget, handle_cfg_valget},
     {msg::kCfgValdel, handle_cfg_valdel},
     {msg::kMonVer, handle_mon_ver},
+    {msg::kMonGnss, handle_mon_gnss},
 };
 
 const HandlerRow* find_row(MsgId id) noexcept {
@@ -53,7 +56,9 @@ const HandlerRow* find_row(MsgId id) noexcept {
 Handler find_handler(MsgId id) noexcept {
   if (const HandlerRow* r = find_row(id)) return r->handle;
   if (id.cls == cls::kCfg) return handle_cfg_unknown;
-  if (id.cls == cls::kNav || id == msg::kMonHw || id == msg::kMonRf || id == msg::kSecSig) return handle_output_poll;
+  if (id.cls == cls::kNav || id == msg::kMonHw || id == msg::kMonHw2 || id == msg::kMonRf || id == msg::kSecSig) {
+    return handle_output_poll;
+  }
   return nullptr;
 }
 
@@ -83,6 +88,12 @@ Reply handle_cfg_unknown(HandlerContext& ctx, const FrameView& frame) {
 Reply handle_mon_ver(HandlerContext& ctx, const FrameView& frame) {
   if (!frame.payload.empty()) return Reply::kNone;
   ctx.encoder.mon_ver(ctx.out);
+  return Reply::kPollData;
+}
+
+Reply handle_mon_gnss(HandlerContext& ctx, const FrameView& frame) {
+  if (!frame.payload.empty()) return Reply::kNone;
+  UbxEncoder::mon_gnss(ctx.generation, enabled_systems(ctx.current), ctx.out);
   return Reply::kPollData;
 }
 

@@ -94,7 +94,9 @@ Reply handle_cfg_valdel(HandlerContext& ctx, const FrameView& frame);
 /// CFG ids an M8 lacks: CFG-VALSET/VALGET/VALDEL and the rest.
 Reply handle_cfg_unknown(HandlerContext& ctx, const FrameView& frame);
 Reply handle_mon_ver(HandlerContext& ctx, const FrameView& frame);
-/// A poll of a NAV message, MON-HW, MON-RF or SEC-SIG: the message from the
+/// MON-GNSS poll: supported, default and enabled systems (ubx_gnss.hpp).
+Reply handle_mon_gnss(HandlerContext& ctx, const FrameView& frame);
+/// A poll of a NAV message, MON-HW, MON-HW2, MON-RF or SEC-SIG: the message from the
 /// last epoch; ignored for a message the generation lacks.
 Reply handle_output_poll(HandlerContext& ctx, const FrameView& frame);
 

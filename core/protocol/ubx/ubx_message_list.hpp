@@ -20,11 +20,11 @@ public:
     std::string_view label;          ///< "NAV-PVT", "GGA" (static storage)
     Protocol protocol = Protocol::kUbx;
   };
-  /// Largest epoch: every periodic UBX message (14) and NMEA sentence (7 plus
-  /// 8 GSV parts for 32 satellites).
-  static constexpr std::size_t kMaxMessages = 32;
+  /// Largest epoch: every periodic UBX message (19) and NMEA sentence (7 plus
+  /// the GSV parts of every system).
+  static constexpr std::size_t kMaxMessages = 96;
   /// Bytes of the largest epoch (UBX kMaxEpochBytes + nmea::kMaxEpochBytes, rounded up).
-  static constexpr std::size_t kMaxBytes = 4096;
+  static constexpr std::size_t kMaxBytes = 16384;
 
   /// Reserves for the largest epoch: filling it never allocates.
   MessageList() {

@@ -34,15 +34,15 @@ struct PeriodicMessage {
   EpochGroup group;
   bool configurable;      ///< may be listed in a port's ubx_messages (docs/configuration.md)
   /// Generations whose firmware has the message: NAV-SVINFO is gone from
-  /// protocol 27 (shared/reference/ubx.md §3), MON-RF and SEC-SIG are new
-  /// on the M9 (docs/ubx.md §Generations).
+  /// protocol 27 (shared/reference/ubx.md §3), MON-RF, SEC-SIG and NAV-SIG
+  /// are new on the M9 (docs/ubx.md §Generations).
   GenerationSet generations = kAllGenerations;
 
   constexpr bool exists_on(Generation g) const noexcept { return (generations & generation_bit(g)) != 0; }
 };
 
 /// Rows in the order the configuration lists them (docs/configuration.md).
-inline constexpr std::array<PeriodicMessage, 14> kPeriodicMessages{{
+inline constexpr std::array<PeriodicMessage, 19> kPeriodicMessages{{
     {msg::kNavPvt, "NAV-PVT", EpochGroup::kBeforeNmea, true},
     {msg::kNavPosllh, "NAV-POSLLH", EpochGroup::kBeforeNmea, true},
     {msg::kNavVelned, "NAV-VELNED", EpochGroup::kBeforeNmea, true},
@@ -57,6 +57,11 @@ inline constexpr std::array<PeriodicMessage, 14> kPeriodicMessages{{
     {msg::kSecSig, "SEC-SIG", EpochGroup::kAfterNmea, true, kM9Only},
     {msg::kNavEoe, "NAV-EOE", EpochGroup::kAfterNmea, true},
     {msg::kNavTimegps, "NAV-TIMEGPS", EpochGroup::kAfterNmea, false},
+    {msg::kNavSig, "NAV-SIG", EpochGroup::kAfterNmea, true, kM9Only},
+    {msg::kNavTimeglo, "NAV-TIMEGLO", EpochGroup::kAfterNmea, true},
+    {msg::kNavTimegal, "NAV-TIMEGAL", EpochGroup::kAfterNmea, true},
+    {msg::kNavTimebds, "NAV-TIMEBDS", EpochGroup::kAfterNmea, true},
+    {msg::kMonHw2, "MON-HW2", EpochGroup::kAfterNmea, true},
 }};
 
 namespace detail {

@@ -123,6 +123,50 @@ struct NavTimeutc {
 };
 static_assert(sizeof(NavTimeutc) == 20);
 
+/// NAV-TIMEGLO 0x01 0x23 (20 bytes).
+struct NavTimeglo {
+  std::uint32_t iTOW;
+  std::uint32_t TOD;       ///< GLONASS time of day, s
+  std::int32_t fTOD;       ///< ns, +-500000000
+  std::uint16_t Nt;        ///< day in the four-year period, 1..1461
+  std::uint8_t N4;         ///< four-year period since 1996 (1 = 1996-1999)
+  std::uint8_t valid;      ///< b0 todValid, b1 dateValid
+  std::uint32_t tAcc;      ///< ns
+};
+static_assert(sizeof(NavTimeglo) == 20);
+
+/// NAV-TIMEGAL 0x01 0x25 and NAV-TIMEBDS 0x01 0x24 (20 bytes, same layout).
+struct NavTimeSow {
+  std::uint32_t iTOW;
+  std::uint32_t sow;       ///< galTow / SOW: whole seconds of the system's week
+  std::int32_t fSow;       ///< ns, +-500000000
+  std::int16_t week;       ///< galWno / week of the system
+  std::int8_t leapS;       ///< system time - UTC, s
+  std::uint8_t valid;      ///< b0 towValid, b1 weekValid, b2 leapSValid
+  std::uint32_t tAcc;      ///< ns
+};
+static_assert(sizeof(NavTimeSow) == 20);
+
+/// NAV-SIG 0x01 0x43: header (8 bytes) then numSigs NavSigSig (M9 and later).
+struct NavSigHeader {
+  std::uint32_t iTOW;
+  std::uint8_t version;    ///< 0
+  std::uint8_t numSigs;
+  std::uint8_t reserved0[2];
+};
+static_assert(sizeof(NavSigHeader) == 8);
+struct NavSigSig {
+  std::uint8_t gnssId, svId, sigId, freqId;  ///< freqId: GLONASS k + 7
+  std::int16_t prRes;      ///< 0.1 m
+  std::uint8_t cno;        ///< dB-Hz
+  std::uint8_t qualityInd;
+  std::uint8_t corrSource; ///< 0 none, 1 SBAS, ...
+  std::uint8_t ionoModel;  ///< 0 none, 1 Klobuchar GPS, 2 SBAS, 3 Klobuchar BeiDou, 8 dual frequency
+  std::uint16_t sigFlags;  ///< b0-1 health, b2 prSmoothed, b3 prUsed, b4 crUsed, b5 doUsed, b6-8 corrections used
+  std::uint8_t reserved1[4];
+};
+static_assert(sizeof(NavSigSig) == 16);
+
 /// NAV-SAT 0x01 0x35: header (8 bytes) then numSvs NavSatSv.
 struct NavSatHeader {
   std::uint32_t iTOW;
@@ -173,6 +217,30 @@ struct Ack {
   std::uint8_t clsID, msgID;
 };
 static_assert(sizeof(Ack) == 2);
+
+/// MON-HW2 0x0A 0x0B (28 bytes).
+struct MonHw2 {
+  std::int8_t ofsI;        ///< I imbalance, -128..127
+  std::uint8_t magI;       ///< I magnitude, 0..255
+  std::int8_t ofsQ;
+  std::uint8_t magQ;
+  std::uint8_t cfgSource;  ///< 114 ROM, 111 OTP, 112 config pins, 102 flash image
+  std::uint8_t reserved0[3];
+  std::uint32_t lowLevCfg;
+  std::uint8_t reserved1[8];
+  std::uint32_t postStatus;
+  std::uint8_t reserved2[4];
+};
+static_assert(sizeof(MonHw2) == 28);
+
+/// MON-GNSS 0x0A 0x28 (8 bytes): bits 0 GPS, 1 GLONASS, 2 BeiDou, 3 Galileo.
+struct MonGnss {
+  std::uint8_t version;
+  std::uint8_t supported, defaultGnss, enabled;
+  std::uint8_t simultaneous;  ///< major GNSS the receiver tracks at once
+  std::uint8_t reserved1[3];
+};
+static_assert(sizeof(MonGnss) == 8);
 
 /// MON-VER 0x0A 0x04: fixed part, then N extension strings of 30 bytes.
 struct MonVerHead {

@@ -48,13 +48,11 @@ receiver::Fix fix_from_json(const nlohmann::json& j) {
     for (const auto& js : j.at("sats")) {
       if (f.num_sats >= static_cast<int>(f.sats.size())) throw std::runtime_error("too many sats");
       receiver::SatInfo& s = f.sats[static_cast<std::size_t>(f.num_sats++)];
-      if (js.contains("sat")) {
-        const auto id = parse_sat(js.at("sat").get<std::string>());
-        if (!id) throw std::runtime_error("bad sat " + js.at("sat").get<std::string>());
-        s.sat = *id;
-      } else {
-        s.sat = SatId::gps(js.at("prn").get<int>());
-      }
+      // "sat": "R05" (any system), or "prn": a GPS PRN.
+      const auto id = js.contains("sat") ? parse_sat(js.at("sat").get<std::string>()) : SatId::gps(js.at("prn").get<int>());
+      if (!id) throw std::runtime_error("bad sat");
+      s.sat = *id;
+      s.glonass_channel = js.value("glonass_channel", 0);
       s.el_rad = js.at("el_deg").get<double>() * kDegToRad;
       s.az_rad = js.at("az_deg").get<double>() * kDegToRad;
       s.cn0_dbhz = js.value("cn0_dbhz", 0.0);

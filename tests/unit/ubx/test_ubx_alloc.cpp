@@ -39,10 +39,10 @@ TEST_P(UbxAlloc, EpochEncodeConfigAndDecodeDoNotAllocate) {
   // MON-RF and SEC-SIG included; what the generation lacks is not sent).
   for (const PeriodicMessage& m : kPeriodicMessages) r.config().set_message_rate(kPortUart1, m.id, 1);
   receiver::Fix fix = test::sample_fix();
-  fix.num_sats = system_size(GnssSystem::kGps);  // worst case: 32 satellites
-  for (int i = 0; i < system_size(GnssSystem::kGps); ++i) {
+  fix.num_sats = kMaxSatsInView;  // worst case: every slot, every system
+  for (int i = 0; i < kMaxSatsInView; ++i) {
     fix.sats[static_cast<std::size_t>(i)] = fix.sats[static_cast<std::size_t>(i % 10)];
-    fix.sats[static_cast<std::size_t>(i)].sat = SatId::gps(i + 1);
+    fix.sats[static_cast<std::size_t>(i)].sat = SatId::from_index(i * (kNumSats / kMaxSatsInView));
   }
   // Host input: a CFG-MSG poll, a CFG-RATE, MON-VER poll, MON-RF poll, PUBX,41, some garbage.
   std::string input = "\x01\x02\x03";

@@ -33,6 +33,7 @@ std::string type_of(const ConfigKey& k) {
 
 std::string block_name(MsgId id) {
   if (id == msg::kCfgOdo) return "CFG-ODO";
+  if (id == msg::kCfgNmea) return "CFG-NMEA";
   if (id == msg::kCfgItfm) return "CFG-ITFM";
   if (id == msg::kCfgSbas) return "CFG-SBAS";
   return "CFG " + hex(id.id, 2);
@@ -72,7 +73,7 @@ std::string range_of(const ConfigKey& k) {
 }
 
 std::string generate() {
-  const DeviceConfig defaults = DeviceConfig::factory_defaults();
+  const DeviceConfig defaults = DeviceConfig::factory_defaults(1, Generation::kM9);  // the keys are the M9's
   std::ostringstream s;
   s << kBegin << "\n\n";
   s << "| key id | name | size | values | default (I2C/UART1/UART2/USB/SPI) | state it reads and writes |\n";
