@@ -187,7 +187,7 @@ TEST(Constellation, AlmanacMovedToTheStartAndPropagated) {
   EXPECT_TRUE(c.nav.klobuchar.valid);  // from the nav header given
   const EphemerisStore store(c.nav.ephemerides, c.store_options());
   // Geometry at the start: the almanac's at the start minus the shift.
-  const Ephemeris* e = store.select(SatId::gps(alm.front().prn), kToday);
+  const Ephemeris* e = store.select(alm.front().sat, kToday);
   ASSERT_NE(e, nullptr);
   EXPECT_LT((sat_state(*e, kToday).pos_m - almanac_state(alm.front(), kToday - c.shift_s).pos_m).norm(), 1e-3);
   // Weeks on, without a jump (an almanac is one orbit per satellite).
