@@ -4,7 +4,7 @@
 
 namespace gnssemu::cli {
 
-/// Writes "gnssemu X", "Embree X", "GeographicLib X", one per line.
+/// Writes "gnssemu X (git C)", "Embree X", "GeographicLib X", one per line.
 void write_version(std::ostream& out);
 
 }  // namespace gnssemu::cli
