@@ -37,13 +37,35 @@ install(CODE [[
 install(FILES ${PROJECT_SOURCE_DIR}/docs/man/gnssemud.8 DESTINATION ${CMAKE_INSTALL_MANDIR}/man8)
 install(FILES ${PROJECT_SOURCE_DIR}/docs/man/gnssemu.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
 install(FILES ${PROJECT_SOURCE_DIR}/docs/man/gnssemud.toml.5 DESTINATION ${CMAKE_INSTALL_MANDIR}/man5)
-install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/CHANGELOG.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+# Debian's machine-readable copyright (the project's license and the
+# third-party files the package installs or compiles in), and the Debian
+# changelog a native package carries, made from CHANGELOG.md at install time.
+install(FILES ${PROJECT_SOURCE_DIR}/packaging/copyright DESTINATION ${CMAKE_INSTALL_DOCDIR})
+set(GNSSEMU_MAINTAINER "gnssemu maintainers <maintainers@gnssemu.invalid>" CACHE STRING
+    "Maintainer of the .deb and its changelog entries: Name <address>")
+install(CODE "set(_maintainer \"${GNSSEMU_MAINTAINER}\")\nset(_version \"${PROJECT_VERSION}\")\nset(_docdir \"${CMAKE_INSTALL_DOCDIR}\")")
+install(CODE [[
+  execute_process(COMMAND ${CMAKE_COMMAND} -DCHANGELOG=${_src}/CHANGELOG.md -DVERSION=${_version}
+                          -DMAINTAINER=${_maintainer} -DOUTPUT=${_bin}/install-stage/changelog
+                          -P ${_src}/cmake/debian_changelog.cmake
+                  RESULT_VARIABLE _rc)
+  if(NOT _rc EQUAL 0)
+    message(FATAL_ERROR "CHANGELOG.md: no Debian changelog could be made from it")
+  endif()
+  # -n: no name or time stamp in the gzip header, so the package is reproducible.
+  execute_process(COMMAND gzip -9nf ${_bin}/install-stage/changelog RESULT_VARIABLE _rc)
+  if(NOT _rc EQUAL 0)
+    message(FATAL_ERROR "gzip of the Debian changelog failed")
+  endif()
+  file(INSTALL ${_bin}/install-stage/changelog.gz DESTINATION "${CMAKE_INSTALL_PREFIX}/${_docdir}")
+]])
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR} FILES_MATCHING PATTERN "*.md")
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/config/examples DESTINATION ${CMAKE_INSTALL_DOCDIR} FILES_MATCHING PATTERN "*.toml")
 
 set(CPACK_PACKAGE_NAME gnssemu)
 set(CPACK_PACKAGE_VENDOR "gnssemu")
-set(CPACK_PACKAGE_CONTACT "gnssemu maintainers <gnssemu@localhost>")
+set(CPACK_PACKAGE_CONTACT "${GNSSEMU_MAINTAINER}")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "GNSS receiver emulator: an emulated u-blox M8 fed by vehicle truth")
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)

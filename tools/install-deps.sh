@@ -10,6 +10,7 @@ PKGS=(
   nlohmann-json3-dev zlib1g-dev libsystemd-dev
   gpsd gpsd-clients rtklib socat python3
   systemd dpkg-dev  # systemd-analyze (unit tests), dpkg-shlibdeps (cpack -G DEB)
+  lintian           # Debian's package checker on the built .deb (tools/package-deb-check.sh)
   libjs-chart.js chromium fonts-dejavu-core nodejs
   # fuzzing and sanitizers (docs/robustness.md): clang's libFuzzer, symbolized reports
   clang libclang-rt-14-dev llvm
