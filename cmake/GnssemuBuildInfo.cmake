@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # gnssemu_build_info: the release version (project() in CMakeLists.txt, the one
 # place it is defined) and the git commit of the source, for `gnssemud
 # --version` and `gnssemu version` (daemon/build_info.hpp). The commit is

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Install layout of the service and `cpack -G DEB` (docs/daemon.md §Packaging):
 # gnssemud, gnssemu, systemd units, /etc/gnssemu/gnssemud.toml, default
 # config and nav data, man pages gnssemud(8), gnssemu(1), gnssemud.toml(5).

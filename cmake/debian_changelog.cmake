@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Writes OUTPUT: a Debian changelog (debian-policy 4.4) from CHANGELOG.md, one
 # entry per version with the version's summary line and a pointer to the full
 # changelog, for /usr/share/doc/gnssemu/changelog.gz (lintian wants it in a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Writes OUTPUT: the git commit of SOURCE_DIR as a C string literal, e.g.
 # "1a2b3c4d5e6f" ("-dirty" appended when tracked files differ from it), for
 # daemon/build_info.cpp. Run at every build, rewrites OUTPUT only when it

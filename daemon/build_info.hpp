@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // What was built: the release version and the git commit of the source.
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // gnssemud: GNSS receiver emulator daemon. Usage: docs/daemon.md.
 #include <unistd.h>
 

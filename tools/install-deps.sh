@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Installs the Debian packages gnssemu needs to build, run and test.
 # Only packages that are missing are installed; needs root (or sudo) when any is.
 set -euo pipefail

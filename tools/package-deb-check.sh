@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Builds the .deb of a build tree (cpack -G DEB) and checks it without
 # installing on the machine: dpkg-deb contents, the copyright file (Debian's
 # machine-readable format, naming every third-party file installed), the

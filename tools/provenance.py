@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Every file in the folders that hold files we did not write has a row in
 that folder's README.md saying where it came from:
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """SPDX license lines in the project's own source files.
 
     tools/spdx.py --check [PATH...]   list files without the line, exit 1 if any

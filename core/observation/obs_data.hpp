@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Contents of a RINEX observation file, GPS satellites only: header facts a
 // positioning tool needs and the epochs with their per-satellite values.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // RINEX 2.10/2.11 and 3.00-3.05 observation file reader, GPS satellites only
 // (others skipped and counted). Layouts: RINEX 2.11 Table A1, RINEX 3.05

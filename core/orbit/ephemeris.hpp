@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // GPS LNAV broadcast ephemeris and its evaluation to ECEF position, velocity
 // and clock (IS-GPS-200 §20.3.3.3.3 and Table 20-IV).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Contents of a navigation message file: GPS ephemerides plus the header's
 // broadcast ionosphere, UTC and leap-second parameters.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // RINEX 2.10/2.11 and 3.x navigation file reader (GPS records; other systems
 // in mixed 3.x files are skipped and counted). Layouts: RINEX 2.11 Tables

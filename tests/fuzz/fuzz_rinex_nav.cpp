@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RINEX 2/3 navigation files through read_rinex_nav, then the ephemeris
 // store and every ephemeris evaluated at its toe. Oracles: errors are
 // gnssemu::Error naming the file (anything else escaping is a crash); an

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RINEX 2/3 observation files (plain or gzip, as gnssemu spp and calibrate
 // read them) through read_rinex_obs. Oracles: errors are gnssemu::Error
 // naming the file; accepted epochs hold GPS PRNs 1..32, finite values and

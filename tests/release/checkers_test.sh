@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # The release checkers catch what they are for, on small trees of their own:
 # tools/spdx.py (a source file without its SPDX line; --fix puts it first, or
 # after a shebang / doctype, and leaves data alone) and tools/provenance.py

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # gnssemud --version, gnssemu version and gnssemu --version name the project
 # version and the git commit of the source; CHANGELOG.md has the version; and
 # cmake/git_commit.cmake finds the commit in a checkout, a `git archive`

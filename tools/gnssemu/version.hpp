@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // `gnssemu version`: versions of gnssemu and the libraries its models rest on.
 #include <ostream>

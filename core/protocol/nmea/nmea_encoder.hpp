@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // NMEA 0183 encoder formatted like a u-blox M8 (shared/reference/nmea0183.md).
 // One Fix in, one epoch of sentences out; checksums, <= 82 characters.
