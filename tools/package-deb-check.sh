@@ -19,7 +19,7 @@ dpkg-deb -I "$deb" | sed -n 's/^ \(Package\|Version\|Depends\|Installed-Size\):/
 dpkg-deb -c "$deb" | awk '{print $6}' > "$tmp/contents"
 for f in ./usr/bin/gnssemud ./usr/bin/gnssemu ./lib/systemd/system/gnssemud.service ./lib/systemd/system/gnssemud@.service \
          ./etc/gnssemu/gnssemud.toml ./usr/share/gnssemu/default.toml ./usr/share/gnssemu/nav/brdc0010.22n \
-         ./usr/share/man/man8/gnssemud.8 ./usr/share/man/man1/gnssemu.1 ./usr/share/man/man5/gnssemud.toml.5 \
+         ./usr/share/man/man8/gnssemud.8.gz ./usr/share/man/man1/gnssemu.1.gz ./usr/share/man/man5/gnssemud.toml.5.gz \
          ./usr/share/doc/gnssemu/copyright ./usr/share/doc/gnssemu/changelog.gz ./usr/share/doc/gnssemu/CHANGELOG.md; do
   grep -qx "$f" "$tmp/contents" || { echo "missing in the package: $f"; exit 1; }
 done
@@ -41,7 +41,7 @@ echo "copyright: DEP-5, $(grep -c '^Files:' "$tmp/copyright") Files paragraphs, 
 lintian_status="lintian missing (tools/install-deps.sh installs it): not run"
 if command -v lintian >/dev/null; then
   # Exit status 2 is lintian's own failure; errors are counted from its tags.
-  lintian --no-tag-display-limit "$deb" > "$tmp/lintian" 2>&1 || [ $? -eq 1 ] || { cat "$tmp/lintian"; exit 1; }
+  lintian --tag-display-limit 0 "$deb" > "$tmp/lintian" 2>&1 || [ $? -eq 1 ] || { cat "$tmp/lintian"; exit 1; }
   sed 's/^/  /' "$tmp/lintian"
   errors=$(grep -c '^E: ' "$tmp/lintian" || true)
   lintian_status="lintian: $errors errors, $(grep -c '^W: ' "$tmp/lintian" || true) warnings"
