@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // atmosphere_bench: per-epoch cost of Pipeline::step() with each world stage
 // on or off and each slow-term cache interval, next to the position change it
 // causes against the all-on, no-cache reference (same seed, so the noise is

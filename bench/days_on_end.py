@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Days on end from the data that ship (issue 12): `gnssemu batch` with a
 config (default: config/default.toml, whose nav file is from 2022) over a
 static antenna at its origin for --hours at 1 Hz, starting now (or --start),

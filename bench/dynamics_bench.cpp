@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // dynamics_bench: how the emulated receiver moves, per dynamic model.
 // Static: epoch-to-epoch steps of the fix (horizontal, vertical), speed and
 // climb noise at 1 Hz and 10 Hz, straight from the Fix (no NMEA rounding).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // faults_bench: the evidence of docs/faults.md, as figures. Each case runs
 // the pipeline (u-blox M8 profile, static receiver at 48.87N 2.30E, real
 // broadcast ephemerides) with faults between world and receiver and reads

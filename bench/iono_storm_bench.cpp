@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // iono_storm_bench: a broadcast-only receiver under an ionosphere the broadcast
 // Klobuchar does not describe (fixed world VTEC, a storm), with and without
 // the solver's model-error variance (iono_model_fraction, tropo_model_sigma_m):

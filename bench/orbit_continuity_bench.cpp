@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // orbit_continuity_bench: how far the orbits the emulator flies past its nav
 // data are from the real ones, checked on data held out (docs/models.md
 // §Orbits for any date). Prints Markdown; not a test.

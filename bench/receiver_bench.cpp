@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // receiver_bench: per-epoch cost of Pipeline::step() (world + receiver) on real broadcast
 // ephemerides, static and moving (100 m/s) receivers, and heap allocations
 // per epoch after warm-up, for the default receiver (navigation filter) and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ttff_bench: time to first fix of the emulated receiver for cold, warm and
 // hot starts, and the return of the fix after a total blockage of 10 s and
 // 60 s (antenna signal gone, receiver running), next to the u-blox M8 data

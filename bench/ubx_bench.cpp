@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ubx_bench: UBX output of real receiver Fixes (brdc0010.22n): bytes per
 // epoch for the message sets PX4, ArduPilot and gpsd configure, what that
 // needs of a UART at 5 and 10 Hz, encode cost per epoch and heap allocations,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Per-module include interfaces: a target sees the headers of the targets it
 # links, and no others, so an include that points at a module the target
 # does not link fails to compile (the layers are in docs/architecture.md and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Sanitizer and fuzzing builds (docs/robustness.md).
 #
 # GNSSEMU_SANITIZE=address,undefined instruments every target of the project

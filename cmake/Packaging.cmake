@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Install layout of the service and `cpack -G DEB` (docs/daemon.md §Packaging):
 # gnssemud, gnssemu, systemd units, /etc/gnssemu/gnssemud.toml, default
 # config and nav data, man pages gnssemud(8), gnssemu(1), gnssemud.toml(5).
@@ -34,17 +35,54 @@ install(CODE [[
   file(INSTALL "${_stage}/gnssemud.toml" DESTINATION "${_etc}")
 ]])
 
-install(FILES ${PROJECT_SOURCE_DIR}/docs/man/gnssemud.8 DESTINATION ${CMAKE_INSTALL_MANDIR}/man8)
-install(FILES ${PROJECT_SOURCE_DIR}/docs/man/gnssemu.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
-install(FILES ${PROJECT_SOURCE_DIR}/docs/man/gnssemud.toml.5 DESTINATION ${CMAKE_INSTALL_MANDIR}/man5)
-install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR} FILES_MATCHING PATTERN "*.md")
+install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/CHANGELOG.md ${PROJECT_SOURCE_DIR}/NOTICE
+  DESTINATION ${CMAKE_INSTALL_DOCDIR})  # NOTICE: Apache-2.0 §4(d)
+# Debian's machine-readable copyright (the project's license and the
+# third-party files the package installs or compiles in).
+install(FILES ${PROJECT_SOURCE_DIR}/packaging/copyright DESTINATION ${CMAKE_INSTALL_DOCDIR})
+set(GNSSEMU_MAINTAINER "gnssemu maintainers <maintainers@gnssemu.invalid>" CACHE STRING
+    "Maintainer of the .deb and its changelog entries: Name <address>")
+# gzip -9n (no name or time stamp: a reproducible package): the man pages, and
+# the Debian changelog a native package carries, made from CHANGELOG.md.
+install(CODE "set(_maintainer \"${GNSSEMU_MAINTAINER}\")\nset(_version \"${PROJECT_VERSION}\")
+set(_docdir \"${CMAKE_INSTALL_DOCDIR}\")\nset(_mandir \"${CMAKE_INSTALL_MANDIR}\")")
+install(CODE [[
+  function(gnssemu_install_gz file dest)
+    get_filename_component(_name "${file}" NAME)
+    execute_process(COMMAND gzip -9n -c "${file}" OUTPUT_FILE "${_bin}/install-stage/${_name}.gz" RESULT_VARIABLE _rc)
+    if(NOT _rc EQUAL 0)
+      message(FATAL_ERROR "gzip of ${file} failed")
+    endif()
+    file(INSTALL "${_bin}/install-stage/${_name}.gz" DESTINATION "${CMAKE_INSTALL_PREFIX}/${dest}")
+  endfunction()
+  gnssemu_install_gz("${_src}/docs/man/gnssemud.8" "${_mandir}/man8")
+  gnssemu_install_gz("${_src}/docs/man/gnssemu.1" "${_mandir}/man1")
+  gnssemu_install_gz("${_src}/docs/man/gnssemud.toml.5" "${_mandir}/man5")
+  execute_process(COMMAND ${CMAKE_COMMAND} -DCHANGELOG=${_src}/CHANGELOG.md -DVERSION=${_version}
+                          -DMAINTAINER=${_maintainer} -DOUTPUT=${_bin}/install-stage/changelog
+                          -P ${_src}/cmake/debian_changelog.cmake
+                  RESULT_VARIABLE _rc)
+  if(NOT _rc EQUAL 0)
+    message(FATAL_ERROR "CHANGELOG.md: no Debian changelog could be made from it")
+  endif()
+  gnssemu_install_gz("${_bin}/install-stage/changelog" "${_docdir}")
+]])
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR} FILES_MATCHING PATTERN "*.md"
+  PATTERN images EXCLUDE PATTERN man EXCLUDE)  # no empty folders in the package
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/config/examples DESTINATION ${CMAKE_INSTALL_DOCDIR} FILES_MATCHING PATTERN "*.toml")
 
 set(CPACK_PACKAGE_NAME gnssemu)
 set(CPACK_PACKAGE_VENDOR "gnssemu")
-set(CPACK_PACKAGE_CONTACT "gnssemu maintainers <gnssemu@localhost>")
+set(CPACK_PACKAGE_CONTACT "${GNSSEMU_MAINTAINER}")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "GNSS receiver emulator: an emulated u-blox M8 fed by vehicle truth")
+set(CPACK_PACKAGE_DESCRIPTION "gnssemud makes a simulated vehicle look like it carries a real GNSS
+receiver: from the antenna's true position sent over UDP by a simulator it
+computes, in real time, the fix a receiver would report there (real broadcast
+ephemerides, atmosphere, buildings, time-correlated errors, faults) and sends
+it as NMEA 0183 and UBX, as a u-blox M8 or M9, on a pty, serial, TCP or UDP
+port, so gpsd, an autopilot or an ECU reads it unchanged. gnssemu runs the
+same receiver offline over files.")
+set(CPACK_STRIP_FILES ON)  # the binaries without their symbol tables (debian-policy 10.1)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)

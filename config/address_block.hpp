@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // AddressBlock: an IPv4 or IPv6 address with a prefix length ("10.0.0.0/8",
 // "::1", "192.168.1.20"), as [truth] allow lists senders. IPv4 blocks also

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [atmosphere] and its sub-tables: what the world does to the signal.
 // Ranges and cross-field rules: the core atmosphere models'.
 #include <limits>

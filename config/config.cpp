@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // TOML <-> Config through the key tables (config_keys.hpp). Schema and
 // ranges: docs/configuration.md.
 #include "config/config.hpp"

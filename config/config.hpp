@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Typed gnssemu configuration, loaded from TOML with validation. Every bad
 // key, type or value is a gnssemu::Error naming "file:line: reason".

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The whole file: the root table, and [origin], [nav], [time], [truth],
 // [demo] and [log], whose settings are the configuration's own.
 #include "config/config_keys.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The key tables of a configuration file (fields.hpp): one Section per TOML
 // table, each next to the tables it nests. Adding a key is one row in the

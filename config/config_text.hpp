@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // parse_config and to_toml with a log of the keys read or written: the
 // tests compare the two logs with each other and with the documented keys.

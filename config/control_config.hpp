@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // [control]: the daemon's control socket (docs/daemon.md §Control socket):
 // JSON lines over a Unix socket for status and live fault injection.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The emulated u-blox's start-up settings from a configuration: every
 // [[output]] is one UART1 of one chip (docs/ports.md), set up as its

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Writes OUTPUT: a .cpp defining gnssemu::config::default_config_text() with
 # the contents of INPUT. Run with cmake -DINPUT=... -DOUTPUT=... -P embed_toml.cmake
 file(READ "${INPUT}" text)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Field descriptors: one row per TOML key of a configuration table, with
 // what the reader, the writer (to_toml) and the key tables of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Building footprint files (TOML, docs/scene.md): the text format of the
 // footprints core/scene extrudes, and the mesh loader that knows every mesh

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Names of the periodic messages a port can be configured to send, with their
 // u-blox class and id (CFG-MSG addresses): the configuration's view of the

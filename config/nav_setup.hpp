@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The nav data a configuration names ([nav] file, files, folder, almanac)
 // and the constellation they give a run starting at a given time

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [[output]]: one port of the emulated u-blox (docs/ports.md): its type
 // with the type's own keys, line rate, protocols and message set.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The emulated receiver of a Config: the one assembly path of the daemon,
 // `gnssemu batch` and every other caller that starts from a configuration.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [receiver] and its sub-tables: the receiver's own settings and the
 // world's error processes and oscillator. Ranges: the core's.
 #include <array>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Scenario files (TOML, docs/faults.md): a list of [[event]] tables, each
 //   start_s (s after the first epoch, or after "now" when injected),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [scene]: the buildings' mesh, its placement, the search effort and the
 // reflection losses (docs/scene.md). Ranges: core/scene's.
 #include "config/config_keys.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "config/scene_loader.hpp"
 
 #include "config/footprint_file.hpp"

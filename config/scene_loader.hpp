@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Load the configured scene (the pipeline's world takes it through
 // make_pipeline, config/pipeline_setup.hpp).

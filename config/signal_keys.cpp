@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [signal] and its sub-tables: link budget, C/N0, tracking thresholds, the
 // DLL. Ranges and cross-field rules: the core signal models'.
 #include "config/config_keys.hpp"

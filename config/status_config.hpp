@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // [status]: the daemon's live status page on HTTP (docs/status.md).
 #include <cstdint>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Checked access to one TOML table: typed getters with ranges, and a final
 // check that every key in the table was asked for (catches typos). Every

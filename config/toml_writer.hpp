@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // TOML text of a configuration (to_toml): section headers and key lines,
 // and the value texts that read back to exactly the written value.

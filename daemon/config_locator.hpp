@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Where gnssemud looks for its shipped default.toml when run without
 // --config (docs/daemon.md §Default configuration).

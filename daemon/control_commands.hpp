@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The control socket's commands (docs/daemon.md §Control socket). One JSON
 // object per line in, one per line out:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // ControlServer: the daemon's control socket (docs/daemon.md §Control
 // socket): a Unix stream socket created 0600, JSON lines in, one JSON line

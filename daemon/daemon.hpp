@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Daemon: the event loop of gnssemud — truth datagrams in, epochs on the
 // schedule, sentences out to every port (docs/daemon.md). One thread.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The daemon's fault scenario and control socket (docs/faults.md, docs/daemon.md
 // §Control socket): gnssemud --scenario, ctl status / inject / clear, and the
 // fault list the status page and ctl status show.

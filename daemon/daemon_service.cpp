@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Daemon: its service side — signals, SIGHUP reload, the once-a-second tick
 // (drop summaries, the status line), and the log lines a person acts on
 // (docs/daemon.md §Signals, §Reload, §Logs).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The daemon's hooks for the status page (docs/status.md): the server is
 // started with the ports and every epoch feeds the one StatusProducer.
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // DelayLine: a port's epochs and replies held back by a latency link fault
 // (docs/faults.md), released in the order they were sent: nothing leaves

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Built-in demo: a circle around the configured origin, counter-clockwise
 // seen from above, starting due east. Drives the receiver while no simulator sends.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Per-reason drop counters with a log rate limit: the first drop of a reason
 // is logged at once, later ones at most once per interval per reason as a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Epoch deadline arithmetic on absolute times: epoch k is due at
 // t0 + k / rate_hz, so timer jitter never accumulates into drift. Pure.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // FaultLog: when a fault event starts or ends (docs/daemon.md §Logs). The
 // daemon hands it the fault stage's status after every epoch and logs one

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // JsonWriter: appends compact JSON to a caller's string. Commas are placed
 // by the writer; numbers are written with a fixed number of decimals and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // LinkFaultStats: what the link faults did to one port (docs/faults.md §5),
 // counted by LinkFaults and shown per port by the status (docs/status.md).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // LinkFaults: a scenario's port events (type = "port", docs/faults.md "Link
 // faults") acting on the bytes of one output, as a bad line, a stuck

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // gnssemud: GNSS receiver emulator daemon. Usage: docs/daemon.md.
 #include <unistd.h>
 
@@ -16,6 +17,7 @@
 #include "config/nav_setup.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
+#include "daemon/build_info.hpp"
 #include "daemon/config_locator.hpp"
 #include "daemon/daemon.hpp"
 #include "daemon/status_setup.hpp"
@@ -145,7 +147,7 @@ int main(int argc, char** argv) {
                  "scenario file (TOML [[event]] list, docs/faults.md): faults from the first epoch on");
   app.add_flag("-v,--verbose", verbose, "debug logging");
   app.add_flag("--check-config", check_only, "load and validate the configuration, print a summary, exit");
-  app.set_version_flag("--version", std::string("gnssemud ") + GNSSEMU_VERSION);
+  app.set_version_flag("--version", daemon::version_line("gnssemud"));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "daemon/output_port.hpp"
 
 #include <termios.h>

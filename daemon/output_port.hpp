@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Output ports: the transports an emulated receiver talks on (docs/ports.md).
 // A port moves bytes only; what to send is decided by its PortChannel. Every

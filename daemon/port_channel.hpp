@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // PortChannel: the transport side of one output port, wired to UART1 of the
 // emulated u-blox (docs/ports.md). Input bytes go through the UBX/NMEA

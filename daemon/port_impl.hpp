@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Setup of each port type, defined with its port class in the type's file
 // (pty_port.cpp holds pty and file); internal to output_port.cpp.

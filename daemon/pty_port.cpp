@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Pseudo-terminal with a stable symlink to its slave side (docs/daemon.md).
 #include <fcntl.h>
 #include <grp.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // ReloadPlan: what a SIGHUP reload changes (docs/daemon.md §Reload). Applied
 // live: [log] level, [truth] allow / vehicle / timeout_s /

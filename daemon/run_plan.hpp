@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // What gnssemud runs on, decided before any port opens (and by
 // --check-config): the epoch clock's start and the satellites for it.

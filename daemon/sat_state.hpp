@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // One state per satellite for the sky plot, the C/N0 bars and the report
 // (docs/status.md): what a u-center user reads from the colours.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The daemon's scene: loaded once at start-up, what the mesh reader skipped
 // logged as a warning (count by reason and the first file:line).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Real UART through libserialport: 8N1, no flow control, reopened with
 // back-off when the device goes away (USB adapter unplugged). Baud changes
 // wait until the bytes already queued have left the line (docs/ports.md).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // SignalDispatch: what gnssemud does on each signal (docs/daemon.md
 // §Signals). Every signal whose default action ends the process is caught, so

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // StatusLine: the one-line health summary gnssemud logs every minute, on
 // SIGUSR1/SIGUSR2 and sends as the systemd STATUS= (docs/daemon.md §Logs):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // StatusProducer: the one source of the daemon's live status (docs/status.md):
 // the fix, every satellite with its state, the error against truth, truth

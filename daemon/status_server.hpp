@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // StatusServer: the status page on loopback HTTP (docs/status.md). Boost.Beast
 // on the daemon's io_context, so it shares the one thread with the epoch

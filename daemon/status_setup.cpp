@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "daemon/status_setup.hpp"
 
 #include <utility>  // before Asio: Boost 1.74 awaitable.hpp needs std::exchange

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The status producer's settings from a configuration, and where the page
 // listens (docs/status.md).

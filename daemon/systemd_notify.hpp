@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // SystemdNotify: the sd_notify(3) protocol for Type=notify units — READY=1
 // once ports and the truth socket are open, STATUS= lines, RELOADING=1 /

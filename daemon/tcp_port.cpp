@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // TCP server port: every client gets the stream; input from any client goes
 // to the port's responder and replies go back to that client only.
 #include <algorithm>

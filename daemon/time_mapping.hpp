@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Mapping between the clocks the daemon juggles: wall time elapsed since
 // start, GPS time of epochs (the clock runs on from its start, for days on

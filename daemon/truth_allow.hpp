@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // TruthAllowList: the senders [truth] allow accepts (addresses and CIDR
 // blocks; empty: any sender). Checked per datagram: no allocation.

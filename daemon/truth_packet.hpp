@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Truth datagram parser (docs/truth-protocol.md). A pure function: one UDP
 // payload in, one validated sample (ECEF, SI) or a drop reason out. Two

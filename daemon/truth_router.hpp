@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // TruthRouter: the tracks of all vehicles heard on the truth input, their
 // sim->GPS clock maps, and the choice of the vehicle that drives the receiver

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Transmit-side model of a u-blox UART: messages enter a finite TX buffer
 // that the line drains at baud / 10 bytes per second (8N1: start + 8 data +

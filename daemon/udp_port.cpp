@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // UDP output port: each epoch in datagrams of at most kMaxDatagramBytes,
 // split at message boundaries (a datagram never holds half a message).
 #include <boost/asio/ip/udp.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // VehicleTrack: what the truth input knows of one vehicle — its recent
 // samples (world::TruthTrack, live rule: brief extrapolation, then hold),

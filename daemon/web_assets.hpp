@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The status page and report assets (web/), and Chart.js from Debian's
 // libjs-chart.js, compiled into the binaries (web/embed_assets.cmake), so

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Installs the Debian packages gnssemu needs to build, run and test.
 # Only packages that are missing are installed; needs root (or sudo) when any is.
 set -euo pipefail
@@ -10,6 +11,7 @@ PKGS=(
   nlohmann-json3-dev zlib1g-dev libsystemd-dev
   gpsd gpsd-clients rtklib socat python3
   systemd dpkg-dev  # systemd-analyze (unit tests), dpkg-shlibdeps (cpack -G DEB)
+  lintian           # Debian's package checker on the built .deb (tools/package-deb-check.sh)
   libjs-chart.js chromium fonts-dejavu-core nodejs
   # gnssemu sweep's Slurm test: a one-node cluster on loopback (tools/slurm-local.sh)
   slurmctld slurmd slurm-client munge

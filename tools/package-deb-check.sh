@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Builds the .deb of a build tree (cpack -G DEB) and checks it without
-# installing on the machine: dpkg-deb contents, dpkg -x into a temp root,
-# --version, --check-config of the packaged /etc config and a 3 s run of the
-# packaged daemon (SIGTERM, exit 0). Prints size and contents. Usage:
+# installing on the machine: dpkg-deb contents, the copyright file (Debian's
+# machine-readable format, naming every third-party file installed), the
+# changelog, lintian (an error fails; warnings are printed), dpkg -x into a
+# temp root, --version, --check-config of the packaged /etc config and a 3 s
+# run of the packaged daemon (SIGTERM, exit 0). Prints size and contents. Usage:
 #   tools/package-deb-check.sh BUILD_DIR [--install]
 # --install also runs dpkg -i, the same checks on /usr/bin, then dpkg -P.
 set -euo pipefail
@@ -16,13 +19,35 @@ dpkg-deb -I "$deb" | sed -n 's/^ \(Package\|Version\|Depends\|Installed-Size\):/
 dpkg-deb -c "$deb" | awk '{print $6}' > "$tmp/contents"
 for f in ./usr/bin/gnssemud ./usr/bin/gnssemu ./lib/systemd/system/gnssemud.service ./lib/systemd/system/gnssemud@.service \
          ./etc/gnssemu/gnssemud.toml ./usr/share/gnssemu/default.toml ./usr/share/gnssemu/nav/brdc0010.22n \
-         ./usr/share/man/man8/gnssemud.8 ./usr/share/man/man1/gnssemu.1 ./usr/share/man/man5/gnssemud.toml.5; do
+         ./usr/share/man/man8/gnssemud.8.gz ./usr/share/man/man1/gnssemu.1.gz ./usr/share/man/man5/gnssemud.toml.5.gz \
+         ./usr/share/doc/gnssemu/copyright ./usr/share/doc/gnssemu/changelog.gz ./usr/share/doc/gnssemu/CHANGELOG.md; do
   grep -qx "$f" "$tmp/contents" || { echo "missing in the package: $f"; exit 1; }
 done
 echo "contents: $(wc -l < "$tmp/contents") entries, all expected files present"
 dpkg-deb --ctrl-tarfile "$deb" | tar -xO ./conffiles | grep -qx /etc/gnssemu/gnssemud.toml || { echo "no conffile"; exit 1; }
 grep -q "ExecStart=/usr/bin/gnssemud " <(dpkg-deb --fsys-tarfile "$deb" | tar -xO ./lib/systemd/system/gnssemud.service) ||
   { echo "unit does not run /usr/bin/gnssemud"; exit 1; }
+
+# The copyright file: DEP-5, and a Files paragraph for every installed file
+# that gnssemu did not write (the data under /usr/share/gnssemu/nav).
+dpkg-deb --fsys-tarfile "$deb" | tar -xO ./usr/share/doc/gnssemu/copyright > "$tmp/copyright"
+head -1 "$tmp/copyright" | grep -qx "Format: https://www.debian.org/doc/packaging-manuals/copyright-format/1.0/" ||
+  { echo "copyright: not in Debian's machine-readable format"; exit 1; }
+for f in $(grep '^\./usr/share/gnssemu/nav/.' "$tmp/contents" | grep -v '/$'); do
+  grep -q "^Files: .*config/nav/$(basename "$f")" "$tmp/copyright" ||
+    { echo "copyright: no Files paragraph for $f"; exit 1; }
+done
+echo "copyright: DEP-5, $(grep -c '^Files:' "$tmp/copyright") Files paragraphs, every installed nav file listed"
+lintian_status="lintian missing (tools/install-deps.sh installs it): not run"
+if command -v lintian >/dev/null; then
+  # Exit status 2 is lintian's own failure; errors are counted from its tags.
+  lintian --tag-display-limit 0 "$deb" > "$tmp/lintian" 2>&1 || [ $? -eq 1 ] || { cat "$tmp/lintian"; exit 1; }
+  sed 's/^/  /' "$tmp/lintian"
+  errors=$(grep -c '^E: ' "$tmp/lintian" || true)
+  lintian_status="lintian: $errors errors, $(grep -c '^W: ' "$tmp/lintian" || true) warnings"
+  echo "$lintian_status"
+  [ "$errors" -eq 0 ] || exit 1
+fi
 
 check_root() {  # ROOT PREFIX: the packaged binaries and config under ROOT
   local root="$1" conf="$tmp/run.toml"
@@ -51,4 +76,5 @@ if [ "$install" = "--install" ]; then
   dpkg -P gnssemu >/dev/null  # purge: the conffile goes too
   echo "dpkg -P: removed"
 fi
+case "$lintian_status" in lintian\ missing*) echo "$lintian_status; the other checks passed: skipped"; exit 77 ;; esac
 echo "1 passed, 0 failed"

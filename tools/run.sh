@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Install what is missing, build gnssemu in Release (build/), run the daemon.
 #   tools/run.sh                  # the embedded default: demo trajectory, NMEA on /tmp/gnssemu/gps0
 #   tools/run.sh --config my.toml # any gnssemud arguments are passed through

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Install what is missing, then three timed stages (docs/robustness.md §CI):
 #   1. build/       Release, gcc, warnings as errors; and build/fuzz, the clang
 #                   libFuzzer build (tests/fuzz/fuzz.sh build)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Writes OUTPUT: a .cpp defining gnssemu::web::assets() with the files named
 # in LIST (lines "url|type|path", type html, js or css), each as one raw
 # string. Run with cmake -DLIST=... -DOUTPUT=... -P embed_assets.cmake

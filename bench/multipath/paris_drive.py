@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Truth trajectory for the Paris evidence drive (docs/benchmarks.md).
 
 Avenue de la Grande Armee -> Place Charles de Gaulle ring (counter-clockwise,

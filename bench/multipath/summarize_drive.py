@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Per-epoch summary of a `gnssemu batch --errors` CSV (with or without scene columns)."""
 import csv
 import math

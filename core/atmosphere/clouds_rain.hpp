@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Cloud and fog layers (ITU-R P.840 Rayleigh absorption by liquid water) and
 // rain (ITU-R P.838-3 specific attenuation) along the slant path. At L1 both

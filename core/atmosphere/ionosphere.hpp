@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // World ionosphere: the delay the signal really suffers (the receiver only
 // knows its broadcast Klobuchar model). Vertical TEC from a configured value

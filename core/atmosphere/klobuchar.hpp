@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Klobuchar broadcast ionosphere model (IS-GPS-200 §20.3.3.5.2.5, Fig. 20-4).
 // Angles inside the algorithm are semicircles; the interface is radians.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // What a receiver subtracts from its pseudoranges: the broadcast Klobuchar
 // ionosphere and a standard-atmosphere troposphere. Plain functions so that

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Atmosphere as concentric spherical shells on a spherical Earth: slant path
 // length through each shell and the gaseous (oxygen + water vapour)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Per-satellite cache of slowly varying terms (iono and tropo delay,
 // attenuation): recomputed every refresh_s seconds, in between either held or

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Tropospheric delay: standard atmosphere, Saastamoinen zenith delays, the
 // seed's exponential zenith hydrostatic delay, and the Niell (1996) mapping

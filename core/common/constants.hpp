@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Physical and GPS constants. Sources: IS-GPS-200 Table 20-IV, WGS-84
 // (NIMA TR8350.2). See shared/reference/gps-orbits.md §1.

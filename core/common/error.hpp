@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // gnssemu::Error — the one exception type, thrown only at load time
 // (files, configs, command lines). The per-epoch path never throws.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The system table: one row of facts per satellite system, in the style of
 // RTKLIB's per-system tables, so that a system is a row and not a hunt.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/common/line_source.hpp"
 
 #include <zlib.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Text files read one line at a time, plain or gzip, with limits, so a
 // reader checks a file's first line before it has read the rest and a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Range: the valid interval of one configuration number and its unit. The
 // core validator of a setting checks against it and the config layer reads,

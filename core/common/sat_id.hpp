@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Satellite identity: one SatId {system, number} for every layer, numbered as
 // RINEX 3 numbers satellites (G05, R12, E30, C19, J02 = QZSS PRN 194, S23 =

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Fields of fixed-column and token-based text formats (RINEX, YUMA, SEM).
 // The parse functions only parse; ColumnReader adds the file:line context

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Small 3-vector and frame-tagged positions. Frames are distinct types so an
 // ENU vector cannot be passed where an ECEF one is expected.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Violation: a broken cross-field rule of one settings struct, what its
 // ...Ranges cannot say (e.g. lose_dbhz <= acquire_dbhz). Each rule is one

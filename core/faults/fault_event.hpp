@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // FaultEvent: one scripted fault of a scenario (docs/faults.md): its type,
 // when it acts, and its parameters, each a constant or a linear ramp over

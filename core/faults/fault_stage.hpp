@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // FaultStage: the faults of a scenario applied to the world's observables
 // before the receiver sees them (DESIGN.md §1 step 6). Faults act on the

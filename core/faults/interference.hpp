@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Interference at the antenna: the jammer's power, its effect on each
 // satellite's C/N0 and on the front end's noise floor.

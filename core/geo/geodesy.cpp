@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/geo/geodesy.hpp"
 
 #include <GeographicLib/Config.h>

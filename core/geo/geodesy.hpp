@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // WGS-84 geodetic <-> ECEF conversions and satellite look angles, through
 // GeographicLib::Geocentric (the only geodesy implementation in the project).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Geoid height N (EGM2008) from an embedded 5 deg x 5 deg grid, so that the
 // receiver can report MSL height H = h - N as a real receiver does (NMEA GGA

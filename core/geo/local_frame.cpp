@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/geo/local_frame.hpp"
 
 #include "core/geo/geodesy.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // LocalFrame: the simulator's level frame — east/north/up metres from a
 // configured geodetic origin (the "game-level" frame of CARLA, Unreal, Gazebo).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Contents of a RINEX observation file, every satellite system of the
 // SatId table (G R E C J S): header facts a positioning tool needs and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // RINEX 2.10/2.11 and 3.00-3.05 observation file reader, every system of
 // the SatId table (G R E C J S; others, e.g. NavIC, skipped and counted).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // GPS almanacs: YUMA (radians) and SEM (semicircles) readers and almanac
 // propagation (IS-GPS-200 §20.3.3.5.2.1). Km-level: for visibility only.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/orbit/constellation.hpp"
 
 #include <algorithm>

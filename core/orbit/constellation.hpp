@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The satellites a run flies, for the run's own dates, from the data there
 // is (docs/models.md §Orbits for any date): nav files used as they are, the

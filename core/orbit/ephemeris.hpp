@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Broadcast ephemeris of every system and its evaluation to ECEF position,
 // velocity and clock. One struct for all systems, so every caller holds a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // EphemerisStore: per satellite, the ephemeris whose toe is nearest to the
 // requested time and within its validity window (RTKLIB seleph/selgeph/

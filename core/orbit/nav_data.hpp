@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Contents of a navigation message file: the ephemerides of every system
 // plus the header's broadcast ionosphere, UTC, GLONASS time correction and

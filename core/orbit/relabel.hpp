@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Broadcast data moved in time with the orbits' ECEF geometry unchanged:
 // the satellites stand Δ later where they stood before (docs/models.md

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // RINEX 2.10/2.11 and 3.x navigation file reader for every system in the
 // system table: RINEX 3 mixed (M) or single-system files (G, R, E, C, J, S

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Pipeline: the emulated receiver in its world, as every caller runs it —
 // vehicle truth in, the receiver's Fix out. The world makes the observables

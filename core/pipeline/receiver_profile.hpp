@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Receiver profiles: the error model of the world and the emulated
 // receiver's antenna and code loop for one kind of device, each with its

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Acquisition and reacquisition: per satellite channel a search, then
 // tracking with lose hysteresis, then the broadcast ephemeris download; and

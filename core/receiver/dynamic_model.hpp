@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Dynamic platform models of a u-blox receiver (CFG-NAV5 dynModel): what the
 // navigation filter assumes about the vehicle's motion (its process noise)

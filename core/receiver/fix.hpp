@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Fix: everything one receiver epoch produces. Every protocol encoder reads
 // only this, so satellites used, DOP, accuracy and C/N0 agree across outputs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Carrier smoothing of code for one satellite (R. Hatch, "The synergism of
 // GPS code and carrier measurements", 1982): the smoothed pseudorange follows

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Navigation Kalman filter: ECEF position and velocity, clock bias and drift
 // (8 states, constant-velocity motion with white acceleration, a two-state

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Navigator: the receiver's filtered navigation (NavFilterType::kKalman).
 // Starts the Kalman filter from a snapshot solution, then each epoch

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Receiver: the emulated receiver's own processing of the world's
 // observables at one epoch (DESIGN.md §1, steps 7-9): acquisition and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // ReceiverConfig: what the emulated receiver itself is set to: its mask,
 // channels, tracking thresholds and its own solver with its broadcast

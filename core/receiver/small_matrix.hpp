@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Fixed-size symmetric positive-definite solves for the 4-state least
 // squares problems (no allocation).

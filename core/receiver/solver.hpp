@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Receiver-side navigation solver: broadcast satellite clock (relativity
 // included) minus TGD, Sagnac, weighted least squares (Gauss–Newton) for

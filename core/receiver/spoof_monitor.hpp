@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Spoofing detection of the emulated receiver, reported as u-blox does in
 // NAV-STATUS flags2 spoofDetState (0 unknown, 1 no spoofing indicated,

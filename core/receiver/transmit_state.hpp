@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The satellite at the time it sent a code measurement, as a receiver derives
 // it from the pseudorange (IS-GPS-200 §20.3.3.3.3.1-2): the receiver's own

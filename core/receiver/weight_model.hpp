@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The solver's pseudorange variance (weights 1 / sigma^2): the configured
 // WeightModel plus the variance of what the receiver's broadcast corrections

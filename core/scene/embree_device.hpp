@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Embree device lifetime. The scene module (buildings, multipath) builds on
 // this; embree_version() proves the Embree link and names the library version.

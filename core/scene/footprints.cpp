@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Extruded building footprints: a canyon sketched without a modeller.
 #include "core/scene/footprints.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Building footprints extruded into a closed mesh (docs/scene.md): the
 // geometry of the footprint format. Its text (TOML) is parsed above core

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Triangle mesh in the local ENU frame of the configured origin, and the
 // readers that produce it (Wavefront OBJ, PLY ascii/binary; building

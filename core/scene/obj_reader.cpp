@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Wavefront OBJ geometry subset (Wavefront "Object Files (.obj)", Appendix B1
 // of the Advanced Visualizer manual): v, f, usemtl.
 #include <charconv>

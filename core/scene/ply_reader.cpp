@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PLY polygon files (Greg Turk, "The PLY Polygon File Format", 1994):
 // header, then elements in header order; ascii or binary (either endianness).
 #include <algorithm>

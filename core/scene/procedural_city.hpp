@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Procedural city for benchmarks: a Manhattan grid of blocks, each split into
 // 2 x 2 buildings of deterministic pseudo-random heights, with facades

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Propagator: per-satellite signal path from the scene for one receiver.
 // Line of sight first (one occlusion ray per satellite); only blocked

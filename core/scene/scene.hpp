@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Scene: the building mesh in an Embree BVH (float32, local ENU of the
 // configured origin). Immutable after construction; queries are const,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Code-tracking thermal noise of a delay lock loop.
 #include "core/common/constants.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // L1 C/A link budget: satellite EIRP, free-space loss, atmospheric losses,
 // receive antenna gain versus elevation, thermal noise density, receiver

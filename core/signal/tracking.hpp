@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Acquisition and tracking thresholds with hysteresis: a satellite is
 // acquired once C/N0 >= acquire_dbhz and kept until C/N0 < lose_dbhz.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Descriptive statistics of sample series for the offline tools (batch
 // summaries, calibration against a real receiver): mean, RMS, spread,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // GpsTime: GPS system time as (continuous week, time of week). No leap
 // seconds inside GPS time; UTC conversion lives in utc.hpp.

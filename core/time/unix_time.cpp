@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/time/unix_time.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Unix time (POSIX: seconds since 1970-01-01 00:00:00 UTC, leap seconds not
 // counted) <-> GPS time, through UTC and the leap-second table of utc.hpp.

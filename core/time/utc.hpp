@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // UTC <-> GPS time with leap seconds (GPS - UTC, IERS Bulletin C history).
 // A leap-second count from a navigation file header overrides the table.

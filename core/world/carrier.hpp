@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Carrier phase and Doppler of one satellite signal as a receiver's loops
 // measure them: PLL phase jitter and Costas half-cycle slips from C/N0, FLL

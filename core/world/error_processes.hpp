@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // World-side error processes: first-order Gauss–Markov residuals and the
 // receiver's free-running clock. Pure functions of their inputs and a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // MeasurementNoise: how much white noise the world puts on a pseudorange and
 // a range rate at a given C/N0 (errors.thermal_model, signal.dll,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Observables: what the world hands the receiver at one epoch (DESIGN.md §1,
 // the line between step 6 and step 7): per satellite the geometry, the

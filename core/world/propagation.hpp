@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Propagation stage of the world (DESIGN.md §1, step 3): what happens to one
 // satellite's signal between the satellite and the antenna. The atmosphere

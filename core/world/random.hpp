@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Counter-based random numbers: every draw is a pure function of
 // (seed, stream, epoch index, purpose), so one satellite's noise never

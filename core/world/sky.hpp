@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // World-side geometry of one satellite seen from the true antenna position:
 // light-time iteration, Sagnac rotation, look angles and range rate

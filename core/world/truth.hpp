@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Vehicle truth at the antenna: what the world is computed for. The receiver
 // never sees it; it sees only the observables the world makes of it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // TruthTrack: a vehicle's truth samples in time order, and its truth at any
 // time between them by linear interpolation (velocity interpolated when the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // World: the signals at the antenna of a vehicle, for one epoch at a time
 // (DESIGN.md §1, steps 1-5): sky (ephemeris, light time, Sagnac) ->

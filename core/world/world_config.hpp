@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // WorldConfig: what happens to the signals between the satellites and the
 // antenna (DESIGN.md §1, steps 1-5): error processes, the receiver

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Builds and runs the libFuzzer targets of tests/fuzz (docs/robustness.md).
 #
 #   fuzz.sh build [--build-dir DIR]                 clang build of the fuzz targets (default build/fuzz)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // GPS almanacs: the same bytes through the YUMA and the SEM reader (each
 // rejects the other's layout quickly). Oracles: errors are gnssemu::Error
 // naming the file; accepted entries are finite and in range, and so is the

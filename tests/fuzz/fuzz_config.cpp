@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The TOML configuration through config::parse_config, as gnssemud
 // --check-config reads it. Oracles: errors are gnssemu::Error naming the
 // file; an accepted config writes back (to_toml) to a text that reads back

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Building footprint files (TOML, docs/scene.md) through config::load_mesh:
 // config parses the text, core/scene extrudes it; oracles in mesh_checks.hpp.
 #include "config/footprint_file.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PLY meshes through scene::load_mesh; oracles in mesh_checks.hpp.
 #include "fuzz_support.hpp"
 #include "mesh_checks.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RINEX 2/3 observation files (plain or gzip, as gnssemu spp and calibrate
 // read them) through read_rinex_obs; oracles in obs_checks.hpp.
 #include <string>

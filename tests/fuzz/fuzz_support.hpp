@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Shared pieces of the fuzz targets (docs/robustness.md): an input splitter,
 // the oracle that turns a broken promise into a crash libFuzzer reports, and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Truth datagrams (JSON and the binary record) through parse_truth_packet
 // and, when accepted, a truth router. Oracles: a drop has a reason and a
 // detail; an accepted sample obeys docs/truth-protocol.md §Validation; the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Host input to the emulated u-blox: bytes through one StreamDecoder per
 // output into Device::handle_ubx / handle_nmea, on one to three outputs
 // (and, on output 0, as seen from the chip's other ports), an M8 or an M9, with navigation

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Writes the hand-made seed inputs (corpus/<target>/) and dictionaries
 (dict/<target>.dict) of the fuzz targets: what tests/data lacks (truth
 packets, host command sequences, gzip and binary variants) and the keywords

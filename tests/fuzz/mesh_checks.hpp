@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The promises of every mesh reader (core/scene/mesh.hpp), for the OBJ, PLY
 // and footprint fuzz targets.

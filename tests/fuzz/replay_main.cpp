@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Runs a fuzz target's LLVMFuzzerTestOneInput over files, without libFuzzer:
 // every build replays the seeds and the inputs of fixed bugs (ctest
 // fuzz_replay.*). Arguments: files, or folders whose files are read in name

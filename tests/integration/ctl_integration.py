@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Live faults through gnssemud's control socket, seen by a real gpsd
 (docs/faults.md, docs/daemon.md §Control socket).
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """gnssemu batch --scenario, decoded by real programs: gpsdecode reads the
 UBX stream of a scripted outage, jammer and takeover (TPV mode falls to 1 and
 comes back), and the M8's own indicators are read from the frames: MON-HW

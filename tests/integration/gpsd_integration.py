@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """gnssemud + gpsd end-to-end test (docs/daemon.md §Integration test).
 
 Starts gnssemud on a temporary config (pty symlink in a temp dir, free UDP

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Shared pieces of the integration tests: free loopback ports, and a rig
 that owns its processes and temp dir and tears them down even on failure."""
 import argparse

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Issue 11: in batch and lockstep the same scenario, seed and truth give
 byte-identical output. One config (a `file` output carrying NMEA and UBX),
 one truth trajectory with GPS time, one scenario; `gnssemu batch` writes its

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """The M9's jamming report through a real gpsd (docs/faults.md §gpsd,
 docs/ubx.md §Generations).
 

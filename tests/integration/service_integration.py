@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """gnssemud as a service (docs/daemon.md §Signals, §Reload, §Logs, §systemd):
 signals and reload, the sd_notify protocol, drop summaries, the allow list
 and the driving vehicle, a late pty reader, idle tcp clients. Each case

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """gnssemu spp against RTKLIB's rnx2rtkp (single point) on real observations.
 
 Both solve the same RINEX observation file with the same broadcast nav file,

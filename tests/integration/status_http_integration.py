@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """gnssemud's status page against hostile and slow HTTP clients
 (docs/status.md §Tests): while junk, huge headers, a slow sender, a stream
 that is never read and more connections than the limit hit the server, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The status page in a real headless browser (Debian's chromium through
 // playwright-core): gnssemud on free ports, the page loaded once, live data
 // must arrive without a reload, and the DOM must show the same satellites and

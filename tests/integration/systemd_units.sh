@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # systemd-analyze verify and security of the shipped units, the binary of
 # this build in ExecStart. Usage: systemd_units.sh UNIT_DIR GNSSEMUD MAX_EXPOSURE
 set -eu

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Binary truth end to end (docs/truth-protocol.md §Binary record).
 
 Starts gnssemud on a temporary config (NMEA on a pty in a temp dir, free UDP

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Truth senders (docs/truth-protocol.md): binary truth from the C++ sender
 # through gnssemud to NMEA on a pty, and the CARLA example's self-test.
 # Included from tests/integration/CMakeLists.txt, after Python3 is found.

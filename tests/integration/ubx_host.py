@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The host side of a u-blox line for the integration tests: UBX framing, a
 timed message stream, and PX4's and ArduPilot's UBX start-up sequences as
 their drivers send them (docs/ports.md §Tests).

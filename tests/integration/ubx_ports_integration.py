@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """gnssemud as a u-blox M8 on real ports, end to end (docs/ports.md §Tests).
 
 Cases (each bounded, every process killed and the temp dir removed on exit):

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """PX4's and ArduPilot's UBX start-up while faults run (cases of
 ubx_ports_integration.py, docs/ports.md §Tests, docs/faults.md).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Include rules between the project's folders: each folder is a layer that
 // may include its own headers and those of the layers it uses (and theirs);

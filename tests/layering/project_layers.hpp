@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The project's layer table (docs/architecture.md draws it).
 #include "include_rules.hpp"

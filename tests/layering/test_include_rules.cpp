@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The include checker itself: planted bad includes must be found, with the
 // file and line, and good ones must pass.
 #include <gtest/gtest.h>

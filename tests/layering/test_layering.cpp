@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every #include in core/, config/, daemon/, tools/, bench/ and tests/
 // points down the layer table (project_layers.cpp, docs/architecture.md).
 #include <gtest/gtest.h>

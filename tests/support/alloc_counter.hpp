@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Counts calls to the global operator new of the executable that links
 // gnssemu_alloc_counter (it replaces operator new/delete). Used by tests and

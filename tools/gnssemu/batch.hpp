@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // `gnssemu batch`: the daemon's code path (config -> ephemeris store ->
 // make_pipeline -> encoders) run over a truth trajectory faster than real time.

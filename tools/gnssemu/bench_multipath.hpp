@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // `gnssemu bench multipath`: time per epoch of the scene stage for a sweep of
 // search effort (rays, bounces, reuse thresholds), next to the error each

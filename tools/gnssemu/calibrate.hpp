@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // `gnssemu calibrate`: fit the world's error model to real receivers at
 // known positions, one or several station-days pooled (docs/cli.md,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The fits of `gnssemu calibrate` (docs/cli.md, method steps 2-5) on
 // residuals of one or several station-days: the mean common terms, the

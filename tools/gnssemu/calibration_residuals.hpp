@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Pseudorange residuals of a real receiver at a known antenna position, the
 // input of `gnssemu calibrate` (docs/cli.md, method step 1): C1C minus the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "tools/gnssemu/cli.hpp"
 #include "tools/gnssemu/ctl.hpp"
 

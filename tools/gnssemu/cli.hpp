@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The gnssemu command line (docs/cli.md). The executable is a thin main()
 // around run_cli(); tests drive run_cli() with string streams.

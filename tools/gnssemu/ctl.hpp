@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // `gnssemu ctl --socket PATH status | inject FILE | clear`: one request to a
 // running gnssemud's control socket (docs/daemon.md §Control socket), its

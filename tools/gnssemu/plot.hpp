@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // `gnssemu plot`: the HTML report (report.hpp) from files a run left behind:
 // batch's --errors and --sats CSVs, a `bench multipath` CSV, and a real

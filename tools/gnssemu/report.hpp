@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The HTML report of a run (docs/cli.md §Report): `gnssemu batch --report DIR`
 // and `gnssemu plot`. One self-contained file, DIR/report.html: Chart.js,

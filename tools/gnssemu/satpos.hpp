@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // `gnssemu satpos`: broadcast satellite states at one GPS time.
 #include <ostream>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // `gnssemu batch --sats FILE`: per epoch and satellite in view (above the
 // horizon with a healthy ephemeris) `gps_week,tow_s,sat,prn,az_deg,el_deg,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // A station-day as the world makes it: for every epoch of a real
 // observation file, the world's code pseudoranges and C/N0 at the station's

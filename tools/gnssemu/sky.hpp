@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // `gnssemu sky` and `gnssemu dop`: what a receiver at a fixed site sees at one
 // instant, through the receiver module's own geometry and DOP code.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // `gnssemu spp`: single-point positioning from real RINEX observations (C1C)
 // through the emulated receiver's own solver and corrections

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Truth trajectory CSV for `gnssemu batch`: one header line, columns read by
 // name (docs/cli.md). Positions as lat_deg,lon_deg,height_m or x_m,y_m,z_m;

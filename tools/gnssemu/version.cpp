@@ -1,12 +1,14 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "tools/gnssemu/version.hpp"
 
 #include "core/geo/geodesy.hpp"
 #include "core/scene/embree_device.hpp"
+#include "daemon/build_info.hpp"
 
 namespace gnssemu::cli {
 
 void write_version(std::ostream& out) {
-  out << "gnssemu " << GNSSEMU_VERSION << '\n'
+  out << daemon::version_line("gnssemu") << '\n'
       << "Embree " << scene::embree_version() << '\n'
       << "GeographicLib " << geo::geographiclib_version() << '\n';
 }

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Cross-check satpos_reference.py against RTKLIB (third-party implementation).
 
 RTKLIB's rnx2rtkp (Debian package rtklib, 2.4.3 b34) prints, at debug trace

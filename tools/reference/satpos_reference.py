@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Independent GPS broadcast-ephemeris satellite-state reference.
 
 This is deliberately a SECOND CODE PATH for checking the C++ orbit module

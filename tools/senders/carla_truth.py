@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """CARLA -> gnssemud: the ego vehicle's GNSS antenna as truth, every tick.
 
   carla_truth.py [--carla-host H] [--carla-port 2000] [--role-name hero | --actor-id ID]

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // send_truth: sends binary truth records (docs/truth-protocol.md §Binary
 // record) to gnssemud over UDP, paced on an absolute schedule at up to
 // 1 kHz, and reports what it sent. Exit 0; 2 on a bad command line; 1 when

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Example truth sender for gnssemud (docs/truth-protocol.md). Stdlib only.
 
   send_truth.py static --lat 48.8738 --lon 2.295 --height 100

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Trajectories the C++ sender replays (docs/truth-protocol.md §C++ sender):
 // a circle around the configured origin and a CSV file in the format of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Encoder of the binary truth record, version 1 (docs/truth-protocol.md
 // §Binary record). Standard library only, so a simulator can copy this one

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // flood_truth: floods gnssemud's truth port with good and bad datagrams at
 // up to millions of packets per second (docs/robustness.md §Flood), for
 // tools/soak/soak.py flood. Good packets are vehicle "ego" on a circle

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Soak and flood runs of gnssemud (docs/robustness.md). Prints figures; not a test.
 
   soak.py soak  [--duration S] [--rate-hz 10] [--truth-hz 100] [--sample-s S]

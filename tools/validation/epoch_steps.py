@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Epoch-to-epoch behaviour of a static receiver: ours against real u-blox logs.
 
 For each source it prints the median and 95th percentile of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // errmodel_validation: does the fitted error model hold on a station it has
 // never seen? (docs/validation.md, "An error model that holds on unseen
 // stations".) For every station, `gnssemu calibrate`'s pooled fit on the

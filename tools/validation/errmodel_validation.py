@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Run build/tools/validation/errmodel_validation on every real station-day
 of ../shared/data (tools/validation/station_days.py): leave one station out
 and the half day ahead at NYA1 (docs/validation.md, "An error model that

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """gnssemu spp against RTKLIB rnx2rtkp on every real station-day of
 ../shared/data (docs/validation.md, "Our single-point solution against
 RTKLIB"): one row per day with the per-epoch 3D difference (median, 95th

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The real station-days of ../shared/data (provenance: its README.md) that
 the error-model validation and the RTKLIB comparison run on: observation
 file, the same day's broadcast nav file, and the antenna reference point

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """C/N0 against elevation of real u-blox receivers with their (patch)
 antennas, from the logs in ../shared/data/receiver-logs: GPS satellites of
 NMEA GSV (elevation, SNR) and UBX NAV-SAT (elev, cno). Prints per log the

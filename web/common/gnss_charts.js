@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Charts shared by the live status page and the HTML report (docs/status.md).
 // Everything is drawn by Chart.js 3 (Debian libjs-chart.js); the sky plot is a
 // scatter chart in polar projection (radius = 90 deg - elevation) whose rings

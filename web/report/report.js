@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The HTML report of `gnssemu batch --report` and `gnssemu plot` (docs/cli.md
 // §Report): renders the JSON in #report-data with the shared charts.
 'use strict';

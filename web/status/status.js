@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The live status page (docs/status.md): /api/status once for the history,
 // then one status per epoch from /api/events (server-sent events). Renders
 // only what that JSON carries.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // NMEA 0183 encoder formatted like a u-blox M8 / NEO-M9N
 // (shared/reference/nmea0183.md, multi-gnss.md §7). One Fix in, one epoch

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // NMEA 0183 framing and u-blox number formats (shared/reference/nmea0183.md
 // §1, §5). Builds one sentence in a fixed stack buffer: no allocation.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The NMEA sentences the encoder writes: one table, indexed by Sentence, in
 // u-blox epoch output order (shared/reference/nmea0183.md §6; GNS before GGA

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // UTC of an epoch as NMEA prints it: hhmmss.ss and the date, rounded to
 // 0.01 s with the carry taken through seconds, minutes, hours and the date.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // ReportedFix: a fix type as a port reports it, numbered as UBX NAV-PVT
 // fixType (u-blox M8 protocol specification, UBX-NAV-PVT; NAV-STATUS and

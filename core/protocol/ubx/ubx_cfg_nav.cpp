@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CFG-RATE, CFG-NAV5 and CFG-GNSS: the navigation settings of the chip
 // (UBX-13003221 CFG-RATE, CFG-NAV5, CFG-GNSS).
 #include <algorithm>

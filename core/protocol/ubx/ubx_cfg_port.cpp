@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CFG-PRT and CFG-MSG: port settings and message rates (UBX-13003221
 // CFG-PRT, CFG-MSG). Port ids are the host's view: port 1 is its own UART1.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CFG-CFG and CFG-RST: the saved configuration and resets (UBX-13003221
 // CFG-CFG, CFG-RST). The configuration is the whole chip's, every UART1
 // included: a host saves, loads and resets them all.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CFG messages the emulated M8 keeps verbatim and returns on poll: the
 // generic ones (handle_cfg_stored, lengths in the handler table) and those
 // with an index or a poll form of their own (UBX-13003221 CFG-TP5, CFG-INF,

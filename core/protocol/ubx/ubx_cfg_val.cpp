@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CFG-VALSET, CFG-VALGET and CFG-VALDEL: the configuration interface of
 // protocol 27 and later (u-blox ZED-F9P Interface Description UBX-18010854
 // §5.9 UBX-CFG-VALDEL/VALGET/VALSET, §6 configuration keys and layers). An

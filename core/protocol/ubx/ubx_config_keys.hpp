@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The configuration keys of the M9's CFG-VALSET/VALGET/VALDEL interface, one
 // table: each key's id, u-blox name and where its value lives in a

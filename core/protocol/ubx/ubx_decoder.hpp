@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Streaming decoder for the receive side of a port: UBX frames and NMEA
 // sentences (host commands such as $PUBX,41) interleaved with garbage, as a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Device: the one emulated u-blox M8 behind every output of the emulator.
 // Each output is a UART1 of this chip (a host on any output configures "its"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The configuration one emulated M8 keeps: per-port settings (CFG-PRT),
 // message rates per port (CFG-MSG), CFG-RATE, CFG-NAV5, and the stored

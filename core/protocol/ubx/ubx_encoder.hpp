@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // UBX output encoders of a u-blox M8 (protocol 18-23) and M9 (protocol 32,
 // ubx_generation.hpp). Every message reads

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // UBX frame: sync B5 62, class, id, U2 length (LE), payload, 8-bit Fletcher
 // checksum over class..payload (u-blox M8 Receiver Description UBX-13003221,

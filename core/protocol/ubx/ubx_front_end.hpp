@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // What the emulated chip's RF front end and its monitors report, derived
 // once from the Fix for MON-HW (M8, M9), MON-RF and SEC-SIG (M9): noise

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The u-blox hardware generation the emulated chip presents. It decides what
 // MON-VER says, which configuration interface answers (an M8 NAKs CFG-VAL*,

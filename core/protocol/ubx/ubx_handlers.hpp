@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // One handler per UBX input message the emulated M8 answers (gpsd's
 // ubx_msg_* shape): each checks its payload, changes the configuration and

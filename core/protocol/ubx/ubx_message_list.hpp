@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // MessageList: the messages one port sends in an epoch, framed and in send
 // order, in one buffer, each with the name logs and drop counts use. Lets a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The periodic UBX messages the emulated chip sends, named once: their ids,
 // where an epoch carries them, whether a port's configuration lists them and

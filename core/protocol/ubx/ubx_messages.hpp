@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // UBX wire structs for u-blox M8 (protocol 18-23): packed, little-endian, the
 // u-blox field names and scalings of UBX-13003221 §32 (shared/reference/ubx.md

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The ports of a u-blox M8 as UBX addresses them: port ids (CFG-PRT portID,
 // CFG-MSG rate columns), protocol mask bits and the UART rates the

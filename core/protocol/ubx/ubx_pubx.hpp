@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // u-blox proprietary NMEA input commands (UBX-13003221 §31.3): PUBX,41 sets
 // a port's protocols and baud, PUBX,40 sets NMEA message rates per port.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // CFG-RST (UBX-13003221 CFG-RST): which reset a host asked for and what it
 // means for the emulated chip. The one place reset modes are interpreted.

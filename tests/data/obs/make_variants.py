@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Derive the small parser test files in this folder from the real NYA1 file.
 
 Writes (values copied unchanged from NYA100NOR_S_20241240000_90M_30S_MO.rnx):

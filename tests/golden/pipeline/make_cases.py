@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Writes config.toml and truth.csv of every pipeline golden case.
 
 The expected files are written by the test itself:

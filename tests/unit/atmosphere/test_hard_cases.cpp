@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Sweep over the hard cases (DESIGN.md §5): no NaN, no negative delay or loss, and no
 // heap allocation while evaluating.
 #include <gtest/gtest.h>

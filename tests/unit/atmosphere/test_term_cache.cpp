@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The per-satellite slow-term cache: behaviour, and the error it costs on real
 // geometry (brdc0010.22n, all satellites above 5 deg over two hours at 1 Hz).
 #include <gtest/gtest.h>

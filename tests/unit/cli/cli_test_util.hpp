@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Helpers for the gnssemu CLI tests: run the CLI in-process and read its CSV
 // by column name, as consumers do.

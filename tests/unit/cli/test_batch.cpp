@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // gnssemu batch: the daemon's code path over static and moving truth on real
 // broadcast ephemerides; error statistics, NMEA validity, determinism.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // gnssemu batch --scenario: faults between world and receiver in the
 // daemon's code path; byte-identical output for the same scenario, seed and
 // truth; the receiver's own hAcc/vAcc beside the true error.

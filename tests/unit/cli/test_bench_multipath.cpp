@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // tools/gnssemu/bench_multipath: the multipath benchmark's sweep and its figures.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // gnssemu calibrate on several station-days at once: --obs/--nav/--station
 // once per day, one pooled fit, per-day SPP rows, a day column in the
 // residuals; mismatched counts are an error.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // gnssemu calibrate recovers the error model it is given: the world with
 // known processes makes three NYA1 days (the real day's epochs and
 // geometry, three seeds), and the pooled fit of those gives the processes

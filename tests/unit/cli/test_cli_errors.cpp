@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every bad input: a clear message on stderr naming the culprit, nothing on
 // stdout beyond what was already valid, and a non-zero exit status.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // gnssemu ctl without a daemon: usage errors exit 2, an absent socket or an
 // unreadable file exit 1 naming it (the live exchange is tested with a real
 // gnssemud in tests/integration/ctl_integration.py).

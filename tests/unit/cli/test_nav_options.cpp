@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // --nav repeated (one ephemeris store) and --nav-mode on satpos, sky and dop.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The whole pipeline pinned, as gpsd pins its drivers: config + truth ->
 // `batch` (receiver, encoders, the emulated u-blox's message rates) ->
 // NMEA, UBX, per-epoch errors and the summary, compared byte for byte with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // batch --sats and --report, and gnssemu plot: the columns others script
 // against, the self-contained HTML, and file:line errors for bad input.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // gnssemu satpos against the independent reference (tests/data/reference,
 // tools/reference/satpos_reference.py) and physical consistency checks.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // gnssemu sky --scene and batch with [scene].
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // gnssemu sky model columns: broadcast Klobuchar from the nav header, the
 // receiver's zenith hydrostatic delay, Niell mapping, attenuation and C/N0.
 #include <gtest/gtest.h>

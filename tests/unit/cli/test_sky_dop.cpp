@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // gnssemu sky and dop on real broadcast ephemerides: the transmit-time
 // geometry solves the light-time equation, DOPs agree with an independent
 // least-squares geometry computed here from the sky output.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // gnssemu spp and calibrate on real observations: NYA1 (RINEX 3.05, IGS
 // station with known coordinates) and LARM (3.02, with brdc0010.22n).
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // gnssemu spp --preset rtklib: RTKLIB rnx2rtkp's single-point weights,
 // models and residual test on the real NYA1 hour (the comparison with
 // rnx2rtkp itself: integration.spp_vs_rtklib_preset).

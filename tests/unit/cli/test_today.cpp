@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Issue 12: a run on today's date from the 2022 data that ship carries
 // today's date and time in every output: NMEA date/time, UBX NAV-PVT UTC,
 // NAV-TIMEUTC with its validity flags, NAV-SOL's GPS week, today's leap

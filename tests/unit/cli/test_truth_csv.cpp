@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Truth CSV reader and linear interpolation.
 #include <gtest/gtest.h>
 

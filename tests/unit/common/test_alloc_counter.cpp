@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // tests/support/alloc_counter: every allocation form is counted and freed by
 // the same allocator (the hot-path allocation tests and ASan rely on both).
 #include <gtest/gtest.h>

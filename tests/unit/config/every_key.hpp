@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // A configuration that sets every key of the key tables to a value other
 // than its default, and one with the keys it cannot hold.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [atmosphere] and its sub-tables (config/atmosphere_keys): every key
 // parsed, exact round trip through to_toml, default.toml equal to the struct
 // defaults, and every bad value an error naming file:line.

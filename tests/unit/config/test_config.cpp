@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // parse_config, load_config, default_config and to_toml (config/config):
 // shipped configs load, defaults, every key round-trips through TOML,
 // syntax and file errors, and damaged text gives only located errors.

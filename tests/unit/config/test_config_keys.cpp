@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // config/config_keys: the tables of the configuration's own settings
 // ([origin], [nav], [time], [truth], [demo], [log]), and every key table
 // against what the reader reads, what to_toml writes and what

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [control] (config/config_keys): the control socket's path parsed, written
 // back exactly, off by default, and every bad value an error naming file:line.
 #include <string>

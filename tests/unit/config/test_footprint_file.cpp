@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Footprint files (config/footprint_file): the TOML text of extruded
 // buildings, read into core/scene's FootprintBuilder; every error names
 // file:line; config::load_mesh reads them by extension.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Names of the periodic messages a port's configuration lists.
 #include "config/message_names.hpp"
 #include "test_helpers.hpp"

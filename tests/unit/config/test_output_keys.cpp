@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [[output]] (config/output_keys): port types and their own keys,
 // protocols, message sets and rates; exact file:line errors, cross-port
 // uniqueness and the to_toml round trip.

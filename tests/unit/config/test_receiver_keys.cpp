@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [receiver] and its sub-tables (config/receiver_keys): ranges from the
 // core, the solver's and the receiver's rules, the receiver's own
 // corrections and error models; each assertion pins "file:line: reason".

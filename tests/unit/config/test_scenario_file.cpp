@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Scenario files (config/scenario_file): [[event]] tables into fault events;
 // every error names file:line and the reason.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [scene] (config/scene_keys): mesh path relative to the config file,
 // placement, search effort, material losses; file:line errors; round trip
 // through to_toml.

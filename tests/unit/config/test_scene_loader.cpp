@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // load_scene (config/scene_loader): the configured mesh placed in the
 // origin's ENU frame with its reflection losses; a material name the mesh
 // does not have names the config file and line.

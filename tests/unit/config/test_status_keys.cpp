@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // [status] (config/config_keys): the status page's address and port parsed,
 // written back exactly, default.toml equal to the struct defaults, and every
 // bad value an error naming file:line.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What the table reader (config/toml_reader) reports for any key: unknown
 // keys with a hint, strict types, non-finite numbers, missing keys and
 // tables; each assertion pins the exact "file:line: reason".

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // A PortChannel test rig: a fake OutputPort that records what it is given,
 // one emulated chip with a channel per output on a fake clock, and helpers

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // A fixture whose io_context runs on a thread of its own, as the daemon's
 // does: servers are built, queried and stopped on it through on_io().

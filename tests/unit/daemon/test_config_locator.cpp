@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Where gnssemud looks for default.toml.
 #include <gtest/gtest.h>
 

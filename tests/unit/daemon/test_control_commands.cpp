@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The control socket's commands against a recording target: every bad
 // request gets an error reply and reaches nothing.
 #include <gtest/gtest.h>

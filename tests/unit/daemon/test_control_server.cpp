@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ControlServer on a real Unix socket: file mode, stale and foreign files,
 // line framing, oversize lines, the session cap, removal at stop. The server
 // runs on its own io_context thread, as on the daemon's; clients are plain

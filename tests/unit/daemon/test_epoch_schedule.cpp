@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Epoch deadlines and skips of the daemon's scheduler.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // FaultLog: one log line when a fault event starts and one when it ends
 // (docs/daemon.md §Logs), never per epoch; and the line's text.
 #include <gtest/gtest.h>

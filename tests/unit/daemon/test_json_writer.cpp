@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // JsonWriter: commas, nesting, escaping and numbers as a JSON parser reads them.
 #include <gtest/gtest.h>
 

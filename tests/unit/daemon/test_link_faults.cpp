@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Link faults on a port (daemon/link_faults, PortChannel::send_epoch): each
 // fault on the bytes a fake port receives, their combination, ramps, the
 // seed, the scenario check and the allocation-free epoch path.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PortChannel with a fake port: decoder -> device -> reply, the messages the
 // device composes per port and epoch, budget drops and their warnings, and a
 // channel following a reset another host sent to the chip.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What gnssemud runs on: the epoch clock's start and the satellites for it,
 // decided (and refused) before any port opens (--check-config does the same).
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The daemon logs what the mesh reader skipped (count and first file:line).
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // StatusProducer: what /api/status and the control socket's status carry.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // StatusServer against hostile and slow clients on loopback: the server
 // runs on its own io_context thread, as on the daemon's; clients are plain
 // blocking sockets.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // TxBudget: the M8's transmit buffer drained at the line rate.
 #include <gtest/gtest.h>
 

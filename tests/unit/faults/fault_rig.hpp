@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // A static receiver on real broadcast ephemerides for the fault tests.
 #include <cmath>

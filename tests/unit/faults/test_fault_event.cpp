@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The rules of one event: ranges per ramp end, ramps need a duration, what
 // each type requires.
 #include <gtest/gtest.h>

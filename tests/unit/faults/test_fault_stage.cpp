@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The fault stage through the whole pipeline: each fault acts on signals and
 // measurements, and the receiver's own tracking, solution, exclusion and
 // flags react.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Test helpers: Fix from JSON (golden cases) and a minimal NMEA splitter.
 #include <string>

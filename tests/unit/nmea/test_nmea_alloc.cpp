@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // encode_epoch must not allocate once the output string has capacity. The
 // global operator new of this test executable counts calls.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Golden regression cases, gpsd style: tests/golden/nmea/<case>/fix.json (one
 // Fix or a list of Fixes, plus the encoder config) and expected.nmea beside it.
 // GNSSEMU_REBUILD_GOLDEN=1 rewrites the expected files; a missing one fails.

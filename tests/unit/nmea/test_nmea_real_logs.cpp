@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Our sentences against real u-blox output (tests/data/receiver-logs): the same
 // number of fields per sentence type for the same NMEA version and the same
 // number formats (decimals; widths of the fixed-width fields). Also checks our

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // core/protocol/nmea/nmea_utc: GPS time to the UTC an NMEA sentence carries.
 #include <gtest/gtest.h>
 

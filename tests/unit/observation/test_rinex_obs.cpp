@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RINEX observation reader: the real NYA1 (RINEX 3.05, 90 min and a gzip
 // full day) and LARM (3.02) files, RINEX 2.11 variants derived from NYA1
 // (tests/data/obs/make_variants.py), event and cycle-slip records, bad files.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The real nav data the orbit tests share, read once per test binary.
 #include <string>

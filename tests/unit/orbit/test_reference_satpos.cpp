@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // sat_state and EphemerisStore::select against the independent Python
 // reference (tools/reference/satpos_reference.py -> tests/data/reference/).
 #include <gtest/gtest.h>

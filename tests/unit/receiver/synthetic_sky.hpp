@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Test helpers: synthetic GPS ephemerides (a nominal Walker-like 6-plane
 // constellation, and single satellites placed at a chosen azimuth/elevation)

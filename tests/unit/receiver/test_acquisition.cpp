@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Acquisition and reacquisition: start modes, ephemeris download at its
 // GPS-time slots, C/N0 and what the receiver knows, blockages, a moved
 // antenna, the unmodelled mode.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Carrier smoothing and the navigation filter: what they remove, what they
 // keep, dynamic models, static hold, coasting, clock steps, operational
 // limits, honest accuracy, determinism.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // step() must not allocate after warm-up: count every global operator new
 // (replaced below for this test executable) across many epochs, including
 // no-truth epochs (coasting), 2D-capable states and a teleport (lock breaks,

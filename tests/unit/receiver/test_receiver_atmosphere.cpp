@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The world's atmosphere and signal inside the receiver: delays and C/N0 as
 // the models say, the receiver's broadcast corrections, tracking thresholds,
 // stages off costing nothing, caching, determinism, no allocation.

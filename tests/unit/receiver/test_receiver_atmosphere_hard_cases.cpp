@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Hard cases with the full atmosphere and signal: extreme sites, days of
 // year, TEC, weather and noise. Never NaN, never a confident wrong fix: a
 // reported fix lies within 5 of its own 1-sigma accuracy of the truth.

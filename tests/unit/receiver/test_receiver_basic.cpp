@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Receiver: exactness with the error model off (synthetic and real
 // ephemerides), determinism, no-truth epochs, config validation.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The error terms `gnssemu calibrate` fits beyond the original model: the
 // per-satellite multipath process sigma / sin(el), the azimuthal delay
 // gradient common to all satellites and the common relative error of the

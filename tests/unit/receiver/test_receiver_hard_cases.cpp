@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Receiver hard cases: poles, antimeridian, extreme heights, near-singular
 // geometry, 2D/none with three satellites, mask at zenith, GPS week
 // boundary, clock jumps, teleport. No NaN anywhere.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Receiver profiles: names, the C/N0 and code noise each claims (its
 // evidence in docs/models.md), the mirrored gradient south of the equator.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The scene stage in the receiver: empty scene == no scene, NLOS delay and
 // loss enter pseudorange and C/N0 exactly, blocked satellites take no
 // channel, a receiver inside a building has no fix.

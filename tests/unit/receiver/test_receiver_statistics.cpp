@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Receiver error statistics: the fix error against the solver's own
 // accuracy estimate (ensembles over seeds), time correlation, velocity,
 // and the chi-square residual test.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fault detection and exclusion in the solver: a satellite with an NLOS
 // bias is excluded (largest normalised residual) and the epoch re-solved,
 // while at least 5 satellites remain; otherwise no fix.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The solver's pseudorange variance: the default elevation + C/N0 model, the
 // RTKLIB single-point model (pntpos varerr + URA + code bias + model
 // variance of the broadcast corrections) and their use in the solver.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The world's carrier phase and Doppler as the receiver receives them:
 // consistent with the range, the ionosphere advancing the phase, continuity
 // broken by new locks, LOS/NLOS switches and jumps of the truth.

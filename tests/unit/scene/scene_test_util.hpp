@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Small meshes built in code for the scene tests.
 #include <cmath>

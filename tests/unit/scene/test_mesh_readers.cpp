@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Mesh readers: OBJ, PLY (ascii and binary); placement; bad input ->
 // file:line error or skipped-and-counted, never a crash. Footprint files
 // are read above core: tests/unit/config/test_footprint_file.cpp.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Correctness anchors of the propagation search: closed-form one- and
 // two-bounce paths, a closed building, grazing rays, an empty scene.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Binary truth records: the sender's encoder (tools/senders/truth_record.hpp)
 // against the daemon's parser, a pinned golden record, and every way a
 // record can be bad (docs/truth-protocol.md §Binary record).

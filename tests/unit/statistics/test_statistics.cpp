@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Descriptive statistics: hand-computed values, empty inputs, the two
 // percentile definitions, and the position-error statistics of series with
 // known spread and correlation.

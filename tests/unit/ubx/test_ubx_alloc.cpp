@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The per-epoch path never allocates once buffers have capacity: encoding an
 // epoch, answering configuration input, decoding input. This executable's
 // global operator new counts calls (tests/support/alloc_counter).

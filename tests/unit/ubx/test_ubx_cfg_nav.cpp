@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CFG-RATE, CFG-NAV5 and CFG-GNSS handlers alone: the chip-wide navigation
 // settings, whichever output a host is on.
 #include <gtest/gtest.h>

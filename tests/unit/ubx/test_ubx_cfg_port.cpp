@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CFG-PRT and CFG-MSG handlers alone, on a chip with two UART1s: port 1 is
 // the asking host's own UART1, the other ports are the chip's.
 #include <gtest/gtest.h>

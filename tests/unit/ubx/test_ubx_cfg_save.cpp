@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CFG-CFG and CFG-RST handlers alone, and the Reset they make: the saved
 // configuration is the whole chip's, every output's UART1 included.
 #include <gtest/gtest.h>

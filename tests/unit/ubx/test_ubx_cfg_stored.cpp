@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Handlers of the CFG messages kept verbatim (the table's stored rows,
 // CFG-TP5, CFG-INF, CFG-DAT, CFG-RINV, CFG-GEOFENCE, CFG-PWR) alone, and
 // the handler table itself.

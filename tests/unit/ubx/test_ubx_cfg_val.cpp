@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CFG-VALSET / VALGET / VALDEL on an emulated M9: every key reads and writes
 // the same state as the legacy CFG messages, layers, transactions, the NAK of
 // every bad input (nothing applied), wildcards and paging; an M8 NAKs all three.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // docs/ubx.md lists every configuration key the emulated M9 knows: the table
 // between the markers is generated from config_keys() and must match it, so a
 // key cannot be readable but undocumented (GNSSEMU_REBUILD_DOCS=1 rewrites it).

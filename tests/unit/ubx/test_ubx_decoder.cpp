@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Stream decoder: UBX and NMEA interleaved with garbage, resync after false
 // syncs, bad checksums and impossible lengths counted, bounded memory.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The emulated M8 (Device) as one host sees it: the PX4 and ArduPilot UBX start-up sequences
 // (DESIGN.md §4, shared/reference/ubx.md §5-6) replayed byte for byte, the
 // request bytes built from what those drivers send, the expected replies

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Random CFG and other input against the device: never out of bounds
 // (run under ASan by hand), exactly one ACK or NAK per CFG message except
 // CFG-RST, replies are valid frames, and the epoch output stays sane.

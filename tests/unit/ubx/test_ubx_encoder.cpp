@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Encoders: every field of each message from a known Fix, with the scalings
 // of UBX-13003221 (ubx.md §3), plus no-fix, non-finite and week-end cases.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Frame layer: checksums and frames against byte examples in
 // shared/reference/ubx.md §1 (each recomputed by hand there).
 #include <gtest/gtest.h>

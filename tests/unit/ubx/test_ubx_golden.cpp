@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Golden regression: the NMEA golden cases' Fixes (tests/golden/nmea/<case>/
 // fix.json, so both protocols are pinned on the same inputs) encoded as one
 // UBX epoch of every message; tests/golden/ubx/<case>.txt holds one line per

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // gpsd's own UBX decoder (gpsdecode, gpsd 3.22) reads the stream we encode
 // and must report the Fix we meant to send: time, mode, position, heights,
 // speed, track, DOP, satellites with C/N0 and used flags.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The M9's jamming and spoofing reports (MON-RF, SEC-SIG) decoded field by
 // field against the Fix, and which messages each generation has: in the
 // epoch, in CFG-MSG and in polls (docs/ubx.md §Generations).

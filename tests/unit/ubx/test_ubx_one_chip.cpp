@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One chip behind every output: each host configures its own UART1, while
 // the navigation rate, resets, uptime and ttff are the chip's; and the order
 // the chip composes an epoch's messages in.

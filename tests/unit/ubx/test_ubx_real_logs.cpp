@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Real u-blox logs decoded with our wire structs and stream decoder:
 // NEO-M8N NAV-PVT against gpsd's expected decode (.chk), and the pyubx2
 // MIXED stream for cross-message consistency and the conventions our

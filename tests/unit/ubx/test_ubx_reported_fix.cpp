@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A port reporting another fix type than the receiver's (the wrong_fix link
 // fault): Device::compose with a FixOverride changes exactly the fields
 // that carry a fix type, in every message that has one, on that port only.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Test helpers for UBX: a complete sample Fix, frame splitting, hex.
 #include <cstdint>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Carrier loop noise and slips as pure functions of C/N0 (core/world/carrier.hpp).
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Error-process building blocks: Gauss–Markov exact
 // discretisation, receiver clock.
 #include <gtest/gtest.h>

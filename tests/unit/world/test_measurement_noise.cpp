@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // MeasurementNoise: the one place the world's code and range-rate noise
 // versus C/N0 is decided (the fault stage adds the difference it makes).
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // core/world/random: the counter-based generator behind every error process.
 #include <gtest/gtest.h>
 

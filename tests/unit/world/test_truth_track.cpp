@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // TruthTrack: one interpolation, two end rules. The recorded rule (batch's
 // CSV) has no truth outside the samples and gaps at no-truth samples; the
 // live rule (the daemon's packets) extrapolates briefly and then holds. Both
