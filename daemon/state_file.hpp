@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The emulated chip's state file: its saved configuration (BBR/flash) kept
 // across gnssemud restarts ([receiver] state_file, docs/ubx.md "Saved

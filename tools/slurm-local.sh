@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # A one-node Slurm cluster on loopback for gnssemu sweep (docs/sweep.md
 # §Local Slurm): Debian's slurmctld, slurmd and munge (tools/install-deps.sh),
 # all state, sockets and logs in one folder, nothing in /etc. Needs root

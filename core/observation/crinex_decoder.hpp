@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Compact RINEX (Hatanaka) decoder: CRINEX 1.0 (RINEX 2 observations) and
 // 3.0 (RINEX 3), after Hatanaka (2008), "A Compression Format and Tools for

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/observation/obs_lines.hpp"
 
 #include <optional>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Where the observation reader takes its lines from: a RINEX file as it is,
 // or a Compact RINEX (Hatanaka) file decoded one epoch at a time, so that

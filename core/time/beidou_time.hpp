@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // BeiDou time (BDT): BDT = GPST - 14 s (the leap seconds between 1980 and
 // 2006); week 0 starts 2006-01-01 00:00:00 BDT = GPS week 1356 + 14 s

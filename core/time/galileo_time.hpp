@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Galileo system time (GST): aligned with GPST (no offset beyond the
 // broadcast GGTO, nanoseconds, not modelled); weeks counted from

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // GLONASS time (GLONASST) = UTC(SU) + 3 h: it has UTC's leap seconds
 // (multi-gnss.md §1.2). The navigation message counts days, not weeks: N4

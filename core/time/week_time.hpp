@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // A time as a system counts it: (week, seconds of week) in that system's own
 // week numbering. GPS, Galileo and BeiDou each count weeks from their own

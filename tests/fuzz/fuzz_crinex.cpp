@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Compact RINEX (Hatanaka) 1.0/3.0 through read_rinex_obs; oracles in
 // obs_checks.hpp. An input whose first line is not CRINEX VERS / TYPE gets
 // a fixed CRINEX 3.0 header (G, R, E and I types) in front, so most runs

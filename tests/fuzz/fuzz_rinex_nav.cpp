@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // RINEX 2/3 navigation files of every system (mixed, GLONASS, SBAS)
 // through read_rinex_nav, then the ephemeris store and every ephemeris
 // evaluated at its toe and 15 min later. Oracles: errors are

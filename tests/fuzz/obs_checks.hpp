@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The promises of the observation reader (core/observation/rinex_obs.hpp),
 // for the RINEX and Compact RINEX fuzz targets.

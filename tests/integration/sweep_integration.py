@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """gnssemu sweep end to end (docs/sweep.md), a few tasks of 30 simulated
 seconds each.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The report of `gnssemu sweep collect` (docs/sweep.md §Collect): renders the
 // JSON in #report-data: counts, every metric against every axis that varies,
 // and the worst cases with the command that reproduces each.

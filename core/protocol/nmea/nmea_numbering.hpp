@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // How u-blox names a satellite in NMEA: its number, the talker of its GSV
 // group, the GSA system it is listed under and its GSV signal id, per NMEA

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // What u-blox CFG-NMEA (legacy message and CFG-NMEA-* keys) sets, plus the
 // two device facts the sentences depend on: which systems the channels are

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The satellites of one epoch as the NMEA sentences report them: per NMEA
 // system (GSA) and GSV group, numbered as u-blox numbers them, capped as

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The NMEA output settings a host sets through CFG-NMEA (every length: 4,
 // 12, 20 bytes) or the CFG-NMEA-* keys (M9): one stored CFG-NMEA version-1

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Conversions and per-epoch values every UBX encoder derives from a Fix
 // (ubx_encoder.cpp, ubx_encoder_gnss.cpp): rounding and clamping to wire

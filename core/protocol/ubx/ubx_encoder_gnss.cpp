@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // UBX output of the other systems: NAV-SIG (M9), NAV-TIMEGLO, NAV-TIMEGAL,
 // NAV-TIMEBDS, MON-HW2 and MON-GNSS. Time-scale relations: shared/reference/
 // multi-gnss.md §1.2; field layouts: UBX-13003221 (M8) and the M9 interface

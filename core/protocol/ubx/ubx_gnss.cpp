@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "core/protocol/ubx/ubx_gnss.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The GNSS selection of the emulated chip: which systems and signals each
 // generation has, the rules an M8 applies to CFG-GNSS (ACK and apply, or NAK

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The saved configuration as text: what survives a power cycle of the
 // emulated chip (its BBR/flash), written to and read from a state file by
 // the daemon. One setting per line, little to parse, diffable:

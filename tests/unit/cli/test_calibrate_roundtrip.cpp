@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every configuration calibrate writes loads again: fits with no power or
 // no correlation (sigma or tau 0, NaN, beyond the ranges) are written as
 // processes that are off or clamped, never as values the loader rejects.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // gnssemu sweep: sweep-file parsing, plan expansion, task ids, hashes, the
 // tables' CSV, Slurm's array specs and job states (docs/sweep.md).
 #include <gtest/gtest.h>

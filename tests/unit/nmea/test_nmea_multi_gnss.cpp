@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Multi-GNSS rules of the encoder: numbering per version and svNumbering,
 // talkers, GSA per system, GSV per talker, CFG-NMEA limits and flags, and
 // the invariants NMEA consumers rely on (used <= in view, 82 characters).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One epoch of each real u-blox log (tests/data/receiver-logs: MAX-M8Q at
 // NMEA 4.0, NEO-M9N and ZED-F9P at 4.10) is parsed into a Fix with the same
 // satellites, DOP, position, speed and sigmas, encoded with the matching

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Compact RINEX (Hatanaka) decoding: hand-made CRINEX 3.0 and EPN's KOSG
 // CRINEX 1.0 files against their plain RINEX (tests/data/README.md), the
 // shared NYA1 day against the plain files decoded from the same source

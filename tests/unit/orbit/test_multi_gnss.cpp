@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Per-system cases checked by hand: GLONASS (reader, RK4 step size, clock),
 // BeiDou (BDT times, the GEO frame), Galileo (I/NAV selection, E1 health,
 // toe < t), SBAS (polynomial), the store's per-system windows and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every system's satellite states against RTKLIB 2.4.3 b34 (an independent
 // implementation): tests/data/reference/rtklib_BRDC00IGS_R_20240100000_01D_MN.csv
 // holds RTKLIB's satposs() states for every satellite of the IGS mixed file

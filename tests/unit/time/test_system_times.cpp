@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // GST, BDT and GLONASST against GPST at every boundary: week starts, the
 // systems' origins, the GLONASS day and four-year interval, a leap second.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Multi-GNSS on the UBX side: NAV-SAT / NAV-SVINFO / NAV-SIG numbering, the
 // other systems' time messages against a real log, CFG-GNSS and CFG-SIGNAL
 // with the chip's rules (including the exact bytes PX4 and ArduPilot send),

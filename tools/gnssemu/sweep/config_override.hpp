@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // A task's configuration: the base config file with the task's overrides
 // (dotted keys such as receiver.profile, and the seed axis as receiver.seed)

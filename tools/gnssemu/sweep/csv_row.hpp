@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // CSV rows of the sweep's tables (tasks.csv, summary.csv, results.csv):
 // RFC 4180 quoting, so axis values with commas (generator tables) survive.

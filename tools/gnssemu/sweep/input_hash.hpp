@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Content hashes of a sweep's inputs: a task records the hash of every file it
 // reads, so a task run against changed inputs fails instead of mixing runs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The local executor: up to N tasks at a time, each in a forked child of
 // this process (a crash or abort takes down one task, not the sweep, and

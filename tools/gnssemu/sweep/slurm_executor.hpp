@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The Slurm executor: one sbatch array script per submission (array index =
 // task id, each element runs `gnssemu sweep task DIR $SLURM_ARRAY_TASK_ID`,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The `gnssemu sweep` command line (docs/sweep.md): plan, run, status,
 // collect, and task (what each executor runs for one task).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "tools/gnssemu/sweep/sweep_collect.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // `gnssemu sweep collect DIR`: every task's summary beside its axis values
 // in DIR/results.csv (one row per task, in task order), and DIR/report.html:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // A sweep file (TOML, docs/sweep.md): the base config, what each task keeps,
 // and the axes whose values combine into tasks: [axes] as a full product, or

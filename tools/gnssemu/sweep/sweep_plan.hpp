@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The plan: a sweep file expanded into tasks, each with a stable id (its
 // row in DIR/tasks.csv, also the Slurm array index), its axis values and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // One task of a plan: one `gnssemu batch` run, in this process, from the
 // task's row of tasks.csv. Both executors run it (`gnssemu sweep task DIR ID`

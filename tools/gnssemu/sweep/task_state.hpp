@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // What became of each task: done (its summary.csv of this plan is in
 // place), failed (a failed marker, or Slurm's own state), pending or running

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // The one-line summary of a task (docs/sweep.md §Summary): fix availability,
 // error percentiles, the largest error while a fix was reported, the

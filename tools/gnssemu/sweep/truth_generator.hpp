@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Truth trajectories a sweep makes instead of reading a file: a straight
 // drive at constant speed and heading (speed 0: a static antenna), and the

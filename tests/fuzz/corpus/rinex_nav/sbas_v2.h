@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
      2.11           H: GEO NAV MSG DATA                     RINEX VERSION / TYPE
                                                             END OF HEADER
 21 24  1 10  0 56 16.0 0.000000000000D+00 0.000000000000D+00 0.262585000000D+06

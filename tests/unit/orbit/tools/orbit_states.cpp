@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Satellite states of every satellite at given receive epochs, for the
 // RTKLIB cross-check (tools/reference/check_against_rtklib.py). Not a unit
 // test: a harness that prints what core/orbit computes.
