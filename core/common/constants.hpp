@@ -32,7 +32,4 @@ inline constexpr double kPi = 3.14159265358979323846;
 inline constexpr double kDegToRad = kPi / 180.0;
 inline constexpr double kRadToDeg = 180.0 / kPi;
 
-/// Highest GPS PRN handled (PRN 1..kMaxGpsPrn).
-inline constexpr int kMaxGpsPrn = 32;
-
 }  // namespace gnssemu

@@ -56,6 +56,21 @@ TEST(EphemerisStore, NearestToe) {
   EXPECT_EQ(s.count(SatId::gps(33)), 0u);
 }
 
+TEST(EphemerisStore, EverySatelliteHasItsOwnSets) {
+  Ephemeris e05 = at(5, 2000, 0, 7);
+  e05.sat = SatId(GnssSystem::kGalileo, 5);
+  Ephemeris c63 = at(5, 2000, 0, 9);
+  c63.sat = SatId(GnssSystem::kBeiDou, 63);
+  const EphemerisStore s({at(5, 2000, 0, 1), e05, c63});
+  EXPECT_EQ(s.count(SatId::gps(5)), 1u);
+  EXPECT_EQ(s.count(SatId(GnssSystem::kGalileo, 5)), 1u);
+  EXPECT_EQ(s.select(SatId::gps(5), time::GpsTime(2000, 60))->iode, 1);
+  EXPECT_EQ(s.select(SatId(GnssSystem::kGalileo, 5), time::GpsTime(2000, 60))->iode, 7);
+  EXPECT_EQ(s.select(SatId(GnssSystem::kBeiDou, 63), time::GpsTime(2000, 60))->iode, 9);
+  EXPECT_EQ(s.select(SatId(GnssSystem::kGlonass, 5), time::GpsTime(2000, 60)), nullptr);
+  EXPECT_EQ(s.select(SatId(GnssSystem::kGalileo, 37), time::GpsTime(2000, 60)), nullptr);  // not a valid id
+}
+
 TEST(EphemerisStore, ValidityEdges) {
   const EphemerisStore s({at(7, 2000, 100000, 1)});
   EXPECT_EQ(iode_at(s, 7, time::GpsTime(2000, 100000 + 7200.0)), 1);
@@ -143,7 +158,7 @@ TEST(EphemerisStore, RealFileAndNoAllocation) {
   const time::GpsTime noon(2190, 518400 + 43200);
   int selected = 0;
   const long before = gnssemu::support::allocation_count();
-  for (int prn = 1; prn <= 32; ++prn) {
+  for (int prn = 1; prn <= system_size(GnssSystem::kGps); ++prn) {
     const Ephemeris* e = s.select(SatId::gps(prn), noon);
     if (e == nullptr) continue;
     ++selected;
@@ -234,7 +249,7 @@ TEST(EphemerisStore, MergedFilesActAsOne) {
   EXPECT_TRUE(both.klobuchar.valid);
   const EphemerisStore one(whole.ephemerides), two(both.ephemerides);
   for (double tow = 518400 - 7200; tow <= 518400 + 86400 + 7200; tow += 450) {
-    for (int prn = 1; prn <= 32; ++prn) {
+    for (int prn = 1; prn <= system_size(GnssSystem::kGps); ++prn) {
       const Ephemeris* a = one.select(SatId::gps(prn), time::GpsTime(2190, tow));
       const Ephemeris* b = two.select(SatId::gps(prn), time::GpsTime(2190, tow));
       ASSERT_EQ(a == nullptr, b == nullptr) << prn << " " << tow;

@@ -178,7 +178,7 @@ inline void expect_consistent(const Fix& f) {
   for (int i = 0; i < f.num_sats; ++i) {
     const SatInfo& s = f.sats[i];
     if (i > 0) {
-      EXPECT_LT(f.sats[i - 1].sat.prn(), s.sat.prn());
+      EXPECT_TRUE(f.sats[i - 1].sat < s.sat);  // SatId order
     }
     EXPECT_GT(s.el_rad, 0.0);
     used += s.used;

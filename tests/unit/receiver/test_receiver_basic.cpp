@@ -150,13 +150,59 @@ TEST(ReceiverBasic, NoiseOfOneSatelliteDoesNotDependOnOthersVisible) {
     ASSERT_LT(fb.num_tracked, fa.num_tracked);
     for (int i = 0; i < fa.num_sats; ++i) {
       for (int j = 0; j < fb.num_sats; ++j) {
-        if (fa.sats[i].sat.prn() != fb.sats[j].sat.prn() || !fb.sats[j].tracked) continue;
+        if (fa.sats[i].sat != fb.sats[j].sat || !fb.sats[j].tracked) continue;
         EXPECT_EQ(fa.sats[i].pseudorange_m, fb.sats[j].pseudorange_m);
         EXPECT_EQ(fa.sats[i].doppler_hz, fb.sats[j].doppler_hz);
         ++compared;
       }
     }
   }
+  EXPECT_GE(compared, 10);
+}
+
+TEST(ReceiverBasic, SatellitesOfEverySystemGoThroughInSatIdOrder) {
+  // Every other satellite of one constellation relabelled Galileo (the same
+  // Keplerian orbits under their own identity): they are tracked and used,
+  // listed after GPS, and draw their own noise, so a GPS satellite's
+  // pseudorange is the same with or without them.
+  const std::vector<orbit::Ephemeris> gps = test::nominal_constellation(kToe, 5);
+  std::vector<orbit::Ephemeris> mixed, gps_half;
+  for (std::size_t i = 0; i < gps.size(); ++i) {
+    orbit::Ephemeris e = gps[i];
+    if (i % 2 == 0) {
+      e.sat = SatId(GnssSystem::kGalileo, e.sat.number);
+    } else {
+      gps_half.push_back(e);
+    }
+    mixed.push_back(e);
+  }
+  const orbit::EphemerisStore mixed_store(mixed), gps_store(gps_half);
+  PipelineConfig cfg = test::snapshot();
+  cfg.receiver.max_channels = kMaxSatsInView;
+  Pipeline a(mixed_store, cfg), b(gps_store, cfg);
+  const Lla lla{10.0 * kDegToRad, -70.0 * kDegToRad, 0.0};
+  int galileo_used = 0, compared = 0;
+  for (int k = 0; k < 5; ++k) {
+    const time::GpsTime t = kToe + 1.0 * k;
+    const Truth tr = static_truth(lla, t);
+    const Fix fa = a.step(t, tr);
+    const Fix fb = b.step(t, tr);
+    ASSERT_EQ(fa.type, FixType::k3D) << k;
+    expect_consistent(fa);
+    for (int i = 0; i < fa.num_sats; ++i) {
+      const SatInfo& s = fa.sats[i];
+      if (s.sat.system == GnssSystem::kGalileo) {
+        galileo_used += s.used;
+        continue;
+      }
+      for (int j = 0; j < fb.num_sats; ++j) {
+        if (fb.sats[j].sat != s.sat || !s.tracked) continue;
+        EXPECT_EQ(s.pseudorange_m, fb.sats[j].pseudorange_m);
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GE(galileo_used, 10);
   EXPECT_GE(compared, 10);
 }
 
