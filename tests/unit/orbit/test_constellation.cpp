@@ -89,7 +89,7 @@ TEST(Constellation, AutoMovesOldDataToTodayByWholeDays) {
   EXPECT_NE(c.describe().find("nav data moved +1788 days"), std::string::npos) << c.describe();
   // The sky at the start is the data's sky at the same time of day.
   const EphemerisStore moved(c.nav.ephemerides, c.store_options()), original(brdc().ephemerides);
-  for (int prn = 1; prn <= kMaxGpsPrn; ++prn) {
+  for (int prn = 1; prn <= system_size(GnssSystem::kGps); ++prn) {
     const Ephemeris* a = moved.select(SatId::gps(prn), kToday);
     const Ephemeris* b = original.select(SatId::gps(prn), kToday - c.shift_s);
     ASSERT_EQ(a == nullptr, b == nullptr) << prn;
@@ -126,7 +126,7 @@ TEST(Constellation, RelabelOfDataStartingLateInTheDay) {
   EXPECT_EQ(c.shift_s, (1788.0 - 1.0) * kSecondsPerDay);
   const EphemerisStore store(c.nav.ephemerides, c.store_options());
   int served = 0;
-  for (int prn = 1; prn <= kMaxGpsPrn; ++prn) served += store.select(SatId::gps(prn), early_morning) != nullptr;
+  for (int prn = 1; prn <= system_size(GnssSystem::kGps); ++prn) served += store.select(SatId::gps(prn), early_morning) != nullptr;
   EXPECT_GE(served, 28);
 }
 
