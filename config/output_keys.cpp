@@ -361,7 +361,9 @@ std::string ubx_message_names() {
          ", no repeats; MON-RF and SEC-SIG only with `[receiver] generation = \"m9\"`, NAV-SVINFO only with `\"m8\"`";
 }
 
-constexpr Choice<protocol::nmea::NmeaVersion> kNmeaVersions[] = {{"2.3", protocol::nmea::NmeaVersion::k23},
+constexpr Choice<protocol::nmea::NmeaVersion> kNmeaVersions[] = {{"2.1", protocol::nmea::NmeaVersion::k21},
+                                                                 {"2.3", protocol::nmea::NmeaVersion::k23},
+                                                                 {"4.0", protocol::nmea::NmeaVersion::k40},
                                                                  {"4.10", protocol::nmea::NmeaVersion::k410},
                                                                  {"4.11", protocol::nmea::NmeaVersion::k411}};
 
@@ -371,7 +373,7 @@ void read_sentences(TableReader& t, const Field<OutputPortConfig>& f, OutputPort
   const toml::array* a = t.string_array(
       f.key, "an array of strings", "sentence names (strings)", [&](const toml::node& e, const std::string& s) {
         const std::optional<protocol::nmea::Sentence> sentence = protocol::nmea::sentence_by_name(s);
-        if (!sentence) t.fail(e, name + ": unknown sentence '" + s + "' (known: GGA RMC GSA GSV VTG GLL GST ZDA)");
+        if (!sentence) t.fail(e, name + ": unknown sentence '" + s + "' (known: GGA RMC GSA GSV VTG GLL GST ZDA GNS GBS)");
         if (out.has(*sentence)) t.fail(e, name + ": '" + s + "' listed twice");
         out.set(*sentence);
       });

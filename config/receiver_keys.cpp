@@ -356,6 +356,30 @@ void write_state_file(TomlWriter& w, const Field<Config>& f, const Config& c) {
   if (!c.state_file.empty()) w.key(f.key, string_text(w.path_text(c.state_file)), f.note);
 }
 
+void read_constellations(TableReader& t, const Field<Config>& f, Config& c) {
+  if (t.find(f.key) == nullptr) return;
+  const std::string name = t.full_name(f.key);
+  SystemSet set;
+  t.string_array(f.key, "an array of strings", "RINEX system letters (strings)",
+                 [&](const toml::node& e, const std::string& s) {
+                   const auto sys = s.size() == 1 ? system_from_letter(s[0]) : std::nullopt;
+                   if (!sys) t.fail(e, name + ": unknown system '" + s + "' (known: G R E C J S)");
+                   if (set.has(*sys)) t.fail(e, name + ": '" + s + "' listed twice");
+                   set = set.with(*sys);
+                 });
+  if (set.empty()) t.fail(*t.find(f.key), name + ": at least one system");
+  c.world.systems = set;
+}
+
+void write_constellations(TomlWriter& w, const Field<Config>& f, const Config& c) {
+  if (c.world.systems == WorldConfig{}.systems) return;
+  std::vector<std::string_view> letters;
+  static constexpr std::string_view kLetters[] = {"G", "R", "E", "C", "J", "S"};
+  for (int i = 0; i < kNumSystems; ++i)
+    if (c.world.systems.has(static_cast<GnssSystem>(i))) letters.push_back(kLetters[i]);
+  w.key(f.key, strings_text(letters), f.note);
+}
+
 using Rr = receiver::ReceiverRanges;
 constexpr Field<Config> kReceiverFields[] = {
     profile_field(),
@@ -375,6 +399,12 @@ constexpr Field<Config> kReceiverFields[] = {
         "generation", "the u-blox chip every output presents (docs/ubx.md \"Generations\"): `m8` a NEO-M8N "
                       "(protocol 18, legacy CFG messages only, MON-HW), `m9` a NEO-M9N (protocol 32.01: CFG-VALSET/"
                       "VALGET/VALDEL beside the legacy CFG messages, MON-RF, SEC-SIG; no NAV-SVINFO)"),
+    custom<Config>("constellations", "", "RINEX letters `G` GPS, `R` GLONASS, `E` Galileo, `C` BeiDou, `J` QZSS, "
+                   "`S` SBAS; at least one, no repeats",
+                   "the systems the receiver tracks: satellites of the other systems in the nav data are not in "
+                   "its sky (docs/models.md \"Every system's broadcast orbits\")",
+                   read_constellations, write_constellations)
+        .default_doc("`[\"G\"]`"),
     custom<Config>("state_file", "path", "a file the daemon may write (relative: to the config file's folder)",
                    "the emulated chip's saved configuration across gnssemud restarts, as a real module's "
                    "flash/BBR (docs/ubx.md \"Saved configuration\"): written when a host saves (CFG-CFG save or "

@@ -51,7 +51,6 @@ struct Dop {
 /// Per-satellite state of one epoch (for GSV/GSA, NAV-SAT, NAV-SVINFO).
 struct SatInfo {
   SatId sat;                  ///< system and RINEX number
-  int glonass_channel = 0;   ///< GLONASS FDMA channel k (-7..6); 0 for other systems
   double az_rad = 0.0;        ///< [0, 2pi), from true north
   double el_rad = 0.0;        ///< [-pi/2, pi/2]
   double cn0_dbhz = 0.0;      ///< 0 when not tracked
@@ -70,6 +69,7 @@ struct SatInfo {
   bool blocked = false;       ///< above the mask but no signal path (not received)
   int bounces = 0;            ///< reflections on the tracked path
   double nlos_delay_m = 0.0;  ///< extra path length added to the pseudorange, m
+  int glonass_channel = 0;    ///< GLONASS FDMA channel k (-7..6); 0 for other systems
 };
 
 struct Fix {

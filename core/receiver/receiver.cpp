@@ -144,6 +144,7 @@ void Receiver::measurement_stage(const world::Observables& obs, double dt_s) noe
     si.nlos = o.nlos;
     si.bounces = o.bounces;
     si.nlos_delay_m = o.nlos_delay_m;
+    si.glonass_channel = o.eph != nullptr ? o.eph->glo_channel : 0;  // freqId of NAV-SAT/NAV-SIG
     si.ephemeris = acq_.has_ephemeris(p);
     if (!tracked_[k]) continue;
     si.tracked = true;

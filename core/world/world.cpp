@@ -77,7 +77,7 @@ void World::advance(const time::GpsTime& t) noexcept {
   n_sats_ = 0;
   for (int i = 0; i < kNumSats; ++i) {
     const SatId sat = SatId::from_index(i);
-    if (store_.count(sat) > 0) sats_[static_cast<std::size_t>(n_sats_++)] = sat;
+    if (config_.systems.has(sat.system) && store_.count(sat) > 0) sats_[static_cast<std::size_t>(n_sats_++)] = sat;
   }
   const auto init_sat = [&](SatId sat) {
     const std::size_t k = static_cast<std::size_t>(sat.index());

@@ -12,6 +12,7 @@
 #include "core/atmosphere/term_cache.hpp"
 #include "core/atmosphere/troposphere.hpp"
 #include "core/common/range.hpp"
+#include "core/common/sat_id.hpp"
 #include "core/signal/dll_jitter.hpp"
 #include "core/signal/link_budget.hpp"
 #include "core/world/carrier.hpp"
@@ -149,6 +150,10 @@ struct WorldConfig {
   AtmosphereConfig atmosphere;
   SignalConfig signal;
   CarrierConfig carrier;           ///< carrier phase, Doppler noise, cycle slips
+  /// Systems whose signals are modelled (the receiver's configured
+  /// constellations, `[receiver] constellations`); the others' satellites are
+  /// not in the sky this world computes, whatever the nav data hold.
+  SystemSet systems = SystemSet::only(GnssSystem::kGps);
 };
 
 /// Valid values of WorldConfig's own numbers (seed: any).

@@ -42,7 +42,9 @@ RefCompare compare_with_reference(const std::string& nav_name) {
     cli::write_satpos(store, t, out);
     const Csv ours = parse_csv(out.str());
     std::map<int, std::size_t> row_of_prn;
-    for (std::size_t j = 0; j < ours.rows.size(); ++j) row_of_prn[std::stoi(ours.cell(j, "prn"))] = j;
+    for (std::size_t j = 0; j < ours.rows.size(); ++j) {
+      if (ours.cell(j, "sat").front() == 'G') row_of_prn[std::stoi(ours.cell(j, "prn"))] = j;  // the reference is GPS
+    }
     for (std::size_t i : rows) {
       const int prn = std::stoi(ref.cell(i, "prn"));
       const auto it = row_of_prn.find(prn);

@@ -34,6 +34,7 @@ nominal_cn0_dbhz = 41.5
 max_pdop = 8.0
 max_channels = 12
 generation = "m9"
+constellations = ["G", "R", "E", "C", "J", "S"]
 state_file = "state/ubx-state.txt"
 filter = "none"
 

@@ -211,7 +211,7 @@ TEST(ConfigValidation, BaudNotStandard) {
 
 TEST(ConfigValidation, UnknownSentence) {
   EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"a\"\npath = \"/tmp/a\"\nsentences = [\"GGA\",\n  \"GGX\"]\n"),
-            "t.toml:11: output[0].sentences: unknown sentence 'GGX' (known: GGA RMC GSA GSV VTG GLL GST ZDA)");
+            "t.toml:11: output[0].sentences: unknown sentence 'GGX' (known: GGA RMC GSA GSV VTG GLL GST ZDA GNS GBS)");
 }
 
 TEST(ConfigValidation, SentenceListedTwiceOrEmpty) {
@@ -222,8 +222,8 @@ TEST(ConfigValidation, SentenceListedTwiceOrEmpty) {
 }
 
 TEST(ConfigValidation, UnknownNmeaVersion) {
-  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"a\"\npath = \"/tmp/a\"\nnmea_version = \"4.0\"\n"),
-            "t.toml:10: output[0].nmea_version: '4.0' is not one of \"2.3\", \"4.10\", \"4.11\"");
+  EXPECT_EQ(error_of(kBase + "[[output]]\nname = \"a\"\npath = \"/tmp/a\"\nnmea_version = \"4.2\"\n"),
+            "t.toml:10: output[0].nmea_version: '4.2' is not one of \"2.1\", \"2.3\", \"4.0\", \"4.10\", \"4.11\"");
 }
 
 TEST(ConfigValidation, UnknownPortType) {

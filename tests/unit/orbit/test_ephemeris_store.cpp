@@ -59,6 +59,7 @@ TEST(EphemerisStore, NearestToe) {
 TEST(EphemerisStore, EverySatelliteHasItsOwnSets) {
   Ephemeris e05 = at(5, 2000, 0, 7);
   e05.sat = SatId(GnssSystem::kGalileo, 5);
+  e05.gal_data_sources = 517;  // I/NAV E1-B + E5b, clock (E1,E5b): what an E1 user selects
   Ephemeris c63 = at(5, 2000, 0, 9);
   c63.sat = SatId(GnssSystem::kBeiDou, 63);
   const EphemerisStore s({at(5, 2000, 0, 1), e05, c63});

@@ -171,6 +171,7 @@ TEST(ReceiverBasic, SatellitesOfEverySystemGoThroughInSatIdOrder) {
     orbit::Ephemeris e = gps[i];
     if (i % 2 == 0) {
       e.sat = SatId(GnssSystem::kGalileo, e.sat.number);
+      e.gal_data_sources = 517;  // I/NAV: the sets an E1 receiver selects
     } else {
       gps_half.push_back(e);
     }
@@ -179,14 +180,21 @@ TEST(ReceiverBasic, SatellitesOfEverySystemGoThroughInSatIdOrder) {
   const orbit::EphemerisStore mixed_store(mixed), gps_store(gps_half);
   PipelineConfig cfg = test::snapshot();
   cfg.receiver.max_channels = kMaxSatsInView;
+  cfg.world.systems = SystemSet::only(GnssSystem::kGps).with(GnssSystem::kGalileo);
   Pipeline a(mixed_store, cfg), b(gps_store, cfg);
+  PipelineConfig gps_only = cfg;
+  gps_only.world.systems = SystemSet::only(GnssSystem::kGps);
+  Pipeline c(mixed_store, gps_only);
   const Lla lla{10.0 * kDegToRad, -70.0 * kDegToRad, 0.0};
   int galileo_used = 0, compared = 0;
   for (int k = 0; k < 5; ++k) {
-    const time::GpsTime t = kToe + 1.0 * k;
+    const time::GpsTime t = kToe + 1.0 * (k + 1);  // Galileo sets are used from after their toe (RTKLIB)
     const Truth tr = static_truth(lla, t);
     const Fix fa = a.step(t, tr);
     const Fix fb = b.step(t, tr);
+    const Fix fc = c.step(t, tr);  // constellations = ["G"]: the Galileo sets in the store are not in its sky
+    for (int i = 0; i < fc.num_sats; ++i) EXPECT_EQ(fc.sats[i].sat.system, GnssSystem::kGps);
+    EXPECT_GT(fc.num_sats, 0);
     ASSERT_EQ(fa.type, FixType::k3D) << k;
     expect_consistent(fa);
     for (int i = 0; i < fa.num_sats; ++i) {
