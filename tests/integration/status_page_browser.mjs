@@ -122,7 +122,7 @@ async function domState(page) {
     sats: [...document.querySelectorAll('#sat-table tbody tr')].map((tr) => ({ prn: Number(tr.dataset.prn), state: tr.dataset.state })),
     skyPoints: Chart.getChart('sky').data.datasets.filter((d) => !d.gridLine && !d.mask)
       .flatMap((d) => d.data.map((p) => p.prn)).sort((a, b) => a - b),
-    cn0Bars: Chart.getChart('cn0').data.labels.map(Number).sort((a, b) => a - b),
+    cn0Bars: [...Chart.getChart('cn0').data.labels].sort(),
     marker: window.__loadedOnce === true,
     conn: document.getElementById('conn').textContent,
   }));
@@ -191,7 +191,7 @@ async function main() {
     }
     const apiPrns = api.satellites.map((s) => s.prn).sort((a, b) => a - b);
     if (JSON.stringify(dom.skyPoints) !== JSON.stringify(apiPrns)) fail(`sky plot PRNs ${dom.skyPoints} vs ${apiPrns}`);
-    const barPrns = api.satellites.filter((s) => s.state !== 'below_mask').map((s) => s.prn).sort((a, b) => a - b);
+    const barPrns = api.satellites.filter((s) => s.state !== 'below_mask').map((s) => s.sat).sort();  // bars are labelled G07, R12, ...
     if (JSON.stringify(dom.cn0Bars) !== JSON.stringify(barPrns)) fail(`C/N0 bars ${dom.cn0Bars} vs ${barPrns}`);
     if (api.satellites.length < 4 || api.fix.num_used < 4) fail(`too few satellites for a meaningful check: ${api.satellites.length}`);
     console.log(`epoch tow ${dom.tow}: ${apiSats.length} satellites, fix ${api.fix.type_name} with ${api.fix.num_used} used: DOM = API`);
