@@ -330,6 +330,17 @@ const GnssCharts = (() => {
     chart.options.scales.y.title.text = r.clipped ? `${title} (axis clipped at ${r.lim} m)` : title;
   }
 
+  /** Text made safe to place in HTML. */
+  const esc = (v) => String(v).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));
+
+  /** A new element with attributes and inner HTML (the reports' pages are built from these). */
+  function el(tag, attrs = {}, html = '') {
+    const e = document.createElement(tag);
+    for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
+    e.innerHTML = html;
+    return e;
+  }
+
   return { stateColors, stateLabels, states, skyXY, skyChart, skyDatasets, cn0Chart, cn0Data, timeChart, series,
-           scatterChart, scatterData, squareUpdate, circle, percentile, robustLimit, clipY, fmt };
+           scatterChart, scatterData, squareUpdate, circle, percentile, robustLimit, clipY, fmt, esc, el };
 })();

@@ -7,14 +7,7 @@
   const G = GnssCharts;
   const d = JSON.parse(document.getElementById('report-data').textContent);
   const root = document.getElementById('report');
-  const esc = (v) => String(v).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));
-
-  function el(tag, attrs = {}, html = '') {
-    const e = document.createElement(tag);
-    for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
-    e.innerHTML = html;
-    return e;
-  }
+  const { esc, el } = G;
 
   /** A panel with a heading and a canvas in a box of the given class. */
   function panel(id, title, box = 'series', wide = false) {

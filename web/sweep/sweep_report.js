@@ -8,13 +8,7 @@
   const G = GnssCharts;
   const d = JSON.parse(document.getElementById('report-data').textContent);
   const root = document.getElementById('report');
-  const esc = (v) => String(v).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));
-  const el = (tag, attrs = {}, html = '') => {
-    const e = document.createElement(tag);
-    for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
-    e.innerHTML = html;
-    return e;
-  };
+  const { esc, el } = G;
 
   root.appendChild(el('h1', {}, esc(d.title)));
   root.appendChild(el('ul', { class: 'inputs' }, d.inputs.map((s) => `<li>${esc(s)}</li>`).join('')));
