@@ -374,9 +374,8 @@ void read_constellations(TableReader& t, const Field<Config>& f, Config& c) {
 void write_constellations(TomlWriter& w, const Field<Config>& f, const Config& c) {
   if (c.world.systems == WorldConfig{}.systems) return;
   std::vector<std::string_view> letters;
-  static constexpr std::string_view kLetters[] = {"G", "R", "E", "C", "J", "S"};
-  for (int i = 0; i < kNumSystems; ++i)
-    if (c.world.systems.has(static_cast<GnssSystem>(i))) letters.push_back(kLetters[i]);
+  for (const SatNumbering& n : kSatNumbering)  // the table's own letters, in its order
+    if (c.world.systems.has(n.system)) letters.emplace_back(&n.letter, 1);
   w.key(f.key, strings_text(letters), f.note);
 }
 
