@@ -342,7 +342,8 @@ world::Truth Daemon::fallback_truth(const time::GpsTime& t, double demo_elapsed_
 }
 
 void Daemon::on_timer(const boost::system::error_code& ec) {
-  if (ec) return;  // cancelled
+  // A handler already queued when shutdown() cancelled the timer still runs, with success.
+  if (ec || stopped_) return;
   const double now = now_s();
   if (cfg_.time.mode == config::TimeMode::kRealtime) {
     const double offset_s = sched_base_s_ + epoch_offset_s(index_, rate_hz_);
@@ -456,7 +457,7 @@ void Daemon::receive() {
                                  spdlog::warn("truth input: receive error: {}; retrying in 0.5 s", ec.message());
                                  retry_timer_.expires_after(std::chrono::milliseconds(500));
                                  retry_timer_.async_wait([this](const boost::system::error_code& tec) {
-                                   if (!tec && socket_.is_open()) receive();
+                                   if (!tec && !stopped_ && socket_.is_open()) receive();
                                  });
                                  return;
                                }

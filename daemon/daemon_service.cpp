@@ -143,7 +143,7 @@ std::string Daemon::status_line() {
 void Daemon::arm_tick() {
   tick_timer_.expires_after(std::chrono::seconds(1));
   tick_timer_.async_wait([this](const boost::system::error_code& ec) {
-    if (!ec) on_tick();
+    if (!ec && !stopped_) on_tick();
   });
 }
 

@@ -100,8 +100,8 @@ void PortChannel::arm(Timer& t, double delay_s, bool (PortChannel::*check)() noe
   if (t.armed && t.timer->expiry() <= due) return;
   t.armed = true;
   t.timer->expires_at(due);
-  t.timer->async_wait([this, &t, check](const boost::system::error_code& ec) {
-    if (ec) return;  // re-armed earlier, or shut down
+  t.timer->async_wait([this, &t, check, alive = std::weak_ptr<int>(alive_)](const boost::system::error_code& ec) {
+    if (ec || alive.expired()) return;  // re-armed earlier, or shut down
     t.armed = false;
     (this->*check)();
   });

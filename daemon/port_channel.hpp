@@ -141,6 +141,9 @@ private:
   InputHandler on_input_;
   Timer idle_timer_;   ///< abandons partial input frames
   Timer delay_timer_;  ///< sends epochs and replies a latency fault held
+  /// Expires with this channel: a timer handler already queued when the
+  /// channel is destroyed finds it gone instead of a dangling this.
+  std::shared_ptr<int> alive_ = std::make_shared<int>(0);
   // Set while a decoder is feeding the device: the decoder must not be
   // reset or destroyed under it, so those wait until feed() returns.
   bool feeding_ = false;

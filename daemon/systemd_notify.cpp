@@ -44,6 +44,7 @@ void SystemdNotify::reloading() {
 }
 
 void SystemdNotify::stopping() {
+  stopping_ = true;
   timer_.cancel();
   send("STOPPING=1");
 }
@@ -52,7 +53,7 @@ void SystemdNotify::ping() {
   send("WATCHDOG=1");
   timer_.expires_after(std::chrono::microseconds(static_cast<int64_t>(watchdog_s_ * 0.5e6)));
   timer_.async_wait([this](const boost::system::error_code& ec) {
-    if (!ec) ping();
+    if (!ec && !stopping_) ping();
   });
 }
 

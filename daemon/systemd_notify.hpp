@@ -28,6 +28,7 @@ private:
   void ping();
 
   bool active_ = false;     ///< NOTIFY_SOCKET is set
+  bool stopping_ = false;   ///< a ping queued before stopping() must not re-arm
   double watchdog_s_ = 0.0;  ///< WATCHDOG_USEC as s; 0: none
   boost::asio::steady_timer timer_;
 };
