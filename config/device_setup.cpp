@@ -29,6 +29,7 @@ protocol::ubx::DeviceSetup device_setup(const Config& config) {
   s.static_hold_thresh_cm_s = static_cast<std::uint8_t>(std::lround(f.static_hold_speed_m_s * 100.0));
   s.static_hold_max_dist_m = static_cast<std::uint16_t>(std::lround(f.static_hold_max_dist_m));
   s.coast_as_no_fix = coast_as_no_fix(config);
+  s.sky_systems = config.world.systems;
   for (const OutputPortConfig& p : config.outputs) s.outputs.push_back(output_setup(p));
   return s;
 }

@@ -87,6 +87,12 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
     }
   }
   restart_receiver(cfg_.receiver.acquisition.start);
+  if (const SystemSet off(static_cast<std::uint8_t>(cfg_.world.systems.bits() & ~device_.enabled_systems().bits()));
+      !off.empty()) {
+    spdlog::warn("receiver: constellations {} are in the sky but disabled on the chip (its CFG-GNSS): not tracked "
+                 "until a host enables them",
+                 systems_text(off).data());
+  }
   spdlog::info("receiver: {} start at power-on", start_name(cfg_.receiver.acquisition.start));
   if (scene_) spdlog::info("scene {}: {} triangles", cfg_.scene->mesh_file, scene_->triangle_count());
   lock_grid_from(start_);
@@ -114,16 +120,18 @@ void Daemon::restart_receiver(receiver::StartMode start) {
   std::unique_ptr<faults::FaultStage> faults = receiver_ ? receiver_->take_faults() : nullptr;
   receiver_ = config::make_pipeline(c, store_, pipeline::broadcast_of(constellation_.nav), scene_.get());
   receiver_->adopt_faults(std::move(faults));
-  apply_nav5();
+  apply_chip_settings();
 }
 
-void Daemon::apply_nav5() {
+void Daemon::apply_chip_settings() {
   // CFG-NAV5 dynModel and static hold drive the receiver as on an M8; the
   // handler accepted only dynModels the receiver knows.
   const protocol::ubx::wire::CfgNav5& n = device_.config().nav5;
   receiver::Receiver& rx = receiver_->receiver();
   if (const auto m = receiver::dynamic_model_from_ubx(n.dynModel)) rx.set_dynamic_model(*m);
   rx.set_static_hold(0.01 * n.staticHoldThresh, n.staticHoldMaxDist);
+  // CFG-GNSS / CFG-SIGNAL-*: the receiver tracks the enabled systems among the modelled ones.
+  rx.set_systems(device_.enabled_systems());
 }
 
 void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& result) {
@@ -140,13 +148,14 @@ void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& re
     spdlog::info("output {}: GNSS selection changed to {}: the receiver restarts tracking", cfg_.outputs[src].name,
                  systems_text(device_.enabled_systems()).data());
     receiver_->receiver().restart(receiver::StartState{true, true, true, true});
+    apply_chip_settings();
   }
   if (result.nav_config_changed) {
     const protocol::ubx::wire::CfgNav5& n = device_.config().nav5;
     spdlog::info("output {}: CFG-NAV5 dynModel {}, static hold {} cm/s / {} m", cfg_.outputs[src].name,
                  static_cast<unsigned>(n.dynModel), static_cast<unsigned>(n.staticHoldThresh),
                  static_cast<unsigned>(n.staticHoldMaxDist));
-    apply_nav5();
+    apply_chip_settings();
   }
   if (result.ports_changed || result.reset) {
     for (std::size_t i = 0; i < channels_.size(); ++i) log_port_change(i);
@@ -177,7 +186,7 @@ void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& re
   // The device restarted its uptime on the wall clock; in lockstep the chip
   // counts in epoch time, from the epoch it has reached (the rate count starts over too).
   if (cfg_.time.mode == config::TimeMode::kLockstep) device_.power_on(chip_clock_s(last_epoch_t_));
-  apply_nav5();  // a reboot may have loaded the saved CFG-NAV5
+  apply_chip_settings();  // a reboot may have loaded the saved CFG-NAV5
 }
 
 Daemon::~Daemon() { shutdown(); }

@@ -78,8 +78,8 @@ private:
   /// A fresh receiver in a fresh world (start-up, or GPS time going back),
   /// started as start says, with the device's CFG-NAV5 applied.
   void restart_receiver(receiver::StartMode start);
-  /// The device's CFG-NAV5 (dynModel, static hold) into the receiver.
-  void apply_nav5();
+  /// The device's CFG-NAV5 (dynModel, static hold) and GNSS selection into the receiver.
+  void apply_chip_settings();
   /// A host on channel src changed the device: follow its reset, epoch
   /// period and the other ports' line settings.
   void on_host_input(std::size_t src, const protocol::ubx::InputResult& result);

@@ -106,7 +106,7 @@ void Daemon::reload() noexcept {
       receiver->adopt_faults(receiver_->take_faults());  // the faults go on around the new receiver
       receiver_ = std::move(receiver);
       device_.set_coast_as_no_fix(config::coast_as_no_fix(cfg_));
-      apply_nav5();  // the chip's CFG-NAV5 (what a host set, what its polls read back) stays in force
+      apply_chip_settings();  // the chip's CFG-NAV5 (what a host set, what its polls read back) stays in force
     }
     if (plan.log_level) cfg_.log = loaded.log;
     for (const std::string& what : plan.need_restart) {

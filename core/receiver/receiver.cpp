@@ -102,7 +102,7 @@ void Receiver::tracking_stage(const time::GpsTime& t, const world::Observables& 
   std::array<SatId, kMaxSatsInView> tracked_sat{};
   for (int i = 0; i < obs.num_sats; ++i) {
     const world::SatObservable& o = obs.sats[i];
-    if (!o.above_mask) continue;
+    if (!o.above_mask || !systems_.has(o.sat.system)) continue;
     el_rad_[static_cast<std::size_t>(o.sat.index())] = o.el_rad;
     if (acq_.tracked(o.sat)) tracked_sat[static_cast<std::size_t>(n_tracked++)] = o.sat;
   }
@@ -131,6 +131,7 @@ void Receiver::measurement_stage(const world::Observables& obs, double dt_s) noe
   for (int i = 0; i < obs.num_sats; ++i) {
     const world::SatObservable& o = obs.sats[i];
     const SatId p = o.sat;
+    if (!systems_.has(p.system)) continue;
     const std::size_t k = static_cast<std::size_t>(p.index());
     SatInfo& si = fix_.sats[fix_.num_sats++];
     si = SatInfo{};

@@ -43,6 +43,11 @@ public:
   void set_dynamic_model(DynamicModel m) noexcept;
   /// CFG-NAV5 static hold: speed threshold (m/s, 0 off) and distance (m, 0: none).
   void set_static_hold(double speed_m_s, double max_dist_m) noexcept;
+  /// CFG-GNSS / CFG-SIGNAL-*: the systems the channels are assigned to. A
+  /// satellite of another system is neither tracked nor reported, as on a
+  /// u-blox with that system disabled (every system after construction).
+  void set_systems(SystemSet systems) noexcept { systems_ = systems; }
+  SystemSet systems() const noexcept { return systems_; }
 
   /// GPS - UTC to report (e.g. the nav header's LEAP SECONDS); without it
   /// the built-in table (time::leap_seconds_at) is used.
@@ -77,6 +82,7 @@ private:
   // Tracking.
   Acquisition acq_;
   // Per satellite (SatId::index()).
+  SystemSet systems_ = SystemSet::all();
   std::array<bool, kNumSats> tracked_{};
   std::array<bool, kNumSats> usable_{};
   std::array<double, kNumSats> el_rad_{};  ///< elevation this epoch (channel priority)

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 
+#include "core/protocol/nmea/nmea_settings.hpp"
 #include "core/protocol/ubx/ubx_device_config.hpp"
 
 namespace gnssemu::protocol::ubx {
@@ -52,5 +53,11 @@ inline CfgNmeaSettings cfg_nmea_settings(const DeviceConfig& c) noexcept {
   s.bds_talker_id = {static_cast<char>(p[12]), static_cast<char>(p[13])};
   return s;
 }
+
+/// The encoder's settings from a host's CFG-NMEA: base supplies what CFG-NMEA
+/// does not carry (the device); systems are the ones the channels are
+/// assigned to. Values outside the message's ranges keep base's (the
+/// handlers store only what the device accepts).
+nmea::NmeaSettings nmea_settings_from(const CfgNmeaSettings& c, nmea::NmeaSettings base, SystemSet systems) noexcept;
 
 }  // namespace gnssemu::protocol::ubx

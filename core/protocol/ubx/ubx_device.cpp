@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/protocol/ubx/ubx_cfg_nmea.hpp"
 #include "core/protocol/ubx/ubx_config_keys.hpp"
 #include "core/protocol/ubx/ubx_message_table.hpp"
 #include "core/protocol/ubx/ubx_pubx.hpp"
@@ -21,6 +22,7 @@ std::vector<nmea::NmeaEncoder> nmea_encoders(const DeviceSetup& setup) {
   out.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     nmea::NmeaConfig c;
+    c.device = setup.mon_ver.generation == Generation::kM8 ? nmea::NmeaDevice::kM8 : nmea::NmeaDevice::kM9;
     if (i < setup.outputs.size()) {
       c.version = setup.outputs[i].nmea_version;
       c.course_min_speed_m_s = setup.outputs[i].course_min_speed_m_s;
@@ -60,6 +62,7 @@ Device::Device(const DeviceSetup& setup)
       before_(defaults_),
       saved_before_(defaults_),
       val_(defaults_),
+      sky_systems_(setup.sky_systems),
       epoch_period_s_(setup.nav_period_s) {
   for (std::size_t k = 0; k < setup.outputs.size(); ++k) {
     const OutputSetup& o = setup.outputs[k];
@@ -79,6 +82,7 @@ Device::Device(const DeviceSetup& setup)
   current_.nav5.staticHoldThresh = setup.static_hold_thresh_cm_s;
   current_.nav5.staticHoldMaxDist = setup.static_hold_max_dist_m;
   save_config();
+  apply_nmea(false);
 }
 
 InputResult Device::handle_ubx(Link at, const FrameView& frame, double now_s, std::string& out) {
@@ -200,6 +204,12 @@ void Device::load_saved(const DeviceConfig& saved) {
   InputResult boot;
   boot.reset = Reset{};
   after_input(boot);  // the saved CFG-RATE sets the epoch period
+  // A saved CFG-NMEA a host changed replaces the output's configured version and settings.
+  const StoredBlock* factory = defaults_.stored(msg::kCfgNmea);
+  const StoredBlock* now = current_.stored(msg::kCfgNmea);
+  apply_nmea(factory != nullptr && now != nullptr &&
+             !std::equal(factory->payload().begin(), factory->payload().end(), now->payload().begin(),
+                         now->payload().end()));
 }
 
 SystemSet Device::enabled_systems() const noexcept { return ubx::enabled_systems(current_); }
@@ -208,7 +218,18 @@ NavRateLimits Device::nav_rate_limits() const noexcept {
   return ubx::nav_rate_limits(generation(), enabled_systems());
 }
 
+void Device::apply_nmea(bool from_cfg_nmea) noexcept {
+  const SystemSet systems(enabled_systems().bits() & sky_systems_.bits());
+  for (nmea::NmeaEncoder& e : nmea_) {
+    nmea::NmeaSettings s = e.config();
+    s.systems = systems;
+    if (from_cfg_nmea) s = nmea_settings_from(nmea_settings(), s, systems);
+    e.set_settings(s);
+  }
+}
+
 void Device::after_input(const InputResult& r) noexcept {
+  if (r.nmea_config_changed || r.gnss_changed) apply_nmea(r.nmea_config_changed);
   if (!r.nav_rate_changed && !r.reset) return;
   // A host asking for more or less than the emulator runs gets the nearest rate it does.
   double p = current_.nav_period_s();

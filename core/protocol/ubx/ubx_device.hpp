@@ -79,6 +79,11 @@ struct DeviceSetup {
   bool coast_as_no_fix = true;
   /// One per output; empty: one factory UART1.
   std::vector<OutputSetup> outputs;
+  /// Systems the emulator puts in the sky ([receiver] constellations). The
+  /// NMEA sentences give each enabled system among them its GSA and GSV even
+  /// with no satellite; an enabled system the world does not model stays
+  /// silent instead of printing empty sentences forever.
+  SystemSet sky_systems = SystemSet::only(GnssSystem::kGps);  // world::WorldConfig::systems default
 };
 
 /// Order of an epoch's messages.
@@ -218,6 +223,9 @@ private:
   void diff(Link at, InputResult& r) const noexcept;
   void restart_navigation(double now_s) noexcept;
   void after_input(const InputResult& r) noexcept;
+  /// The NMEA encoders follow the enabled systems and, when from_cfg_nmea,
+  /// every field of the stored CFG-NMEA.
+  void apply_nmea(bool from_cfg_nmea) noexcept;
 
   bool ack_unknown_cfg_;
   bool coast_as_no_fix_;
@@ -227,6 +235,7 @@ private:
   DeviceConfig before_;  ///< current_ before the input being handled (no allocation per input)
   DeviceConfig saved_before_;  ///< saved_ before it
   ValTransaction val_;   ///< CFG-VALSET transaction and scratch configurations (M9)
+  SystemSet sky_systems_;
   double epoch_period_s_;
   double uptime_origin_s_ = 0.0;  ///< power-on or the last reset that restarted navigation
   receiver::Fix last_fix_{};

@@ -214,6 +214,41 @@ TEST(ReceiverBasic, SatellitesOfEverySystemGoThroughInSatIdOrder) {
   EXPECT_GE(compared, 10);
 }
 
+TEST(ReceiverBasic, DisabledSystemIsNeitherTrackedNorReported) {
+  // CFG-GNSS with Galileo off: its satellites stay in the sky (the world
+  // models them) but the receiver neither tracks nor lists them; enabled
+  // again, they come back.
+  std::vector<orbit::Ephemeris> mixed = test::nominal_constellation(kToe, 6);
+  for (std::size_t i = 0; i < mixed.size(); i += 2) {
+    mixed[i].sat = SatId(GnssSystem::kGalileo, mixed[i].sat.number);
+    mixed[i].gal_data_sources = 517;
+  }
+  const orbit::EphemerisStore store(mixed);
+  PipelineConfig cfg = test::snapshot();
+  cfg.receiver.max_channels = kMaxSatsInView;
+  cfg.world.systems = SystemSet::only(GnssSystem::kGps).with(GnssSystem::kGalileo);
+  Pipeline p(store, cfg);
+  const Lla lla{10.0 * kDegToRad, -70.0 * kDegToRad, 0.0};
+  const auto count = [](const Fix& f, GnssSystem s, bool used) {
+    int n = 0;
+    for (int i = 0; i < f.num_sats; ++i) n += f.sats[i].sat.system == s && (!used || f.sats[i].used);
+    return n;
+  };
+  for (int k = 1; k <= 3; ++k) p.step(kToe + 1.0 * k, static_truth(lla, kToe + 1.0 * k));
+  ASSERT_GT(count(p.receiver().last_fix(), GnssSystem::kGalileo, true), 0);
+  p.receiver().set_systems(SystemSet::only(GnssSystem::kGps));
+  for (int k = 4; k <= 6; ++k) {
+    const Fix& f = p.step(kToe + 1.0 * k, static_truth(lla, kToe + 1.0 * k));
+    EXPECT_EQ(count(f, GnssSystem::kGalileo, false), 0) << k;
+    EXPECT_NE(f.type, FixType::kNone) << k;
+    EXPECT_GE(count(f, GnssSystem::kGps, true), 3) << k;
+    expect_consistent(f);
+  }
+  p.receiver().set_systems(SystemSet::all());
+  const Fix& f = p.step(kToe + 7.0, static_truth(lla, kToe + 7.0));
+  EXPECT_GT(count(f, GnssSystem::kGalileo, false), 0);
+}
+
 TEST(ReceiverBasic, NoTruthGivesNoFixAndKeepsTime) {
   const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
   Pipeline rx(store, test::snapshot());

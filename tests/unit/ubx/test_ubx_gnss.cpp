@@ -5,6 +5,7 @@
 // MON-GNSS, MON-HW2 at a host's rate, and the navigation-rate limits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -549,6 +550,53 @@ TEST(UbxGnss, CfgNmeaEveryFormAndKeyReachesTheSettings) {
   EXPECT_EQ(m9.nmea_settings().max_svs, 16);
   EXPECT_EQ(m9.nmea_settings().main_talker_id, 7);
   EXPECT_FALSE(h9.acked(msg::kCfgValset, valset_l({{0x20930002, 10}})));  // MAXSVS only 0, 8, 12, 16
+}
+
+}  // namespace
+}  // namespace gnssemu::protocol::ubx::gnss_test
+
+namespace gnssemu::protocol::ubx::gnss_test {
+namespace {
+
+/// The NMEA sentence heads ("GNGGA", "GLGSA") of one epoch of d's output 0 with a GPS-only fix.
+std::vector<std::string> nmea_heads(Device& d) {
+  d.on_epoch(sample_fix(), 10.0);
+  MessageList list;
+  d.compose({}, list);
+  std::vector<std::string> heads;
+  for (const MessageList::Message& m : list.messages()) {
+    const std::string_view b = list.bytes(m);
+    if (!b.empty() && b[0] == '$') heads.emplace_back(b.substr(1, 5));
+  }
+  return heads;
+}
+
+bool has(const std::vector<std::string>& v, std::string_view s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+
+TEST(UbxGnss, CfgGnssAndCfgNmeaChangeTheSentences) {
+  // A GPS + GLONASS sky on an M8 (factory: GPS, GLONASS, QZSS, SBAS): GLONASS has
+  // its own GSA even with no GLONASS satellite in the fix, and the combined
+  // sentences talk GN, as the M8 log does.
+  DeviceSetup setup = setup_of(Generation::kM8);
+  setup.sky_systems = set_of({kGps, kGlonass});
+  Device d(setup);
+  std::vector<std::string> heads = nmea_heads(d);
+  EXPECT_TRUE(has(heads, "GNGGA") && has(heads, "GNGSA")) << ::testing::PrintToString(heads);
+  // GLONASS off (PX4's GPS_1_GNSS = GPS + SBAS): GPS alone, GP talker, one GSA.
+  Host h{d};
+  ASSERT_TRUE(h.acked(msg::kCfgGnss, px4_cfg_gnss(1 | 2)));
+  heads = nmea_heads(d);
+  EXPECT_TRUE(has(heads, "GPGGA") && has(heads, "GPGSA") && !has(heads, "GNGSA")) << ::testing::PrintToString(heads);
+  // CFG-NMEA main talker GN (3): every combined sentence says GN again.
+  ASSERT_TRUE(h.acked(msg::kCfgNmea, {0x00, 0x41, 0, 0x02, 0, 0, 0, 0, 0, 3, 0, 0}));
+  heads = nmea_heads(d);
+  EXPECT_TRUE(has(heads, "GNGGA") && has(heads, "GNRMC")) << ::testing::PrintToString(heads);
+  // A sky without GLONASS: an enabled system the world does not model stays silent.
+  DeviceSetup gps_sky = setup;
+  gps_sky.sky_systems = set_of({kGps});
+  Device g(gps_sky);
+  heads = nmea_heads(g);
+  EXPECT_TRUE(has(heads, "GPGGA") && !has(heads, "GNGSA")) << ::testing::PrintToString(heads);
 }
 
 }  // namespace
