@@ -379,3 +379,28 @@ TEST(NavSystems, ShippedDefaultHoldsFiveSystems) {
   EXPECT_GE(healthy[3], 40);  // C
   EXPECT_GE(healthy[4], 3);   // J
 }
+
+// The shipped default moved to a later date serves every system at the
+// start and three days on (each satellite continued past the data).
+TEST(NavSystems, ShippedDefaultServesEverySystemDaysOn) {
+  const NavData d = read_rinex_nav(std::string(GNSSEMU_SOURCE_DIR) + "/config/nav/BRDC00IGS_R_20240100000_01D_MN_gnssemu.rnx.gz");
+  ConstellationRequest req;
+  req.mode = NavMode::kAuto;
+  req.start = time::GpsTime(2446, 210808.0);  // 2026-11-24 10:33:28 GPST
+  const Constellation c = build_constellation(d, req);
+  EXPECT_EQ(c.mode, NavMode::kRelabel);
+  EXPECT_EQ(c.shift_s, 1049.0 * kSecondsPerDay);
+  const EphemerisStore store(c.nav.ephemerides, c.store_options());
+  for (const double later_s : {0.0, 3.0 * kSecondsPerDay}) {
+    std::array<int, kNumSystems> n{};
+    for (int i = 0; i < kNumSats; ++i) {
+      const SatId sat = SatId::from_index(i);
+      if (store.select(sat, req.start + later_s) != nullptr) ++n[static_cast<std::size_t>(sat.system)];
+    }
+    EXPECT_GE(n[0], 30) << later_s;
+    EXPECT_GE(n[1], 22) << later_s;
+    EXPECT_GE(n[2], 22) << later_s;
+    EXPECT_GE(n[3], 40) << later_s;
+    EXPECT_GE(n[4], 3) << later_s;
+  }
+}
