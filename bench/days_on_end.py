@@ -10,12 +10,13 @@ and what a user would check:
     and the largest within +-60 s of every day boundary (00:00 GPST and
     UTC), of the week boundary and of the end of the nav data (where each
     satellite goes on along its last orbit);
-  - satellites in view (GSV: above the horizon; and above the 5 deg mask),
-    hourly, with satellites rising and setting.
+  - satellites in view (above the horizon; and above the 5 deg mask), with
+    satellites rising and setting; and every hour, per system (G R E C J S),
+    the satellites above the mask and those used in the fix (`batch --sats`).
 
 Prints figures and a Markdown table (docs/models.md); no pass/fail.
 
-usage: days_on_end.py --gnssemu build/tools/gnssemu/gnssemu [--config FILE]
+usage: days_on_end.py --gnssemu build/tools/gnssemu/gnssemu [--config FILE] [--systems G,R,E,C,J]
                       [--start now|YYYY-MM-DDTHH:MM:SS] [--hours 72] [--table-step-h 3]
 """
 import argparse
@@ -30,6 +31,8 @@ import tempfile
 
 GPS_EPOCH = datetime.datetime(1980, 1, 6, tzinfo=datetime.timezone.utc)
 LEAP_S = 18  # GPS - UTC since 2017-01-01 (no leap second announced since)
+MASK_DEG = 5.0
+SYSTEMS = "GRECJS"  # RINEX letters, in the order of the sat column's systems
 
 
 def gps_of(dt):
@@ -64,24 +67,35 @@ def run(args, start_week, start_tow):
         for k in range(n):
             w, tow = divmod(start_week * 604800 + start_tow + k, 604800)
             f.write(f"{int(w)},{tow:.3f},{lat},{lon},{h}\n")
-    proc = subprocess.Popen([args.gnssemu, "batch", "--config", args.config, "--truth", truth, "--errors", errors,
-                             "--nmea", "-"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    # GSV per epoch: PRN -> elevation (deg). An epoch's GSV group ends at its last message.
-    in_view, above_mask, sets = [], [], []
-    cur = {}
+    cmd = [args.gnssemu, "batch", "--config", args.config, "--truth", truth, "--errors", errors, "--sats", "-"]
+    if args.systems:
+        cmd += ["--systems", args.systems]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    # Per epoch: satellites above the horizon (count, set), above the mask, and
+    # per system (SYSTEMS order) above the mask and used.
+    in_view, above_mask, sets, per_system = [], [], [], []
+    header = proc.stdout.readline().strip().split(",")
+    c_tow, c_sat, c_el, c_used = (header.index(k) for k in ("tow_s", "sat", "el_deg", "used"))
+    cur_tow, cur = None, []
+
+    def close_epoch():
+        up = [(sat, el, used) for sat, el, used in cur if el >= 0.0]
+        in_view.append(len(up))
+        above_mask.append(sum(1 for _, el, _ in up if el >= MASK_DEG))
+        sets.append(frozenset(sat for sat, _, _ in up))
+        per_system.append(tuple((sum(1 for sat, el, _ in up if sat[0] == x and el >= MASK_DEG),
+                                 sum(1 for sat, _, used in up if sat[0] == x and used))
+                                for x in SYSTEMS))
+
     for line in proc.stdout:
-        if not line.startswith("$GPGSV"):
-            continue
-        f = line.split("*")[0].split(",")
-        num, idx = int(f[1]), int(f[2])
-        for j in range(4, len(f) - 3, 4):
-            if f[j]:
-                cur[int(f[j])] = int(f[j + 1]) if f[j + 1] else 0
-        if idx == num:
-            in_view.append(len(cur))
-            above_mask.append(sum(1 for e in cur.values() if e >= 5))
-            sets.append(frozenset(cur))
-            cur = {}
+        f = line.rstrip("\n").split(",")
+        if f[c_tow] != cur_tow and cur_tow is not None:
+            close_epoch()
+            cur = []
+        cur_tow = f[c_tow]
+        cur.append((f[c_sat], float(f[c_el]), f[c_used] == "1"))
+    if cur_tow is not None:
+        close_epoch()
     err = proc.stderr.read()
     if proc.wait() != 0:
         sys.exit("gnssemu batch failed: " + err)
@@ -89,11 +103,11 @@ def run(args, start_week, start_tow):
     for p in (truth, errors):
         os.remove(p)
     os.rmdir(tmp)
-    return rows, err, in_view, above_mask, sets
+    return rows, err, in_view, above_mask, sets, per_system
 
 
 def report(args, label, start_week, start_tow):
-    rows, err, in_view, above_mask, sets = run(args, start_week, start_tow)
+    rows, err, in_view, above_mask, sets, per_system = run(args, start_week, start_tow)
     print(f"\n## {label}: {args.hours:g} h at 1 Hz from {gpst_text(start_week, start_tow)} GPST "
           f"(week {start_week} tow {start_tow:.0f}), {os.path.relpath(args.config)}")
     sat_line = next((l for l in err.splitlines() if "satellites:" in l), "")
@@ -103,6 +117,10 @@ def report(args, label, start_week, start_tow):
     print(f"epochs {n}, with a fix {len(fixed)} ({100.0 * len(fixed) / n:.3f} %), "
           f"3D {sum(1 for r in rows if r['fix_type'] == '3')}")
     t0 = int(rows[0]["gps_week"]) * 604800 + float(rows[0]["tow_s"])
+    gaps = [int(r["gps_week"]) * 604800 + float(r["tow_s"]) for r in rows if r["e_m"] == ""]
+    if gaps:
+        print("epochs without a fix: " + ", ".join(f"{gpst_text(0, g)} ({g - t0:.0f} s in)" for g in gaps[:5]) +
+              (" ..." if len(gaps) > 5 else ""))
     steps = []  # (h, 3d, seconds since start)
     prev = None
     for r in rows:
@@ -139,7 +157,7 @@ def report(args, label, start_week, start_tow):
             print(f"  largest 3D step within 60 s of {name} ({sum(1 for k, x in marks if k == name and 0 <= x <= args.hours * 3600)}"
                   f" in the run): {max(near):.3f} m")
     changes = sum(1 for a, b in zip(sets, sets[1:]) if a != b)
-    print(f"satellites in view per epoch (GSV, above the horizon): min {min(in_view)} max {max(in_view)}; "
+    print(f"satellites in view per epoch (above the horizon): min {min(in_view)} max {max(in_view)}; "
           f"above the 5 deg mask: min {min(above_mask)} max {max(above_mask)}; "
           f"{changes} epochs where a satellite rose or set")
     # Table: per table step, satellites in view at its start, range over the step, rises and sets.
@@ -152,12 +170,26 @@ def report(args, label, start_week, start_tow):
         fell = sum(len(a - b) for a, b in zip(sets[k:j], sets[k + 1:j + 1]))
         print(f"| {gpst_text(0, t0 + k)} | {in_view[k]} | {above_mask[k]} | {min(above_mask[k:j + 1])}-"
               f"{max(above_mask[k:j + 1])} | {rose} / {fell} |")
+    # Per system, every hour: above the mask / used in the fix.
+    shown = [i for i, x in enumerate(SYSTEMS) if any(e[i][0] for e in per_system)]
+    print("\nper system every hour, above the 5 deg mask / used in the fix:\n")
+    print("| GPST | " + " | ".join(SYSTEMS[i] for i in shown) + " | all |")
+    print("|---|" + "---|" * (len(shown) + 1))
+    for k in range(0, len(per_system), 3600):
+        e = per_system[k]
+        print(f"| {gpst_text(0, t0 + k)} | " + " | ".join(f"{e[i][0]} / {e[i][1]}" for i in shown) +
+              f" | {sum(x[0] for x in e)} / {sum(x[1] for x in e)} |")
+    lo = [min(e[i][0] for e in per_system) for i in shown]
+    hi = [max(e[i][0] for e in per_system) for i in shown]
+    print("\nabove the mask over the run: " + ", ".join(f"{SYSTEMS[i]} {a}-{b}" for i, a, b in zip(shown, lo, hi)) +
+          f"; used: {min(sum(x[1] for x in e) for e in per_system)}-{max(sum(x[1] for x in e) for e in per_system)}")
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--gnssemu", required=True)
     ap.add_argument("--config", default=os.path.join(os.path.dirname(__file__), "..", "config", "default.toml"))
+    ap.add_argument("--systems", default="", help="batch --systems (default: the config's [receiver] constellations)")
     ap.add_argument("--start", default="now", help="now, or GPST YYYY-MM-DDTHH:MM:SS")
     ap.add_argument("--hours", type=float, default=72.0)
     ap.add_argument("--table-step-h", type=float, default=3.0)

@@ -28,7 +28,8 @@ install(CODE [[
   endforeach()
   # default.toml with the installed nav data and its pty in the unit's RuntimeDirectory.
   file(READ "${_src}/config/default.toml" _conf)
-  string(REPLACE "file = \"nav/brdc0010.22n\"" "file = \"${_prefix}/share/gnssemu/nav/brdc0010.22n\"" _conf "${_conf}")
+  string(REPLACE "file = \"nav/BRDC00IGS_R_20240100000_01D_MN_gnssemu.rnx.gz\""
+                 "file = \"${_prefix}/share/gnssemu/nav/BRDC00IGS_R_20240100000_01D_MN_gnssemu.rnx.gz\"" _conf "${_conf}")
   string(REPLACE "path = \"/tmp/gnssemu/gps0\"" "path = \"/run/gnssemu/gps0\"" _conf "${_conf}")
   string(REPLACE "(gpsd /tmp/gnssemu/gps0)" "(gpsd -b /run/gnssemu/gps0)" _conf "${_conf}")
   file(WRITE "${_stage}/gnssemud.toml" "${_conf}")

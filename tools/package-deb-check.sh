@@ -18,7 +18,7 @@ echo "package: $(basename "$deb"), $(du -k "$deb" | cut -f1) kB"
 dpkg-deb -I "$deb" | sed -n 's/^ \(Package\|Version\|Depends\|Installed-Size\):/  \1:/p'
 dpkg-deb -c "$deb" | awk '{print $6}' > "$tmp/contents"
 for f in ./usr/bin/gnssemud ./usr/bin/gnssemu ./lib/systemd/system/gnssemud.service ./lib/systemd/system/gnssemud@.service \
-         ./etc/gnssemu/gnssemud.toml ./usr/share/gnssemu/default.toml ./usr/share/gnssemu/nav/brdc0010.22n \
+         ./etc/gnssemu/gnssemud.toml ./usr/share/gnssemu/default.toml ./usr/share/gnssemu/nav/brdc0010.22n ./usr/share/gnssemu/nav/BRDC00IGS_R_20240100000_01D_MN_gnssemu.rnx.gz \
          ./usr/share/man/man8/gnssemud.8.gz ./usr/share/man/man1/gnssemu.1.gz ./usr/share/man/man5/gnssemud.toml.5.gz \
          ./usr/share/doc/gnssemu/copyright ./usr/share/doc/gnssemu/changelog.gz ./usr/share/doc/gnssemu/CHANGELOG.md; do
   grep -qx "$f" "$tmp/contents" || { echo "missing in the package: $f"; exit 1; }

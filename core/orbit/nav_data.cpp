@@ -26,4 +26,10 @@ NavData merge(const std::vector<NavData>& files) {
   return out;
 }
 
+SystemSet systems_of(const NavData& nav) noexcept {
+  SystemSet s;
+  for (const Ephemeris& e : nav.ephemerides) s = s.with(e.sat.system);
+  return s;
+}
+
 }  // namespace gnssemu::orbit

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/common/sat_id.hpp"
 #include "core/orbit/ephemeris.hpp"
 
 namespace gnssemu::orbit {
@@ -54,5 +55,8 @@ struct NavData {
 /// it; the leap-second count if every file that gives one agrees (else
 /// none: the built-in table decides); source names joined with " + ".
 NavData merge(const std::vector<NavData>& files);
+
+/// The systems nav holds at least one ephemeris of.
+SystemSet systems_of(const NavData& nav) noexcept;
 
 }  // namespace gnssemu::orbit

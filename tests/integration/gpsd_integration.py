@@ -11,7 +11,7 @@ loopback only, read-only -b), and reads gpspipe -w. Cases:
            reports mode <= 1 (the receiver lost its antenna: it extrapolates
            but flags no fix; no frozen fix)
   today  - the default daemon (no --config: the shipped default.toml with its
-           2022 nav file): TPV time within 2 s of the system clock, mode 3
+           2024 multi-GNSS nav file): TPV time within 2 s of the system clock, mode 3
 Every process is killed and the temp dir removed on exit, also on failure.
 
 usage: gpsd_integration.py --gnssemud PATH --nav FILE --sender PATH CASE
@@ -271,7 +271,7 @@ def case_today(rig):
         assert m["leapseconds"] == 18, f"leap seconds {m['leapseconds']}"
     with open(rig.daemon_log.name) as f:
         log = f.read()
-    assert "nav data moved" in log, "the daemon did not say it moved the 2022 nav data to today"
+    assert "nav data moved" in log, "the daemon did not say it moved the shipped 2024 nav data to today"
     print(f"  today: mode 3, gpsd time {m['time']}, at most {worst:.2f} s from the system clock")
 
 

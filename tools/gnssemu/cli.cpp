@@ -78,6 +78,7 @@ struct BatchArgs {
   std::string sats_path;       ///< --sats
   std::string report_dir;      ///< --report
   std::string reference_path;  ///< --cn0-reference (with --report)
+  std::optional<std::string> systems;  ///< --systems: RINEX letters; none: the config's [receiver] constellations
 };
 
 /// Where satpos, sky and dop take their satellites from.
@@ -85,6 +86,7 @@ struct NavArgs {
   std::vector<std::string> paths;  ///< --nav, repeatable: one ephemeris store
   std::string mode = "as_is";      ///< --nav-mode
   std::string almanac;             ///< --almanac (mode almanac)
+  std::optional<std::string> systems;  ///< --systems: RINEX letters; none: every system of the nav files
 };
 
 struct ObsArgs {
@@ -125,14 +127,31 @@ SkyRequest checked_site(const SiteArgs& s, const time::GpsTime& t) {
   return r;
 }
 
+constexpr const char* kSystemsHelp =
+    "RINEX system letters, comma-separated: G GPS, R GLONASS, E Galileo, C BeiDou, J QZSS, S SBAS (e.g. G,R,E,C,J)";
+
+/// --systems TEXT as a set; fallback when the option was not given.
+SystemSet checked_systems(const std::optional<std::string>& text, SystemSet fallback) {
+  if (!text) return fallback;
+  const std::optional<SystemSet> set = parse_systems(*text);
+  if (!set) {
+    throw Error(fmt::format("--systems: '{}' is not a list of distinct RINEX system letters: G GPS, R GLONASS, "
+                            "E Galileo, C BeiDou, J QZSS, S SBAS, comma-separated (e.g. G,R,E,C,J)",
+                            *text));
+  }
+  return *set;
+}
+
 std::string describe(const time::GpsTime& t) { return fmt::format("week {} tow {:.3f}", t.week(), t.tow_s()); }
 
 
 /// The satellites at t from --nav/--nav-mode/--almanac (a store with at least
-/// one healthy set valid at t; with klobuchar, the header's broadcast iono).
-/// as_is serves the files' own span only (RTKLIB); relabel and almanac move
-/// the data to t's date and continue past them, as the daemon does.
-orbit::EphemerisStore load_store(const NavArgs& a, const time::GpsTime& t,
+/// one healthy set of *systems valid at t; with klobuchar, the header's
+/// broadcast iono). as_is serves the files' own span only (RTKLIB); relabel
+/// and almanac move the data to t's date and continue past them, as the
+/// daemon does. *systems: --systems, or every system the data hold; a
+/// requested system the data lack is named on err.
+orbit::EphemerisStore load_store(const NavArgs& a, const time::GpsTime& t, SystemSet* systems, std::ostream& err,
                                  orbit::KlobucharParams* klobuchar = nullptr) {
   const std::optional<orbit::NavMode> mode = orbit::nav_mode_from_name(a.mode);
   if (!mode) throw Error("--nav-mode: '" + a.mode + "' is not auto, as_is, relabel or almanac");
@@ -159,12 +178,22 @@ orbit::EphemerisStore load_store(const NavArgs& a, const time::GpsTime& t,
     c = orbit::build_constellation(nav, req);
   }
   if (klobuchar) *klobuchar = c.nav.klobuchar;
+  const SystemSet held = orbit::systems_of(c.nav);
+  *systems = checked_systems(a.systems, held);
+  for (const SatNumbering& n : kSatNumbering) {
+    if (systems->has(n.system) && !held.has(n.system)) {
+      err << "gnssemu: --systems: " << c.source << " holds no " << system_name(n.system) << " (" << n.letter
+          << ") ephemerides\n";
+    }
+  }
   orbit::EphemerisStore store(c.nav.ephemerides, c.store_options());
   for (int i = 0; i < kNumSats; ++i) {
-    if (store.select(SatId::from_index(i), t) != nullptr) return store;
+    const SatId sat = SatId::from_index(i);
+    if (systems->has(sat.system) && store.select(sat, t) != nullptr) return store;
   }
   throw Error(c.source, 0,
-              fmt::format("no healthy ephemeris valid at {}; the data cover {}{}", describe(t),
+              fmt::format("no healthy ephemeris valid at {}{}; the data cover {}{}", describe(t),
+                          a.systems ? fmt::format(" for --systems {}", systems_text(*systems).data()) : "",
                           orbit::spans_text(c.coverage),
                           *mode == orbit::NavMode::kAsIs ? " (--nav-mode relabel moves them to that date)" : ""));
 }
@@ -199,7 +228,8 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
     throw Error("--nmea, --ubx, --errors, --sats: two outputs cannot both be '-' (stdout)");
   }
   if (!a.reference_path.empty() && a.report_dir.empty()) throw Error("--cn0-reference needs --report DIR");
-  const config::Config cfg = config::load_config(a.config_path);
+  config::Config cfg = config::load_config(a.config_path);
+  cfg.world.systems = checked_systems(a.systems, cfg.world.systems);
   const world::TruthTrack track(read_truth_csv(a.truth_path));
   for (const std::string& p : config::nav_paths(cfg)) {
     std::error_code ec;
@@ -208,7 +238,8 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
   // The truth's own dates, with the satellites dated for them as the daemon
   // dates them ([nav] mode; as_is: the truth must start inside the data).
   const orbit::Constellation c = config::make_constellation(cfg, config::load_nav(cfg), track.first());
-  err << "gnssemu batch: satellites: " << c.describe() << '\n';
+  err << "gnssemu batch: satellites: " << c.describe() << "; systems " << systems_text(cfg.world.systems).data()
+      << '\n';
   std::vector<faults::FaultEvent> scenario;
   if (!a.scenario_path.empty()) {
     scenario = config::read_scenario(a.scenario_path);
@@ -316,11 +347,20 @@ int run_spp_command(const ObsArgs& a, std::ostream& out, std::ostream& err) {
 struct CalibrateArgs {
   std::vector<std::string> obs_paths, nav_paths, stations;
   std::string out_path, config_path, residuals_path;
+  std::optional<std::string> systems;  ///< --systems: RINEX letters; none: GPS
   double mask_deg = 5.0;
 };
 
 int run_calibrate_command(const CalibrateArgs& a, std::ostream& out, std::ostream& err) {
   check_range("--mask", a.mask_deg, 0.0, 90.0, true);
+  // The fit solves with one receiver clock: GPS alone until the solver
+  // estimates one per system.
+  constexpr SystemSet kCalibrateSystems = SystemSet::only(GnssSystem::kGps);
+  const SystemSet systems = checked_systems(a.systems, kCalibrateSystems);
+  if (systems.without(GnssSystem::kGps) != SystemSet()) {
+    throw Error(fmt::format("--systems {}: calibrate fits GPS alone so far (supported: {})",
+                            systems_text(systems).data(), systems_text(kCalibrateSystems).data()));
+  }
   if (a.nav_paths.size() != a.obs_paths.size() || a.stations.size() != a.obs_paths.size()) {
     throw Error(fmt::format("calibrate: {} --obs, {} --nav and {} --station: give one of each per station-day",
                             a.obs_paths.size(), a.nav_paths.size(), a.stations.size()));
@@ -386,6 +426,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
         ->check(CLI::IsMember({"auto", "as_is", "relabel", "almanac"}))
         ->capture_default_str();
     sub->add_option("--almanac", nav_args.almanac, "YUMA or SEM almanac (with --nav-mode almanac)");
+    sub->add_option("--systems", nav_args.systems,
+                    std::string(kSystemsHelp) + "; default: every system in the nav files");
     sub->add_option("--week", time_args.week, "GPS week (continuous, not mod 1024)")->required();
     sub->add_option("--tow", time_args.tow_s, "GPS time of week, s [0, 604800)")->required();
   };
@@ -444,6 +486,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
                         "write per epoch and satellite gps_week,tow_s,sat,prn,az_deg,el_deg,cn0_dbhz,tracked,used here "
                         "('-' = stdout)");
   batch_cmd->add_option("--report", batch.report_dir, "write an HTML report with plots to DIR/report.html");
+  batch_cmd->add_option("--systems", batch.systems,
+                        std::string(kSystemsHelp) + "; default: the config's [receiver] constellations");
   batch_cmd->add_option("--cn0-reference", batch.reference_path,
                         "a real receiver's C/N0 for the report: NMEA log (GSV) or CSV with el_deg,cn0_dbhz");
   PlotArgs plot_args;
@@ -480,6 +524,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   calib->add_option("--mask", cal.mask_deg, "elevation mask, deg [0, 90)")->capture_default_str();
   calib->add_option("--config", cal.config_path, "start from this config (default: the built-in one)");
   calib->add_option("--residuals", cal.residuals_path, "also write every satellite residual used as CSV");
+  calib->add_option("--systems", cal.systems, std::string(kSystemsHelp) + "; default and supported so far: G");
   CLI::App* bench = app.add_subcommand("bench", "benchmarks that print time next to the error it costs");
   bench->require_subcommand(1);
   CLI::App* bench_mp = bench->add_subcommand("multipath", "scene stage: time per epoch vs error against a dense reference");
@@ -553,11 +598,13 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       return run_ctl(ctl_args, out, err);
     } else if (*satpos) {
       const time::GpsTime t = checked_time(time_args);
-      write_satpos(load_store(nav_args, t), t, out);
+      SystemSet systems;
+      const orbit::EphemerisStore store = load_store(nav_args, t, &systems, err);
+      write_satpos(store, t, out, systems);
     } else if (*sky || *dop) {
       const time::GpsTime t = checked_time(time_args);
       SkyRequest req = checked_site(site, t);
-      const orbit::EphemerisStore store = load_store(nav_args, t, &req.klobuchar);
+      const orbit::EphemerisStore store = load_store(nav_args, t, &req.systems, err, &req.klobuchar);
       if (*sky) {
         SkyRequest sreq = req;
         std::unique_ptr<scene::Scene> buildings;

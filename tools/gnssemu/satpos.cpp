@@ -7,12 +7,13 @@
 
 namespace gnssemu::cli {
 
-int write_satpos(const orbit::EphemerisStore& store, const time::GpsTime& t, std::ostream& out) {
+int write_satpos(const orbit::EphemerisStore& store, const time::GpsTime& t, std::ostream& out, SystemSet systems) {
   out << "sat,prn,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s,clk_bias_s,toe_tow_s,iode\n";
   int rows = 0;
   fmt::memory_buffer buf;
   for (int i = 0; i < kNumSats; ++i) {
     const SatId sat = SatId::from_index(i);
+    if (!systems.has(sat.system)) continue;
     const orbit::Ephemeris* eph = store.select(sat, t);
     if (eph == nullptr) continue;
     const orbit::SatState s = orbit::sat_state(*eph, t);

@@ -20,8 +20,9 @@
 
 namespace gnssemu::cli {
 
-pipeline::PipelineConfig geometry_config(double mask_rad) {
+pipeline::PipelineConfig geometry_config(double mask_rad, SystemSet systems) {
   pipeline::PipelineConfig c;
+  c.world.systems = systems;
   c.receiver.elevation_mask_rad = mask_rad;
   c.world.errors.thermal_sigma_m = 0.0;
   c.world.errors.orbit_clock.sigma_m = 0.0;
@@ -52,6 +53,7 @@ int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::os
   fmt::memory_buffer buf;
   for (int i = 0; i < kNumSats; ++i) {
     const SatId sat = SatId::from_index(i);
+    if (!req.systems.has(sat.system)) continue;
     const orbit::Ephemeris* eph = store.select(sat, req.t);
     if (eph == nullptr) continue;
     const world::SkySat s = world::sky_sat(*eph, req.t, rx, req.rx_lla, Ecef());
@@ -87,7 +89,7 @@ int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::os
 
 DopResult write_dop(const orbit::EphemerisStore& store, const SkyRequest& req, std::ostream& out) {
   out << "gdop,pdop,hdop,vdop,tdop,nsat\n";
-  pipeline::Pipeline rx(store, geometry_config(req.mask_rad));
+  pipeline::Pipeline rx(store, geometry_config(req.mask_rad, req.systems));
   world::Truth truth;
   truth.t = req.t;
   truth.pos_m = geo::ecef_from_lla(req.rx_lla);

@@ -336,7 +336,7 @@ TEST(ConfigLoad, DefaultTomlLoads) {
   const std::string path = kSource + "/config/default.toml";
   const Config c = load_config(path);
   EXPECT_EQ(c.source, path);
-  EXPECT_EQ(c.nav_file, kSource + "/config/nav/brdc0010.22n");
+  EXPECT_EQ(c.nav_file, kSource + "/config/nav/BRDC00IGS_R_20240100000_01D_MN_gnssemu.rnx.gz");
   EXPECT_NEAR(c.origin.lat_rad * kRadToDeg, 48.8738, 1e-12);
   EXPECT_NEAR(c.origin.lon_rad * kRadToDeg, 2.2950, 1e-12);
   EXPECT_EQ(c.rate_hz, 1.0);
@@ -366,15 +366,19 @@ TEST(ConfigLoad, EmbeddedDefaultIsTheShippedFile) {
 
 TEST(ConfigLoad, EmbeddedDefaultWithOtherFolder) {
   // The nav path is relative, so the folder decides which file is used.
-  const Config c = default_config(kData);
-  EXPECT_EQ(c.nav_file, kData + "/nav/brdc0010.22n");
+  const std::string nav = "nav/BRDC00IGS_R_20240100000_01D_MN_gnssemu.rnx.gz";
+  const fs::path other = fs::temp_directory_path() / ("gnssemu-default-" + std::to_string(::getpid()));
+  fs::create_directories(other / "nav");
+  fs::copy_file(kSource + "/config/" + nav, other / nav, fs::copy_options::overwrite_existing);
+  const Config c = default_config(other.string());
+  EXPECT_EQ(c.nav_file, (other / nav).string());
+  fs::remove_all(other);
   try {
     default_config("/nonexistent");
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_EQ(std::string(e.what()),
-              "default.toml (built in):11: nav.file: 'nav/brdc0010.22n' not found (tried "
-              "/nonexistent/nav/brdc0010.22n)");
+              "default.toml (built in):11: nav.file: '" + nav + "' not found (tried /nonexistent/" + nav + ")");
   }
 }
 
@@ -400,7 +404,7 @@ TEST(ConfigLoad, RelativePathFromWorkingDirectory) {
   Config c;
   EXPECT_NO_THROW(c = load_config("default.toml"));
   fs::current_path(old);
-  EXPECT_EQ(c.nav_file, kSource + "/config/nav/brdc0010.22n");
+  EXPECT_EQ(c.nav_file, kSource + "/config/nav/BRDC00IGS_R_20240100000_01D_MN_gnssemu.rnx.gz");
 }
 
 TEST(ConfigLoad, RoundTripEveryKeyAndTheDefaults) {

@@ -5,6 +5,7 @@
 // reader's per-system bookkeeping.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -351,4 +352,55 @@ TEST(MultiGnss, SbasHeldPastTheData) {
   const SatState c = sat_state(*store.select(s27, end + 3.0 * kSecondsPerDay), end + 3.0 * kSecondsPerDay);
   EXPECT_EQ(c.pos_m, b.pos_m);
   EXPECT_NEAR(c.pos_m.norm(), 42164e3, 100e3);
+}
+
+TEST(NavSystems, SystemsOfTheData) {
+  EXPECT_EQ(systems_of(read_rinex_nav(test::kNav + "brdc0010.22n")), SystemSet::only(GnssSystem::kGps));
+  // The IGS merged file: every system; its NavIC records are skipped.
+  EXPECT_EQ(systems_of(read_rinex_nav(test::kNav + "BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz")), SystemSet::all());
+  EXPECT_TRUE(systems_of(NavData{}).empty());
+}
+
+// The shipped default nav data (config/nav): GPS, GLONASS, Galileo, BeiDou
+// and QZSS, every satellite's sets covering the whole day.
+TEST(NavSystems, ShippedDefaultHoldsFiveSystems) {
+  const NavData d = read_rinex_nav(std::string(GNSSEMU_SOURCE_DIR) + "/config/nav/BRDC00IGS_R_20240100000_01D_MN_gnssemu.rnx.gz");
+  EXPECT_EQ(systems_of(d), SystemSet::all().without(GnssSystem::kSbas));
+  EXPECT_EQ(d.skipped_records, 0);
+  const EphemerisStore store(d.ephemerides);
+  std::array<int, kNumSystems> healthy{};
+  const time::GpsTime noon(2296, 3 * 86400.0 + 43200.0);  // 2024-01-10 12:00 GPST
+  for (int i = 0; i < kNumSats; ++i) {
+    if (store.select(SatId::from_index(i), noon) != nullptr) ++healthy[static_cast<std::size_t>(SatId::from_index(i).system)];
+  }
+  EXPECT_GE(healthy[0], 30);  // G
+  EXPECT_GE(healthy[1], 22);  // R
+  EXPECT_GE(healthy[2], 22);  // E
+  EXPECT_GE(healthy[3], 40);  // C
+  EXPECT_GE(healthy[4], 3);   // J
+}
+
+// The shipped default moved to a later date serves every system at the
+// start and three days on (each satellite continued past the data).
+TEST(NavSystems, ShippedDefaultServesEverySystemDaysOn) {
+  const NavData d = read_rinex_nav(std::string(GNSSEMU_SOURCE_DIR) + "/config/nav/BRDC00IGS_R_20240100000_01D_MN_gnssemu.rnx.gz");
+  ConstellationRequest req;
+  req.mode = NavMode::kAuto;
+  req.start = time::GpsTime(2446, 210808.0);  // 2026-11-24 10:33:28 GPST
+  const Constellation c = build_constellation(d, req);
+  EXPECT_EQ(c.mode, NavMode::kRelabel);
+  EXPECT_EQ(c.shift_s, 1049.0 * kSecondsPerDay);
+  const EphemerisStore store(c.nav.ephemerides, c.store_options());
+  for (const double later_s : {0.0, 3.0 * kSecondsPerDay}) {
+    std::array<int, kNumSystems> n{};
+    for (int i = 0; i < kNumSats; ++i) {
+      const SatId sat = SatId::from_index(i);
+      if (store.select(sat, req.start + later_s) != nullptr) ++n[static_cast<std::size_t>(sat.system)];
+    }
+    EXPECT_GE(n[0], 30) << later_s;
+    EXPECT_GE(n[1], 22) << later_s;
+    EXPECT_GE(n[2], 22) << later_s;
+    EXPECT_GE(n[3], 40) << later_s;
+    EXPECT_GE(n[4], 3) << later_s;
+  }
 }

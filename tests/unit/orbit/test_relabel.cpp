@@ -78,7 +78,9 @@ TEST(Relabel, EverySystemSameGeometryShiftLater) {
 }
 
 // GLONASS: the ECEF state at tb is the geometry; any turn about z would
-// move the satellite (the brief's ω̇e·shift rotation is 6.3 rad a day).
+// move the satellite against the other systems (ω̇e·shift is 0.986° a day
+// moved past whole turns, ~440 km at GLONASS's orbit radius; docs/models.md
+// "Geometry kept", per system).
 TEST(Relabel, GlonassStateVectorIsNotRotated) {
   const NavData nav = read_rinex_nav(test::kNav + "BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz");
   for (const Ephemeris& e : nav.ephemerides) {
