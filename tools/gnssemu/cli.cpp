@@ -331,7 +331,7 @@ int run_spp_command(const ObsArgs& a, std::ostream& out, std::ostream& err) {
   receiver::ReceiverConfig rx = base.receiver;
   rx.elevation_mask_rad = a.mask_deg * kDegToRad;
   if (a.preset == "rtklib") rx.solver = receiver::rtklib_single_point(rx.solver);
-  const SppSummary sum = write_spp(obs, nav, rx, station, out, systems);
+  const SppSummary sum = write_spp(obs, nav, rx, station, out, systems, a.preset == "rtklib");
   err << fmt::format("gnssemu spp: {} epochs, {} with a fix\n", sum.epochs, sum.fixes);
   return kExitOk;
 }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -206,10 +207,62 @@ std::vector<Enu> spp_error_series(const observation::ObsData& obs, const orbit::
   return err;
 }
 
+std::vector<orbit::Ephemeris> rtklib_unique_ephemerides(const std::vector<orbit::Ephemeris>& ephemerides) {
+  struct Key {
+    int64_t ttr_s, toe_s;
+    int sat;
+    std::size_t index;
+  };
+  // RTKLIB's satellite numbers run G, R, E, J, C.
+  constexpr std::array<int, kNumSystems> kOrder{0, 1, 2, 4, 3, 5};
+  const auto whole_s = [](const time::GpsTime& t, double tow_s) {
+    return static_cast<int64_t>(t.week()) * 604800 + static_cast<int64_t>(std::floor(tow_s));
+  };
+  std::vector<Key> keys;
+  std::vector<orbit::Ephemeris> out;
+  for (std::size_t i = 0; i < ephemerides.size(); ++i) {
+    const orbit::Ephemeris& e = ephemerides[i];
+    if (system_info(e.sat.system).orbit != OrbitKind::kKepler) {
+      out.push_back(e);
+      continue;
+    }
+    const int64_t toe_s = whole_s(e.toe, e.toe.tow_s());
+    keys.push_back({e.transmit_known ? whole_s(e.toe, e.transmit_tow_s) : toe_s, toe_s,
+                    kOrder[static_cast<std::size_t>(e.sat.system)] * 256 + e.sat.number, i});
+  }
+  std::stable_sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+    if (a.ttr_s != b.ttr_s) return a.ttr_s < b.ttr_s;
+    if (a.toe_s != b.toe_s) return a.toe_s < b.toe_s;
+    return a.sat < b.sat;
+  });
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    if (k > 0) {
+      const orbit::Ephemeris& prev = ephemerides[keys[k - 1].index];
+      const orbit::Ephemeris& cur = ephemerides[keys[k].index];
+      // Compared with the last kept set: dropped ones are skipped over.
+      if (cur.sat == prev.sat && cur.iode == prev.iode) {
+        keys[k].index = keys[k - 1].index;
+        continue;
+      }
+    }
+    out.push_back(ephemerides[keys[k].index]);
+  }
+  // pntpos.c gettgd: the group delay of a satellite's first set in that
+  // order, whichever set is selected for its orbit and clock.
+  std::array<const orbit::Ephemeris*, kNumSats> first{};
+  for (orbit::Ephemeris& e : out) {
+    if (system_info(e.sat.system).orbit != OrbitKind::kKepler || !e.sat.valid()) continue;
+    const orbit::Ephemeris*& f = first[static_cast<std::size_t>(e.sat.index())];
+    if (f == nullptr) f = &e;
+    e.tgd_s = f->tgd_s;
+  }
+  return out;
+}
+
 SppSummary write_spp(const observation::ObsData& obs, const orbit::NavData& nav,
                      const receiver::ReceiverConfig& receiver, const std::optional<Ecef>& station, std::ostream& out,
-                     SystemSet systems) {
-  const orbit::EphemerisStore store(nav.ephemerides);
+                     SystemSet systems, bool rtklib_sets) {
+  const orbit::EphemerisStore store(rtklib_sets ? rtklib_unique_ephemerides(nav.ephemerides) : nav.ephemerides);
   if (store.size() == 0) throw Error(nav.source, 0, "no ephemerides in the file");
   SppEngine engine(nav, store, obs.header, receiver, systems);
   std::optional<geo::LocalFrame> frame;

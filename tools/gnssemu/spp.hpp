@@ -100,10 +100,24 @@ struct SppSummary {
   int fixes = 0;
 };
 
+/// The Keplerian sets RTKLIB 2.4.3 keeps after reading navigation files
+/// (rtkcmn.c uniqeph): every GPS, Galileo (I/NAV and F/NAV), QZSS and BeiDou
+/// set sorted stably by transmission time, then toe (whole seconds), then
+/// RTKLIB's satellite number (G, R, E, J, C order), and a set dropped when
+/// the one before it in that order has the same satellite and IODE/IODnav/
+/// AODE. An I/NAV set that follows the F/NAV set of its IODnav is so lost
+/// and RTKLIB falls back to an older one. Every kept set of a satellite gets
+/// the group delay of its first kept set, as pntpos.c gettgd() takes it
+/// (Galileo: the BGD(E1,E5b) field of that set, F/NAV or I/NAV). spp --preset
+/// rtklib selects from what this keeps. GLONASS and SBAS sets are returned
+/// unchanged.
+std::vector<orbit::Ephemeris> rtklib_unique_ephemerides(const std::vector<orbit::Ephemeris>& ephemerides);
+
 /// Writes `gps_week,tow_s,x_m,y_m,z_m,nsat,pdop` per epoch with a fix, plus
 /// `e_m,n_m,u_m` (fix minus station in local ENU) when station is given.
+/// rtklib_sets: select ephemerides from rtklib_unique_ephemerides (--preset rtklib).
 SppSummary write_spp(const observation::ObsData& obs, const orbit::NavData& nav,
                      const receiver::ReceiverConfig& receiver, const std::optional<Ecef>& station, std::ostream& out,
-                     SystemSet systems = SystemSet::only(GnssSystem::kGps));
+                     SystemSet systems = SystemSet::only(GnssSystem::kGps), bool rtklib_sets = false);
 
 }  // namespace gnssemu::cli
