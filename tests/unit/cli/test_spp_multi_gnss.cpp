@@ -17,7 +17,7 @@ using namespace gnssemu::cli::test;
 namespace {
 
 const std::string kTlseObs = std::string(GNSSEMU_TEST_DATA) + "/obs/TLSE00FRA_R_20240011200_15M_01S_MO.crx.gz";
-const std::string kTlseNav = nav_path("BRDC00IGS_R_20240010800_06H_MN.rnx.gz");
+const std::string kTlseNav = nav_path("BRDC00IGS_R_20240010000_01D_MN_08-14h.rnx.gz");
 // Header APPROX POSITION XYZ of TLSE.
 const std::string kTlseStation = "4627852.5264,119640.5140,4372994.8358";
 
