@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/receiver/receiver_config.hpp"
 
+#include <string>
+
 #include "core/common/error.hpp"
 
 namespace gnssemu::receiver {
@@ -30,6 +32,13 @@ void validate(const SolverConfig& s) {
                        {static_cast<double>(s.max_exclusions), R::max_exclusions, "solver.max_exclusions"},
                        {static_cast<double>(s.max_iterations), R::max_iterations, "solver.max_iterations"}});
   if (const std::optional<Violation> v = check_weights(s)) throw Error(kWhat, 0, "solver: " + v->reason);
+  for (std::size_t i = 0; i < s.system_sigma_factor.size(); ++i) {
+    const double f = s.system_sigma_factor[i];
+    if (!(f > 0.0 && f <= 100.0)) {
+      throw Error(kWhat, 0, "solver: system_sigma_factor of " + std::string(system_name(static_cast<GnssSystem>(i))) +
+                                " is not in (0, 100]");
+    }
+  }
 }
 
 SolverConfig rtklib_single_point(SolverConfig base) noexcept {
@@ -45,6 +54,10 @@ SolverConfig rtklib_single_point(SolverConfig base) noexcept {
   base.residual_test_pfa = 1.0e-3;  // chisqr[] table at alpha 0.001
   base.max_exclusions = 0;
   base.max_iterations = 10;         // MAXITR
+  base.qzss_own_clock = false;      // rescode: QZSS on x[3], the GPS clock
+  // varerr (pntpos.c 2.4.3 b34) applies EFACT_GLO and EFACT_SBS; every other
+  // system EFACT_GPS.
+  base.system_sigma_factor = {1.0, 1.5, 1.0, 1.0, 1.0, 3.0};
   return base;
 }
 

@@ -4,6 +4,7 @@
 // channels, tracking thresholds and its own solver with its broadcast
 // corrections (DESIGN.md §1, steps 7-9). It knows nothing of the world's
 // models. All values SI.
+#include <array>
 #include <optional>
 
 #include "core/atmosphere/receiver_corrections.hpp"
@@ -63,6 +64,14 @@ struct SolverConfig {
   /// and lets a storm that biases every satellite keep a wrong one. 0: none.
   int max_exclusions = 1;
   int max_iterations = 15;             ///< Gauss–Newton iterations at most
+  /// Per-system factor on the elevation part of the pseudorange sigma (index
+  /// GnssSystem), RTKLIB's EFACT_* (rtklib.h 2.4.3: GPS, Galileo, BeiDou, QZSS
+  /// 1.0, GLONASS 1.5 for its wider FDMA code chips and inter-channel biases,
+  /// SBAS 3.0), dimensionless (> 0).
+  std::array<double, kNumSystems> system_sigma_factor{1.0, 1.5, 1.0, 1.0, 1.0, 3.0};
+  /// QZSS gets its own inter-system bias state (true), or shares the GPS
+  /// clock as RTKLIB's pntpos does (QZSST is steered to GPST).
+  bool qzss_own_clock = true;
 };
 
 /// Valid values of SolverConfig's numbers (besides: check_weights). A
@@ -94,8 +103,8 @@ void validate(const SolverConfig& s);
 /// code bias 0.3 m, broadcast-iono variance (0.5 I)^2 and Saastamoinen
 /// variance (0.3 / (sin el + 0.1))^2; Klobuchar and Saastamoinen with the
 /// 1/cos z mapping; chi-square test at 1e-3 without fault exclusion (RTKLIB's
-/// RAIM FDE is off by default); at most 10 iterations (MAXITR). The rest of
-/// base is kept.
+/// RAIM FDE is off by default); at most 10 iterations (MAXITR); QZSS on the
+/// GPS clock. The rest of base is kept.
 SolverConfig rtklib_single_point(SolverConfig base = {}) noexcept;
 
 /// Operational limits of the receiver (export-control limits of a u-blox M8,

@@ -48,11 +48,38 @@ void accumulate(Mat4& n, Vec4& g, const Vec4& h, double w, double y) noexcept {
   }
 }
 
+// The same over the leading ns states.
+void accumulate(MatN& n, VecN& g, const VecN& h, double w, double y, int ns) noexcept {
+  for (int i = 0; i < ns; ++i) {
+    g[i] += w * h[i] * y;
+    for (int k = 0; k < ns; ++k) n[i][k] += w * h[i] * h[k];
+  }
+}
+
 bool finite4(const Mat4& m) noexcept {
   for (const auto& r : m)
     for (double v : r)
       if (!std::isfinite(v)) return false;
   return true;
+}
+
+bool finite(const MatN& m, int ns) noexcept {
+  for (int i = 0; i < ns; ++i)
+    for (int k = 0; k < ns; ++k)
+      if (!std::isfinite(m[i][k])) return false;
+  return true;
+}
+
+// Design row of a pseudorange: -line of sight, 1 for the first system's
+// clock, 1 for the satellite's inter-system bias (col > 3).
+VecN design_row(double x, double y, double z, int col) noexcept {
+  VecN h{};
+  h[0] = x;
+  h[1] = y;
+  h[2] = z;
+  h[3] = 1.0;
+  if (col > 3) h[static_cast<std::size_t>(col)] = 1.0;
+  return h;
 }
 
 }  // namespace
@@ -109,16 +136,17 @@ void Solver::linearise(const SolverInput& in, const Ecef& pos, double clock_m, c
   for (int i = 0; i < n_; ++i) {
     Sat& s = sats_[i];
     // Flight time from the receiver's clock estimate; exact at convergence.
-    const double tau_s = std::clamp(s.since_tx_s - clock_m / kSpeedOfLight_m_s, 0.0, kMaxLightTime_s);
+    const double rx_clock = rx_clock_m(s, clock_m);
+    const double tau_s = std::clamp(s.since_tx_s - rx_clock / kSpeedOfLight_m_s, 0.0, kMaxLightTime_s);
     const double angle = kOmegaEarth_rad_s * tau_s;
     const Ecef p = world::rotate_earth(s.pos_m, angle);
     s.vel_rx_frame_m_s = world::rotate_earth(s.vel_m_s, angle);
     const Vec3 d = p - pos;
     const double rho = d.norm();
     s.los = rho > 0.0 ? d / rho : Vec3{0.0, 0.0, 1.0};
-    s.resid_m = in.meas[i].pseudorange_m - (rho + clock_m - s.clk_m + s.corr_m);
+    s.resid_m = in.meas[i].pseudorange_m - (rho + rx_clock - s.clk_m + s.corr_m);
     const double sin_el = lla ? s.los.dot(up) : 1.0;
-    s.sigma2 = elevation_variance_m2(cfg_, sin_el) + s.sat_var_m2 + s.model_var_m2;
+    s.sigma2 = elevation_variance_m2(cfg_, sin_el) * s.efact2 + s.sat_var_m2 + s.model_var_m2;
     s.weight = 1.0 / s.sigma2;
   }
 }
@@ -130,24 +158,28 @@ bool Solver::iterate(const SolverInput& in, Ecef& pos, double& clock_m, bool two
     const bool near_surface = pos.norm() > kSurfaceRadius_m;
     if (near_surface) lla = geo::lla_from_ecef(pos);
     linearise(in, pos, clock_m, near_surface ? &lla : nullptr);
-    Mat4 n{};
-    Vec4 g{};
+    const int ns = num_states_;
+    MatN n{};
+    VecN g{};
     for (int i = 0; i < n_; ++i) {
       const Sat& s = sats_[i];
-      accumulate(n, g, {-s.los.x, -s.los.y, -s.los.z, 1.0}, s.weight, s.resid_m);
+      accumulate(n, g, design_row(-s.los.x, -s.los.y, -s.los.z, s.col), s.weight, s.resid_m, ns);
     }
     if (two_d) {
       if (!near_surface) return false;
       const Vec3 up = geo::up_unit_ecef(lla);
-      accumulate(n, g, {up.x, up.y, up.z, 0.0}, wh, in.held_height_m - lla.height_m);
+      accumulate(n, g, VecN{up.x, up.y, up.z}, wh, in.held_height_m - lla.height_m, ns);
     }
-    Mat4 inv;
-    if (!spd_inverse4(n, inv, kPivotTol)) return false;
-    const Vec4 dx = mul4(inv, g);
+    MatN inv;
+    if (!spd_inverse(n, inv, ns, kPivotTol)) return false;
+    const VecN dx = mul(inv, g, ns);
     pos += Vec3{dx[0], dx[1], dx[2]};
     clock_m += dx[3];
-    if (!pos.finite() || !std::isfinite(clock_m)) return false;
-    const double step = std::sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2] + dx[3] * dx[3]);
+    double step2 = 0.0;
+    for (int k = 0; k < ns; ++k) step2 += dx[k] * dx[k];
+    for (int k = 4; k < ns; ++k) bias_m_[static_cast<std::size_t>(k - 4)] += dx[k];
+    if (!pos.finite() || !std::isfinite(clock_m) || !std::isfinite(step2)) return false;
+    const double step = std::sqrt(step2);
     if (step < kConvergence_m) return true;
   }
   return false;
@@ -161,15 +193,19 @@ bool Solver::finish(const SolverInput& in, const Ecef& pos, double clock_m, bool
 
   const double wh = 1.0 / (cfg_.height_hold_sigma_m * cfg_.height_hold_sigma_m);
   const double wv = 1.0 / (cfg_.sigma_range_rate_m_s * cfg_.sigma_range_rate_m_s);
-  Mat4 nu{}, nw{}, nv{};
-  Vec4 unused{}, gv{};
+  const int ns = num_states_;
+  MatN nu{}, nw{};
+  Mat4 nv{};
+  VecN unused{};
+  Vec4 gv{};
   double chi2 = 0.0, sum_v2 = 0.0, sum_s2 = 0.0;
   for (int i = 0; i < n_; ++i) {
     const Sat& s = sats_[i];
     const Enu e = geo::ecef_to_enu_vector(s.los, lla.lat_rad, lla.lon_rad);
     const Vec4 h{-e.x, -e.y, -e.z, 1.0};
-    accumulate(nu, unused, h, 1.0, 0.0);
-    accumulate(nw, unused, h, s.weight, 0.0);
+    const VecN hn = design_row(-e.x, -e.y, -e.z, s.col);
+    accumulate(nu, unused, hn, 1.0, 0.0, ns);
+    accumulate(nw, unused, hn, s.weight, 0.0, ns);
     // Measured range rate minus the satellite part: -e.v_rx + c * drift.
     const double rr = -kL1Wavelength_m * in.meas[i].doppler_hz;
     accumulate(nv, gv, h, wv, rr - s.los.dot(s.vel_rx_frame_m_s) + s.drift_m_s);
@@ -181,24 +217,27 @@ bool Solver::finish(const SolverInput& in, const Ecef& pos, double clock_m, bool
   if (two_d) {
     // DOP is satellite geometry only: with 3 satellites the 4x4 is singular,
     // so take E, N, clock with the height known exactly (U row/column out).
-    for (int k = 0; k < 4; ++k) nu[2][k] = nu[k][2] = 0.0;
+    for (int k = 0; k < ns; ++k) nu[2][k] = nu[k][2] = 0.0;
     nu[2][2] = 1.0;
     const Vec4 h{0.0, 0.0, 1.0, 0.0};
-    accumulate(nw, unused, h, wh, 0.0);
+    accumulate(nw, unused, VecN{0.0, 0.0, 1.0}, wh, 0.0, ns);
     accumulate(nv, gv, h, wv, 0.0);  // vertical velocity held at zero
     const double dh = in.held_height_m - lla.height_m;
     chi2 += wh * dh * dh;
   }
-  Mat4 qu, qw, qv;
-  if (!spd_inverse4(nu, qu, kPivotTol) || !spd_inverse4(nw, qw, kPivotTol) ||
-      !spd_inverse4(nv, qv, kPivotTol) || !finite4(qu) || !finite4(qw) || !finite4(qv))
+  // DOP and accuracy: the position and first-clock block of the inverse
+  // with every clock state (the biases marginalised).
+  MatN qu, qw;
+  Mat4 qv;
+  if (!spd_inverse(nu, qu, ns, kPivotTol) || !spd_inverse(nw, qw, ns, kPivotTol) ||
+      !spd_inverse4(nv, qv, kPivotTol) || !finite(qu, ns) || !finite(qw, ns) || !finite4(qv))
     return false;
 
   // 2D: the max_pdop gate applies to the height-constrained position DOP (= HDOP).
   const double hdop = std::sqrt(qu[0][0] + qu[1][1]);
   const double pdop = two_d ? hdop : std::sqrt(qu[0][0] + qu[1][1] + qu[2][2]);
   if (!(pdop <= max_pdop_)) return false;
-  out.dof = n_ + (two_d ? 1 : 0) - 4;
+  out.dof = n_ + (two_d ? 1 : 0) - ns;
   out.chi2 = chi2;  // residual test: solve()
 
   out.dop.hdop = hdop;
@@ -222,7 +261,21 @@ bool Solver::finish(const SolverInput& in, const Ecef& pos, double clock_m, bool
   out.pos_m = pos;
   out.lla = lla;
   out.clock_m = clock_m;
-  out.cov_pos = qw;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 4; ++k) out.cov_pos[i][k] = qw[i][k];
+  q_ = qw;
+  out.isb_m.fill(0.0);
+  out.clock_systems = SystemSet();
+  for (int c = 3; c < ns; ++c) {
+    const GnssSystem sys = col_system_[static_cast<std::size_t>(c - 3)];
+    out.clock_systems = out.clock_systems.with(sys);
+    if (c > 3) out.isb_m[static_cast<std::size_t>(sys)] = bias_m_[static_cast<std::size_t>(c - 4)];
+  }
+  for (int k = 0; k < kNumSystems; ++k) {
+    const GnssSystem sys = static_cast<GnssSystem>(k);
+    out.isb_m[static_cast<std::size_t>(k)] = out.isb_m[static_cast<std::size_t>(clock_group(sys))];
+  }
+  solved_isb_m_ = out.isb_m;
   out.cov_vel = qv;
   out.num_used = n_;
   out.range_rms_m = std::sqrt(sum_v2 / n_);
@@ -242,7 +295,7 @@ void Solver::solve(const SolverInput& in, SolverOutput& out) noexcept {
   solved_corr_valid_ = corr_valid_;
   solved_corr_pos_ = corr_pos_;
   int exclusions = 0;
-  while (o == Outcome::kResidualTestFailed && n_ - 1 >= kMinSatsAfterExclusion &&
+  while (o == Outcome::kResidualTestFailed && n_ - 1 >= num_states_ + 1 &&
          exclusions++ < cfg_.max_exclusions) {
     const int worst = worst_residual(out);
     if (cur != &subset_) {
@@ -283,9 +336,10 @@ int Solver::worst_residual(const SolverOutput& out) const noexcept {
   for (int i = 0; i < n_; ++i) {
     const Sat& s = sats_[i];
     const Enu e = geo::ecef_to_enu_vector(s.los, out.lla.lat_rad, out.lla.lon_rad);
-    const Vec4 h{-e.x, -e.y, -e.z, 1.0};
-    const Vec4 qh = mul4(out.cov_pos, h);
-    const double hqh = h[0] * qh[0] + h[1] * qh[1] + h[2] * qh[2] + h[3] * qh[3];
+    const VecN h = design_row(-e.x, -e.y, -e.z, s.col);
+    const VecN qh = mul(q_, h, num_states_);
+    double hqh = 0.0;
+    for (int k = 0; k < num_states_; ++k) hqh += h[k] * qh[k];
     const double var = std::max(s.sigma2 - hqh, 1e-6 * s.sigma2);
     const double w = out.residual_m[i] * out.residual_m[i] / var;
     if (w > worst_w) {
@@ -316,10 +370,34 @@ bool Solver::prepare(const SolverInput& in) noexcept {
     s.since_tx_s = in.t_rx_local - t_tx;
     s.corr_m = 0.0;
     s.model_var_m2 = 0.0;
-    s.sat_var_m2 = satellite_variance_m2(cfg_, m.cn0_dbhz, m.eph->sv_accuracy_m) +
+    s.system = m.eph->sat.system;
+    const double f = cfg_.system_sigma_factor[static_cast<std::size_t>(s.system)];
+    s.efact2 = f * f;
+    s.sat_var_m2 = satellite_variance_m2(cfg_, m.cn0_dbhz, m.eph->sv_accuracy_m, s.system) +
                    (m.correction_var_m2 > 0.0 ? m.correction_var_m2 : 0.0);
   }
+  assign_clock_states();
   return true;
+}
+
+GnssSystem Solver::clock_group(GnssSystem sys) const noexcept {
+  if (sys == GnssSystem::kSbas || (sys == GnssSystem::kQzss && !cfg_.qzss_own_clock)) return GnssSystem::kGps;
+  return sys;
+}
+
+void Solver::assign_clock_states() noexcept {
+  SystemSet present;
+  for (int i = 0; i < n_; ++i) present = present.with(clock_group(sats_[i].system));
+  std::array<int, kNumSystems> col{};
+  num_states_ = 3;
+  for (int k = 0; k < kNumSystems; ++k) {
+    const GnssSystem sys = static_cast<GnssSystem>(k);
+    if (!present.has(sys)) continue;
+    col[static_cast<std::size_t>(k)] = num_states_;
+    col_system_[static_cast<std::size_t>(num_states_ - 3)] = sys;
+    ++num_states_;
+  }
+  for (int i = 0; i < n_; ++i) sats_[i].col = col[static_cast<std::size_t>(clock_group(sats_[i].system))];
 }
 
 int Solver::measurement_model(const SolverInput& in, const Ecef& pos_m, double clock_m,
@@ -332,6 +410,11 @@ int Solver::measurement_model(const SolverInput& in, const Ecef& pos_m, double c
     corr_pos_ = solved_corr_pos_;
   } else if (!prepare(in)) {
     return 0;
+  }
+  assign_clock_states();
+  for (int c = 4; c < num_states_; ++c) {
+    bias_m_[static_cast<std::size_t>(c - 4)] =
+        solved_isb_m_[static_cast<std::size_t>(col_system_[static_cast<std::size_t>(c - 3)])];
   }
   if (!(pos_m.norm() > kSurfaceRadius_m)) return 0;
   const Lla lla = geo::lla_from_ecef(pos_m);
@@ -350,8 +433,10 @@ int Solver::measurement_model(const SolverInput& in, const Ecef& pos_m, double c
 Solver::Outcome Solver::solve_all(const SolverInput& in, SolverOutput& out) noexcept {
   out = SolverOutput{};
   prepare(in);
-  if (n_ < 3) return Outcome::kNoFix;
-  const bool two_d = n_ == 3;
+  // One measurement per state at least; one fewer with the height held.
+  if (n_ < 3 || n_ < num_states_ - 1) return Outcome::kNoFix;
+  const bool two_d = n_ == num_states_ - 1;
+  bias_m_.fill(0.0);
   if (two_d && !in.have_held_height) return Outcome::kNoFix;
 
   Ecef pos;
@@ -367,6 +452,7 @@ Solver::Outcome Solver::solve_all(const SolverInput& in, SolverOutput& out) noex
   if (!ok && !two_d && in.have_prior) {  // warm start diverged: cold start
     pos = Ecef{};
     clock_m = 0.0;
+    bias_m_.fill(0.0);
     ok = iterate(in, pos, clock_m, two_d);
   }
   if (!ok || !finish(in, pos, clock_m, two_d, out)) {

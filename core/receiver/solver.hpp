@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Receiver-side navigation solver: broadcast satellite clock (relativity
-// included) minus TGD, Sagnac, weighted least squares (Gauss–Newton) for
-// position and clock, Doppler least squares for velocity and clock drift,
-// DOP, covariance-based accuracy, chi-square residual test, 2D height hold.
-// Never throws, never allocates.
+// included) minus the group delay, Sagnac, weighted least squares
+// (Gauss–Newton) for position, the receiver clock and an inter-system bias
+// per further system present in the epoch (RTKLIB pntpos' states; a system
+// with no measurement has no state), Doppler least squares for velocity and
+// clock drift, DOP, covariance-based accuracy, chi-square residual test, 2D
+// height hold. Never throws, never allocates.
 #include <array>
 
 #include "core/common/constants.hpp"
@@ -14,12 +16,14 @@
 #include "core/orbit/nav_data.hpp"
 #include "core/receiver/fix.hpp"
 #include "core/receiver/receiver_config.hpp"
+#include "core/receiver/small_matrix.hpp"
 #include "core/time/gps_time.hpp"
 
 namespace gnssemu::receiver {
 
 /// One tracked satellite's measurements.
 struct Measurement {
+  /// Its system chooses the receiver clock state (eph->sat.system).
   const orbit::Ephemeris* eph = nullptr;
   double pseudorange_m = 0.0;
   double doppler_hz = 0.0;  ///< L1 carrier Doppler, Hz (positive when approaching)
@@ -46,12 +50,17 @@ struct SolverOutput {
   FixType type = FixType::kNone;
   Ecef pos_m;
   Lla lla;
-  double clock_m = 0.0;          ///< c * clock bias, m
+  double clock_m = 0.0;          ///< c * clock bias of the first system present (table order: GPS if any), m
+  /// Inter-system bias per system: c x (its clock - clock_m), m; 0 for the
+  /// first system and systems without a clock state (clock_systems).
+  std::array<double, kNumSystems> isb_m{};
+  SystemSet clock_systems;       ///< systems with their own clock state in the solution
   Enu vel_enu_m_s;
   Ecef vel_m_s;
   double drift_m_s = 0.0;        ///< c * clock drift, m/s
   Dop dop;
   /// Covariances in local ENU + clock (m^2, clock in m^2): position solve
+  /// (its position and clock_m block; the inter-system biases marginalised)
   /// and velocity solve (m^2/s^2).
   std::array<std::array<double, 4>, 4> cov_pos{};
   std::array<std::array<double, 4>, 4> cov_vel{};
@@ -90,8 +99,9 @@ public:
   /// re-solved; if the test still fails, no fix.
   void solve(const SolverInput& in, SolverOutput& out) noexcept;
 
-  /// Satellites that must remain after an exclusion: 4 unknowns + 1 to
-  /// keep the residual test meaningful.
+  /// Satellites that must remain after an exclusion with one system: 4
+  /// unknowns + 1 to keep the residual test meaningful (one more per further
+  /// system's clock).
   static constexpr int kMinSatsAfterExclusion = 5;
 
   /// Broadcast Klobuchar coefficients for the ionospheric correction (the
@@ -106,8 +116,9 @@ public:
   /// The measurements of in linearised at pos_m (ECEF, m, near the Earth's
   /// surface) and clock_m (c x clock bias, m) with the receiver's corrections
   /// and weights, as the solver does at its solution (for a navigation
-  /// filter's update). Returns the rows filled (in.num_meas; 0 for malformed
-  /// input).
+  /// filter's update); each system's inter-system bias of the last solution
+  /// is removed, so one clock describes every row. Returns the rows filled
+  /// (in.num_meas; 0 for malformed input).
   int measurement_model(const SolverInput& in, const Ecef& pos_m, double clock_m,
                         std::array<MeasurementRow, kMaxSatsInView>& rows) noexcept;
 
@@ -121,6 +132,9 @@ private:
     double sat_var_m2 = 0.0;  // satellite_variance_m2 + the caller's correction variance, m^2
     double corr_m = 0.0;      // receiver's iono + tropo correction, m
     double model_var_m2 = 0.0;  // variance of what those corrections miss, m^2
+    double efact2 = 1.0;   // squared system factor on the elevation variance
+    GnssSystem system = GnssSystem::kGps;
+    int col = 3;           // state column of its clock: 3 the first system's clock, > 3 an inter-system bias
     // Per-iteration linearisation.
     Vec3 los;              // unit vector receiver -> satellite, ECEF
     Ecef vel_rx_frame_m_s; // velocity rotated into the receive-time frame
@@ -132,6 +146,12 @@ private:
   /// Satellite states at transmit time and the C/N0 weight terms of in; false
   /// for malformed input (n_ = 0).
   bool prepare(const SolverInput& in) noexcept;
+  /// Clock states of the prepared satellites: columns, num_states_.
+  void assign_clock_states() noexcept;
+  /// Receiver clock of satellite s: clock_m plus its system's bias, m.
+  double rx_clock_m(const Sat& s, double clock_m) const noexcept {
+    return s.col > 3 ? clock_m + bias_m_[static_cast<std::size_t>(s.col - 4)] : clock_m;
+  }
   bool iterate(const SolverInput& in, Ecef& pos, double& clock_m, bool two_d) noexcept;
   void linearise(const SolverInput& in, const Ecef& pos, double clock_m, const Lla* lla) noexcept;
   void update_corrections(const SolverInput& in, const Ecef& pos, const Lla& lla) noexcept;
@@ -142,6 +162,8 @@ private:
   Outcome solve_all(const SolverInput& in, SolverOutput& out) noexcept;
   /// Index of the largest normalised residual of the solution in out.
   int worst_residual(const SolverOutput& out) const noexcept;
+  /// The system whose clock a satellite of sys uses (QZSS and SBAS may share GPS's).
+  GnssSystem clock_group(GnssSystem sys) const noexcept;
 
   SolverConfig cfg_;
   double max_pdop_;
@@ -159,6 +181,12 @@ private:
   bool solved_corr_valid_ = false;
   Ecef solved_corr_pos_;
   int n_ = 0;
+  int num_states_ = 4;  ///< 3 + clock states of the prepared satellites
+  std::array<GnssSystem, kNumSystems> col_system_{};  ///< clock group of column 3 + i
+  std::array<double, kNumSystems> bias_m_{};  ///< inter-system bias of column 4 + i during the solve, m
+  /// Last solution's biases per system (measurement_model).
+  std::array<double, kNumSystems> solved_isb_m_{};
+  MatN q_{};  ///< weighted covariance of the last finish() (ENU + clock states)
   orbit::KlobucharParams klobuchar_;  // invalid: RTKLIB defaults
   bool corr_valid_ = false;           // corr_m computed at corr_pos_
   Ecef corr_pos_;

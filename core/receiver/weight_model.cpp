@@ -33,6 +33,24 @@ double satellite_variance_m2(const SolverConfig& cfg, double cn0_dbhz, double ur
   return c2 * std::pow(10.0, -std::min(cn0_dbhz, kMaxCn0_dbhz) / 10.0);
 }
 
+double rtklib_ephemeris_sigma_m(GnssSystem sys, double ura_m) noexcept {
+  if (sys == GnssSystem::kGlonass) return 5.0;
+  if (sys != GnssSystem::kGalileo) return ura_bound_m(ura_m);
+  // SISA index as the RINEX value is truncated to it, then its value.
+  if (!(ura_m >= 0.0 && ura_m <= 6.0)) return 500.0;
+  if (ura_m <= 0.5) return static_cast<int>(ura_m / 0.01) * 0.01;
+  if (ura_m <= 1.0) return 0.5 + static_cast<int>((ura_m - 0.5) / 0.02) * 0.02;
+  if (ura_m <= 2.0) return 1.0 + static_cast<int>((ura_m - 1.0) / 0.04) * 0.04;
+  const int i = static_cast<int>((ura_m - 2.0) / 0.16);
+  return i <= 25 ? 2.0 + i * 0.16 : 500.0;
+}
+
+double satellite_variance_m2(const SolverConfig& cfg, double cn0_dbhz, double ura_m, GnssSystem sys) noexcept {
+  if (cfg.weights != WeightModel::kRtklib || sys == GnssSystem::kGps) return satellite_variance_m2(cfg, cn0_dbhz, ura_m);
+  const double e = rtklib_ephemeris_sigma_m(sys, ura_m);
+  return e * e + cfg.code_bias_sigma_m * cfg.code_bias_sigma_m;
+}
+
 double measurement_variance_m2(const SolverConfig& cfg, double sin_el, double cn0_dbhz, double ura_m) noexcept {
   return elevation_variance_m2(cfg, sin_el) + satellite_variance_m2(cfg, cn0_dbhz, ura_m);
 }

@@ -39,6 +39,18 @@ inline double elevation_variance_m2(const SolverConfig& cfg, double sin_el) noex
 /// ura_m: the ephemeris' SV accuracy, m.
 double satellite_variance_m2(const SolverConfig& cfg, double cn0_dbhz, double ura_m) noexcept;
 
+/// satellite_variance_m2 for a satellite of system sys: kRtklib takes the
+/// broadcast accuracy as RTKLIB 2.4.3 does per system (ephemeris.c
+/// var_uraeph, rinex.c sisa_index): Galileo's SISA on its index grid (0.01 m
+/// steps to 0.5 m, 0.02 m to 1 m, 0.04 m to 2 m, 0.16 m to 6 m; beyond: 500 m,
+/// "no accuracy prediction"), GLONASS a fixed 5 m (ERREPH_GLO), the others the
+/// URA bound. kElevationCn0 is the same for every system.
+double satellite_variance_m2(const SolverConfig& cfg, double cn0_dbhz, double ura_m, GnssSystem sys) noexcept;
+
+/// The broadcast orbit-and-clock sigma RTKLIB 2.4.3 assigns to a satellite of
+/// system sys with the navigation file's accuracy ura_m (see above), m.
+double rtklib_ephemeris_sigma_m(GnssSystem sys, double ura_m) noexcept;
+
 /// Variance of what the receiver's corrections miss, m^2 (RTKLIB's ERR_BRDCI
 /// and ERR_SAAS forms): (iono_model_fraction x iono_m)^2 when the
 /// ionospheric correction is on, (tropo_model_sigma_m / (sin el + 0.1))^2

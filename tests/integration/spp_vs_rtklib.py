@@ -3,8 +3,10 @@
 """gnssemu spp against RTKLIB's rnx2rtkp (single point) on real observations.
 
 Both solve the same RINEX observation file with the same broadcast nav file,
-the same mask, GPS C1C (RINEX 2: C1) only, broadcast Klobuchar and a
-Saastamoinen troposphere (docs/validation.md). Prints per-epoch 3D
+the same mask, the same systems (--systems, RINEX letters; default GPS: C1C,
+RINEX 2: C1), broadcast Klobuchar and a Saastamoinen troposphere
+(docs/validation.md). Compact RINEX observations (.crx, .crx.gz) are decoded
+for rnx2rtkp with --rinex-from-crx (the project's own decoder). Prints per-epoch 3D
 differences (median, 95th percentile, max, RMS) and each solver's error
 against the station (--station, else the obs header's APPROX POSITION XYZ);
 fails when a figure exceeds its limit. `compare()` is also used by
@@ -26,7 +28,7 @@ pos1-elmask        ={mask}
 pos1-ionoopt       =brdc
 pos1-tropopt       =saas
 pos1-sateph        =brdc
-pos1-navsys        =1
+pos1-navsys        ={navsys}
 out-solformat      =xyz
 out-timesys        =gpst
 out-timeform       =tow
@@ -58,8 +60,24 @@ def stats(rows):
     return out
 
 
-def plain_copy(path, tmp):
-    """rnx2rtkp would unpack a .gz next to the original: unpack into tmp instead."""
+# RTKLIB's navigation-system bits (rtklib.h SYS_*).
+NAVSYS_BITS = {"G": 1, "R": 4, "E": 8, "J": 16, "C": 32}
+
+
+def navsys(systems):
+    return sum(NAVSYS_BITS[s] for s in systems.split(","))
+
+
+def plain_copy(path, tmp, rinex_from_crx=None):
+    """rnx2rtkp would unpack a .gz next to the original: unpack into tmp instead;
+    Compact RINEX is decoded with rinex_from_crx."""
+    if path.endswith(".crx") or path.endswith(".crx.gz"):
+        if rinex_from_crx is None:
+            raise ValueError(f"{path}: Compact RINEX needs --rinex-from-crx")
+        out = os.path.join(tmp, os.path.basename(path).split(".crx")[0] + ".rnx")
+        with open(out, "w") as f:
+            subprocess.run([rinex_from_crx, path], check=True, stdout=f)
+        return out
     if not path.endswith(".gz"):
         return path
     out = os.path.join(tmp, os.path.basename(path)[:-3])
@@ -80,12 +98,13 @@ def header_position(obs):
     raise ValueError(f"{obs}: no APPROX POSITION XYZ in the header")
 
 
-def run_rnx2rtkp(rnx2rtkp, obs, nav, mask, tmp):
+def run_rnx2rtkp(rnx2rtkp, obs, nav, mask, tmp, systems="G", rinex_from_crx=None):
     conf = os.path.join(tmp, "single.conf")
     with open(conf, "w") as f:
-        f.write(RTKLIB_CONF.format(mask=mask))
+        f.write(RTKLIB_CONF.format(mask=mask, navsys=navsys(systems)))
     pos = os.path.join(tmp, "rtk.pos")
-    subprocess.run([rnx2rtkp, "-k", conf, "-o", pos, plain_copy(obs, tmp), plain_copy(nav, tmp)], check=True,
+    subprocess.run([rnx2rtkp, "-k", conf, "-o", pos, plain_copy(obs, tmp, rinex_from_crx), plain_copy(nav, tmp)],
+                   check=True,
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     rtk = {}
     with open(pos) as f:
@@ -99,8 +118,8 @@ def run_rnx2rtkp(rnx2rtkp, obs, nav, mask, tmp):
     return rtk
 
 
-def run_spp(gnssemu, obs, nav, mask, config, preset):
-    argv = [gnssemu, "spp", "--obs", obs, "--nav", nav, "--mask", str(mask)]
+def run_spp(gnssemu, obs, nav, mask, config, preset, systems="G"):
+    argv = [gnssemu, "spp", "--obs", obs, "--nav", nav, "--mask", str(mask), "--systems", systems]
     if config:
         argv += ["--config", config]
     if preset:
@@ -116,14 +135,16 @@ def run_spp(gnssemu, obs, nav, mask, config, preset):
     return ours
 
 
-def compare(gnssemu, rnx2rtkp, obs, nav, mask=10.0, config=None, preset=None, station=None):
+def compare(gnssemu, rnx2rtkp, obs, nav, mask=10.0, config=None, preset=None, station=None, systems="G",
+            rinex_from_crx=None):
     """Epoch-by-epoch comparison; a dict of counts, difference figures (m) and
     both solvers' E/N/U (mean, RMS) against the station."""
-    station = station or header_position(obs)
     with tempfile.TemporaryDirectory() as tmp:
-        nav = plain_copy(nav, tmp)  # gnssemu reads plain nav files only
-        rtk = run_rnx2rtkp(rnx2rtkp, obs, nav, mask, tmp)
-        ours = run_spp(gnssemu, obs, nav, mask, config, preset)
+        nav = plain_copy(nav, tmp)
+        plain_obs = plain_copy(obs, tmp, rinex_from_crx)
+        station = station or header_position(plain_obs)
+        rtk = run_rnx2rtkp(rnx2rtkp, plain_obs, nav, mask, tmp, systems)
+        ours = run_spp(gnssemu, obs, nav, mask, config, preset, systems)
     common = sorted(set(ours) & set(rtk))
     r = {"ours": len(ours), "rtk": len(rtk), "common": len(common)}
     if not common:
@@ -151,6 +172,8 @@ def main():
     ap.add_argument("--config", help="gnssemu config for spp's solver settings (e.g. troposphere mapping)")
     ap.add_argument("--preset", choices=["rtklib"], help="gnssemu spp --preset")
     ap.add_argument("--station", help="X,Y,Z (ECEF m); default: the obs header's APPROX POSITION XYZ")
+    ap.add_argument("--systems", default="G", help="RINEX letters of the systems both solve with, e.g. G,R,E,C")
+    ap.add_argument("--rinex-from-crx", help="Compact RINEX decoder (build/tools/validation/rinex_from_crx)")
     ap.add_argument("--max-diff", type=float, default=1.5, help="largest allowed per-epoch 3D difference, m")
     ap.add_argument("--p95-diff", type=float, default=0.8, help="largest allowed 95th percentile 3D difference, m")
     ap.add_argument("--rms-diff", type=float, default=0.45, help="largest allowed RMS 3D difference, m")
@@ -164,7 +187,7 @@ def main():
         print("SKIP: rnx2rtkp (Debian package rtklib) is not installed")
         return 77
     station = tuple(float(v) for v in a.station.split(",")) if a.station else None
-    r = compare(a.gnssemu, rnx2rtkp, a.obs, a.nav, a.mask, a.config, a.preset, station)
+    r = compare(a.gnssemu, rnx2rtkp, a.obs, a.nav, a.mask, a.config, a.preset, station, a.systems, a.rinex_from_crx)
     if not r["common"]:
         print("FAIL: no common epochs")
         return 1

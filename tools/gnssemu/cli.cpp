@@ -93,6 +93,7 @@ struct ObsArgs {
   std::string obs_path, station, config_path;
   std::vector<std::string> nav_paths;
   std::string preset;  ///< spp: "rtklib" or empty
+  std::string systems;  ///< spp --systems: RINEX letters; empty: every system of the nav files
   double mask_deg = 5.0;
 };
 
@@ -309,14 +310,37 @@ Ecef parse_station(const std::string& text) {
   return p;
 }
 
-/// Observation and navigation files, both checked.
-std::pair<observation::ObsData, orbit::NavData> load_obs_nav(const ObsArgs& a) {
+/// The systems spp solves with: --systems, else every ranging system with
+/// ephemerides in nav (SBAS is not ranged).
+SystemSet spp_systems(const std::string& letters, const orbit::NavData& nav) {
+  if (!letters.empty()) {
+    const std::optional<SystemSet> set = parse_systems(letters);
+    if (!set) throw Error("--systems: '" + letters + "' is not a list of RINEX letters G,R,E,C,J (comma-separated, each once)");
+    if (set->has(GnssSystem::kSbas)) throw Error("--systems: S: SBAS satellites are not used for ranging");
+    return *set;
+  }
+  SystemSet set;
+  for (const orbit::Ephemeris& e : nav.ephemerides)
+    if (e.sat.system != GnssSystem::kSbas) set = set.with(e.sat.system);
+  return set;
+}
+
+/// Observation and navigation files, both checked. Only GPS observations are
+/// read (calibrate), or, with systems given, those of spp_systems(a.systems),
+/// which it is set to.
+std::pair<observation::ObsData, orbit::NavData> load_obs_nav(const ObsArgs& a, SystemSet* systems = nullptr) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(a.obs_path, ec)) throw Error(a.obs_path, 0, "observation file not found");
   orbit::NavData nav = orbit::read_rinex_nav_files(a.nav_paths);
-  // spp and calibrate solve with GPS: the other systems' values are not read.
-  observation::ObsData obs = observation::read_rinex_obs(a.obs_path, SystemSet::only(GnssSystem::kGps));
-  if (obs.epochs.empty()) throw Error(a.obs_path, 0, "no GPS observation epochs");
+  if (systems != nullptr) {
+    *systems = spp_systems(a.systems, nav);
+    if (systems->empty()) throw Error(nav.source, 0, "no ephemerides of a ranging system (G, R, E, C, J)");
+  }
+  const SystemSet read = systems != nullptr ? *systems : SystemSet::only(GnssSystem::kGps);
+  observation::ObsData obs = observation::read_rinex_obs(a.obs_path, read);
+  if (obs.epochs.empty()) {
+    throw Error(a.obs_path, 0, fmt::format("no observation epochs of {}", systems_text(read).data()));
+  }
   const orbit::EphemerisStore store(nav.ephemerides);
   const time::GpsTime t0 = obs.epochs.front().t, t1 = obs.epochs.back().t;
   if (t0 - store.last_valid() > 0.0 || store.first_valid() - t1 > 0.0) {
@@ -332,12 +356,13 @@ int run_spp_command(const ObsArgs& a, std::ostream& out, std::ostream& err) {
   check_range("--mask", a.mask_deg, 0.0, 90.0, true);
   std::optional<Ecef> station;
   if (!a.station.empty()) station = parse_station(a.station);
-  const auto [obs, nav] = load_obs_nav(a);
+  SystemSet systems;
+  const auto [obs, nav] = load_obs_nav(a, &systems);
   const config::Config base = a.config_path.empty() ? config::Config{} : config::load_config(a.config_path);
   receiver::ReceiverConfig rx = base.receiver;
   rx.elevation_mask_rad = a.mask_deg * kDegToRad;
   if (a.preset == "rtklib") rx.solver = receiver::rtklib_single_point(rx.solver);
-  const SppSummary sum = write_spp(obs, nav, rx, station, out);
+  const SppSummary sum = write_spp(obs, nav, rx, station, out, systems, a.preset == "rtklib");
   err << fmt::format("gnssemu spp: {} epochs, {} with a fix\n", sum.epochs, sum.fixes);
   return kExitOk;
 }
@@ -500,7 +525,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   plot->add_option("--mask", plot_args.mask_deg, "elevation mask to draw, deg [0, 90)");
   plot->add_option("--out", plot_args.out_dir, "report folder (report.html is written there)")->required();
   ObsArgs obs_args;
-  CLI::App* spp = app.add_subcommand("spp", "single-point positions from a real RINEX observation file (C1C)");
+  CLI::App* spp = app.add_subcommand(
+      "spp", "single-point positions from a real RINEX observation file (GPS/QZSS/GLONASS C1C, Galileo E1, BeiDou B1I)");
   spp->add_option("--obs", obs_args.obs_path, "RINEX 2.11/3.x observation file (.gz read too)")->required();
   spp->add_option("--nav", obs_args.nav_paths, "RINEX 2.x/3.x navigation file, plain or .gz; repeat for several")
       ->required()
@@ -508,6 +534,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   spp->add_option("--mask", obs_args.mask_deg, "elevation mask, deg [0, 90)")->capture_default_str();
   spp->add_option("--station", obs_args.station, "known position X,Y,Z (ECEF m): adds e_m,n_m,u_m columns");
+  spp->add_option("--systems", obs_args.systems,
+                  "systems to solve with, RINEX letters G,R,E,C,J (default: every system in the nav files)");
   spp->add_option("--config", obs_args.config_path, "take the solver settings (weights, corrections) from this config");
   spp->add_option("--preset", obs_args.preset,
                   "rtklib: RTKLIB rnx2rtkp single-point weights, corrections and residual test (after --config)")

@@ -5,10 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <string>
 
 #include "core/atmosphere/receiver_corrections.hpp"
 #include "core/common/error.hpp"
+#include "core/common/gnss_systems.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/geo/local_frame.hpp"
 #include "core/receiver/weight_model.hpp"
@@ -17,13 +20,41 @@
 namespace gnssemu::cli {
 
 double receiver_correction_m(const orbit::KlobucharParams& k, const Lla& rx, double az_rad, double el_rad,
-                             const time::GpsTime& t, const receiver::SolverConfig& solver, double* variance_m2) {
+                             const time::GpsTime& t, const receiver::SolverConfig& solver, double* variance_m2,
+                             double carrier_hz) {
   const double doy = t.fractional_day_of_year();
-  const double iono_m = solver.iono == atmosphere::IonoCorrection::kKlobuchar
-                            ? atmosphere::receiver_iono_delay_m(k, rx.lat_rad, rx.lon_rad, az_rad, el_rad, t.tow_s())
-                            : 0.0;
-  if (variance_m2 != nullptr) *variance_m2 = receiver::correction_variance_m2(solver, iono_m, std::sin(el_rad));
+  const double l1_iono_m = solver.iono == atmosphere::IonoCorrection::kKlobuchar
+                               ? atmosphere::receiver_iono_delay_m(k, rx.lat_rad, rx.lon_rad, az_rad, el_rad, t.tow_s())
+                               : 0.0;
+  const double ratio = kL1Freq_hz / carrier_hz;
+  const bool l1 = carrier_hz == kL1Freq_hz;
+  const double iono_m = l1 ? l1_iono_m : l1_iono_m * ratio * ratio;
+  if (variance_m2 != nullptr) {
+    const double sin_el = std::sin(el_rad);
+    *variance_m2 = receiver::correction_variance_m2(solver, l1_iono_m, sin_el);
+    if (!l1) {
+      const double tropo_var = receiver::correction_variance_m2(solver, 0.0, sin_el);
+      *variance_m2 = tropo_var + (*variance_m2 - tropo_var) * ratio * ratio;
+    }
+  }
   return iono_m + atmosphere::receiver_tropo_delay_m(rx.lat_rad, rx.height_m, el_rad, doy, solver.tropo);
+}
+
+int pseudorange_type(const observation::ObsHeader& header, GnssSystem s) {
+  static constexpr std::array<std::array<const char*, 5>, kNumSystems> kPriority{{
+      {"C1C", nullptr, nullptr, nullptr, nullptr},
+      {"C1C", "C1P", nullptr, nullptr, nullptr},
+      {"C1C", "C1A", "C1B", "C1X", "C1Z"},
+      {"C2I", "C2Q", "C2X", nullptr, nullptr},
+      {"C1C", "C1L", "C1S", "C1X", "C1Z"},
+      {nullptr, nullptr, nullptr, nullptr, nullptr},
+  }};
+  for (const char* code : kPriority[static_cast<std::size_t>(s)]) {
+    if (code == nullptr) break;
+    const int i = header.type_index(s, code);
+    if (i >= 0) return i;
+  }
+  return -1;
 }
 
 namespace {
@@ -45,16 +76,32 @@ receiver::SolverConfig untested(receiver::SolverConfig s) {
 }  // namespace
 
 SppEngine::SppEngine(const orbit::NavData& nav, const orbit::EphemerisStore& store,
-                     const observation::ObsHeader& header, const receiver::ReceiverConfig& receiver)
+                     const observation::ObsHeader& header, const receiver::ReceiverConfig& receiver,
+                     SystemSet systems)
     : store_(store),
       klobuchar_(nav.klobuchar),
       rx_(receiver),
       solver_(precorrected(receiver.solver), receiver.max_pdop),
       cold_solver_(untested(precorrected(receiver.solver)), receiver.max_pdop) {
   receiver::validate(rx_);
-  c1c_ = header.type_index(GnssSystem::kGps, "C1C");
-  s1c_ = header.type_index(GnssSystem::kGps, "S1C");
-  if (c1c_ < 0) throw Error("observation file has no GPS C1C (RINEX 2: C1) pseudoranges");
+  bool any = false;
+  for (int k = 0; k < kNumSystems; ++k) {
+    const auto sys = static_cast<GnssSystem>(k);
+    const auto i = static_cast<std::size_t>(k);
+    code_[i] = cn0_[i] = -1;
+    if (!systems.has(sys)) continue;
+    code_[i] = pseudorange_type(header, sys);
+    if (code_[i] < 0) continue;
+    any = true;
+    std::string sn = header.types_of(sys)[static_cast<std::size_t>(code_[i])];
+    sn[0] = 'S';
+    cn0_[i] = header.type_index(sys, sn);
+  }
+  if (!any) {
+    throw Error(fmt::format("observation file has no pseudoranges of {} (GPS C1C, GLONASS C1C, Galileo C1C/C1X, "
+                            "BeiDou C2I, QZSS C1C; RINEX 2: C1)",
+                            systems_text(systems).data()));
+  }
 }
 
 bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
@@ -64,9 +111,10 @@ bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
   Lla site_lla;
   if (site != nullptr) site_lla = geo::lla_from_ecef(*site);
   for (const observation::SatObs& s : epoch.sats) {
-    if (s.sat.system != GnssSystem::kGps) continue;  // GPS-only solution
-    const observation::ObsValue* pr = s.get(c1c_);
-    if (pr == nullptr) continue;
+    if (in_.num_meas >= kMaxSatsInView) break;
+    const auto sys = static_cast<std::size_t>(s.sat.system);
+    const observation::ObsValue* pr = s.get(code_[sys]);
+    if (pr == nullptr || !(pr->value > 0.0)) continue;
     const SatId sat = s.sat;
     const orbit::Ephemeris* eph = store_.select(sat, epoch.t);
     if (eph == nullptr) continue;
@@ -74,7 +122,8 @@ bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
     if (site != nullptr) {
       const world::SkySat sky = world::sky_sat(*eph, epoch.t, *site, site_lla, Ecef{});
       if (!(sky.el_rad >= rx_.elevation_mask_rad)) continue;
-      corr_m = receiver_correction_m(klobuchar_, site_lla, sky.az_rad, sky.el_rad, epoch.t, rx_.solver, &corr_var_m2);
+      corr_m = receiver_correction_m(klobuchar_, site_lla, sky.az_rad, sky.el_rad, epoch.t, rx_.solver, &corr_var_m2,
+                                     l1_carrier_hz(sat.system, eph->glo_channel));
     }
     receiver::Measurement& m = in_.meas[static_cast<std::size_t>(in_.num_meas)];
     m.eph = eph;
@@ -84,7 +133,7 @@ bool SppEngine::run(const observation::ObsEpoch& epoch, const Ecef* site) {
     m.correction_var_m2 = corr_var_m2;
     m.doppler_hz = 0.0;  // velocity is not reported by spp
     // S1C gives the solver's C/N0 weight term, as the live receiver's tracking does.
-    const observation::ObsValue* sn = s1c_ >= 0 ? s.get(s1c_) : nullptr;
+    const observation::ObsValue* sn = s.get(cn0_[sys]);
     m.cn0_dbhz = sn != nullptr && std::isfinite(sn->value) ? sn->value : 0.0;
     meas_sat_[static_cast<std::size_t>(in_.num_meas++)] = sat;
   }
@@ -158,11 +207,64 @@ std::vector<Enu> spp_error_series(const observation::ObsData& obs, const orbit::
   return err;
 }
 
+std::vector<orbit::Ephemeris> rtklib_unique_ephemerides(const std::vector<orbit::Ephemeris>& ephemerides) {
+  struct Key {
+    int64_t ttr_s, toe_s;
+    int sat;
+    std::size_t index;
+  };
+  // RTKLIB's satellite numbers run G, R, E, J, C.
+  constexpr std::array<int, kNumSystems> kOrder{0, 1, 2, 4, 3, 5};
+  const auto whole_s = [](const time::GpsTime& t, double tow_s) {
+    return static_cast<int64_t>(t.week()) * 604800 + static_cast<int64_t>(std::floor(tow_s));
+  };
+  std::vector<Key> keys;
+  std::vector<orbit::Ephemeris> out;
+  for (std::size_t i = 0; i < ephemerides.size(); ++i) {
+    const orbit::Ephemeris& e = ephemerides[i];
+    if (system_info(e.sat.system).orbit != OrbitKind::kKepler) {
+      out.push_back(e);
+      continue;
+    }
+    const int64_t toe_s = whole_s(e.toe, e.toe.tow_s());
+    keys.push_back({e.transmit_known ? whole_s(e.toe, e.transmit_tow_s) : toe_s, toe_s,
+                    kOrder[static_cast<std::size_t>(e.sat.system)] * 256 + e.sat.number, i});
+  }
+  std::stable_sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+    if (a.ttr_s != b.ttr_s) return a.ttr_s < b.ttr_s;
+    if (a.toe_s != b.toe_s) return a.toe_s < b.toe_s;
+    return a.sat < b.sat;
+  });
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    if (k > 0) {
+      const orbit::Ephemeris& prev = ephemerides[keys[k - 1].index];
+      const orbit::Ephemeris& cur = ephemerides[keys[k].index];
+      // Compared with the last kept set: dropped ones are skipped over.
+      if (cur.sat == prev.sat && cur.iode == prev.iode) {
+        keys[k].index = keys[k - 1].index;
+        continue;
+      }
+    }
+    out.push_back(ephemerides[keys[k].index]);
+  }
+  // pntpos.c gettgd: the group delay of a satellite's first set in that
+  // order, whichever set is selected for its orbit and clock.
+  std::array<const orbit::Ephemeris*, kNumSats> first{};
+  for (orbit::Ephemeris& e : out) {
+    if (system_info(e.sat.system).orbit != OrbitKind::kKepler || !e.sat.valid()) continue;
+    const orbit::Ephemeris*& f = first[static_cast<std::size_t>(e.sat.index())];
+    if (f == nullptr) f = &e;
+    e.tgd_s = f->tgd_s;
+  }
+  return out;
+}
+
 SppSummary write_spp(const observation::ObsData& obs, const orbit::NavData& nav,
-                     const receiver::ReceiverConfig& receiver, const std::optional<Ecef>& station, std::ostream& out) {
-  const orbit::EphemerisStore store(nav.ephemerides);
-  if (store.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the file");
-  SppEngine engine(nav, store, obs.header, receiver);
+                     const receiver::ReceiverConfig& receiver, const std::optional<Ecef>& station, std::ostream& out,
+                     SystemSet systems, bool rtklib_sets) {
+  const orbit::EphemerisStore store(rtklib_sets ? rtklib_unique_ephemerides(nav.ephemerides) : nav.ephemerides);
+  if (store.size() == 0) throw Error(nav.source, 0, "no ephemerides in the file");
+  SppEngine engine(nav, store, obs.header, receiver, systems);
   std::optional<geo::LocalFrame> frame;
   if (station) frame.emplace(geo::lla_from_ecef(*station));
   out << "gps_week,tow_s,x_m,y_m,z_m,nsat,pdop" << (station ? ",e_m,n_m,u_m" : "") << '\n';
