@@ -14,6 +14,14 @@ namespace {
 // time moves a satellite by < 0.01° as seen from the ground).
 constexpr double kCullSinEl = -0.02;
 
+/// rotate_earth() for the light time's angles (|a| < 1e-5 rad): the series
+/// to a^3 leaves a^4 / 24 < 1e-21, below a double's rounding.
+Ecef rotate_earth_small(const Vec3& v, double a) noexcept {
+  const double a2 = a * a;
+  const double c = 1.0 - 0.5 * a2, s = a * (1.0 - a2 / 6.0);
+  return Ecef(c * v.x + s * v.y, -s * v.x + c * v.y, v.z);
+}
+
 /// Light-time iteration with state_at(t) the satellite's state at GPS time t:
 /// fills t_tx, pos, vel, clock, range and range rate of out.
 template <class StateAt>
@@ -27,7 +35,7 @@ void light_time(StateAt&& state_at, const time::GpsTime& t_rx, const Ecef& rx_po
   for (int pass = 0; pass < 5; ++pass) {
     tau_eval_s = tau_s;
     st = state_at(t_rx - tau_s);
-    pos = rotate_earth(st.pos_m, kOmegaEarth_rad_s * tau_s);
+    pos = rotate_earth_small(st.pos_m, kOmegaEarth_rad_s * tau_s);
     range_m = (pos - rx_pos_m).norm();
     const double tau_new = range_m / kSpeedOfLight_m_s;
     const bool done = std::fabs(tau_new - tau_s) < 1e-9;
@@ -39,7 +47,7 @@ void light_time(StateAt&& state_at, const time::GpsTime& t_rx, const Ecef& rx_po
   tau_s = tau_eval_s;
   s.t_tx = t_rx - tau_s;
   s.pos_m = pos;
-  s.vel_m_s = rotate_earth(st.vel_m_s, kOmegaEarth_rad_s * tau_s);
+  s.vel_m_s = rotate_earth_small(st.vel_m_s, kOmegaEarth_rad_s * tau_s);
   s.clk_bias_s = st.clk_bias_s;
   s.clk_drift_s_s = st.clk_drift_s_s;
   s.range_m = range_m;
