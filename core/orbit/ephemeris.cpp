@@ -108,9 +108,9 @@ struct GloState {
 
 /// ICD GLONASS Ed. 5.1 App. A.3.1.2 in the rotating PZ-90 frame (central
 /// term, J2, centrifugal and Coriolis terms; luni-solar acceleration held
-/// constant), as multi-gnss.md §3 writes it.
-GloState glonass_derivative(const GloState& s, const Ecef& acc) noexcept {
-  const SystemInfo& info = system_info(GnssSystem::kGlonass);
+/// constant), as multi-gnss.md §3 writes it; mu and omega_e from info (the
+/// Keplerian systems' accelerations use their own with the same J2 term).
+GloState glonass_derivative(const GloState& s, const Ecef& acc, const SystemInfo& info) noexcept {
   const double mu = info.mu_m3_s2, w = info.omega_e_rad_s;
   const double r2 = s.x[0] * s.x[0] + s.x[1] * s.x[1] + s.x[2] * s.x[2];
   GloState d{};
@@ -134,10 +134,11 @@ void rk4_step(GloState& s, const Ecef& acc, double h) noexcept {
     for (int i = 0; i < 6; ++i) o.x[i] = a.x[i] + k.x[i] * f;
     return o;
   };
-  const GloState k1 = glonass_derivative(s, acc);
-  const GloState k2 = glonass_derivative(add(s, k1, h / 2.0), acc);
-  const GloState k3 = glonass_derivative(add(s, k2, h / 2.0), acc);
-  const GloState k4 = glonass_derivative(add(s, k3, h), acc);
+  const SystemInfo& info = system_info(GnssSystem::kGlonass);
+  const GloState k1 = glonass_derivative(s, acc, info);
+  const GloState k2 = glonass_derivative(add(s, k1, h / 2.0), acc, info);
+  const GloState k3 = glonass_derivative(add(s, k2, h / 2.0), acc, info);
+  const GloState k4 = glonass_derivative(add(s, k3, h), acc, info);
   for (int i = 0; i < 6; ++i) s.x[i] += (k1.x[i] + 2.0 * k2.x[i] + 2.0 * k3.x[i] + k4.x[i]) * h / 6.0;
 }
 
@@ -163,6 +164,52 @@ SatState sbas_state(const Ephemeris& eph, const time::GpsTime& t) noexcept {
   return s;
 }
 
+/// The RK4 integration from tb to t with steps of h; node (if any) holds
+/// the state after whole steps: resumed when it lies on the way, and left at
+/// the last whole step. The same arithmetic either way: whole steps of
+/// exactly h from tb (left - h is exact), then one shortened step.
+SatState glonass_integrate(const Ephemeris& eph, const time::GpsTime& t, double h, GlonassNode* node) noexcept {
+  SatState out;
+  GloState s{{eph.pos_m.x, eph.pos_m.y, eph.pos_m.z, eph.vel_m_s.x, eph.vel_m_s.y, eph.vel_m_s.z}};
+  double left = t - eph.toe;
+  // A set is used within 30 min of tb, a continued one for days; beyond
+  // kGlonassMaxSpan_s the state is held, so no call runs unbounded.
+  if (std::isfinite(left)) {
+    left = std::fmax(-kGlonassMaxSpan_s, std::fmin(kGlonassMaxSpan_s, left));
+    const double sign = left < 0.0 ? -1.0 : 1.0;
+    int steps = 0;
+    if (node != nullptr && node->eph == &eph && node->toe == eph.toe && node->steps > 0 && node->sign == sign &&
+        node->steps * h <= std::fabs(left)) {
+      for (int i = 0; i < node->steps; ++i) left -= std::copysign(h, left);
+      // Whole steps from tb are taken while |left| >= h: resume only if the
+      // node's last one was due for this t as well.
+      for (int i = 0; i < 6; ++i) s.x[i] = node->x[i];
+      steps = node->steps;
+    }
+    while (std::fabs(left) >= h) {
+      const double step = std::copysign(h, left);
+      rk4_step(s, eph.acc_m_s2, step);
+      left -= step;
+      ++steps;
+    }
+    if (node != nullptr) {
+      node->eph = &eph;
+      node->toe = eph.toe;
+      node->steps = steps;
+      node->sign = sign;
+      for (int i = 0; i < 6; ++i) node->x[i] = s.x[i];
+    }
+    if (std::fabs(left) > 1e-9) rk4_step(s, eph.acc_m_s2, left);
+  }
+  out.pos_m = Ecef(s.x[0], s.x[1], s.x[2]);
+  out.vel_m_s = Ecef(s.x[3], s.x[4], s.x[5]);
+  state_vector_clock(eph, t, out);
+  return out;
+}
+
+double glonass_step_or_default(double step_s) noexcept {
+  return std::fabs(step_s) > 0.0 && std::isfinite(step_s) ? std::fabs(step_s) : kGlonassStep_s;
+}
 }  // namespace
 
 double toe_of_week_s(const Ephemeris& eph) noexcept {
@@ -170,25 +217,23 @@ double toe_of_week_s(const Ephemeris& eph) noexcept {
   return eph.toe.tow_s();
 }
 
+
 SatState glonass_state(const Ephemeris& eph, const time::GpsTime& t, double step_s) noexcept {
-  SatState out;
-  GloState s{{eph.pos_m.x, eph.pos_m.y, eph.pos_m.z, eph.vel_m_s.x, eph.vel_m_s.y, eph.vel_m_s.z}};
-  double left = t - eph.toe;
-  const double h = std::fabs(step_s) > 0.0 && std::isfinite(step_s) ? std::fabs(step_s) : kGlonassStep_s;
-  // A set is used within 30 min of tb, a continued one for days; beyond
-  // kGlonassMaxSpan_s the state is held, so no call runs unbounded.
-  if (std::isfinite(left)) {
-    left = std::fmax(-kGlonassMaxSpan_s, std::fmin(kGlonassMaxSpan_s, left));
-    while (std::fabs(left) > 1e-9) {
-      const double step = std::fabs(left) < h ? left : std::copysign(h, left);
-      rk4_step(s, eph.acc_m_s2, step);
-      left -= step;
-    }
-  }
-  out.pos_m = Ecef(s.x[0], s.x[1], s.x[2]);
-  out.vel_m_s = Ecef(s.x[3], s.x[4], s.x[5]);
-  state_vector_clock(eph, t, out);
-  return out;
+  return glonass_integrate(eph, t, glonass_step_or_default(step_s), nullptr);
+}
+
+SatState sat_state(const Ephemeris& eph, const time::GpsTime& t, GlonassNode& node) noexcept {
+  if (system_info(eph.sat.system).orbit == OrbitKind::kStateVector) return glonass_integrate(eph, t, kGlonassStep_s, &node);
+  return sat_state(eph, t);
+}
+
+Ecef ecef_acceleration_m_s2(const Ephemeris& eph, const Ecef& pos_m, const Ecef& vel_m_s) noexcept {
+  const OrbitKind kind = system_info(eph.sat.system).orbit;
+  if (kind == OrbitKind::kSbasPoly) return eph.acc_m_s2;
+  const GloState st{{pos_m.x, pos_m.y, pos_m.z, vel_m_s.x, vel_m_s.y, vel_m_s.z}};
+  const GloState d = kind == OrbitKind::kStateVector ? glonass_derivative(st, eph.acc_m_s2, system_info(GnssSystem::kGlonass))
+                                                     : glonass_derivative(st, Ecef(), system_info(eph.sat.system));
+  return Ecef(d.x[3], d.x[4], d.x[5]);
 }
 
 SatState sat_state(const Ephemeris& eph, const time::GpsTime& t) noexcept {

@@ -114,4 +114,29 @@ inline constexpr double kGlonassMaxSpan_s = 8.0 * 86400.0;
 /// size; sat_state() uses kGlonassStep_s.
 SatState glonass_state(const Ephemeris& eph, const time::GpsTime& t, double step_s) noexcept;
 
+/// Where a GLONASS integration stands after whole RK4 steps from tb: lets
+/// the next evaluation of the same set resume there instead of integrating
+/// from tb again (the state at t is then the same to the last bit).
+struct GlonassNode {
+  const Ephemeris* eph = nullptr;  ///< the set integrated; null: none yet
+  time::GpsTime toe;               ///< its tb (a set at a reused address is told apart by it)
+  int steps = 0;                   ///< whole steps taken from tb, in the direction of sign
+  double sign = 0.0;               ///< +1 forward, -1 backward, 0 at tb
+  double x[6] = {};                ///< position m, velocity m/s (PZ-90 = ECEF)
+};
+
+/// sat_state() of a GLONASS set, resuming from node when node holds a whole
+/// step of this set on the way to t (else from tb), and leaving node at the
+/// last whole step before t. Bit-identical to sat_state(eph, t). Other
+/// systems: sat_state(eph, t), node untouched.
+SatState sat_state(const Ephemeris& eph, const time::GpsTime& t, GlonassNode& node) noexcept;
+
+/// Acceleration of the satellite at pos_m / vel_m_s in the rotating ECEF
+/// frame, m/s^2, for short Taylor steps of an evaluated state: GLONASS the
+/// ICD force model with the set's luni-solar term (the derivative its RK4
+/// integrates), SBAS its broadcast acceleration, the Keplerian systems
+/// central gravity with J2 plus the centrifugal and Coriolis terms (the
+/// luni-solar ~5e-6 m/s^2 left out moves a state by < 2e-8 m over 80 ms).
+Ecef ecef_acceleration_m_s2(const Ephemeris& eph, const Ecef& pos_m, const Ecef& vel_m_s) noexcept;
+
 }  // namespace gnssemu::orbit

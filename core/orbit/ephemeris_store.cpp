@@ -79,6 +79,29 @@ Ephemeris hold_sbas(const Ephemeris& last) {
   e.transmit_tow_s = 0.0;
   return e;
 }
+/// FNV-1a over what selection depends on: per set its satellite, toe,
+/// IODs, health and transmission time, then the options.
+std::uint64_t content_hash(const std::array<std::vector<Ephemeris>, kNumSats>& by_sat, StoreOptions options) noexcept {
+  std::uint64_t h = 1469598103934665603ull;
+  const auto mix = [&h](std::uint64_t v) {
+    for (int b = 0; b < 8; ++b) {
+      h ^= (v >> (8 * b)) & 0xffu;
+      h *= 1099511628211ull;
+    }
+  };
+  for (const auto& v : by_sat) {
+    for (const Ephemeris& e : v) {
+      mix(static_cast<std::uint64_t>(e.sat.index()));
+      mix(static_cast<std::uint64_t>(e.toe.week()));
+      mix(static_cast<std::uint64_t>(std::llround(e.toe.tow_s() * 1e3)));
+      mix(static_cast<std::uint64_t>(e.iode) << 32 | static_cast<std::uint32_t>(e.iodc));
+      mix(static_cast<std::uint64_t>(e.health));
+      mix(static_cast<std::uint64_t>(std::llround(e.transmit_tow_s * 1e3)));
+    }
+  }
+  mix(options.continue_after_data ? 1u : 0u);
+  return h;
+}
 }  // namespace
 
 EphemerisStore::EphemerisStore(const std::vector<Ephemeris>& ephemerides, StoreOptions options) : options_(options) {
@@ -112,6 +135,7 @@ EphemerisStore::EphemerisStore(const std::vector<Ephemeris>& ephemerides, StoreO
       continued_[i].push_back(hold_sbas(v[u.back()]));
     }
   }
+  fingerprint_ = content_hash(by_sat_, options_);
 }
 
 const Ephemeris* EphemerisStore::select(SatId sat, const time::GpsTime& t) const noexcept {

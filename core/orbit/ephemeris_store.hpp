@@ -39,6 +39,7 @@
 //    SBAS: the last set's state at the end of its window, held (no
 //    velocity, acceleration or clock drift).
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "core/common/sat_id.hpp"
@@ -85,9 +86,14 @@ public:
   std::vector<TimeSpan> coverage() const;
   /// The sets stay in use after the data end (StoreOptions).
   bool continues_after_data() const noexcept { return options_.continue_after_data; }
+  /// Hash of the contents (satellites, toe, IODs, options), fixed at
+  /// construction: a store replaced by one with other sets has another
+  /// fingerprint, so a cache of what it holds knows when to rebuild.
+  std::uint64_t fingerprint() const noexcept { return fingerprint_; }
 
 private:
   StoreOptions options_;
+  std::uint64_t fingerprint_ = 0;
   std::array<std::vector<Ephemeris>, kNumSats> by_sat_;  // by SatId::index(), sorted by toe
   // Per satellite, indices into by_sat_ of the selectable sets (healthy or
   // not): one per toe (the latest transmitted one), ascending toe.

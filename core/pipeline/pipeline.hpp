@@ -45,11 +45,14 @@ public:
   /// One epoch at receive time t (GPS): the world at the receiver's mask,
   /// the faults, then the receiver. Never throws, never allocates.
   const receiver::Fix& step(const time::GpsTime& t, const world::Truth& truth) noexcept {
-    const world::Observables& o = world_.step(t, truth, receiver_.config().elevation_mask_rad);
-    if (!faults_) return receiver_.step(t, o);
-    obs_ = o;  // the world's own stay untouched
-    faults_->apply(t, truth, obs_);
-    return receiver_.step(t, obs_);
+    return finish(t, truth, world_.step(t, truth, receiver_.config().elevation_mask_rad));
+  }
+
+  /// The same at the epoch of a sky shared by several pipelines (a fleet,
+  /// several antennas on a vehicle): the caller updates it once for
+  /// sky.t() with every antenna, then steps each pipeline with it.
+  const receiver::Fix& step(const world::SharedSky& sky, const world::Truth& truth) noexcept {
+    return finish(sky.t(), truth, world_.step(sky, truth, receiver_.config().elevation_mask_rad));
   }
 
   /// Put a fault stage between world and receiver with these events (start
@@ -74,6 +77,14 @@ public:
   const receiver::Receiver& receiver() const noexcept { return receiver_; }
 
 private:
+  /// The fault stage (if any), then the receiver, on the world's observables o.
+  const receiver::Fix& finish(const time::GpsTime& t, const world::Truth& truth, const world::Observables& o) noexcept {
+    if (!faults_) return receiver_.step(t, o);
+    obs_ = o;  // the world's own stay untouched
+    faults_->apply(t, truth, obs_);
+    return receiver_.step(t, obs_);
+  }
+
   world::World world_;
   receiver::Receiver receiver_;
   faults::FaultContext fault_context_;

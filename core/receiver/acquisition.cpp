@@ -106,9 +106,10 @@ double Acquisition::search_time_s(SatId sat, Search s, double cn0_dbhz) noexcept
 }
 
 bool Acquisition::within_aided_window(const time::GpsTime& t, const world::SatObservable& o,
-                                      const AidingState& aiding) const noexcept {
+                                      const AidingState& aiding, const world::SharedSky* sky) const noexcept {
   if (!aiding.valid || o.eph == nullptr) return true;
-  const orbit::SatState st = orbit::sat_state(*o.eph, t - kNominalFlight_s);
+  const orbit::SatState st = sky != nullptr ? sky->state_at(*o.eph, t - kNominalFlight_s)
+                                             : orbit::sat_state(*o.eph, t - kNominalFlight_s);
   const Vec3 d = st.pos_m - aiding.pos_m;
   const double r = d.norm();
   if (!(r > 0.0)) return true;
@@ -219,7 +220,7 @@ void Acquisition::step(const time::GpsTime& t, double dt_s, const world::Observa
         }
         c.search_left_s -= dt_s;
         if (c.search_left_s > 0.0) break;
-        if (c.search != Search::kCold && !within_aided_window(t, o, aiding)) {
+        if (c.search != Search::kCold && !within_aided_window(t, o, aiding, obs.sky)) {
           // Not where the receiver expected it: the full search takes over.
           c.search = Search::kCold;
           c.search_left_s = cfg_.cold_search_s > 0.0 ? search_time_s(p, Search::kCold, cn0) : 0.0;

@@ -18,6 +18,7 @@
 #include "core/signal/tracking.hpp"
 #include "core/time/gps_time.hpp"
 #include "core/world/observables.hpp"
+#include "core/world/shared_sky.hpp"
 
 namespace gnssemu::receiver {
 
@@ -173,7 +174,9 @@ private:
   double search_time_s(SatId sat, Search s, double cn0_dbhz) noexcept;
   /// The aided search of o would find it: its Doppler is within the window
   /// around the prediction from aiding (true without aiding).
-  bool within_aided_window(const time::GpsTime& t, const world::SatObservable& o, const AidingState& aiding) const noexcept;
+  /// sky: the epoch's broadcast orbits (null: o.eph evaluated in full).
+  bool within_aided_window(const time::GpsTime& t, const world::SatObservable& o, const AidingState& aiding,
+                           const world::SharedSky* sky) const noexcept;
   void lose(Channel& c) noexcept;
   void step_instant(double dt_s, const world::Observables& obs) noexcept;
 

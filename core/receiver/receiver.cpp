@@ -124,6 +124,7 @@ void Receiver::tracking_stage(const time::GpsTime& t, const world::Observables& 
 
 void Receiver::measurement_stage(const world::Observables& obs, double dt_s) noexcept {
   in_.t_rx_local = obs.t_rx_local;
+  in_.sky = obs.sky;
   in_.doy = in_.t_rx_local.fractional_day_of_year();
   in_.num_meas = 0;
   const bool smooth = config_.filter.type == NavFilterType::kKalman && config_.filter.smoothing_window_s > 0.0;

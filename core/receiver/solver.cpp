@@ -360,7 +360,7 @@ bool Solver::prepare(const SolverInput& in) noexcept {
       n_ = 0;  // malformed input: no fix rather than a guess
       return false;
     }
-    const TransmitState tx = transmit_state(*m.eph, in.t_rx_local, m.pseudorange_m);
+    const TransmitState tx = transmit_state(in.sky, *m.eph, in.t_rx_local, m.pseudorange_m);
     const time::GpsTime& t_tx = tx.t_tx;
     const orbit::SatState& st = tx.state;
     s.pos_m = st.pos_m;

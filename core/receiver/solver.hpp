@@ -18,6 +18,7 @@
 #include "core/receiver/receiver_config.hpp"
 #include "core/receiver/small_matrix.hpp"
 #include "core/time/gps_time.hpp"
+#include "core/world/shared_sky.hpp"
 
 namespace gnssemu::receiver {
 
@@ -35,6 +36,9 @@ struct Measurement {
 
 struct SolverInput {
   time::GpsTime t_rx_local;  ///< measurement time tag on the receiver's own clock
+  /// The epoch's broadcast orbits (world::Observables::sky); null: each
+  /// measurement's ephemeris is evaluated in full.
+  const world::SharedSky* sky = nullptr;
   double doy = 1.0;          ///< day of year of t_rx_local (fractional), for the Niell mapping
   std::array<Measurement, kMaxSatsInView> meas{};
   int num_meas = 0;

@@ -5,6 +5,7 @@
 // solver and `gnssemu calibrate` on real observations use this one derivation.
 #include "core/orbit/ephemeris.hpp"
 #include "core/time/gps_time.hpp"
+#include "core/world/shared_sky.hpp"
 
 namespace gnssemu::receiver {
 
@@ -19,5 +20,9 @@ struct TransmitState {
 /// receiver's clock; pseudorange_m: code pseudorange, m.
 TransmitState transmit_state(const orbit::Ephemeris& eph, const time::GpsTime& t_rx_local,
                              double pseudorange_m) noexcept;
+/// The same with the epoch's broadcast orbits from sky (SharedSky::state_at:
+/// Taylor steps from its evaluation, or eph in full); sky null: as above.
+TransmitState transmit_state(const world::SharedSky* sky, const orbit::Ephemeris& eph,
+                             const time::GpsTime& t_rx_local, double pseudorange_m) noexcept;
 
 }  // namespace gnssemu::receiver

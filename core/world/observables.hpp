@@ -55,6 +55,8 @@ struct SatObservable {
   double nlos_delay_m = 0.0;            ///< extra path length in the pseudorange, m
 };
 
+class SharedSky;
+
 struct Observables {
   time::GpsTime t;                      ///< epoch, true GPS receive time
   /// false: no truth (antenna lost); no satellite is listed.
@@ -72,6 +74,10 @@ struct Observables {
   time::GpsTime t_rx_local;             ///< the epoch on the receiver's own (biased) clock
   double clock_bias_s = 0.0;            ///< true receiver clock bias, s (analysis)
   double clock_drift_s_s = 0.0;         ///< true receiver clock drift, s/s (analysis)
+  /// The broadcast orbits of the epoch (what a receiver computes from the
+  /// ephemerides it decodes; no world truth): its SharedSky::state_at()
+  /// spares the receiver evaluating them again. Null: evaluate them.
+  const SharedSky* sky = nullptr;
   std::array<SatObservable, kMaxSatsInView> sats{};  ///< first num_sats valid, in SatId order
   int num_sats = 0;
 };

@@ -6,6 +6,7 @@
 #include "core/common/vec3.hpp"
 #include "core/orbit/ephemeris.hpp"
 #include "core/time/gps_time.hpp"
+#include "core/world/shared_sky.hpp"
 
 namespace gnssemu::world {
 
@@ -32,5 +33,23 @@ struct SkySat {
 /// 0.075 s and iterates until it changes by less than 1e-9 s (5 passes at most).
 SkySat sky_sat(const orbit::Ephemeris& eph, const time::GpsTime& t_rx, const Ecef& rx_pos_m,
                const Lla& rx_lla, const Ecef& rx_vel_m_s) noexcept;
+
+/// A receiver's place for one epoch: its position and the sines and cosines
+/// of its geodetic latitude and longitude (the local axes), computed once.
+struct RxPlace {
+  Ecef pos_m;
+  double sin_lat = 0.0, cos_lat = 1.0, sin_lon = 0.0, cos_lon = 1.0;
+  static RxPlace of(const Ecef& pos_m, const Lla& lla) noexcept;
+  /// Component of v along the geodetic up.
+  double up(const Vec3& v) const noexcept { return cos_lat * cos_lon * v.x + cos_lat * sin_lon * v.y + sin_lat * v.z; }
+};
+
+/// sky_sat() from the shared sky's evaluation of eph's satellite (Taylor
+/// steps across the light time; eph evaluated in full if the sky lacks it).
+/// Returns false, leaving out incomplete, when the satellite is below the
+/// horizon (no look angles computed) or, before any light-time work, more
+/// than ~1° below it.
+bool sky_sat(const SharedSky& sky, const orbit::Ephemeris& eph, const time::GpsTime& t_rx, const RxPlace& rx,
+             const Ecef& rx_vel_m_s, SkySat& out) noexcept;
 
 }  // namespace gnssemu::world

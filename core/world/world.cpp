@@ -31,8 +31,8 @@ const WorldConfig& validated(const WorldConfig& c) {
 }  // namespace
 
 World::World(const orbit::EphemerisStore& store, const WorldConfig& config)
-    : store_(store),
-      config_(validated(config)),
+    : config_(validated(config)),
+      own_sky_(store, config_.systems),
       noise_(MeasurementNoise::of(config_)),
       rng_(config.seed),
       clock_(config.clock),
@@ -58,7 +58,7 @@ void World::set_klobuchar_shape(const orbit::KlobucharParams& p) {
   cache_.clear();
 }
 
-void World::advance(const time::GpsTime& t) noexcept {
+void World::advance(const SharedSky& sky, const time::GpsTime& t) noexcept {
   const GaussMarkovConfig& gm = config_.errors.orbit_clock;
   const bool iono_gm = atmosphere_.iono_on() && config_.atmosphere.ionosphere.perturbation.sigma > 0.0;
   const GaussMarkovConfig iono_cfg{config_.atmosphere.ionosphere.perturbation.sigma,
@@ -74,10 +74,12 @@ void World::advance(const time::GpsTime& t) noexcept {
   // The satellites the store holds (it may be replaced between epochs, as
   // the daemon re-dates it); a satellite's processes start when it first
   // appears, and then follow it every epoch whether in view or not.
-  n_sats_ = 0;
-  for (int i = 0; i < kNumSats; ++i) {
-    const SatId sat = SatId::from_index(i);
-    if (config_.systems.has(sat.system) && store_.count(sat) > 0) sats_[static_cast<std::size_t>(n_sats_++)] = sat;
+  if (sats_of_ != &sky || sats_revision_ != sky.revision()) {
+    n_sats_ = 0;
+    for (const SatId sat : sky.sats())
+      if (config_.systems.has(sat.system)) sats_[static_cast<std::size_t>(n_sats_++)] = sat;
+    sats_of_ = &sky;
+    sats_revision_ = sky.revision();
   }
   const auto init_sat = [&](SatId sat) {
     const std::size_t k = static_cast<std::size_t>(sat.index());
@@ -144,14 +146,16 @@ void World::gradient_now(const time::GpsTime& t, double lon_rad) noexcept {
 
 // Stage 1 (sky): every satellite with an ephemeris above the horizon; those
 // above the mask are listed in above_.
-void World::sky_stage(const time::GpsTime& t, const Truth& truth, const Lla& rx_lla, double mask_rad) noexcept {
+void World::sky_stage(const SharedSky& sky, const time::GpsTime& t, const Truth& truth, const Lla& rx_lla,
+                      double mask_rad) noexcept {
   n_above_ = 0;
+  const RxPlace rx = RxPlace::of(truth.pos_m, rx_lla);
   for (int i = 0; i < n_sats_ && n_in_sky_ < kMaxSatsInView; ++i) {
     const SatId sat = sats_[static_cast<std::size_t>(i)];
-    const orbit::Ephemeris* eph = store_.select(sat, t);
+    const orbit::Ephemeris* eph = sky.state(sat).eph;
     if (eph == nullptr) continue;
-    const SkySat s = sky_sat(*eph, t, truth.pos_m, rx_lla, truth.vel_m_s);
-    if (!(s.el_rad > 0.0)) continue;
+    SkySat s;
+    if (!sky_sat(sky, *eph, t, rx, truth.vel_m_s, s)) continue;
     const std::size_t k = static_cast<std::size_t>(sat.index());
     sky_[k] = s;
     eph_[k] = eph;
@@ -344,8 +348,15 @@ void World::carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch
 }
 
 const Observables& World::step(const time::GpsTime& t, const Truth& truth, double mask_rad) noexcept {
-  advance(t);
+  own_sky_.update(t, std::span<const Ecef>(&truth.pos_m, 1));
+  return step(own_sky_, truth, mask_rad);
+}
+
+const Observables& World::step(const SharedSky& sky, const Truth& truth, double mask_rad) noexcept {
+  const time::GpsTime t = sky.t();
+  advance(sky, t);
   const uint64_t epoch = epoch_++;
+  obs_.sky = &sky;
 
   obs_.t = t;
   // The world's noise floor, as MON-HW reports it; with the signal stage off
@@ -365,7 +376,7 @@ const Observables& World::step(const time::GpsTime& t, const Truth& truth, doubl
 
   const Lla rx_lla = geo::lla_from_ecef(truth.pos_m);
   gradient_now(t, rx_lla.lon_rad);
-  sky_stage(t, truth, rx_lla, mask_rad);
+  sky_stage(sky, t, truth, rx_lla, mask_rad);
   propagation_stage(t, rx_lla, truth.pos_m);
   scene_stage(truth.pos_m);
   signal_stage();

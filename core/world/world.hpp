@@ -25,6 +25,7 @@
 #include "core/world/observables.hpp"
 #include "core/world/propagation.hpp"
 #include "core/world/random.hpp"
+#include "core/world/shared_sky.hpp"
 #include "core/world/sky.hpp"
 #include "core/world/truth.hpp"
 #include "core/world/world_config.hpp"
@@ -45,8 +46,16 @@ public:
 
   /// The signals at the antenna at receive time t (GPS) for truth, modelled
   /// for the satellites at or above mask_rad (rad, [0, pi/2)). truth.valid ==
-  /// false: no signals (time and the error processes still advance).
+  /// false: no signals (time and the error processes still advance). Updates
+  /// the world's own sky for this antenna first.
   const Observables& step(const time::GpsTime& t, const Truth& truth, double mask_rad) noexcept;
+  /// The same at the epoch of a sky shared with other receivers, which the
+  /// caller updated for sky.t() (with this antenna among its antennas, or
+  /// none) and which outlives the returned observables. Its systems must
+  /// include this world's (the others' satellites are skipped).
+  const Observables& step(const SharedSky& sky, const Truth& truth, double mask_rad) noexcept;
+  /// The world's own sky (the one step(t, ...) updates).
+  const SharedSky& own_sky() const noexcept { return own_sky_; }
 
   const Observables& observables() const noexcept { return obs_; }
   const WorldConfig& config() const noexcept { return config_; }
@@ -76,8 +85,9 @@ public:
   double true_clock_drift_s_s() const noexcept { return clock_.drift_s_s(); }
 
 private:
-  void advance(const time::GpsTime& t) noexcept;
-  void sky_stage(const time::GpsTime& t, const Truth& truth, const Lla& rx_lla, double mask_rad) noexcept;
+  void advance(const SharedSky& sky, const time::GpsTime& t) noexcept;
+  void sky_stage(const SharedSky& sky, const time::GpsTime& t, const Truth& truth, const Lla& rx_lla,
+                 double mask_rad) noexcept;
   void propagation_stage(const time::GpsTime& t, const Lla& rx_lla, const Ecef& rx_pos_m) noexcept;
   void scene_stage(const Ecef& rx_pos_m) noexcept;
   void signal_stage() noexcept;
@@ -90,8 +100,8 @@ private:
   /// G_N, G_E of the azimuthal gradient at t for a receiver at lon_rad.
   void gradient_now(const time::GpsTime& t, double lon_rad) noexcept;
 
-  const orbit::EphemerisStore& store_;
   WorldConfig config_;
+  SharedSky own_sky_;
   MeasurementNoise noise_;  ///< code and range-rate noise versus C/N0 (shared with the fault stage)
   Observables obs_;
 
@@ -113,8 +123,10 @@ private:
   time::GpsTime t_prev_;
   double dt_s_ = 0.0;           ///< time since the previous step, s (0 at the first)
   // Sky stage.
-  std::array<SatId, kNumSats> sats_{};              ///< satellites with an ephemeris in the store, in SatId order
+  std::array<SatId, kNumSats> sats_{};              ///< the sky's satellites of this world's systems, in SatId order
   int n_sats_ = 0;
+  const SharedSky* sats_of_ = nullptr;              ///< the sky sats_ was taken from, at sats_revision_
+  long sats_revision_ = -1;
   std::array<SkySat, kNumSats> sky_{};
   std::array<const orbit::Ephemeris*, kNumSats> eph_{};
   std::array<SatId, kMaxSatsInView> in_sky_{};      ///< satellites above the horizon this epoch, in SatId order

@@ -147,6 +147,13 @@ max_bounces = 2
           base_config("ELKO00USA_R_20182100000_01D_MN.rnx", ELKO, ubx=("NAV-PVT", "NAV-TIMEUTC", "NAV-SOL", "NAV-STATUS"),
                       sentences=("RMC", "GGA", "ZDA", "GST")),
           rows, lla_header)
+    # 7. Four systems and QZSS (G, R, E, C, J) from the IGS merged broadcast file, 32 channels, Paris,
+    #    2024-01-10 01:00 GPST: GLONASS, Galileo, BeiDou (GEOs too) through the shared sky.
+    write("four_systems",
+          base_config("BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz", PARIS, ubx=("NAV-PVT", "NAV-DOP", "NAV-SAT"),
+                      sentences=("RMC", "GGA", "GSA", "GSV", "GST"),
+                      extra='constellations = ["G", "R", "E", "C", "J"]\nmax_channels = 32\n'),
+          static_rows(2296, 262800.0, 262920.0, PARIS), lla_header)
 
 
 if __name__ == "__main__":

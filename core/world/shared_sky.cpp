@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "core/world/shared_sky.hpp"
+
+#include <cmath>
+
+#include "core/common/constants.hpp"
+
+namespace gnssemu::world {
+
+namespace {
+
+// A satellite is evaluated when it is above sin(el) = -0.02 (about -1.1°)
+// for some antenna: light time moves a satellite by < 400 m (< 0.01° at
+// GNSS ranges) and the ellipsoid normal used below is the geodetic up to
+// ~1e-4 rad at aircraft heights, so nothing that rises above 0° this epoch
+// is culled.
+constexpr double kCullSinEl = -0.02;
+// A culled satellite's evaluation serves the horizon test for this long,
+// plus up to 63 s spread over the satellites so that refreshes do not all
+// fall on one epoch (GPS: jerk dt^3 / 6 < 40 m at 124 s, < 2e-6 rad).
+constexpr double kCullReuse_s = 60.0;
+// 1 / (1 - e^2) of WGS 84: (x, y, z / (1 - e^2)) is the ellipsoid's normal
+// at a point on it.
+constexpr double kNormalZScale = 1.0 / ((1.0 - kWgs84F) * (1.0 - kWgs84F));
+
+bool any_above(const Ecef& pos_m, std::span<const Ecef> antennas_m) noexcept {
+  for (const Ecef& a : antennas_m) {
+    const Vec3 n(a.x, a.y, a.z * kNormalZScale);
+    const double r2 = n.dot(n);
+    if (!(r2 > 0.0) || !std::isfinite(r2)) continue;
+    const Vec3 d = pos_m - a;
+    const double up = d.dot(n);
+    if (up >= 0.0 || up * up < kCullSinEl * kCullSinEl * d.dot(d) * r2) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+orbit::SatState taylor_state(const SkyState& s, double dt_s) noexcept {
+  orbit::SatState o;
+  o.pos_m = Ecef(s.pos_m + s.vel_m_s * dt_s + s.acc_m_s2 * (0.5 * dt_s * dt_s));
+  o.vel_m_s = Ecef(s.vel_m_s + s.acc_m_s2 * dt_s);
+  o.clk_bias_s = s.clk_bias_s + s.clk_drift_s_s * dt_s;
+  o.clk_drift_s_s = s.clk_drift_s_s;
+  return o;
+}
+
+SharedSky::SharedSky(const orbit::EphemerisStore& store, SystemSet systems) noexcept
+    : store_(store), systems_(systems) {}
+
+void SharedSky::rebuild() noexcept {
+  n_sats_ = 0;
+  for (int i = 0; i < kNumSats; ++i) {
+    const SatId sat = SatId::from_index(i);
+    if (systems_.has(sat.system) && store_.count(sat) > 0) sats_[static_cast<std::size_t>(n_sats_++)] = sat;
+  }
+  // Sets of a replaced store may sit at the addresses of the old ones.
+  state_.fill(SkyState{});
+  glonass_.fill(orbit::GlonassNode{});
+  fingerprint_ = store_.fingerprint();
+  built_ = true;
+  ++revision_;
+}
+
+void SharedSky::evaluate(SatId sat, const orbit::Ephemeris& eph, const time::GpsTime& t) noexcept {
+  const std::size_t k = static_cast<std::size_t>(sat.index());
+  const orbit::SatState st = orbit::sat_state(eph, t, glonass_[k]);
+  SkyState& s = state_[k];
+  s.eph = &eph;
+  s.t = t;
+  s.pos_m = st.pos_m;
+  s.vel_m_s = st.vel_m_s;
+  s.acc_m_s2 = orbit::ecef_acceleration_m_s2(eph, st.pos_m, st.vel_m_s);
+  s.clk_bias_s = st.clk_bias_s;
+  s.clk_drift_s_s = st.clk_drift_s_s;
+  s.current = true;
+  eval_toe_[k] = eph.toe;
+  ++evaluations_;
+}
+
+void SharedSky::update(const time::GpsTime& t, std::span<const Ecef> antennas_m) noexcept {
+  if (!built_ || store_.fingerprint() != fingerprint_) rebuild();
+  t_ = t;
+  for (int i = 0; i < n_sats_; ++i) {
+    const SatId sat = sats_[static_cast<std::size_t>(i)];
+    const std::size_t k = static_cast<std::size_t>(sat.index());
+    SkyState& s = state_[k];
+    const orbit::Ephemeris* eph = store_.select(sat, t);
+    if (eph == nullptr) {
+      s.eph = nullptr;
+      s.current = false;
+      continue;
+    }
+    if (!antennas_m.empty() && s.eph == eph && eval_toe_[k] == eph->toe) {
+      const double age_s = t - s.t;
+      if (std::fabs(age_s) <= kCullReuse_s + static_cast<double>(i % 64) &&
+          !any_above(taylor_state(s, age_s).pos_m, antennas_m)) {
+        s.current = false;
+        continue;
+      }
+    }
+    evaluate(sat, *eph, t);
+  }
+}
+
+orbit::SatState SharedSky::state_at(const orbit::Ephemeris& eph, const time::GpsTime& t_eval) const noexcept {
+  if (eph.sat.valid()) {
+    const SkyState& s = state_[static_cast<std::size_t>(eph.sat.index())];
+    const double dt_s = t_eval - s.t;
+    if (s.current && s.eph == &eph && std::fabs(dt_s) <= kMaxTaylorStep_s) return taylor_state(s, dt_s);
+  }
+  return orbit::sat_state(eph, t_eval);
+}
+
+}  // namespace gnssemu::world

@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+// SharedSky: what every receiver sees the same at one epoch — each
+// satellite's broadcast orbit and clock (position, velocity, acceleration,
+// clock, clock drift) evaluated once at the epoch's time, for the
+// satellites of the configured systems. Light time (~65-90 ms) and a
+// receiver's transmit time are short Taylor steps from it (second order in
+// position, first in velocity and clock: < 1e-7 m over 80 ms for every
+// system, tests/unit/world/test_shared_sky.cpp). Owned outside the worlds
+// that read it: one per epoch serves every receiver of a fleet, each of
+// which keeps what depends on its antenna (geometry, blockage, errors).
+// update() never throws and never allocates.
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include "core/common/sat_id.hpp"
+#include "core/common/vec3.hpp"
+#include "core/orbit/ephemeris.hpp"
+#include "core/orbit/ephemeris_store.hpp"
+#include "core/time/gps_time.hpp"
+
+namespace gnssemu::world {
+
+/// Longest Taylor step from an evaluation, s; farther the orbit is evaluated
+/// in full (jerk dt^3 / 6 at 1 s: ~1.5e-5 m for GPS).
+inline constexpr double kMaxTaylorStep_s = 1.0;
+
+/// One satellite's broadcast state at an evaluation time.
+struct SkyState {
+  const orbit::Ephemeris* eph = nullptr;  ///< the set selected at the sky's epoch; null: none usable
+  time::GpsTime t;                        ///< when pos/vel/acc/clock were evaluated (GPS)
+  Ecef pos_m;                             ///< ECEF of t, m
+  Ecef vel_m_s;                           ///< m/s
+  Ecef acc_m_s2;                          ///< m/s^2 (orbit::ecef_acceleration_m_s2)
+  double clk_bias_s = 0.0;                ///< relativity included, TGD excluded, s
+  double clk_drift_s_s = 0.0;             ///< s/s
+  /// Evaluated at the sky's epoch (false: a culled satellite's older
+  /// evaluation, good only for the horizon test).
+  bool current = false;
+};
+
+/// The state dt_s after s.t by Taylor steps (second order in position,
+/// first in velocity and clock).
+orbit::SatState taylor_state(const SkyState& s, double dt_s) noexcept;
+
+class SharedSky {
+public:
+  /// store must outlive the sky (it may be replaced in place between
+  /// epochs: a changed fingerprint rebuilds the satellite list). systems:
+  /// the satellites evaluated (the union of every receiver's systems).
+  SharedSky(const orbit::EphemerisStore& store, SystemSet systems) noexcept;
+
+  /// Evaluate the sky at epoch t (GPS). antennas_m: the ECEF positions of
+  /// every receiver that will read this epoch; a satellite more than ~1°
+  /// below every one's horizon is not evaluated (its older evaluation,
+  /// refreshed every couple of minutes, tells). Empty: every satellite.
+  void update(const time::GpsTime& t, std::span<const Ecef> antennas_m = {}) noexcept;
+
+  time::GpsTime t() const noexcept { return t_; }
+  SystemSet systems() const noexcept { return systems_; }
+  /// The satellites of the systems with sets in the store, in SatId order.
+  std::span<const SatId> sats() const noexcept { return {sats_.data(), static_cast<std::size_t>(n_sats_)}; }
+  const SkyState& state(SatId sat) const noexcept { return state_[static_cast<std::size_t>(sat.index())]; }
+
+  /// The broadcast state of eph's satellite at t_eval: a Taylor step from
+  /// this epoch's evaluation when eph is the set it used and t_eval is
+  /// within kMaxTaylorStep_s, else eph evaluated in full.
+  orbit::SatState state_at(const orbit::Ephemeris& eph, const time::GpsTime& t_eval) const noexcept;
+
+  /// Changes whenever the satellite list is rebuilt (a reader's copy of it is stale).
+  long revision() const noexcept { return revision_; }
+  /// Full orbit evaluations so far (for benchmarks).
+  long evaluations() const noexcept { return evaluations_; }
+
+private:
+  void rebuild() noexcept;
+  void evaluate(SatId sat, const orbit::Ephemeris& eph, const time::GpsTime& t) noexcept;
+
+  const orbit::EphemerisStore& store_;
+  SystemSet systems_;
+  std::uint64_t fingerprint_ = 0;
+  bool built_ = false;
+  time::GpsTime t_;
+  std::array<SatId, kNumSats> sats_{};
+  int n_sats_ = 0;
+  std::array<SkyState, kNumSats> state_{};
+  std::array<time::GpsTime, kNumSats> eval_toe_{};  ///< toe of the set state_ was evaluated from
+  std::array<orbit::GlonassNode, kNumSats> glonass_{};
+  long evaluations_ = 0;
+  long revision_ = 0;
+};
+
+}  // namespace gnssemu::world
