@@ -15,9 +15,9 @@
 #include "core/common/error.hpp"
 #include "daemon/epoch_schedule.hpp"
 #include "daemon/scene_setup.hpp"
-#include "daemon/state_file.hpp"
-#include "daemon/status_setup.hpp"
-#include "daemon/truth_packet.hpp"
+#include "daemon/service/state_file.hpp"
+#include "daemon/status/status_setup.hpp"
+#include "daemon/truth/truth_packet.hpp"
 
 namespace gnssemu::daemon {
 namespace {

@@ -12,7 +12,7 @@
 #include "config/scenario_file.hpp"
 #include "core/common/error.hpp"
 #include "daemon/daemon.hpp"
-#include "daemon/link_faults.hpp"
+#include "daemon/ports/link_faults.hpp"
 
 namespace gnssemu::daemon {
 

@@ -8,7 +8,7 @@
 
 #include "core/common/error.hpp"
 #include "daemon/daemon.hpp"
-#include "daemon/status_setup.hpp"
+#include "daemon/status/status_setup.hpp"
 
 namespace gnssemu::daemon {
 

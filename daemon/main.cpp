@@ -17,10 +17,10 @@
 #include "config/nav_setup.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
-#include "daemon/build_info.hpp"
-#include "daemon/config_locator.hpp"
+#include "daemon/service/build_info.hpp"
+#include "daemon/service/config_locator.hpp"
 #include "daemon/daemon.hpp"
-#include "daemon/status_setup.hpp"
+#include "daemon/status/status_setup.hpp"
 
 namespace {
 
