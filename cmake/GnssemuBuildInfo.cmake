@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 # gnssemu_build_info: the release version (project() in CMakeLists.txt, the one
 # place it is defined) and the git commit of the source, for `gnssemud
-# --version` and `gnssemu version` (daemon/build_info.hpp). The commit is
+# --version` and `gnssemu version` (daemon/service/build_info.hpp). The commit is
 # looked up at every build, not only at configure time, so a build after a new
 # commit or checkout names it; cmake/git_commit.cmake says where it comes from.
 set(GNSSEMU_GIT_COMMIT "" CACHE STRING
@@ -14,9 +14,9 @@ add_custom_target(gnssemu_git_commit
   BYPRODUCTS ${_commit_inc}
   COMMENT "Git commit of the source"
   VERBATIM)
-add_library(gnssemu_build_info STATIC ${PROJECT_SOURCE_DIR}/daemon/build_info.cpp)
+add_library(gnssemu_build_info STATIC ${PROJECT_SOURCE_DIR}/daemon/service/build_info.cpp)
 add_dependencies(gnssemu_build_info gnssemu_git_commit)
 target_include_directories(gnssemu_build_info PRIVATE "${PROJECT_BINARY_DIR}/generated")
 target_compile_definitions(gnssemu_build_info PRIVATE GNSSEMU_VERSION="${PROJECT_VERSION}")
 target_link_libraries(gnssemu_build_info PRIVATE gnssemu_warnings)
-gnssemu_export_headers(gnssemu_build_info daemon/build_info.hpp)
+gnssemu_export_headers(gnssemu_build_info daemon/service/build_info.hpp)

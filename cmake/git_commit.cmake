@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 # Writes OUTPUT: the git commit of SOURCE_DIR as a C string literal, e.g.
 # "1a2b3c4d5e6f" ("-dirty" appended when tracked files differ from it), for
-# daemon/build_info.cpp. Run at every build, rewrites OUTPUT only when it
+# daemon/service/build_info.cpp. Run at every build, rewrites OUTPUT only when it
 # changes (then only build_info.cpp recompiles):
 #   cmake -DSOURCE_DIR=... -DOUTPUT=... [-DOVERRIDE=hash] -P git_commit.cmake
 # The commit, in order: OVERRIDE (GNSSEMU_GIT_COMMIT, for packagers building

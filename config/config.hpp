@@ -163,6 +163,48 @@ struct OutputPortConfig {
 /// NMEA sentence of the set, with its rate (CFG-MSG view).
 std::vector<MessageRate> message_rates(const OutputPortConfig& port);
 
+/// What [receiver] sets for one receiver (the keys of kReceiverKeys): the
+/// top level's values, overridden by a [[vehicle.receiver]]'s own keys.
+struct ReceiverSettings {
+  double rate_hz = 1.0;               ///< epoch rate, 1..10 Hz
+  world::WorldConfig world;           ///< seed, error processes, clock, systems (and the top level's atmosphere, signal)
+  receiver::ReceiverConfig receiver;  ///< solver, filter, acquisition ...
+  protocol::ubx::Generation generation = protocol::ubx::Generation::kM8;
+  std::string state_file;             ///< absolute; "" none
+  std::optional<pipeline::ReceiverProfile> profile;
+};
+
+/// One receiver (antenna) on a vehicle ([[vehicle.receiver]]).
+struct VehicleReceiverConfig {
+  std::string name;  ///< unique on its vehicle; letters, digits, '_', '-', '.'
+  /// Antenna in the body frame (forward, right, down), m, each within
+  /// ±kMaxLeverArmM; applied with the truth's attitude.
+  Vec3 lever_arm_m;
+  ReceiverSettings settings;              ///< merged: top level + its own keys
+  std::vector<OutputPortConfig> outputs;  ///< its ports ([[vehicle.receiver.output]])
+};
+
+/// Largest lever arm component, m.
+inline constexpr double kMaxLeverArmM = 100.0;
+
+/// One simulated vehicle ([[vehicle]]); a truth packet's "vehicle" picks it.
+struct VehicleConfig {
+  std::string id;  ///< a packet's vehicle id (1..64 bytes of letters, digits, '_', '-', '.'); "" = any (single form)
+  std::vector<VehicleReceiverConfig> receivers;
+};
+
+/// Most vehicles of a [fleet].
+inline constexpr int kMaxFleetCount = 1000;
+
+/// [fleet]: vehicles "v0" .. "v{count-1}", one receiver "gps1" each, with the
+/// top level's receiver settings and ports made from templates.
+struct FleetConfig {
+  int count = 1;  ///< 1..kMaxFleetCount
+  /// [[fleet.output]]: {vehicle}, {receiver} and {index} expand in name and
+  /// path (device); a tcp/udp port holds port_base (port = port_base + index).
+  std::vector<OutputPortConfig> outputs;
+};
+
 struct LogConfig {
   std::string level = "info";     ///< trace, debug, info, warn, error
 };
@@ -199,12 +241,32 @@ struct Config {
   std::optional<pipeline::ReceiverProfile> profile;
   TruthInputConfig truth;
   DemoConfig demo;
+  /// Top-level [[output]]: the single-vehicle form's ports (one vehicle,
+  /// truth.vehicle or any, one receiver); empty with vehicles or fleet.
   std::vector<OutputPortConfig> outputs;
+  std::vector<VehicleConfig> vehicles;  ///< [[vehicle]], as written (settings merged)
+  std::optional<FleetConfig> fleet;     ///< [fleet], templates as written
   LogConfig log;
   std::optional<SceneConfig> scene;  ///< no [scene]: no scene stage
   StatusConfig status;            ///< the live status page
   ControlConfig control;          ///< the control socket
 };
+
+/// The receiver settings of c's top level ([receiver] and what it holds).
+ReceiverSettings receiver_settings(const Config& c);
+/// c with settings in place of its top level's receiver settings.
+Config with_receiver_settings(Config c, const ReceiverSettings& settings);
+
+/// Name of the one receiver of the single-vehicle form and of each fleet vehicle.
+inline constexpr std::string_view kDefaultReceiverName = "gps1";
+
+/// Every vehicle the daemon runs, each with its receivers, their merged
+/// settings, lever arms and ports (templates expanded): [[vehicle]] in file
+/// order, then the fleet's; else the single-vehicle form (one vehicle with
+/// id truth.vehicle, "" = any, and one receiver "gps1" with the top-level
+/// [[output]]s). Deterministic; load_config has checked it (unique ids,
+/// names, paths and ports).
+std::vector<VehicleConfig> resolve_vehicles(const Config& c);
 
 /// Load and validate a TOML file. Relative paths inside are resolved against
 /// the file's folder. Throws gnssemu::Error("file:line: reason").

@@ -411,9 +411,12 @@ constexpr Field<Config> kConfigFields[] = {
     table<kDemo, &Config::demo>("demo", "circle around the origin while no truth arrives"),
     table_array<kOutputKeys, check_unique_port, &Config::outputs>("output"),
     check<Config>(check_output_generation),
+    custom_table<Config>("vehicle", read_vehicles, write_vehicles, describe_vehicles),
+    custom_table<Config>("fleet", read_fleet, write_fleet, describe_fleet),
     optional_table<kSceneKeys, &Config::scene>("scene", "buildings, docs/scene.md"),
     table<kStatus, &Config::status>("status", "live status page, docs/status.md"),
     check<Config>(check_status_port),
+    check<Config>(check_vehicles),
     table<kControl, &Config::control>("control", "control socket, docs/daemon.md"),
     table<kLog, &Config::log>("log"),
 };

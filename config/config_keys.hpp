@@ -20,6 +20,8 @@ extern const Section<world::AtmosphereConfig> kAtmosphereKeys;
 extern const Section<Config> kSignalKeys;
 /// One [[output]] (output_keys.cpp).
 extern const Section<OutputPortConfig> kOutputKeys;
+/// One [[fleet.output]] template: [[output]]'s keys, port_base for port (output_keys.cpp).
+extern const Section<OutputPortConfig> kFleetOutputKeys;
 /// [scene] (scene_keys.cpp).
 extern const Section<SceneConfig> kSceneKeys;
 
@@ -27,10 +29,27 @@ extern const Section<SceneConfig> kSceneKeys;
 /// Throws at port's line in t when an earlier port (before) has it.
 void check_unique_port(TableReader& t, const std::vector<OutputPortConfig>& before, const OutputPortConfig& port);
 
+/// The file or device a port claims for itself ("" for network ports).
+std::string claimed_path(const PortTransport& transport);
+
 /// Every port's ubx_messages exist on [receiver] generation (NAV-SVINFO up
 /// to the M8, MON-RF and SEC-SIG from the M9). Throws naming the message's
 /// line in the [[output]] that lists it.
 void check_output_generation(TableReader& t, const Field<Config>& f, Config& c);
+
+/// [[vehicle]] (vehicle_keys.cpp): read after [receiver], [atmosphere] and
+/// [signal], whose settings each receiver starts from.
+void read_vehicles(TableReader& t, const Field<Config>& f, Config& c);
+void write_vehicles(TomlWriter& w, const Field<Config>& f, const Config& c);
+void describe_vehicles(KeyDocs& d, const Field<Config>& f, const Config& c);
+/// [fleet] and its [[fleet.output]] templates; after [[vehicle]] (ids).
+void read_fleet(TableReader& t, const Field<Config>& f, Config& c);
+void write_fleet(TomlWriter& w, const Field<Config>& f, const Config& c);
+void describe_fleet(KeyDocs& d, const Field<Config>& f, const Config& c);
+/// The single-vehicle form or vehicles (not both); no path, device, tcp port
+/// or udp destination twice among all receivers after template expansion,
+/// nor the status page's port. After [status].
+void check_vehicles(TableReader& t, const Field<Config>& f, Config& c);
 
 /// The key tables of every table, in file order (the rows of docs/configuration.md).
 KeyDocs describe_keys();

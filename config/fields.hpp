@@ -38,6 +38,9 @@ struct KeyDoc {
   std::string meaning;
   bool alias = false;      ///< read only: written as another key (e.g. a preset)
   bool open_keys = false;  ///< its keys are names from the data (e.g. material names)
+  /// Non-empty: the row stands for every key of that table (e.g. "receiver":
+  /// [[vehicle.receiver]] takes the keys of [receiver]).
+  std::string mirror{};
 };
 
 /// The key table of one TOML table.

@@ -2,6 +2,7 @@
 // [[output]]: one port of the emulated u-blox (docs/ports.md): its type
 // with the type's own keys, line rate, protocols and message set.
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <limits>
 
@@ -152,16 +153,33 @@ constexpr TransportKey kTransportKeys[] = {
                          .needed()},
 };
 
+// The keys of a [[fleet.output]] template: a tcp/udp port is port_base,
+// the port of index 0 (port = port_base + index); the others as [[output]].
+constexpr auto kTemplateTransportKeys = [] {
+  std::array<TransportKey, std::size(kTransportKeys)> keys{};
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    keys[i] = kTransportKeys[i];
+    if (keys[i].field.key != "port") continue;
+    keys[i].field.key = "port_base";
+    keys[i].field.meaning = keys[i].type == PortType::kTcp
+                                ? "tcp: listen port of index 0; vehicle `index` listens on `port_base + index` (0: any free "
+                                  "port each)"
+                                : "udp: destination port of index 0; vehicle `index` sends to `port_base + index`";
+  }
+  return keys;
+}();
+
 // A key of another port type is an error naming the types that have it.
+template <const auto& Keys>
 void reject_foreign_keys(TableReader& t, PortType type) {
   std::vector<std::string_view> seen;
-  for (const TransportKey& k : kTransportKeys) {
+  for (const TransportKey& k : Keys) {
     const std::string_view key = k.field.key;
     if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
     seen.push_back(key);
     std::string owners;
     bool own = false;
-    for (const TransportKey& o : kTransportKeys) {
+    for (const TransportKey& o : Keys) {
       if (o.field.key != key) continue;
       own = own || o.type == type;
       owners += owners.empty() ? "\"" : " or \"";
@@ -175,6 +193,7 @@ void reject_foreign_keys(TableReader& t, PortType type) {
   }
 }
 
+template <const auto& Keys>
 void read_type(TableReader& t, const Field<OutputPortConfig>& f, OutputPortConfig& port) {
   PortType type = PortType::kPty;
   if (const toml::node* n = t.find(f.key)) {
@@ -186,31 +205,34 @@ void read_type(TableReader& t, const Field<OutputPortConfig>& f, OutputPortConfi
     }
     type = *known;
   }
-  reject_foreign_keys(t, type);
+  reject_foreign_keys<Keys>(t, type);
   port.transport = transport_of(type);
-  for (const TransportKey& k : kTransportKeys) {
+  for (const TransportKey& k : Keys) {
     if (k.type == type) k.field.read(t, k.field, port);
   }
 }
 
+template <const auto& Keys>
 void write_type(TomlWriter& w, const Field<OutputPortConfig>& f, const OutputPortConfig& port) {
   w.key(f.key, string_text(port_type_name(port.type())));
-  for (const TransportKey& k : kTransportKeys) {
+  for (const TransportKey& k : Keys) {
     if (k.type == port.type()) k.field.write(w, k.field, port);
   }
 }
 
+template <const auto& Keys>
 void describe_type(KeyDocs& d, const Field<OutputPortConfig>& f, const OutputPortConfig& port) {
   KeyDoc type = key_doc(f, port, "", names_doc(kChoiceNames<kPortTypes>));
   type.default_text = "`" + string_text(port_type_name(port.type())) + "`";
   d.add(std::move(type));
-  for (const TransportKey& k : kTransportKeys) {
+  for (const TransportKey& k : Keys) {
     OutputPortConfig typed;
     typed.transport = transport_of(k.type);
     k.field.describe(d, k.field, typed);
   }
 }
 
+template <const auto& Keys>
 constexpr Field<OutputPortConfig> type_field() {
   Field<OutputPortConfig> row = make_field<OutputPortConfig>(
       "type",
@@ -218,9 +240,9 @@ constexpr Field<OutputPortConfig> type_field() {
       "client gets the stream; udp: datagrams to one destination; file: log of what is sent. "
       "See [ports.md](ports.md). The keys of one type follow (`path` (pty) ... `port` (udp)); "
       "those of another type are errors");
-  row.read = read_type;
-  row.write = write_type;
-  row.describe = describe_type;
+  row.read = read_type<Keys>;
+  row.write = write_type<Keys>;
+  row.describe = describe_type<Keys>;
   return row;
 }
 
@@ -465,7 +487,7 @@ constexpr Field<OutputPortConfig> rates_field() {
 constexpr Field<OutputPortConfig> kOutputFields[] = {
     custom<OutputPortConfig>("name", "", "non-empty, no spaces", "name in logs; unique", read_name, write_name)
         .needed(),
-    type_field(),
+    type_field<kTransportKeys>(),
     custom<OutputPortConfig>("baud", "bit/s", baud_range,
                              "line rate: applied on a serial port, recorded on a pty; sets the per-epoch byte budget "
                              "(10 bits per byte); 0 = no line, no budget",
@@ -493,6 +515,8 @@ constexpr Field<OutputPortConfig> kOutputFields[] = {
     rates_field(),
 };
 
+}  // namespace
+
 // The file or device a port claims for itself ("" for network ports).
 std::string claimed_path(const PortTransport& transport) {
   if (const auto* pty = std::get_if<PtyPortConfig>(&transport)) return pty->path;
@@ -501,9 +525,17 @@ std::string claimed_path(const PortTransport& transport) {
   return {};
 }
 
-}  // namespace
+// [[fleet.output]]: the rows of [[output]] with the template's port keys.
+constexpr auto kFleetOutputFields = [] {
+  std::array<Field<OutputPortConfig>, std::size(kOutputFields)> rows{};
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    rows[i] = kOutputFields[i].key == "type" ? type_field<kTemplateTransportKeys>() : kOutputFields[i];
+  }
+  return rows;
+}();
 
 constexpr Section<OutputPortConfig> kOutputKeys{kOutputFields};
+constexpr Section<OutputPortConfig> kFleetOutputKeys{kFleetOutputFields};
 
 void check_unique_port(TableReader& t, const std::vector<OutputPortConfig>& before, const OutputPortConfig& port) {
   for (const OutputPortConfig& prev : before) {

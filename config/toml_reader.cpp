@@ -169,7 +169,7 @@ std::vector<TableReader> TableReader::table_array(std::string_view key) {
   return out;
 }
 
-void TableReader::finish() const {
+void TableReader::finish(std::string_view note) const {
   const toml::key* first = nullptr;
   for (const auto& [k, v] : *table_) {
     if (std::find(known_.begin(), known_.end(), k.str()) != known_.end()) continue;
@@ -187,6 +187,7 @@ void TableReader::finish() const {
     }
   }
   if (best <= 3 && best < first->str().size()) reason += " (did you mean '" + std::string(hint) + "'?)";
+  if (!note.empty()) reason += "; " + std::string(note);
   throw Error(*file_, static_cast<int>(first->source().begin.line), reason);
 }
 

@@ -38,6 +38,9 @@ public:
 
   /// The node under key or nullptr; marks key as known.
   const toml::node* find(std::string_view key);
+  /// The node under key or nullptr, not marked as known nor logged (a key
+  /// the table does not take, looked at for a better message).
+  const toml::node* peek(std::string_view key) const { return table_->get(key); }
 
   /// A number (integer or float), finite and inside range. Absent: def, or a
   /// "missing" error when def is empty.
@@ -68,8 +71,9 @@ public:
     return a;
   }
 
-  /// Throws for the first (in file order) key that was never asked for.
-  void finish() const;
+  /// Throws for the first (in file order) key that was never asked for;
+  /// note (if any) follows the reason, e.g. what the table takes.
+  void finish(std::string_view note = {}) const;
 
   /// Dotted name of key in this table ("receiver.rate_hz").
   std::string full_name(std::string_view key) const;

@@ -15,9 +15,9 @@
 #include "core/common/error.hpp"
 #include "daemon/epoch_schedule.hpp"
 #include "daemon/scene_setup.hpp"
-#include "daemon/state_file.hpp"
-#include "daemon/status_setup.hpp"
-#include "daemon/truth_packet.hpp"
+#include "daemon/service/state_file.hpp"
+#include "daemon/status/status_setup.hpp"
+#include "daemon/truth/truth_packet.hpp"
 
 namespace gnssemu::daemon {
 namespace {
@@ -63,7 +63,6 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       start_(plan.start),
       period_s_(1.0 / cfg.rate_hz),
       output_delay_s_(cfg.time.output_delay_s),
-      device_(config::device_setup(cfg)),
       rate_hz_(cfg.rate_hz),
       status_(status_settings(cfg)),
       timer_(io),
@@ -72,22 +71,23 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       notify_(io),
       allow_(cfg.truth.allow),
       tick_timer_(io) {
+  rigs_.push_back(std::make_unique<Rig>(cfg.truth.vehicle, std::string(config::kDefaultReceiverName), cfg));
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
   check_range(output_delay_s_, config::TimeRanges::output_delay_s, cfg.source, "time.output_delay_s");
   power_on_ = kProcessStart;
   if (!cfg_.state_file.empty()) {
     // A module boots with what it saved: rate, ports, messages, GNSS.
-    if (load_state_file(cfg_.state_file, device_)) {
-      period_s_ = device_.epoch_period_s();
+    if (load_state_file(cfg_.state_file, rig().device)) {
+      period_s_ = rig().device.epoch_period_s();
       rate_hz_ = 1.0 / period_s_;
       spdlog::info("receiver: saved configuration loaded from {} ({:.0f} Hz)", cfg_.state_file,
-                   1.0 / device_.epoch_period_s());
+                   1.0 / rig().device.epoch_period_s());
     } else {
       spdlog::info("receiver: no saved configuration yet in {}: factory settings", cfg_.state_file);
     }
   }
   restart_receiver(cfg_.receiver.acquisition.start);
-  if (const SystemSet off(static_cast<std::uint8_t>(cfg_.world.systems.bits() & ~device_.enabled_systems().bits()));
+  if (const SystemSet off(static_cast<std::uint8_t>(cfg_.world.systems.bits() & ~rig().device.enabled_systems().bits()));
       !off.empty()) {
     spdlog::warn("receiver: constellations {} are in the sky but disabled on the chip (its CFG-GNSS): not tracked "
                  "until a host enables them",
@@ -117,27 +117,27 @@ void Daemon::restart_receiver(receiver::StartMode start) {
   config::Config c = cfg_;
   c.receiver.acquisition.start = start;
   // The faults are in the world around the receiver: they go on.
-  std::unique_ptr<faults::FaultStage> faults = receiver_ ? receiver_->take_faults() : nullptr;
-  receiver_ = config::make_pipeline(c, store_, pipeline::broadcast_of(constellation_.nav), scene_.get());
-  receiver_->adopt_faults(std::move(faults));
+  std::unique_ptr<faults::FaultStage> faults = rig().receiver ? rig().receiver->take_faults() : nullptr;
+  rig().receiver = config::make_pipeline(c, store_, pipeline::broadcast_of(constellation_.nav), scene_.get());
+  rig().receiver->adopt_faults(std::move(faults));
   apply_chip_settings();
 }
 
 void Daemon::apply_chip_settings() {
   // CFG-NAV5 dynModel and static hold drive the receiver as on an M8; the
   // handler accepted only dynModels the receiver knows.
-  const protocol::ubx::wire::CfgNav5& n = device_.config().nav5;
-  receiver::Receiver& rx = receiver_->receiver();
+  const protocol::ubx::wire::CfgNav5& n = rig().device.config().nav5;
+  receiver::Receiver& rx = rig().receiver->receiver();
   if (const auto m = receiver::dynamic_model_from_ubx(n.dynModel)) rx.set_dynamic_model(*m);
   rx.set_static_hold(0.01 * n.staticHoldThresh, n.staticHoldMaxDist);
   // CFG-GNSS / CFG-SIGNAL-*: the receiver tracks the enabled systems among the modelled ones.
-  rx.set_systems(device_.enabled_systems());
+  rx.set_systems(rig().device.enabled_systems());
 }
 
 void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& result) {
   if (result.nav_rate_changed || result.reset) on_nav_period(src);
   if (result.saved_changed && !cfg_.state_file.empty()) {
-    if (const std::string err = save_state_file(cfg_.state_file, device_); !err.empty()) {
+    if (const std::string err = save_state_file(cfg_.state_file, rig().device); !err.empty()) {
       spdlog::warn("output {}: saved configuration not written: {}", cfg_.outputs[src].name, err);
     }
   }
@@ -146,25 +146,25 @@ void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& re
     // selection (M8 spec CFG-GNSS; satpulse#108): tracking starts over with
     // what it knew, on the systems now enabled.
     spdlog::info("output {}: GNSS selection changed to {}: the receiver restarts tracking", cfg_.outputs[src].name,
-                 systems_text(device_.enabled_systems()).data());
-    receiver_->receiver().restart(receiver::StartState{true, true, true, true});
+                 systems_text(rig().device.enabled_systems()).data());
+    rig().receiver->receiver().restart(receiver::StartState{true, true, true, true});
     apply_chip_settings();
   }
   if (result.nav_config_changed) {
-    const protocol::ubx::wire::CfgNav5& n = device_.config().nav5;
+    const protocol::ubx::wire::CfgNav5& n = rig().device.config().nav5;
     spdlog::info("output {}: CFG-NAV5 dynModel {}, static hold {} cm/s / {} m", cfg_.outputs[src].name,
                  static_cast<unsigned>(n.dynModel), static_cast<unsigned>(n.staticHoldThresh),
                  static_cast<unsigned>(n.staticHoldMaxDist));
     apply_chip_settings();
   }
   if (result.ports_changed || result.reset) {
-    for (std::size_t i = 0; i < channels_.size(); ++i) log_port_change(i);
+    for (std::size_t i = 0; i < rig().channels.size(); ++i) log_port_change(i);
   }
   // One chip: a reset or a configuration load from any host changes the
   // other outputs' UART1s too (their bauds; a reset drops partial input).
   if (result.reset || result.ports_changed) {
-    for (std::size_t i = 0; i < channels_.size(); ++i)
-      if (i != src) channels_[i]->follow_device(result.reset.has_value());
+    for (std::size_t i = 0; i < rig().channels.size(); ++i)
+      if (i != src) rig().channels[i]->follow_device(result.reset.has_value());
   }
   if (!result.reset) return;
   // Every reset mode but "GNSS stop" restarts navigation: the tracked
@@ -181,11 +181,11 @@ void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& re
   }
   spdlog::info("output {}: CFG-RST {} start (navBbrMask 0x{:04X}): the receiver restarts and reacquires",
                cfg_.outputs[src].name, reset.start_name(), reset.nav_bbr_mask);
-  receiver_->receiver().restart(receiver::StartState{reset.keeps_ephemeris(), reset.keeps_almanac(),
+  rig().receiver->receiver().restart(receiver::StartState{reset.keeps_ephemeris(), reset.keeps_almanac(),
                                                      reset.keeps_position(), reset.keeps_time()});
   // The device restarted its uptime on the wall clock; in lockstep the chip
   // counts in epoch time, from the epoch it has reached (the rate count starts over too).
-  if (cfg_.time.mode == config::TimeMode::kLockstep) device_.power_on(chip_clock_s(last_epoch_t_));
+  if (cfg_.time.mode == config::TimeMode::kLockstep) rig().device.power_on(chip_clock_s(last_epoch_t_));
   apply_chip_settings();  // a reboot may have loaded the saved CFG-NAV5
 }
 
@@ -200,8 +200,8 @@ double Daemon::chip_clock_s(const time::GpsTime& t) const noexcept {
 }
 
 void Daemon::open_channel(std::size_t i, std::unique_ptr<OutputPort> port) {
-  channels_[i] = std::make_unique<PortChannel>(std::move(port), device_, i, [this] { return now_s(); });
-  PortChannel& c = *channels_[i];
+  rig().channels[i] = std::make_unique<PortChannel>(std::move(port), rig().device, i, [this] { return now_s(); });
+  PortChannel& c = *rig().channels[i];
   c.use_idle_timer(io_);
   c.set_link_seed(cfg_.world.seed);
   c.on_input([this, i](const protocol::ubx::InputResult& r) { on_host_input(i, r); });
@@ -218,19 +218,19 @@ void Daemon::start() {
     t0_ += std::chrono::nanoseconds(std::llround(w.wait_s * 1e9));
   }
   if (cfg_.time.mode == config::TimeMode::kRealtime) {
-    device_.power_on(std::chrono::duration<double>(power_on_ - t0_).count());
+    rig().device.power_on(std::chrono::duration<double>(power_on_ - t0_).count());
   } else {
     chip_origin_ = lock_next_;
-    device_.power_on(0.0);
+    rig().device.power_on(0.0);
   }
-  channels_.resize(cfg_.outputs.size());
+  rig().channels.resize(cfg_.outputs.size());
   for (std::size_t i = 0; i < cfg_.outputs.size(); ++i) open_channel(i, open_port(cfg_.outputs[i], io_));
-  for (const auto& c : channels_) c->start();
+  for (const auto& c : rig().channels) c->start();
   // Lines follow the chip's UART1s (a saved configuration may have changed their bauds).
   if (!cfg_.state_file.empty()) {
-    for (const auto& c : channels_) c->follow_device(false);
+    for (const auto& c : rig().channels) c->follow_device(false);
   }
-  for (const auto& c : channels_) out_summary_.emplace_back(c->output_summary());
+  for (const auto& c : rig().channels) rig().out_summary.emplace_back(c->output_summary());
 
   boost::system::error_code ec;
   const auto addr = asio::ip::make_address(cfg_.truth.bind_address, ec);
@@ -244,7 +244,7 @@ void Daemon::start() {
   }
   const auto local = socket_.local_endpoint(ec);
 
-  for (const auto& c : channels_) {
+  for (const auto& c : rig().channels) {
     std::printf("gnssemud: %s on %s\n", std::string(c->output_summary()).c_str(), c->port().describe().c_str());
   }
   std::printf("gnssemud: truth input udp %s:%u\n", local.address().to_string().c_str(),
@@ -278,7 +278,7 @@ void Daemon::start() {
   receive();
   arm_timer();
   arm_tick();
-  notify_.ready(fmt::format("{} output(s), truth on udp port {}", channels_.size(), local.port()));
+  notify_.ready(fmt::format("{} output(s), truth on udp port {}", rig().channels.size(), local.port()));
 }
 
 void Daemon::shutdown() {
@@ -293,8 +293,8 @@ void Daemon::shutdown() {
   if (signals_) signals_->cancel();
   if (status_server_) status_server_->stop();
   if (control_) control_->stop();  // removes the socket file
-  if (!channels_.empty()) {
-    for (const auto& c : channels_) {
+  if (!rig().channels.empty()) {
+    for (const auto& c : rig().channels) {
       const PortStats& ps = c->port().stats();
       std::string drops;
       for (const auto& [name, n] : c->drops()) drops += fmt::format("{}{} {}", drops.empty() ? "" : ", ", name, n);
@@ -306,7 +306,7 @@ void Daemon::shutdown() {
     spdlog::info("truth: {} packets accepted, {} dropped{}{}; {} epochs, {} skipped", packets_ok_, drops_.total(),
                  drops_.total() > 0 ? ": " : "", drop_counts_text(drops_.totals()), epochs_, epochs_skipped_);
   }
-  channels_.clear();  // closes ports, removes pty symlinks
+  rig().channels.clear();  // closes ports, removes pty symlinks
 }
 
 time::GpsTime Daemon::realtime_clock_gps() noexcept { return start_ + now_s(); }
@@ -395,15 +395,15 @@ void Daemon::lockstep_advance(const time::GpsTime& stamp) {
 
 void Daemon::emit_epoch(const time::GpsTime& t, const world::Truth& truth) {
   note_coverage(t);
-  const receiver::Fix& fix = receiver_->step(t, truth);
+  const receiver::Fix& fix = rig().receiver->step(t, truth);
   ++epochs_;
   last_epoch_t_ = t;
-  device_.on_epoch(fix, chip_clock_s(t));
+  rig().device.on_epoch(fix, chip_clock_s(t));
   // Port events act on the ports (docs/faults.md "Link faults"); no stage: none.
-  faults::FaultStage* stage = receiver_->faults();
+  faults::FaultStage* stage = rig().receiver->faults();
   const std::span<const faults::FaultStatus> link_status =
       stage != nullptr ? stage->status() : std::span<const faults::FaultStatus>{};
-  for (const auto& c : channels_) {
+  for (const auto& c : rig().channels) {
     c->set_link_faults(link_status);
     c->send_epoch();
   }
@@ -429,9 +429,9 @@ void Daemon::emit_epoch(const time::GpsTime& t, const world::Truth& truth) {
 void Daemon::on_nav_period(std::size_t src) {
   // The emulator runs 1..10 Hz GPS-only (docs/configuration.md rate_hz); the
   // device gives a host asking for more or less the nearest rate it runs.
-  const double period_s = device_.config().nav_period_s();
-  const double p = device_.epoch_period_s();
-  const protocol::ubx::wire::CfgRate rate = device_.config().rate;
+  const double period_s = rig().device.config().nav_period_s();
+  const double p = rig().device.epoch_period_s();
+  const protocol::ubx::wire::CfgRate rate = rig().device.config().rate;
   if (p != period_s) {
     spdlog::warn("output {}: host asked for a {:.3f} s navigation period (CFG-RATE measRate {} ms, navRate {}); "
                  "running at {:.3g} Hz, the nearest rate within 1..10 Hz",
@@ -548,7 +548,7 @@ void Daemon::align_to_packet_time(const time::GpsTime& stamp) {
   restart_receiver(cfg_.receiver.acquisition.start);
   restart_scenario();
   chip_origin_ = first;
-  device_.power_on(0.0);
+  rig().device.power_on(0.0);
   spdlog::info("lockstep: epochs follow the packets' GPS time from {}", gps_text(first));
 }
 

@@ -22,22 +22,23 @@
 #include "core/orbit/nav_data.hpp"
 #include "core/pipeline/pipeline.hpp"
 #include "core/scene/scene.hpp"
-#include "daemon/control_commands.hpp"
-#include "daemon/control_server.hpp"
-#include "daemon/demo_trajectory.hpp"
-#include "daemon/drop_stats.hpp"
+#include "daemon/control/control_commands.hpp"
+#include "daemon/control/control_server.hpp"
+#include "daemon/truth/demo_trajectory.hpp"
+#include "daemon/truth/drop_stats.hpp"
 #include "daemon/fault_log.hpp"
-#include "daemon/output_port.hpp"
-#include "daemon/port_channel.hpp"
+#include "daemon/ports/output_port.hpp"
+#include "daemon/ports/port_channel.hpp"
+#include "daemon/rig.hpp"
 #include "daemon/run_plan.hpp"
-#include "daemon/signals.hpp"
-#include "daemon/status_line.hpp"
-#include "daemon/systemd_notify.hpp"
-#include "daemon/truth_allow.hpp"
-#include "daemon/status_producer.hpp"
-#include "daemon/status_server.hpp"
-#include "daemon/time_mapping.hpp"
-#include "daemon/truth_router.hpp"
+#include "daemon/service/signals.hpp"
+#include "daemon/status/status_line.hpp"
+#include "daemon/service/systemd_notify.hpp"
+#include "daemon/truth/truth_allow.hpp"
+#include "daemon/status/status_producer.hpp"
+#include "daemon/status/status_server.hpp"
+#include "daemon/truth/time_mapping.hpp"
+#include "daemon/truth/truth_router.hpp"
 
 namespace gnssemu::daemon {
 
@@ -110,6 +111,9 @@ private:
   /// The device's epoch period may have changed (CFG-RATE, a reset or a
   /// configuration load from channel src): run at it.
   void on_nav_period(std::size_t src);
+  /// The receiver the loop drives (rigs_ holds one until rigs run side by side).
+  Rig& rig() noexcept { return *rigs_.front(); }
+  const Rig& rig() const noexcept { return *rigs_.front(); }
   void shutdown();
   void on_signal(SignalAction action, int sig);
   /// Once a second: drop summaries that are due, the status line every minute.
@@ -156,8 +160,7 @@ private:
   orbit::Constellation constellation_;   ///< the satellites for the run's dates
   orbit::EphemerisStore store_;
   geo::LocalFrame frame_;
-  std::unique_ptr<scene::Scene> scene_;  ///< buildings ([scene]); outlives receiver_
-  std::unique_ptr<pipeline::Pipeline> receiver_;  ///< the emulated receiver in its world
+  std::unique_ptr<scene::Scene> scene_;  ///< buildings ([scene]); outlives the rigs' receivers
   DemoTrajectory demo_;
   TruthRouter router_;
   DropStats drops_;
@@ -165,8 +168,8 @@ private:
   double period_s_;
   double output_delay_s_;       ///< realtime: epoch to first byte on the wire, s
 
-  protocol::ubx::Device device_;  ///< the emulated u-blox: every output is one of its UART1s
-  std::vector<std::unique_ptr<PortChannel>> channels_;
+  /// The emulated receivers (today one: the single-vehicle form).
+  std::vector<std::unique_ptr<Rig>> rigs_;
   double rate_hz_;              // epoch rate now (CFG-RATE may change it)
   double sched_base_s_ = 0.0;   // realtime: elapsed time of index 0 of the current rate
 
@@ -193,7 +196,6 @@ private:
   Reloader reloader_;
   double last_status_s_ = 0.0;
   std::vector<std::string> noted_vehicles_;  ///< non-driving vehicles already logged
-  std::vector<std::string> out_summary_;     ///< per channel: what it sent when last logged ("NMEA+UBX")
   bool ever_driven_ = false;                 ///< a simulator drove the receiver: the demo is off for good
   int last_num_used_ = 0;
   int last_num_tracked_ = 0;

@@ -12,7 +12,7 @@
 #include "config/scenario_file.hpp"
 #include "core/common/error.hpp"
 #include "daemon/daemon.hpp"
-#include "daemon/link_faults.hpp"
+#include "daemon/ports/link_faults.hpp"
 
 namespace gnssemu::daemon {
 
@@ -34,10 +34,10 @@ void Daemon::set_scenario(std::vector<faults::FaultEvent> events, const std::str
 void Daemon::restart_scenario() {
   log_fault_ends("the scenario starts over");
   if (scenario_.empty()) {
-    if (receiver_->faults() != nullptr) receiver_->set_faults({});  // injected events start over too
+    if (rig().receiver->faults() != nullptr) rig().receiver->set_faults({});  // injected events start over too
     return;
   }
-  receiver_->set_faults(scenario_);
+  rig().receiver->set_faults(scenario_);
   fault_status_s_ = -kFaultStatusPeriodS;
 }
 
@@ -55,9 +55,9 @@ void Daemon::write_status(std::string& out) { status_.write_json(out, 0); }
 std::vector<std::string> Daemon::inject(std::string_view scenario, const std::string& source) {
   const std::vector<faults::FaultEvent> events = config::parse_scenario(scenario, source);
   if (events.empty()) throw Error(source + ": no [[event]] to inject");
-  if (const auto bad = check_port_events(events, channels_.size(), source)) throw Error(*bad);
-  if (receiver_->faults() == nullptr) receiver_->set_faults({});
-  receiver_->faults()->inject(events);  // all or nothing
+  if (const auto bad = check_port_events(events, rig().channels.size(), source)) throw Error(*bad);
+  if (rig().receiver->faults() == nullptr) rig().receiver->set_faults({});
+  rig().receiver->faults()->inject(events);  // all or nothing
   std::vector<std::string> added;
   for (const faults::FaultEvent& e : events) {
     std::string line = std::string(faults::type_name(e.type)) + " " + faults::describe(e, e.start_s);
@@ -77,19 +77,19 @@ std::vector<std::string> Daemon::inject(std::string_view scenario, const std::st
 std::size_t Daemon::clear() {
   const std::size_t n = fault_count();
   log_fault_ends("cleared");
-  if (faults::FaultStage* stage = receiver_->faults()) stage->clear();
+  if (faults::FaultStage* stage = rig().receiver->faults()) stage->clear();
   status_.set_faults({});
   spdlog::info("control: cleared {} fault(s)", n);
   return n;
 }
 
 std::size_t Daemon::fault_count() const {
-  const faults::FaultStage* stage = receiver_->faults();
+  const faults::FaultStage* stage = rig().receiver->faults();
   return stage != nullptr ? stage->event_count() : 0;
 }
 
 void Daemon::record_faults(double run_s) {
-  faults::FaultStage* stage = receiver_->faults();
+  faults::FaultStage* stage = rig().receiver->faults();
   if (stage == nullptr || run_s - fault_status_s_ < kFaultStatusPeriodS) return;
   fault_status_s_ = run_s;
   const auto st = stage->status();
@@ -128,7 +128,7 @@ void Daemon::log_fault_transitions(std::span<const faults::FaultStatus> status, 
 }
 
 void Daemon::log_fault_ends(std::string_view why) {
-  faults::FaultStage* stage = receiver_ ? receiver_->faults() : nullptr;
+  faults::FaultStage* stage = rig().receiver ? rig().receiver->faults() : nullptr;
   if (stage == nullptr) {
     fault_log_.end_all();
     return;
@@ -156,7 +156,7 @@ std::vector<std::string> Daemon::check_reload_port_events(const config::Config& 
                 " and restart, or keep the [[output]] list");
   }
   // Injected events end at a restart: they keep acting on their running port.
-  faults::FaultStage* stage = receiver_->faults();
+  faults::FaultStage* stage = rig().receiver->faults();
   if (stage == nullptr) return {};
   std::vector<faults::FaultEvent> kept;
   for (const faults::FaultStatus& st : stage->status()) kept.push_back(*st.event);

@@ -73,8 +73,8 @@ void Daemon::reload() noexcept {
       const std::size_t i = plan.reopen[k];
       cfg_.outputs[i] = loaded.outputs[i];
       open_channel(i, std::move(reopened[k]));
-      channels_[i]->start();
-      spdlog::info("reload: output {} now on {}", cfg_.outputs[i].name, channels_[i]->port().describe());
+      rig().channels[i]->start();
+      spdlog::info("reload: output {} now on {}", cfg_.outputs[i].name, rig().channels[i]->port().describe());
     }
     if (plan.log_level) spdlog::set_level(spdlog::level::from_str(loaded.log.level));
     if (plan.truth) {
@@ -97,15 +97,15 @@ void Daemon::reload() noexcept {
     if (plan.receiver || plan.scene) {
       cfg_.receiver = loaded.receiver;
       cfg_.world = loaded.world;
-      for (const auto& c : channels_) c->set_link_seed(cfg_.world.seed);
+      for (const auto& c : rig().channels) c->set_link_seed(cfg_.world.seed);
       if (plan.scene) {
         cfg_.scene = loaded.scene;
-        receiver_.reset();  // holds the old scene
+        rig().receiver.reset();  // holds the old scene
         scene_ = std::move(scene);
       }
-      receiver->adopt_faults(receiver_->take_faults());  // the faults go on around the new receiver
-      receiver_ = std::move(receiver);
-      device_.set_coast_as_no_fix(config::coast_as_no_fix(cfg_));
+      receiver->adopt_faults(rig().receiver->take_faults());  // the faults go on around the new receiver
+      rig().receiver = std::move(receiver);
+      rig().device.set_coast_as_no_fix(config::coast_as_no_fix(cfg_));
       apply_chip_settings();  // the chip's CFG-NAV5 (what a host set, what its polls read back) stays in force
     }
     if (plan.log_level) cfg_.log = loaded.log;
@@ -136,7 +136,7 @@ std::string Daemon::status_line() {
   s.driver_fresh = router_.driver_fresh(s.now_s);
   s.demo = demo_drives();
   s.vehicles = router_.vehicle_count();
-  for (const auto& c : channels_) s.ports.push_back({c->port().config().name, c->port().readers()});
+  for (const auto& c : rig().channels) s.ports.push_back({c->port().config().name, c->port().readers()});
   return status_line_.line(s);
 }
 
@@ -164,17 +164,17 @@ void Daemon::on_tick() {
 }
 
 void Daemon::log_port_change(std::size_t src) {
-  if (src >= channels_.size() || !channels_[src]) return;
-  const std::string now(channels_[src]->output_summary());
-  if (now == out_summary_[src]) return;
-  const std::string& was = out_summary_[src];
-  const protocol::ubx::PortSettings& p = device_.port(channels_[src]->link());
+  if (src >= rig().channels.size() || !rig().channels[src]) return;
+  const std::string now(rig().channels[src]->output_summary());
+  if (now == rig().out_summary[src]) return;
+  const std::string& was = rig().out_summary[src];
+  const protocol::ubx::PortSettings& p = rig().device.port(rig().channels[src]->link());
   spdlog::info("output {}: a host reconfigured the port: now sends {} (was {}), {} baud{}", cfg_.outputs[src].name,
                now, was, p.baud_bps,
                p.outputs_nmea() ? ""
                                 : "; NMEA is off: a gpsd without -b does this when it probes a u-blox, "
                                   "run gpsd -b to keep the port as configured");
-  out_summary_[src] = now;
+  rig().out_summary[src] = now;
 }
 
 void Daemon::note_other_vehicle(const std::string& id) {

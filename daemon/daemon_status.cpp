@@ -8,7 +8,7 @@
 
 #include "core/common/error.hpp"
 #include "daemon/daemon.hpp"
-#include "daemon/status_setup.hpp"
+#include "daemon/status/status_setup.hpp"
 
 namespace gnssemu::daemon {
 
@@ -17,7 +17,7 @@ void Daemon::refresh_status_setup() {
   s.rate_hz = rate_hz_;  // a host's CFG-RATE
   status_.set_settings(std::move(s));
   std::vector<PortInfo> ports;
-  for (const auto& c : channels_) {
+  for (const auto& c : rig().channels) {
     const config::OutputPortConfig& pc = c->port().config();
     ports.push_back(PortInfo{pc.name, std::string(config::port_type_name(pc.type())), c->port().describe()});
   }
@@ -55,7 +55,7 @@ double Daemon::run_time_s(const time::GpsTime& t) noexcept {
 
 void Daemon::record_status(double run_s, const world::Truth& truth, const receiver::Fix& fix) noexcept {
   record_faults(run_s);
-  const protocol::ubx::EpochInfo& info = device_.epoch_info();
+  const protocol::ubx::EpochInfo& info = rig().device.epoch_info();
   EpochStatus e;
   e.fix = &fix;
   e.truth = &truth;
@@ -73,8 +73,8 @@ void Daemon::record_status(double run_s, const world::Truth& truth, const receiv
   tc.demo = demo_drives();
   status_.set_truth(tc);
 
-  for (std::size_t i = 0; i < channels_.size(); ++i) {
-    const PortChannel& c = *channels_[i];
+  for (std::size_t i = 0; i < rig().channels.size(); ++i) {
+    const PortChannel& c = *rig().channels[i];
     PortCounters pc;
     pc.protocols = c.output_summary();
     pc.baud_bps = c.budget().limited() ? c.budget().baud_bps() : 0;

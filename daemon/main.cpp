@@ -17,10 +17,10 @@
 #include "config/nav_setup.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
-#include "daemon/build_info.hpp"
-#include "daemon/config_locator.hpp"
+#include "daemon/service/build_info.hpp"
+#include "daemon/service/config_locator.hpp"
 #include "daemon/daemon.hpp"
-#include "daemon/status_setup.hpp"
+#include "daemon/status/status_setup.hpp"
 
 namespace {
 
@@ -30,6 +30,25 @@ std::string self_exe() {
   std::array<char, 4096> buf{};
   const ssize_t n = ::readlink("/proc/self/exe", buf.data(), buf.size() - 1);
   return n > 0 ? std::string(buf.data(), static_cast<std::size_t>(n)) : std::string();
+}
+
+void print_port(const config::OutputPortConfig& p) {
+  std::string where;
+  if (const auto* pty = std::get_if<config::PtyPortConfig>(&p.transport)) where = pty->path;
+  if (const auto* file = std::get_if<config::FilePortConfig>(&p.transport)) where = file->path;
+  if (const auto* serial = std::get_if<config::SerialPortConfig>(&p.transport)) where = serial->device;
+  if (const auto* tcp = std::get_if<config::TcpPortConfig>(&p.transport)) {
+    where = "listen " + tcp->bind + ":" + std::to_string(tcp->port);
+  }
+  if (const auto* udp = std::get_if<config::UdpPortConfig>(&p.transport)) {
+    where = "to " + udp->address + ":" + std::to_string(udp->port);
+  }
+  std::string protos;
+  if (p.protocols_out & protocol::ubx::proto::kNmea) protos += "NMEA";
+  if (p.protocols_out & protocol::ubx::proto::kUbx) protos += protos.empty() ? "UBX" : "+UBX";
+  const std::string type(config::port_type_name(p.type()));
+  std::printf("output:  %s: %s %s, %u baud, out %s, %zu UBX message(s)\n", p.name.c_str(), type.c_str(), where.c_str(),
+              static_cast<unsigned>(p.baud), protos.empty() ? "nothing" : protos.c_str(), p.ubx_messages.size());
 }
 
 void print_summary(const config::Config& cfg, const orbit::NavData& nav, const daemon::RunPlan& plan) {
@@ -62,24 +81,24 @@ void print_summary(const config::Config& cfg, const orbit::NavData& nav, const d
   }
   std::printf("demo:    %s (circle r=%.1f m, %.1f m/s)\n", cfg.demo.enabled ? "on" : "off", cfg.demo.radius_m,
               cfg.demo.speed_m_s);
-  for (const auto& p : cfg.outputs) {
-    std::string where;
-    if (const auto* pty = std::get_if<config::PtyPortConfig>(&p.transport)) where = pty->path;
-    if (const auto* file = std::get_if<config::FilePortConfig>(&p.transport)) where = file->path;
-    if (const auto* serial = std::get_if<config::SerialPortConfig>(&p.transport)) where = serial->device;
-    if (const auto* tcp = std::get_if<config::TcpPortConfig>(&p.transport)) {
-      where = "listen " + tcp->bind + ":" + std::to_string(tcp->port);
+  // Every vehicle, receiver and port the daemon opens.
+  const std::vector<config::VehicleConfig> vehicles = config::resolve_vehicles(cfg);
+  std::size_t receivers = 0;
+  std::size_t ports = 0;
+  for (const config::VehicleConfig& v : vehicles) {
+    std::printf("vehicle: %s\n", v.id.empty() ? "(any: the first heard)" : v.id.c_str());
+    for (const config::VehicleReceiverConfig& r : v.receivers) {
+      const config::ReceiverSettings& s = r.settings;
+      std::printf("receiver: %s/%s: lever arm [%.3f, %.3f, %.3f] m, u-blox %s, seed %llu, %.3g Hz\n",
+                  v.id.empty() ? "*" : v.id.c_str(), r.name.c_str(), r.lever_arm_m.x, r.lever_arm_m.y,
+                  r.lever_arm_m.z, std::string(protocol::ubx::generation_name(s.generation)).c_str(),
+                  static_cast<unsigned long long>(s.world.seed), s.rate_hz);
+      for (const config::OutputPortConfig& p : r.outputs) print_port(p);
+      ++receivers;
+      ports += r.outputs.size();
     }
-    if (const auto* udp = std::get_if<config::UdpPortConfig>(&p.transport)) {
-      where = "to " + udp->address + ":" + std::to_string(udp->port);
-    }
-    std::string protos;
-    if (p.protocols_out & protocol::ubx::proto::kNmea) protos += "NMEA";
-    if (p.protocols_out & protocol::ubx::proto::kUbx) protos += protos.empty() ? "UBX" : "+UBX";
-    const std::string type(config::port_type_name(p.type()));
-    std::printf("output:  %s: %s %s, %u baud, out %s, %zu UBX message(s)\n", p.name.c_str(), type.c_str(), where.c_str(),
-                static_cast<unsigned>(p.baud), protos.empty() ? "nothing" : protos.c_str(), p.ubx_messages.size());
   }
+  std::printf("fleet:   %zu vehicle(s), %zu receiver(s), %zu port(s)\n", vehicles.size(), receivers, ports);
 }
 
 // Exit status (docs/daemon.md §Exit status; gnssemud(8)).
@@ -97,9 +116,38 @@ struct Options {
   std::string scenario_path;  ///< --scenario: fault events (docs/faults.md)
 };
 
+// What one Daemon runs today: the single-vehicle form. A [[vehicle]] or
+// [fleet] of one receiver becomes it; more receivers are refused here
+// (--check-config lists them) until the daemon runs them side by side.
+config::Config one_receiver(const config::Config& cfg) {
+  if (cfg.vehicles.empty() && !cfg.fleet) return cfg;
+  const std::vector<config::VehicleConfig> vehicles = config::resolve_vehicles(cfg);
+  std::size_t receivers = 0;
+  for (const config::VehicleConfig& v : vehicles) receivers += v.receivers.size();
+  if (receivers != 1) {
+    throw Error(cfg.source, 0,
+                std::to_string(receivers) + " receivers configured; this gnssemud runs one receiver per daemon "
+                                            "(--check-config lists them)");
+  }
+  const config::VehicleReceiverConfig& r = vehicles[0].receivers[0];
+  if (r.lever_arm_m.x != 0.0 || r.lever_arm_m.y != 0.0 || r.lever_arm_m.z != 0.0) {
+    spdlog::warn("receiver {}/{}: lever arm not applied yet: the antenna is at the truth's position", vehicles[0].id,
+                 r.name);
+  }
+  config::Config one = config::with_receiver_settings(cfg, r.settings);
+  one.outputs = r.outputs;
+  one.truth.vehicle = vehicles[0].id;
+  one.vehicles.clear();
+  one.fleet.reset();
+  return one;
+}
+
 config::Config load_run_config(const Options& o) {
   config::Config cfg = o.config_path.empty() ? config::default_config() : config::load_config(o.config_path);
   if (!o.pty_path.empty()) {
+    if (!cfg.vehicles.empty() || cfg.fleet) {
+      throw Error(cfg.source, 0, "--pty sets the single-vehicle form's first port; this file has [[vehicle]] or [fleet]");
+    }
     if (cfg.outputs.empty()) {
       config::OutputPortConfig p;
       p.name = "pty";
@@ -114,7 +162,11 @@ config::Config load_run_config(const Options& o) {
     cfg.status.port = static_cast<uint16_t>(std::stoi(o.status_port));
     cfg.status.free_port = false;
   }
-  for (const auto& p : cfg.outputs) daemon::validate_port(p);
+  for (const config::VehicleConfig& v : config::resolve_vehicles(cfg)) {
+    for (const config::VehicleReceiverConfig& r : v.receivers) {
+      for (const config::OutputPortConfig& p : r.outputs) daemon::validate_port(p);
+    }
+  }
   return cfg;
 }
 
@@ -181,17 +233,18 @@ int main(int argc, char** argv) {
       return kExitOk;
     }
 
+    const config::Config run_cfg = one_receiver(cfg);
     auto level = spdlog::level::from_str(cfg.log.level);
     spdlog::set_level(verbose ? spdlog::level::debug : level);
-    if (cfg.outputs.empty()) spdlog::warn("no outputs configured: epochs are computed but go nowhere");
+    if (run_cfg.outputs.empty()) spdlog::warn("no outputs configured: epochs are computed but go nowhere");
 
     boost::asio::io_context io;
-    daemon::Daemon d(io, cfg, nav, plan);
+    daemon::Daemon d(io, run_cfg, nav, plan);
     if (!opt.scenario_path.empty()) {
       d.set_scenario(scenario, opt.scenario_path);
       spdlog::info("scenario {}: {} event(s) from the first epoch", opt.scenario_path, scenario.size());
     }
-    if (!opt.config_path.empty()) d.set_reloader([opt] { return load_run_config(opt); });
+    if (!opt.config_path.empty()) d.set_reloader([opt] { return one_receiver(load_run_config(opt)); });
     d.start();
     started = true;
     io.run();

@@ -5,7 +5,7 @@
 
 #include "config/nav_setup.hpp"
 #include "core/time/unix_time.hpp"
-#include "daemon/time_mapping.hpp"
+#include "daemon/truth/time_mapping.hpp"
 
 namespace gnssemu::daemon {
 

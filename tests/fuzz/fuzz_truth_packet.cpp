@@ -7,8 +7,8 @@
 #include <string>
 
 #include "core/common/constants.hpp"
-#include "daemon/truth_packet.hpp"
-#include "daemon/truth_router.hpp"
+#include "daemon/truth/truth_packet.hpp"
+#include "daemon/truth/truth_router.hpp"
 #include "fuzz_support.hpp"
 
 namespace {

@@ -35,7 +35,15 @@ Rules project_rules() {
       {"nmea", "core/protocol/nmea", {"time"}, {"core/receiver/fix.hpp"}},
       {"ubx", "core/protocol/ubx", {"nmea"}, {}},
       {"config", "config", {"pipeline", "ubx", "observation"}, {}},
-      {"daemon", "daemon", {"config", "statistics"}, {}},
+      // gnssemud's rooms: truth input, ports, status and control sit side by
+      // side below the vehicle loop (daemon/ itself), which alone ties them.
+      {"daemon_service", "daemon/service", {"ubx"}, {}},  // the state file keeps the device's settings
+      {"daemon_truth", "daemon/truth", {"config"}, {}},
+      {"daemon_ports", "daemon/ports", {"config"}, {}},
+      // The status reads truth drops and link fault counters, never sends.
+      {"daemon_status", "daemon/status", {"daemon_truth", "daemon_ports", "statistics"}, {}},
+      {"daemon_control", "daemon/control", {"config"}, {}},
+      {"daemon", "daemon", {"daemon_service", "daemon_truth", "daemon_ports", "daemon_status", "daemon_control"}, {}},
       {"tools", "tools", {"daemon", "statistics"}, {}},
       {"support", "tests/support", {}, {}},
       {"bench", "bench", {"tools", "support"}, {}},

@@ -12,9 +12,9 @@
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/statistics/statistics.hpp"
-#include "daemon/json_writer.hpp"
-#include "daemon/sat_state.hpp"
-#include "daemon/web_assets.hpp"
+#include "daemon/status/json_writer.hpp"
+#include "daemon/status/sat_state.hpp"
+#include "daemon/status/web_assets.hpp"
 
 namespace gnssemu::cli {
 

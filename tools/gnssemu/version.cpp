@@ -3,7 +3,7 @@
 
 #include "core/geo/geodesy.hpp"
 #include "core/scene/embree_device.hpp"
-#include "daemon/build_info.hpp"
+#include "daemon/service/build_info.hpp"
 
 namespace gnssemu::cli {
 

@@ -324,7 +324,8 @@ level = "debug"
 )";
 
 /// The keys kEveryKey cannot hold: the presets (read as other keys) and
-/// nav.almanac (mode almanac only), use_wall_clock_date (not together with a start time).
+/// nav.almanac (mode almanac only), use_wall_clock_date (not together with a
+/// start time), [[vehicle]] and [fleet] (not together with [[output]]).
 inline const std::string kOtherKeys = R"(
 [origin]
 lat_deg = 1
@@ -344,6 +345,70 @@ preset = "cumulus"
 
 [signal]
 environment = "urban"
+
+[[vehicle]]
+id = "ego"
+
+[[vehicle.receiver]]
+name = "gps1"
+lever_arm_m = [0.5, -0.25, -0.1]
+seed = 7
+generation = "m9"
+
+[vehicle.receiver.errors]
+thermal_model = "fixed"
+
+[[vehicle.receiver.output]]
+name = "ecu"
+type = "pty"
+path = "/tmp/gnssemu/ego/gps1"
+
+[[vehicle.receiver]]
+name = "gps2"
+
+[[vehicle.receiver.output]]
+name = "ecu"
+type = "tcp"
+port = 2948
+
+[fleet]
+count = 3
+
+[[fleet.output]]
+name = "gps-{vehicle}"
+type = "pty"
+path = "/tmp/gnssemu/{vehicle}/{receiver}"
+baud = 115200
+protocols_in = ["nmea"]
+protocols_out = ["nmea"]
+ubx_messages = ["NAV-SAT", "NAV-PVT"]
+nmea_version = "2.3"
+sentences = ["GGA", "RMC", "GST", "ZDA"]
+course_min_speed_m_s = 0.0
+rates = { NAV-SAT = 5, GGA = 2 }
+
+[[fleet.output]]
+name = "log-{index}"
+type = "file"
+path = "out/{vehicle}.nmea"
+baud = 38400
+
+[[fleet.output]]
+name = "fc"
+type = "serial"
+device = "/dev/ttyUSB{index}"
+
+[[fleet.output]]
+name = "net"
+type = "tcp"
+bind = "::1"
+port_base = 3000
+
+[[fleet.output]]
+name = "bcast"
+type = "udp"
+address = "127.0.0.2"
+port_base = 10110
 )";
 
 }  // namespace gnssemu::config::test

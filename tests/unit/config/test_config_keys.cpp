@@ -53,6 +53,20 @@ struct Documented {
   std::set<std::string> aliases;    ///< read as other keys
   std::set<std::string> open_keys;  ///< tables whose keys are names from the data
   std::map<std::string, std::set<std::string>> defaults;
+  /// "vehicle.receiver." -> "receiver.": a table that takes another's keys
+  /// (a mirror row, or a table documented in another table's group).
+  std::map<std::string, std::string> mirrors;
+
+  /// name as the table it mirrors names it ("vehicle.receiver.seed" -> "receiver.seed").
+  std::string canonical(const std::string& name) const {
+    std::string best_from;
+    for (const auto& [from, to] : mirrors) {
+      if (name.rfind(from, 0) == 0 && from.size() > best_from.size()) best_from = from;
+    }
+    if (best_from.empty()) return name;
+    const std::string mapped = mirrors.at(best_from) + name.substr(best_from.size());
+    return keys.count(mapped) != 0 || tables.count(mapped) != 0 || under_open(mapped) ? mapped : name;
+  }
 
   bool under_open(const std::string& name) const {
     for (const std::string& o : open_keys) {
@@ -67,9 +81,19 @@ std::string name_of(const TableDoc& t, const KeyDoc& k) { return t.path.empty() 
 Documented documented() {
   Documented d;
   const detail::KeyDocs docs = detail::describe_keys();
+  std::set<std::string> paths;
+  for (const TableDoc& t : docs.tables()) paths.insert(t.path);
   for (const TableDoc& t : docs.tables()) {
     d.tables.insert(t.path);
+    if (t.group != t.path && paths.count(t.group) != 0) {
+      d.mirrors[t.path + "."] = t.group + ".";  // the keys of the group's table
+      continue;
+    }
     for (const KeyDoc& k : t.keys) {
+      if (!k.mirror.empty()) {
+        d.mirrors[t.path + "."] = k.mirror + ".";
+        continue;
+      }
       const std::string name = name_of(t, k);
       d.keys.insert(name);
       if (k.alias) d.aliases.insert(name);
@@ -88,7 +112,7 @@ std::set<std::string> keys_read(const std::string& text, const Documented& d) {
   detail::parse_config_text(text, "t.toml", kData, &log);
   std::set<std::string> out;
   for (const std::string& n : log) {
-    const std::string name = without_indices(n);
+    const std::string name = d.canonical(without_indices(n));
     if (d.tables.count(name) == 0 && !d.under_open(name)) out.insert(name);
   }
   return out;
@@ -101,7 +125,7 @@ std::map<std::string, std::set<std::string>> keys_written(const std::string& tex
   std::map<std::string, std::set<std::string>> out;
   for (const std::string& entry : log) {
     const std::size_t eq = entry.find(" = ");
-    std::string name = without_indices(entry.substr(0, eq));
+    std::string name = d.canonical(without_indices(entry.substr(0, eq)));
     for (const std::string& o : d.open_keys) {
       if (name.rfind(o + ".", 0) == 0) name = o;
     }

@@ -13,7 +13,7 @@
 #include "core/common/constants.hpp"
 #include "core/protocol/ubx/ubx_frame.hpp"
 #include "core/protocol/ubx/ubx_message_table.hpp"
-#include "daemon/port_channel.hpp"
+#include "daemon/ports/port_channel.hpp"
 
 namespace gnssemu::daemon::test {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "daemon/config_locator.hpp"
+#include "daemon/service/config_locator.hpp"
 
 using namespace gnssemu::daemon;
 

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/common/error.hpp"
-#include "daemon/control_commands.hpp"
+#include "daemon/control/control_commands.hpp"
 
 namespace gnssemu::daemon {
 namespace {

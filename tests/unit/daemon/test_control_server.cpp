@@ -22,7 +22,7 @@
 #include <boost/asio.hpp>
 
 #include "core/common/error.hpp"
-#include "daemon/control_server.hpp"
+#include "daemon/control/control_server.hpp"
 #include "io_thread_test.hpp"
 
 namespace gnssemu::daemon {

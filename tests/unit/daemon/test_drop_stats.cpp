@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <gtest/gtest.h>
 
-#include "daemon/drop_stats.hpp"
+#include "daemon/truth/drop_stats.hpp"
 
 using namespace gnssemu::daemon;
 

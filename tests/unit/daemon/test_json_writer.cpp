@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "daemon/json_writer.hpp"
+#include "daemon/status/json_writer.hpp"
 #include "tests/support/alloc_counter.hpp"
 
 namespace gnssemu::daemon {

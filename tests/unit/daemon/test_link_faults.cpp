@@ -13,8 +13,8 @@
 
 #include "core/faults/fault_event.hpp"
 #include "core/faults/fault_stage.hpp"
-#include "daemon/delay_line.hpp"
-#include "daemon/link_faults.hpp"
+#include "daemon/ports/delay_line.hpp"
+#include "daemon/ports/link_faults.hpp"
 #include "tests/support/alloc_counter.hpp"
 #include "channel_rig.hpp"
 

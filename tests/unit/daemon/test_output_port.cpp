@@ -15,7 +15,7 @@
 #include <sstream>
 
 #include "core/common/error.hpp"
-#include "daemon/output_port.hpp"
+#include "daemon/ports/output_port.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::daemon;

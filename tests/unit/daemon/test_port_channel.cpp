@@ -16,8 +16,8 @@
 #include "config/device_setup.hpp"
 #include "core/protocol/ubx/ubx_frame.hpp"
 #include "core/protocol/ubx/ubx_message_table.hpp"
-#include "daemon/port_channel.hpp"
-#include "daemon/tx_budget.hpp"
+#include "daemon/ports/port_channel.hpp"
+#include "daemon/ports/tx_budget.hpp"
 #include "tests/support/alloc_counter.hpp"
 #include "channel_rig.hpp"
 

@@ -3,7 +3,7 @@
 
 #include <csignal>
 
-#include "daemon/signals.hpp"
+#include "daemon/service/signals.hpp"
 
 using namespace gnssemu::daemon;
 

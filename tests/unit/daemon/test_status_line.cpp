@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <gtest/gtest.h>
 
-#include "daemon/status_line.hpp"
+#include "daemon/status/status_line.hpp"
 
 using namespace gnssemu::daemon;
 

@@ -9,7 +9,7 @@
 
 #include "core/common/constants.hpp"
 #include "core/geo/geodesy.hpp"
-#include "daemon/status_producer.hpp"
+#include "daemon/status/status_producer.hpp"
 #include "tests/support/alloc_counter.hpp"
 
 namespace gnssemu::daemon {

@@ -3,7 +3,7 @@
 
 #include "core/orbit/rinex_nav.hpp"
 #include "daemon/epoch_schedule.hpp"
-#include "daemon/time_mapping.hpp"
+#include "daemon/truth/time_mapping.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::daemon;

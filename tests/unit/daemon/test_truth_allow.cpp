@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <gtest/gtest.h>
 
-#include "daemon/truth_allow.hpp"
+#include "daemon/truth/truth_allow.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::daemon;

@@ -6,7 +6,7 @@
 
 #include "core/common/constants.hpp"
 #include "core/geo/geodesy.hpp"
-#include "daemon/truth_packet.hpp"
+#include "daemon/truth/truth_packet.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::daemon;

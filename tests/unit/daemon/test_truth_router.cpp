@@ -3,8 +3,8 @@
 
 #include "core/common/constants.hpp"
 #include "core/geo/local_frame.hpp"
-#include "daemon/demo_trajectory.hpp"
-#include "daemon/truth_router.hpp"
+#include "daemon/truth/demo_trajectory.hpp"
+#include "daemon/truth/truth_router.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::daemon;

@@ -2,7 +2,7 @@
 // TxBudget: the M8's transmit buffer drained at the line rate.
 #include <gtest/gtest.h>
 
-#include "daemon/tx_budget.hpp"
+#include "daemon/ports/tx_budget.hpp"
 
 using namespace gnssemu::daemon;
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "daemon/vehicle_track.hpp"
+#include "daemon/truth/vehicle_track.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::daemon;

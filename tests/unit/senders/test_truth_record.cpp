@@ -13,7 +13,7 @@
 
 #include "core/common/constants.hpp"
 #include "core/geo/geodesy.hpp"
-#include "daemon/truth_packet.hpp"
+#include "daemon/truth/truth_packet.hpp"
 #include "tools/senders/truth_record.hpp"
 
 using namespace gnssemu;

@@ -8,7 +8,7 @@
 #include <numeric>
 
 #include "core/common/error.hpp"
-#include "daemon/json_writer.hpp"
+#include "daemon/status/json_writer.hpp"
 #include "tools/gnssemu/report.hpp"
 #include "tools/gnssemu/sweep/csv_row.hpp"
 #include "tools/gnssemu/sweep/input_hash.hpp"
