@@ -291,7 +291,8 @@ constexpr Field<SpoofDetectionConfig> kSpoofDetectionFields[] = {
     number<&SpoofDetectionConfig::system_disagreement_m>(
         "system_disagreement_m", Sd::system_disagreement_m,
         "distance between the positions the used GPS satellites and the other systems' point to, beyond which "
-        "they disagree (a GPS-only spoofer; 5 used satellites each side; 0 off)"),
+        "they disagree (a GPS-only spoofer; 5 used satellites each side); one side excluded wholesale by the "
+        "residual test counts too; 0 off"),
     number<&SpoofDetectionConfig::hold_s>("hold_s", Sd::hold_s, "an indication is reported this long"),
 };
 constexpr Section<SpoofDetectionConfig> kSpoofDetection{

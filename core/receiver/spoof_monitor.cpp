@@ -45,6 +45,22 @@ std::optional<double> system_disagreement_m(const Fix& fix) noexcept {
   return (gps - others).norm();
 }
 
+bool one_group_excluded(const Fix& fix) noexcept {
+  std::array<int, 2> tracked{}, excluded{};  // [0] GPS, [1] the others
+  for (int i = 0; i < fix.num_sats; ++i) {
+    const SatInfo& s = fix.sats[i];
+    const std::size_t g = s.sat.system == GnssSystem::kGps ? 0 : 1;
+    tracked[g] += s.tracked ? 1 : 0;
+    excluded[g] += s.excluded ? 1 : 0;
+  }
+  for (std::size_t g = 0; g < 2; ++g) {
+    if (excluded[g] >= kSystemExclusionMinSats && 2 * excluded[g] >= tracked[g] && excluded[1 - g] == 0 &&
+        tracked[1 - g] > 0)
+      return true;
+  }
+  return false;
+}
+
 void validate(const SpoofDetectionConfig& c) {
   using R = SpoofDetectionRanges;
   check_ranges("receiver spoof_detection", {{c.cn0_jump_db, R::cn0_jump_db, "cn0_jump_db"},
@@ -95,7 +111,7 @@ std::uint8_t SpoofMonitor::update(const Fix& fix) noexcept {
   // Systems: the GPS satellites and the others point to different places.
   if (c_.system_disagreement_m > 0.0 && is_gnss_fix(fix.type)) {
     const std::optional<double> d = system_disagreement_m(fix);
-    if (d && *d > c_.system_disagreement_m) fired |= kSpoofSystemDisagreement;
+    if ((d && *d > c_.system_disagreement_m) || one_group_excluded(fix)) fired |= kSpoofSystemDisagreement;
   }
   // Clock: the solution's bias against what its drift predicted.
   if (fix.type != FixType::kNone) {

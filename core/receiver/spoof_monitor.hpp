@@ -31,7 +31,8 @@ struct SpoofDetectionConfig {
   int uniform_min_sats = 5;         ///< tracked satellites the uniformity test needs
   /// Distance between the positions the used GPS satellites and the used
   /// satellites of the other systems each point to, beyond which they
-  /// disagree, m (0 disables; each side needs kSystemGroupMinSats).
+  /// disagree, m (each side needs kSystemGroupMinSats); one group excluded
+  /// wholesale (one_group_excluded) counts as disagreement too. 0 disables both.
   double system_disagreement_m = 50.0;
   double hold_s = 30.0;             ///< an indication is reported this long, s
 };
@@ -68,6 +69,15 @@ inline constexpr int kSystemGroupMinSats = 5;
 /// Used satellites with their residuals only; nullopt when either group has
 /// fewer than kSystemGroupMinSats or a singular geometry.
 std::optional<double> system_disagreement_m(const Fix& fix) noexcept;
+
+/// Excluded satellites that make one group's exclusion wholesale.
+inline constexpr int kSystemExclusionMinSats = 3;
+
+/// The residual test threw one group out: at least kSystemExclusionMinSats
+/// of the GPS satellites (or of the others) excluded, at least half of that
+/// group's tracked ones, and none of the other group's (what the solution's
+/// fault exclusion makes of a spoofed minority of systems).
+bool one_group_excluded(const Fix& fix) noexcept;
 
 class SpoofMonitor {
 public:

@@ -10,6 +10,10 @@
 #include "core/common/gnss_systems.hpp"
 #include "core/faults/fault_stage.hpp"
 #include "core/faults/interference.hpp"
+#include "core/geo/geodesy.hpp"
+#include "core/orbit/ephemeris_store.hpp"
+#include "core/orbit/rinex_nav.hpp"
+#include "core/pipeline/pipeline.hpp"
 #include "core/signal/system_signal.hpp"
 
 namespace gnssemu::faults {
@@ -154,6 +158,54 @@ TEST(FaultSystems, SpooferSystemsInTheScenarioWords) {
   EXPECT_FALSE(check_event(e));
   e.put(Param::kSystems, 0.0);
   EXPECT_TRUE(check_event(e));
+}
+
+// The whole pipeline with four systems on the IGS broadcast file: a GPS-only
+// takeover moves the GPS ranges alone: the solution's fault exclusion throws
+// the (fewer) GPS satellites out, and the spoof monitor's system test (the
+// only criterion left on here) reports it; a spoofer of every system moves
+// all ranges together and shows nothing.
+int system_indications(SystemSet forged) {
+  static const orbit::NavData nav =
+      orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz");
+  static const orbit::EphemerisStore store(nav.ephemerides);
+  pipeline::PipelineConfig c;
+  c.world.systems = SystemSet(0).with(GnssSystem::kGps).with(GnssSystem::kGlonass).with(GnssSystem::kGalileo).with(
+      GnssSystem::kBeiDou);
+  receiver::SpoofDetectionConfig& sd = c.receiver.spoof_detection;
+  sd.cn0_jump_db = 60.0;
+  sd.clock_jump_m = 3.0e8;
+  sd.uniform_std_db = 0.0;
+  pipeline::Pipeline rx(store, c);
+  FaultEvent e = event(FaultType::kSpoofer, static_cast<int>(SpoofMode::kTakeover));
+  e.start_s = 60.0;
+  e.put(Param::kOffsetEastM, 400.0);
+  e.put(Param::kOffsetNorthM, 300.0);
+  e.put(Param::kPowerAdvantageDb, 10.0);
+  e.put(Param::kSystems, static_cast<double>(forged.bits()));
+  rx.set_faults(std::vector<FaultEvent>{e});
+  world::Truth truth;
+  truth.valid = true;
+  truth.pos_m = geo::ecef_from_lla(Lla{48.8738 * kDegToRad, 2.2950 * kDegToRad, 100.0});
+  time::GpsTime t0;
+  for (const orbit::Ephemeris& eph : nav.ephemerides)
+    if (eph.sat.system == GnssSystem::kGps) t0 = eph.toe + 3600.0;  // within every system's data
+  int flagged = 0;
+  for (int k = 0; k < 120; ++k) {
+    truth.t = t0 + static_cast<double>(k);
+    const receiver::Fix& f = rx.step(truth.t, truth);
+    if (k < 60) {
+      EXPECT_EQ(f.spoof_det_state, 1) << k;
+    } else if (f.spoof_det_state >= 2) {
+      ++flagged;
+    }
+  }
+  return flagged;
+}
+
+TEST(FaultSystems, GpsOnlySpooferDisagreesWithTheOtherSystems) {
+  EXPECT_GT(system_indications(SystemSet::only(GnssSystem::kGps)), 30);
+  EXPECT_EQ(system_indications(SystemSet::all()), 0);
 }
 
 }  // namespace

@@ -57,5 +57,22 @@ TEST(SpoofSystems, GpsOnlySpoofingIsIndicated) {
   EXPECT_EQ(off.update(fix_with(Enu(0.0, 500.0, 0.0), 0.0)), 1);
 }
 
+TEST(SpoofSystems, OneGroupExcludedWholesale) {
+  Fix f = fix_with(Enu(0.0, 0.0, 0.0), 0.0);
+  EXPECT_FALSE(one_group_excluded(f));
+  for (int i = 0; i < 3; ++i) {
+    f.sats[static_cast<std::size_t>(i)].used = false;
+    f.sats[static_cast<std::size_t>(i)].excluded = true;
+  }
+  EXPECT_TRUE(one_group_excluded(f));  // 3 of 6 GPS, no Galileo
+  f.sats[6].used = false;
+  f.sats[6].excluded = true;
+  EXPECT_FALSE(one_group_excluded(f));  // exclusions on both sides: not one system's
+  SpoofMonitor m{SpoofDetectionConfig{}};
+  f.sats[6].excluded = false;
+  f.sats[6].used = true;
+  EXPECT_EQ(m.update(f), 2);
+}
+
 }  // namespace
 }  // namespace gnssemu::receiver
