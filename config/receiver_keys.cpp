@@ -288,6 +288,11 @@ constexpr Field<SpoofDetectionConfig> kSpoofDetectionFields[] = {
         "C/N0 spread below which the sky looks like one transmitter (satellites spanning >= 30 deg elevation)"),
     integer<&SpoofDetectionConfig::uniform_min_sats>("uniform_min_sats", Sd::uniform_min_sats,
                                                      "tracked satellites the uniformity test needs"),
+    number<&SpoofDetectionConfig::system_disagreement_m>(
+        "system_disagreement_m", Sd::system_disagreement_m,
+        "distance between the positions the used GPS satellites and the other systems' point to, beyond which "
+        "they disagree (a GPS-only spoofer; 5 used satellites each side); one side excluded wholesale by the "
+        "residual test counts too; 0 off"),
     number<&SpoofDetectionConfig::hold_s>("hold_s", Sd::hold_s, "an indication is reported this long"),
 };
 constexpr Section<SpoofDetectionConfig> kSpoofDetection{

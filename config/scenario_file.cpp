@@ -58,6 +58,15 @@ double value_of(const toml::node& n, const std::string& file, const std::string&
     }
     return faults::sat_param(*sat);
   }
+  if (spec.systems) {
+    const auto* text = n.as_string();
+    const auto set = text != nullptr ? parse_systems(text->get()) : std::nullopt;
+    if (!set) {
+      throw Error(file, line_of(n), where + ": expected systems as RINEX letters in a string, such as \"G\" or "
+                                            "\"G,R,E,C\"");
+    }
+    return static_cast<double>(set->bits());
+  }
   return number_of(n, file, where, spec.boolean);
 }
 
@@ -110,7 +119,7 @@ FaultEvent read_event(const toml::table& t, const std::string& file, const std::
                                          ")");
     }
     faults::Ramp r;
-    if (const auto* a = v.as_array()) {
+    if (const auto* a = v.as_array(); a != nullptr && !spec->systems) {
       if (a->size() != 2) throw Error(file, line_of(v), at + ": a ramp is [from, to]");
       r.from = value_of(*a->get(0), file, at, *spec);
       r.to = value_of(*a->get(1), file, at, *spec);

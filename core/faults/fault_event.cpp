@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "core/common/constants.hpp"
+
 namespace gnssemu::faults {
 
 namespace {
@@ -25,6 +27,11 @@ constexpr ParamSpec kSpecs[] = {
      "jammer height above the ellipsoid, m (default: the receiver's)"},
     {Param::kGainDbi, "gain_dbi", {-40.0, 30.0, "dBi"}, kJam, true, false, false,
      "receive antenna gain toward the jammer, dBi (default: the antenna pattern at the jammer's elevation)"},
+    {Param::kFreqMhz, "freq_mhz", {1100.0, 1700.0, "MHz"}, kJam, true, false, false,
+     "centre of the jammer's spectrum, MHz (default 1575.42, GPS L1)"},
+    {Param::kBandwidthMhz, "bandwidth_mhz", {0.0, 200.0, "MHz"}, kJam, true, false, false,
+     "full width of the jammer's spectrum, MHz (default: wideband 2.046, narrowband and cw a line, 0); a satellite "
+     "is hit by the part inside its signal's main lobe"},
     {Param::kPowerAdvantageDb, "power_advantage_db", {-20.0, 40.0, "dB"}, kSpoof, true, false, false,
      "spoofed signal power over the strongest authentic signal, dB (default 6)"},
     {Param::kCaptureMarginDb, "capture_margin_db", {0.0, 20.0, "dB"}, kSpoof, true, false, false,
@@ -48,6 +55,10 @@ constexpr ParamSpec kSpecs[] = {
      "false position above the truth, m"},
     {Param::kClockJumpUs, "clock_jump_us", {-1.0e6, 1.0e6, "us"}, static_cast<std::uint8_t>(kSpoof | kSat), true,
      false, false, "spoofer: false clock offset at takeover; satellite: its clock jump, us"},
+    {Param::kSystems, "systems", {1.0, static_cast<double>(SystemSet::all().bits()), ""}, kSpoof, false, true, false,
+     "systems the spoofer forges, RINEX letters (\"G\", \"G,R,E,C\"; default \"G\": GPS L1 C/A only, as "
+     "gps-sdr-sim and other SDR spoofers); the others stay authentic",
+     false, true},
     {Param::kAzFromDeg, "az_from_deg", {0.0, 360.0, "deg"}, kSky, true, false, false,
      "blocked sector from this azimuth clockwise, deg"},
     {Param::kAzToDeg, "az_to_deg", {0.0, 360.0, "deg"}, kSky, true, false, false, "blocked sector to this azimuth, deg"},
@@ -137,6 +148,11 @@ std::optional<SatId> sat_from_param(double v) noexcept {
   return sat;
 }
 
+std::string systems_param_text(double v) {
+  if (!(v >= 1.0 && v <= SystemSet::all().bits()) || v != std::floor(v)) return format_number(v);
+  return std::string(systems_text(SystemSet(static_cast<std::uint8_t>(v))).data());
+}
+
 std::string sat_param_text(double v) {
   const auto sat = sat_from_param(v);
   if (!sat || sat->system == GnssSystem::kGps) return format_number(v);
@@ -150,6 +166,8 @@ double default_value(Param p) noexcept {
     case Param::kAzToDeg: return 360.0;
     case Param::kElMaxDeg: return 90.0;
     case Param::kOutput: return -1.0;  // every output
+    case Param::kFreqMhz: return kL1Freq_hz * 1e-6;
+    case Param::kSystems: return static_cast<double>(SystemSet::only(GnssSystem::kGps).bits());
     default: return 0.0;
   }
 }
@@ -176,7 +194,10 @@ std::string describe(const FaultEvent& e, double s) {
     if (!out.empty()) out += ' ';
     const double v = e.value(p.id, f);
     out += std::string(p.name) + "=" +
-           (p.boolean ? std::string(v >= 0.5 ? "true" : "false") : p.satellite ? sat_param_text(v) : format_number(v));
+           (p.boolean     ? std::string(v >= 0.5 ? "true" : "false")
+            : p.satellite ? sat_param_text(v)
+            : p.systems   ? systems_param_text(v)
+                          : format_number(v));
   }
   return out;
 }

@@ -29,10 +29,10 @@ std::optional<FaultType> type_from_name(std::string_view name) noexcept;
 /// Every numeric parameter of every type (the scenario file's keys).
 enum class Param : std::uint8_t {
   // jammer
-  kJsDb, kEirpDbw, kDistanceM, kLatDeg, kLonDeg, kHeightM, kGainDbi,
+  kJsDb, kEirpDbw, kDistanceM, kLatDeg, kLonDeg, kHeightM, kGainDbi, kFreqMhz, kBandwidthMhz,
   // spoofer
   kPowerAdvantageDb, kCaptureMarginDb, kDragSpeedMS, kDragAccelMS2, kDragHeadingDeg, kDragUpMS,
-  kPushRateNsS, kDelayUs, kOffsetEastM, kOffsetNorthM, kOffsetUpM, kClockJumpUs,
+  kPushRateNsS, kDelayUs, kOffsetEastM, kOffsetNorthM, kOffsetUpM, kClockJumpUs, kSystems,
   // sky_block
   kAzFromDeg, kAzToDeg, kElMinDeg, kElMaxDeg, kLossDb,
   // satellite (clock_jump_us is shared with the spoofer)
@@ -64,6 +64,9 @@ struct ParamSpec {
   std::string_view doc;            ///< meaning, with unit
   /// A satellite: a GPS PRN or a RINEX name in the file, stored as sat_param().
   bool satellite = false;
+  /// Satellite systems: RINEX letters in the file ("G", "G,R"), stored as
+  /// SystemSet::bits().
+  bool systems = false;
 };
 
 /// A satellite as a parameter value: (system << 8) | RINEX number, so a GPS
@@ -76,6 +79,9 @@ std::optional<SatId> sat_from_param(double v) noexcept;
 /// A satellite parameter in the scenario file's words: the PRN of a GPS
 /// satellite ("5"), the RINEX name of any other ("E11").
 std::string sat_param_text(double v);
+
+/// A systems parameter value as the scenario file writes it ("G,E").
+std::string systems_param_text(double v);
 
 /// The table of every parameter (one row per Param, in Param order).
 std::span<const ParamSpec> param_specs() noexcept;

@@ -8,6 +8,7 @@
 #include "core/common/error.hpp"
 #include "core/faults/interference.hpp"
 #include "core/geo/geodesy.hpp"
+#include "core/signal/system_signal.hpp"
 
 namespace gnssemu::faults {
 
@@ -115,8 +116,8 @@ void FaultStage::degrade(world::SatObservable& o, double cn0_dbhz) noexcept {
   const std::uint64_t stream = world::sat_stream(o.sat);
   const double extra_m = extra_sigma([&](double c) { return n.code_sigma_m(c); });
   if (extra_m > 0.0) o.pseudorange_m += extra_m * rng_.normal(stream, epoch_, world::Purpose::kThermal);
-  const double extra_rr = extra_sigma([&](double c) { return n.range_rate_sigma_m_s(c); });
-  if (extra_rr > 0.0) o.doppler_hz -= extra_rr * rng_.normal(stream, epoch_, world::Purpose::kDoppler) / kL1Wavelength_m;
+  const double extra_rr = extra_sigma([&](double c) { return n.range_rate_sigma_m_s(c, o.wavelength_m); });
+  if (extra_rr > 0.0) o.doppler_hz -= extra_rr * rng_.normal(stream, epoch_, world::Purpose::kDoppler) / o.wavelength_m;
   const world::CarrierConfig& cc = n.carrier;
   if (cc.enabled && o.carrier_valid && dt_s_ > 0.0) {
     // Slips the weaker signal adds to those the world drew at the old C/N0.
@@ -136,8 +137,8 @@ void FaultStage::degrade(world::SatObservable& o, double cn0_dbhz) noexcept {
 
 void FaultStage::shift(world::SatObservable& o, double delta_m, double rate_m_s) noexcept {
   o.pseudorange_m += delta_m;
-  o.carrier_phase_cycles += delta_m / kL1Wavelength_m;
-  o.doppler_hz -= rate_m_s / kL1Wavelength_m;
+  o.carrier_phase_cycles += delta_m / o.wavelength_m;
+  o.doppler_hz -= rate_m_s / o.wavelength_m;
 }
 
 void FaultStage::break_lock(world::SatObservable& o) noexcept {
@@ -256,18 +257,23 @@ void FaultStage::spoofer(const FaultEvent& e, SpoofState& s, double f, double dt
   }
   s.started = true;
   if (obs.antenna_state != world::AntennaState::kOk) return;
-  // One transmitter sends every PRN at one power: the strongest authentic
-  // signal plus the advantage. A loop is captured where the spoofed signal
-  // beats the authentic one by the capture margin (weak satellites first).
+  // One transmitter sends every PRN of the systems it forges at one power:
+  // the strongest authentic signal of those plus the advantage. A loop is
+  // captured where the spoofed signal beats the authentic one by the capture
+  // margin (weak satellites first); other systems' signals stay authentic.
+  const SystemSet forged(static_cast<std::uint8_t>(e.value(Param::kSystems, f)));
+  const auto forges = [&](const world::SatObservable& o) {
+    return o.above_mask && o.received && forged.has(o.sat.system);
+  };
   double strongest = 0.0;
   for (int i = 0; i < obs.num_sats; ++i)
-    if (obs.sats[i].above_mask && obs.sats[i].received) strongest = std::max(strongest, obs.sats[i].cn0_dbhz);
+    if (forges(obs.sats[i])) strongest = std::max(strongest, obs.sats[i].cn0_dbhz);
   if (!(strongest > 0.0)) return;
   const double level = strongest + e.value(Param::kPowerAdvantageDb, f);
   const double margin = e.value(Param::kCaptureMarginDb, f);
   for (int i = 0; i < obs.num_sats; ++i) {
     world::SatObservable& o = obs.sats[i];
-    if (!o.above_mask || !o.received) continue;
+    if (!forges(o)) continue;
     const bool captured = level - o.cn0_dbhz >= margin;
     const std::size_t k = static_cast<std::size_t>(o.sat.index());
     const bool newly = captured && !s.captured[k];
@@ -286,6 +292,7 @@ void FaultStage::spoofer(const FaultEvent& e, SpoofState& s, double f, double dt
 }
 
 double FaultStage::jammer_power_w(const FaultEvent& e, double f, const world::Truth& truth, bool* cw) const noexcept {
+  const double freq_hz = e.value(Param::kFreqMhz, f) * 1e6;
   *cw = static_cast<JammerKind>(e.mode) != JammerKind::kWideband;
   double j_dbw = 0.0;
   if (e.has(Param::kJsDb)) {
@@ -303,7 +310,7 @@ double FaultStage::jammer_power_w(const FaultEvent& e, double f, const world::Tr
     }
     const double gain = e.has(Param::kGainDbi) ? e.value(Param::kGainDbi, f)
                                                : signal::antenna_gain_dbi(ctx_.link.antenna, el_rad);
-    j_dbw = jammer_power_dbw(e.value(Param::kEirpDbw, f), distance_m, gain);
+    j_dbw = jammer_power_dbw(e.value(Param::kEirpDbw, f), distance_m, gain, freq_hz);
   }
   return std::pow(10.0, j_dbw / 10.0);
 }
@@ -350,14 +357,23 @@ void FaultStage::apply(const time::GpsTime& t, const world::Truth& truth, world:
       spoof_[k] = SpoofState{};
     }
   }
-  double j_w = 0.0, i0_w_hz = 0.0, cw_w = 0.0;
+  // Each jammer hurts a satellite by the part of its spectrum inside that
+  // satellite's main lobe (its system's signal around its own carrier).
+  double j_w = 0.0, cw_w = 0.0;
+  int n_jam = 0;
   for (const FaultEvent& e : events_) {
     if (e.type != FaultType::kJammer || !e.active_at(now)) continue;
+    const double f = e.fraction_at(now);
+    const auto kind = static_cast<JammerKind>(e.mode);
     bool cw = false;
-    const double p_w = jammer_power_w(e, e.fraction_at(now), truth, &cw);
+    const double p_w = jammer_power_w(e, f, truth, &cw);
     j_w += p_w;
     if (cw) cw_w += p_w;
-    i0_w_hz += interference_density_w_hz_of_w(p_w, static_cast<JammerKind>(e.mode));
+    jam_[static_cast<std::size_t>(n_jam++)] =
+        ActiveJammer{p_w, kind,
+                     JammerBand{e.value(Param::kFreqMhz, f) * 1e6,
+                                e.has(Param::kBandwidthMhz) ? e.value(Param::kBandwidthMhz, f) * 1e6
+                                                            : default_jammer_width_hz(kind)}};
   }
   if (j_w > 0.0) {
     effects_.jammer_dbw = 10.0 * std::log10(j_w);
@@ -366,7 +382,14 @@ void FaultStage::apply(const time::GpsTime& t, const world::Truth& truth, world:
     obs.cw_jam_to_noise += cw_w / (std::pow(10.0, n0_dbw_hz_ / 10.0) * kFrontEndBandwidth_hz);
     for (int i = 0; i < obs.num_sats; ++i) {
       world::SatObservable& o = obs.sats[i];
-      if (o.above_mask && o.received) degrade(o, effective_cn0_dbhz(o.cn0_dbhz, n0_dbw_hz_, i0_w_hz));
+      if (!o.above_mask || !o.received) continue;
+      const SignalBand band{o.carrier_hz, signal::system_signal(o.sat.system).main_lobe_half_width_hz};
+      double i0_w_hz = 0.0;
+      for (int k = 0; k < n_jam; ++k) {
+        const ActiveJammer& a = jam_[static_cast<std::size_t>(k)];
+        i0_w_hz += interference_density_w_hz(a.power_w, a.kind, a.band, band);
+      }
+      degrade(o, effective_cn0_dbhz(o.cn0_dbhz, n0_dbw_hz_, i0_w_hz));
     }
   }
 }

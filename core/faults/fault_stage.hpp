@@ -14,6 +14,7 @@
 
 #include "core/common/vec3.hpp"
 #include "core/faults/fault_event.hpp"
+#include "core/faults/interference.hpp"
 #include "core/orbit/ephemeris.hpp"
 #include "core/signal/dll_jitter.hpp"
 #include "core/signal/link_budget.hpp"
@@ -115,7 +116,15 @@ private:
   static bool moved(const SpoofState& s) noexcept { return s.offset_m.norm() > 0.0 || s.clock_m != 0.0; }
   static void let_go(const std::array<bool, kNumSats>& held, world::Observables& obs) noexcept;
 
+  /// A jammer active this epoch: its power at the antenna (W) and spectrum.
+  struct ActiveJammer {
+    double power_w = 0.0;
+    JammerKind kind = JammerKind::kWideband;
+    JammerBand band;
+  };
+
   FaultContext ctx_;
+  std::array<ActiveJammer, kMaxEvents> jam_{};
   double n0_dbw_hz_ = 0.0;
   world::CounterRng rng_{0};
   std::vector<FaultEvent> events_;          ///< reserved kMaxEvents

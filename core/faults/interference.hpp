@@ -26,8 +26,37 @@ inline constexpr double kFrontEndBandwidth_hz = 2.0e6;
 double spectral_factor(JammerKind kind) noexcept;
 
 /// Jammer power at the antenna output, dBW, from EIRP (dBW), distance (m,
-/// > 0, free-space loss at L1) and receive gain toward it (dBi).
-double jammer_power_dbw(double eirp_dbw, double distance_m, double gain_dbi) noexcept;
+/// > 0, free-space loss at freq_hz, Hz > 0) and receive gain toward it (dBi).
+double jammer_power_dbw(double eirp_dbw, double distance_m, double gain_dbi, double freq_hz = kL1Freq_hz) noexcept;
+
+/// A jammer's spectrum: centre and full width, Hz (width 0: a line).
+struct JammerBand {
+  double centre_hz = kL1Freq_hz;
+  double width_hz = 0.0;
+};
+/// A satellite signal's main lobe: its carrier and half width, Hz (> 0).
+struct SignalBand {
+  double centre_hz = kL1Freq_hz;
+  double half_width_hz = kCaChipRate_hz;
+};
+
+/// Width of the default band of a jammer kind, Hz: wideband noise as wide as
+/// the C/A main lobe (2 x 1.023 MHz, which makes Q = 2 of the relation
+/// above), narrowband and CW a line.
+double default_jammer_width_hz(JammerKind kind) noexcept;
+
+/// Fraction of a jammer's power inside a signal's main lobe, [0, 1]: the
+/// overlap of the two bands over the jammer's width (a flat spectrum); a
+/// line counts whole inside the lobe (edges included), nothing outside.
+double band_overlap_fraction(const JammerBand& j, const SignalBand& s) noexcept;
+
+/// Interference density I0 one jammer of power j_w (W, >= 0) puts into the
+/// correlator of a signal, W/Hz. Narrowband and CW: the power inside the
+/// lobe over Q w (w the half width: for a BPSK signal its chip rate, so a
+/// C/A signal gets the J / (Q Rc) above). Wideband: its density J / B
+/// averaged over the lobe, (J / B) overlap / (2 w) (for B = 2 Rc over a C/A
+/// lobe: J / (2 Rc), the Q = 2 above). A jammer clear of the lobe: 0.
+double interference_density_w_hz(double j_w, JammerKind kind, const JammerBand& j, const SignalBand& s) noexcept;
 
 /// Interference noise density I0 = J / (Q Rc), W/Hz, for J in W (>= 0).
 double interference_density_w_hz_of_w(double j_w, JammerKind kind) noexcept;

@@ -74,6 +74,10 @@ struct Ephemeris {
   int glo_age_days = 0;        ///< GLONASS age of the data E, days
 };
 
+/// The L1-band carrier the satellite transmits, Hz: its system's (the
+/// system table), GLONASS by the set's FDMA channel.
+constexpr double carrier_hz(const Ephemeris& eph) noexcept { return l1_carrier_hz(eph.sat.system, eph.glo_channel); }
+
 /// Satellite state at a GPS time.
 struct SatState {
   Ecef pos_m;                  ///< ECEF position at t, in the ECEF frame of time t

@@ -116,8 +116,8 @@ bool Acquisition::within_aided_window(const time::GpsTime& t, const world::SatOb
   const Vec3 los = d / r;
   const double predicted_rr =
       los.dot(st.vel_m_s - aiding.vel_m_s) + aiding.drift_m_s - kSpeedOfLight_m_s * st.clk_drift_s_s;
-  const double measured_rr = -kL1Wavelength_m * o.doppler_hz;
-  return std::fabs(measured_rr - predicted_rr) / kL1Wavelength_m <= cfg_.aided_doppler_window_hz;
+  const double measured_rr = -o.wavelength_m * o.doppler_hz;
+  return std::fabs(measured_rr - predicted_rr) / o.wavelength_m <= cfg_.aided_doppler_window_hz;
 }
 
 void Acquisition::lose(Channel& c) noexcept {

@@ -62,7 +62,7 @@ struct SatInfo {
   bool ephemeris = true;      ///< the receiver has its broadcast ephemeris (decoded, or kept over a restart)
   bool smoothed = false;      ///< its pseudorange is carrier-smoothed
   double pseudorange_m = 0.0; ///< measured (with all errors), m
-  double doppler_hz = 0.0;    ///< measured L1 Doppler, Hz
+  double doppler_hz = 0.0;    ///< measured Doppler of the satellite's carrier, Hz
   double residual_m = 0.0;    ///< post-fit pseudorange residual, m (used only)
   // Scene propagation (world truth, for analysis; zero without a scene).
   bool nlos = false;          ///< received via reflections only

@@ -159,7 +159,7 @@ void Receiver::measurement_stage(const world::Observables& obs, double dt_s) noe
     if (smooth && o.carrier_valid) {
       const bool restart = !smoothed_last_[k] || acq_.new_lock(p) ||
                            o.carrier_discontinuities != discontinuities_[k] || dt_s > kMaxSmoothingGap_s;
-      pr_m = hatch_[k].update(o.pseudorange_m, o.carrier_phase_cycles * kL1Wavelength_m, dt_s,
+      pr_m = hatch_[k].update(o.pseudorange_m, o.carrier_phase_cycles * o.wavelength_m, dt_s,
                               config_.filter.smoothing_window_s, restart);
       discontinuities_[k] = o.carrier_discontinuities;
       smoothed_now[k] = true;
@@ -168,7 +168,8 @@ void Receiver::measurement_stage(const world::Observables& obs, double dt_s) noe
     Measurement& m = in_.meas[in_.num_meas];
     m.eph = o.eph;
     m.pseudorange_m = pr_m;
-    m.doppler_hz = si.doppler_hz;
+    // The solver takes L1 cycles: the same range rate, -lambda D, at L1's wavelength.
+    m.doppler_hz = si.doppler_hz * (o.wavelength_m / kL1Wavelength_m);
     m.cn0_dbhz = si.cn0_dbhz;
     meas_sat_[static_cast<std::size_t>(in_.num_meas++)] = p;
   }

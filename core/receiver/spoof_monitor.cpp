@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/receiver/small_matrix.hpp"
+
 namespace gnssemu::receiver {
 
 namespace {
@@ -11,7 +13,53 @@ namespace {
 // spread over this much elevation differ by several dB; only then is a
 // uniform C/N0 suspicious.
 constexpr double kUniformMinElevationSpread_rad = 30.0 * kDegToRad;
+// The position correction one group's residuals ask for, ENU m; false when
+// it has too few satellites or a singular geometry.
+bool group_correction(const Fix& fix, bool gps, Enu& dx) noexcept {
+  Mat4 n{};
+  Vec4 b{};
+  int count = 0;
+  for (int i = 0; i < fix.num_sats; ++i) {
+    const SatInfo& s = fix.sats[i];
+    if (!s.used || (s.sat.system == GnssSystem::kGps) != gps) continue;
+    const double ce = std::cos(s.el_rad);
+    const std::array<double, 4> h{-std::sin(s.az_rad) * ce, -std::cos(s.az_rad) * ce, -std::sin(s.el_rad), 1.0};
+    for (int r = 0; r < 4; ++r) {
+      b[r] += h[r] * s.residual_m;
+      for (int c = 0; c < 4; ++c) n[r][c] += h[r] * h[c];
+    }
+    ++count;
+  }
+  Mat4 inv{};
+  if (count < kSystemGroupMinSats || !spd_inverse4(n, inv)) return false;
+  const Vec4 x = mul4(inv, b);
+  dx = Enu(x[0], x[1], x[2]);
+  return true;
+}
+
 }  // namespace
+
+std::optional<double> system_disagreement_m(const Fix& fix) noexcept {
+  Enu gps, others;
+  if (!group_correction(fix, true, gps) || !group_correction(fix, false, others)) return std::nullopt;
+  return (gps - others).norm();
+}
+
+bool one_group_excluded(const Fix& fix) noexcept {
+  std::array<int, 2> tracked{}, excluded{};  // [0] GPS, [1] the others
+  for (int i = 0; i < fix.num_sats; ++i) {
+    const SatInfo& s = fix.sats[i];
+    const std::size_t g = s.sat.system == GnssSystem::kGps ? 0 : 1;
+    tracked[g] += s.tracked ? 1 : 0;
+    excluded[g] += s.excluded ? 1 : 0;
+  }
+  for (std::size_t g = 0; g < 2; ++g) {
+    if (excluded[g] >= kSystemExclusionMinSats && 2 * excluded[g] >= tracked[g] && excluded[1 - g] == 0 &&
+        tracked[1 - g] > 0)
+      return true;
+  }
+  return false;
+}
 
 void validate(const SpoofDetectionConfig& c) {
   using R = SpoofDetectionRanges;
@@ -21,6 +69,8 @@ void validate(const SpoofDetectionConfig& c) {
                                             {c.uniform_std_db, R::uniform_std_db, "uniform_std_db"},
                                             {static_cast<double>(c.uniform_min_sats), R::uniform_min_sats,
                                              "uniform_min_sats"},
+                                            {c.system_disagreement_m, R::system_disagreement_m,
+                                             "system_disagreement_m"},
                                             {c.hold_s, R::hold_s, "hold_s"}});
 }
 
@@ -58,6 +108,11 @@ std::uint8_t SpoofMonitor::update(const Fix& fix) noexcept {
     const double var = std::max(sum2 / n - mean * mean, 0.0);
     if (std::sqrt(var) < c_.uniform_std_db) fired |= kSpoofCn0Uniform;
   }
+  // Systems: the GPS satellites and the others point to different places.
+  if (c_.system_disagreement_m > 0.0 && is_gnss_fix(fix.type)) {
+    const std::optional<double> d = system_disagreement_m(fix);
+    if ((d && *d > c_.system_disagreement_m) || one_group_excluded(fix)) fired |= kSpoofSystemDisagreement;
+  }
   // Clock: the solution's bias against what its drift predicted.
   if (fix.type != FixType::kNone) {
     const double clock_m = fix.clock_bias_s * kSpeedOfLight_m_s;
@@ -75,11 +130,12 @@ std::uint8_t SpoofMonitor::update(const Fix& fix) noexcept {
     prev_drift_m_s_ = drift_m_s;
   }
   held_ = 0;
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < kSpoofCriteria; ++k) {
     if (fired & (1u << k)) last_seen_s_[k] = now_s;
     if (now_s - last_seen_s_[k] <= c_.hold_s) held_ = static_cast<std::uint8_t>(held_ | (1u << k));
   }
-  const int count = (held_ & 1) + ((held_ >> 1) & 1) + ((held_ >> 2) & 1);
+  int count = 0;
+  for (int k = 0; k < kSpoofCriteria; ++k) count += (held_ >> k) & 1;
   return count == 0 ? 1 : count == 1 ? 2 : 3;
 }
 

@@ -7,6 +7,7 @@
 
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
+#include "core/signal/system_signal.hpp"
 
 namespace gnssemu::signal {
 namespace {
@@ -89,11 +90,21 @@ LinkBudgetModel::LinkBudgetModel(const LinkBudgetConfig& cfg) : cfg_(cfg) {
 }
 
 LinkBudget LinkBudgetModel::evaluate(double range_m, double el_rad, double losses_db) const noexcept {
+  return evaluate(range_m, el_rad, losses_db, GnssSystem::kGps, cfg_.freq_hz);
+}
+
+LinkBudget LinkBudgetModel::evaluate(double range_m, double el_rad, double losses_db, GnssSystem sys,
+                                     double carrier_hz) const noexcept {
   LinkBudget b;
-  b.fspl_db = free_space_path_loss_db(range_m, cfg_.freq_hz);
+  b.fspl_db = free_space_path_loss_db(range_m, carrier_hz);
   b.antenna_gain_dbi = antenna_gain_dbi(cfg_.antenna, el_rad);
   const double loss = std::isnan(losses_db) ? 0.0 : std::clamp(losses_db, 0.0, 300.0);  // +inf = blocked
   b.received_power_dbw = cfg_.eirp_dbw - b.fspl_db - loss + b.antenna_gain_dbi;
+  const SystemSignal& ss = system_signal(sys);
+  if (ss.power_offset_db != 0.0 || ss.slope_offset_db != 0.0) {
+    const double el = std::isfinite(el_rad) ? std::clamp(el_rad, 0.0, 0.5 * kPi) : 0.0;
+    b.received_power_dbw += ss.power_offset_db + ss.slope_offset_db * (1.0 - std::sin(el));
+  }
   b.noise_density_dbw_hz = noise_density_dbw_hz_;
   b.cn0_dbhz = b.received_power_dbw - noise_density_dbw_hz_ - cfg_.implementation_loss_db;
   return b;

@@ -8,7 +8,9 @@
 #include <string_view>
 #include <vector>
 
+#include "core/common/constants.hpp"
 #include "core/common/range.hpp"
+#include "core/common/sat_id.hpp"
 #include "core/common/violation.hpp"
 
 namespace gnssemu::signal {
@@ -17,7 +19,7 @@ namespace gnssemu::signal {
 inline constexpr double kBoltzmann_j_k = 1.380649e-23;
 
 /// Free-space path loss 20 log10(4 pi d / lambda), dB. range_m > 0, freq_hz > 0.
-double free_space_path_loss_db(double range_m, double freq_hz = 1575.42e6) noexcept;
+double free_space_path_loss_db(double range_m, double freq_hz = kL1Freq_hz) noexcept;
 
 /// Thermal noise density 10 log10(k T), dBW/Hz. -203.98 at 290 K.
 double thermal_noise_density_dbw_hz(double temperature_k = 290.0) noexcept;
@@ -45,7 +47,7 @@ std::vector<std::string_view> environment_preset_names();
 
 struct LinkBudgetConfig {
   double eirp_dbw = 26.8;              ///< satellite EIRP, dBW (CBNU 26.25, TN 27)
-  double freq_hz = 1575.42e6;          ///< carrier, Hz
+  double freq_hz = kL1Freq_hz;         ///< carrier of the 3-argument evaluate(), Hz
   double noise_temperature_k = 290.0;  ///< reference noise temperature, K (> 0)
   double noise_figure_db = 2.0;        ///< receiver noise figure, dB (>= 0)
   double environment_noise_rise_db = 1.0;  ///< noise-floor rise from the surroundings, dB (>= 0, <= 60)
@@ -101,6 +103,15 @@ public:
 
   double cn0_dbhz(double range_m, double el_rad, double losses_db) const noexcept {
     return evaluate(range_m, el_rad, losses_db).cn0_dbhz;
+  }
+
+  /// The same for a satellite of system sys on carrier carrier_hz (Hz, > 0):
+  /// free-space loss at that carrier, and the system's power and slope
+  /// offsets of kSystemSignals added to the received power (GPS: none).
+  LinkBudget evaluate(double range_m, double el_rad, double losses_db, GnssSystem sys,
+                      double carrier_hz) const noexcept;
+  double cn0_dbhz(double range_m, double el_rad, double losses_db, GnssSystem sys, double carrier_hz) const noexcept {
+    return evaluate(range_m, el_rad, losses_db, sys, carrier_hz).cn0_dbhz;
   }
 
 private:

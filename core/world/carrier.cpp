@@ -39,11 +39,11 @@ double pll_jitter_rad(double cn0_dbhz, double bandwidth_hz, double integration_s
   return std::sqrt(bandwidth_hz / cn0 * (1.0 + 1.0 / (2.0 * integration_s * cn0)));
 }
 
-double fll_range_rate_sigma_m_s(double cn0_dbhz, const CarrierConfig& c) noexcept {
+double fll_range_rate_sigma_m_s(double cn0_dbhz, const CarrierConfig& c, double wavelength_m) noexcept {
   const double cn0 = signal::cn0_ratio_hz(cn0_dbhz);
   const double t = c.integration_s;
   const double sigma_hz = std::sqrt(4.0 * c.fll_bandwidth_hz / cn0 * (1.0 + 1.0 / (t * cn0))) / (2.0 * kPi * t);
-  return kL1Wavelength_m * sigma_hz;
+  return wavelength_m * sigma_hz;
 }
 
 double cycle_slip_probability(double sigma_rad, double bandwidth_hz, double dt_s) noexcept {

@@ -57,8 +57,10 @@ double pll_jitter_rad(double cn0_dbhz, double bandwidth_hz, double integration_s
 
 /// 1-sigma range-rate noise of an FLL Doppler, m/s, at C/N0 cn0_dbhz (clamped
 /// to [0, 70]): lambda / (2 pi T) sqrt(4 F B_n / (C/N0) (1 + 1 / (T C/N0))),
-/// F = 1 at high C/N0 (Kaplan & Hegarty, FLL thermal jitter).
-double fll_range_rate_sigma_m_s(double cn0_dbhz, const CarrierConfig& c) noexcept;
+/// F = 1 at high C/N0 (Kaplan & Hegarty, FLL thermal jitter); lambda the
+/// signal's carrier wavelength, m (> 0).
+double fll_range_rate_sigma_m_s(double cn0_dbhz, const CarrierConfig& c,
+                                double wavelength_m = kL1Wavelength_m) noexcept;
 
 /// Probability of a half-cycle slip of a Costas loop within dt_s (s) at total
 /// phase jitter sigma_rad: 1 - exp(-dt / T), T Viterbi's mean time to the first

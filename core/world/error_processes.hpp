@@ -4,6 +4,7 @@
 // receiver's free-running clock. Pure functions of their inputs and a
 // standard-normal draw supplied by the caller (random.hpp).
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/common/constants.hpp"
@@ -16,6 +17,21 @@ namespace gnssemu::world {
 inline double multipath_sin_el(double el_rad) noexcept {
   constexpr double kMinEl_rad = 5.0 * kDegToRad;
   return std::sin(std::max(el_rad, kMinEl_rad));
+}
+
+/// Global RMS signal-in-space range error of each system's broadcast orbits
+/// and clocks, m (Montenbruck, Steigenberger & Hauschild, "Multi-GNSS
+/// signal-in-space range error assessment", Adv. Space Res. 61(12), 2018:
+/// Galileo 0.2, GPS 0.6, BeiDou-2 1, GLONASS 2 m over 2017; QZSS and SBAS
+/// taken as GPS). In the order of the system table.
+inline constexpr std::array<double, kNumSystems> kSystemSisre_m{0.6, 2.0, 0.2, 1.0, 0.6, 0.6};
+
+/// The orbit/clock residual process of a satellite of system sys: the
+/// configured (GPS) process with its sigma scaled by the system's SISRE over
+/// GPS's; the correlation time kept.
+inline GaussMarkovConfig orbit_clock_process(const GaussMarkovConfig& gps, GnssSystem sys) noexcept {
+  const double scale = kSystemSisre_m[static_cast<std::size_t>(sys)] / kSystemSisre_m[0];
+  return GaussMarkovConfig{gps.sigma_m * scale, gps.tau_s};
 }
 
 /// Stationary start of a Gauss–Markov process: sigma_m * w, w ~ N(0, 1).

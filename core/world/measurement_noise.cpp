@@ -17,8 +17,9 @@ double MeasurementNoise::code_sigma_m(double cn0_dbhz) const noexcept {
   return thermal_model == ThermalModel::kDll ? signal::dll_thermal_sigma_m(cn0_dbhz, dll) : thermal_sigma_m;
 }
 
-double MeasurementNoise::range_rate_sigma_m_s(double cn0_dbhz) const noexcept {
-  return carrier.doppler_model == DopplerModel::kFll ? fll_range_rate_sigma_m_s(cn0_dbhz, carrier) : doppler_sigma_m_s;
+double MeasurementNoise::range_rate_sigma_m_s(double cn0_dbhz, double wavelength_m) const noexcept {
+  return carrier.doppler_model == DopplerModel::kFll ? fll_range_rate_sigma_m_s(cn0_dbhz, carrier, wavelength_m)
+                                                     : doppler_sigma_m_s;
 }
 
 void validate(const MeasurementNoise& n) {

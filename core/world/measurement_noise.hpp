@@ -21,8 +21,8 @@ struct MeasurementNoise {
   static MeasurementNoise of(const WorldConfig& c) noexcept;
   /// 1-sigma thermal pseudorange noise at cn0_dbhz, m.
   double code_sigma_m(double cn0_dbhz) const noexcept;
-  /// 1-sigma range-rate noise at cn0_dbhz, m/s.
-  double range_rate_sigma_m_s(double cn0_dbhz) const noexcept;
+  /// 1-sigma range-rate noise at cn0_dbhz of a carrier of wavelength_m (m), m/s.
+  double range_rate_sigma_m_s(double cn0_dbhz, double wavelength_m = kL1Wavelength_m) const noexcept;
 };
 
 /// Throws gnssemu::Error on parameters out of their ranges.

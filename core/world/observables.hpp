@@ -33,10 +33,14 @@ struct SatObservable {
   bool received = false;                ///< a signal reaches the antenna
   double cn0_dbhz = 0.0;                ///< carrier-to-noise density at the antenna, dB-Hz (0 when not received)
   double pseudorange_m = 0.0;           ///< code pseudorange with every error, m (when received)
-  double doppler_hz = 0.0;              ///< L1 Doppler, Hz, positive when approaching (when received)
+  /// Carrier of the signal, Hz (orbit::carrier_hz of its set), and its
+  /// wavelength, m: Doppler and carrier phase are in its units.
+  double carrier_hz = kL1Freq_hz;
+  double wavelength_m = kL1Wavelength_m;
+  double doppler_hz = 0.0;              ///< Doppler of that carrier, Hz, positive when approaching (when received)
   /// The carrier loop is locked (received, with the carrier modelled).
   bool carrier_valid = false;
-  /// Accumulated carrier phase, L1 cycles, with the sign of the pseudorange
+  /// Accumulated carrier phase, cycles of wavelength_m, with the sign of the pseudorange
   /// (grows with the range); an arbitrary whole number of cycles per lock.
   double carrier_phase_cycles = 0.0;
   /// Carrier discontinuities of this satellite so far (new locks, cycle slips): a

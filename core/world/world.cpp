@@ -8,6 +8,7 @@
 
 #include "core/geo/geodesy.hpp"
 #include "core/signal/dll_jitter.hpp"
+#include "core/signal/system_signal.hpp"
 #include "core/world/error_processes.hpp"
 
 namespace gnssemu::world {
@@ -85,7 +86,8 @@ void World::advance(const SharedSky& sky, const time::GpsTime& t) noexcept {
     const std::size_t k = static_cast<std::size_t>(sat.index());
     const uint64_t stream = sat_stream(sat);
     if (mp) multipath_unit_[k] = gauss_markov_init(mp_unit, rng_.normal(stream, 0, Purpose::kMultipathInit));
-    orbit_clock_m_[k] = gauss_markov_init(gm, rng_.normal(stream, 0, Purpose::kGaussMarkovInit));
+    orbit_clock_m_[k] =
+        gauss_markov_init(orbit_clock_process(gm, sat.system), rng_.normal(stream, 0, Purpose::kGaussMarkovInit));
     if (iono_gm) iono_tecu_[k] = gauss_markov_init(iono_cfg, rng_.normal(stream, 0, Purpose::kIonoInit));
     process_started_[k] = true;
   };
@@ -111,7 +113,8 @@ void World::advance(const SharedSky& sky, const time::GpsTime& t) noexcept {
         continue;
       }
       const uint64_t stream = sat_stream(sat);
-      orbit_clock_m_[k] = gauss_markov_step(orbit_clock_m_[k], dt_s, gm, rng_.normal(stream, epoch_, Purpose::kGaussMarkovStep));
+      orbit_clock_m_[k] = gauss_markov_step(orbit_clock_m_[k], dt_s, orbit_clock_process(gm, sat.system),
+                                            rng_.normal(stream, epoch_, Purpose::kGaussMarkovStep));
       if (iono_gm && dt_s > 0.0)
         iono_tecu_[k] = gauss_markov_step(iono_tecu_[k], dt_s, iono_cfg, rng_.normal(stream, epoch_, Purpose::kIonoStep));
       if (mp && dt_s > 0.0)
@@ -193,8 +196,11 @@ void World::propagation_stage(const time::GpsTime& t, const Lla& rx_lla, const E
           return atmosphere_.slow_terms(rx_lla, s.az_rad, s.el_rad, tow_s, doy);
         });
     PathEffects& e = path_[k];
-    if (atmosphere_.iono_on())
-      e.iono_m = std::max(v[kIonoM] * iono_factor + iono_tecu_[k] * v[kIonoMPerTecu], 0.0);
+    if (atmosphere_.iono_on()) {
+      // Computed at the configured frequency; the delay scales as 1 / f^2.
+      const double f_ratio = config_.atmosphere.ionosphere.freq_hz / orbit::carrier_hz(*eph_[k]);
+      e.iono_m = std::max(v[kIonoM] * iono_factor + iono_tecu_[k] * v[kIonoMPerTecu], 0.0) * (f_ratio * f_ratio);
+    }
     if (atmosphere_.tropo_on()) e.tropo_m = std::max(v[kTropoM] + zwd_pert_m_ * v[kNmfWet], 0.0);
     e.delay_m = e.iono_m + e.tropo_m;
     e.loss_db = v[kAttenDb];
@@ -235,12 +241,16 @@ void World::signal_stage() noexcept {
     const std::size_t k = static_cast<std::size_t>(above_[i].index());
     const SkySat& s = sky_[k];
     const PathEffects& e = path_[k];
+    const GnssSystem sys = above_[i].system;
     double cn0 = 0.0;
     if (!config_.signal.enabled) {
       const double one_m_sin = 1.0 - std::sin(s.el_rad);
+      const signal::SystemSignal& ss = signal::system_signal(sys);
       cn0 = config_.nominal_cn0_dbhz - kCn0ElevationLoss_db * one_m_sin * one_m_sin - scene_path_[k].loss_db;
+      if (ss.power_offset_db != 0.0 || ss.slope_offset_db != 0.0)
+        cn0 += ss.power_offset_db + ss.slope_offset_db * one_m_sin;
     } else if (e.received) {
-      cn0 = link_.cn0_dbhz(s.range_m, s.el_rad, e.loss_db);
+      cn0 = link_.cn0_dbhz(s.range_m, s.el_rad, e.loss_db, sys, orbit::carrier_hz(*eph_[k]));
     }
     cn0_dbhz_[k] = cn0;
   }
@@ -281,13 +291,16 @@ void World::observables_stage(const time::GpsTime& t, uint64_t epoch, double mas
             ? config_.errors.multipath.sigma_m / multipath_sin_el(s.el_rad) * multipath_unit_[k]
             : 0.0;
     const double gradient_m = gradient_now_m_[0] * std::cos(s.az_rad) + gradient_now_m_[1] * std::sin(s.az_rad);
-    const double rr_noise_m_s = noise_.range_rate_sigma_m_s(cn0) * rng_.normal(stream, epoch, Purpose::kDoppler);
+    o.carrier_hz = orbit::carrier_hz(*eph);
+    o.wavelength_m = kSpeedOfLight_m_s / o.carrier_hz;
+    const double rr_noise_m_s =
+        noise_.range_rate_sigma_m_s(cn0, o.wavelength_m) * rng_.normal(stream, epoch, Purpose::kDoppler);
     // The satellite's actual L1 clock = broadcast (dt_sv - TGD) + residual.
     const double pr_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - eph->tgd_s)) +
                         orbit_clock_m_[k] + path_[k].delay_m + thermal_m + multipath_m + gradient_m;
     const double rr_m_s = s.range_rate_m_s + kSpeedOfLight_m_s * (rx_drift_s_s - s.clk_drift_s_s) + rr_noise_m_s;
     o.pseudorange_m = pr_m;
-    o.doppler_hz = -rr_m_s / kL1Wavelength_m;
+    o.doppler_hz = -rr_m_s / o.wavelength_m;
     carrier_observable(o, s, epoch, rx_clock_s, gradient_m);
   }
   for (int i = 0; i < n_sats_; ++i) {
@@ -340,11 +353,11 @@ void World::carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch
   o.carrier_discontinuities = c.discontinuities;
   const PathEffects& e = path_[k];
   const double phase_noise_m =
-      sigma_rad / (2.0 * kPi) * kL1Wavelength_m * rng_.normal(stream, epoch, Purpose::kCarrierNoise);
+      sigma_rad / (2.0 * kPi) * o.wavelength_m * rng_.normal(stream, epoch, Purpose::kCarrierNoise);
   const double carrier_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - o.eph->tgd_s)) +
                            orbit_clock_m_[k] + e.delay_m - 2.0 * e.iono_m + gradient_m + phase_noise_m;
   o.carrier_valid = true;
-  o.carrier_phase_cycles = carrier_m / kL1Wavelength_m + c.offset_cycles;
+  o.carrier_phase_cycles = carrier_m / o.wavelength_m + c.offset_cycles;
 }
 
 const Observables& World::step(const time::GpsTime& t, const Truth& truth, double mask_rad) noexcept {

@@ -68,7 +68,7 @@ int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::os
     fmt::format_to(std::back_inserter(buf), "{},{},{:.6f},{:.6f},{:.4f},{:.4f},{:.4f},{:.5f},{:.5f},{:.4f},{:.2f}",
                    sat_name(sat).data(), sat.prn(),
                    s.az_rad * kRadToDeg, s.el_rad * kRadToDeg, s.range_m, iono_m, zhd_m, nmf.hydro, nmf.wet, atten_db,
-                   link.cn0_dbhz(s.range_m, s.el_rad, atten_db));
+                   link.cn0_dbhz(s.range_m, s.el_rad, atten_db, sat.system, orbit::carrier_hz(*eph)));
     if (prop) {
       const scene::SatQuery q{sat.index(), frame.vector_to_enu((s.pos_m - rx) / s.range_m)};
       scene::SatPath p;

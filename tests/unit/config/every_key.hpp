@@ -129,6 +129,7 @@ cn0_jump_sats = 4
 clock_jump_m = 300
 uniform_std_db = 0.5
 uniform_min_sats = 6
+system_disagreement_m = 80
 hold_s = 10
 
 [atmosphere]

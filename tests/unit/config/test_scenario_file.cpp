@@ -116,6 +116,33 @@ prn = 5
   EXPECT_EQ(faults::describe(ev[2], 0.0), "prn=5");
 }
 
+TEST(ScenarioFile, SpooferSystemsAndJammerBands) {
+  const auto ev = parse(R"([[event]]
+type = "spoofer"
+start_s = 0
+systems = "G,E"
+
+[[event]]
+type = "jammer"
+start_s = 0
+kind = "narrowband"
+js_db = 30
+freq_mhz = 1602.0
+bandwidth_mhz = 1.0
+)");
+  ASSERT_EQ(ev.size(), 2u);
+  EXPECT_EQ(ev[0].param(Param::kSystems).from,
+            static_cast<double>(SystemSet::only(GnssSystem::kGps).with(GnssSystem::kGalileo).bits()));
+  EXPECT_EQ(faults::describe(ev[0], 0.0), "mode=drag systems=G,E");
+  EXPECT_EQ(faults::describe(ev[1], 0.0), "kind=narrowband js_db=30 freq_mhz=1602 bandwidth_mhz=1");
+  expect_error([] { parse("[[event]]\ntype = \"spoofer\"\nstart_s = 0\nsystems = \"G,X\"\n"); },
+               {"s.toml:4", "systems: expected systems as RINEX letters"});
+  expect_error([] { parse("[[event]]\ntype = \"spoofer\"\nstart_s = 0\nsystems = [\"G\", \"R\"]\n"); },
+               {"s.toml:4", "systems: expected systems as RINEX letters"});
+  expect_error([] { parse("[[event]]\ntype = \"jammer\"\nstart_s = 0\njs_db = 3\nfreq_mhz = 900\n"); },
+               {"s.toml:5", "freq_mhz: 900 is out of range"});
+}
+
 TEST(ScenarioFile, ShippedExamplesAreValid) {
   const std::filesystem::path dir = std::filesystem::path(GNSSEMU_SOURCE_DIR) / "config/examples/scenarios";
   int n = 0;

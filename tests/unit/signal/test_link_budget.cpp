@@ -6,6 +6,7 @@
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
 #include "core/signal/link_budget.hpp"
+#include "core/signal/system_signal.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::signal;
@@ -82,4 +83,24 @@ TEST(LinkBudget, BadConfigThrows) {
   c = {};
   c.eirp_dbw = NAN;
   EXPECT_THROW(LinkBudgetModel{c}, Error);
+}
+
+TEST(LinkBudget, CarrierAndSystemOfTheSatellite) {
+  const LinkBudgetModel m(LinkBudgetConfig{});
+  const double r = 2.2e7, el = 0.7;
+  // GPS at L1: the three-argument budget exactly.
+  EXPECT_EQ(m.cn0_dbhz(r, el, 0.5, GnssSystem::kGps, kL1Freq_hz), m.cn0_dbhz(r, el, 0.5));
+  // Free-space loss at the satellite's carrier: 20 log10(f / f_L1) more or less.
+  const LinkBudget g1 = m.evaluate(r, el, 0.0, GnssSystem::kGps, 1602.0e6);
+  const LinkBudget b1 = m.evaluate(r, el, 0.0, GnssSystem::kGps, 1561.098e6);
+  const LinkBudget l1 = m.evaluate(r, el, 0.0);
+  EXPECT_NEAR(g1.fspl_db - l1.fspl_db, 20.0 * std::log10(1602.0 / 1575.42), 1e-9);
+  EXPECT_NEAR(b1.fspl_db - l1.fspl_db, 20.0 * std::log10(1561.098 / 1575.42), 1e-9);
+  // The system's table row adds its power and slope offsets.
+  for (int s = 0; s < kNumSystems; ++s) {
+    const auto sys = static_cast<GnssSystem>(s);
+    const SystemSignal& ss = system_signal(sys);
+    EXPECT_NEAR(m.cn0_dbhz(r, el, 0.0, sys, kL1Freq_hz) - l1.cn0_dbhz,
+                ss.power_offset_db + ss.slope_offset_db * (1.0 - std::sin(el)), 1e-9);
+  }
 }

@@ -56,5 +56,12 @@ TEST(Carrier, ValidationNamesTheSetting) {
   EXPECT_NO_THROW(validate(CarrierConfig{}));
 }
 
+TEST(Carrier, FllRangeRateNoiseScalesWithTheWavelength) {
+  const CarrierConfig c;
+  const double g1 = kSpeedOfLight_m_s / 1602.0e6;
+  EXPECT_EQ(fll_range_rate_sigma_m_s(40.0, c), fll_range_rate_sigma_m_s(40.0, c, kL1Wavelength_m));
+  EXPECT_NEAR(fll_range_rate_sigma_m_s(40.0, c, g1) / fll_range_rate_sigma_m_s(40.0, c), 1575.42 / 1602.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace gnssemu::world

@@ -50,5 +50,16 @@ TEST(ReceiverClock, IntegratesDriftAndJumpsByMilliseconds) {
   EXPECT_NEAR(walk.drift_s_s(), 1.0e-6 + 2.0e-9, 1e-18);
 }
 
+TEST(OrbitClockProcess, ScalesTheGpsSigmaBySystemSisre) {
+  const GaussMarkovConfig gps{1.2, 1800.0};
+  EXPECT_EQ(orbit_clock_process(gps, GnssSystem::kGps).sigma_m, 1.2);  // GPS exactly as configured
+  EXPECT_EQ(orbit_clock_process(gps, GnssSystem::kGps).tau_s, 1800.0);
+  EXPECT_NEAR(orbit_clock_process(gps, GnssSystem::kGalileo).sigma_m, 1.2 * 0.2 / 0.6, 1e-12);
+  EXPECT_NEAR(orbit_clock_process(gps, GnssSystem::kGlonass).sigma_m, 1.2 * 2.0 / 0.6, 1e-12);
+  EXPECT_NEAR(orbit_clock_process(gps, GnssSystem::kBeiDou).sigma_m, 1.2 * 1.0 / 0.6, 1e-12);
+  EXPECT_EQ(orbit_clock_process(gps, GnssSystem::kGalileo).tau_s, 1800.0);
+  EXPECT_EQ(orbit_clock_process(GaussMarkovConfig{0.0, 60.0}, GnssSystem::kGlonass).sigma_m, 0.0);
+}
+
 }  // namespace
 }  // namespace gnssemu::world
