@@ -11,6 +11,7 @@
 
 #include "config/config_keys.hpp"
 #include "config/config_text.hpp"
+#include "config/device_setup.hpp"
 #include "config/message_names.hpp"
 #include "core/common/error.hpp"
 
@@ -42,8 +43,11 @@ Config parse_config_text(const std::string& toml_text, const std::string& name, 
     throw Error(name, static_cast<int>(e.source().begin.line), "TOML syntax error: " + std::string(e.description()));
   }
   Config c;
+  c.world.systems = SystemSet{};  // unset until [receiver] constellations, then the chip's set
   TableReader root(doc, "", name, base_dir, log);
   read_section(root, kConfigKeys, c);
+  // The generation is known only now.
+  if (c.world.systems.empty()) c.world.systems = chip_systems(c);
   c.source = name;
   return c;
 }

@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "core/protocol/ubx/ubx_gnss.hpp"
+
 namespace gnssemu::config {
 
 protocol::ubx::OutputSetup output_setup(const OutputPortConfig& port) {
@@ -16,11 +18,13 @@ protocol::ubx::OutputSetup output_setup(const OutputPortConfig& port) {
   return o;
 }
 
+SystemSet chip_systems(const Config& config) { return protocol::ubx::gnss_capabilities(config.generation).defaults; }
+
 bool coast_as_no_fix(const Config& config) {
   return config.receiver.filter.coast_report == receiver::CoastReport::kNoFix;
 }
 
-protocol::ubx::DeviceSetup device_setup(const Config& config) {
+protocol::ubx::DeviceSetup device_setup(const Config& config, SystemSet nav_systems) {
   protocol::ubx::DeviceSetup s;
   s.mon_ver = protocol::ubx::mon_ver_of(config.generation);
   s.nav_period_s = 1.0 / config.rate_hz;
@@ -29,7 +33,7 @@ protocol::ubx::DeviceSetup device_setup(const Config& config) {
   s.static_hold_thresh_cm_s = static_cast<std::uint8_t>(std::lround(f.static_hold_speed_m_s * 100.0));
   s.static_hold_max_dist_m = static_cast<std::uint16_t>(std::lround(f.static_hold_max_dist_m));
   s.coast_as_no_fix = coast_as_no_fix(config);
-  s.sky_systems = config.world.systems;
+  s.sky_systems = SystemSet(static_cast<std::uint8_t>(config.world.systems.bits() & nav_systems.bits()));
   for (const OutputPortConfig& p : config.outputs) s.outputs.push_back(output_setup(p));
   return s;
 }

@@ -16,7 +16,13 @@ protocol::ubx::OutputSetup output_setup(const OutputPortConfig& port);
 /// ([receiver.nav] coast_report; DeviceSetup::coast_as_no_fix).
 bool coast_as_no_fix(const Config& config);
 
-/// The chip behind config's outputs, at epoch period 1 / rate_hz.
-protocol::ubx::DeviceSetup device_setup(const Config& config);
+/// The emulated chip's factory CFG-GNSS set (its generation's): the systems
+/// in the sky when [receiver] constellations is not given.
+SystemSet chip_systems(const Config& config);
+
+/// The chip behind config's outputs, at epoch period 1 / rate_hz. Its sky
+/// is [receiver] constellations among nav_systems (the systems the nav data
+/// holds: orbit::systems_of).
+protocol::ubx::DeviceSetup device_setup(const Config& config, SystemSet nav_systems = SystemSet::all());
 
 }  // namespace gnssemu::config

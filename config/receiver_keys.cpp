@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "config/config_keys.hpp"
+#include "config/device_setup.hpp"
 
 namespace gnssemu::config::detail {
 
@@ -362,7 +363,7 @@ void write_state_file(TomlWriter& w, const Field<Config>& f, const Config& c) {
 }
 
 void read_constellations(TableReader& t, const Field<Config>& f, Config& c) {
-  if (t.find(f.key) == nullptr) return;
+  if (t.find(f.key) == nullptr) return;  // parse_config_text gives the chip's set
   const std::string name = t.full_name(f.key);
   SystemSet set;
   t.string_array(f.key, "an array of strings", "RINEX system letters (strings)",
@@ -377,7 +378,7 @@ void read_constellations(TableReader& t, const Field<Config>& f, Config& c) {
 }
 
 void write_constellations(TomlWriter& w, const Field<Config>& f, const Config& c) {
-  if (c.world.systems == WorldConfig{}.systems) return;
+  if (c.world.systems == chip_systems(c)) return;
   std::vector<std::string_view> letters;
   for (const SatNumbering& n : kSatNumbering)  // the table's own letters, in its order
     if (c.world.systems.has(n.system)) letters.emplace_back(&n.letter, 1);
@@ -408,7 +409,7 @@ constexpr Field<Config> kReceiverFields[] = {
                    "the systems the receiver tracks: satellites of the other systems in the nav data are not in "
                    "its sky (docs/models.md \"Every system's broadcast orbits\")",
                    read_constellations, write_constellations)
-        .default_doc("`[\"G\"]`"),
+        .default_doc("the chip's factory set: `m8` G R J S, `m9` G R E C J S"),
     custom<Config>("state_file", "path", "a file the daemon may write (relative: to the config file's folder)",
                    "the emulated chip's saved configuration across gnssemud restarts, as a real module's "
                    "flash/BBR (docs/ubx.md \"Saved configuration\"): written when a host saves (CFG-CFG save or "

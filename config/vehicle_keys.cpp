@@ -11,6 +11,7 @@
 #include <variant>
 
 #include "config/config_keys.hpp"
+#include "config/device_setup.hpp"
 
 namespace gnssemu::config {
 
@@ -189,6 +190,7 @@ ReceiverSettings read_overrides(TableReader& r, const Config& top) {
   Config own = with_receiver_settings(Config{}, receiver_settings(top));
   own.origin = top.origin;  // a profile's models depend on the latitude
   for (const Field<Config>& f : kReceiverKeys.fields) f.read(r, f, own);
+  if (own.world.systems.empty()) own.world.systems = chip_systems(own);  // constellations unset: this chip's set
   validate_at(r.file(), r.line(), [&] {
     world::validate(own.world);
     receiver::validate(own.receiver);

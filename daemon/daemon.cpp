@@ -71,7 +71,8 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       notify_(io),
       allow_(cfg.truth.allow),
       tick_timer_(io) {
-  rigs_.push_back(std::make_unique<Rig>(cfg.truth.vehicle, std::string(config::kDefaultReceiverName), cfg));
+  rigs_.push_back(std::make_unique<Rig>(cfg.truth.vehicle, std::string(config::kDefaultReceiverName), cfg,
+                                        orbit::systems_of(constellation_.nav)));
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
   check_range(output_delay_s_, config::TimeRanges::output_delay_s, cfg.source, "time.output_delay_s");
   power_on_ = kProcessStart;

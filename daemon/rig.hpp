@@ -17,9 +17,10 @@
 namespace gnssemu::daemon {
 
 struct Rig {
-  /// cfg: the configuration whose [receiver] and outputs this rig runs.
-  Rig(std::string vehicle_id, std::string receiver_name, const config::Config& cfg)
-      : vehicle(std::move(vehicle_id)), name(std::move(receiver_name)), device(config::device_setup(cfg)) {}
+  /// cfg: the configuration whose [receiver] and outputs this rig runs;
+  /// nav_systems: the systems the nav data hold (orbit::systems_of).
+  Rig(std::string vehicle_id, std::string receiver_name, const config::Config& cfg, SystemSet nav_systems)
+      : vehicle(std::move(vehicle_id)), name(std::move(receiver_name)), device(config::device_setup(cfg, nav_systems)) {}
 
   std::string vehicle;  ///< the truth packets' vehicle id; "" = any (single-vehicle form)
   std::string name;     ///< the receiver's name on its vehicle

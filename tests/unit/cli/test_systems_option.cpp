@@ -149,16 +149,22 @@ TEST(SystemsOption, CalibrateAcceptsGpsAndNamesWhatItSupports) {
 // nav data serve every system asked for.
 TEST(SystemsOption, BatchTracksTheConfiguredOrChosenSystems) {
   TempDir dir;
-  const std::string cfg = dir.write(
-      "gnssemu.toml", config_text(std::string(GNSSEMU_SOURCE_DIR) + "/config/nav/BRDC00IGS_R_20240100000_01D_MN_gnssemu.rnx.gz"));
+  const std::string nav = std::string(GNSSEMU_SOURCE_DIR) + "/config/nav/BRDC00IGS_R_20240100000_01D_MN_gnssemu.rnx.gz";
+  const std::string cfg = dir.write("gnssemu.toml", config_text(nav));
+  const std::string m9 = dir.write("m9.toml", config_text(nav, "[receiver]\ngeneration = \"m9\"\n"));
   std::string truth = "gps_week,tow_s,lat_deg,lon_deg,height_m\n";
   for (int k = 0; k <= 20; ++k) truth += "2296," + std::to_string(302400 + k) + ",48.8738,2.295,100\n";  // 2024-01-10 12:00
   const std::string truth_path = dir.write("truth.csv", truth);
-  const CliResult gps = run({"batch", "--config", cfg, "--truth", truth_path, "--sats", "-"});
+  // No constellations: the M8's factory set (GPS, GLONASS, QZSS, SBAS; the nav has no SBAS, QZSS is not above Paris).
+  const CliResult m8 = run({"batch", "--config", cfg, "--truth", truth_path, "--sats", "-"});
+  ASSERT_EQ(m8.status, 0) << m8.err;
+  EXPECT_EQ(systems_in(parse_csv(m8.out)), (std::set<char>{'G', 'R'}));
+  EXPECT_NE(m8.err.find("systems G,R,J,S"), std::string::npos) << m8.err;
+  const CliResult gps = run({"batch", "--config", cfg, "--truth", truth_path, "--sats", "-", "--systems", "G"});
   ASSERT_EQ(gps.status, 0) << gps.err;
   EXPECT_EQ(systems_in(parse_csv(gps.out)), std::set<char>{'G'});
-  EXPECT_NE(gps.err.find("systems G"), std::string::npos) << gps.err;
-  const CliResult all = run({"batch", "--config", cfg, "--truth", truth_path, "--sats", "-", "--systems", "G,R,E,C,J"});
+  // Four major systems: a NEO-M9N tracks them all at once.
+  const CliResult all = run({"batch", "--config", m9, "--truth", truth_path, "--sats", "-", "--systems", "G,R,E,C,J"});
   ASSERT_EQ(all.status, 0) << all.err;
   const std::set<char> seen = systems_in(parse_csv(all.out));  // QZSS: not above Paris
   for (const char s : {'G', 'R', 'E', 'C'}) EXPECT_EQ(seen.count(s), 1u) << s;
