@@ -32,6 +32,14 @@ std::vector<nmea::NmeaEncoder> nmea_encoders(const DeviceSetup& setup) {
   return out;
 }
 
+/// Both configurations store id and its payloads differ.
+bool block_differs(const DeviceConfig& a, const DeviceConfig& b, MsgId id) noexcept {
+  const StoredBlock* x = a.stored(id);
+  const StoredBlock* y = b.stored(id);
+  return x != nullptr && y != nullptr &&
+         !std::equal(x->payload().begin(), x->payload().end(), y->payload().begin(), y->payload().end());
+}
+
 bool ports_differ(const PortSettings& a, const PortSettings& b) noexcept {
   return a.mode != b.mode || a.baud_bps != b.baud_bps || a.in_proto_mask != b.in_proto_mask ||
          a.out_proto_mask != b.out_proto_mask || a.tx_ready != b.tx_ready || a.flags != b.flags;
@@ -188,13 +196,7 @@ void Device::diff(Link at, InputResult& r) const noexcept {
   if (gnss_before != nullptr && gnss_now != nullptr && !same_signals(gnss_before->payload(), gnss_now->payload())) {
     r.gnss_changed = true;
   }
-  const StoredBlock* nmea_before = before_.stored(msg::kCfgNmea);
-  const StoredBlock* nmea_now = current_.stored(msg::kCfgNmea);
-  if (nmea_before != nullptr && nmea_now != nullptr &&
-      !std::equal(nmea_before->payload().begin(), nmea_before->payload().end(), nmea_now->payload().begin(),
-                  nmea_now->payload().end())) {
-    r.nmea_config_changed = true;
-  }
+  if (block_differs(before_, current_, msg::kCfgNmea)) r.nmea_config_changed = true;
   if (!(saved_before_ == saved_)) r.saved_changed = true;
 }
 
@@ -205,11 +207,7 @@ void Device::load_saved(const DeviceConfig& saved) {
   boot.reset = Reset{};
   after_input(boot);  // the saved CFG-RATE sets the epoch period
   // A saved CFG-NMEA a host changed replaces the output's configured version and settings.
-  const StoredBlock* factory = defaults_.stored(msg::kCfgNmea);
-  const StoredBlock* now = current_.stored(msg::kCfgNmea);
-  apply_nmea(factory != nullptr && now != nullptr &&
-             !std::equal(factory->payload().begin(), factory->payload().end(), now->payload().begin(),
-                         now->payload().end()));
+  apply_nmea(block_differs(defaults_, current_, msg::kCfgNmea));
 }
 
 SystemSet Device::enabled_systems() const noexcept { return ubx::enabled_systems(current_); }
