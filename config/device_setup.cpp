@@ -33,7 +33,7 @@ protocol::ubx::DeviceSetup device_setup(const Config& config, SystemSet nav_syst
   s.static_hold_thresh_cm_s = static_cast<std::uint8_t>(std::lround(f.static_hold_speed_m_s * 100.0));
   s.static_hold_max_dist_m = static_cast<std::uint16_t>(std::lround(f.static_hold_max_dist_m));
   s.coast_as_no_fix = coast_as_no_fix(config);
-  s.sky_systems = SystemSet(static_cast<std::uint8_t>(config.world.systems.bits() & nav_systems.bits()));
+  s.sky_systems = config.world.systems.intersect(nav_systems);
   for (const OutputPortConfig& p : config.outputs) s.outputs.push_back(output_setup(p));
   return s;
 }

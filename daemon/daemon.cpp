@@ -88,7 +88,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
     }
   }
   restart_receiver(cfg_.receiver.acquisition.start);
-  if (const SystemSet off(static_cast<std::uint8_t>(cfg_.world.systems.bits() & ~rig().device.enabled_systems().bits()));
+  if (const SystemSet off = cfg_.world.systems.minus(rig().device.enabled_systems());
       !off.empty()) {
     spdlog::warn("receiver: constellations {} are in the sky but disabled on the chip (its CFG-GNSS): not tracked "
                  "until a host enables them",

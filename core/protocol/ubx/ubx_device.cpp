@@ -217,7 +217,7 @@ NavRateLimits Device::nav_rate_limits() const noexcept {
 }
 
 void Device::apply_nmea(bool from_cfg_nmea) noexcept {
-  const SystemSet systems(enabled_systems().bits() & sky_systems_.bits());
+  const SystemSet systems = enabled_systems().intersect(sky_systems_);
   for (nmea::NmeaEncoder& e : nmea_) {
     nmea::NmeaSettings s = e.config();
     s.systems = systems;

@@ -80,6 +80,8 @@ TEST(SystemSet, ParseAndPrint) {
   EXPECT_FALSE(parse_systems("G,"));
   EXPECT_FALSE(parse_systems("GR"));
   EXPECT_EQ(SystemSet::all().count(), kNumSystems);
+  EXPECT_EQ(parse_systems("G,R,J,S")->intersect(*parse_systems("G,E,J")), *parse_systems("G,J"));
+  EXPECT_EQ(parse_systems("G,R,J,S")->minus(*parse_systems("G,E,J")), *parse_systems("R,S"));
 }
 
 TEST(SystemTable, RowsAndCarriers) {
