@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "core/common/error.hpp"
@@ -55,6 +56,8 @@ void Receiver::restart(const StartState& keep) noexcept {
   nav_.reset();
   for (HatchFilter& h : hatch_) h.reset();
   smoothed_last_.fill(false);
+  raw_.num_meas = 0;
+  lock_time_s_.fill(0.0);
   if (!keep.position) {
     have_fix_ = false;
     have_3d_ = false;
@@ -176,6 +179,45 @@ void Receiver::measurement_stage(const world::Observables& obs, double dt_s) noe
   smoothed_last_ = smoothed_now;
 }
 
+void Receiver::raw_stage(const world::Observables& obs, double dt_s) noexcept {
+  raw_.t_rx = obs.t_rx_local;
+  raw_.time_valid = fix_.time_valid;
+  raw_.leap_seconds = fix_.leap_seconds;
+  raw_.leap_seconds_valid = fix_.time_valid;
+  raw_.clock_reset = false;
+  raw_.num_meas = 0;
+  std::array<bool, kNumSats> locked{};
+  for (int i = 0; i < obs.num_sats; ++i) {
+    const world::SatObservable& o = obs.sats[i];
+    const std::size_t k = static_cast<std::size_t>(o.sat.index());
+    if (!systems_.has(o.sat.system) || !tracked_[k]) continue;
+    const std::optional<SignalId> sig = signal_of(o.sat.system, 0);
+    if (!sig) continue;
+    RawMeasurement& m = raw_.meas[static_cast<std::size_t>(raw_.num_meas++)];
+    m = RawMeasurement{};
+    m.sat = o.sat;
+    m.signal = *sig;
+    m.glonass_channel = o.eph != nullptr ? o.eph->glo_channel : 0;
+    m.pseudorange_m = o.pseudorange_m;
+    m.doppler_hz = o.doppler_hz;
+    m.cn0_dbhz = std::max(o.cn0_dbhz, kMinReportedCn0_dbhz);
+    m.pseudorange_valid = true;
+    if (o.carrier_valid) {
+      const bool continuous = o.carrier_discontinuities == raw_discontinuities_[k] && !acq_.new_lock(o.sat);
+      lock_time_s_[k] = continuous ? lock_time_s_[k] + dt_s : 0.0;
+      raw_discontinuities_[k] = o.carrier_discontinuities;
+      locked[k] = true;
+      m.carrier_phase_cycles = o.carrier_phase_cycles;
+      m.lock_time_s = lock_time_s_[k];
+      m.carrier_valid = true;
+      // The Costas loop's half-cycle ambiguity is resolved once a data preamble is found: within one 6 s subframe.
+      m.half_cycle_resolved = m.lock_time_s >= 6.0;
+    }
+  }
+  for (std::size_t k = 0; k < locked.size(); ++k)
+    if (!locked[k]) lock_time_s_[k] = 0.0;
+}
+
 const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs) noexcept {
   double dt_s = 0.0;
   if (started_) {
@@ -200,6 +242,8 @@ const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs)
   if (!obs.antenna_connected) {
     acq_.lose_all(dt_s);
     smoothed_last_.fill(false);
+    raw_.num_meas = 0;
+    lock_time_s_.fill(0.0);
     fix_.time_valid = modelled ? acq_.time_known() : fix_.time_valid;
     no_fix_epoch();
     if (config_.filter.type == NavFilterType::kKalman) {
@@ -216,6 +260,7 @@ const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs)
   tracking_stage(t, obs, dt_s);
   fix_.time_valid = modelled ? acq_.time_known() : true;
   measurement_stage(obs, dt_s);
+  raw_stage(obs, dt_s);
 
   // Its own corrections and solution, warm-started from the last fix.
   in_.have_prior = have_fix_;

@@ -16,6 +16,7 @@
 #include "core/receiver/fix.hpp"
 #include "core/receiver/hatch_filter.hpp"
 #include "core/receiver/navigator.hpp"
+#include "core/receiver/raw_measurements.hpp"
 #include "core/receiver/receiver_config.hpp"
 #include "core/receiver/solver.hpp"
 #include "core/world/observables.hpp"
@@ -34,6 +35,9 @@ public:
   const Fix& step(const time::GpsTime& t, const world::Observables& obs) noexcept;
 
   const Fix& last_fix() const noexcept { return fix_; }
+  /// The raw measurements of the last step (RXM-RAWX, RINEX, RTCM MSM):
+  /// every tracked signal of an enabled system, on the receiver's clock.
+  const RawEpoch& raw() const noexcept { return raw_; }
   const ReceiverConfig& config() const noexcept { return config_; }
 
   /// Restart navigation (CFG-RST): every satellite is lost and searched
@@ -72,6 +76,8 @@ private:
   /// from the usable ones (carrier-smoothed with the filter).
   void measurement_stage(const world::Observables& obs, double dt_s) noexcept;
   void no_fix_epoch() noexcept;
+  /// raw_ from the observables of the tracked satellites.
+  void raw_stage(const world::Observables& obs, double dt_s) noexcept;
   void fill_solution() noexcept;
   /// No fix beyond the operational limits or the dynamic model's sanity limits.
   bool within_limits() const noexcept;
@@ -95,6 +101,11 @@ private:
   std::array<HatchFilter, kNumSats> hatch_{};
   std::array<std::uint32_t, kNumSats> discontinuities_{};  ///< the world's count at the last update
   std::array<bool, kNumSats> smoothed_last_{};  ///< smoothed at the previous epoch
+
+  // Raw measurements.
+  RawEpoch raw_;
+  std::array<double, kNumSats> lock_time_s_{};  ///< carrier tracked without a discontinuity, s
+  std::array<std::uint32_t, kNumSats> raw_discontinuities_{};  ///< the world's count at the last raw epoch
 
   // Solution.
   Solver solver_;

@@ -315,5 +315,45 @@ TEST(ReceiverBasic, InvalidConfigThrows) {
   EXPECT_EQ(f.num_sats, 0);
 }
 
+TEST(ReceiverBasic, RawMeasurementsFollowTheTrackedSatellites) {
+  // Every tracked satellite has one L1-band measurement on the receiver's
+  // clock; its carrier lock time grows by the epoch interval while the
+  // world's phase stays continuous, and the phase moves with the range.
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 6));
+  Pipeline p(store, test::snapshot());
+  const Lla lla{0.6, 0.2, 50.0};
+  double prev_lock_s = -1.0, prev_pr_m = 0.0, prev_cp_m = 0.0;
+  SatId first;
+  for (int k = 1; k <= 10; ++k) {
+    const Fix& f = p.step(kToe + 1.0 * k, static_truth(lla, kToe + 1.0 * k));
+    const RawEpoch& raw = p.receiver().raw();
+    EXPECT_EQ(raw.num_meas, f.num_tracked) << k;
+    EXPECT_TRUE(raw.time_valid);
+    ASSERT_GT(raw.num_meas, 0);
+    for (int i = 0; i < raw.num_meas; ++i) {
+      const RawMeasurement& m = raw.meas[static_cast<std::size_t>(i)];
+      EXPECT_EQ(signal_info(m.signal).system, m.sat.system);
+      EXPECT_EQ(signal_info(m.signal).band, 0);
+      EXPECT_TRUE(m.pseudorange_valid);
+      EXPECT_GT(m.pseudorange_m, 1.9e7);
+      EXPECT_LT(m.pseudorange_m, 2.9e7);
+    }
+    const RawMeasurement& m0 = raw.meas[0];
+    if (k == 1) first = m0.sat;
+    if (m0.sat != first || !m0.carrier_valid) continue;
+    if (prev_lock_s >= 0.0) {
+      EXPECT_NEAR(m0.lock_time_s, prev_lock_s + 1.0, 1e-9) << k;
+      // Phase and code change alike (code-carrier divergence only from the ionosphere and noise).
+      const double dcp_m = m0.carrier_phase_cycles * kL1Wavelength_m - prev_cp_m;
+      EXPECT_NEAR(dcp_m, m0.pseudorange_m - prev_pr_m, 10.0) << k;
+    }
+    prev_lock_s = m0.lock_time_s;
+    prev_pr_m = m0.pseudorange_m;
+    prev_cp_m = m0.carrier_phase_cycles * kL1Wavelength_m;
+  }
+  EXPECT_GE(prev_lock_s, 6.0);
+  EXPECT_TRUE(p.receiver().raw().meas[0].half_cycle_resolved);
+}
+
 }  // namespace
 }  // namespace gnssemu::receiver::receiver_basic_test
