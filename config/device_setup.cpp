@@ -38,4 +38,16 @@ protocol::ubx::DeviceSetup device_setup(const Config& config, SystemSet nav_syst
   return s;
 }
 
+void apply_chip_settings(const protocol::ubx::Device& device, receiver::Receiver& rx) noexcept {
+  // The CFG-NAV5 handler accepted only dynModels the receiver knows.
+  const protocol::ubx::wire::CfgNav5& n = device.config().nav5;
+  if (const auto m = receiver::dynamic_model_from_ubx(n.dynModel)) rx.set_dynamic_model(*m);
+  rx.set_static_hold(0.01 * n.staticHoldThresh, n.staticHoldMaxDist);
+  rx.set_systems(device.enabled_systems());
+  const protocol::ubx::NavRateLimits lim = device.nav_rate_limits();
+  const double period_s = device.config().nav_period_s();
+  const bool capped = period_s > 0.0 && 1.0 / period_s > lim.sat_cap_above_hz + 1e-9;
+  rx.set_max_solution_sats(capped ? lim.max_solution_sats : kMaxSatsInView);
+}
+
 }  // namespace gnssemu::config

@@ -5,6 +5,7 @@
 // section says and saved as the chip's stored configuration.
 #include "config/config.hpp"
 #include "core/protocol/ubx/ubx_device.hpp"
+#include "core/receiver/receiver.hpp"
 
 namespace gnssemu::config {
 
@@ -24,5 +25,12 @@ SystemSet chip_systems(const Config& config);
 /// is [receiver] constellations among nav_systems (the systems the nav data
 /// holds: orbit::systems_of).
 protocol::ubx::DeviceSetup device_setup(const Config& config, SystemSet nav_systems = SystemSet::all());
+
+/// What the chip's configuration makes the receiver do, as the host set it:
+/// CFG-NAV5 dynModel and static hold, the systems CFG-GNSS / CFG-SIGNAL-*
+/// enable, and the solution's satellite cap at the CFG-RATE navigation rate
+/// (NavRateLimits). The daemon and batch call it at start and after every
+/// change of those settings.
+void apply_chip_settings(const protocol::ubx::Device& device, receiver::Receiver& rx) noexcept;
 
 }  // namespace gnssemu::config

@@ -124,16 +124,7 @@ void Daemon::restart_receiver(receiver::StartMode start) {
   apply_chip_settings();
 }
 
-void Daemon::apply_chip_settings() {
-  // CFG-NAV5 dynModel and static hold drive the receiver as on an M8; the
-  // handler accepted only dynModels the receiver knows.
-  const protocol::ubx::wire::CfgNav5& n = rig().device.config().nav5;
-  receiver::Receiver& rx = rig().receiver->receiver();
-  if (const auto m = receiver::dynamic_model_from_ubx(n.dynModel)) rx.set_dynamic_model(*m);
-  rx.set_static_hold(0.01 * n.staticHoldThresh, n.staticHoldMaxDist);
-  // CFG-GNSS / CFG-SIGNAL-*: the receiver tracks the enabled systems among the modelled ones.
-  rx.set_systems(rig().device.enabled_systems());
-}
+void Daemon::apply_chip_settings() { config::apply_chip_settings(rig().device, rig().receiver->receiver()); }
 
 void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& result) {
   if (result.nav_rate_changed || result.reset) on_nav_period(src);
@@ -428,8 +419,9 @@ void Daemon::emit_epoch(const time::GpsTime& t, const world::Truth& truth) {
 }
 
 void Daemon::on_nav_period(std::size_t src) {
-  // The emulator runs 1..10 Hz GPS-only (docs/configuration.md rate_hz); the
-  // device gives a host asking for more or less the nearest rate it runs.
+  apply_chip_settings();  // the solution's satellite cap follows the chip's rate
+  // The emulator runs 1..10 Hz (docs/configuration.md rate_hz); the device
+  // gives a host asking for more or less the nearest rate it runs.
   const double period_s = rig().device.config().nav_period_s();
   const double p = rig().device.epoch_period_s();
   const protocol::ubx::wire::CfgRate rate = rig().device.config().rate;

@@ -177,6 +177,29 @@ void Receiver::measurement_stage(const world::Observables& obs, double dt_s) noe
     meas_sat_[static_cast<std::size_t>(in_.num_meas++)] = p;
   }
   smoothed_last_ = smoothed_now;
+  if (in_.num_meas > max_solution_sats_) cap_measurements();
+}
+
+void Receiver::cap_measurements() noexcept {
+  // Which satellites the real chip keeps is not documented: the highest
+  // (the least multipath and troposphere) is our estimate.
+  std::array<double, kMaxSatsInView> el{};
+  const int n = in_.num_meas;
+  for (int i = 0; i < n; ++i) el[static_cast<std::size_t>(i)] = el_rad_[static_cast<std::size_t>(meas_sat_[static_cast<std::size_t>(i)].index())];
+  std::array<double, kMaxSatsInView> sorted = el;
+  std::nth_element(sorted.begin(), sorted.begin() + (n - max_solution_sats_), sorted.begin() + n);
+  const double threshold = sorted[static_cast<std::size_t>(n - max_solution_sats_)];
+  int above = 0;
+  for (int i = 0; i < n; ++i) above += el[static_cast<std::size_t>(i)] > threshold;
+  int ties_left = max_solution_sats_ - above;  // equal elevations: the first in SatId order
+  int kept = 0;
+  for (int i = 0; i < n; ++i) {
+    const double e = el[static_cast<std::size_t>(i)];
+    if (e < threshold || (e == threshold && ties_left-- <= 0)) continue;
+    in_.meas[static_cast<std::size_t>(kept)] = in_.meas[static_cast<std::size_t>(i)];
+    meas_sat_[static_cast<std::size_t>(kept++)] = meas_sat_[static_cast<std::size_t>(i)];
+  }
+  in_.num_meas = kept;
 }
 
 void Receiver::raw_stage(const world::Observables& obs, double dt_s) noexcept {

@@ -52,6 +52,10 @@ public:
   /// u-blox with that system disabled (every system after construction).
   void set_systems(SystemSet systems) noexcept { systems_ = systems; }
   SystemSet systems() const noexcept { return systems_; }
+  /// At most n satellites in the solution (the highest; kMaxSatsInView: no
+  /// cap), as the NEO-M9N above 8 Hz (protocol::ubx::NavRateLimits).
+  void set_max_solution_sats(int n) noexcept { max_solution_sats_ = n < 4 ? 4 : n; }
+  int max_solution_sats() const noexcept { return max_solution_sats_; }
 
   /// GPS - UTC to report (e.g. the nav header's LEAP SECONDS); without it
   /// the built-in table (time::leap_seconds_at) is used.
@@ -76,6 +80,8 @@ private:
   /// from the usable ones (carrier-smoothed with the filter).
   void measurement_stage(const world::Observables& obs, double dt_s) noexcept;
   void no_fix_epoch() noexcept;
+  /// Keep the max_solution_sats_ highest of the solver's measurements (SatId order kept).
+  void cap_measurements() noexcept;
   /// raw_ from the observables of the tracked satellites.
   void raw_stage(const world::Observables& obs, double dt_s) noexcept;
   void fill_solution() noexcept;
@@ -89,6 +95,7 @@ private:
   Acquisition acq_;
   // Per satellite (SatId::index()).
   SystemSet systems_ = SystemSet::all();
+  int max_solution_sats_ = kMaxSatsInView;
   std::array<bool, kNumSats> tracked_{};
   std::array<bool, kNumSats> usable_{};
   std::array<double, kNumSats> el_rad_{};  ///< elevation this epoch (channel priority)

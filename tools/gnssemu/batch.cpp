@@ -52,7 +52,7 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
   // The daemon's emulated u-blox; its first output (a factory UART1 when
   // there is none) writes the NMEA and UBX logs. It powers on at the first epoch.
   protocol::ubx::Device device(config::device_setup(config, orbit::systems_of(nav)));
-  rx->receiver().set_systems(device.enabled_systems());  // as the daemon: the chip's CFG-GNSS
+  config::apply_chip_settings(device, rx->receiver());  // as the daemon: the chip's CFG-GNSS, NAV5, rate
   protocol::ubx::MessageList messages;
   time::GpsTime power_on;
   fmt::memory_buffer row;

@@ -268,6 +268,21 @@ TEST(ReceiverGenerationConfig, M9ReachesTheChipThroughTheDaemonsSetup) {
   EXPECT_EQ(device_setup(parse(kBase)).mon_ver.generation, protocol::ubx::Generation::kM8);
 }
 
+TEST(ReceiverGenerationConfig, ChipRateCapsTheM9Solution) {
+  // The NEO-M9N above 8 Hz uses at most 16 satellites; the M8 has no cap
+  // within the emulator's 10 Hz. apply_chip_settings is what the daemon and batch run.
+  const auto cap = [](const std::string& receiver_keys) {
+    const Config c = parse(kBase + "[receiver]\n" + receiver_keys);
+    protocol::ubx::Device chip(device_setup(c));
+    receiver::Receiver rx(c.receiver);
+    apply_chip_settings(chip, rx);
+    return rx.max_solution_sats();
+  };
+  EXPECT_EQ(cap("generation = \"m9\"\nrate_hz = 10\n"), 16);
+  EXPECT_EQ(cap("generation = \"m9\"\nrate_hz = 8\n"), kMaxSatsInView);
+  EXPECT_EQ(cap("generation = \"m8\"\nrate_hz = 10\n"), kMaxSatsInView);
+}
+
 TEST(ReceiverDynamicsConfig, GeodeticProfileSolvesSnapshotsUnlessTheFileSaysOtherwise) {
   EXPECT_EQ(parse(kBase + "[receiver]\nprofile = \"geodetic\"\n").receiver.filter.type,
             receiver::NavFilterType::kNone);

@@ -355,5 +355,38 @@ TEST(ReceiverBasic, RawMeasurementsFollowTheTrackedSatellites) {
   EXPECT_TRUE(p.receiver().raw().meas[0].half_cycle_resolved);
 }
 
+TEST(ReceiverBasic, SolutionSatelliteCapKeepsTheHighest) {
+  // The NEO-M9N above 8 Hz uses at most 16 satellites: the cap keeps the
+  // highest ones, the others stay tracked and unused, and the fix holds.
+  std::vector<orbit::Ephemeris> mixed = test::nominal_constellation(kToe, 8);
+  for (std::size_t i = 0; i < mixed.size(); i += 2) {
+    mixed[i].sat = SatId(GnssSystem::kGalileo, mixed[i].sat.number);
+    mixed[i].gal_data_sources = 517;
+  }
+  const orbit::EphemerisStore store(mixed);
+  PipelineConfig cfg = test::snapshot();
+  cfg.receiver.max_channels = kMaxSatsInView;
+  cfg.world.systems = SystemSet::only(GnssSystem::kGps).with(GnssSystem::kGalileo);
+  Pipeline p(store, cfg);
+  const Lla lla{0.3, 0.1, 0.0};
+  const Fix& f0 = p.step(kToe + 1.0, static_truth(lla, kToe + 1.0));
+  ASSERT_GT(f0.num_used, 8);
+  p.receiver().set_max_solution_sats(8);
+  const Fix& f = p.step(kToe + 2.0, static_truth(lla, kToe + 2.0));
+  EXPECT_EQ(f.num_used, 8);
+  EXPECT_NE(f.type, FixType::kNone);
+  double lowest_used = 10.0, highest_unused = -10.0;
+  for (int i = 0; i < f.num_sats; ++i) {
+    const SatInfo& si = f.sats[i];
+    if (!si.tracked) continue;
+    if (si.used) lowest_used = std::min(lowest_used, si.el_rad);
+    else highest_unused = std::max(highest_unused, si.el_rad);
+  }
+  EXPECT_GE(lowest_used, highest_unused);
+  expect_consistent(f);
+  p.receiver().set_max_solution_sats(kMaxSatsInView);
+  EXPECT_EQ(p.step(kToe + 3.0, static_truth(lla, kToe + 3.0)).num_used, f0.num_used);
+}
+
 }  // namespace
 }  // namespace gnssemu::receiver::receiver_basic_test
