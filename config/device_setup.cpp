@@ -18,7 +18,7 @@ protocol::ubx::OutputSetup output_setup(const OutputPortConfig& port) {
   return o;
 }
 
-SystemSet chip_systems(const Config& config) { return protocol::ubx::gnss_capabilities(config.generation).defaults; }
+SystemSet chip_systems(const Config& config) { return protocol::ubx::gnss_capabilities(config.generation).supported; }
 
 bool coast_as_no_fix(const Config& config) {
   return config.receiver.filter.coast_report == receiver::CoastReport::kNoFix;

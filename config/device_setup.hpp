@@ -17,8 +17,9 @@ protocol::ubx::OutputSetup output_setup(const OutputPortConfig& port);
 /// ([receiver.nav] coast_report; DeviceSetup::coast_as_no_fix).
 bool coast_as_no_fix(const Config& config);
 
-/// The emulated chip's factory CFG-GNSS set (its generation's): the systems
-/// in the sky when [receiver] constellations is not given.
+/// Every system the emulated chip can track (its generation's): the systems
+/// in the sky when [receiver] constellations is not given, so that a host
+/// enabling one by CFG-GNSS / CFG-SIGNAL finds its satellites there.
 SystemSet chip_systems(const Config& config);
 
 /// The chip behind config's outputs, at epoch period 1 / rate_hz. Its sky

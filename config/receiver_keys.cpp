@@ -406,10 +406,11 @@ constexpr Field<Config> kReceiverFields[] = {
                       "VALGET/VALDEL beside the legacy CFG messages, MON-RF, SEC-SIG; no NAV-SVINFO)"),
     custom<Config>("constellations", "", "RINEX letters `G` GPS, `R` GLONASS, `E` Galileo, `C` BeiDou, `J` QZSS, "
                    "`S` SBAS; at least one, no repeats",
-                   "the systems the receiver tracks: satellites of the other systems in the nav data are not in "
-                   "its sky (docs/models.md \"Every system's broadcast orbits\")",
+                   "the systems in the receiver's sky: satellites of the other systems in the nav data are not "
+                   "modelled (docs/models.md \"Every system's broadcast orbits\"). The chip tracks those of them "
+                   "its CFG-GNSS / CFG-SIGNAL enables (factory: `m8` G R J S, `m9` all; a host may change it)",
                    read_constellations, write_constellations)
-        .default_doc("the chip's factory set: `m8` G R J S, `m9` G R E C J S"),
+        .default_doc("every system the chip can track: G R E C J S"),
     custom<Config>("state_file", "path", "a file the daemon may write (relative: to the config file's folder)",
                    "the emulated chip's saved configuration across gnssemud restarts, as a real module's "
                    "flash/BBR (docs/ubx.md \"Saved configuration\"): written when a host saves (CFG-CFG save or "

@@ -90,8 +90,8 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
   restart_receiver(cfg_.receiver.acquisition.start);
   if (const SystemSet off = cfg_.world.systems.minus(rig().device.enabled_systems());
       !off.empty()) {
-    spdlog::warn("receiver: constellations {} are in the sky but disabled on the chip (its CFG-GNSS): not tracked "
-                 "until a host enables them",
+    spdlog::info("receiver: constellations {} are in the sky but off on the chip (its CFG-GNSS): tracked once a "
+                 "host enables them",
                  systems_text(off).data());
   }
   spdlog::info("receiver: {} start at power-on", start_name(cfg_.receiver.acquisition.start));

@@ -240,6 +240,9 @@ K_NAVSPG_FIXMODE, K_NAVSPG_UTCSTANDARD, K_NAVSPG_DYNMODEL = 0x20110011, 0x201100
 K_ODO = (0x10220001, 0x10220002, 0x10220003, 0x10220004)  # USE_ODO, USE_COG, OUTLPVEL, OUTLPCOG
 K_ITFM_ENABLE, K_RATE_MEAS, K_RATE_NAV, K_RATE_TIMEREF = 0x1041000D, 0x30210001, 0x30210002, 0x20210003
 K_NAVHPG_DGNSSMODE = 0x20140011
+# CFG-SIGNAL-*_ENA (multi-gnss.md §8; PX4 configureDevice sends these five, then SBAS).
+K_SIGNAL_GPS_ENA, K_SIGNAL_SBAS_ENA, K_SIGNAL_GAL_ENA, K_SIGNAL_BDS_ENA, K_SIGNAL_QZSS_ENA, K_SIGNAL_GLO_ENA = (
+    0x1031001F, 0x10310020, 0x10310021, 0x10310022, 0x10310024, 0x10310025)
 # CFG-MSGOUT I2C ids; PX4's cfgValsetPort sets UART1 (+1) and USB (+3).
 K_MSGOUT_NAV_PVT, K_MSGOUT_NAV_DOP, K_MSGOUT_NAV_SAT, K_MSGOUT_NAV_STATUS, K_MSGOUT_MON_RF, K_MSGOUT_RXM_RTCM = \
     0x20910006, 0x20910038, 0x20910015, 0x2091001A, 0x20910359, 0x20910268
@@ -376,6 +379,28 @@ def ardupilot_probe(fd, path, probe):
 
 
 ARDUPILOT_RATES = {(0x01, 0x07): 1, (0x01, 0x03): 1, (0x01, 0x06): 1, (0x01, 0x12): 1, (0x01, 0x04): 2, (0x0A, 0x09): 2}
+
+
+def ardupilot_cfg_gnss(polled, mode):
+    """ArduPilot's CFG-GNSS for GPS_GNSS_MODE mode (AP_GPS_UBLOX.cpp,
+    MSG_CFG_GNSS), from the polled payload: a wanted system (bit = gnssId)
+    gets resTrkCh (numTrkChHw - 3) / (2 * systems other than SBAS), maxTrkCh
+    numTrkChHw (Galileo on an M8: 8; SBAS 1/3) and the enable bit; the others
+    0/0 without it (docs/ubx.md "What the hosts send")."""
+    out = bytearray(polled)
+    count = sum(1 for i in range(7) if (mode >> i) & 1 and i != 1)
+    hw = out[1]
+    for b in range(out[3]):
+        o = 4 + 8 * b
+        g = out[o]
+        if (mode >> g) & 1:
+            out[o + 1] = 1 if g == 1 else (hw - 3) // (count * 2)
+            out[o + 2] = 3 if g == 1 else 8 if g == 2 else hw
+            out[o + 4] |= 0x01
+        else:
+            out[o + 1] = out[o + 2] = 0
+            out[o + 4] &= 0xFE
+    return bytes(out)
 
 
 def ardupilot_startup(s, fd, path, after_msg_rates=None, fix_limit_s=4.0):

@@ -42,6 +42,12 @@ Cases (each bounded, every process killed and the temp dir removed on exit):
   nav5       CFG-NAV5 dynModel drives the receiver: on the demo circle
              (5 m/s) NAV-PVT gSpeed is ~5 m/s, exactly 0 with the stationary
              model (velocity restricted to 0), ~5 m/s again with automotive
+  px4_m9_gnss, ardupilot_gnss, gpsd_m9_sky
+             on the multi-GNSS nav (--nav-mgnss): PX4's GPS_1_GNSS = GPS +
+             Galileo on the M9 (CFG-SIGNAL VALSET) and ArduPilot's
+             GPS_GNSS_MODE = 5 on the M8 (CFG-GNSS) leave exactly those
+             systems in NAV-SAT / NAV-SVINFO after the chip's restart, with a
+             fix; gpsd 3.22 reports SKY gnssid for every system of the M9
   cold_start gpsd (read-only, NMEA) reads the pty; after the power-on hot
              start's fix (mode 3) a host sends CFG-RST cold start: gpsd sees
              no fix (mode 1) for about the M8's cold TTFF (data sheet 29 s,
@@ -66,7 +72,8 @@ import time
 
 from itlib import RigBase, free_port
 from ubx_startup_faults import case_ardupilot_faults, case_px4_faults
-from ubx_host import (ARDUPILOT_M9_RATES, K_MSGOUT_MON_RF, K_MSGOUT_NAV_PVT, K_NAVSPG_DYNMODEL, K_RATE_MEAS, K_UART1_BAUDRATE,
+from ubx_host import (ARDUPILOT_M9_RATES, is_ubx, K_SIGNAL_BDS_ENA, K_SIGNAL_GAL_ENA, K_SIGNAL_GLO_ENA, K_SIGNAL_GPS_ENA,
+                      K_SIGNAL_QZSS_ENA, K_SIGNAL_SBAS_ENA, ardupilot_cfg_gnss, valset, K_MSGOUT_MON_RF, K_MSGOUT_NAV_PVT, K_NAVSPG_DYNMODEL, K_RATE_MEAS, K_UART1_BAUDRATE,
                       PX4_M9_RATE_MEAS_MS, Stream, ack, ardupilot_rates, ardupilot_startup, ardupilot_startup_m9, frame, is_ack_for, nmea,
                       poll_cfg, pvt_fix_ok, px4_rates, px4_startup, px4_startup_m9, send, set_cfg, split_stream,
                       stty_speed, valget_values)
@@ -74,7 +81,7 @@ import tty
 
 ORIGIN = (48.8738, 2.2950, 100.0)
 CASE_LIMIT_S = 60
-CASE_LIMITS_S = {"cold_start": 100, "power_on_cold": 100}  # a cold TTFF (~30 s) plus gpsd's start
+CASE_LIMITS_S = {"cold_start": 100, "power_on_cold": 100, "ardupilot_gnss": 100}  # a cold TTFF (~30 s) plus gpsd's start
 
 # --- rig ---------------------------------------------------------------------
 
@@ -82,6 +89,7 @@ class Rig(RigBase):
     def __init__(self, args):
         super().__init__("gnssemu-ubx-it-")
         self.args = args
+        self.nav = None  # a case's own nav file (the multi-GNSS one); None: --nav
         self.fds = []
         self.banner = []
 
@@ -95,7 +103,7 @@ lat_deg = {ORIGIN[0]}
 lon_deg = {ORIGIN[1]}
 height_m = {ORIGIN[2]}
 [nav]
-file = "{os.path.abspath(self.args.nav)}"
+file = "{os.path.abspath(self.nav or self.args.nav)}"
 [receiver]
 rate_hz = {rate_hz}
 {receiver_toml}
@@ -750,13 +758,140 @@ def case_jamming(rig):
     # receiver may add its own terms to the rise.
 
 
+
+# NAV-SAT (0x01 0x35): 8-byte header, 12 bytes per satellite: gnssId, svId, cno, elev, azim, prRes, flags (bit 3 svUsed).
+def nav_sat_systems(m):
+    n = m[6 + 5]
+    sats = [(m[6 + 8 + 12 * i], m[6 + 9 + 12 * i], struct.unpack_from("<I", m, 6 + 16 + 12 * i)[0]) for i in range(n)]
+    return {g for g, _, _ in sats}, {g for g, _, f in sats if f & 0x08}
+
+
+GNSS_NAMES = {0: "GPS", 1: "SBAS", 2: "Galileo", 3: "BeiDou", 5: "QZSS", 6: "GLONASS"}
+
+
+def names(ids):
+    return "+".join(GNSS_NAMES.get(g, str(g)) for g in sorted(ids))
+
+
+def case_px4_m9_gnss(rig):
+    """PX4 with GPS_1_GNSS = GPS + Galileo (mask 5) on an M9N in a four-system
+    sky: before, NAV-SAT lists GPS, GLONASS, Galileo and BeiDou; PX4's
+    CFG-SIGNAL VALSETs (configureDevice: the five ENA keys, QZSS with GPS, then
+    SBAS) are ACKed, the chip restarts tracking, and from then NAV-SAT lists
+    GPS, Galileo and QZSS only, with a fix on them."""
+    rig.nav = rig.args.nav_mgnss
+    path, out = pty_output(rig)
+    rig.start_daemon(out, receiver_toml=M9)
+    fd = rig.open_tty(path)
+    s = Stream(fd)
+    px4_startup_m9(s, fd, path)
+    s.wait_for(pvt_fix_ok, 6.0, "the first gnssFixOK")
+    before = set()
+    for _, k, m in s.collect(2.5):
+        if k == "ubx" and m[2:4] == b"\x01\x35":
+            before |= nav_sat_systems(m)[0]
+    assert {0, 2, 3, 6} <= before, f"NAV-SAT before the restriction lists {names(before)}"
+    for pairs in ([(K_SIGNAL_GPS_ENA, 1), (K_SIGNAL_QZSS_ENA, 1), (K_SIGNAL_GAL_ENA, 1), (K_SIGNAL_BDS_ENA, 0),
+                   (K_SIGNAL_GLO_ENA, 0)], [(K_SIGNAL_SBAS_ENA, 0)]):
+        send(fd, frame(0x06, 0x8A, valset(pairs)))
+        m = s.wait_for(is_ack_for(0x06, 0x8A), 1.0, "reply to PX4's CFG-SIGNAL VALSET")[1]
+        assert m == ack(0x06, 0x8A), f"CFG-SIGNAL VALSET: got {m.hex()}"
+    s.wait_for(pvt_fix_ok, 8.0, "gnssFixOK after the GNSS restart")
+    after, used = set(), set()
+    pvts = 0
+    for _, k, m in s.collect(2.5):
+        if k == "ubx" and m[2:4] == b"\x01\x35":
+            seen, u = nav_sat_systems(m)
+            after |= seen
+            used |= u
+        pvts += k == "ubx" and m[2:4] == b"\x01\x07" and m[6 + 21] & 1
+    assert after and after <= {0, 2, 5}, f"NAV-SAT after GPS_1_GNSS = GPS + Galileo lists {names(after)}"
+    assert {0, 2} <= used, f"satellites used after the restriction: {names(used)}"
+    assert pvts > 0, "no NAV-PVT with gnssFixOK after the restriction"
+    print(f"  px4_m9_gnss: NAV-SAT {names(before)} -> {names(after)} (used {names(used)}) after PX4's "
+          f"CFG-SIGNAL VALSETs (ACKed); {pvts} NAV-PVT with gnssFixOK in 2.5 s")
+
+
+def svinfo_systems(m):
+    """Systems of a NAV-SVINFO's channels by the M8's svid ranges (docs/ubx.md)."""
+    def system(svid):
+        if 1 <= svid <= 32: return 0
+        if 33 <= svid <= 64 or 159 <= svid <= 163: return 3
+        if 65 <= svid <= 96: return 6
+        if 120 <= svid <= 158: return 1
+        if 193 <= svid <= 202: return 5
+        if 211 <= svid <= 246: return 2
+        return -1
+    n = m[6 + 4]
+    chans = [(m[6 + 8 + 12 * i + 1], m[6 + 8 + 12 * i + 2]) for i in range(n)]
+    return {system(sv) for sv, _ in chans}, {system(sv) for sv, f in chans if f & 1}
+
+
+def case_ardupilot_gnss(rig):
+    """ArduPilot with GPS_GNSS_MODE = 5 (GPS + Galileo) on the M8 in a
+    four-system sky: after its start-up it polls CFG-GNSS and sends it back
+    with its channel split (AP_GPS_UBLOX.cpp MSG_CFG_GNSS); ACKed, the chip
+    restarts tracking, and NAV-SVINFO then lists GPS and Galileo only (the
+    factory GLONASS gone), with a fix."""
+    rig.nav = rig.args.nav_mgnss
+    path, out = pty_output(rig)
+    rig.start_daemon(out)
+    fd = rig.open_tty(path)
+    s = Stream(fd)
+    _, sv = ardupilot_startup(s, fd, path, fix_limit_s=6.0)
+    before = svinfo_systems(sv)[0]
+    assert 6 in before and 2 not in before, f"factory M8 NAV-SVINFO lists {names(before)}"
+    gnss = poll_cfg(s, fd, 0x3E, b"")
+    set_cfg(s, fd, 0x3E, ardupilot_cfg_gnss(gnss, 5))
+    s.wait_for(pvt_fix_ok, 8.0, "gnssFixOK after the GNSS restart")
+    t0 = time.monotonic()
+    # Galileo was off: it is acquired after the restart (the acquisition
+    # model decides when it is used).
+    while True:
+        time.sleep(1.0)
+        send(fd, frame(0x01, 0x30))
+        sv = s.wait_for(is_ubx(0x01, 0x30), 2.0, "NAV-SVINFO poll")[1]
+        after, used = svinfo_systems(sv)
+        assert after <= {0, 2}, f"NAV-SVINFO after GPS_GNSS_MODE 5 lists {names(after)}"
+        if {0, 2} <= used or time.monotonic() - t0 > 60:
+            break
+    assert {0, 2} <= used, f"satellites used {time.monotonic() - t0:.0f} s after the restriction: {names(used)}"
+    print(f"  ardupilot_gnss: NAV-SVINFO {names(before)} -> {names(after)} after ArduPilot's CFG-GNSS for mode 5 "
+          f"(ACKed); Galileo used {time.monotonic() - t0:.0f} s after the restart")
+
+
+def case_gpsd_m9_sky(rig):
+    """gpsd 3.22 on an M9N in a four-system sky: SKY lists gnssid 0 (GPS),
+    2 (Galileo), 3 (BeiDou) and 6 (GLONASS) with used satellites of each, and
+    TPV mode 3."""
+    rig.nav = rig.args.nav_mgnss
+    path, out = pty_output(rig)
+    rig.start_daemon(out, receiver_toml=M9)
+    pipe = gpsd_rig(rig, path, readonly=False)
+    read_json(pipe, 20, lambda m: m.get("class") == "TPV" and m.get("mode") == 3, "TPV mode 3")
+    want = {0, 2, 3, 6}
+    sky = read_json(pipe, 20, lambda m: m.get("class") == "SKY" and
+                    want <= {x.get("gnssid") for x in m.get("satellites", []) if x.get("used")},
+                    "SKY with used GPS, Galileo, BeiDou and GLONASS satellites")
+    end = time.monotonic() + 8.0  # the first such SKY is early in acquisition: take one 8 s later
+    while time.monotonic() < end:
+        try:
+            sky = read_json(pipe, end - time.monotonic(), lambda m: m.get("class") == "SKY", "SKY")
+        except AssertionError:
+            break
+    sats = sky["satellites"]
+    per = {g: (sum(1 for x in sats if x.get("gnssid") == g), sum(1 for x in sats if x.get("gnssid") == g and x.get("used")))
+           for g in sorted({x.get("gnssid") for x in sats})}
+    print("  gpsd_m9_sky: SKY " + ", ".join(f"{GNSS_NAMES.get(g, g)} {n} seen/{u} used" for g, (n, u) in per.items()))
+
 CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx, "gpsd_nmea": case_gpsd_nmea,
          "gpsdecode": case_gpsdecode, "serial": case_serial, "net": case_net, "budget": case_budget,
          "jamming": case_jamming, "wallclock": case_wallclock, "cold_start": case_cold_start,
          "power_on_cold": case_power_on_cold, "nav5": case_nav5, "px4_faults": case_px4_faults,
          "ardupilot_faults": case_ardupilot_faults, "px4_m9": case_px4_m9, "gpsd_m9": case_gpsd_m9,
-         "ardupilot_m9": case_ardupilot_m9}
-NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_m9": ["gpsd", "gpspipe", "socat"], "gpsd_nmea": ["gpsd", "gpspipe"],
+         "ardupilot_m9": case_ardupilot_m9, "px4_m9_gnss": case_px4_m9_gnss, "ardupilot_gnss": case_ardupilot_gnss,
+         "gpsd_m9_sky": case_gpsd_m9_sky}
+NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_m9_sky": ["gpsd", "gpspipe"], "gpsd_m9": ["gpsd", "gpspipe", "socat"], "gpsd_nmea": ["gpsd", "gpspipe"],
          "gpsdecode": ["gpsdecode"],
          "serial": ["socat", "stty"], "cold_start": ["gpsd", "gpspipe"],
          "power_on_cold": ["gpsd", "gpspipe"]}
@@ -770,6 +905,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--gnssemud", required=True)
     ap.add_argument("--nav", required=True)
+    ap.add_argument("--nav-mgnss", help="a multi-GNSS nav file (the *_gnss and *_sky cases)")
     ap.add_argument("--gnssemu", help="the CLI, for `gnssemu ctl` (the *_faults cases)")
     ap.add_argument("case", choices=sorted(CASES) + ["all"])
     args = ap.parse_args()
