@@ -44,6 +44,7 @@ void apply_chip_settings(const protocol::ubx::Device& device, receiver::Receiver
   if (const auto m = receiver::dynamic_model_from_ubx(n.dynModel)) rx.set_dynamic_model(*m);
   rx.set_static_hold(0.01 * n.staticHoldThresh, n.staticHoldMaxDist);
   rx.set_systems(device.enabled_systems());
+  rx.set_channel_limits(device.channel_limits().per_system);
   const protocol::ubx::NavRateLimits lim = device.nav_rate_limits();
   const double period_s = device.config().nav_period_s();
   const bool capped = period_s > 0.0 && 1.0 / period_s > lim.sat_cap_above_hz + 1e-9;

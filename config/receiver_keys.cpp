@@ -399,7 +399,8 @@ constexpr Field<Config> kReceiverFields[] = {
     number<&Config::receiver, &ReceiverConfig::max_pdop>("max_pdop", Rr::max_pdop,
                                                          "above this PDOP the fix is reported as none"),
     integer<&Config::receiver, &ReceiverConfig::max_channels>("max_channels", Rr::max_channels,
-                                                              "satellites tracked at most (highest first)"),
+                                                              "satellites tracked at most, every system together (highest first; 32 = the M8's and M9's "
+                                                              "CFG-GNSS numTrkChHw); CFG-GNSS maxTrkCh limits each system within it"),
     either<kGenerations, &Config::generation>(
         "generation", "the u-blox chip every output presents (docs/ubx.md \"Generations\"): `m8` a NEO-M8N "
                       "(protocol 18, legacy CFG messages only, MON-HW), `m9` a NEO-M9N (protocol 32.01: CFG-VALSET/"

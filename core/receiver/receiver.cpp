@@ -109,14 +109,24 @@ void Receiver::tracking_stage(const time::GpsTime& t, const world::Observables& 
     el_rad_[static_cast<std::size_t>(o.sat.index())] = o.el_rad;
     if (acq_.tracked(o.sat)) tracked_sat[static_cast<std::size_t>(n_tracked++)] = o.sat;
   }
-  if (n_tracked > config_.max_channels) {
-    std::sort(tracked_sat.begin(), tracked_sat.begin() + n_tracked, [this](SatId a, SatId b) {
-      const double ea = el_rad_[static_cast<std::size_t>(a.index())], eb = el_rad_[static_cast<std::size_t>(b.index())];
-      return ea != eb ? ea > eb : a < b;
-    });
-    for (int i = config_.max_channels; i < n_tracked; ++i) acq_.drop(tracked_sat[static_cast<std::size_t>(i)]);
-    n_tracked = config_.max_channels;
+  // Channels go to the highest satellites, within each system's budget and the total.
+  std::sort(tracked_sat.begin(), tracked_sat.begin() + n_tracked, [this](SatId a, SatId b) {
+    const double ea = el_rad_[static_cast<std::size_t>(a.index())], eb = el_rad_[static_cast<std::size_t>(b.index())];
+    return ea != eb ? ea > eb : a < b;
+  });
+  std::array<int, kNumSystems> per_system{};
+  int kept = 0;
+  for (int i = 0; i < n_tracked; ++i) {
+    const SatId sat = tracked_sat[static_cast<std::size_t>(i)];
+    int& used = per_system[static_cast<std::size_t>(sat.system)];
+    if (kept >= config_.max_channels || used >= channels_[static_cast<std::size_t>(sat.system)]) {
+      acq_.drop(sat);
+      continue;
+    }
+    ++used;
+    tracked_sat[static_cast<std::size_t>(kept++)] = sat;
   }
+  n_tracked = kept;
   usable_.fill(false);
   for (int i = 0; i < n_tracked; ++i) {
     const SatId sat = tracked_sat[static_cast<std::size_t>(i)];

@@ -56,6 +56,10 @@ public:
   /// cap), as the NEO-M9N above 8 Hz (protocol::ubx::NavRateLimits).
   void set_max_solution_sats(int n) noexcept { max_solution_sats_ = n < 4 ? 4 : n; }
   int max_solution_sats() const noexcept { return max_solution_sats_; }
+  /// CFG-GNSS channel budget: at most per_system[s] satellites of system s
+  /// tracked (the highest; by GnssSystem), on top of config().max_channels
+  /// in all. Every entry kMaxSatsInView: no per-system limit (after construction).
+  void set_channel_limits(const std::array<int, kNumSystems>& per_system) noexcept { channels_ = per_system; }
 
   /// GPS - UTC to report (e.g. the nav header's LEAP SECONDS); without it
   /// the built-in table (time::leap_seconds_at) is used.
@@ -96,6 +100,11 @@ private:
   // Per satellite (SatId::index()).
   SystemSet systems_ = SystemSet::all();
   int max_solution_sats_ = kMaxSatsInView;
+  std::array<int, kNumSystems> channels_ = [] {
+    std::array<int, kNumSystems> a{};
+    a.fill(kMaxSatsInView);
+    return a;
+  }();
   std::array<bool, kNumSats> tracked_{};
   std::array<bool, kNumSats> usable_{};
   std::array<double, kNumSats> el_rad_{};  ///< elevation this epoch (channel priority)

@@ -124,7 +124,7 @@ struct OperationalLimitRanges {
 struct ReceiverConfig {
   double elevation_mask_rad = 5.0 * kDegToRad;  ///< [0, pi/2)
   double max_pdop = 20.0;          ///< above this the fix is reported as none
-  int max_channels = 16;           ///< satellites tracked at most (highest first)
+  int max_channels = 32;           ///< satellites tracked at most (highest first; CFG-GNSS numTrkChHw of the M8 and M9)
   signal::TrackingThresholds tracking;  ///< acquire 30 / lose 25 dB-Hz
   SolverConfig solver;
   AcquisitionConfig acquisition;   ///< search, reacquisition, ephemeris download, start mode

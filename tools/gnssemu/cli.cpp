@@ -24,6 +24,7 @@
 #include "core/orbit/constellation.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
+#include "core/protocol/ubx/ubx_gnss.hpp"
 #include "core/scene/scene.hpp"
 #include "config/scenario_file.hpp"
 #include "tools/gnssemu/batch.hpp"
@@ -239,8 +240,9 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
   // The truth's own dates, with the satellites dated for them as the daemon
   // dates them ([nav] mode; as_is: the truth must start inside the data).
   const orbit::Constellation c = config::make_constellation(cfg, config::load_nav(cfg), track.first());
+  const SystemSet tracked = protocol::ubx::gnss_capabilities(cfg.generation).defaults.intersect(cfg.world.systems);
   err << "gnssemu batch: satellites: " << c.describe() << "; systems " << systems_text(cfg.world.systems).data()
-      << '\n';
+      << " in the sky, the chip tracks " << systems_text(tracked).data() << " (its factory CFG-GNSS)\n";
   std::vector<faults::FaultEvent> scenario;
   if (!a.scenario_path.empty()) {
     scenario = config::read_scenario(a.scenario_path);

@@ -212,6 +212,8 @@ void Device::load_saved(const DeviceConfig& saved) {
 
 SystemSet Device::enabled_systems() const noexcept { return ubx::enabled_systems(current_); }
 
+ChannelLimits Device::channel_limits() const noexcept { return ubx::channel_limits(current_, generation()); }
+
 NavRateLimits Device::nav_rate_limits() const noexcept {
   return ubx::nav_rate_limits(generation(), enabled_systems());
 }

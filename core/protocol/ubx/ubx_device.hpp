@@ -203,6 +203,8 @@ public:
   SystemSet enabled_systems() const noexcept;
   /// Navigation rate limits of the chip with those systems (ubx_gnss.hpp).
   NavRateLimits nav_rate_limits() const noexcept;
+  /// Tracking channels in all and per system (CFG-GNSS as now set).
+  ChannelLimits channel_limits() const noexcept;
 
   /// Settings of the port at at.
   const PortSettings& port(Link at) const noexcept { return current_.port(column(at)); }

@@ -125,6 +125,23 @@ SystemSet enabled_systems(const DeviceConfig& c) noexcept {
   return b != nullptr ? enabled_systems(b->payload()) : SystemSet();
 }
 
+ChannelLimits channel_limits(std::span<const std::uint8_t> p, Generation g) noexcept {
+  ChannelLimits lim;
+  const int hw = gnss_capabilities(g).num_trk_ch_hw;
+  lim.total = p.size() < kHeadBytes || p[2] == 0xFF ? hw : std::min<int>(p[2], hw);
+  for (std::size_t i = 0; i < num_blocks(p); ++i) {
+    const Block b = block(p, i);
+    const std::optional<GnssSystem> sys = system_of_gnss_id(b.gnss_id);
+    if (sys && b.enabled() && b.signals() != 0) lim.per_system[static_cast<std::size_t>(*sys)] = std::min<int>(b.max, lim.total);
+  }
+  return lim;
+}
+
+ChannelLimits channel_limits(const DeviceConfig& c, Generation g) noexcept {
+  const StoredBlock* b = c.stored(msg::kCfgGnss);
+  return channel_limits(b != nullptr ? b->payload() : factory_cfg_gnss(g), g);
+}
+
 bool same_signals(std::span<const std::uint8_t> a, std::span<const std::uint8_t> b) noexcept {
   const auto covers = [](std::span<const std::uint8_t> x, std::span<const std::uint8_t> y) {
     for (std::size_t i = 0; i < num_blocks(x); ++i) {

@@ -59,6 +59,15 @@ bool cfg_gnss_valid(std::span<const std::uint8_t> payload, Generation g) noexcep
 /// The systems enabled (flag bit 0 with a signal) in a CFG-GNSS payload / a configuration.
 SystemSet enabled_systems(std::span<const std::uint8_t> cfg_gnss) noexcept;
 SystemSet enabled_systems(const DeviceConfig& c) noexcept;
+/// Tracking channels a CFG-GNSS configuration gives: numTrkChUse (0xFF: all
+/// of numTrkChHw) in all, and each enabled system's maxTrkCh.
+struct ChannelLimits {
+  int total = 0;
+  std::array<int, kNumSystems> per_system{};  ///< by GnssSystem; 0 for a disabled system
+};
+ChannelLimits channel_limits(std::span<const std::uint8_t> cfg_gnss, Generation g) noexcept;
+ChannelLimits channel_limits(const DeviceConfig& c, Generation g) noexcept;
+
 /// The (gnssId, flags) pairs of two CFG-GNSS payloads agree: nothing the
 /// engine tracks changed (channel counts alone do not restart it).
 bool same_signals(std::span<const std::uint8_t> a, std::span<const std::uint8_t> b) noexcept;

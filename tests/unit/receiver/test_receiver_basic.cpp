@@ -355,6 +355,33 @@ TEST(ReceiverBasic, RawMeasurementsFollowTheTrackedSatellites) {
   EXPECT_TRUE(p.receiver().raw().meas[0].half_cycle_resolved);
 }
 
+TEST(ReceiverBasic, ChannelBudgetPerSystem) {
+  // CFG-GNSS maxTrkCh: at most 4 GPS channels; the rest go to Galileo.
+  std::vector<orbit::Ephemeris> mixed = test::nominal_constellation(kToe, 8);
+  for (std::size_t i = 0; i < mixed.size(); i += 2) {
+    mixed[i].sat = SatId(GnssSystem::kGalileo, mixed[i].sat.number);
+    mixed[i].gal_data_sources = 517;
+  }
+  const orbit::EphemerisStore store(mixed);
+  PipelineConfig cfg = test::snapshot();
+  cfg.world.systems = SystemSet::only(GnssSystem::kGps).with(GnssSystem::kGalileo);
+  Pipeline p(store, cfg);
+  std::array<int, kNumSystems> lim{};
+  lim.fill(kMaxSatsInView);
+  lim[static_cast<std::size_t>(GnssSystem::kGps)] = 4;
+  p.receiver().set_channel_limits(lim);
+  const Lla lla{0.3, 0.1, 0.0};
+  const Fix& f = p.step(kToe + 1.0, static_truth(lla, kToe + 1.0));
+  int gps = 0, gal = 0;
+  for (int i = 0; i < f.num_sats; ++i) {
+    gps += f.sats[i].tracked && f.sats[i].sat.system == GnssSystem::kGps;
+    gal += f.sats[i].tracked && f.sats[i].sat.system == GnssSystem::kGalileo;
+  }
+  EXPECT_EQ(gps, 4);
+  EXPECT_GT(gal, 4);
+  EXPECT_NE(f.type, FixType::kNone);
+}
+
 TEST(ReceiverBasic, SolutionSatelliteCapKeepsTheHighest) {
   // The NEO-M9N above 8 Hz uses at most 16 satellites: the cap keeps the
   // highest ones, the others stay tracked and unused, and the fix holds.

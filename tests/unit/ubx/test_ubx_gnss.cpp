@@ -392,6 +392,27 @@ TEST(UbxGnss, NavRateLimits) {
   EXPECT_EQ(m8.nav_rate_limits().max_nav_rate_hz, 18.0);
 }
 
+TEST(UbxGnss, ChannelLimitsFollowCfgGnss) {
+  // Factory M8: 32 channels; maxTrkCh GPS 16, SBAS 3, QZSS 3, GLONASS 14; Galileo and BeiDou off.
+  Device d(setup_of(Generation::kM8));
+  ChannelLimits lim = d.channel_limits();
+  EXPECT_EQ(lim.total, 32);
+  const auto of = [&](GnssSystem s) { return lim.per_system[static_cast<std::size_t>(s)]; };
+  EXPECT_EQ(of(kGps), 16);
+  EXPECT_EQ(of(kSbas), 3);
+  EXPECT_EQ(of(kQzss), 3);
+  EXPECT_EQ(of(kGlonass), 14);
+  EXPECT_EQ(of(kGalileo), 0);
+  EXPECT_EQ(of(kBeiDou), 0);
+  // ArduPilot's GPS + Galileo: Galileo gets its 8, GLONASS none.
+  Host h{d};
+  EXPECT_TRUE(h.acked(msg::kCfgGnss, ardupilot_cfg_gnss(h.poll(msg::kCfgGnss), 5)));
+  lim = d.channel_limits();
+  EXPECT_EQ(of(kGalileo), 8);
+  EXPECT_EQ(of(kGlonass), 0);
+  EXPECT_EQ(of(kGps), 32);
+}
+
 TEST(UbxGnss, MonHw2AtTheRateAHostSets) {
   Device d(setup_of(Generation::kM8));
   Host h{d};
