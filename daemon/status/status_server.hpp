@@ -9,10 +9,13 @@
 // dropped, and at most kMaxSessions connections are served at once.
 //   GET /, /status.js, ... the page (embedded assets, daemon/status/web_assets.hpp)
 //   GET /api/status[?history=N]  StatusProducer::write_json
+//   GET /api/status?vehicle=ID[&receiver=NAME]  a fleet's receiver (set_selector)
 //   GET /api/events              text/event-stream: one status (history=1) per epoch
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>  // before Asio: Boost 1.74 awaitable.hpp needs std::exchange
 
 #include <boost/asio/io_context.hpp>
@@ -49,6 +52,11 @@ public:
   /// Throws gnssemu::Error when the address is bad or cannot be bound.
   void start(const std::string& bind, uint16_t port);
   boost::asio::ip::tcp::endpoint local_endpoint() const;
+  /// The producer of a fleet's receiver (receiver "": the vehicle's first),
+  /// null when there is none; outlives the server's use as the producer does.
+  using Selector = std::function<const StatusProducer*(std::string_view vehicle, std::string_view receiver)>;
+  /// /api/status?vehicle= picks with selector (without one: 404).
+  void set_selector(Selector selector);
   /// A new epoch is in the producer: queue it on every event stream. Never
   /// blocks; a stream whose backlog would pass kMaxEventBacklogBytes is closed.
   void publish() noexcept;
