@@ -110,6 +110,16 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
   check_range(output_delay_s_, config::TimeRanges::output_delay_s, cfg.source, "time.output_delay_s");
   power_on_ = kProcessStart;
+  for (std::size_t i = 0; i < rigs_.size(); ++i) {
+    // One chip's saved configuration per file: two receivers would overwrite each other's.
+    const std::string& f = rigs_[i]->cfg.state_file;
+    for (std::size_t j = 0; j < i && !f.empty(); ++j) {
+      if (rigs_[j]->cfg.state_file == f) {
+        throw Error(cfg.source, 0, "receivers " + rigs_[j]->label() + " and " + rigs_[i]->label() +
+                                       " share state_file " + f + ": give each its own in [[vehicle.receiver]]");
+      }
+    }
+  }
   for (const auto& rp : rigs_) {
     Rig& r = *rp;
     if (r.cfg.state_file.empty()) continue;
