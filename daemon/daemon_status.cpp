@@ -46,12 +46,21 @@ void Daemon::start_status_page() {
                  "[status] bind = \"127.0.0.1\" keeps it local",
                  sc.bind);
   }
-  status_server_->set_selector([this](std::string_view vehicle, std::string_view receiver) -> const StatusProducer* {
-    for (const auto& rp : rigs_) {
-      if (rp->vehicle == vehicle && (receiver.empty() || rp->name == receiver)) return &rp->status;
-    }
-    return nullptr;
-  });
+  status_server_->set_selector(
+      [this](std::string_view vehicle, std::string_view receiver) -> const StatusProducer* {
+        for (const auto& rp : rigs_) {
+          if (rp->vehicle == vehicle && (receiver.empty() || rp->name == receiver)) return &rp->status;
+        }
+        return nullptr;
+      },
+      [this] {
+        std::string out = "[";
+        for (const auto& rp : rigs_) {
+          out += fmt::format("{}{{\"vehicle\":\"{}\",\"receiver\":\"{}\"}}", out.size() > 1 ? "," : "",
+                             rp->vehicle, rp->name);
+        }
+        return out + "]";
+      });
   const auto ep = status_server_->local_endpoint();
   const std::string host = ep.address().is_v6() ? "[" + ep.address().to_string() + "]" : ep.address().to_string();
   std::printf("gnssemud: status page http://%s:%u/\n", host.c_str(), static_cast<unsigned>(ep.port()));

@@ -82,6 +82,7 @@ struct StatusServer::Shared {
   asio::steady_timer retry;  ///< back-off after an accept error
   const StatusProducer* producer;  ///< null after stop()
   StatusServer::Selector selector;  ///< a fleet's receivers by vehicle id and name
+  StatusServer::Lister lister;      ///< the fleet's receivers, JSON
   std::list<std::weak_ptr<Session>> sessions;
   std::string event;  ///< the newest event, "data: {...}\n\n"
   StatusServerStats stats;
@@ -193,6 +194,9 @@ private:
       std::string& body = res->body();
       body.reserve(64 * 1024);
       producer->write_json(body, history_param(query, StatusProducer::kHistory));
+    } else if (path == "/api/receivers" && shared_->lister) {
+      res->set(http::field::content_type, "application/json");
+      res->body() = shared_->lister();
     } else if (const web::Asset* a = web::find_asset(path)) {
       res->set(http::field::content_type, std::string(a->content_type));
       res->body().assign(a->text.data(), a->text.size());
@@ -290,7 +294,10 @@ private:
 StatusServer::StatusServer(asio::io_context& io, const StatusProducer& producer)
     : shared_(std::make_shared<Shared>(io, producer)) {}
 
-void StatusServer::set_selector(Selector selector) { shared_->selector = std::move(selector); }
+void StatusServer::set_selector(Selector selector, Lister lister) {
+  shared_->selector = std::move(selector);
+  shared_->lister = std::move(lister);
+}
 
 StatusServer::~StatusServer() { stop(); }
 

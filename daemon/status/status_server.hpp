@@ -10,6 +10,7 @@
 //   GET /, /status.js, ... the page (embedded assets, daemon/status/web_assets.hpp)
 //   GET /api/status[?history=N]  StatusProducer::write_json
 //   GET /api/status?vehicle=ID[&receiver=NAME]  a fleet's receiver (set_selector)
+//   GET /api/receivers           the fleet's receivers, [{"vehicle":..,"receiver":..}] (set_selector)
 //   GET /api/events              text/event-stream: one status (history=1) per epoch
 #include <cstdint>
 #include <functional>
@@ -55,8 +56,11 @@ public:
   /// The producer of a fleet's receiver (receiver "": the vehicle's first),
   /// null when there is none; outlives the server's use as the producer does.
   using Selector = std::function<const StatusProducer*(std::string_view vehicle, std::string_view receiver)>;
-  /// /api/status?vehicle= picks with selector (without one: 404).
-  void set_selector(Selector selector);
+  /// The receivers as a JSON array of {"vehicle","receiver"} objects.
+  using Lister = std::function<std::string()>;
+  /// /api/status?vehicle= picks with selector, /api/receivers lists with
+  /// lister (without them: 404).
+  void set_selector(Selector selector, Lister lister);
   /// A new epoch is in the producer: queue it on every event stream. Never
   /// blocks; a stream whose backlog would pass kMaxEventBacklogBytes is closed.
   void publish() noexcept;
