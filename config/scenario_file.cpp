@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "config/scenario_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -70,7 +71,21 @@ double value_of(const toml::node& n, const std::string& file, const std::string&
   return number_of(n, file, where, spec.boolean);
 }
 
-FaultEvent read_event(const toml::table& t, const std::string& file, const std::string& where) {
+bool id_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
+         c == '.';
+}
+
+// "id" or "id/name", each of letters, digits, '_', '-', '.'.
+bool valid_target(std::string_view t) {
+  const std::size_t slash = t.find('/');
+  const std::string_view id = t.substr(0, slash);
+  const std::string_view name = slash == std::string_view::npos ? std::string_view("x") : t.substr(slash + 1);
+  auto ok = [](std::string_view p) { return !p.empty() && p.size() <= 64 && std::all_of(p.begin(), p.end(), id_char); };
+  return ok(id) && ok(name);
+}
+
+FaultEvent read_event(const toml::table& t, const std::string& file, const std::string& where, std::string& target) {
   FaultEvent e;
   e.line = line_of(t);
   const toml::node* type_node = t.get("type");
@@ -96,6 +111,15 @@ FaultEvent read_event(const toml::table& t, const std::string& file, const std::
     const std::string key(k.str());
     const std::string at = where + "." + key;
     if (key == "type" || key == "start_s" || key == "duration_s") continue;
+    if (key == "target") {
+      const auto* s = v.as_string();
+      if (s == nullptr || !valid_target(s->get())) {
+        throw Error(file, line_of(v), at + ": expected \"vehicle\" or \"vehicle/receiver\" (letters, digits, "
+                                           "'_', '-', '.')");
+      }
+      target = s->get();
+      continue;
+    }
     if (!mkey.empty() && key == mkey) {
       const auto* s = v.as_string();
       if (s == nullptr) throw Error(file, line_of(v), at + ": expected a string");
@@ -136,13 +160,13 @@ FaultEvent read_event(const toml::table& t, const std::string& file, const std::
   return e;
 }
 
-std::vector<FaultEvent> read_doc(const toml::table& doc, const std::string& file) {
+std::vector<ScenarioEvent> read_doc(const toml::table& doc, const std::string& file) {
   for (const auto& [k, v] : doc) {
     if (k.str() != "event") {
       throw Error(file, line_of(v), "unknown key '" + std::string(k.str()) + "': a scenario is a list of [[event]] tables");
     }
   }
-  std::vector<FaultEvent> events;
+  std::vector<ScenarioEvent> events;
   const toml::node* arr = doc.get("event");
   if (arr == nullptr) return events;
   const auto* a = arr->as_array();
@@ -152,31 +176,62 @@ std::vector<FaultEvent> read_doc(const toml::table& doc, const std::string& file
     const std::string where = "event[" + std::to_string(i++) + "]";
     const auto* t = n.as_table();
     if (t == nullptr) throw Error(file, line_of(n), where + ": expected a table");
-    events.push_back(read_event(*t, file, where));
+    ScenarioEvent se;
+    se.event = read_event(*t, file, where, se.target);
+    events.push_back(std::move(se));
   }
   return events;
 }
 
-}  // namespace
-
-std::vector<FaultEvent> read_scenario(const std::string& path) {
-  toml::table doc;
+toml::table parse_doc(std::string_view text, const std::string& name) {
   try {
-    doc = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    throw Error(path, static_cast<int>(e.source().begin.line), "TOML syntax error: " + std::string(e.description()));
-  }
-  return read_doc(doc, path);
-}
-
-std::vector<FaultEvent> parse_scenario(std::string_view text, const std::string& name) {
-  toml::table doc;
-  try {
-    doc = toml::parse(text, name);
+    return toml::parse(text, name);
   } catch (const toml::parse_error& e) {
     throw Error(name, static_cast<int>(e.source().begin.line), "TOML syntax error: " + std::string(e.description()));
   }
-  return read_doc(doc, name);
+}
+
+toml::table parse_file(const std::string& path) {
+  try {
+    return toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw Error(path, static_cast<int>(e.source().begin.line), "TOML syntax error: " + std::string(e.description()));
+  }
+}
+
+// The events of a file of one receiver: a target has nothing to pick.
+std::vector<FaultEvent> untargeted(const std::vector<ScenarioEvent>& events, const std::string& file) {
+  std::vector<FaultEvent> out;
+  for (const ScenarioEvent& e : events) {
+    if (!e.target.empty()) {
+      throw Error(file, e.event.line, "target '" + e.target + "': only gnssemud with [[vehicle]] or [fleet] runs "
+                                      "several receivers");
+    }
+    out.push_back(e.event);
+  }
+  return out;
+}
+
+}  // namespace
+
+bool target_matches(std::string_view target, std::string_view vehicle, std::string_view receiver) noexcept {
+  const std::size_t slash = target.find('/');
+  if (slash == std::string_view::npos) return target == vehicle;
+  return target.substr(0, slash) == vehicle && target.substr(slash + 1) == receiver;
+}
+
+std::vector<ScenarioEvent> read_targeted_scenario(const std::string& path) { return read_doc(parse_file(path), path); }
+
+std::vector<ScenarioEvent> parse_targeted_scenario(std::string_view text, const std::string& name) {
+  return read_doc(parse_doc(text, name), name);
+}
+
+std::vector<FaultEvent> read_scenario(const std::string& path) {
+  return untargeted(read_targeted_scenario(path), path);
+}
+
+std::vector<FaultEvent> parse_scenario(std::string_view text, const std::string& name) {
+  return untargeted(parse_targeted_scenario(text, name), name);
 }
 
 }  // namespace gnssemu::config

@@ -17,6 +17,7 @@
 #include "daemon/scene_setup.hpp"
 #include "daemon/service/state_file.hpp"
 #include "daemon/status/status_setup.hpp"
+#include "daemon/truth/lever_arm.hpp"
 #include "daemon/truth/truth_packet.hpp"
 
 namespace gnssemu::daemon {
@@ -48,6 +49,25 @@ std::string gps_text(const time::GpsTime& t) {
   return buf;
 }
 
+// The vehicles' ids as the router takes them: the single form's one takes any id.
+std::vector<std::string> router_ids(const config::Config& cfg, const std::vector<config::VehicleConfig>& vehicles) {
+  if (cfg.vehicles.empty() && !cfg.fleet) return {std::string()};
+  std::vector<std::string> ids;
+  for (const config::VehicleConfig& v : vehicles) ids.push_back(v.id);
+  return ids;
+}
+
+// The systems every receiver's world evaluates: the sky holds their union.
+SystemSet sky_systems(const std::vector<config::VehicleConfig>& vehicles) {
+  SystemSet all;
+  for (const config::VehicleConfig& v : vehicles) {
+    for (const config::VehicleReceiverConfig& r : v.receivers) {
+      all = SystemSet(static_cast<uint8_t>(all.bits() | r.settings.world.systems.bits()));
+    }
+  }
+  return all;
+}
+
 }  // namespace
 
 Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::NavData& nav, const RunPlan& plan)
@@ -59,41 +79,73 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       frame_(cfg.origin),
       scene_(load_scene_logged(cfg)),
       demo_(frame_, cfg.demo.radius_m, cfg.demo.speed_m_s, cfg.demo.height_m),
-      router_(TrackParams{cfg.truth.timeout_s, cfg.truth.max_extrapolation_s}, cfg.time.mode, cfg.truth.vehicle),
+      fleet_(!cfg.vehicles.empty() || cfg.fleet.has_value()),
+      router_(TrackParams{cfg.truth.timeout_s, cfg.truth.max_extrapolation_s}, cfg.time.mode,
+              router_ids(cfg, config::resolve_vehicles(cfg)), cfg.truth.vehicle),
       start_(plan.start),
       period_s_(1.0 / cfg.rate_hz),
       output_delay_s_(cfg.time.output_delay_s),
       rate_hz_(cfg.rate_hz),
-      status_(status_settings(cfg)),
+      sky_(store_, sky_systems(config::resolve_vehicles(cfg))),
       timer_(io),
       retry_timer_(io),
       socket_(io),
       notify_(io),
       allow_(cfg.truth.allow),
       tick_timer_(io) {
-  rigs_.push_back(std::make_unique<Rig>(cfg.truth.vehicle, std::string(config::kDefaultReceiverName), cfg,
-                                        orbit::systems_of(constellation_.nav)));
+  const std::vector<config::VehicleConfig> vehicles = config::resolve_vehicles(cfg);
+  const SystemSet nav_systems = orbit::systems_of(constellation_.nav);
+  for (std::size_t v = 0; v < vehicles.size(); ++v) {
+    for (const config::VehicleReceiverConfig& r : vehicles[v].receivers) {
+      config::Config rc = config::with_receiver_settings(cfg, r.settings);
+      rc.outputs = r.outputs;
+      rc.truth.vehicle = vehicles[v].id;
+      rc.vehicles.clear();
+      rc.fleet.reset();
+      rigs_.push_back(std::make_unique<Rig>(vehicles[v].id, r.name, v, rc, r.lever_arm_m, nav_systems));
+    }
+  }
+  vehicles_.resize(router_.size());
+  antennas_.reserve(rigs_.size());
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
   check_range(output_delay_s_, config::TimeRanges::output_delay_s, cfg.source, "time.output_delay_s");
   power_on_ = kProcessStart;
-  if (!cfg_.state_file.empty()) {
-    // A module boots with what it saved: rate, ports, messages, GNSS.
-    if (load_state_file(cfg_.state_file, rig().device)) {
-      period_s_ = rig().device.epoch_period_s();
-      rate_hz_ = 1.0 / period_s_;
-      spdlog::info("receiver: saved configuration loaded from {} ({:.0f} Hz)", cfg_.state_file,
-                   1.0 / rig().device.epoch_period_s());
-    } else {
-      spdlog::info("receiver: no saved configuration yet in {}: factory settings", cfg_.state_file);
+  for (std::size_t i = 0; i < rigs_.size(); ++i) {
+    // One chip's saved configuration per file: two receivers would overwrite each other's.
+    const std::string& f = rigs_[i]->cfg.state_file;
+    for (std::size_t j = 0; j < i && !f.empty(); ++j) {
+      if (rigs_[j]->cfg.state_file == f) {
+        throw Error(cfg.source, 0, "receivers " + rigs_[j]->label() + " and " + rigs_[i]->label() +
+                                       " share state_file " + f + ": give each its own in [[vehicle.receiver]]");
+      }
     }
   }
-  restart_receiver(cfg_.receiver.acquisition.start);
-  if (const SystemSet off = cfg_.world.systems.minus(rig().device.enabled_systems());
-      !off.empty()) {
-    spdlog::info("receiver: constellations {} are in the sky but off on the chip (its CFG-GNSS): tracked once a "
-                 "host enables them",
-                 systems_text(off).data());
+  for (const auto& rp : rigs_) {
+    Rig& r = *rp;
+    if (r.cfg.state_file.empty()) continue;
+    // A module boots with what it saved: rate, ports, messages, GNSS.
+    if (load_state_file(r.cfg.state_file, r.device)) {
+      spdlog::info("{}receiver: saved configuration loaded from {} ({:.0f} Hz)", who(r), r.cfg.state_file,
+                   1.0 / r.device.epoch_period_s());
+    } else {
+      spdlog::info("{}receiver: no saved configuration yet in {}: factory settings", who(r), r.cfg.state_file);
+    }
   }
+  // One epoch clock for every receiver: the first one's saved rate, if any.
+  if (!rig().cfg.state_file.empty()) {
+    period_s_ = rig().device.epoch_period_s();
+    rate_hz_ = 1.0 / period_s_;
+  }
+  for (const auto& rp : rigs_) {
+    Rig& r = *rp;
+    restart_receiver(r, r.cfg.receiver.acquisition.start);
+    if (const SystemSet off = r.cfg.world.systems.minus(r.device.enabled_systems()); !off.empty()) {
+      spdlog::info("{}receiver: constellations {} are in the sky but off on the chip (its CFG-GNSS): tracked "
+                   "once a host enables them",
+                   who(r), systems_text(off).data());
+    }
+  }
+  if (fleet_) spdlog::info("fleet: {} vehicle(s), {} receiver(s) in one sky", vehicles_.size(), rigs_.size());
   spdlog::info("receiver: {} start at power-on", start_name(cfg_.receiver.acquisition.start));
   if (scene_) spdlog::info("scene {}: {} triangles", cfg_.scene->mesh_file, scene_->triangle_count());
   lock_grid_from(start_);
@@ -113,50 +165,51 @@ void Daemon::lock_step(double n) noexcept {
   lock_next_ = time::GpsTime::make(lock_week_, lock_k_ / rate_hz_).value_or(lock_next_ + n * period_s_);
 }
 
-void Daemon::restart_receiver(receiver::StartMode start) {
+void Daemon::restart_receiver(Rig& rig, receiver::StartMode start) {
   // With the broadcast leap seconds and Klobuchar coefficients of the run's dates.
-  config::Config c = cfg_;
+  config::Config c = rig.cfg;
   c.receiver.acquisition.start = start;
   // The faults are in the world around the receiver: they go on.
-  std::unique_ptr<faults::FaultStage> faults = rig().receiver ? rig().receiver->take_faults() : nullptr;
-  rig().receiver = config::make_pipeline(c, store_, pipeline::broadcast_of(constellation_.nav), scene_.get());
-  rig().receiver->adopt_faults(std::move(faults));
-  apply_chip_settings();
+  std::unique_ptr<faults::FaultStage> faults = rig.receiver ? rig.receiver->take_faults() : nullptr;
+  rig.receiver = config::make_pipeline(c, store_, pipeline::broadcast_of(constellation_.nav), scene_.get());
+  rig.receiver->adopt_faults(std::move(faults));
+  apply_chip_settings(rig);
 }
 
-void Daemon::apply_chip_settings() { config::apply_chip_settings(rig().device, rig().receiver->receiver()); }
+void Daemon::apply_chip_settings(Rig& rig) { config::apply_chip_settings(rig.device, rig.receiver->receiver()); }
 
-void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& result) {
-  if (result.nav_rate_changed || result.reset) on_nav_period(src);
-  if (result.saved_changed && !cfg_.state_file.empty()) {
-    if (const std::string err = save_state_file(cfg_.state_file, rig().device); !err.empty()) {
-      spdlog::warn("output {}: saved configuration not written: {}", cfg_.outputs[src].name, err);
+void Daemon::on_host_input(Rig& rig, std::size_t src, const protocol::ubx::InputResult& result) {
+  const std::vector<config::OutputPortConfig>& outputs = rig.cfg.outputs;
+  if (result.nav_rate_changed || result.reset) on_nav_period(rig, src);
+  if (result.saved_changed && !rig.cfg.state_file.empty()) {
+    if (const std::string err = save_state_file(rig.cfg.state_file, rig.device); !err.empty()) {
+      spdlog::warn("output {}: saved configuration not written: {}", outputs[src].name, err);
     }
   }
   if (result.gnss_changed) {
     // A real chip restarts its GNSS engine after a change of the GNSS
     // selection (M8 spec CFG-GNSS; satpulse#108): tracking starts over with
     // what it knew, on the systems now enabled.
-    spdlog::info("output {}: GNSS selection changed to {}: the receiver restarts tracking", cfg_.outputs[src].name,
-                 systems_text(rig().device.enabled_systems()).data());
-    rig().receiver->receiver().restart(receiver::StartState{true, true, true, true});
-    apply_chip_settings();
+    spdlog::info("output {}: GNSS selection changed to {}: the receiver restarts tracking", outputs[src].name,
+                 systems_text(rig.device.enabled_systems()).data());
+    rig.receiver->receiver().restart(receiver::StartState{true, true, true, true});
+    apply_chip_settings(rig);
   }
   if (result.nav_config_changed) {
-    const protocol::ubx::wire::CfgNav5& n = rig().device.config().nav5;
-    spdlog::info("output {}: CFG-NAV5 dynModel {}, static hold {} cm/s / {} m", cfg_.outputs[src].name,
+    const protocol::ubx::wire::CfgNav5& n = rig.device.config().nav5;
+    spdlog::info("output {}: CFG-NAV5 dynModel {}, static hold {} cm/s / {} m", outputs[src].name,
                  static_cast<unsigned>(n.dynModel), static_cast<unsigned>(n.staticHoldThresh),
                  static_cast<unsigned>(n.staticHoldMaxDist));
-    apply_chip_settings();
+    apply_chip_settings(rig);
   }
   if (result.ports_changed || result.reset) {
-    for (std::size_t i = 0; i < rig().channels.size(); ++i) log_port_change(i);
+    for (std::size_t i = 0; i < rig.channels.size(); ++i) log_port_change(rig, i);
   }
   // One chip: a reset or a configuration load from any host changes the
   // other outputs' UART1s too (their bauds; a reset drops partial input).
   if (result.reset || result.ports_changed) {
-    for (std::size_t i = 0; i < rig().channels.size(); ++i)
-      if (i != src) rig().channels[i]->follow_device(result.reset.has_value());
+    for (std::size_t i = 0; i < rig.channels.size(); ++i)
+      if (i != src) rig.channels[i]->follow_device(result.reset.has_value());
   }
   if (!result.reset) return;
   // Every reset mode but "GNSS stop" restarts navigation: the tracked
@@ -168,17 +221,17 @@ void Daemon::on_host_input(std::size_t src, const protocol::ubx::InputResult& re
   const protocol::ubx::Reset& reset = *result.reset;
   if (!reset.restarts_navigation()) {
     spdlog::info("output {}: CFG-RST GNSS stop: not modelled, the receiver keeps navigating",
-                 cfg_.outputs[src].name);
+                 outputs[src].name);
     return;
   }
   spdlog::info("output {}: CFG-RST {} start (navBbrMask 0x{:04X}): the receiver restarts and reacquires",
-               cfg_.outputs[src].name, reset.start_name(), reset.nav_bbr_mask);
-  rig().receiver->receiver().restart(receiver::StartState{reset.keeps_ephemeris(), reset.keeps_almanac(),
+               outputs[src].name, reset.start_name(), reset.nav_bbr_mask);
+  rig.receiver->receiver().restart(receiver::StartState{reset.keeps_ephemeris(), reset.keeps_almanac(),
                                                      reset.keeps_position(), reset.keeps_time()});
   // The device restarted its uptime on the wall clock; in lockstep the chip
   // counts in epoch time, from the epoch it has reached (the rate count starts over too).
-  if (cfg_.time.mode == config::TimeMode::kLockstep) rig().device.power_on(chip_clock_s(last_epoch_t_));
-  apply_chip_settings();  // a reboot may have loaded the saved CFG-NAV5
+  if (cfg_.time.mode == config::TimeMode::kLockstep) rig.device.power_on(chip_clock_s(last_epoch_t_));
+  apply_chip_settings(rig);  // a reboot may have loaded the saved CFG-NAV5
 }
 
 Daemon::~Daemon() { shutdown(); }
@@ -191,12 +244,13 @@ double Daemon::chip_clock_s(const time::GpsTime& t) const noexcept {
   return cfg_.time.mode == config::TimeMode::kRealtime ? now_s() : t - chip_origin_;
 }
 
-void Daemon::open_channel(std::size_t i, std::unique_ptr<OutputPort> port) {
-  rig().channels[i] = std::make_unique<PortChannel>(std::move(port), rig().device, i, [this] { return now_s(); });
-  PortChannel& c = *rig().channels[i];
+void Daemon::open_channel(Rig& rig, std::size_t i, std::unique_ptr<OutputPort> port) {
+  rig.channels[i] = std::make_unique<PortChannel>(std::move(port), rig.device, i, [this] { return now_s(); });
+  PortChannel& c = *rig.channels[i];
   c.use_idle_timer(io_);
-  c.set_link_seed(cfg_.world.seed);
-  c.on_input([this, i](const protocol::ubx::InputResult& r) { on_host_input(i, r); });
+  c.set_link_seed(rig.cfg.world.seed);
+  Rig* r = &rig;  // rigs_ holds each Rig by pointer: it stays put
+  c.on_input([this, r, i](const protocol::ubx::InputResult& in) { on_host_input(*r, i, in); });
 }
 
 void Daemon::start() {
@@ -209,20 +263,23 @@ void Daemon::start() {
     lock_next_ = w.start;
     t0_ += std::chrono::nanoseconds(std::llround(w.wait_s * 1e9));
   }
-  if (cfg_.time.mode == config::TimeMode::kRealtime) {
-    rig().device.power_on(std::chrono::duration<double>(power_on_ - t0_).count());
-  } else {
-    chip_origin_ = lock_next_;
-    rig().device.power_on(0.0);
+  if (cfg_.time.mode != config::TimeMode::kRealtime) chip_origin_ = lock_next_;
+  for (const auto& rp : rigs_) {
+    Rig& r = *rp;
+    if (cfg_.time.mode == config::TimeMode::kRealtime) {
+      r.device.power_on(std::chrono::duration<double>(power_on_ - t0_).count());
+    } else {
+      r.device.power_on(0.0);
+    }
+    r.channels.resize(r.cfg.outputs.size());
+    for (std::size_t i = 0; i < r.cfg.outputs.size(); ++i) open_channel(r, i, open_port(r.cfg.outputs[i], io_));
+    for (const auto& c : r.channels) c->start();
+    // Lines follow the chip's UART1s (a saved configuration may have changed their bauds).
+    if (!r.cfg.state_file.empty()) {
+      for (const auto& c : r.channels) c->follow_device(false);
+    }
+    for (const auto& c : r.channels) r.out_summary.emplace_back(c->output_summary());
   }
-  rig().channels.resize(cfg_.outputs.size());
-  for (std::size_t i = 0; i < cfg_.outputs.size(); ++i) open_channel(i, open_port(cfg_.outputs[i], io_));
-  for (const auto& c : rig().channels) c->start();
-  // Lines follow the chip's UART1s (a saved configuration may have changed their bauds).
-  if (!cfg_.state_file.empty()) {
-    for (const auto& c : rig().channels) c->follow_device(false);
-  }
-  for (const auto& c : rig().channels) rig().out_summary.emplace_back(c->output_summary());
 
   boost::system::error_code ec;
   const auto addr = asio::ip::make_address(cfg_.truth.bind_address, ec);
@@ -236,8 +293,11 @@ void Daemon::start() {
   }
   const auto local = socket_.local_endpoint(ec);
 
-  for (const auto& c : rig().channels) {
-    std::printf("gnssemud: %s on %s\n", std::string(c->output_summary()).c_str(), c->port().describe().c_str());
+  for (const auto& rp : rigs_) {
+    for (const auto& c : rp->channels) {
+      std::printf("gnssemud: %s%s on %s\n", who(*rp).c_str(), std::string(c->output_summary()).c_str(),
+                  c->port().describe().c_str());
+    }
   }
   std::printf("gnssemud: truth input udp %s:%u\n", local.address().to_string().c_str(),
               static_cast<unsigned>(local.port()));
@@ -260,7 +320,9 @@ void Daemon::start() {
   }
 
   if (!allow_.empty()) spdlog::info("truth: accepting packets from {} only", allow_.describe());
-  if (!cfg_.truth.vehicle.empty()) {
+  if (fleet_) {
+    spdlog::info("truth: each packet's vehicle id picks its vehicle; ids not configured are dropped (unknown_vehicle)");
+  } else if (!cfg_.truth.vehicle.empty()) {
     spdlog::info("truth: vehicle '{}' drives the receiver ([truth] vehicle); other vehicles are ignored",
                  cfg_.truth.vehicle);
   }
@@ -270,7 +332,9 @@ void Daemon::start() {
   receive();
   arm_timer();
   arm_tick();
-  notify_.ready(fmt::format("{} output(s), truth on udp port {}", rig().channels.size(), local.port()));
+  std::size_t outputs = 0;
+  for (const auto& rp : rigs_) outputs += rp->channels.size();
+  notify_.ready(fmt::format("{} output(s), truth on udp port {}", outputs, local.port()));
 }
 
 void Daemon::shutdown() {
@@ -285,20 +349,32 @@ void Daemon::shutdown() {
   if (signals_) signals_->cancel();
   if (status_server_) status_server_->stop();
   if (control_) control_->stop();  // removes the socket file
-  if (!rig().channels.empty()) {
-    for (const auto& c : rig().channels) {
+  bool any_channel = false;
+  for (const auto& rp : rigs_) {
+    for (const auto& c : rp->channels) {
+      any_channel = true;
       const PortStats& ps = c->port().stats();
       std::string drops;
       for (const auto& [name, n] : c->drops()) drops += fmt::format("{}{} {}", drops.empty() ? "" : ", ", name, n);
-      spdlog::info("output {}: {} epochs written, {} dropped; {} replies; {} bytes in; {} messages over the line "
+      spdlog::info("{}output {}: {} epochs written, {} dropped; {} replies; {} bytes in; {} messages over the line "
                    "budget{}{}",
-                   c->port().config().name, ps.epochs_written, ps.epochs_dropped, ps.replies_written,
+                   who(*rp), c->port().config().name, ps.epochs_written, ps.epochs_dropped, ps.replies_written,
                    ps.bytes_from_reader, c->stats().messages_dropped, drops.empty() ? "" : ": ", drops);
+    }
+  }
+  if (any_channel) {
+    if (fleet_) {
+      for (std::size_t v = 0; v < vehicles_.size(); ++v) {
+        const VehicleState& vs = vehicles_[v];
+        spdlog::info("truth: vehicle '{}': {} packets accepted, {} dropped{}{}{}", router_.id(v), vs.packets_ok,
+                     vs.drops.total(), vs.drops.total() > 0 ? ": " : "", drop_counts_text(vs.drops.totals()),
+                     vs.ever_driven ? "" : " (never heard)");
+      }
     }
     spdlog::info("truth: {} packets accepted, {} dropped{}{}; {} epochs, {} skipped", packets_ok_, drops_.total(),
                  drops_.total() > 0 ? ": " : "", drop_counts_text(drops_.totals()), epochs_, epochs_skipped_);
   }
-  rig().channels.clear();  // closes ports, removes pty symlinks
+  for (const auto& rp : rigs_) rp->channels.clear();  // closes ports, removes pty symlinks
 }
 
 time::GpsTime Daemon::realtime_clock_gps() noexcept { return start_ + now_s(); }
@@ -335,8 +411,8 @@ void Daemon::redate_constellation(const time::GpsTime& t) {
   }
 }
 
-world::Truth Daemon::fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept {
-  if (demo_drives()) return demo_.truth(t, demo_elapsed_s);
+world::Truth Daemon::fallback_truth(std::size_t v, const time::GpsTime& t, double demo_elapsed_s) const noexcept {
+  if (demo_drives(v)) return demo_.truth(t, demo_elapsed_s);
   world::Truth none;
   none.t = t;
   return none;
@@ -348,13 +424,11 @@ void Daemon::on_timer(const boost::system::error_code& ec) {
   const double now = now_s();
   if (cfg_.time.mode == config::TimeMode::kRealtime) {
     const double offset_s = sched_base_s_ + epoch_offset_s(index_, rate_hz_);
-    const time::GpsTime t = start_ + offset_s;
-    const world::Truth truth = router_.has_driver() ? router_.truth_at(t, now) : fallback_truth(t, offset_s);
-    emit_epoch(t, truth);
-  } else if (!router_.driver_fresh(now)) {
-    // Lockstep without a live simulator: keep the receiver talking at the
+    emit_epoch(start_ + offset_s, offset_s, false);
+  } else if (!router_.any_fresh(now)) {
+    // Lockstep without a live simulator: keep the receivers talking at the
     // configured rate (demo before any simulator, no fix after one stopped).
-    emit_epoch(lock_next_, fallback_truth(lock_next_, lock_next_ - start_));
+    emit_epoch(lock_next_, lock_next_ - start_, true);
     lock_step(1.0);
   }
   const double delay_s = cfg_.time.mode == config::TimeMode::kRealtime ? output_delay_s_ : 0.0;
@@ -378,60 +452,78 @@ void Daemon::lockstep_advance(const time::GpsTime& stamp) {
     lock_step(n);
     spdlog::warn("lockstep: simulator jumped {:.1f} s ahead; skipped {:.0f} epochs", behind_s, n);
   }
-  const double now = now_s();
   while (!(stamp < lock_next_)) {
-    emit_epoch(lock_next_, router_.truth_at(lock_next_, now));
+    emit_epoch(lock_next_, lock_next_ - start_, false);
     lock_step(1.0);
   }
 }
 
-void Daemon::emit_epoch(const time::GpsTime& t, const world::Truth& truth) {
+void Daemon::emit_epoch(const time::GpsTime& t, double demo_elapsed_s, bool fallback_only) {
   note_coverage(t);
-  const receiver::Fix& fix = rig().receiver->step(t, truth);
+  const double now = now_s();
+  for (std::size_t v = 0; v < vehicles_.size(); ++v) {
+    const TruthRouter& r = router_.router(v);
+    vehicles_[v].truth = !fallback_only && r.has_driver() ? r.truth_at(t, now) : fallback_truth(v, t, demo_elapsed_s);
+  }
+  // The sky once for every antenna (a receiver's world would update its own
+  // the same way for its one antenna: World::step).
+  antennas_.clear();
+  for (const auto& rp : rigs_) {
+    Rig& rig = *rp;
+    rig.truth = antenna_truth(vehicles_[rig.vehicle_index].truth, rig.lever_arm_m, router_.attitude(rig.vehicle_index));
+    antennas_.push_back(rig.truth.pos_m);
+  }
+  sky_.update(t, antennas_);
   ++epochs_;
   last_epoch_t_ = t;
-  rig().device.on_epoch(fix, chip_clock_s(t));
+  const double run_s = run_time_s(t);
+  last_run_s_ = run_s;
+  for (const auto& rp : rigs_) emit_rig_epoch(*rp, t, run_s);
+}
+
+void Daemon::emit_rig_epoch(Rig& rig, const time::GpsTime& t, double run_s) {
+  const world::Truth& truth = rig.truth;
+  const receiver::Fix& fix = rig.receiver->step(sky_, truth);
+  rig.device.on_epoch(fix, chip_clock_s(t));
   // Port events act on the ports (docs/faults.md "Link faults"); no stage: none.
-  faults::FaultStage* stage = rig().receiver->faults();
+  faults::FaultStage* stage = rig.receiver->faults();
   const std::span<const faults::FaultStatus> link_status =
       stage != nullptr ? stage->status() : std::span<const faults::FaultStatus>{};
-  for (const auto& c : rig().channels) {
+  for (const auto& c : rig.channels) {
     c->set_link_faults(link_status);
     c->send_epoch();
   }
-  const double run_s = run_time_s(t);
-  last_run_s_ = run_s;
-  log_fault_transitions(link_status, run_s);
-  record_status(run_s, truth, fix);
+  log_fault_transitions(rig, link_status, run_s);
+  record_status(rig, run_s, fix);
   const int type = static_cast<int>(fix.type);
-  last_num_used_ = fix.num_used;
-  last_num_tracked_ = fix.num_tracked;
-  if (type != last_fix_type_ || truth.valid != last_truth_valid_) {
-    spdlog::info("epoch {}: truth {}, fix {} with {} satellites (PDOP {:.1f})", gps_text(t),
-                 truth.valid ? "valid" : "none",
-                 receiver::fix_type_name(fix.type), fix.num_used,
-                 fix.dop.pdop);
-    last_fix_type_ = type;
-    last_truth_valid_ = truth.valid;
+  rig.last_num_used = fix.num_used;
+  rig.last_num_tracked = fix.num_tracked;
+  if (type != rig.last_fix_type || truth.valid != rig.last_truth_valid) {
+    spdlog::info("{}epoch {}: truth {}, fix {} with {} satellites (PDOP {:.1f})", who(rig), gps_text(t),
+                 truth.valid ? "valid" : "none", receiver::fix_type_name(fix.type), fix.num_used, fix.dop.pdop);
+    rig.last_fix_type = type;
+    rig.last_truth_valid = truth.valid;
   }
-  spdlog::debug("epoch tow {:.2f}: fix {} nsat {} lat {:.7f} lon {:.7f} h {:.1f}", t.tow_s(), type, fix.num_used,
-                fix.lla.lat_rad * kRadToDeg, fix.lla.lon_rad * kRadToDeg, fix.lla.height_m);
+  spdlog::debug("{}epoch tow {:.2f}: fix {} nsat {} lat {:.7f} lon {:.7f} h {:.1f}", who(rig), t.tow_s(), type,
+                fix.num_used, fix.lla.lat_rad * kRadToDeg, fix.lla.lon_rad * kRadToDeg, fix.lla.height_m);
 }
 
-void Daemon::on_nav_period(std::size_t src) {
-  apply_chip_settings();  // the solution's satellite cap follows the chip's rate
-  // The emulator runs 1..10 Hz (docs/configuration.md rate_hz); the device
-  // gives a host asking for more or less the nearest rate it runs.
-  const double period_s = rig().device.config().nav_period_s();
-  const double p = rig().device.epoch_period_s();
-  const protocol::ubx::wire::CfgRate rate = rig().device.config().rate;
+void Daemon::on_nav_period(Rig& rig, std::size_t src) {
+  apply_chip_settings(rig);  // the solution's satellite cap follows the chip's rate
+  // The emulator runs 1..10 Hz (docs/configuration.md rate_hz); the
+  // device gives a host asking for more or less the nearest rate it runs.
+  // One epoch clock drives every receiver of a fleet: the last host's rate
+  // is everyone's (docs/configuration.md §Vehicles).
+  const double period_s = rig.device.config().nav_period_s();
+  const double p = rig.device.epoch_period_s();
+  const protocol::ubx::wire::CfgRate rate = rig.device.config().rate;
   if (p != period_s) {
     spdlog::warn("output {}: host asked for a {:.3f} s navigation period (CFG-RATE measRate {} ms, navRate {}); "
                  "running at {:.3g} Hz, the nearest rate within 1..10 Hz",
-                 cfg_.outputs[src].name, period_s, rate.measRate, rate.navRate, 1.0 / p);
+                 rig.cfg.outputs[src].name, period_s, rate.measRate, rate.navRate, 1.0 / p);
   }
   if (std::abs(p - period_s_) < 1e-9) return;
-  spdlog::info("output {}: host set the navigation rate to {:.3g} Hz (CFG-RATE measRate {} ms)", cfg_.outputs[src].name,
+  spdlog::info("output {}: host set the navigation rate to {:.3g} Hz (CFG-RATE measRate {} ms)", rig.cfg.outputs[src].name,
                1.0 / p, rate.measRate);
   period_s_ = p;
   rate_hz_ = 1.0 / p;
@@ -487,31 +579,45 @@ void Daemon::on_datagram(std::size_t n) {
     report(parsed.reason, parsed.detail);
     return;
   }
-  const bool had_driver = router_.has_driver();
-  const bool was_fresh = router_.driver_fresh(now);
+  const std::optional<std::size_t> vi = router_.find(parsed.sample.vehicle);
+  if (!vi) {
+    // Never a new receiver: counted, logged at the drops' rate, nothing kept.
+    report(DropReason::kUnknownVehicle, "vehicle '" + parsed.sample.vehicle + "' is not configured");
+    return;
+  }
+  const std::size_t v = *vi;
+  VehicleState& vs = vehicles_[v];
+  const TruthRouter& vr = router_.router(v);
+  const bool had_driver = vr.has_driver();
+  const bool was_fresh = vr.driver_fresh(now);
   const time::GpsTime clock =
       cfg_.time.mode == config::TimeMode::kRealtime ? realtime_clock_gps() : lock_next_;
-  const TruthRouter::Ingest in = router_.ingest(parsed.sample, clock, now);
+  const TruthRouter::Ingest in = router_.ingest(parsed.sample, clock, now).in;
   if (!in.accepted) {
+    vs.drops.record(in.reason, now);
     report(in.reason, "vehicle '" + parsed.sample.vehicle + "'");
     return;
   }
   ++packets_ok_;
+  ++vs.packets_ok;
   if (in.new_vehicle) {
     spdlog::info("truth: vehicle '{}' from {}:{}", parsed.sample.vehicle, peer_.address().to_string(), peer_.port());
   }
   if (!in.driving) note_other_vehicle(parsed.sample.vehicle);
-  if (in.driving) ever_driven_ = true;
+  if (in.driving) vs.ever_driven = true;
   if (in.driving && !had_driver) {
-    spdlog::info("truth: vehicle '{}' drives the receiver{}", router_.driver_id(),
+    spdlog::info("truth: vehicle '{}' drives {}{}", vr.driver_id(), fleet_ ? "its receivers" : "the receiver",
                  cfg_.demo.enabled ? " (demo off for good)" : "");
   } else if (in.driving && !was_fresh) {
-    spdlog::info("truth: vehicle '{}' is back", router_.driver_id());
+    spdlog::info("truth: vehicle '{}' is back", vr.driver_id());
   } else if (in.driving && in.reanchored) {
-    spdlog::debug("truth: sim clock of '{}' re-anchored", router_.driver_id());
+    spdlog::debug("truth: sim clock of '{}' re-anchored", vr.driver_id());
   }
   if (in.driving && parsed.sample.gps_time) align_to_packet_time(in.stamp);
-  if (in.driving && cfg_.time.mode == config::TimeMode::kLockstep) lockstep_advance(in.stamp);
+  if (in.driving && cfg_.time.mode == config::TimeMode::kLockstep) {
+    // Every driven vehicle must have reached an epoch before it is computed.
+    if (const std::optional<time::GpsTime> reached = router_.reached(now)) lockstep_advance(*reached);
+  }
 }
 
 void Daemon::align_to_packet_time(const time::GpsTime& stamp) {
@@ -538,10 +644,10 @@ void Daemon::align_to_packet_time(const time::GpsTime& stamp) {
   // on the same truth, byte for byte: the receiver, the chip's uptime, ttff
   // and rate count, and the scenario's time line start at the first packet.
   if (!served) redate_constellation(first);
-  restart_receiver(cfg_.receiver.acquisition.start);
+  for (const auto& rp : rigs_) restart_receiver(*rp, rp->cfg.receiver.acquisition.start);
   restart_scenario();
   chip_origin_ = first;
-  rig().device.power_on(0.0);
+  for (const auto& rp : rigs_) rp->device.power_on(0.0);
   spdlog::info("lockstep: epochs follow the packets' GPS time from {}", gps_text(first));
 }
 

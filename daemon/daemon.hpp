@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Daemon: the event loop of gnssemud — truth datagrams in, epochs on the
-// schedule, sentences out to every port (docs/daemon.md). One thread.
+// schedule, sentences out to every port (docs/daemon.md). One thread. Its
+// vehicles and receivers (Rig) share one sky per epoch: each vehicle's truth
+// comes from the one truth socket, each receiver steps its own pipeline on
+// the shared sky at its antenna (docs/architecture.md §Fleet).
 #include <array>
 #include <chrono>
 #include <utility>  // before Asio: Boost 1.74 awaitable.hpp needs std::exchange
@@ -16,6 +19,7 @@
 #include <boost/asio.hpp>
 
 #include "config/config.hpp"
+#include "config/scenario_file.hpp"
 #include "core/geo/local_frame.hpp"
 #include "core/orbit/constellation.hpp"
 #include "core/orbit/ephemeris_store.hpp"
@@ -24,6 +28,7 @@
 #include "core/scene/scene.hpp"
 #include "daemon/control/control_commands.hpp"
 #include "daemon/control/control_server.hpp"
+#include "core/world/shared_sky.hpp"
 #include "daemon/truth/demo_trajectory.hpp"
 #include "daemon/truth/drop_stats.hpp"
 #include "daemon/fault_log.hpp"
@@ -38,6 +43,7 @@
 #include "daemon/status/status_producer.hpp"
 #include "daemon/status/status_server.hpp"
 #include "daemon/truth/time_mapping.hpp"
+#include "daemon/truth/fleet_router.hpp"
 #include "daemon/truth/truth_router.hpp"
 
 namespace gnssemu::daemon {
@@ -53,9 +59,11 @@ public:
   ~Daemon();
 
   /// Run the events of a scenario file (gnssemud --scenario), time zero at
-  /// the first epoch (lockstep: the simulator's first). Before start();
-  /// throws gnssemu::Error naming source for a port event without its output.
-  void set_scenario(std::vector<faults::FaultEvent> events, const std::string& source);
+  /// the first epoch (lockstep: the simulator's first), each on the
+  /// receivers its target names (none: all). Before start(); throws
+  /// gnssemu::Error naming source for a port event without its output or a
+  /// target that names no receiver.
+  void set_scenario(std::vector<config::ScenarioEvent> events, const std::string& source);
 
   /// Open ports and the truth socket, print where NMEA goes, start the
   /// schedule and signal handling. Throws gnssemu::Error.
@@ -68,22 +76,35 @@ public:
   /// SIGHUP: load, validate, apply what can change live (ReloadPlan); a bad
   /// configuration is logged and the running one kept. Never throws.
   void reload() noexcept;
-  /// The status line (logged every minute and on SIGUSR1/SIGUSR2).
+  /// The status line (logged every minute and on SIGUSR1/SIGUSR2): the
+  /// receiver's; a fleet's: how many vehicles have which fix (status_lines
+  /// has one per vehicle).
   std::string status_line();
+  /// One status line per vehicle ("v0: fix 3D, 9 sats; ..."); the single
+  /// form: its one line.
+  std::vector<std::string> status_lines();
 
 private:
   using Clock = std::chrono::steady_clock;
 
   double now_s() const noexcept;
   time::GpsTime realtime_clock_gps() noexcept;
+  /// Per vehicle: its routing state beyond the truth router's.
+  struct VehicleState {
+    DropStats drops;              ///< drops of its packets the router refused
+    uint64_t packets_ok = 0;
+    bool ever_driven = false;     ///< a simulator drove it: the demo is off for good
+    world::Truth truth;           ///< its reference point, this epoch
+    StatusLine line;              ///< its status line (rates since the last one)
+  };
   /// A fresh receiver in a fresh world (start-up, or GPS time going back),
   /// started as start says, with the device's CFG-NAV5 applied.
-  void restart_receiver(receiver::StartMode start);
+  void restart_receiver(Rig& rig, receiver::StartMode start);
   /// The device's CFG-NAV5 (dynModel, static hold) and GNSS selection into the receiver.
-  void apply_chip_settings();
-  /// A host on channel src changed the device: follow its reset, epoch
+  void apply_chip_settings(Rig& rig);
+  /// A host on channel src of rig changed the device: follow its reset, epoch
   /// period and the other ports' line settings.
-  void on_host_input(std::size_t src, const protocol::ubx::InputResult& result);
+  void on_host_input(Rig& rig, std::size_t src, const protocol::ubx::InputResult& result);
   void arm_timer();
   void on_timer(const boost::system::error_code& ec);
   void receive();
@@ -94,15 +115,20 @@ private:
   /// Lockstep: the next epoch n (>= 1, whole) epochs of the grid on.
   void lock_step(double n) noexcept;
   void align_to_packet_time(const time::GpsTime& stamp);
-  void emit_epoch(const time::GpsTime& t, const world::Truth& truth);
+  /// Epoch t for every receiver: each vehicle's truth (its track; the
+  /// fallback when it has no driver or fallback_only), the shared sky at
+  /// every antenna, then each rig. demo_elapsed_s: the demo circle's time.
+  void emit_epoch(const time::GpsTime& t, double demo_elapsed_s, bool fallback_only);
+  /// One rig's part of epoch t (the sky and rig.truth are set), run time run_s.
+  void emit_rig_epoch(Rig& rig, const time::GpsTime& t, double run_s);
   /// The emulated chip's clock (NAV-STATUS msss, ttff), s: the wall clock in
   /// realtime; in lockstep epoch t's GPS time from chip_origin_, so uptime
   /// and ttff advance with the simulation as iTOW does, whatever its speed.
   double chip_clock_s(const time::GpsTime& t) const noexcept;
-  world::Truth fallback_truth(const time::GpsTime& t, double demo_elapsed_s) const noexcept;
-  /// The demo circle drives the receiver (no simulator ever did, demo on):
+  world::Truth fallback_truth(std::size_t v, const time::GpsTime& t, double demo_elapsed_s) const noexcept;
+  /// The demo circle drives vehicle v (no simulator ever did, demo on):
   /// what fallback_truth, the status line and the status page all say.
-  bool demo_drives() const noexcept { return !ever_driven_ && cfg_.demo.enabled; }
+  bool demo_drives(std::size_t v) const noexcept { return !vehicles_[v].ever_driven && cfg_.demo.enabled; }
   /// Logs when the epoch clock leaves or re-enters what the constellation serves.
   void note_coverage(const time::GpsTime& t) noexcept;
   /// Lockstep: the simulator's GPS time t lies outside the constellation:
@@ -110,10 +136,12 @@ private:
   void redate_constellation(const time::GpsTime& t);
   /// The device's epoch period may have changed (CFG-RATE, a reset or a
   /// configuration load from channel src): run at it.
-  void on_nav_period(std::size_t src);
-  /// The receiver the loop drives (rigs_ holds one until rigs run side by side).
+  void on_nav_period(Rig& rig, std::size_t src);
+  /// The first receiver: the single-vehicle form's one.
   Rig& rig() noexcept { return *rigs_.front(); }
   const Rig& rig() const noexcept { return *rigs_.front(); }
+  /// "ego/gps1: " before a rig's log lines in a fleet; "" in the single form.
+  std::string who(const Rig& rig) const { return fleet_ ? rig.label() + ": " : std::string(); }
   void shutdown();
   void on_signal(SignalAction action, int sig);
   /// Once a second: drop summaries that are due, the status line every minute.
@@ -121,25 +149,33 @@ private:
   void on_tick();
   /// A host reconfigured channel src's port (CFG-PRT, $PUBX,41, a config
   /// load): say what it sends now.
-  void log_port_change(std::size_t src);
+  void log_port_change(Rig& rig, std::size_t src);
   /// Truth from a vehicle that is not driving the receiver: say so once.
   void note_other_vehicle(const std::string& id);
-  /// Wire port to output i of the device (replacing what was there).
-  void open_channel(std::size_t i, std::unique_ptr<OutputPort> port);
+  /// Wire port to output i of rig's device (replacing what was there).
+  void open_channel(Rig& rig, std::size_t i, std::unique_ptr<OutputPort> port);
   // Scenario and control socket (daemon_control.cpp).
   /// A fresh fault stage with the scenario's events, time zero at the next epoch.
   void restart_scenario();
+  /// The events of events that act on rig (their target names it, or none).
+  static std::vector<faults::FaultEvent> events_for(const Rig& rig, const std::vector<config::ScenarioEvent>& events);
+  /// Throws gnssemu::Error (source:line) for an event whose target names no
+  /// receiver or whose port event names an output a targeted rig lacks.
+  void check_targets(const std::vector<config::ScenarioEvent>& events, const std::string& source) const;
   void start_control_socket();
-  void write_status(std::string& out) override;
-  std::vector<std::string> inject(std::string_view scenario, const std::string& source) override;
-  std::size_t clear() override;
+  void write_status(std::string& out, std::string_view target) override;
+  std::vector<std::string> inject(std::string_view scenario, const std::string& source,
+                                  std::string_view target) override;
+  std::size_t clear(std::string_view target) override;
+  /// The rigs target names ("" every one); throws gnssemu::Error when none.
+  std::vector<Rig*> rigs_of(std::string_view target) const;
   std::size_t fault_count() const override;
   /// The fault list for the status (at most once a second of run time).
-  void record_faults(double run_s);
+  void record_faults(Rig& rig, double run_s);
   /// Log the fault events that started or ended at this epoch (status: the stage's, after it).
-  void log_fault_transitions(std::span<const faults::FaultStatus> status, double run_s);
+  void log_fault_transitions(Rig& rig, std::span<const faults::FaultStatus> status, double run_s);
   /// Log the end of every active fault event before the stage drops them (why: "cleared", ...).
-  void log_fault_ends(std::string_view why);
+  void log_fault_ends(Rig& rig, std::string_view why);
   /// A reload's check of the port events against loaded's [[output]] list
   /// (docs/daemon.md §Reload): throws gnssemu::Error for a --scenario event
   /// whose output the file no longer has at its index; returns a warning per
@@ -152,7 +188,7 @@ private:
   /// The status page's settings and port list from the running state (after
   /// start, a reload, a rate change).
   void refresh_status_setup();
-  void record_status(double run_s, const world::Truth& truth, const receiver::Fix& fix) noexcept;
+  void record_status(Rig& rig, double run_s, const receiver::Fix& fix) noexcept;
 
   asio::io_context& io_;
   config::Config cfg_;
@@ -162,26 +198,26 @@ private:
   geo::LocalFrame frame_;
   std::unique_ptr<scene::Scene> scene_;  ///< buildings ([scene]); outlives the rigs' receivers
   DemoTrajectory demo_;
-  TruthRouter router_;
-  DropStats drops_;
+  bool fleet_;                  ///< [[vehicle]] or [fleet]: packets route by id
+  FleetRouter router_;
+  std::vector<VehicleState> vehicles_;
+  DropStats drops_;             ///< every drop (parse, allow, unknown vehicle, a router's)
   time::GpsTime start_;         ///< GPS time of elapsed 0 (realtime) / the first epoch (lockstep)
   double period_s_;
   double output_delay_s_;       ///< realtime: epoch to first byte on the wire, s
 
-  /// The emulated receivers (today one: the single-vehicle form).
+  /// The emulated receivers, vehicle by vehicle in config order.
   std::vector<std::unique_ptr<Rig>> rigs_;
   double rate_hz_;              // epoch rate now (CFG-RATE may change it)
+  world::SharedSky sky_;        ///< every satellite's state this epoch, read by every rig
+  std::vector<Ecef> antennas_;  ///< this epoch's antenna positions (capacity: one per rig)
   double sched_base_s_ = 0.0;   // realtime: elapsed time of index 0 of the current rate
 
-  StatusProducer status_;       ///< /api/status and the control socket's status
   std::unique_ptr<StatusServer> status_server_;  ///< null: [status] port = 0
   std::optional<time::GpsTime> status_first_t_;  ///< run time 0 of the status history
-  std::vector<faults::FaultEvent> scenario_;     ///< --scenario (time zero: the first epoch)
+  std::vector<config::ScenarioEvent> scenario_;  ///< --scenario (time zero: the first epoch)
   std::string scenario_source_;
   std::unique_ptr<ControlServer> control_;       ///< null: no [control] socket
-  std::vector<FaultStatus> faults_view_;         ///< the fault list as the status shows it
-  double fault_status_s_ = -1.0;                 ///< run time the fault list was last built, s
-  FaultLog fault_log_;                           ///< fault starts and ends, for the log
   double last_run_s_ = 0.0;                      ///< run time of the last epoch, s
 
   asio::steady_timer timer_;
@@ -191,14 +227,10 @@ private:
   std::unique_ptr<SignalDispatch> signals_;
   SystemdNotify notify_;
   TruthAllowList allow_;
-  StatusLine status_line_;  ///< the log line (every minute, SIGUSR1) and STATUS=
   asio::steady_timer tick_timer_;
   Reloader reloader_;
   double last_status_s_ = 0.0;
   std::vector<std::string> noted_vehicles_;  ///< non-driving vehicles already logged
-  bool ever_driven_ = false;                 ///< a simulator drove the receiver: the demo is off for good
-  int last_num_used_ = 0;
-  int last_num_tracked_ = 0;
   bool stopped_ = false;
   std::array<char, 65536> rx_buf_{};
 
@@ -214,8 +246,6 @@ private:
   uint64_t epochs_ = 0;
   uint64_t epochs_skipped_ = 0;
   uint64_t packets_ok_ = 0;
-  int last_fix_type_ = -1;
-  bool last_truth_valid_ = false;
   bool warned_gps_offset_ = false;
   bool gps_aligned_ = false;
 };

@@ -32,6 +32,9 @@ void Daemon::on_signal(SignalAction action, int sig) {
       break;
     case SignalAction::kStatus:
       spdlog::info("status: {}", status_line());
+      if (fleet_) {
+        for (const std::string& l : status_lines()) spdlog::info("status: {}", l);
+      }
       break;
     case SignalAction::kIgnore:
       break;
@@ -47,9 +50,20 @@ void Daemon::reload() noexcept {
   notify_.reloading();
   try {
     config::Config loaded = reloader_();
-    const ReloadPlan plan = plan_reload(cfg_, loaded);
+    ReloadPlan plan = plan_reload(cfg_, loaded);
+    if (fleet_ && (plan.receiver || plan.scene || !plan.reopen.empty())) {
+      // A fleet's receivers are built at start; truth, log and demo settings apply live.
+      spdlog::warn("reload: receiver, scene and port changes of a fleet apply at the next restart");
+      plan.receiver = plan.scene = false;
+      plan.reopen.clear();
+    }
+    if (fleet_) {
+      spdlog::info("reload: [[vehicle]] and [fleet] are read at start: vehicles added or removed in {} "
+                   "apply at the next restart", loaded.source);
+    }
     // Build everything that can fail before anything running is touched.
-    const std::vector<std::string> port_event_warnings = check_reload_port_events(loaded);
+    const std::vector<std::string> port_event_warnings =
+        fleet_ ? std::vector<std::string>{} : check_reload_port_events(loaded);
     std::unique_ptr<scene::Scene> scene;
     if (plan.scene) scene = load_scene_logged(loaded);
     std::unique_ptr<pipeline::Pipeline> receiver;
@@ -72,7 +86,7 @@ void Daemon::reload() noexcept {
     for (std::size_t k = 0; k < plan.reopen.size(); ++k) {
       const std::size_t i = plan.reopen[k];
       cfg_.outputs[i] = loaded.outputs[i];
-      open_channel(i, std::move(reopened[k]));
+      open_channel(rig(), i, std::move(reopened[k]));
       rig().channels[i]->start();
       spdlog::info("reload: output {} now on {}", cfg_.outputs[i].name, rig().channels[i]->port().describe());
     }
@@ -81,8 +95,8 @@ void Daemon::reload() noexcept {
       take_live_truth(cfg_.truth, loaded.truth);
       allow_ = TruthAllowList(cfg_.truth.allow);
       router_.set_params(TrackParams{cfg_.truth.timeout_s, cfg_.truth.max_extrapolation_s});
-      if (cfg_.truth.vehicle != router_.wanted_vehicle()) {
-        router_.set_driving_vehicle(cfg_.truth.vehicle);
+      if (!fleet_ && cfg_.truth.vehicle != router_.router(0).wanted_vehicle()) {
+        router_.router(0).set_driving_vehicle(cfg_.truth.vehicle);
         noted_vehicles_.clear();
         if (!cfg_.truth.vehicle.empty()) spdlog::info("truth: vehicle '{}' drives the receiver now", cfg_.truth.vehicle);
       }
@@ -106,9 +120,10 @@ void Daemon::reload() noexcept {
       receiver->adopt_faults(rig().receiver->take_faults());  // the faults go on around the new receiver
       rig().receiver = std::move(receiver);
       rig().device.set_coast_as_no_fix(config::coast_as_no_fix(cfg_));
-      apply_chip_settings();  // the chip's CFG-NAV5 (what a host set, what its polls read back) stays in force
+      apply_chip_settings(rig());  // the chip's CFG-NAV5 (what a host set, what its polls read back) stays in force
     }
     if (plan.log_level) cfg_.log = loaded.log;
+    if (!fleet_) rig().cfg = cfg_;  // the single form's receiver runs the top level
     for (const std::string& what : plan.need_restart) {
       spdlog::warn("reload: {} changed: applies at the next restart; running on the old value", what);
     }
@@ -123,21 +138,48 @@ void Daemon::reload() noexcept {
   }
 }
 
+std::vector<std::string> Daemon::status_lines() {
+  std::vector<std::string> lines;
+  const double now = std::max(now_s(), 0.0);
+  for (std::size_t v = 0; v < vehicles_.size(); ++v) {
+    VehicleState& vs = vehicles_[v];
+    const TruthRouter& r = router_.router(v);
+    // A vehicle's line shows its first receiver's fix and every receiver's ports.
+    const Rig* first = nullptr;
+    StatusSnapshot s;
+    for (const auto& rp : rigs_) {
+      if (rp->vehicle_index != v) continue;
+      if (first == nullptr) first = rp.get();
+      for (const auto& c : rp->channels) s.ports.push_back({c->port().config().name, c->port().readers()});
+    }
+    s.now_s = now;
+    if (first != nullptr) {
+      s.fix_type = first->last_fix_type < 0 ? 0 : first->last_fix_type;
+      s.sats_used = first->last_num_used;
+      s.sats_tracked = first->last_num_tracked;
+    }
+    s.packets_ok = fleet_ ? vs.packets_ok : packets_ok_;
+    s.drops = fleet_ ? vs.drops.total() : drops_.total();
+    s.epochs = epochs_;
+    s.driver = r.has_driver() ? r.driver_id() : std::string();
+    s.driver_fresh = r.driver_fresh(now);
+    s.demo = demo_drives(v);
+    s.vehicles = fleet_ ? 1 : r.vehicle_count();
+    std::string line = vs.line.line(s);
+    lines.push_back(fleet_ ? "vehicle '" + router_.id(v) + "': " + line : line);
+  }
+  return lines;
+}
+
 std::string Daemon::status_line() {
-  StatusSnapshot s;
-  s.now_s = std::max(now_s(), 0.0);
-  s.fix_type = last_fix_type_ < 0 ? 0 : last_fix_type_;
-  s.sats_used = last_num_used_;
-  s.sats_tracked = last_num_tracked_;
-  s.packets_ok = packets_ok_;
-  s.drops = drops_.total();
-  s.epochs = epochs_;
-  s.driver = router_.has_driver() ? router_.driver_id() : std::string();
-  s.driver_fresh = router_.driver_fresh(s.now_s);
-  s.demo = demo_drives();
-  s.vehicles = router_.vehicle_count();
-  for (const auto& c : rig().channels) s.ports.push_back({c->port().config().name, c->port().readers()});
-  return status_line_.line(s);
+  std::vector<std::string> lines = status_lines();
+  if (!fleet_) return lines.front();
+  int fixed = 0;
+  for (const auto& rp : rigs_) fixed += rp->last_fix_type >= 3 ? 1 : 0;
+  uint64_t unknown = drops_.count(DropReason::kUnknownVehicle);
+  return fmt::format("fleet: {} vehicle(s), {} of {} receiver(s) with a 3D fix; {} packets accepted, {} dropped "
+                     "({} from unknown vehicles); {} epochs",
+                     vehicles_.size(), fixed, rigs_.size(), packets_ok_, drops_.total(), unknown, epochs_);
 }
 
 void Daemon::arm_tick() {
@@ -158,23 +200,26 @@ void Daemon::on_tick() {
     last_status_s_ = now;
     const std::string line = status_line();
     spdlog::info("status: {}", line);
+    if (fleet_) {
+      for (const std::string& l : status_lines()) spdlog::info("status: {}", l);
+    }
     notify_.status(line);
   }
   arm_tick();
 }
 
-void Daemon::log_port_change(std::size_t src) {
-  if (src >= rig().channels.size() || !rig().channels[src]) return;
-  const std::string now(rig().channels[src]->output_summary());
-  if (now == rig().out_summary[src]) return;
-  const std::string& was = rig().out_summary[src];
-  const protocol::ubx::PortSettings& p = rig().device.port(rig().channels[src]->link());
-  spdlog::info("output {}: a host reconfigured the port: now sends {} (was {}), {} baud{}", cfg_.outputs[src].name,
+void Daemon::log_port_change(Rig& rig, std::size_t src) {
+  if (src >= rig.channels.size() || !rig.channels[src]) return;
+  const std::string now(rig.channels[src]->output_summary());
+  if (now == rig.out_summary[src]) return;
+  const std::string& was = rig.out_summary[src];
+  const protocol::ubx::PortSettings& p = rig.device.port(rig.channels[src]->link());
+  spdlog::info("output {}: a host reconfigured the port: now sends {} (was {}), {} baud{}", rig.cfg.outputs[src].name,
                now, was, p.baud_bps,
                p.outputs_nmea() ? ""
                                 : "; NMEA is off: a gpsd without -b does this when it probes a u-blox, "
                                   "run gpsd -b to keep the port as configured");
-  rig().out_summary[src] = now;
+  rig.out_summary[src] = now;
 }
 
 void Daemon::note_other_vehicle(const std::string& id) {
@@ -183,14 +228,15 @@ void Daemon::note_other_vehicle(const std::string& id) {
   }
   if (noted_vehicles_.size() >= TruthRouter::kMaxVehicles) return;
   noted_vehicles_.push_back(id);
-  if (router_.has_driver()) {
+  const TruthRouter& router = router_.router(0);
+  if (router.has_driver()) {
     spdlog::warn("truth: vehicle '{}' from {}:{} is not driving the receiver: '{}' is{}; set [truth] vehicle = \"{}\" "
                  "to follow it",
-                 id, peer_.address().to_string(), peer_.port(), router_.driver_id(),
-                 router_.wanted_vehicle().empty() ? " (the first heard)" : " ([truth] vehicle)", id);
+                 id, peer_.address().to_string(), peer_.port(), router.driver_id(),
+                 router.wanted_vehicle().empty() ? " (the first heard)" : " ([truth] vehicle)", id);
   } else {
     spdlog::warn("truth: vehicle '{}' from {}:{} is ignored: waiting for vehicle '{}' ([truth] vehicle)", id,
-                 peer_.address().to_string(), peer_.port(), router_.wanted_vehicle());
+                 peer_.address().to_string(), peer_.port(), router.wanted_vehicle());
   }
 }
 

@@ -13,29 +13,32 @@
 namespace gnssemu::daemon {
 
 void Daemon::refresh_status_setup() {
-  StatusSettings s = status_settings(cfg_);
-  s.rate_hz = rate_hz_;  // a host's CFG-RATE
-  status_.set_settings(std::move(s));
-  std::vector<PortInfo> ports;
-  for (const auto& c : rig().channels) {
-    const config::OutputPortConfig& pc = c->port().config();
-    ports.push_back(PortInfo{pc.name, std::string(config::port_type_name(pc.type())), c->port().describe()});
+  for (const auto& rp : rigs_) {
+    Rig& rig = *rp;
+    StatusSettings s = status_settings(rig.cfg);
+    s.rate_hz = rate_hz_;  // a host's CFG-RATE
+    rig.status.set_settings(std::move(s));
+    std::vector<PortInfo> ports;
+    for (const auto& c : rig.channels) {
+      const config::OutputPortConfig& pc = c->port().config();
+      ports.push_back(PortInfo{pc.name, std::string(config::port_type_name(pc.type())), c->port().describe()});
+    }
+    rig.status.set_ports(std::move(ports));
   }
-  status_.set_ports(std::move(ports));
 }
 
 void Daemon::start_status_page() {
   refresh_status_setup();
   const config::StatusConfig& sc = cfg_.status;
   if (sc.port == 0 && !sc.free_port) return;
-  status_server_ = std::make_unique<StatusServer>(io_, status_);
+  status_server_ = std::make_unique<StatusServer>(io_, rig().status);
   try {
     status_server_->start(sc.bind, sc.free_port ? 0 : sc.port);
   } catch (const Error& e) {
     // The page is a window on the receiver, not part of it: a taken port
     // moves it to a free one rather than stopping the emulator.
     spdlog::warn("{}; serving the status page on a free port instead", e.what());
-    status_server_ = std::make_unique<StatusServer>(io_, status_);
+    status_server_ = std::make_unique<StatusServer>(io_, rig().status);
     status_server_->start(sc.bind, 0);
   }
   if (!is_loopback(sc.bind)) {
@@ -43,6 +46,21 @@ void Daemon::start_status_page() {
                  "[status] bind = \"127.0.0.1\" keeps it local",
                  sc.bind);
   }
+  status_server_->set_selector(
+      [this](std::string_view vehicle, std::string_view receiver) -> const StatusProducer* {
+        for (const auto& rp : rigs_) {
+          if (rp->vehicle == vehicle && (receiver.empty() || rp->name == receiver)) return &rp->status;
+        }
+        return nullptr;
+      },
+      [this] {
+        std::string out = "[";
+        for (const auto& rp : rigs_) {
+          out += fmt::format("{}{{\"vehicle\":\"{}\",\"receiver\":\"{}\"}}", out.size() > 1 ? "," : "",
+                             rp->vehicle, rp->name);
+        }
+        return out + "]";
+      });
   const auto ep = status_server_->local_endpoint();
   const std::string host = ep.address().is_v6() ? "[" + ep.address().to_string() + "]" : ep.address().to_string();
   std::printf("gnssemud: status page http://%s:%u/\n", host.c_str(), static_cast<unsigned>(ep.port()));
@@ -53,28 +71,32 @@ double Daemon::run_time_s(const time::GpsTime& t) noexcept {
   return t - *status_first_t_;
 }
 
-void Daemon::record_status(double run_s, const world::Truth& truth, const receiver::Fix& fix) noexcept {
-  record_faults(run_s);
-  const protocol::ubx::EpochInfo& info = rig().device.epoch_info();
+void Daemon::record_status(Rig& rig, double run_s, const receiver::Fix& fix) noexcept {
+  record_faults(rig, run_s);
+  const protocol::ubx::EpochInfo& info = rig.device.epoch_info();
   EpochStatus e;
   e.fix = &fix;
-  e.truth = &truth;
+  e.truth = &rig.truth;
   e.run_s = run_s;
   e.uptime_s = info.msss_ms * 1e-3;
   e.ttff_s = info.ttff_ms * 1e-3;
-  status_.on_epoch(e);
+  rig.status.on_epoch(e);
 
+  // A fleet's receiver counts its vehicle's packets; the single form counts all.
+  const std::size_t v = rig.vehicle_index;
+  const VehicleState& vs = vehicles_[v];
+  const DropStats& drops = fleet_ ? vs.drops : drops_;
   TruthCounters tc;
-  tc.packets_accepted = packets_ok_;
-  for (std::size_t r = 0; r < kDropReasonCount; ++r) tc.dropped[r] = drops_.count(static_cast<DropReason>(r));
+  tc.packets_accepted = fleet_ ? vs.packets_ok : packets_ok_;
+  for (std::size_t r = 0; r < kDropReasonCount; ++r) tc.dropped[r] = drops.count(static_cast<DropReason>(r));
   const double now = now_s();
-  tc.simulator = router_.has_driver();
-  tc.fresh = tc.simulator && router_.driver_fresh(now);
-  tc.demo = demo_drives();
-  status_.set_truth(tc);
+  tc.simulator = router_.router(v).has_driver();
+  tc.fresh = tc.simulator && router_.router(v).driver_fresh(now);
+  tc.demo = demo_drives(v);
+  rig.status.set_truth(tc);
 
-  for (std::size_t i = 0; i < rig().channels.size(); ++i) {
-    const PortChannel& c = *rig().channels[i];
+  for (std::size_t i = 0; i < rig.channels.size(); ++i) {
+    const PortChannel& c = *rig.channels[i];
     PortCounters pc;
     pc.protocols = c.output_summary();
     pc.baud_bps = c.budget().limited() ? c.budget().baud_bps() : 0;
@@ -86,9 +108,9 @@ void Daemon::record_status(double run_s, const world::Truth& truth, const receiv
     pc.tx_level_bytes = c.budget().level_bytes();
     pc.tx_capacity_bytes = static_cast<double>(c.budget().capacity_bytes());
     pc.link_faults = c.stats().link_faults;
-    status_.set_port_counters(i, pc);
+    rig.status.set_port_counters(i, pc);
   }
-  if (status_server_) status_server_->publish();
+  if (status_server_ && &rig == rigs_.back().get()) status_server_->publish();
 }
 
 }  // namespace gnssemu::daemon

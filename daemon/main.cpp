@@ -116,32 +116,6 @@ struct Options {
   std::string scenario_path;  ///< --scenario: fault events (docs/faults.md)
 };
 
-// What one Daemon runs today: the single-vehicle form. A [[vehicle]] or
-// [fleet] of one receiver becomes it; more receivers are refused here
-// (--check-config lists them) until the daemon runs them side by side.
-config::Config one_receiver(const config::Config& cfg) {
-  if (cfg.vehicles.empty() && !cfg.fleet) return cfg;
-  const std::vector<config::VehicleConfig> vehicles = config::resolve_vehicles(cfg);
-  std::size_t receivers = 0;
-  for (const config::VehicleConfig& v : vehicles) receivers += v.receivers.size();
-  if (receivers != 1) {
-    throw Error(cfg.source, 0,
-                std::to_string(receivers) + " receivers configured; this gnssemud runs one receiver per daemon "
-                                            "(--check-config lists them)");
-  }
-  const config::VehicleReceiverConfig& r = vehicles[0].receivers[0];
-  if (r.lever_arm_m.x != 0.0 || r.lever_arm_m.y != 0.0 || r.lever_arm_m.z != 0.0) {
-    spdlog::warn("receiver {}/{}: lever arm not applied yet: the antenna is at the truth's position", vehicles[0].id,
-                 r.name);
-  }
-  config::Config one = config::with_receiver_settings(cfg, r.settings);
-  one.outputs = r.outputs;
-  one.truth.vehicle = vehicles[0].id;
-  one.vehicles.clear();
-  one.fleet.reset();
-  return one;
-}
-
 config::Config load_run_config(const Options& o) {
   config::Config cfg = o.config_path.empty() ? config::default_config() : config::load_config(o.config_path);
   if (!o.pty_path.empty()) {
@@ -220,8 +194,8 @@ int main(int argc, char** argv) {
     // The start must be served by the nav data (as the configured mode dates
     // them): an error here, not a receiver without a fix forever.
     const daemon::RunPlan plan = daemon::plan_run(cfg, nav, daemon::system_clock_gps());
-    std::vector<gnssemu::faults::FaultEvent> scenario;
-    if (!opt.scenario_path.empty()) scenario = config::read_scenario(opt.scenario_path);
+    std::vector<config::ScenarioEvent> scenario;
+    if (!opt.scenario_path.empty()) scenario = config::read_targeted_scenario(opt.scenario_path);
 
     if (check_only) {
       boost::asio::io_context check_io;
@@ -233,18 +207,21 @@ int main(int argc, char** argv) {
       return kExitOk;
     }
 
-    const config::Config run_cfg = one_receiver(cfg);
     auto level = spdlog::level::from_str(cfg.log.level);
     spdlog::set_level(verbose ? spdlog::level::debug : level);
-    if (run_cfg.outputs.empty()) spdlog::warn("no outputs configured: epochs are computed but go nowhere");
+    std::size_t outputs = 0;
+    for (const config::VehicleConfig& v : config::resolve_vehicles(cfg)) {
+      for (const config::VehicleReceiverConfig& r : v.receivers) outputs += r.outputs.size();
+    }
+    if (outputs == 0) spdlog::warn("no outputs configured: epochs are computed but go nowhere");
 
     boost::asio::io_context io;
-    daemon::Daemon d(io, run_cfg, nav, plan);
+    daemon::Daemon d(io, cfg, nav, plan);
     if (!opt.scenario_path.empty()) {
       d.set_scenario(scenario, opt.scenario_path);
       spdlog::info("scenario {}: {} event(s) from the first epoch", opt.scenario_path, scenario.size());
     }
-    if (!opt.config_path.empty()) d.set_reloader([opt] { return one_receiver(load_run_config(opt)); });
+    if (!opt.config_path.empty()) d.set_reloader([opt] { return load_run_config(opt); });
     d.start();
     started = true;
     io.run();

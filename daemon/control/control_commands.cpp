@@ -38,21 +38,32 @@ std::string handle_control_request(std::string_view request, ControlTarget& targ
       return error_reply("\"cmd\" (a string) is required: one of " + std::string(kCommands));
     }
     const std::string name = cmd->get<std::string>();
+    std::string who;  // "target": the receivers a command acts on
+    if (const auto t = req.find("target"); t != req.end()) {
+      if (!t->is_string() || t->get<std::string>().empty()) {
+        return error_reply(name + ": \"target\" must be \"vehicle\" or \"vehicle/receiver\"");
+      }
+      who = t->get<std::string>();
+    }
     if (name == "status") {
-      if (const std::string k = unknown_member(req, {}); !k.empty()) return error_reply("status: unknown member '" + k + "'");
+      if (const std::string k = unknown_member(req, {"target"}); !k.empty()) {
+        return error_reply("status: unknown member '" + k + "' (known: target)");
+      }
       std::string out = R"({"ok":true,"cmd":"status","status":)";
-      target.write_status(out);
+      target.write_status(out, who);
       out += '}';
       return out;
     }
     if (name == "clear") {
-      if (const std::string k = unknown_member(req, {}); !k.empty()) return error_reply("clear: unknown member '" + k + "'");
-      const std::size_t n = target.clear();
+      if (const std::string k = unknown_member(req, {"target"}); !k.empty()) {
+        return error_reply("clear: unknown member '" + k + "' (known: target)");
+      }
+      const std::size_t n = target.clear(who);
       return json{{"ok", true}, {"cmd", "clear"}, {"cleared", n}}.dump();
     }
     if (name == "inject") {
-      if (const std::string k = unknown_member(req, {"scenario", "source"}); !k.empty()) {
-        return error_reply("inject: unknown member '" + k + "' (known: scenario, source)");
+      if (const std::string k = unknown_member(req, {"scenario", "source", "target"}); !k.empty()) {
+        return error_reply("inject: unknown member '" + k + "' (known: scenario, source, target)");
       }
       const auto sc = req.find("scenario");
       if (sc == req.end() || !sc->is_string()) return error_reply("inject: \"scenario\" (the scenario file's text) is required");
@@ -61,7 +72,7 @@ std::string handle_control_request(std::string_view request, ControlTarget& targ
         if (!s->is_string() || s->get<std::string>().empty()) return error_reply("inject: \"source\" must be a non-empty string");
         source = s->get<std::string>();
       }
-      const std::vector<std::string> added = target.inject(sc->get<std::string>(), source);
+      const std::vector<std::string> added = target.inject(sc->get<std::string>(), source, who);
       return json{{"ok", true}, {"cmd", "inject"}, {"injected", added}, {"faults", target.fault_count()}}.dump();
     }
     return error_reply("unknown cmd '" + name + "' (known: " + std::string(kCommands) + ")");

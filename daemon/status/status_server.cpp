@@ -55,6 +55,21 @@ std::size_t history_param(std::string_view query, std::size_t def) {
   return def;
 }
 
+/// The value of key=... in a query string (no decoding: ids are plain); "" when absent.
+std::string_view query_param(std::string_view query, std::string_view key) {
+  std::size_t pos = 0;
+  while (pos < query.size()) {
+    std::size_t end = query.find('&', pos);
+    if (end == std::string_view::npos) end = query.size();
+    const std::string_view item = query.substr(pos, end - pos);
+    if (item.size() > key.size() && item.starts_with(key) && item[key.size()] == '=') {
+      return item.substr(key.size() + 1);
+    }
+    pos = end + 1;
+  }
+  return {};
+}
+
 }  // namespace
 
 class Session;
@@ -66,6 +81,8 @@ struct StatusServer::Shared {
   tcp::acceptor acceptor;
   asio::steady_timer retry;  ///< back-off after an accept error
   const StatusProducer* producer;  ///< null after stop()
+  StatusServer::Selector selector;  ///< a fleet's receivers by vehicle id and name
+  StatusServer::Lister lister;      ///< the fleet's receivers, JSON
   std::list<std::weak_ptr<Session>> sessions;
   std::string event;  ///< the newest event, "data: {...}\n\n"
   StatusServerStats stats;
@@ -165,10 +182,21 @@ private:
         respond_error(http::status::service_unavailable, "shutting down");
         return;
       }
+      const StatusProducer* producer = shared_->producer;
+      if (const std::string_view vehicle = query_param(query, "vehicle"); !vehicle.empty()) {
+        producer = shared_->selector ? shared_->selector(vehicle, query_param(query, "receiver")) : nullptr;
+        if (producer == nullptr) {
+          respond_error(http::status::not_found, "no such vehicle or receiver");
+          return;
+        }
+      }
       res->set(http::field::content_type, "application/json");
       std::string& body = res->body();
       body.reserve(64 * 1024);
-      shared_->producer->write_json(body, history_param(query, StatusProducer::kHistory));
+      producer->write_json(body, history_param(query, StatusProducer::kHistory));
+    } else if (path == "/api/receivers" && shared_->lister) {
+      res->set(http::field::content_type, "application/json");
+      res->body() = shared_->lister();
     } else if (const web::Asset* a = web::find_asset(path)) {
       res->set(http::field::content_type, std::string(a->content_type));
       res->body().assign(a->text.data(), a->text.size());
@@ -265,6 +293,11 @@ private:
 
 StatusServer::StatusServer(asio::io_context& io, const StatusProducer& producer)
     : shared_(std::make_shared<Shared>(io, producer)) {}
+
+void StatusServer::set_selector(Selector selector, Lister lister) {
+  shared_->selector = std::move(selector);
+  shared_->lister = std::move(lister);
+}
 
 StatusServer::~StatusServer() { stop(); }
 

@@ -9,10 +9,14 @@
 // dropped, and at most kMaxSessions connections are served at once.
 //   GET /, /status.js, ... the page (embedded assets, daemon/status/web_assets.hpp)
 //   GET /api/status[?history=N]  StatusProducer::write_json
+//   GET /api/status?vehicle=ID[&receiver=NAME]  a fleet's receiver (set_selector)
+//   GET /api/receivers           the fleet's receivers, [{"vehicle":..,"receiver":..}] (set_selector)
 //   GET /api/events              text/event-stream: one status (history=1) per epoch
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>  // before Asio: Boost 1.74 awaitable.hpp needs std::exchange
 
 #include <boost/asio/io_context.hpp>
@@ -49,6 +53,14 @@ public:
   /// Throws gnssemu::Error when the address is bad or cannot be bound.
   void start(const std::string& bind, uint16_t port);
   boost::asio::ip::tcp::endpoint local_endpoint() const;
+  /// The producer of a fleet's receiver (receiver "": the vehicle's first),
+  /// null when there is none; outlives the server's use as the producer does.
+  using Selector = std::function<const StatusProducer*(std::string_view vehicle, std::string_view receiver)>;
+  /// The receivers as a JSON array of {"vehicle","receiver"} objects.
+  using Lister = std::function<std::string()>;
+  /// /api/status?vehicle= picks with selector, /api/receivers lists with
+  /// lister (without them: 404).
+  void set_selector(Selector selector, Lister lister);
   /// A new epoch is in the producer: queue it on every event stream. Never
   /// blocks; a stream whose backlog would pass kMaxEventBacklogBytes is closed.
   void publish() noexcept;

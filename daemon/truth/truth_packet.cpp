@@ -24,7 +24,7 @@ constexpr std::array kReasonNames = {
     "duplicate_position", "duplicate_velocity", "duplicate_key",      "latitude_range",
     "longitude_range",    "height_range",       "speed_range",        "attitude_range",
     "bad_gps_time",       "bad_vehicle_id",     "sim_time_backwards", "too_many_vehicles",
-    "not_allowed",
+    "unknown_vehicle",    "not_allowed",
 };
 static_assert(kReasonNames.size() == kDropReasonCount, "one name per DropReason");
 

@@ -63,6 +63,7 @@ enum class DropReason : uint8_t {
   kBadVehicleId,
   kSimTimeBackwards,
   kTooManyVehicles,
+  kUnknownVehicle,  ///< a fleet's packet whose vehicle id is not configured
   kNotAllowed,  ///< sender not in [truth] allow
   kCount
 };

@@ -57,17 +57,17 @@ class RigBase:
                 rc = p.returncode
         return rc
 
-    def spawn_gpsd(self, path, readonly=True):
+    def spawn_gpsd(self, path, readonly=True, tag=""):
         """A private gpsd on path (-N foreground, -n poll without clients, -b
         read-only unless readonly is False, own control socket and free
-        loopback port in self.gpsd_port, log in gpsd.log) and gpspipe -w on
-        it: the gpspipe process (text stdout)."""
+        loopback port in self.gpsd_port, log in gpsd{tag}.log) and gpspipe -w
+        on it: the gpspipe process (text stdout). tag tells several apart."""
         gport = free_port(socket.SOCK_STREAM)
         self.gpsd_port = gport
-        log = open(os.path.join(self.tmp, "gpsd.log"), "w")
+        log = open(os.path.join(self.tmp, f"gpsd{tag}.log"), "w")
         self.spawn(["gpsd", "-N", "-n"] + (["-b"] if readonly else []) +
-                   ["-F", os.path.join(self.tmp, "gpsd.sock"), "-S", str(gport), "-P",
-                    os.path.join(self.tmp, "gpsd.pid"), path], stdout=log, stderr=subprocess.STDOUT)
+                   ["-F", os.path.join(self.tmp, f"gpsd{tag}.sock"), "-S", str(gport), "-P",
+                    os.path.join(self.tmp, f"gpsd{tag}.pid"), path], stdout=log, stderr=subprocess.STDOUT)
         log.close()  # gpsd holds its own descriptor
         deadline = time.monotonic() + 10
         while True:

@@ -590,6 +590,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   ctl->add_option("--timeout", ctl_args.timeout_s, "seconds to wait for the reply (0, 600]")
       ->check(CLI::Range(1e-3, 600.0))
       ->capture_default_str();
+  ctl->add_option("--vehicle", ctl_args.vehicle, "act on this vehicle's receivers only (default: every receiver)");
+  ctl->add_option("--receiver", ctl_args.receiver, "with --vehicle: act on this receiver of it only");
   ctl->require_subcommand(1);
   CLI::App* ctl_status = ctl->add_subcommand("status", "fix, satellites (C/N0, state), faults, counters as JSON");
   CLI::App* ctl_inject = ctl->add_subcommand("inject", "add the events of a scenario file, start times from now");

@@ -94,6 +94,11 @@ std::string exchange(const std::string& path, const std::string& request, double
 
 int run_ctl(const CtlArgs& a, std::ostream& out, std::ostream& err) {
   nlohmann::json req{{"cmd", a.command}};
+  if (!a.receiver.empty() && a.vehicle.empty()) {
+    err << "gnssemu ctl: --receiver needs --vehicle\n";
+    return kExitBadInput;
+  }
+  if (!a.vehicle.empty()) req["target"] = a.receiver.empty() ? a.vehicle : a.vehicle + "/" + a.receiver;
   if (a.command == "inject") {
     std::ifstream f(a.file, std::ios::binary);
     if (!f) {

@@ -13,6 +13,8 @@ struct CtlArgs {
   std::string command;       ///< status, inject, clear
   std::string file;          ///< inject: scenario file (start times from now)
   double timeout_s = 10.0;   ///< connect + reply, s (0, 600]
+  std::string vehicle;       ///< --vehicle: its receivers only; "" every receiver
+  std::string receiver;      ///< --receiver (with vehicle): that one only
 };
 
 /// Exit status: 0 the daemon said ok; 1 it refused (its error on err), the

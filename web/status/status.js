@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The live status page (docs/status.md): /api/status once for the history,
 // then one status per epoch from /api/events (server-sent events). Renders
-// only what that JSON carries.
+// only what that JSON carries. A fleet's receiver (?vehicle=ID&receiver=NAME
+// in the page's address, picked in the header) is polled twice a second.
 'use strict';
 
 (() => {
@@ -182,7 +183,47 @@
     renderHistory(s);
   }
 
+  const params = new URLSearchParams(location.search);
+  const vehicle = params.get('vehicle');
+  const pick = vehicle
+    ? '&vehicle=' + encodeURIComponent(vehicle) + '&receiver=' + encodeURIComponent(params.get('receiver') || '')
+    : '';
+
+  // The receiver selector: shown when the daemon runs more than one.
+  fetch('/api/receivers')
+    .then((r) => (r.ok ? r.json() : []))
+    .then((list) => {
+      if (list.length < 2) return;
+      const sel = $('receiver-select');
+      for (const x of list) {
+        const o = document.createElement('option');
+        o.value = '?vehicle=' + encodeURIComponent(x.vehicle) + '&receiver=' + encodeURIComponent(x.receiver);
+        o.textContent = x.vehicle + '/' + x.receiver;
+        o.selected = vehicle ? x.vehicle === vehicle && x.receiver === params.get('receiver') : o.index === 0;
+        sel.appendChild(o);
+      }
+      sel.hidden = false;
+      sel.onchange = () => { location.search = sel.value; };
+    })
+    .catch(() => {});
+
+  function poll() {
+    fetch('/api/status?history=1' + pick)
+      .then((r) => r.json())
+      .then((s) => {
+        $('conn').textContent = 'live';
+        $('conn').className = 'conn conn-on';
+        render(s);
+      })
+      .catch(() => { $('conn').textContent = 'reconnecting…'; $('conn').className = 'conn conn-off'; })
+      .finally(() => setTimeout(poll, 500));
+  }
+
   function connect() {
+    if (vehicle) {
+      poll();
+      return;
+    }
     const es = new EventSource('/api/events');
     es.onopen = () => { $('conn').textContent = 'live'; $('conn').className = 'conn conn-on'; };
     es.onerror = () => { $('conn').textContent = 'reconnecting…'; $('conn').className = 'conn conn-off'; };
@@ -195,7 +236,7 @@
     };
   }
 
-  fetch('/api/status')
+  fetch('/api/status' + (vehicle ? '?' + pick.slice(1) : ''))
     .then((r) => r.json())
     .then((s) => { if (s.epoch.count > 0) render(s); })
     .catch((err) => console.error('status', err))

@@ -163,3 +163,26 @@ TEST(ScenarioFile, MissingFileIsAnError) {
 
 }  // namespace
 }  // namespace gnssemu::config::scenario_file_test
+
+TEST(ScenarioFile, TargetsNameAVehicleOrOneReceiver) {
+  const auto events = parse_targeted_scenario(
+      "[[event]]\ntype = \"outage\"\nstart_s = 0\ntarget = \"v3\"\n"
+      "[[event]]\ntype = \"outage\"\nstart_s = 1\ntarget = \"v3/gps2\"\n"
+      "[[event]]\ntype = \"outage\"\nstart_s = 2\n",
+      "s.toml");
+  ASSERT_EQ(events.size(), 3u);
+  EXPECT_EQ(events[0].target, "v3");
+  EXPECT_EQ(events[1].target, "v3/gps2");
+  EXPECT_EQ(events[2].target, "");
+  EXPECT_TRUE(target_matches("v3", "v3", "gps1"));
+  EXPECT_TRUE(target_matches("v3/gps2", "v3", "gps2"));
+  EXPECT_FALSE(target_matches("v3/gps2", "v3", "gps1"));
+  EXPECT_FALSE(target_matches("v3", "v30", "gps1"));
+  expect_error([] { parse_targeted_scenario("[[event]]\ntype = \"outage\"\nstart_s = 0\ntarget = \"a/b/c\"\n", "s.toml"); },
+               {"s.toml:4", "target"});
+  expect_error([] { parse_targeted_scenario("[[event]]\ntype = \"outage\"\nstart_s = 0\ntarget = 3\n", "s.toml"); },
+               {"s.toml:4"});
+  // One receiver (gnssemu batch): a target picks nothing and is refused.
+  expect_error([] { parse_scenario("[[event]]\ntype = \"outage\"\nstart_s = 0\ntarget = \"v3\"\n", "s.toml"); },
+               {"s.toml:1", "target 'v3'"});
+}

@@ -18,15 +18,21 @@ using nlohmann::json;
 
 class Recorder final : public ControlTarget {
 public:
-  void write_status(std::string& out) override { out += R"({"fix":{"type":3}})"; }
-  std::vector<std::string> inject(std::string_view scenario, const std::string& source) override {
+  void write_status(std::string& out, std::string_view target) override {
+    targets.emplace_back(target);
+    out += R"({"fix":{"type":3}})";
+  }
+  std::vector<std::string> inject(std::string_view scenario, const std::string& source,
+                                  std::string_view target) override {
+    targets.emplace_back(target);
     if (scenario.find("bad") != std::string_view::npos) throw Error(source, 4, "js_db: 500 is out of range");
     injected.emplace_back(scenario);
     sources.push_back(source);
     held += 1;
     return {"jammer js_db=30 (in 0.0 s, to the end)"};
   }
-  std::size_t clear() override {
+  std::size_t clear(std::string_view target) override {
+    targets.emplace_back(target);
     const std::size_t n = held;
     held = 0;
     ++clears;
@@ -34,7 +40,7 @@ public:
   }
   std::size_t fault_count() const override { return held; }
 
-  std::vector<std::string> injected, sources;
+  std::vector<std::string> injected, sources, targets;
   std::size_t held = 0;
   int clears = 0;
 };
@@ -46,6 +52,17 @@ TEST(ControlCommands, StatusWrapsTheStatusObject) {
   const json j = reply(R"({"cmd":"status"})", r);
   EXPECT_EQ(j["ok"], true);
   EXPECT_EQ(j["status"]["fix"]["type"], 3);
+}
+
+TEST(ControlCommands, TargetPicksTheReceivers) {
+  Recorder r;
+  EXPECT_EQ(reply(R"({"cmd":"status","target":"v3"})", r)["ok"], true);
+  EXPECT_EQ(reply(R"({"cmd":"clear","target":"v3/gps2"})", r)["ok"], true);
+  EXPECT_EQ(reply(R"({"cmd":"status"})", r)["ok"], true);
+  EXPECT_EQ(r.targets, (std::vector<std::string>{"v3", "v3/gps2", ""}));
+  EXPECT_EQ(reply(R"({"cmd":"status","target":3})", r)["ok"], false);
+  EXPECT_EQ(reply(R"({"cmd":"clear","target":""})", r)["ok"], false);
+  EXPECT_EQ(r.targets.size(), 3u);
 }
 
 TEST(ControlCommands, InjectPassesTextAndSourceAndCountsFaults) {
