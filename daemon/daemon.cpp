@@ -399,7 +399,9 @@ void Daemon::emit_epoch(const time::GpsTime& t, const world::Truth& truth) {
   const receiver::Fix& fix = rig().receiver->step(t, truth);
   ++epochs_;
   last_epoch_t_ = t;
-  rig().device.on_epoch(fix, chip_clock_s(t));
+  const receiver::RawEpoch& raw = rig().receiver->receiver().raw();
+  rig().device.on_epoch(fix, chip_clock_s(t),
+                        protocol::ubx::RawSource{&raw, &store_, {&raw_nav_.klobuchar, &raw_nav_.utc, raw.leap_seconds}});
   // Port events act on the ports (docs/faults.md "Link faults"); no stage: none.
   faults::FaultStage* stage = rig().receiver->faults();
   const std::span<const faults::FaultStatus> link_status =
