@@ -162,6 +162,15 @@ def ubx_corpus():
     sigs += ubx(0x06, 0x8B, struct.pack("<BBHI", 0, 0, 0, 0x1031FFFF))
     write("ubx_device", "cfg_signal_impossible.bin", sigs + b"\x02")
 
+    # Raw data: CFG-MSG RXM-RAWX and RXM-SFRBX on (short and all-port forms),
+    # their CFG-MSG polls, RAWX/SFRBX polls (no answer), CFG-MSGOUT keys on the
+    # M9; the control byte 0x06 makes the chip an M9 on raw-data firmware.
+    raw = ubx(0x06, 0x01, bytes([0x02, 0x15, 1])) + ubx(0x06, 0x01, bytes([0x02, 0x13, 0, 1, 0, 1, 0, 0]))
+    raw += ubx(0x06, 0x01, bytes([0x02, 0x15])) + ubx(0x06, 0x01, bytes([0x02, 0x13])) + ubx(0x02, 0x15) + ubx(0x02, 0x13)
+    raw += ubx(0x06, 0x8A, bytes([0, 1, 0, 0]) + struct.pack("<IBIB", 0x209102A5, 1, 0x20910232, 1))
+    raw += ubx(0x06, 0x8B, struct.pack("<BBHII", 0, 0, 0, 0x209102A5, 0x20910232))
+    write("ubx_device", "raw_rawx_sfrbx.bin", raw + b"\x06")
+
 
 # --- RINEX observation files, gzip (as spp / calibrate read them) -----------
 
@@ -222,7 +231,9 @@ def dictionaries():
                                 "1e999", "-0", "true", "null", "\xf7GTR\x01", "\\u0000"])
     write_dict("ubx_device", ["\xb5\x62", "\xb5\x62\x06", "\xb5\x62\x0a\x04\x00\x00", "$PUBX,41,", "$PUBX,40,",
                               "GPQ,", "GNQ,", "*", "\r\n", "$GP", "$GN", "\xb5\x62\x06\x8a", "\xb5\x62\x06\x8b",
-                              "\xb5\x62\x06\x8c", "\xff\xff\xff\x0f", "\x01\x00\x21\x30", "\x07\x00\x91\x20"])
+                              "\xb5\x62\x06\x8c", "\xff\xff\xff\x0f", "\x01\x00\x21\x30", "\x07\x00\x91\x20",
+                              "\xb5\x62\x02\x15", "\xb5\x62\x02\x13", "\x02\x15", "\x02\x13", "\xa5\x02\x91\x20",
+                              "\x32\x02\x91\x20"])
     # RINEX header labels (columns 61-80) from the test files.
     labels = set()
     for p in list((ROOT / "tests/data/nav").iterdir()) + list((ROOT / "tests/data/obs").glob("*.[or]*")):
