@@ -141,7 +141,7 @@ void make_raw(gnssemu::fuzz::InputSplitter& in, const receiver::Fix& fix, receiv
   }
 }
 
-/// One ephemeris per GPS and QZSS satellite, used at any later time: the sets SFRBX re-encodes.
+/// One ephemeris per GPS and QZSS satellite (kept in use after its toe): the sets SFRBX re-encodes.
 const orbit::EphemerisStore& fuzz_store() {
   static const orbit::EphemerisStore store = [] {
     std::vector<orbit::Ephemeris> sets;
@@ -149,7 +149,7 @@ const orbit::EphemerisStore& fuzz_store() {
       for (int n = numbering(sys).first; n <= numbering(sys).last; ++n) {
         orbit::Ephemeris e;
         e.sat = SatId(sys, n);
-        e.toe = e.toc = time::GpsTime(0, 0.0);
+        e.toe = e.toc = time::GpsTime(2190, 7200.0);  // the raw_epochs seed's time
         e.sqrt_a_sqrtm = 5153.7;
         e.e = 0.01;
         e.iode = e.iodc = n;

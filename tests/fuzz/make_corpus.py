@@ -170,6 +170,25 @@ def ubx_corpus():
     raw += ubx(0x06, 0x8A, bytes([0, 1, 0, 0]) + struct.pack("<IBIB", 0x209102A5, 1, 0x20910232, 1))
     raw += ubx(0x06, 0x8B, struct.pack("<BBHII", 0, 0, 0, 0x209102A5, 0x20910232))
     write("ubx_device", "raw_rawx_sfrbx.bin", raw + b"\x06")
+    # The same input, then eight 1 Hz epochs with eight tracked GPS satellites,
+    # so RXM-RAWX and an RXM-SFRBX subframe are composed. Control bytes in the
+    # order fuzz_ubx_device.cpp reads them (from the file's end backwards):
+    # identity (M9, raw firmware), 1 Hz, one output at 115200 with UBX out and
+    # only RAWX and SFRBX rated, the feed of the whole payload, then the epochs
+    # (make_fix, make_raw).
+    ctl = [6, 0, 0, 3, 3, 1] + [0] * 8 + [1, 1] + [0]
+    ctl += [0, 0, 0, (len(raw) - 1) >> 8, (len(raw) - 1) & 0xFF]
+    for i in range(8):
+        tow = 6000 + i
+        ctl += [15, 0, 100]  # epoch, host 0, 1 s
+        # kind 3D, tow then week (GCC evaluates GpsTime's arguments right to left),
+        # leap 18, no leap second, lat, lon, height (2 each), geoid, speed, course
+        # (2 each), climb, h_acc (2), noise, eight satellites.
+        ctl += [3, tow >> 8, tow & 0xFF, 2190 >> 8, 2190 & 0xFF, 18, 1] + [0] * 6 + [0] + [0] * 4 + [0]
+        ctl += [0, 10, 0, 8]
+        ctl += [150, 0, 90, 45] * 8
+        ctl += [0, 0, 0, 0, 60, 0, 30, 3, 5, 15] * 8
+    write("ubx_device", "raw_epochs.bin", raw + bytes(reversed(ctl)))
 
 
 # --- RINEX observation files, gzip (as spp / calibrate read them) -----------
