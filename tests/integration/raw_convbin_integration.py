@@ -115,6 +115,7 @@ def main():
     ap.add_argument("--tow", type=float, default=522000.0)
     ap.add_argument("--seconds", type=int, default=120)
     ap.add_argument("--systems", default="G", help="RINEX letters whose ephemerides must come back")
+    ap.add_argument("--obs-systems", default="G", help="RINEX letters whose observations must come back")
     ap.add_argument("--extra", default="", help="more [receiver] lines")
     args = ap.parse_args()
     for tool in ("convbin", "gpsdecode"):
@@ -146,7 +147,8 @@ def main():
         for (week, tow), meas in raw.items():
             by_t[round(((week - 2190) * 604800 + tow) * 1e3)] = (week - 2190) * 604800 + tow, meas
         compared = 0
-        worst = {"C1C": 0.0, "L1C": 0.0, "D1C": 0.0, "S1C": 0.0}
+        worst = {"C": 0.0, "L": 0.0, "D": 0.0, "S": 0.0}  # by observation kind: one signal per satellite
+        systems_obs = set()
         for t, sats in rinex_obs(obs):
             hit = by_t.get(round(t * 1e3))
             if hit is None or abs(hit[0] - t) > 1e-7:
@@ -158,17 +160,21 @@ def main():
                     failures.append("%s at %.7f not in RAWX" % (sat, t))
                     continue
                 pr, cp, do, cno, trk = meas[sat]
-                want = {"C1C": pr if trk & 1 else None, "L1C": cp if trk & 2 else None, "D1C": do, "S1C": cno}
+                want = {"C": pr if trk & 1 else None, "L": cp if trk & 2 else None, "D": do, "S": cno}
                 for k, v in vals.items():
-                    if k in want and want[k] is not None:
-                        worst[k] = max(worst[k], abs(v - want[k]))
+                    if want.get(k[0]) is not None:
+                        worst[k[0]] = max(worst[k[0]], abs(v - want[k[0]]))
+                systems_obs.add(sat[0])
                 compared += 1
-        tol = {"C1C": 0.0006, "L1C": 0.0006, "D1C": 0.0006, "S1C": 0.5}
+        tol = {"C": 0.0006, "L": 0.0006, "D": 0.0006, "S": 0.5}
         for k, w in worst.items():
             if w > tol[k]:
                 failures.append("%s differs from RAWX by %.4f (> %.4f)" % (k, w, tol[k]))
-        print("observations: %d satellite epochs compared, largest |RINEX - RAWX|: %s"
-              % (compared, ", ".join("%s %.5f" % kv for kv in worst.items())))
+        print("observations: %d satellite epochs compared (systems %s), largest |RINEX - RAWX|: %s"
+              % (compared, ",".join(sorted(systems_obs)), ", ".join("%s %.5f" % kv for kv in worst.items())))
+        missing_obs = set(args.obs_systems) - systems_obs
+        if missing_obs:
+            failures.append("no observations decoded for %s" % ",".join(sorted(missing_obs)))
         if compared < 10 * args.seconds // 2:
             failures.append("only %d satellite epochs decoded" % compared)
 
