@@ -170,6 +170,7 @@ struct ReceiverSettings {
   world::WorldConfig world;           ///< seed, error processes, clock, systems (and the top level's atmosphere, signal)
   receiver::ReceiverConfig receiver;  ///< solver, filter, acquisition ...
   protocol::ubx::Generation generation = protocol::ubx::Generation::kM8;
+  bool raw_data = false;              ///< raw-data firmware (RXM-RAWX, RXM-SFRBX)
   std::string state_file;             ///< absolute; "" none
   std::optional<pipeline::ReceiverProfile> profile;
 };
@@ -234,6 +235,9 @@ struct Config {
   receiver::ReceiverConfig receiver;  ///< the receiver's own settings ([receiver], [receiver.solver], [receiver.corrections] ...)
   /// [receiver] generation: the u-blox chip the outputs present (MON-VER, CFG-VAL*, MON-RF)
   protocol::ubx::Generation generation = protocol::ubx::Generation::kM8;
+  /// [receiver] raw_data: the chip's firmware sends RXM-RAWX and RXM-SFRBX
+  /// (an M8T/M8P-class timing or high-precision firmware; docs/raw-output.md)
+  bool raw_data = false;
   /// [receiver] state_file: the chip's saved configuration (BBR/flash) across
   /// restarts, absolute; "" none (every start factory-fresh)
   std::string state_file;

@@ -27,6 +27,7 @@ bool coast_as_no_fix(const Config& config) {
 protocol::ubx::DeviceSetup device_setup(const Config& config, SystemSet nav_systems) {
   protocol::ubx::DeviceSetup s;
   s.mon_ver = protocol::ubx::mon_ver_of(config.generation);
+  s.raw_firmware = config.raw_data;
   s.nav_period_s = 1.0 / config.rate_hz;
   const receiver::NavFilterConfig& f = config.receiver.filter;
   s.dyn_model = static_cast<std::uint8_t>(f.dynamic_model);

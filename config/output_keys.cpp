@@ -380,7 +380,8 @@ void write_ubx_messages(TomlWriter& w, const Field<OutputPortConfig>& f, const O
 
 std::string ubx_message_names() {
   return names_doc(names_of(ubx_periodic_messages())) +
-         ", no repeats; MON-RF and SEC-SIG only with `[receiver] generation = \"m9\"`, NAV-SVINFO only with `\"m8\"`";
+         ", no repeats; MON-RF and SEC-SIG only with `[receiver] generation = \"m9\"`, NAV-SVINFO only with `\"m8\"`, "
+         "RXM-RAWX and RXM-SFRBX only with `[receiver] raw_data = true`";
 }
 
 constexpr Choice<protocol::nmea::NmeaVersion> kNmeaVersions[] = {{"2.1", protocol::nmea::NmeaVersion::k21},
@@ -558,12 +559,16 @@ void check_output_generation(TableReader& t, const Field<Config>&, Config& c) {
   for (std::size_t i = 0; i < c.outputs.size(); ++i) {
     for (const MessageRate& m : c.outputs[i].ubx_messages) {
       const protocol::ubx::MsgId id{m.msg_class, m.msg_id};
-      if (protocol::ubx::message_exists(id, c.generation)) continue;
+      const auto row = protocol::ubx::periodic_message(id);
+      const bool raw_missing = row && row->raw && !c.raw_data;
+      if (protocol::ubx::message_exists(id, c.generation) && !raw_missing) continue;
       const std::string_view g = protocol::ubx::generation_name(c.generation);
       const std::string_view name = message_name(m.msg_class, m.msg_id);
-      const std::string reason = "output[" + std::to_string(i) + "].ubx_messages: a u-blox " + std::string(g) +
-                                 " has no " + std::string(name) + " ([receiver] generation = \"" + std::string(g) +
-                                 "\"; docs/ubx.md \"Generations\")";
+      const std::string reason =
+          "output[" + std::to_string(i) + "].ubx_messages: a u-blox " + std::string(g) + " has no " +
+          std::string(name) +
+          (raw_missing ? " without raw-data firmware ([receiver] raw_data = true; docs/raw-output.md)"
+                       : " ([receiver] generation = \"" + std::string(g) + "\"; docs/ubx.md \"Generations\")");
       // At the array element naming it, through the readers that read it (only on
       // this error path, so the key log of a good file stays as read).
       std::vector<TableReader> outs = t.table_array("output");

@@ -405,6 +405,10 @@ constexpr Field<Config> kReceiverFields[] = {
         "generation", "the u-blox chip every output presents (docs/ubx.md \"Generations\"): `m8` a NEO-M8N "
                       "(protocol 18, legacy CFG messages only, MON-HW), `m9` a NEO-M9N (protocol 32.01: CFG-VALSET/"
                       "VALGET/VALDEL beside the legacy CFG messages, MON-RF, SEC-SIG; no NAV-SVINFO)"),
+    boolean<&Config::raw_data>(
+        "raw_data", "the chip's firmware has raw data output, as an M8T/M8P-class timing or high-precision firmware "
+                    "(docs/raw-output.md \"Availability\"): RXM-RAWX and RXM-SFRBX go out where a port or a host "
+                    "enables them; false (a NEO-M8N's or NEO-M9N's standard firmware): they stay silent"),
     custom<Config>("constellations", "", "RINEX letters `G` GPS, `R` GLONASS, `E` Galileo, `C` BeiDou, `J` QZSS, "
                    "`S` SBAS; at least one, no repeats",
                    "the systems in the receiver's sky: satellites of the other systems in the nav data are not "

@@ -16,7 +16,7 @@
 namespace gnssemu::config {
 
 ReceiverSettings receiver_settings(const Config& c) {
-  return {c.rate_hz, c.world, c.receiver, c.generation, c.state_file, c.profile};
+  return {c.rate_hz, c.world, c.receiver, c.generation, c.raw_data, c.state_file, c.profile};
 }
 
 Config with_receiver_settings(Config c, const ReceiverSettings& settings) {
@@ -24,6 +24,7 @@ Config with_receiver_settings(Config c, const ReceiverSettings& settings) {
   c.world = settings.world;
   c.receiver = settings.receiver;
   c.generation = settings.generation;
+  c.raw_data = settings.raw_data;
   c.state_file = settings.state_file;
   c.profile = settings.profile;
   return c;

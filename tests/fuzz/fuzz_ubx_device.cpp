@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/common/constants.hpp"
+#include "core/orbit/ephemeris_store.hpp"
 #include "core/protocol/ubx/ubx_decoder.hpp"
 #include "core/protocol/ubx/ubx_device.hpp"
 #include "fuzz_support.hpp"
@@ -111,6 +112,55 @@ receiver::Fix make_fix(gnssemu::fuzz::InputSplitter& in, int epoch) {
   return f;
 }
 
+/// The raw measurements of fix's tracked satellites (every system; phase
+/// locks, half cycles and lock times steered by control bytes).
+void make_raw(gnssemu::fuzz::InputSplitter& in, const receiver::Fix& fix, receiver::RawEpoch& raw) {
+  raw.t_rx = fix.t;
+  raw.time_valid = fix.time_valid;
+  raw.num_meas = 0;
+  for (int k = 0; k < fix.num_sats; ++k) {
+    const receiver::SatInfo& s = fix.sats[static_cast<std::size_t>(k)];
+    if (!s.tracked) continue;
+    receiver::RawMeasurement& m = raw.meas[static_cast<std::size_t>(raw.num_meas++)];
+    m.sat = s.sat;
+    m.signal = *signal_of(s.sat.system, 0);
+    m.glonass_channel = s.glonass_channel;
+    m.pseudorange_m = 2.0e7 + in.control_in(0, 65535) * 100.0;
+    m.carrier_phase_cycles = m.pseudorange_m / kL1Wavelength_m;
+    m.doppler_hz = in.control_in(0, 10000) - 5000.0;
+    m.cn0_dbhz = s.cn0_dbhz;
+    m.lock_time_s = in.control_in(0, 100);
+    m.pseudorange_sigma_m = in.control_in(0, 1000) * 0.01;
+    m.carrier_sigma_cycles = in.control_in(0, 100) * 0.001;
+    m.doppler_sigma_hz = in.control_in(0, 100) * 0.01;
+    const int flags = in.control_in(0, 15);
+    m.pseudorange_valid = (flags & 1) != 0;
+    m.carrier_valid = (flags & 2) != 0;
+    m.half_cycle_resolved = (flags & 4) != 0;
+    m.half_cycle_subtracted = (flags & 8) != 0;
+  }
+}
+
+/// One ephemeris per GPS and QZSS satellite (kept in use after its toe): the sets SFRBX re-encodes.
+const orbit::EphemerisStore& fuzz_store() {
+  static const orbit::EphemerisStore store = [] {
+    std::vector<orbit::Ephemeris> sets;
+    for (const GnssSystem sys : {GnssSystem::kGps, GnssSystem::kQzss}) {
+      for (int n = numbering(sys).first; n <= numbering(sys).last; ++n) {
+        orbit::Ephemeris e;
+        e.sat = SatId(sys, n);
+        e.toe = e.toc = time::GpsTime(2190, 7200.0);  // the raw_epochs seed's time
+        e.sqrt_a_sqrtm = 5153.7;
+        e.e = 0.01;
+        e.iode = e.iodc = n;
+        sets.push_back(e);
+      }
+    }
+    return orbit::EphemerisStore(sets, orbit::StoreOptions{true});
+  }();
+  return store;
+}
+
 class Host final : public DecoderSink {
 public:
   Host(Device& device, Link link) : device_(device), link_(link) {}
@@ -140,16 +190,19 @@ private:
 };
 
 constexpr std::array<std::uint32_t, 5> kBauds = {0, 9600, 38400, 115200, 230400};
-constexpr std::array<MsgId, 8> kRated = {msg::kNavPvt, msg::kNavStatus, msg::kNavDop,  msg::kNavSat,
-                                         msg::kNavSvinfo, msg::kNavTimeutc, msg::kNmeaGga, msg::kNmeaGsv};
+constexpr std::array<MsgId, 10> kRated = {msg::kNavPvt,     msg::kNavStatus,  msg::kNavDop,   msg::kNavSat,
+                                          msg::kNavSvinfo,  msg::kNavTimeutc, msg::kNmeaGga,  msg::kNmeaGsv,
+                                          msg::kRxmRawx,    msg::kRxmSfrbx};
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   gnssemu::fuzz::InputSplitter in(data, size);
   DeviceSetup setup;
-  // b0: ACK unknown CFG ids; b1: an M9, which answers CFG-VALSET/VALGET/VALDEL.
-  const int identity = in.control_in(0, 3);
+  // b0: ACK unknown CFG ids; b1: an M9, which answers CFG-VALSET/VALGET/VALDEL;
+  // b2: raw-data firmware (RXM-RAWX, RXM-SFRBX).
+  const int identity = in.control_in(0, 7);
+  setup.raw_firmware = (identity & 4) != 0;
   setup.ack_unknown_cfg = (identity & 1) != 0;
   setup.mon_ver = mon_ver_of((identity & 2) != 0 ? Generation::kM9 : Generation::kM8);
   setup.nav_period_s = 1.0 / in.control_in(1, 10);
@@ -179,6 +232,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   double now_s = 0.0;
   int epoch = 0;
   MessageList list;
+  receiver::RawEpoch raw;
   while (in.remaining() > 0) {
     const int action = in.control_in(0, 15);
     const std::size_t who = static_cast<std::size_t>(in.control_in(0, 15)) % hosts.size();
@@ -194,7 +248,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       dec.reset();
     } else {
       const receiver::Fix fix = make_fix(in, epoch++);
-      device.on_epoch(fix, now_s);
+      make_raw(in, fix, raw);
+      device.on_epoch(fix, now_s, RawSource{&raw, &fuzz_store(), {}});
       for (int k = 0; k < outputs; ++k) {
         list.clear();
         const Layout layout = action == 14 ? Layout::kLine : Layout::kPerProtocol;

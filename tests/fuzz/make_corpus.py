@@ -162,6 +162,34 @@ def ubx_corpus():
     sigs += ubx(0x06, 0x8B, struct.pack("<BBHI", 0, 0, 0, 0x1031FFFF))
     write("ubx_device", "cfg_signal_impossible.bin", sigs + b"\x02")
 
+    # Raw data: CFG-MSG RXM-RAWX and RXM-SFRBX on (short and all-port forms),
+    # their CFG-MSG polls, RAWX/SFRBX polls (no answer), CFG-MSGOUT keys on the
+    # M9; the control byte 0x06 makes the chip an M9 on raw-data firmware.
+    raw = ubx(0x06, 0x01, bytes([0x02, 0x15, 1])) + ubx(0x06, 0x01, bytes([0x02, 0x13, 0, 1, 0, 1, 0, 0]))
+    raw += ubx(0x06, 0x01, bytes([0x02, 0x15])) + ubx(0x06, 0x01, bytes([0x02, 0x13])) + ubx(0x02, 0x15) + ubx(0x02, 0x13)
+    raw += ubx(0x06, 0x8A, bytes([0, 1, 0, 0]) + struct.pack("<IBIB", 0x209102A5, 1, 0x20910232, 1))
+    raw += ubx(0x06, 0x8B, struct.pack("<BBHII", 0, 0, 0, 0x209102A5, 0x20910232))
+    write("ubx_device", "raw_rawx_sfrbx.bin", raw + b"\x06")
+    # The same input, then eight 1 Hz epochs with eight tracked GPS satellites,
+    # so RXM-RAWX and an RXM-SFRBX subframe are composed. Control bytes in the
+    # order fuzz_ubx_device.cpp reads them (from the file's end backwards):
+    # identity (M9, raw firmware), 1 Hz, one output at 115200 with UBX out and
+    # only RAWX and SFRBX rated, the feed of the whole payload, then the epochs
+    # (make_fix, make_raw).
+    ctl = [6, 0, 0, 3, 3, 1] + [0] * 8 + [1, 1] + [0]
+    ctl += [0, 0, 0, (len(raw) - 1) >> 8, (len(raw) - 1) & 0xFF]
+    for i in range(8):
+        tow = 6000 + i
+        ctl += [15, 0, 100]  # epoch, host 0, 1 s
+        # kind 3D, tow then week (GCC evaluates GpsTime's arguments right to left),
+        # leap 18, no leap second, lat, lon, height (2 each), geoid, speed, course
+        # (2 each), climb, h_acc (2), noise, eight satellites.
+        ctl += [3, tow >> 8, tow & 0xFF, 2190 >> 8, 2190 & 0xFF, 18, 1] + [0] * 6 + [0] + [0] * 4 + [0]
+        ctl += [0, 10, 0, 8]
+        ctl += [150, 0, 90, 45] * 8
+        ctl += [0, 0, 0, 0, 60, 0, 30, 3, 5, 15] * 8
+    write("ubx_device", "raw_epochs.bin", raw + bytes(reversed(ctl)))
+
 
 # --- RINEX observation files, gzip (as spp / calibrate read them) -----------
 
@@ -222,7 +250,9 @@ def dictionaries():
                                 "1e999", "-0", "true", "null", "\xf7GTR\x01", "\\u0000"])
     write_dict("ubx_device", ["\xb5\x62", "\xb5\x62\x06", "\xb5\x62\x0a\x04\x00\x00", "$PUBX,41,", "$PUBX,40,",
                               "GPQ,", "GNQ,", "*", "\r\n", "$GP", "$GN", "\xb5\x62\x06\x8a", "\xb5\x62\x06\x8b",
-                              "\xb5\x62\x06\x8c", "\xff\xff\xff\x0f", "\x01\x00\x21\x30", "\x07\x00\x91\x20"])
+                              "\xb5\x62\x06\x8c", "\xff\xff\xff\x0f", "\x01\x00\x21\x30", "\x07\x00\x91\x20",
+                              "\xb5\x62\x02\x15", "\xb5\x62\x02\x13", "\x02\x15", "\x02\x13", "\xa5\x02\x91\x20",
+                              "\x32\x02\x91\x20"])
     # RINEX header labels (columns 61-80) from the test files.
     labels = set()
     for p in list((ROOT / "tests/data/nav").iterdir()) + list((ROOT / "tests/data/obs").glob("*.[or]*")):

@@ -33,7 +33,9 @@ Rules project_rules() {
       {"pipeline", "core/pipeline", {"receiver", "faults"}, {}},
       // The encoders read the Fix struct only, not the receiver that fills it.
       {"nmea", "core/protocol/nmea", {"time"}, {"core/receiver/fix.hpp"}},
-      {"ubx", "core/protocol/ubx", {"nmea"}, {}},
+      // Navigation messages re-encoded from the broadcast ephemerides (RXM-SFRBX).
+      {"navmsg", "core/protocol/navmsg", {"orbit"}, {}},
+      {"ubx", "core/protocol/ubx", {"nmea", "navmsg"}, {"core/receiver/raw_measurements.hpp"}},
       {"config", "config", {"pipeline", "ubx", "observation"}, {}},
       // gnssemud's rooms: truth input, ports, status and control sit side by
       // side below the vehicle loop (daemon/ itself), which alone ties them.
@@ -63,6 +65,7 @@ Rules project_rules() {
       tests_of("pipeline", "pipeline"),
       tests_of("faults", "pipeline"),  // fault tests run the whole pipeline
       tests_of("nmea", "nmea"),
+      tests_of("navmsg", "navmsg"),
       tests_of("ubx", "ubx"),
       tests_of("config", "config"),
       tests_of("daemon", "daemon"),

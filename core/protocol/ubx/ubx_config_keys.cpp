@@ -76,6 +76,8 @@ constexpr MsgOutRow kMsgOutRows[] = {
     {0x20910359, "CFG-MSGOUT-UBX_MON_RF", msg::kMonRf},
     {0x20910634, "CFG-MSGOUT-UBX_SEC_SIG", msg::kSecSig},
     {0x20910268, "CFG-MSGOUT-UBX_RXM_RTCM", kRxmRtcm},
+    {0x209102A4, "CFG-MSGOUT-UBX_RXM_RAWX", msg::kRxmRawx},
+    {0x20910231, "CFG-MSGOUT-UBX_RXM_SFRBX", msg::kRxmSfrbx},
     {0x209100BA, "CFG-MSGOUT-NMEA_ID_GGA", msg::kNmeaGga},
     {0x209100C9, "CFG-MSGOUT-NMEA_ID_GLL", msg::kNmeaGll},
     {0x209100BF, "CFG-MSGOUT-NMEA_ID_GSA", msg::kNmeaGsa},

@@ -62,6 +62,7 @@ private:
 Device::Device(const DeviceSetup& setup)
     : ack_unknown_cfg_(setup.ack_unknown_cfg),
       coast_as_no_fix_(setup.coast_as_no_fix),
+      raw_firmware_(setup.raw_firmware),
       encoder_(setup.mon_ver),
       nmea_(nmea_encoders(setup)),
       defaults_(DeviceConfig::factory_defaults(nmea_.size(), setup.mon_ver.generation)),
@@ -246,8 +247,15 @@ void Device::restart_navigation(double now_s) noexcept {
   info_.ttff_ms = 0;
 }
 
-void Device::on_epoch(const receiver::Fix& fix, double now_s) noexcept {
+void Device::on_epoch(const receiver::Fix& fix, double now_s, const RawSource& raw) noexcept {
   last_fix_ = fix;
+  raw_ = raw;
+  if (raw.epoch != nullptr && raw.epoch->time_valid) {
+    // SFRBX sends what finished since the last epoch: one period after a gap.
+    const double dt = raw.epoch->t_rx - last_raw_t_;
+    raw_period_s_ = dt > 0.0 && dt <= 2.0 * epoch_period_s_ ? dt : epoch_period_s_;
+    last_raw_t_ = raw.epoch->t_rx;
+  }
   ++epochs_;
   const double uptime_s = now_s - uptime_origin_s_;
   const double ms = std::isfinite(uptime_s) ? std::clamp(uptime_s * 1e3, 0.0, 4294967295.0) : 0.0;
@@ -295,6 +303,10 @@ void Device::compose(Link at, MessageList& out, Layout layout, FixOverride repor
       const PeriodicMessage& m = kPeriodicMessages[i];
       if (layout == Layout::kLine && (m.group == EpochGroup::kBeforeNmea) != before_nmea) continue;
       if (!due(col, m.id)) continue;
+      if (m.raw) {
+        if (raw_firmware_) raw_message(m, out);
+        continue;
+      }
       if (encoder_.encode(m.id, last_fix_, info, out.buffer()) > 0) out.close(m.name, Protocol::kUbx);
     }
   };
@@ -305,6 +317,15 @@ void Device::compose(Link at, MessageList& out, Layout layout, FixOverride repor
     nmea_[at.output].encode_epoch(last_fix_, sentences, out.buffer(), &closer, reported);
   }
   if (layout == Layout::kLine) ubx_messages(false);
+}
+
+void Device::raw_message(const PeriodicMessage& m, MessageList& out) const noexcept {
+  if (raw_.epoch == nullptr) return;
+  if (m.id == msg::kRxmRawx) {
+    if (rxm_rawx(*raw_.epoch, generation(), out.buffer()) > 0) out.close(m.name, Protocol::kUbx);
+  } else if (m.id == msg::kRxmSfrbx) {
+    rxm_sfrbx_due(raw_, raw_period_s_, generation(), out);
+  }
 }
 
 std::uint16_t Device::protocols_sent(Link at) const noexcept {

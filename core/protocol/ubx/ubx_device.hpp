@@ -32,7 +32,9 @@
 #include "core/protocol/ubx/ubx_gnss.hpp"
 #include "core/protocol/ubx/ubx_handlers.hpp"
 #include "core/protocol/ubx/ubx_message_list.hpp"
+#include "core/protocol/ubx/ubx_message_table.hpp"
 #include "core/protocol/ubx/ubx_reset.hpp"
+#include "core/protocol/ubx/ubx_rxm.hpp"
 #include "core/receiver/fix.hpp"
 
 namespace gnssemu::protocol::ubx {
@@ -77,6 +79,11 @@ struct DeviceSetup {
   /// An extrapolated solution (receiver::FixType::kDeadReckoning) is
   /// reported as no fix on every port (receiver::CoastReport::kNoFix).
   bool coast_as_no_fix = true;
+  /// The firmware is a variant with raw data output (a NEO-M8T/M8P class
+  /// TIM or HPG firmware, a u-blox 9 HPG): RXM-RAWX and RXM-SFRBX go out
+  /// where a host enables them. A NEO-M8N's or NEO-M9N's standard firmware
+  /// has none; they then stay silent at any rate (docs/raw-output.md).
+  bool raw_firmware = false;
   /// One per output; empty: one factory UART1.
   std::vector<OutputSetup> outputs;
   /// Systems the emulator puts in the sky ([receiver] constellations). The
@@ -165,8 +172,11 @@ public:
   InputResult handle_nmea(Link at, std::string_view sentence, std::string& out);
 
   /// Start of a navigation epoch at now_s: keeps fix for compose() and
-  /// polls, counts epochs for rates > 1, updates uptime and ttff.
-  void on_epoch(const receiver::Fix& fix, double now_s) noexcept;
+  /// polls, counts epochs for rates > 1, updates uptime and ttff. raw: the
+  /// epoch's raw measurements and broadcast ephemerides for RXM-RAWX and
+  /// RXM-SFRBX (its pointers must stay valid until the epoch is composed);
+  /// empty: those messages are not sent.
+  void on_epoch(const receiver::Fix& fix, double now_s, const RawSource& raw = {}) noexcept;
   /// The messages due at at this epoch (rates divide the epoch count;
   /// protocols per outProtoMask) in layout's order. No allocation
   /// (MessageList reserves for the largest epoch). reported: the fix type
@@ -224,6 +234,8 @@ private:
   /// Fill the change flags of r and the host's baud switch from before_ to current_.
   void diff(Link at, InputResult& r) const noexcept;
   void restart_navigation(double now_s) noexcept;
+  /// Append a raw-data message (RXM-RAWX, RXM-SFRBX) of the last epoch.
+  void raw_message(const PeriodicMessage& m, MessageList& out) const noexcept;
   void after_input(const InputResult& r) noexcept;
   /// The NMEA encoders follow the enabled systems and, when from_cfg_nmea,
   /// every field of the stored CFG-NMEA.
@@ -231,6 +243,7 @@ private:
 
   bool ack_unknown_cfg_;
   bool coast_as_no_fix_;
+  bool raw_firmware_;
   UbxEncoder encoder_;
   std::vector<nmea::NmeaEncoder> nmea_;  ///< per output
   DeviceConfig defaults_, saved_, current_;
@@ -244,6 +257,9 @@ private:
   EpochInfo info_{};
   std::uint64_t epochs_ = 0;
   bool have_fix_once_ = false;
+  RawSource raw_;          ///< the last epoch's raw data
+  double raw_period_s_ = 0.0;  ///< time since the previous epoch's raw data, s
+  time::GpsTime last_raw_t_;
   DeviceStats stats_;
 };
 

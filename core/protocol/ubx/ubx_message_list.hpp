@@ -21,11 +21,13 @@ public:
     std::string_view label;          ///< "NAV-PVT", "GGA" (static storage)
     Protocol protocol = Protocol::kUbx;
   };
-  /// Largest epoch: every periodic UBX message (19) and NMEA sentence (7 plus
-  /// the GSV parts of every system).
-  static constexpr std::size_t kMaxMessages = 96;
-  /// Bytes of the largest epoch (UBX kMaxEpochBytes + nmea::kMaxEpochBytes, rounded up).
-  static constexpr std::size_t kMaxBytes = 16384;
+  /// Largest epoch: every periodic UBX message (21), NMEA sentence (7 plus
+  /// the GSV parts of every system) and an RXM-SFRBX per satellite in view.
+  static constexpr std::size_t kMaxMessages = 224;
+  /// Bytes of the largest epoch (UBX kMaxEpochBytes + nmea::kMaxEpochBytes,
+  /// RXM-RAWX of every measurement (6.2 KB) and an SFRBX per satellite in
+  /// view (5.4 KB), rounded up).
+  static constexpr std::size_t kMaxBytes = 32768;
 
   /// Reserves for the largest epoch: filling it never allocates.
   MessageList() {

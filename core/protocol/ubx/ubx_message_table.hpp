@@ -38,12 +38,15 @@ struct PeriodicMessage {
   /// protocol 27 (shared/reference/ubx.md §3), MON-RF, SEC-SIG and NAV-SIG
   /// are new on the M9 (docs/ubx.md §Generations).
   GenerationSet generations = kAllGenerations;
+  /// Raw data (RXM-RAWX, RXM-SFRBX): only firmware variants with raw output
+  /// send it (DeviceSetup::raw_firmware; docs/raw-output.md "Availability").
+  bool raw = false;
 
   constexpr bool exists_on(Generation g) const noexcept { return (generations & generation_bit(g)) != 0; }
 };
 
 /// Rows in the order the configuration lists them (docs/configuration.md).
-inline constexpr std::array<PeriodicMessage, 19> kPeriodicMessages{{
+inline constexpr std::array<PeriodicMessage, 21> kPeriodicMessages{{
     {msg::kNavPvt, "NAV-PVT", EpochGroup::kBeforeNmea, true},
     {msg::kNavPosllh, "NAV-POSLLH", EpochGroup::kBeforeNmea, true},
     {msg::kNavVelned, "NAV-VELNED", EpochGroup::kBeforeNmea, true},
@@ -63,6 +66,8 @@ inline constexpr std::array<PeriodicMessage, 19> kPeriodicMessages{{
     {msg::kNavTimegal, "NAV-TIMEGAL", EpochGroup::kAfterNmea, true},
     {msg::kNavTimebds, "NAV-TIMEBDS", EpochGroup::kAfterNmea, true},
     {msg::kMonHw2, "MON-HW2", EpochGroup::kAfterNmea, true},
+    {msg::kRxmRawx, "RXM-RAWX", EpochGroup::kAfterNmea, true, kAllGenerations, true},
+    {msg::kRxmSfrbx, "RXM-SFRBX", EpochGroup::kAfterNmea, true, kAllGenerations, true},
 }};
 
 namespace detail {

@@ -131,6 +131,16 @@ TEST(ConfigPorts, MessagesMustExistOnTheGeneration) {
   EXPECT_EQ(parse(with("\"NAV-SVINFO\",\n", "m8")).outputs.at(0).ubx_messages.size(), 1u);
 }
 
+TEST(ConfigPorts, RawMessagesNeedRawDataFirmware) {
+  const std::string out = port("type = \"file\"\npath = \"/tmp/a\"\nubx_messages = [\n\"NAV-PVT\",\n\"RXM-RAWX\",\n]\n");
+  EXPECT_EQ(error_of(out),
+            "t.toml:13: output[0].ubx_messages: a u-blox m8 has no RXM-RAWX without raw-data firmware ([receiver] "
+            "raw_data = true; docs/raw-output.md)");
+  const Config c = parse(out + "[receiver]\nraw_data = true\n");
+  EXPECT_TRUE(c.raw_data);
+  EXPECT_EQ(c.outputs.at(0).ubx_messages.at(1), (MessageRate{0x02, 0x15, 1}));
+}
+
 TEST(ConfigPorts, Errors) {
   // Line numbers: [[output]] is line 7, name line 8, body from line 9.
   EXPECT_EQ(error_of(port("type = \"serial\"\npath = \"/dev/ttyS0\"\n")),
@@ -157,7 +167,7 @@ TEST(ConfigPorts, Errors) {
   EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nubx_messages = [\"NAV-PVT\", \"NAV-XYZ\"]\n")),
             "t.toml:10: output[0].ubx_messages: unknown UBX message 'NAV-XYZ' (known: NAV-PVT NAV-POSLLH "
             "NAV-VELNED NAV-STATUS NAV-DOP NAV-SOL NAV-TIMEUTC NAV-SAT NAV-SVINFO MON-HW MON-RF SEC-SIG NAV-EOE "
-            "NAV-SIG NAV-TIMEGLO NAV-TIMEGAL NAV-TIMEBDS MON-HW2)");
+            "NAV-SIG NAV-TIMEGLO NAV-TIMEGAL NAV-TIMEBDS MON-HW2 RXM-RAWX RXM-SFRBX)");
   EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nubx_messages = [\"NAV-PVT\", \"NAV-PVT\"]\n")),
             "t.toml:10: output[0].ubx_messages: 'NAV-PVT' listed twice");
   // A set whose protocol is off is kept: a host may turn the protocol on (CFG-PRT, $PUBX,41).

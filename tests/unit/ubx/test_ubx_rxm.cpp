@@ -1,0 +1,263 @@
+// SPDX-License-Identifier: Apache-2.0
+// RXM-RAWX and RXM-SFRBX: every field at its offset and encoding (IDF9
+// §5.15.3, §5.15.6; shared/reference/rtk-raw.md §1.1, §1.3), the sigId
+// each generation reports, and the device sending them only from raw
+// firmware, at the rates CFG-MSG and CFG-VALSET set.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "core/orbit/rinex_nav.hpp"
+#include "core/protocol/ubx/ubx_device.hpp"
+#include "core/protocol/ubx/ubx_rxm.hpp"
+#include "ubx_test_util.hpp"
+
+namespace gnssemu::protocol::ubx {
+namespace {
+
+using test::split_frames;
+
+template <class T>
+T at(const std::vector<std::uint8_t>& p, std::size_t off) {
+  T v;
+  std::memcpy(&v, p.data() + off, sizeof v);
+  return v;
+}
+
+receiver::RawEpoch sample_raw() {
+  receiver::RawEpoch r;
+  r.t_rx = time::GpsTime(2190, 345600.0000123);
+  r.time_valid = true;
+  r.leap_seconds = 18;
+  r.leap_seconds_valid = true;
+  receiver::RawMeasurement& g = r.meas[0];
+  g.sat = SatId::gps(5);
+  g.signal = SignalId::kGpsL1CA;
+  g.pseudorange_m = 21234567.891;
+  g.carrier_phase_cycles = 111587654.321;
+  g.doppler_hz = -1234.5;
+  g.cn0_dbhz = 44.6;
+  g.lock_time_s = 70.0;  // saturates at 64.5 s
+  g.pseudorange_sigma_m = 0.32;  // 0.01 * 2^5
+  g.carrier_sigma_cycles = 0.012;  // 0.004 * 3
+  g.doppler_sigma_hz = 0.016;  // 0.002 * 2^3
+  g.pseudorange_valid = g.carrier_valid = g.half_cycle_resolved = true;
+  receiver::RawMeasurement& k = r.meas[1];
+  k.sat = SatId(GnssSystem::kGlonass, 12);
+  k.signal = SignalId::kGloL1OF;
+  k.glonass_channel = -1;
+  k.pseudorange_m = 20000000.0;
+  k.lock_time_s = 1.234;
+  k.cn0_dbhz = 38.2;
+  k.pseudorange_valid = true;  // carrier not (yet) locked
+  receiver::RawMeasurement& c = r.meas[2];
+  c.sat = SatId(GnssSystem::kBeiDou, 3);  // GEO: D2
+  c.signal = SignalId::kBdsB1I;
+  c.pseudorange_m = 36000000.0;
+  c.pseudorange_valid = c.carrier_valid = true;
+  c.half_cycle_resolved = c.half_cycle_subtracted = true;
+  receiver::RawMeasurement& j = r.meas[3];
+  j.sat = SatId(GnssSystem::kQzss, 2);
+  j.signal = SignalId::kQzsL1CA;
+  r.num_meas = 4;
+  return r;
+}
+
+TEST(RxmRawx, HeaderAndMeasurementFields) {
+  std::string out;
+  const std::size_t n = rxm_rawx(sample_raw(), Generation::kM8, out);
+  EXPECT_EQ(n, 8 + 16 + 4 * 32u);
+  const auto frames = split_frames(out);
+  ASSERT_EQ(frames.size(), 1u);  // sync, length and checksum right
+  const auto& p = frames[0].payload;
+  EXPECT_EQ(frames[0].id, msg::kRxmRawx);
+  EXPECT_DOUBLE_EQ(at<double>(p, 0), 345600.0000123);
+  EXPECT_EQ(at<std::uint16_t>(p, 8), 2190);
+  EXPECT_EQ(p[10], 18);
+  EXPECT_EQ(p[11], 4);
+  EXPECT_EQ(p[12], 1);  // leapSec valid, no clock reset
+  EXPECT_EQ(p[13], 1);  // version
+  const std::size_t g = 16, k = 48, c = 80, j = 112;
+  EXPECT_DOUBLE_EQ(at<double>(p, g), 21234567.891);
+  EXPECT_DOUBLE_EQ(at<double>(p, g + 8), 111587654.321);
+  EXPECT_FLOAT_EQ(at<float>(p, g + 16), -1234.5f);
+  EXPECT_EQ(p[g + 20], 0);  // gnssId GPS
+  EXPECT_EQ(p[g + 21], 5);
+  EXPECT_EQ(p[g + 22], 0);
+  EXPECT_EQ(p[g + 23], 0);
+  EXPECT_EQ(at<std::uint16_t>(p, g + 24), kRawxMaxLocktimeMs);
+  EXPECT_EQ(p[g + 26], 45);
+  EXPECT_EQ(p[g + 27], 5);
+  EXPECT_EQ(p[g + 28], 3);
+  EXPECT_EQ(p[g + 29], 3);
+  EXPECT_EQ(p[g + 30], 0x07);  // prValid, cpValid, halfCyc
+  // GLONASS: gnssId 6, slot, freqId k + 7; no carrier: cpMes 0, locktime 0, cpStdev invalid.
+  EXPECT_EQ(p[k + 20], 6);
+  EXPECT_EQ(p[k + 21], 12);
+  EXPECT_EQ(p[k + 23], 6);
+  EXPECT_DOUBLE_EQ(at<double>(p, k + 8), 0.0);
+  EXPECT_EQ(at<std::uint16_t>(p, k + 24), 0);
+  EXPECT_EQ(p[k + 28], 15);
+  EXPECT_EQ(p[k + 30], 0x01);
+  // BeiDou GEO on an M8: sigId byte reserved (0); subHalfCyc.
+  EXPECT_EQ(p[c + 20], 3);
+  EXPECT_EQ(p[c + 22], 0);
+  EXPECT_EQ(p[c + 30], 0x0F);
+  // QZSS svId 1-10; nothing valid.
+  EXPECT_EQ(p[j + 20], 5);
+  EXPECT_EQ(p[j + 21], 2);
+  EXPECT_EQ(p[j + 30], 0);
+}
+
+TEST(RxmRawx, SigIdOnTheM9FromTheSignalTable) {
+  receiver::RawEpoch r = sample_raw();
+  r.meas[4] = r.meas[0];
+  r.meas[4].signal = SignalId::kGpsL2CL;
+  r.meas[5] = r.meas[0];
+  r.meas[5].sat = SatId(GnssSystem::kGalileo, 11);
+  r.meas[5].signal = SignalId::kGalE5bQ;
+  r.num_meas = 6;
+  std::string out;
+  rxm_rawx(r, Generation::kM9, out);
+  const auto p = split_frames(out).at(0).payload;
+  EXPECT_EQ(p[16 + 22], 0);       // GPS L1C/A
+  EXPECT_EQ(p[80 + 22], 1);       // BeiDou B1I D2 (GEO)
+  EXPECT_EQ(p[144 + 22], 3);      // GPS L2CL
+  EXPECT_EQ(p[176 + 20], 2);      // Galileo
+  EXPECT_EQ(p[176 + 22], 6);      // E5bQ
+}
+
+TEST(RxmRawx, StdevIndices) {
+  EXPECT_EQ(rawx_pr_stdev(0.0), 0);
+  EXPECT_EQ(rawx_pr_stdev(0.01), 0);
+  EXPECT_EQ(rawx_pr_stdev(0.04), 2);
+  EXPECT_EQ(rawx_pr_stdev(1e9), 15);
+  EXPECT_EQ(rawx_cp_stdev(0.0, true), 1);
+  EXPECT_EQ(rawx_cp_stdev(0.02, true), 5);
+  EXPECT_EQ(rawx_cp_stdev(1.0, true), 14);
+  EXPECT_EQ(rawx_cp_stdev(0.01, false), 15);
+  EXPECT_EQ(rawx_do_stdev(0.002), 0);
+  EXPECT_EQ(rawx_do_stdev(0.5), 8);
+}
+
+TEST(RxmRawx, NothingWithoutTime) {
+  receiver::RawEpoch r = sample_raw();
+  r.time_valid = false;
+  std::string out;
+  EXPECT_EQ(rxm_rawx(r, Generation::kM8, out), 0u);
+  EXPECT_TRUE(out.empty());
+}
+
+TEST(RxmSfrbx, HeaderAndWords) {
+  const std::uint32_t words[4] = {0x01020304, 0x05060708, 0x090A0B0C, 0x0D0E0F10};
+  std::string out;
+  rxm_sfrbx(SatId(GnssSystem::kGlonass, 7), 3, words, Generation::kM9, out);
+  rxm_sfrbx(SatId(GnssSystem::kGalileo, 7), 0, words, Generation::kM9, out);
+  rxm_sfrbx(SatId(GnssSystem::kGalileo, 7), 0, words, Generation::kM8, out);
+  const auto f = split_frames(out);
+  ASSERT_EQ(f.size(), 3u);
+  EXPECT_EQ(f[0].id, msg::kRxmSfrbx);
+  const auto& p = f[0].payload;
+  ASSERT_EQ(p.size(), 8 + 16u);
+  EXPECT_EQ(p[0], 6);
+  EXPECT_EQ(p[1], 7);
+  EXPECT_EQ(p[3], 10);  // freqId k + 7
+  EXPECT_EQ(p[4], 4);
+  EXPECT_EQ(p[6], 2);  // version
+  EXPECT_EQ(at<std::uint32_t>(p, 8), 0x01020304u);
+  EXPECT_EQ(at<std::uint32_t>(p, 20), 0x0D0E0F10u);
+  EXPECT_EQ(f[1].payload[2], 1);  // E1-B on an M9
+  EXPECT_EQ(f[2].payload[2], 0);  // reserved on an M8
+}
+
+/// A device on raw firmware with nav data, RXM-RAWX and RXM-SFRBX at rate 1 via CFG-MSG.
+struct RawRig {
+  orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
+  orbit::EphemerisStore store{nav.ephemerides};
+  Device d;
+  explicit RawRig(bool raw_firmware) : d([&] {
+    DeviceSetup s;
+    s.raw_firmware = raw_firmware;
+    return s;
+  }()) {}
+  InputResult cfg_msg(MsgId id, std::uint8_t rate) {
+    const std::uint8_t p[3] = {id.cls, id.id, rate};
+    std::string out;
+    return d.handle_ubx({}, FrameView{msg::kCfgMsg, p}, 0.0, out);
+  }
+  /// The UBX frames of an epoch at GPS time t with G01..G03 tracked for 60 s.
+  std::vector<test::Frame> epoch(const time::GpsTime& t) {
+    raw.t_rx = t;
+    raw.time_valid = true;
+    raw.num_meas = 3;
+    for (int i = 0; i < 3; ++i) {
+      receiver::RawMeasurement& m = raw.meas[static_cast<std::size_t>(i)];
+      m.sat = SatId::gps(i + 1);
+      m.pseudorange_m = 2.1e7;  // 70 ms
+      m.pseudorange_valid = m.carrier_valid = true;
+      m.lock_time_s = 60.0;
+    }
+    d.on_epoch(test::sample_fix(), t - time::GpsTime(2190, 0.0), RawSource{&raw, &store, {}});
+    std::string out;
+    test::ubx_epoch(d, {}, out);
+    return split_frames(out);
+  }
+  receiver::RawEpoch raw;
+};
+
+int count(const std::vector<test::Frame>& f, MsgId id) {
+  int n = 0;
+  for (const auto& x : f) n += x.id == id;
+  return n;
+}
+
+TEST(RxmDevice, CfgMsgEnablesRawxAndSfrbxOnRawFirmware) {
+  RawRig rig(true);
+  EXPECT_EQ(rig.cfg_msg(msg::kRxmRawx, 1).reply, Reply::kAck);
+  EXPECT_EQ(rig.cfg_msg(msg::kRxmSfrbx, 1).reply, Reply::kAck);
+  // 2022-01-01 00:00 is GPS week 2190 day 6; an epoch at tow 518406.05 s
+  // sees the subframe that ended at 518406 (subframe 1 of a frame).
+  int sfrbx = 0, rawx = 0;
+  for (int s = 0; s < 30; ++s) {
+    const auto f = rig.epoch(time::GpsTime(2190, 518401.05 + s));
+    rawx += count(f, msg::kRxmRawx);
+    sfrbx += count(f, msg::kRxmSfrbx);
+    for (const auto& x : f) {
+      if (x.id != msg::kRxmSfrbx) continue;
+      EXPECT_EQ(x.payload.size(), 48u);
+      EXPECT_EQ(at<std::uint32_t>(x.payload, 8) >> 22 & 0xFF, 0x8Bu);
+    }
+  }
+  EXPECT_EQ(rawx, 30);
+  // 30 s = five subframe ends per satellite; of them subframes 1-3 are sent
+  // (subframe 4 only on page 18, 5 never).
+  EXPECT_EQ(sfrbx, 3 * 3);
+}
+
+TEST(RxmDevice, StandardFirmwareStaysSilent) {
+  RawRig rig(false);
+  EXPECT_EQ(rig.cfg_msg(msg::kRxmRawx, 1).reply, Reply::kAck);
+  EXPECT_EQ(rig.cfg_msg(msg::kRxmSfrbx, 1).reply, Reply::kAck);
+  for (int s = 0; s < 8; ++s) {
+    const auto f = rig.epoch(time::GpsTime(2190, 518401.05 + s));
+    EXPECT_EQ(count(f, msg::kRxmRawx) + count(f, msg::kRxmSfrbx), 0);
+  }
+}
+
+TEST(RxmDevice, ValsetKeysOnTheM9) {
+  DeviceSetup s;
+  s.mon_ver = mon_ver_of(Generation::kM9);
+  s.raw_firmware = true;
+  Device d(s);
+  // CFG-VALSET RAM: MSGOUT-UBX_RXM_RAWX_UART1 = 1, MSGOUT-UBX_RXM_SFRBX_UART1 = 2.
+  const std::uint8_t p[] = {0, 1, 0, 0, 0xA5, 0x02, 0x91, 0x20, 1, 0x32, 0x02, 0x91, 0x20, 2};
+  std::string out;
+  EXPECT_EQ(d.handle_ubx({}, FrameView{msg::kCfgValset, p}, 0.0, out).reply, Reply::kAck);
+  EXPECT_EQ(d.message_rate({}, msg::kRxmRawx), 1);
+  EXPECT_EQ(d.message_rate({}, msg::kRxmSfrbx), 2);
+}
+
+}  // namespace
+}  // namespace gnssemu::protocol::ubx
