@@ -34,6 +34,8 @@ Rules project_rules() {
       // The encoders read the Fix struct only, not the receiver that fills it.
       {"nmea", "core/protocol/nmea", {"time"}, {"core/receiver/fix.hpp"}},
       {"ubx", "core/protocol/ubx", {"nmea"}, {}},
+      // RINEX writers: the receiver's raw measurements (plain data) and the nav data.
+      {"rinex", "core/rinex", {"orbit", "observation"}, {"core/receiver/raw_measurements.hpp"}},
       {"config", "config", {"pipeline", "ubx", "observation"}, {}},
       // gnssemud's rooms: truth input, ports, status and control sit side by
       // side below the vehicle loop (daemon/ itself), which alone ties them.
@@ -44,7 +46,7 @@ Rules project_rules() {
       {"daemon_status", "daemon/status", {"daemon_truth", "daemon_ports", "statistics"}, {}},
       {"daemon_control", "daemon/control", {"config"}, {}},
       {"daemon", "daemon", {"daemon_service", "daemon_truth", "daemon_ports", "daemon_status", "daemon_control"}, {}},
-      {"tools", "tools", {"daemon", "statistics"}, {}},
+      {"tools", "tools", {"daemon", "statistics", "rinex"}, {}},
       {"support", "tests/support", {}, {}},
       {"bench", "bench", {"tools", "support"}, {}},
       {"layering", "tests/layering", {}, {}},
@@ -64,6 +66,7 @@ Rules project_rules() {
       tests_of("faults", "pipeline"),  // fault tests run the whole pipeline
       tests_of("nmea", "nmea"),
       tests_of("ubx", "ubx"),
+      tests_of("rinex", "rinex"),
       tests_of("config", "config"),
       tests_of("daemon", "daemon"),
       tests_of("cli", "tools"),
