@@ -146,7 +146,6 @@ void ObsWriter::write_header(const time::GpsTime& first) noexcept {
 
 void ObsWriter::write(const receiver::RawEpoch& e) noexcept {
   if (!e.time_valid) return;
-  if (!header_done_) write_header(e.t_rx);
   int n_sats = 0;
   SatId last;
   for (int i = 0; i < e.num_meas; ++i) {
@@ -155,6 +154,8 @@ void ObsWriter::write(const receiver::RawEpoch& e) noexcept {
     if (n_sats == 0 || !(m.sat == last)) ++n_sats;
     last = m.sat;
   }
+  if (n_sats == 0) return;  // nothing tracked yet (as convbin skips RAWX epochs without measurements)
+  if (!header_done_) write_header(e.t_rx);
   LineBuf l;
   const time::CalendarTime c = e.t_rx.to_calendar();
   // Epoch flag 0; a clock step since the last epoch is a fact of the data

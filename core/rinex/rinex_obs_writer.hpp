@@ -56,11 +56,13 @@ public:
   ObsWriter(std::ostream& out, ObsHeaderInfo info);
 
   /// One epoch record of every measurement of a system in the header; an
-  /// epoch without valid time is skipped. No allocation.
+  /// epoch without valid time or without measurements is skipped. No allocation.
   void write(const receiver::RawEpoch& epoch) noexcept;
   /// Writes the header if no epoch was written.
   void finish() noexcept;
   int epochs_written() const noexcept { return epochs_; }
+  /// The header to be written: changes count until the first epoch.
+  ObsHeaderInfo& header() noexcept { return info_; }
 
 private:
   void write_header(const time::GpsTime& first) noexcept;
