@@ -8,6 +8,8 @@
 
 #include "core/common/error.hpp"
 #include "core/geo/geoid.hpp"
+#include "core/signal/dll_jitter.hpp"
+#include "core/world/carrier.hpp"
 #include "core/time/utc.hpp"
 
 namespace gnssemu::receiver {
@@ -23,6 +25,24 @@ constexpr double kNoFixTimeAccuracy_s = 1.0;
 constexpr double kMinReportedCn0_dbhz = 1.0;
 // A gap longer than this between two smoothing updates restarts the smoothing, s.
 constexpr double kMaxSmoothingGap_s = 2.0;
+// A step of the receiver's clock between epochs beyond this is its own
+// millisecond clock adjustment (RAWX recStat clkReset), s: drift moves it by
+// microseconds per epoch.
+constexpr double kClockResetStep_s = 0.5e-3;
+
+/// The loop's own 1-sigma estimates at C/N0 cn0_dbhz (RAWX prStdev, cpStdev,
+/// doStdev) from the tracking-noise formulas the world's loops follow with
+/// their default settings: DLL thermal jitter (signal/dll_jitter.hpp, Kaplan
+/// & Hegarty §8.8), PLL thermal jitter plus oscillator phase noise and FLL
+/// frequency jitter (world/carrier.hpp).
+void loop_sigmas(double cn0_dbhz, double wavelength_m, RawMeasurement& m) noexcept {
+  static constexpr signal::DllParams kDll{};
+  static constexpr world::CarrierConfig kLoops{};
+  m.pseudorange_sigma_m = signal::dll_thermal_sigma_m(cn0_dbhz, kDll);
+  const double pll_rad = world::pll_jitter_rad(cn0_dbhz, kLoops.pll_bandwidth_hz, kLoops.integration_s);
+  m.carrier_sigma_cycles = std::hypot(pll_rad, kLoops.oscillator_sigma_rad) / (2.0 * kPi);
+  m.doppler_sigma_hz = world::fll_range_rate_sigma_m_s(cn0_dbhz, kLoops, wavelength_m) / wavelength_m;
+}
 
 static_assert(static_cast<int>(AntennaStatus::kShort) == static_cast<int>(world::AntennaState::kShort) &&
               static_cast<int>(AntennaStatus::kOpen) == static_cast<int>(world::AntennaState::kOpen));
@@ -217,7 +237,12 @@ void Receiver::raw_stage(const world::Observables& obs, double dt_s) noexcept {
   raw_.time_valid = fix_.time_valid;
   raw_.leap_seconds = fix_.leap_seconds;
   raw_.leap_seconds_valid = fix_.time_valid;
-  raw_.clock_reset = false;
+  // The receiver steps its own clock by whole milliseconds: the measurements
+  // of this epoch are then on a clock that jumped since the last one.
+  const double clock_s = obs.t_rx_local - obs.t;
+  raw_.clock_reset = raw_clock_known_ && std::fabs(clock_s - raw_clock_s_) > kClockResetStep_s;
+  raw_clock_s_ = clock_s;
+  raw_clock_known_ = std::isfinite(clock_s);
   raw_.num_meas = 0;
   std::array<bool, kNumSats> locked{};
   for (int i = 0; i < obs.num_sats; ++i) {
@@ -235,6 +260,7 @@ void Receiver::raw_stage(const world::Observables& obs, double dt_s) noexcept {
     m.doppler_hz = o.doppler_hz;
     m.cn0_dbhz = std::max(o.cn0_dbhz, kMinReportedCn0_dbhz);
     m.pseudorange_valid = true;
+    loop_sigmas(m.cn0_dbhz, o.wavelength_m, m);
     if (o.carrier_valid) {
       const bool continuous = o.carrier_discontinuities == raw_discontinuities_[k] && !acq_.new_lock(o.sat);
       lock_time_s_[k] = continuous ? lock_time_s_[k] + dt_s : 0.0;

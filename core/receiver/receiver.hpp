@@ -122,6 +122,8 @@ private:
   RawEpoch raw_;
   std::array<double, kNumSats> lock_time_s_{};  ///< carrier tracked without a discontinuity, s
   std::array<std::uint32_t, kNumSats> raw_discontinuities_{};  ///< the world's count at the last raw epoch
+  double raw_clock_s_ = 0.0;       ///< the receiver clock's offset (local - GPS time) at the last raw epoch, s
+  bool raw_clock_known_ = false;
 
   // Solution.
   Solver solver_;

@@ -36,6 +36,8 @@ Rules project_rules() {
       // Navigation messages re-encoded from the broadcast ephemerides (RXM-SFRBX).
       {"navmsg", "core/protocol/navmsg", {"orbit"}, {}},
       {"ubx", "core/protocol/ubx", {"nmea", "navmsg"}, {"core/receiver/raw_measurements.hpp"}},
+      // RINEX writers: the receiver's raw measurements (plain data) and the nav data.
+      {"rinex", "core/rinex", {"orbit", "observation"}, {"core/receiver/raw_measurements.hpp"}},
       {"config", "config", {"pipeline", "ubx", "observation"}, {}},
       // gnssemud's rooms: truth input, ports, status and control sit side by
       // side below the vehicle loop (daemon/ itself), which alone ties them.
@@ -46,7 +48,7 @@ Rules project_rules() {
       {"daemon_status", "daemon/status", {"daemon_truth", "daemon_ports", "statistics"}, {}},
       {"daemon_control", "daemon/control", {"config"}, {}},
       {"daemon", "daemon", {"daemon_service", "daemon_truth", "daemon_ports", "daemon_status", "daemon_control"}, {}},
-      {"tools", "tools", {"daemon", "statistics"}, {}},
+      {"tools", "tools", {"daemon", "statistics", "rinex"}, {}},
       {"support", "tests/support", {}, {}},
       {"bench", "bench", {"tools", "support"}, {}},
       {"layering", "tests/layering", {}, {}},
@@ -67,6 +69,7 @@ Rules project_rules() {
       tests_of("nmea", "nmea"),
       tests_of("navmsg", "navmsg"),
       tests_of("ubx", "ubx"),
+      tests_of("rinex", "rinex"),
       tests_of("config", "config"),
       tests_of("daemon", "daemon"),
       tests_of("cli", "tools"),

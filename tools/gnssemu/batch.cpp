@@ -136,6 +136,7 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
       row.push_back('\n');
       errors->write(row.data(), static_cast<std::streamsize>(row.size()));
     }
+    for (BatchObserver* o : observers) o->on_raw(t, rx->receiver().raw(), truth);
     for (BatchObserver* o : observers) o->on_epoch(t, fix, truth);
   }
   if (sum.epochs > 0) {

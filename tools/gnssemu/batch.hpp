@@ -11,6 +11,7 @@
 #include "core/faults/fault_event.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/nav_data.hpp"
+#include "core/receiver/raw_measurements.hpp"
 #include "core/world/truth_track.hpp"
 
 namespace gnssemu::cli {
@@ -38,6 +39,8 @@ class BatchObserver {
 public:
   virtual ~BatchObserver() = default;
   virtual void on_epoch(const time::GpsTime& t, const receiver::Fix& fix, const world::Truth& truth) = 0;
+  /// The receiver's raw measurements of the epoch, before on_epoch.
+  virtual void on_raw(const time::GpsTime& /*t*/, const receiver::RawEpoch& /*raw*/, const world::Truth& /*truth*/) {}
 };
 
 /// Run the receiver, set up as the daemon sets it up from the nav file (its

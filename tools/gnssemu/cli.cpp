@@ -28,6 +28,7 @@
 #include "core/scene/scene.hpp"
 #include "config/scenario_file.hpp"
 #include "tools/gnssemu/batch.hpp"
+#include "tools/gnssemu/rinex_output.hpp"
 #include "tools/gnssemu/calibrate.hpp"
 #include "tools/gnssemu/plot.hpp"
 #include "tools/gnssemu/report.hpp"
@@ -80,6 +81,8 @@ struct BatchArgs {
   std::string report_dir;      ///< --report
   std::string reference_path;  ///< --cn0-reference (with --report)
   std::optional<std::string> systems;  ///< --systems: RINEX letters; none: the config's [receiver] constellations
+  std::string rinex_obs_path, rinex_nav_path;  ///< --rinex-obs, --rinex-nav
+  std::string preset;          ///< --preset: "rtklib" or empty
 };
 
 /// Where satpos, sky and dop take their satellites from.
@@ -226,12 +229,21 @@ private:
 };
 
 int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) {
-  if ((a.nmea_path == "-") + (a.errors_path == "-") + (a.ubx_path == "-") + (a.sats_path == "-") > 1) {
-    throw Error("--nmea, --ubx, --errors, --sats: two outputs cannot both be '-' (stdout)");
+  if ((a.nmea_path == "-") + (a.errors_path == "-") + (a.ubx_path == "-") + (a.sats_path == "-") +
+          (a.rinex_obs_path == "-") + (a.rinex_nav_path == "-") >
+      1) {
+    throw Error("--nmea, --ubx, --errors, --sats, --rinex-obs, --rinex-nav: two outputs cannot both be '-' (stdout)");
   }
   if (!a.reference_path.empty() && a.report_dir.empty()) throw Error("--cn0-reference needs --report DIR");
   config::Config cfg = config::load_config(a.config_path);
   cfg.world.systems = checked_systems(a.systems, cfg.world.systems);
+  if (a.preset == "rtklib") {
+    // rnx2rtkp's single point on the receiver's own code: its models and
+    // weights, a snapshot fix each epoch, no carrier smoothing.
+    cfg.receiver.solver = receiver::rtklib_single_point(cfg.receiver.solver);
+    cfg.receiver.filter.type = receiver::NavFilterType::kNone;
+    cfg.receiver.filter.smoothing_window_s = 0.0;
+  }
   const world::TruthTrack track(read_truth_csv(a.truth_path));
   for (const std::string& p : config::nav_paths(cfg)) {
     std::error_code ec;
@@ -260,6 +272,12 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
   std::vector<BatchObserver*> observers;
   std::optional<SatsCsvWriter> sats_writer;
   if (sats.get() != nullptr) observers.push_back(&sats_writer.emplace(*sats.get()));
+  OutputFile rinex_obs(a.rinex_obs_path, out);
+  OutputFile rinex_nav(a.rinex_nav_path, out);
+  std::optional<RinexOutput> rinex;
+  if (rinex_obs.get() != nullptr || rinex_nav.get() != nullptr) {
+    observers.push_back(&rinex.emplace(cfg, c.nav, c.store_options(), rinex_obs.get(), rinex_nav.get()));
+  }
   ReportData report;
   ReportCollector collector(report);
   if (!a.report_dir.empty()) {
@@ -273,6 +291,9 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
   ubx.close(a.ubx_path);
   errors.close(a.errors_path);
   sats.close(a.sats_path);
+  if (rinex) rinex->finish();
+  rinex_obs.close(a.rinex_obs_path);
+  rinex_nav.close(a.rinex_nav_path);
   write_summary(sum, err);
   if (!a.report_dir.empty()) {
     report.title = "gnssemu batch: " + std::filesystem::path(a.truth_path).filename().string();
@@ -508,6 +529,14 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   batch_cmd->add_option("--nmea", batch.nmea_path, "write the NMEA stream here ('-' = stdout)");
   batch_cmd->add_option("--ubx", batch.ubx_path, "write the UBX stream here ('-' = stdout)");
   batch_cmd->add_option("--errors", batch.errors_path, "write per-epoch fix errors CSV here ('-' = stdout)");
+  batch_cmd->add_option("--rinex-obs", batch.rinex_obs_path,
+                        "write the receiver's raw measurements as RINEX 3.04 observations here ('-' = stdout)");
+  batch_cmd->add_option("--rinex-nav", batch.rinex_nav_path,
+                        "write the broadcast sets the receiver measured with as RINEX 3.04 navigation here");
+  batch_cmd->add_option("--preset", batch.preset,
+                        "rtklib: the receiver solves as rnx2rtkp's single point (its weights and models, snapshot "
+                        "least squares, no smoothing)")
+      ->check(CLI::IsMember({"rtklib"}));
   batch_cmd->add_option("--scenario", batch.scenario_path, "fault scenario TOML ([[event]] tables, docs/faults.md)");
   batch_cmd->add_option("--sats", batch.sats_path,
                         "write per epoch and satellite gps_week,tow_s,sat,prn,az_deg,el_deg,cn0_dbhz,tracked,used here "

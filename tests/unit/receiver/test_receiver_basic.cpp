@@ -415,5 +415,47 @@ TEST(ReceiverBasic, SolutionSatelliteCapKeepsTheHighest) {
   EXPECT_EQ(p.step(kToe + 3.0, static_truth(lla, kToe + 3.0)).num_used, f0.num_used);
 }
 
+TEST(ReceiverBasic, RawSigmasFollowCn0AndClockStepsAreFlagged) {
+  // The loops' own sigmas fall as C/N0 rises (the DLL, PLL and FLL jitter
+  // formulas); a millisecond step of the receiver clock sets clock_reset at
+  // that epoch only.
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 6));
+  PipelineConfig c = test::snapshot();
+  c.world.clock.bias_s = 0.9995e-3;
+  c.world.clock.drift_s_s = 1.0e-6;  // beyond 1 ms after about 0.5 s
+  c.world.clock.jump_threshold_s = 1.0e-3;
+  Pipeline p(store, c);
+  const Lla lla{0.6, 0.2, 50.0};
+  int resets = 0, reset_epoch = 0;
+  for (int k = 1; k <= 5; ++k) {
+    p.step(kToe + 1.0 * k, static_truth(lla, kToe + 1.0 * k));
+    const RawEpoch& raw = p.receiver().raw();
+    if (raw.clock_reset) {
+      ++resets;
+      reset_epoch = k;
+    }
+    ASSERT_GT(raw.num_meas, 1);
+    const RawMeasurement* weak = &raw.meas[0];
+    const RawMeasurement* strong = &raw.meas[0];
+    for (int i = 0; i < raw.num_meas; ++i) {
+      const RawMeasurement& m = raw.meas[static_cast<std::size_t>(i)];
+      EXPECT_GT(m.pseudorange_sigma_m, 0.0);
+      EXPECT_LT(m.pseudorange_sigma_m, 10.0);
+      EXPECT_GT(m.carrier_sigma_cycles, 0.0);
+      EXPECT_LT(m.carrier_sigma_cycles, 0.25);
+      EXPECT_GT(m.doppler_sigma_hz, 0.0);
+      if (m.cn0_dbhz < weak->cn0_dbhz) weak = &m;
+      if (m.cn0_dbhz > strong->cn0_dbhz) strong = &m;
+    }
+    if (strong->cn0_dbhz > weak->cn0_dbhz + 1.0) {
+      EXPECT_LT(strong->pseudorange_sigma_m, weak->pseudorange_sigma_m);
+      EXPECT_LT(strong->carrier_sigma_cycles, weak->carrier_sigma_cycles);
+      EXPECT_LT(strong->doppler_sigma_hz, weak->doppler_sigma_hz);
+    }
+  }
+  EXPECT_EQ(resets, 1);
+  EXPECT_GT(reset_epoch, 1);  // the first epoch has no previous clock to compare with
+}
+
 }  // namespace
 }  // namespace gnssemu::receiver::receiver_basic_test
