@@ -34,6 +34,8 @@ Rules project_rules() {
       // The encoders read the Fix struct only, not the receiver that fills it.
       {"nmea", "core/protocol/nmea", {"time"}, {"core/receiver/fix.hpp"}},
       {"ubx", "core/protocol/ubx", {"nmea"}, {}},
+      // RTCM encodes a RawEpoch (plain header) and the broadcast ephemerides.
+      {"rtcm", "core/protocol/rtcm", {"orbit"}, {"core/receiver/raw_measurements.hpp"}},
       {"config", "config", {"pipeline", "ubx", "observation"}, {}},
       // gnssemud's rooms: truth input, ports, status and control sit side by
       // side below the vehicle loop (daemon/ itself), which alone ties them.
@@ -64,6 +66,7 @@ Rules project_rules() {
       tests_of("faults", "pipeline"),  // fault tests run the whole pipeline
       tests_of("nmea", "nmea"),
       tests_of("ubx", "ubx"),
+      tests_of("rtcm", "rtcm"),
       tests_of("config", "config"),
       tests_of("daemon", "daemon"),
       tests_of("cli", "tools"),
