@@ -36,7 +36,7 @@ Rules project_rules() {
       {"ubx", "core/protocol/ubx", {"nmea"}, {}},
       // RTCM encodes a RawEpoch (plain header) and the broadcast ephemerides.
       {"rtcm", "core/protocol/rtcm", {"orbit"}, {"core/receiver/raw_measurements.hpp"}},
-      {"config", "config", {"pipeline", "ubx", "observation"}, {}},
+      {"config", "config", {"pipeline", "ubx", "rtcm", "observation"}, {}},
       // gnssemud's rooms: truth input, ports, status and control sit side by
       // side below the vehicle loop (daemon/ itself), which alone ties them.
       {"daemon_service", "daemon/service", {"ubx"}, {}},  // the state file keeps the device's settings

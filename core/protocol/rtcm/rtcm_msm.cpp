@@ -28,6 +28,19 @@ constexpr double kBdtMinusGpst_s = -14.0;
 
 std::int64_t round_i(double v) noexcept { return static_cast<std::int64_t>(std::floor(v + 0.5)); }
 
+/// The MSM epoch holds whole milliseconds of the receiver's clock: the
+/// observables are moved from t_rx to that instant along their Doppler (the
+/// shift is below 0.5 ms; the rate's change over it is below a micrometre).
+double tag_shift_s(const receiver::RawEpoch& e) noexcept {
+  return std::floor(e.t_rx.tow_s() * 1e3 + 0.5) * 1e-3 - e.t_rx.tow_s();
+}
+double pseudorange_at_m(const receiver::RawMeasurement& m, double lam_m, double dt_s) noexcept {
+  return m.pseudorange_m - m.doppler_hz * lam_m * dt_s;
+}
+double phase_at_cycles(const receiver::RawMeasurement& m, double dt_s) noexcept {
+  return m.carrier_phase_cycles - m.doppler_hz * dt_s;
+}
+
 /// Messages go out in message-number order.
 constexpr std::array<GnssSystem, 6> kMsmOrder{GnssSystem::kGps, GnssSystem::kGlonass, GnssSystem::kGalileo,
                                               GnssSystem::kSbas, GnssSystem::kQzss, GnssSystem::kBeiDou};
@@ -129,7 +142,8 @@ int gather(GnssSystem sys, const receiver::RawEpoch& e, std::array<SatT, 64>& sa
     sig_bits |= 1u << (info.rtcm_msm_sig - 1);
     if (s.rough_range_m == 0.0 && m.pseudorange_m > 0.0) {
       const double lam = kSpeedOfLight_m_s / signal_carrier_hz(m.signal, m.glonass_channel);
-      s.rough_range_m = static_cast<double>(round_i(m.pseudorange_m / kRangeMs_m / kP2_10)) * kRangeMs_m * kP2_10;
+      const double pr_m = pseudorange_at_m(m, lam, tag_shift_s(e));
+      s.rough_range_m = static_cast<double>(round_i(pr_m / kRangeMs_m / kP2_10)) * kRangeMs_m * kP2_10;
       s.rough_rate_m_s = static_cast<double>(round_i(-m.doppler_hz * lam));
     }
   }
@@ -176,6 +190,7 @@ void MsmEncoder::encode_message(GnssSystem sys, const receiver::RawEpoch& epoch,
                                 const std::array<int, 32>& sig_ids, int nsig, bool more, std::string& out,
                                 MsmEpochStats& stats) {
   const bool msm7 = kind_ == MsmKind::kMsm7;
+  const double dt_s = tag_shift_s(epoch);
   Payload buf;
   BitWriter w(buf);
   w.u(12, static_cast<std::uint64_t>(msm_message_number(sys, kind_)));
@@ -214,7 +229,7 @@ void MsmEncoder::encode_message(GnssSystem sys, const receiver::RawEpoch& epoch,
       CellValues& v = cells[static_cast<std::size_t>(ncell++)];
       ++stats.cells;
       // Fine pseudorange.
-      const double psr_m = m->pseudorange_m - s.rough_range_m;
+      const double psr_m = pseudorange_at_m(*m, lam, dt_s) - s.rough_range_m;
       const bool psr_ok = m->pseudorange_valid && std::abs(psr_m) <= kMaxFinePseudorange_m;
       v.psr = psr_ok ? round_i(psr_m / kRangeMs_m / (msm7 ? kP2_29 : kP2_24)) : (msm7 ? -524288 : -16384);
       // Fine phase-range, less the whole-cycle offset of this lock.
@@ -223,7 +238,7 @@ void MsmEncoder::encode_message(GnssSystem sys, const receiver::RawEpoch& epoch,
       bool phr_ok = false;
       double phr_m = 0.0;
       if (m->carrier_valid) {
-        phr_m = m->carrier_phase_cycles * lam - s.rough_range_m;
+        phr_m = phase_at_cycles(*m, dt_s) * lam - s.rough_range_m;
         const bool restart = !ps.active || m->lock_time_s < ps.prev_lock_s || m->lock_time_s <= 0.0;
         if (restart || std::abs(phr_m - ps.offset_cycles * lam) > kMaxFinePhaseRange_m) {
           ps.offset_cycles = std::floor(phr_m / lam + 0.5);

@@ -11,7 +11,9 @@
 // off the carrier phase so that the phase-range stays within the +-1171 m
 // the fine phase-range field holds around the rough range; a new offset is a
 // new lock for the decoder, so the lock time restarts there (what RTKLIB's
-// encoder does, rtk-raw.md §2.4).
+// encoder does, rtk-raw.md §2.4). The epoch time has whole milliseconds, so
+// the observables are moved along their Doppler from the receive time to the
+// millisecond it is rounded to.
 #include <array>
 #include <cstdint>
 #include <string>
