@@ -3,7 +3,7 @@
 // [base]: a static reference receiver whose observations leave as RTCM 3
 // (docs/base-station.md): where it stands, its receiver settings (the top
 // level's, overridden like a [[vehicle.receiver]]), the messages and their
-// intervals, and where they go (output ports, an NTRIP caster endpoint).
+// intervals, and where they go (an NTRIP caster endpoint).
 #include <string>
 #include <vector>
 

@@ -201,7 +201,6 @@ struct BaseConfig {
   double antenna_height_m = 0.0;  ///< 1006 DF028, 0..6.5535 m (the ARP is the position above)
   ReceiverSettings settings;      ///< merged: top level + [base]'s own receiver keys
   std::vector<BaseMessage> messages;      ///< in the order given
-  std::vector<OutputPortConfig> outputs;  ///< [[base.output]]: the RTCM stream's ports
   NtripCasterConfig ntrip;        ///< [base.ntrip]
   int line = 0;                   ///< line of [base] (for messages)
 };

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "core/common/constants.hpp"
 #include "core/common/error.hpp"
 
 namespace gnssemu::daemon {
@@ -40,6 +41,33 @@ std::string header(std::string_view head, std::string_view name) {
 }
 
 }  // namespace
+
+std::string sourcetable_str(const config::BaseStation& base) {
+  const config::BaseConfig& b = base.config();
+  std::string systems;
+  bool l2 = false;
+  for (const config::BaseMessage& m : b.messages) {
+    const char* name = nullptr;
+    switch (m.number / 10) {
+      case 107: name = "GPS"; break;
+      case 108: name = "GLO"; break;
+      case 109: name = "GAL"; break;
+      case 111: name = "QZS"; break;
+      case 112: name = "BDS"; break;
+      default: break;
+    }
+    if (name == nullptr) continue;
+    if (!systems.empty()) systems.push_back('+');
+    systems.append(name);
+  }
+  for (int i = 0; i < base.raw().num_meas; ++i) l2 = l2 || signal_info(base.raw().meas[static_cast<std::size_t>(i)].signal).band == 1;
+  // 1 mountpoint 2 identifier 3 format 4 details 5 carrier 6 nav-system 7 network 8 country 9 lat 10 lon 11 nmea
+  // 12 solution 13 generator 14 compression 15 auth 16 fee 17 bitrate 18 misc (BKG STR, 19 fields with "STR").
+  return fmt::format("STR;{};gnssemu base {};RTCM 3.3;{};{};{};gnssemu;XXX;{:.2f};{:.2f};0;0;gnssemu;none;{};N;0;",
+                     b.ntrip.mountpoint, b.station_id, base.format_details(), l2 ? 2 : 1, systems,
+                     b.position.lat_rad * kRadToDeg, b.position.lon_rad * kRadToDeg,
+                     b.ntrip.user.empty() ? "N" : "B");
+}
 
 std::string base64(std::string_view text) {
   static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";

@@ -19,7 +19,7 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 
-#include "config/base_config.hpp"
+#include "config/base_station.hpp"
 
 namespace gnssemu::daemon {
 
@@ -70,6 +70,10 @@ private:
   std::list<std::shared_ptr<Client>> clients_;
   NtripStats stats_;
 };
+
+/// The sourcetable's STR record of base (BKG's 19 fields, rtk-raw.md §3),
+/// without CR LF.
+std::string sourcetable_str(const config::BaseStation& base);
 
 /// Base64 of text (RFC 4648 §4), for HTTP Basic credentials.
 std::string base64(std::string_view text);
