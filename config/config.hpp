@@ -18,6 +18,7 @@
 #include "core/protocol/nmea/nmea_encoder.hpp"
 #include "core/protocol/ubx/ubx_generation.hpp"
 #include "core/protocol/ubx/ubx_ports.hpp"
+#include "config/base_config.hpp"
 #include "core/pipeline/receiver_profile.hpp"
 #include "core/receiver/receiver_config.hpp"
 #include "core/scene/mesh.hpp"
@@ -194,6 +195,17 @@ struct VehicleConfig {
   std::vector<VehicleReceiverConfig> receivers;
 };
 
+/// [base]: a static reference receiver sending RTCM 3 (config/base_config.hpp).
+struct BaseConfig {
+  Lla position;                   ///< antenna reference point (lat/lon rad, ellipsoidal height m)
+  int station_id = 0;             ///< RTCM DF003, 0..4095
+  double antenna_height_m = 0.0;  ///< 1006 DF028, 0..6.5535 m (the ARP is the position above)
+  ReceiverSettings settings;      ///< merged: top level + [base]'s own receiver keys
+  std::vector<BaseMessage> messages;      ///< in the order given
+  NtripCasterConfig ntrip;        ///< [base.ntrip]
+  int line = 0;                   ///< line of [base] (for messages)
+};
+
 /// Most vehicles of a [fleet].
 inline constexpr int kMaxFleetCount = 1000;
 
@@ -250,6 +262,7 @@ struct Config {
   std::vector<OutputPortConfig> outputs;
   std::vector<VehicleConfig> vehicles;  ///< [[vehicle]], as written (settings merged)
   std::optional<FleetConfig> fleet;     ///< [fleet], templates as written
+  std::optional<BaseConfig> base;       ///< [base]: an RTCM reference station
   LogConfig log;
   std::optional<SceneConfig> scene;  ///< no [scene]: no scene stage
   StatusConfig status;            ///< the live status page

@@ -413,6 +413,7 @@ constexpr Field<Config> kConfigFields[] = {
     check<Config>(check_output_generation),
     custom_table<Config>("vehicle", read_vehicles, write_vehicles, describe_vehicles),
     custom_table<Config>("fleet", read_fleet, write_fleet, describe_fleet),
+    custom_table<Config>("base", read_base, write_base, describe_base),
     optional_table<kSceneKeys, &Config::scene>("scene", "buildings, docs/scene.md"),
     table<kStatus, &Config::status>("status", "live status page, docs/status.md"),
     check<Config>(check_status_port),

@@ -46,6 +46,13 @@ void describe_vehicles(KeyDocs& d, const Field<Config>& f, const Config& c);
 void read_fleet(TableReader& t, const Field<Config>& f, Config& c);
 void write_fleet(TomlWriter& w, const Field<Config>& f, const Config& c);
 void describe_fleet(KeyDocs& d, const Field<Config>& f, const Config& c);
+/// The rows of [receiver] on table r over a copy of top's receiver settings:
+/// what r gives overrides them ([[vehicle.receiver]], [base]).
+ReceiverSettings receiver_overrides(TableReader& r, const Config& top);
+/// [base] (base_keys.cpp): after [receiver], [atmosphere] and [signal].
+void read_base(TableReader& t, const Field<Config>& f, Config& c);
+void write_base(TomlWriter& w, const Field<Config>& f, const Config& c);
+void describe_base(KeyDocs& d, const Field<Config>& f, const Config& c);
 /// The single-vehicle form or vehicles (not both); no path, device, tcp port
 /// or udp destination twice among all receivers after template expansion,
 /// nor the status page's port. After [status].

@@ -462,6 +462,8 @@ void check_vehicles(TableReader& t, const Field<Config>&, Config& c) {
   }
 }
 
+ReceiverSettings receiver_overrides(TableReader& r, const Config& top) { return read_overrides(r, top); }
+
 }  // namespace detail
 
 }  // namespace gnssemu::config

@@ -148,7 +148,19 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
   if (fleet_) spdlog::info("fleet: {} vehicle(s), {} receiver(s) in one sky", vehicles_.size(), rigs_.size());
   spdlog::info("receiver: {} start at power-on", start_name(cfg_.receiver.acquisition.start));
   if (scene_) spdlog::info("scene {}: {} triangles", cfg_.scene->mesh_file, scene_->triangle_count());
+  if (cfg_.base) start_base();
   lock_grid_from(start_);
+}
+
+void Daemon::start_base() {
+  base_ = std::make_unique<config::BaseStation>(cfg_, store_, pipeline::broadcast_of(constellation_.nav), scene_.get());
+  base_bytes_.reserve(16384);
+  if (const std::string w = config::base_distance_warning(cfg_); !w.empty()) spdlog::warn("{}", w);
+  if (cfg_.base->ntrip.enabled) {
+    caster_ = std::make_unique<NtripCaster>(io_, cfg_.base->ntrip, sourcetable_str(*base_));
+    spdlog::info("base {}: NTRIP caster on 127.0.0.1:{}/{} ({})", cfg_.base->station_id, caster_->port(),
+                 cfg_.base->ntrip.mountpoint, base_->format_details());
+  }
 }
 
 void Daemon::lock_grid_from(const time::GpsTime& t) noexcept {
@@ -349,6 +361,17 @@ void Daemon::shutdown() {
   if (signals_) signals_->cancel();
   if (status_server_) status_server_->stop();
   if (control_) control_->stop();  // removes the socket file
+  if (base_) {
+    const config::BaseStats& b = base_->stats();
+    spdlog::info("base {}: {} epochs, {} messages, {} bytes; {} signals dropped", cfg_.base->station_id, b.epochs,
+                 b.messages, b.bytes, b.dropped_cells);
+  }
+  if (caster_) {
+    const NtripStats& n = caster_->stats();
+    spdlog::info("ntrip: {} clients served, {} sourcetables, {} refused, {} epochs dropped for slow clients",
+                 n.clients_served, n.sourcetables, n.refused, n.dropped_epochs);
+    caster_.reset();  // closes the listener and every client
+  }
   bool any_channel = false;
   for (const auto& rp : rigs_) {
     for (const auto& c : rp->channels) {
@@ -473,7 +496,13 @@ void Daemon::emit_epoch(const time::GpsTime& t, double demo_elapsed_s, bool fall
     rig.truth = antenna_truth(vehicles_[rig.vehicle_index].truth, rig.lever_arm_m, router_.attitude(rig.vehicle_index));
     antennas_.push_back(rig.truth.pos_m);
   }
+  if (base_) antennas_.push_back(base_->position_ecef_m());
   sky_.update(t, antennas_);
+  if (base_ && base_->is_epoch(t)) {
+    base_bytes_.clear();
+    base_->step(sky_, base_bytes_);
+    if (caster_) caster_->publish(base_bytes_);
+  }
   ++epochs_;
   last_epoch_t_ = t;
   const double run_s = run_time_s(t);

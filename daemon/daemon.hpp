@@ -32,6 +32,8 @@
 #include "daemon/truth/demo_trajectory.hpp"
 #include "daemon/truth/drop_stats.hpp"
 #include "daemon/fault_log.hpp"
+#include "config/base_station.hpp"
+#include "daemon/ports/ntrip_caster.hpp"
 #include "daemon/ports/output_port.hpp"
 #include "daemon/ports/port_channel.hpp"
 #include "daemon/rig.hpp"
@@ -101,6 +103,8 @@ private:
   /// started as start says, with the device's CFG-NAV5 applied.
   void restart_receiver(Rig& rig, receiver::StartMode start);
   /// The device's CFG-NAV5 (dynModel, static hold) and GNSS selection into the receiver.
+  /// [base]: its station and NTRIP caster (setup; throws gnssemu::Error).
+  void start_base();
   void apply_chip_settings(Rig& rig);
   /// A host on channel src of rig changed the device: follow its reset, epoch
   /// period and the other ports' line settings.
@@ -225,6 +229,9 @@ private:
   asio::ip::udp::socket socket_;
   asio::ip::udp::endpoint peer_;
   std::unique_ptr<SignalDispatch> signals_;
+  std::unique_ptr<config::BaseStation> base_;  ///< [base]: null without one
+  std::unique_ptr<NtripCaster> caster_;        ///< [base.ntrip]: null without one
+  std::string base_bytes_;                     ///< the base's epoch, reused
   SystemdNotify notify_;
   TruthAllowList allow_;
   asio::steady_timer tick_timer_;

@@ -38,7 +38,9 @@ Rules project_rules() {
       {"ubx", "core/protocol/ubx", {"nmea", "navmsg"}, {"core/receiver/raw_measurements.hpp"}},
       // RINEX writers: the receiver's raw measurements (plain data) and the nav data.
       {"rinex", "core/rinex", {"orbit", "observation"}, {"core/receiver/raw_measurements.hpp"}},
-      {"config", "config", {"pipeline", "ubx", "observation"}, {}},
+      // RTCM encodes a RawEpoch (plain header) and the broadcast ephemerides.
+      {"rtcm", "core/protocol/rtcm", {"orbit"}, {"core/receiver/raw_measurements.hpp"}},
+      {"config", "config", {"pipeline", "ubx", "rtcm", "observation"}, {}},
       // gnssemud's rooms: truth input, ports, status and control sit side by
       // side below the vehicle loop (daemon/ itself), which alone ties them.
       {"daemon_service", "daemon/service", {"ubx"}, {}},  // the state file keeps the device's settings
@@ -70,6 +72,7 @@ Rules project_rules() {
       tests_of("navmsg", "navmsg"),
       tests_of("ubx", "ubx"),
       tests_of("rinex", "rinex"),
+      tests_of("rtcm", "rtcm"),
       tests_of("config", "config"),
       tests_of("daemon", "daemon"),
       tests_of("cli", "tools"),

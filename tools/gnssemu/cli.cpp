@@ -34,6 +34,7 @@
 #include "tools/gnssemu/report.hpp"
 #include "tools/gnssemu/sats_csv.hpp"
 #include "tools/gnssemu/bench_multipath.hpp"
+#include "tools/gnssemu/base_command.hpp"
 #include "tools/gnssemu/satpos.hpp"
 #include "tools/gnssemu/sky.hpp"
 #include "tools/gnssemu/spp.hpp"
@@ -627,10 +628,12 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   ctl_inject->add_option("file", ctl_args.file, "scenario file (TOML [[event]] tables, docs/faults.md)")->required();
   CLI::App* ctl_clear = ctl->add_subcommand("clear", "remove every fault (injected and scenario)");
   sweep::SweepCommand sweep_cmd(app);
+  BaseCommand base_cmd(app);
 
   // CLI11 reports a mistyped subcommand only as "A subcommand is required".
   const auto known = [&](const std::string& name) {
-    for (const CLI::App* sub : {satpos, sky, dop, batch_cmd, plot, spp, calib, bench, version, ctl, sweep_cmd.app()}) {
+    for (const CLI::App* sub : {satpos, sky, dop, batch_cmd, plot, spp, calib, bench, version, ctl, sweep_cmd.app(),
+                               base_cmd.app()}) {
       if (sub->get_name() == name) return true;
     }
     return false;
@@ -641,7 +644,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     return kExitOk;
   }
   if (argc > 1 && argv[1][0] != '-' && !known(argv[1])) {
-    err << "gnssemu: unknown subcommand '" << argv[1] << "' (satpos, sky, dop, batch, plot, spp, calibrate, bench, ctl, sweep, version; see --help)\n";
+    err << "gnssemu: unknown subcommand '" << argv[1] << "' (satpos, sky, dop, batch, plot, spp, calibrate, bench, ctl, sweep, base, version; see --help)\n";
     return kExitUsage;
   }
   try {
@@ -713,6 +716,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       return run_batch_command(batch, out, err);
     } else if (sweep_cmd.parsed()) {
       return sweep_cmd.run(out, err);
+    } else if (base_cmd.parsed()) {
+      return base_cmd.run(out, err);
     } else if (*plot) {
       if (!std::isnan(plot_args.mask_deg)) check_range("--mask", plot_args.mask_deg, 0.0, 90.0, true);
       run_plot(plot_args, out, err);

@@ -294,6 +294,21 @@ type = "udp"
 address = "127.0.0.2"
 port = 10110
 
+[base]
+lat_deg = -33.9
+lon_deg = 151.1
+height_m = 45.5
+station_id = 2003
+antenna_height_m = 1.25
+messages = "1006(10),1077(1),1087(1),1230(5),1019(60),1020"
+seed = 99
+
+[base.ntrip]
+port = 2102
+mountpoint = "SYD0"
+user = "rover"
+password = "secret"
+
 [scene]
 mesh = "scenes/street_canyon.toml"
 offset_m = [10.0, -5.5, 0.25]

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: Apache-2.0
+// [base]: messages in str2str's syntax, unknown numbers rejected at their
+// line, receiver keys overriding the top level's, the distance warning.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "config/base_station.hpp"
+#include "config/config.hpp"
+#include "core/common/error.hpp"
+
+namespace gnssemu::config {
+namespace {
+
+const std::string kTop = R"([origin]
+lat_deg = 48.8738
+lon_deg = 2.2950
+height_m = 100.0
+[nav]
+file = "nav/brdc0010.22n"
+[receiver]
+seed = 1
+)";
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_config(text, "base.toml", GNSSEMU_TEST_DATA);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return {};
+}
+
+TEST(BaseKeys, MessagesIntervalsAndOverrides) {
+  const Config c = parse_config(kTop + R"toml([base]
+lat_deg = 48.9
+lon_deg = 2.4
+height_m = 80.0
+station_id = 12
+messages = "1005(10), 1077, 1087(1), 1230(5), 1019(60)"
+seed = 7
+[base.ntrip]
+port = 0
+mountpoint = "M1"
+)toml",
+                                "base.toml", GNSSEMU_TEST_DATA);
+  ASSERT_TRUE(c.base);
+  ASSERT_EQ(c.base->messages.size(), 5u);
+  EXPECT_EQ(c.base->messages[0].number, 1005);
+  EXPECT_EQ(c.base->messages[0].interval_s, 10.0);
+  EXPECT_EQ(c.base->messages[1].interval_s, 1.0);
+  EXPECT_EQ(c.base->settings.world.seed, 7u);
+  EXPECT_EQ(c.world.seed, 1u);
+  EXPECT_TRUE(c.base->ntrip.enabled);
+  EXPECT_EQ(c.base->ntrip.mountpoint, "M1");
+  EXPECT_TRUE(base_distance_warning(c).empty());
+}
+
+TEST(BaseKeys, UnknownMessageIsAnErrorAtItsLine) {
+  const std::string e = error_of(kTop + "[base]\nlat_deg = 48.9\nlon_deg = 2.4\nheight_m = 80.0\nmessages = \"1005,1004\"\n");
+  EXPECT_NE(e.find("base.toml:13:"), std::string::npos) << e;  // the messages line
+  EXPECT_NE(e.find("message 1004 is not one the base sends"), std::string::npos) << e;
+  EXPECT_NE(error_of(kTop + "[base]\nlat_deg = 1\nlon_deg = 2\nheight_m = 0\nmessages = \"1074,1087\"\n").find("MSM4 and MSM7"),
+            std::string::npos);
+  EXPECT_NE(error_of(kTop + "[base]\nlat_deg = 1\nlon_deg = 2\nheight_m = 0\nmessages = \"1077(1),1087(2)\"\n")
+                .find("different intervals"),
+            std::string::npos);
+  EXPECT_NE(error_of(kTop + "[base]\nlat_deg = 1\nlon_deg = 2\nheight_m = 0\nmessages = \"1005(x)\"\n").find("NUMBER(INTERVAL_S)"),
+            std::string::npos);
+}
+
+TEST(BaseKeys, FarBaseWarns) {
+  const Config c = parse_config(kTop + "[base]\nlat_deg = 50.0\nlon_deg = 2.3\nheight_m = 80.0\nmessages = \"1005\"\n",
+                                "base.toml", GNSSEMU_TEST_DATA);
+  const std::string w = base_distance_warning(c);
+  EXPECT_NE(w.find("base.toml:"), std::string::npos) << w;
+  EXPECT_NE(w.find("DGNSS baseline big"), std::string::npos) << w;
+}
+
+}  // namespace
+}  // namespace gnssemu::config
