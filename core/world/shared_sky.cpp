@@ -46,8 +46,8 @@ orbit::SatState taylor_state(const SkyState& s, double dt_s) noexcept {
   return o;
 }
 
-SharedSky::SharedSky(const orbit::EphemerisStore& store, SystemSet systems) noexcept
-    : store_(store), systems_(systems) {}
+SharedSky::SharedSky(const orbit::EphemerisStore& store, SystemSet systems, const SkyErrorsConfig& errors) noexcept
+    : store_(store), systems_(systems), errors_(errors) {}
 
 void SharedSky::rebuild() noexcept {
   n_sats_ = 0;
@@ -82,6 +82,7 @@ void SharedSky::evaluate(SatId sat, const orbit::Ephemeris& eph, const time::Gps
 void SharedSky::update(const time::GpsTime& t, std::span<const Ecef> antennas_m) noexcept {
   if (!built_ || store_.fingerprint() != fingerprint_) rebuild();
   t_ = t;
+  errors_.begin(t, sats());
   for (int i = 0; i < n_sats_; ++i) {
     const SatId sat = sats_[static_cast<std::size_t>(i)];
     const std::size_t k = static_cast<std::size_t>(sat.index());
@@ -101,6 +102,7 @@ void SharedSky::update(const time::GpsTime& t, std::span<const Ecef> antennas_m)
       }
     }
     evaluate(sat, *eph, t);
+    errors_.step(sat);
   }
 }
 
