@@ -58,6 +58,8 @@ void SharedSky::rebuild() noexcept {
   // Sets of a replaced store may sit at the addresses of the old ones.
   state_.fill(SkyState{});
   glonass_.fill(orbit::GlonassNode{});
+  selected_from_.fill(time::GpsTime{});
+  selected_until_.fill(time::GpsTime{});  // empty spans: select again
   fingerprint_ = store_.fingerprint();
   built_ = true;
   ++revision_;
@@ -87,7 +89,11 @@ void SharedSky::update(const time::GpsTime& t, std::span<const Ecef> antennas_m)
     const SatId sat = sats_[static_cast<std::size_t>(i)];
     const std::size_t k = static_cast<std::size_t>(sat.index());
     SkyState& s = state_[k];
-    const orbit::Ephemeris* eph = store_.select(sat, t);
+    if (!(t >= selected_from_[k] && t < selected_until_[k])) {
+      selected_[k] = store_.select(sat, t, selected_until_[k]);
+      selected_from_[k] = t;
+    }
+    const orbit::Ephemeris* eph = selected_[k];
     if (eph == nullptr) {
       s.eph = nullptr;
       s.current = false;

@@ -96,7 +96,10 @@ private:
   std::array<SatId, kNumSats> sats_{};
   int n_sats_ = 0;
   std::array<SkyState, kNumSats> state_{};
-  std::array<time::GpsTime, kNumSats> eval_toe_{};  ///< toe of the set state_ was evaluated from
+  std::array<time::GpsTime, kNumSats> eval_toe_{};
+  // The store's selection per satellite and the span [from, until) it holds for.
+  std::array<const orbit::Ephemeris*, kNumSats> selected_{};
+  std::array<time::GpsTime, kNumSats> selected_from_{}, selected_until_{};  ///< toe of the set state_ was evaluated from
   std::array<orbit::GlonassNode, kNumSats> glonass_{};
   long evaluations_ = 0;
   long revision_ = 0;
