@@ -84,7 +84,7 @@ void SharedSky::evaluate(SatId sat, const orbit::Ephemeris& eph, const time::Gps
 void SharedSky::update(const time::GpsTime& t, std::span<const Ecef> antennas_m) noexcept {
   if (!built_ || store_.fingerprint() != fingerprint_) rebuild();
   t_ = t;
-  errors_.begin(t, sats());
+  errors_.begin(t, sats(), revision_);
   for (int i = 0; i < n_sats_; ++i) {
     const SatId sat = sats_[static_cast<std::size_t>(i)];
     const std::size_t k = static_cast<std::size_t>(sat.index());

@@ -120,7 +120,7 @@ void SkyErrors::fine_to(Grid& g, const Coefficients& k, uint64_t stream) const n
   g.value = g.f0 + frac_ * (g.f1 - g.f0);
 }
 
-void SkyErrors::begin(const time::GpsTime& t, std::span<const SatId> sats) noexcept {
+void SkyErrors::begin(const time::GpsTime& t, std::span<const SatId> sats, long sats_revision) noexcept {
   if (!started_) {
     origin_ = t;
     started_ = true;
@@ -129,11 +129,16 @@ void SkyErrors::begin(const time::GpsTime& t, std::span<const SatId> sats) noexc
   if (!std::isfinite(s) || s < static_cast<double>(node_) + frac_) return;  // time going back: hold
   node_ = static_cast<int64_t>(std::floor(s));
   frac_ = s - static_cast<double>(node_);
-  for (int p = 0; p < kNumSatProcesses; ++p) {
-    const Coefficients& k = coef_[static_cast<std::size_t>(p)];
-    if (!k.on) continue;
-    auto& grids = sat_[static_cast<std::size_t>(p)];
-    for (const SatId sat : sats) coarse_to(grids[static_cast<std::size_t>(sat.index())], k, stream_of(p, sat));
+  const int64_t coarse = node_ / kSkyFinePerCoarse;
+  if (coarse != chains_at_ || sats_revision != chains_revision_) {
+    for (int p = 0; p < kNumSatProcesses; ++p) {
+      const Coefficients& k = coef_[static_cast<std::size_t>(p)];
+      if (!k.on) continue;
+      auto& grids = sat_[static_cast<std::size_t>(p)];
+      for (const SatId sat : sats) coarse_to(grids[static_cast<std::size_t>(sat.index())], k, stream_of(p, sat));
+    }
+    chains_at_ = coarse;
+    chains_revision_ = sats_revision;
   }
   for (int p = kNumSatProcesses; p < kNumSkyProcesses; ++p) {
     const Coefficients& k = coef_[static_cast<std::size_t>(p)];

@@ -64,8 +64,10 @@ public:
   explicit SkyErrors(const SkyErrorsConfig& config) noexcept;
 
   /// Move to time t (GPS): the coarse chains of every satellite of sats and
-  /// the regional processes. Time going back holds every value.
-  void begin(const time::GpsTime& t, std::span<const SatId> sats) noexcept;
+  /// the regional processes. sats_revision changes whenever sats does (the
+  /// chains are walked only then or at a new coarse node). Time going back
+  /// holds every value.
+  void begin(const time::GpsTime& t, std::span<const SatId> sats, long sats_revision) noexcept;
   /// Bring sat's processes to the time of the last begin() (its fine nodes).
   void step(SatId sat) noexcept;
 
@@ -107,6 +109,8 @@ private:
   time::GpsTime origin_;  ///< the first begin(): fine node 0
   int64_t node_ = 0;      ///< fine node at or before the current time
   double frac_ = 0.0;     ///< position of the current time between node_ and node_ + 1, [0, 1)
+  int64_t chains_at_ = -1;    ///< coarse node the satellites' chains were last brought to
+  long chains_revision_ = 0;  ///< of the satellite list then
   std::array<std::array<Grid, kNumSats>, kNumSatProcesses> sat_{};
   std::array<Grid, kNumSkyProcesses> regional_{};  ///< the regional ones (index >= kNumSatProcesses)
 };

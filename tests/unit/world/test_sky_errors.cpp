@@ -73,7 +73,7 @@ TEST(SkyErrors, GridProcessIsUnitGaussMarkov) {
   constexpr int kLag = 60;     // 30 s
   std::vector<std::vector<double>> x(static_cast<std::size_t>(n), std::vector<double>(kSteps));
   for (int k = 0; k < kSteps; ++k) {
-    e.begin(kStart + 0.5 * k, sats);
+    e.begin(kStart + 0.5 * k, sats, 0);
     for (int i = 0; i < n; ++i) {
       e.step(sats[static_cast<std::size_t>(i)]);
       x[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] =
