@@ -305,7 +305,9 @@ constexpr Section<SpoofDetectionConfig> kSpoofDetection{
 constexpr Field<Config> seed_field() {
   Field<Config> row = integer<&Config::world, &WorldConfig::seed>(
       "seed", 0, std::numeric_limits<int64_t>::max(),
-      "seed of every random process; same seed and inputs, same output");
+      "seed of every random process; same seed and inputs, same output. The top level's is also the sky's "
+      "(satellite orbit/clock residuals, atmosphere); a `[[vehicle.receiver]]` seed changes only that "
+      "receiver's noise, multipath, carrier and clock");
   row.write = [](TomlWriter& w, const Field<Config>& f, const Config& c) {
     if (c.world.seed > static_cast<uint64_t>(std::numeric_limits<int64_t>::max())) {
       throw Error("receiver.seed " + std::to_string(c.world.seed) + " does not fit a TOML integer (max 2^63 - 1)");

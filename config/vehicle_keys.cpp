@@ -86,6 +86,10 @@ std::vector<VehicleConfig> resolve_vehicles(const Config& c) {
     const std::string receiver(kDefaultReceiverName);
     for (int i = 0; i < c.fleet->count; ++i) {
       VehicleReceiverConfig r{receiver, Vec3{}, settings, {}};
+      // One sky (the top level's seed) over receivers with their own noise,
+      // multipath and clock: vehicle i's are seed + i.
+      r.settings.world.sky_seed = world::sky_seed(settings.world);
+      r.settings.world.seed = settings.world.seed + static_cast<uint64_t>(i);
       const std::string id = fleet_vehicle_id(i);
       for (const OutputPortConfig& t : c.fleet->outputs) r.outputs.push_back(expand_port(t, id, receiver, i));
       out.push_back(VehicleConfig{id, {std::move(r)}});
@@ -190,6 +194,9 @@ constexpr std::string_view kReceiverTakes =
 ReceiverSettings read_overrides(TableReader& r, const Config& top) {
   Config own = with_receiver_settings(Config{}, receiver_settings(top));
   own.origin = top.origin;  // a profile's models depend on the latitude
+  // The sky's processes (satellites, atmosphere) keep the top level's seed;
+  // a seed here is the receiver's own noise, multipath and clock.
+  own.world.sky_seed = world::sky_seed(top.world);
   for (const Field<Config>& f : kReceiverKeys.fields) f.read(r, f, own);
   if (own.world.systems.empty()) own.world.systems = chip_systems(own);  // constellations unset: this chip's set
   validate_at(r.file(), r.line(), [&] {

@@ -185,6 +185,37 @@ const Ephemeris* EphemerisStore::select(SatId sat, const time::GpsTime& t) const
   return chosen != nullptr && healthy(*chosen) ? chosen : nullptr;
 }
 
+const Ephemeris* EphemerisStore::select(SatId sat, const time::GpsTime& t, time::GpsTime& until) const noexcept {
+  const Ephemeris* chosen = select(sat, t);
+  until = t;
+  if (!sat.valid()) return chosen;
+  const auto& v = by_sat_[static_cast<std::size_t>(sat.index())];
+  const auto& u = usable_[static_cast<std::size_t>(sat.index())];
+  if (u.empty()) return chosen;
+  const auto it = std::lower_bound(u.begin(), u.end(), t,
+                                   [&v](std::size_t i, const time::GpsTime& tt) { return v[i].toe < tt; });
+  const Ephemeris* after = it != u.end() ? &v[*it] : nullptr;
+  const Ephemeris* before = it != u.begin() ? &v[*(it - 1)] : nullptr;
+  // Past the last set a continued GLONASS set changes every step: no span.
+  if (after == nullptr && options_.continue_after_data && sat.system == GnssSystem::kGlonass) return chosen;
+  // What select() compares changes only at these times: the next toe (the
+  // pair moves on), the midpoint of the pair, and the validity edges. Each
+  // is taken a microsecond early against rounding in t - toe.
+  constexpr double kGuard_s = 1e-6;
+  double span_s = 1e9;  // ~30 years
+  const auto event = [&](double at_s) {
+    if (at_s > -kGuard_s) span_s = std::min(span_s, at_s - kGuard_s);
+  };
+  if (after != nullptr) {
+    event(after->toe - t);
+    event(after->toe - t - validity_half_window_s(*after));
+  }
+  if (before != nullptr) event(before->toe - t + validity_half_window_s(*before));
+  if (before != nullptr && after != nullptr) event(0.5 * ((before->toe - t) + (after->toe - t)));
+  if (span_s > 0.0) until = t + span_s;  // no event ahead: the answer holds
+  return chosen;
+}
+
 std::size_t EphemerisStore::count(SatId sat) const noexcept {
   if (!sat.valid()) return 0;
   return by_sat_[static_cast<std::size_t>(sat.index())].size();

@@ -72,6 +72,10 @@ public:
   /// or the nearest valid set is unhealthy). No allocation; safe on the
   /// per-epoch path.
   const Ephemeris* select(SatId sat, const time::GpsTime& t) const noexcept;
+  /// The same, and until: select(sat, t') is the same for every t' in
+  /// [t, until) (a bound that may fall short; until == t: none known). A
+  /// caller re-selects only when leaving that span.
+  const Ephemeris* select(SatId sat, const time::GpsTime& t, time::GpsTime& until) const noexcept;
 
   /// Number of ephemerides stored for sat (all, healthy or not; Galileo:
   /// the I/NAV sets).

@@ -201,8 +201,8 @@ void Receiver::measurement_stage(const world::Observables& obs, double dt_s) noe
     Measurement& m = in_.meas[in_.num_meas];
     m.eph = o.eph;
     m.pseudorange_m = pr_m;
-    // The solver takes L1 cycles: the same range rate, -lambda D, at L1's wavelength.
-    m.doppler_hz = si.doppler_hz * (o.wavelength_m / kL1Wavelength_m);
+    m.doppler_hz = si.doppler_hz;
+    m.wavelength_m = o.wavelength_m;
     m.cn0_dbhz = si.cn0_dbhz;
     meas_sat_[static_cast<std::size_t>(in_.num_meas++)] = p;
   }

@@ -207,7 +207,7 @@ bool Solver::finish(const SolverInput& in, const Ecef& pos, double clock_m, bool
     accumulate(nu, unused, hn, 1.0, 0.0, ns);
     accumulate(nw, unused, hn, s.weight, 0.0, ns);
     // Measured range rate minus the satellite part: -e.v_rx + c * drift.
-    const double rr = -kL1Wavelength_m * in.meas[i].doppler_hz;
+    const double rr = -in.meas[i].wavelength_m * in.meas[i].doppler_hz;
     accumulate(nv, gv, h, wv, rr - s.los.dot(s.vel_rx_frame_m_s) + s.drift_m_s);
     chi2 += s.weight * s.resid_m * s.resid_m;
     sum_v2 += s.resid_m * s.resid_m;
@@ -356,7 +356,8 @@ bool Solver::prepare(const SolverInput& in) noexcept {
   for (int i = 0; i < n_; ++i) {
     const Measurement& m = in.meas[i];
     Sat& s = sats_[i];
-    if (m.eph == nullptr || !std::isfinite(m.pseudorange_m) || !std::isfinite(m.doppler_hz)) {
+    if (m.eph == nullptr || !std::isfinite(m.pseudorange_m) || !std::isfinite(m.doppler_hz) ||
+        !(m.wavelength_m > 0.0) || !std::isfinite(m.wavelength_m)) {
       n_ = 0;  // malformed input: no fix rather than a guess
       return false;
     }
@@ -425,7 +426,7 @@ int Solver::measurement_model(const SolverInput& in, const Ecef& pos_m, double c
     r.los = s.los;
     r.range_resid_m = s.resid_m;
     r.sigma2_m2 = s.sigma2;
-    r.rate_obs_m_s = -kL1Wavelength_m * in.meas[i].doppler_hz - s.los.dot(s.vel_rx_frame_m_s) + s.drift_m_s;
+    r.rate_obs_m_s = -in.meas[i].wavelength_m * in.meas[i].doppler_hz - s.los.dot(s.vel_rx_frame_m_s) + s.drift_m_s;
   }
   return n_;
 }

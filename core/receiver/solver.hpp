@@ -27,7 +27,8 @@ struct Measurement {
   /// Its system chooses the receiver clock state (eph->sat.system).
   const orbit::Ephemeris* eph = nullptr;
   double pseudorange_m = 0.0;
-  double doppler_hz = 0.0;  ///< L1 carrier Doppler, Hz (positive when approaching)
+  double doppler_hz = 0.0;  ///< carrier Doppler at wavelength_m, Hz (positive when approaching)
+  double wavelength_m = kL1Wavelength_m;  ///< wavelength of the tracked carrier, m (> 0): range rate = -lambda D
   double cn0_dbhz = 0.0;    ///< receiver's C/N0 estimate, dB-Hz; <= 0: unknown (no C/N0 weight term)
   /// Variance of corrections already applied to pseudorange_m by the caller
   /// (`gnssemu spp` corrects before the solver; correction_variance_m2), m^2.

@@ -34,6 +34,10 @@ enum class Purpose : uint64_t {
   kCycleSlip = 17,         ///< slip draw per satellite (uniform) and its size
   kCarrierAmbiguity = 18,  ///< integer ambiguity of a new carrier lock
   kAcquisition = 19,       ///< the receiver's search times (streams kAcquisitionStream + sat_stream)
+  kSkyInit = 20,           ///< shared sky processes (sky_errors.hpp): stationary start at a coarse node
+  kSkyCoarse = 21,         ///< coarse node step
+  kSkyFine = 22,           ///< fine node of the bridge between two coarse nodes
+  kSkyJump = 23,           ///< a time jump over many coarse nodes
 };
 
 /// Random stream of a satellite: (system << 8) | RINEX number. GPS is system

@@ -46,8 +46,8 @@ orbit::SatState taylor_state(const SkyState& s, double dt_s) noexcept {
   return o;
 }
 
-SharedSky::SharedSky(const orbit::EphemerisStore& store, SystemSet systems) noexcept
-    : store_(store), systems_(systems) {}
+SharedSky::SharedSky(const orbit::EphemerisStore& store, SystemSet systems, const SkyErrorsConfig& errors) noexcept
+    : store_(store), systems_(systems), errors_(errors) {}
 
 void SharedSky::rebuild() noexcept {
   n_sats_ = 0;
@@ -58,6 +58,8 @@ void SharedSky::rebuild() noexcept {
   // Sets of a replaced store may sit at the addresses of the old ones.
   state_.fill(SkyState{});
   glonass_.fill(orbit::GlonassNode{});
+  selected_from_.fill(time::GpsTime{});
+  selected_until_.fill(time::GpsTime{});  // empty spans: select again
   fingerprint_ = store_.fingerprint();
   built_ = true;
   ++revision_;
@@ -82,11 +84,16 @@ void SharedSky::evaluate(SatId sat, const orbit::Ephemeris& eph, const time::Gps
 void SharedSky::update(const time::GpsTime& t, std::span<const Ecef> antennas_m) noexcept {
   if (!built_ || store_.fingerprint() != fingerprint_) rebuild();
   t_ = t;
+  errors_.begin(t, sats(), revision_);
   for (int i = 0; i < n_sats_; ++i) {
     const SatId sat = sats_[static_cast<std::size_t>(i)];
     const std::size_t k = static_cast<std::size_t>(sat.index());
     SkyState& s = state_[k];
-    const orbit::Ephemeris* eph = store_.select(sat, t);
+    if (!(t >= selected_from_[k] && t < selected_until_[k])) {
+      selected_[k] = store_.select(sat, t, selected_until_[k]);
+      selected_from_[k] = t;
+    }
+    const orbit::Ephemeris* eph = selected_[k];
     if (eph == nullptr) {
       s.eph = nullptr;
       s.current = false;
@@ -101,6 +108,7 @@ void SharedSky::update(const time::GpsTime& t, std::span<const Ecef> antennas_m)
       }
     }
     evaluate(sat, *eph, t);
+    errors_.step(sat);
   }
 }
 

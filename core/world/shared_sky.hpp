@@ -8,7 +8,9 @@
 // position, first in velocity and clock: < 1e-7 m over 80 ms for every
 // system, tests/unit/world/test_shared_sky.cpp). Owned outside the worlds
 // that read it: one per epoch serves every receiver of a fleet, each of
-// which keeps what depends on its antenna (geometry, blockage, errors).
+// which keeps what depends on its antenna (geometry, blockage, its own
+// noise, multipath and clock). The error processes common to the sky
+// (satellite orbit/clock residuals, atmosphere: SkyErrors) step with it.
 // update() never throws and never allocates.
 #include <array>
 #include <cstdint>
@@ -19,6 +21,7 @@
 #include "core/orbit/ephemeris.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/time/gps_time.hpp"
+#include "core/world/sky_errors.hpp"
 
 namespace gnssemu::world {
 
@@ -49,12 +52,16 @@ public:
   /// store must outlive the sky (it may be replaced in place between
   /// epochs: a changed fingerprint rebuilds the satellite list). systems:
   /// the satellites evaluated (the union of every receiver's systems).
-  SharedSky(const orbit::EphemerisStore& store, SystemSet systems) noexcept;
+  /// errors: the shared error processes (sky_errors_config() of the run's
+  /// world config; the default is a default WorldConfig's).
+  SharedSky(const orbit::EphemerisStore& store, SystemSet systems, const SkyErrorsConfig& errors = {}) noexcept;
 
   /// Evaluate the sky at epoch t (GPS). antennas_m: the ECEF positions of
   /// every receiver that will read this epoch; a satellite more than ~1°
   /// below every one's horizon is not evaluated (its older evaluation,
   /// refreshed every couple of minutes, tells). Empty: every satellite.
+  /// The shared error processes move to t, their fine steps for the
+  /// satellites evaluated.
   void update(const time::GpsTime& t, std::span<const Ecef> antennas_m = {}) noexcept;
 
   time::GpsTime t() const noexcept { return t_; }
@@ -67,6 +74,10 @@ public:
   /// this epoch's evaluation when eph is the set it used and t_eval is
   /// within kMaxTaylorStep_s, else eph evaluated in full.
   orbit::SatState state_at(const orbit::Ephemeris& eph, const time::GpsTime& t_eval) const noexcept;
+
+  /// The shared error processes at the epoch (per satellite: of the
+  /// satellites evaluated at it).
+  const SkyErrors& errors() const noexcept { return errors_; }
 
   /// Changes whenever the satellite list is rebuilt (a reader's copy of it is stale).
   long revision() const noexcept { return revision_; }
@@ -85,10 +96,14 @@ private:
   std::array<SatId, kNumSats> sats_{};
   int n_sats_ = 0;
   std::array<SkyState, kNumSats> state_{};
-  std::array<time::GpsTime, kNumSats> eval_toe_{};  ///< toe of the set state_ was evaluated from
+  std::array<time::GpsTime, kNumSats> eval_toe_{};
+  // The store's selection per satellite and the span [from, until) it holds for.
+  std::array<const orbit::Ephemeris*, kNumSats> selected_{};
+  std::array<time::GpsTime, kNumSats> selected_from_{}, selected_until_{};  ///< toe of the set state_ was evaluated from
   std::array<orbit::GlonassNode, kNumSats> glonass_{};
   long evaluations_ = 0;
   long revision_ = 0;
+  SkyErrors errors_;
 };
 
 }  // namespace gnssemu::world

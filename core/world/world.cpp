@@ -33,7 +33,7 @@ const WorldConfig& validated(const WorldConfig& c) {
 
 World::World(const orbit::EphemerisStore& store, const WorldConfig& config)
     : config_(validated(config)),
-      own_sky_(store, config_.systems),
+      own_sky_(store, config_.systems, sky_errors_config(config_)),
       noise_(MeasurementNoise::of(config_)),
       rng_(config.seed),
       clock_(config.clock),
@@ -60,21 +60,8 @@ void World::set_klobuchar_shape(const orbit::KlobucharParams& p) {
 }
 
 void World::advance(const SharedSky& sky, const time::GpsTime& t) noexcept {
-  const GaussMarkovConfig& gm = config_.errors.orbit_clock;
-  const bool iono_gm = atmosphere_.iono_on() && config_.atmosphere.ionosphere.perturbation.sigma > 0.0;
-  const GaussMarkovConfig iono_cfg{config_.atmosphere.ionosphere.perturbation.sigma,
-                                   config_.atmosphere.ionosphere.perturbation.tau_s};
-  const bool zwd_gm = atmosphere_.tropo_on() && config_.atmosphere.zwd_perturbation.sigma_m > 0.0;
-  const GaussMarkovConfig& zwd_cfg = config_.atmosphere.zwd_perturbation;
-  const bool mp = config_.errors.multipath.sigma_m > 0.0;
-  const GaussMarkovConfig mp_unit{1.0, config_.errors.multipath.tau_s};
-  const GaussMarkovConfig& grad = config_.errors.gradient.process;
-  const bool grad_gm = grad.sigma_m > 0.0;
-  const bool iono_scale = atmosphere_.iono_on() && config_.errors.iono_scale.sigma > 0.0;
-  const GaussMarkovConfig iono_scale_unit{1.0, config_.errors.iono_scale.tau_s};
   // The satellites the store holds (it may be replaced between epochs, as
-  // the daemon re-dates it); a satellite's processes start when it first
-  // appears, and then follow it every epoch whether in view or not.
+  // the daemon re-dates it).
   if (sats_of_ != &sky || sats_revision_ != sky.revision()) {
     n_sats_ = 0;
     for (const SatId sat : sky.sats())
@@ -82,62 +69,45 @@ void World::advance(const SharedSky& sky, const time::GpsTime& t) noexcept {
     sats_of_ = &sky;
     sats_revision_ = sky.revision();
   }
-  const auto init_sat = [&](SatId sat) {
-    const std::size_t k = static_cast<std::size_t>(sat.index());
-    const uint64_t stream = sat_stream(sat);
-    if (mp) multipath_unit_[k] = gauss_markov_init(mp_unit, rng_.normal(stream, 0, Purpose::kMultipathInit));
-    orbit_clock_m_[k] =
-        gauss_markov_init(orbit_clock_process(gm, sat.system), rng_.normal(stream, 0, Purpose::kGaussMarkovInit));
-    if (iono_gm) iono_tecu_[k] = gauss_markov_init(iono_cfg, rng_.normal(stream, 0, Purpose::kIonoInit));
-    process_started_[k] = true;
-  };
+  // The regional processes of the sky, at this world's sigmas.
+  const SkyErrors& e = sky.errors();
+  iono_factor_ = atmosphere_.iono_on() ? 1.0 + config_.errors.iono_scale.sigma * e.value(SkyProcess::kIonoScale) : 1.0;
+  zwd_pert_m_ = atmosphere_.tropo_on() ? config_.atmosphere.zwd_perturbation.sigma_m * e.value(SkyProcess::kZwd) : 0.0;
   if (!started_) {
-    if (iono_scale)
-      iono_scale_unit_ =
-          gauss_markov_init(iono_scale_unit, rng_.normal(kIonoScaleStream, 0, Purpose::kIonoScaleInit));
-    if (grad_gm)
-      for (int c = 0; c < 2; ++c)
-        gradient_m_[c] = gauss_markov_init(grad, rng_.normal(kGradientStream + c, 0, Purpose::kGradientInit));
-    for (int i = 0; i < n_sats_; ++i) init_sat(sats_[static_cast<std::size_t>(i)]);
-    if (zwd_gm) zwd_pert_m_ = gauss_markov_init(zwd_cfg, rng_.normal(kClockStream, 0, Purpose::kTropoInit));
     started_ = true;
   } else {
     double dt_s = t - t_prev_;
     if (!std::isfinite(dt_s) || dt_s < 0.0) dt_s = 0.0;  // time going back: hold the processes
     dt_s_ = dt_s;
-    for (int i = 0; i < n_sats_; ++i) {
-      const SatId sat = sats_[static_cast<std::size_t>(i)];
-      const std::size_t k = static_cast<std::size_t>(sat.index());
-      if (!process_started_[k]) {
-        init_sat(sat);
-        continue;
-      }
-      const uint64_t stream = sat_stream(sat);
-      orbit_clock_m_[k] = gauss_markov_step(orbit_clock_m_[k], dt_s, orbit_clock_process(gm, sat.system),
-                                            rng_.normal(stream, epoch_, Purpose::kGaussMarkovStep));
-      if (iono_gm && dt_s > 0.0)
-        iono_tecu_[k] = gauss_markov_step(iono_tecu_[k], dt_s, iono_cfg, rng_.normal(stream, epoch_, Purpose::kIonoStep));
-      if (mp && dt_s > 0.0)
-        multipath_unit_[k] =
-            gauss_markov_step(multipath_unit_[k], dt_s, mp_unit, rng_.normal(stream, epoch_, Purpose::kMultipathStep));
-    }
-    if (grad_gm && dt_s > 0.0)
-      for (int c = 0; c < 2; ++c)
-        gradient_m_[c] = gauss_markov_step(gradient_m_[c], dt_s, grad,
-                                           rng_.normal(kGradientStream + c, epoch_, Purpose::kGradientStep));
-    if (iono_scale && dt_s > 0.0)
-      iono_scale_unit_ = gauss_markov_step(iono_scale_unit_, dt_s, iono_scale_unit,
-                                           rng_.normal(kIonoScaleStream, epoch_, Purpose::kIonoScaleStep));
-    if (zwd_gm && dt_s > 0.0)
-      zwd_pert_m_ = gauss_markov_step(zwd_pert_m_, dt_s, zwd_cfg, rng_.normal(kClockStream, epoch_, Purpose::kTropoStep));
     clock_.advance(dt_s, rng_.normal(kClockStream, epoch_, Purpose::kClockDrift));
   }
   t_prev_ = t;
 }
 
-void World::gradient_now(const time::GpsTime& t, double lon_rad) noexcept {
+double World::multipath_m(SatId sat, uint64_t stream, const time::GpsTime& t, uint64_t epoch,
+                          double el_rad) noexcept {
+  const ErrorModelConfig& c = config_.errors;
+  if (!(c.multipath.sigma_m > 0.0)) return 0.0;
+  const GaussMarkovConfig unit{1.0, c.multipath.tau_s};
+  const std::size_t k = static_cast<std::size_t>(sat.index());
+  double& x = multipath_unit_[k];
+  if (!multipath_started_[k]) {
+    x = gauss_markov_init(unit, rng_.normal(stream, epoch, Purpose::kMultipathInit));
+    multipath_started_[k] = true;
+  } else {
+    const double dt_s = t - multipath_t_[k];
+    if (std::isfinite(dt_s) && dt_s > 0.0)
+      x = gauss_markov_step(x, dt_s, unit, rng_.normal(stream, epoch, Purpose::kMultipathStep));
+  }
+  multipath_t_[k] = t;
+  return c.multipath.sigma_m / multipath_sin_el(el_rad) * x;
+}
+
+void World::gradient_now(const SharedSky& sky, const time::GpsTime& t, double lon_rad) noexcept {
   const ErrorModelConfig::Gradient& g = config_.errors.gradient;
-  gradient_now_m_ = {g.north_m + gradient_m_[0], g.east_m + gradient_m_[1]};
+  const double sigma_m = g.process.sigma_m;
+  gradient_now_m_ = {g.north_m + sigma_m * sky.errors().value(SkyProcess::kGradientNorth),
+                     g.east_m + sigma_m * sky.errors().value(SkyProcess::kGradientEast)};
   if (g.north_diurnal_m == 0.0 && g.east_diurnal_m == 0.0) return;
   // Local time as in the Klobuchar model (IS-GPS-200 20.3.3.5.2.5): GPS time
   // plus 43200 s per semicircle of longitude; 2 pi per day.
@@ -171,7 +141,7 @@ void World::sky_stage(const SharedSky& sky, const time::GpsTime& t, const Truth&
 // Stage 3 (propagation): the configured atmosphere along each line of sight
 // above the mask. Slow terms come through the per-satellite cache; the
 // Gauss–Markov perturbations are added every epoch.
-void World::propagation_stage(const time::GpsTime& t, const Lla& rx_lla, const Ecef& rx_pos_m) noexcept {
+void World::propagation_stage(const SharedSky& sky, const time::GpsTime& t, const Lla& rx_lla, const Ecef& rx_pos_m) noexcept {
   for (int i = 0; i < n_above_; ++i) path_[static_cast<std::size_t>(above_[i].index())] = PathEffects{};
   if (!atmosphere_.any_on()) return;
   // Cached terms belong to a place: moving far enough (height matters most,
@@ -185,7 +155,7 @@ void World::propagation_stage(const time::GpsTime& t, const Lla& rx_lla, const E
   }
   const double tow_s = t.tow_s();
   const double doy = atmosphere_.tropo_on() ? t.fractional_day_of_year() : 1.0;
-  const double iono_factor = 1.0 + config_.errors.iono_scale.sigma * iono_scale_unit_;
+  const double iono_sigma_tecu = config_.atmosphere.ionosphere.perturbation.sigma;
   for (int i = 0; i < n_above_; ++i) {
     const SatId sat = above_[i];
     const std::size_t k = static_cast<std::size_t>(sat.index());
@@ -199,7 +169,8 @@ void World::propagation_stage(const time::GpsTime& t, const Lla& rx_lla, const E
     if (atmosphere_.iono_on()) {
       // Computed at the configured frequency; the delay scales as 1 / f^2.
       const double f_ratio = config_.atmosphere.ionosphere.freq_hz / orbit::carrier_hz(*eph_[k]);
-      e.iono_m = std::max(v[kIonoM] * iono_factor + iono_tecu_[k] * v[kIonoMPerTecu], 0.0) * (f_ratio * f_ratio);
+      const double tecu = iono_sigma_tecu * sky.errors().value(SkyProcess::kIono, sat);
+      e.iono_m = std::max(v[kIonoM] * iono_factor_ + tecu * v[kIonoMPerTecu], 0.0) * (f_ratio * f_ratio);
     }
     if (atmosphere_.tropo_on()) e.tropo_m = std::max(v[kTropoM] + zwd_pert_m_ * v[kNmfWet], 0.0);
     e.delay_m = e.iono_m + e.tropo_m;
@@ -258,7 +229,7 @@ void World::signal_stage() noexcept {
 
 // Stage 5 (observables): every satellite in view (SatId order) with its path
 // truth; pseudorange and Doppler of every received one.
-void World::observables_stage(const time::GpsTime& t, uint64_t epoch, double mask_rad) noexcept {
+void World::observables_stage(const SharedSky& sky, const time::GpsTime& t, uint64_t epoch, double mask_rad) noexcept {
   const double rx_clock_s = clock_.bias_s();
   const double rx_drift_s_s = clock_.drift_s_s();
   obs_.t_rx_local = t + rx_clock_s;
@@ -286,10 +257,9 @@ void World::observables_stage(const time::GpsTime& t, uint64_t epoch, double mas
     const orbit::Ephemeris* eph = o.eph;
     const double cn0 = o.cn0_dbhz;
     const double thermal_m = noise_.code_sigma_m(cn0) * rng_.normal(stream, epoch, Purpose::kThermal);
-    const double multipath_m =
-        config_.errors.multipath.sigma_m > 0.0
-            ? config_.errors.multipath.sigma_m / multipath_sin_el(s.el_rad) * multipath_unit_[k]
-            : 0.0;
+    const double multipath = multipath_m(sat, stream, t, epoch, s.el_rad);
+    const double orbit_clock_m = orbit_clock_process(config_.errors.orbit_clock, sat.system).sigma_m *
+                                 sky.errors().value(SkyProcess::kOrbitClock, sat);
     const double gradient_m = gradient_now_m_[0] * std::cos(s.az_rad) + gradient_now_m_[1] * std::sin(s.az_rad);
     o.carrier_hz = orbit::carrier_hz(*eph);
     o.wavelength_m = kSpeedOfLight_m_s / o.carrier_hz;
@@ -297,11 +267,11 @@ void World::observables_stage(const time::GpsTime& t, uint64_t epoch, double mas
         noise_.range_rate_sigma_m_s(cn0, o.wavelength_m) * rng_.normal(stream, epoch, Purpose::kDoppler);
     // The satellite's actual L1 clock = broadcast (dt_sv - TGD) + residual.
     const double pr_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - eph->tgd_s)) +
-                        orbit_clock_m_[k] + path_[k].delay_m + thermal_m + multipath_m + gradient_m;
+                        orbit_clock_m + path_[k].delay_m + thermal_m + multipath + gradient_m;
     const double rr_m_s = s.range_rate_m_s + kSpeedOfLight_m_s * (rx_drift_s_s - s.clk_drift_s_s) + rr_noise_m_s;
     o.pseudorange_m = pr_m;
     o.doppler_hz = -rr_m_s / o.wavelength_m;
-    carrier_observable(o, s, epoch, rx_clock_s, gradient_m);
+    carrier_observable(o, s, epoch, rx_clock_s, orbit_clock_m, gradient_m);
   }
   for (int i = 0; i < n_sats_; ++i) {
     const std::size_t k = static_cast<std::size_t>(sats_[static_cast<std::size_t>(i)].index());
@@ -313,7 +283,7 @@ void World::observables_stage(const time::GpsTime& t, uint64_t epoch, double mas
 // advances the phase by as much as it delays the code; code multipath and
 // thermal code noise are not in it, the NLOS path length is.
 void World::carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch, double rx_clock_s,
-                               double gradient_m) noexcept {
+                               double orbit_clock_m, double gradient_m) noexcept {
   const std::size_t k = static_cast<std::size_t>(o.sat.index());
   const uint64_t stream = sat_stream(o.sat);
   CarrierTrack& c = carrier_[k];
@@ -355,7 +325,7 @@ void World::carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch
   const double phase_noise_m =
       sigma_rad / (2.0 * kPi) * o.wavelength_m * rng_.normal(stream, epoch, Purpose::kCarrierNoise);
   const double carrier_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - o.eph->tgd_s)) +
-                           orbit_clock_m_[k] + e.delay_m - 2.0 * e.iono_m + gradient_m + phase_noise_m;
+                           orbit_clock_m + e.delay_m - 2.0 * e.iono_m + gradient_m + phase_noise_m;
   o.carrier_valid = true;
   o.carrier_phase_cycles = carrier_m / o.wavelength_m + c.offset_cycles;
 }
@@ -388,12 +358,12 @@ const Observables& World::step(const SharedSky& sky, const Truth& truth, double 
   }
 
   const Lla rx_lla = geo::lla_from_ecef(truth.pos_m);
-  gradient_now(t, rx_lla.lon_rad);
+  gradient_now(sky, t, rx_lla.lon_rad);
   sky_stage(sky, t, truth, rx_lla, mask_rad);
-  propagation_stage(t, rx_lla, truth.pos_m);
+  propagation_stage(sky, t, rx_lla, truth.pos_m);
   scene_stage(truth.pos_m);
   signal_stage();
-  observables_stage(t, epoch, mask_rad);
+  observables_stage(sky, t, epoch, mask_rad);
   return obs_;
 }
 

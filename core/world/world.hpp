@@ -86,19 +86,21 @@ public:
 
 private:
   void advance(const SharedSky& sky, const time::GpsTime& t) noexcept;
+  /// The multipath of sat (stream its random stream) at t, m, brought forward from its last step.
+  double multipath_m(SatId sat, uint64_t stream, const time::GpsTime& t, uint64_t epoch, double el_rad) noexcept;
   void sky_stage(const SharedSky& sky, const time::GpsTime& t, const Truth& truth, const Lla& rx_lla,
                  double mask_rad) noexcept;
-  void propagation_stage(const time::GpsTime& t, const Lla& rx_lla, const Ecef& rx_pos_m) noexcept;
+  void propagation_stage(const SharedSky& sky, const time::GpsTime& t, const Lla& rx_lla, const Ecef& rx_pos_m) noexcept;
   void scene_stage(const Ecef& rx_pos_m) noexcept;
   void signal_stage() noexcept;
-  void observables_stage(const time::GpsTime& t, uint64_t epoch, double mask_rad) noexcept;
+  void observables_stage(const SharedSky& sky, const time::GpsTime& t, uint64_t epoch, double mask_rad) noexcept;
   /// Carrier phase, its continuity and the lock-break test of one received
   /// satellite (o: its pseudorange already set); rx_clock_s the receiver clock
   /// bias, s, gradient_m the azimuthal delay on its line of sight, m.
   void carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch, double rx_clock_s,
-                          double gradient_m) noexcept;
+                          double orbit_clock_m, double gradient_m) noexcept;
   /// G_N, G_E of the azimuthal gradient at t for a receiver at lon_rad.
-  void gradient_now(const time::GpsTime& t, double lon_rad) noexcept;
+  void gradient_now(const SharedSky& sky, const time::GpsTime& t, double lon_rad) noexcept;
 
   WorldConfig config_;
   SharedSky own_sky_;
@@ -108,16 +110,16 @@ private:
   // Error processes.
   CounterRng rng_;
   ReceiverClock clock_;
-  // Per satellite (by SatId::index()); the processes of the satellites in
-  // the store only (sats_), the others are never observed.
-  std::array<double, kNumSats> orbit_clock_m_{};  ///< Gauss–Markov state, m
-  std::array<double, kNumSats> multipath_unit_{};  ///< unit multipath Gauss–Markov state
-  std::array<bool, kNumSats> process_started_{};  ///< the processes above were initialised
-  std::array<double, 2> gradient_m_{};  ///< azimuthal gradient processes g_N, g_E, m
+  // The shared processes at this epoch (the sky's unit values times this
+  // world's sigmas; per satellite ones are read where used).
   std::array<double, 2> gradient_now_m_{};  ///< G_N, G_E this epoch (mean + daily cycle + process), m
-  std::array<double, kNumSats> iono_tecu_{};        ///< vertical TEC perturbation per line of sight, TECU
-  double iono_scale_unit_ = 0.0;                    ///< unit process of the common relative iono error
-  double zwd_pert_m_ = 0.0;                         ///< zenith wet delay perturbation, m
+  double iono_factor_ = 1.0;                ///< 1 + the common relative iono error
+  double zwd_pert_m_ = 0.0;                 ///< zenith wet delay perturbation, m
+  // Multipath per satellite (by SatId::index()), stepped when the satellite
+  // is received, over the time since it last was.
+  std::array<double, kNumSats> multipath_unit_{};   ///< unit multipath Gauss–Markov state
+  std::array<time::GpsTime, kNumSats> multipath_t_{};  ///< when it was last stepped
+  std::array<bool, kNumSats> multipath_started_{};
   uint64_t epoch_ = 0;          ///< step() calls so far (random-stream counter)
   bool started_ = false;
   time::GpsTime t_prev_;

@@ -5,6 +5,7 @@
 // oscillator's truth, the atmosphere and the signal model. The receiver does
 // not know any of it. All values SI.
 #include <cstdint>
+#include <optional>
 
 #include "core/atmosphere/clouds_rain.hpp"
 #include "core/atmosphere/ionosphere.hpp"
@@ -143,7 +144,12 @@ struct SignalConfig {
 };
 
 struct WorldConfig {
-  uint64_t seed = 1;               ///< seed of every random process (deterministic)
+  /// Seed of the receiver's own random processes (multipath, noise,
+  /// carrier, clock); deterministic.
+  uint64_t seed = 1;
+  /// Seed of the processes of the sky it is under (SkyErrors: orbit/clock
+  /// residuals, atmosphere), shared by every receiver there; none: seed.
+  std::optional<uint64_t> sky_seed;
   ErrorModelConfig errors;
   ClockConfig clock;
   double nominal_cn0_dbhz = 45.0;  ///< zenith C/N0 when signal.enabled is false, dB-Hz
@@ -155,6 +161,9 @@ struct WorldConfig {
   /// not in the sky this world computes, whatever the nav data hold.
   SystemSet systems = SystemSet::only(GnssSystem::kGps);
 };
+
+/// The sky seed of c (its own, else its seed).
+inline uint64_t sky_seed(const WorldConfig& c) noexcept { return c.sky_seed.value_or(c.seed); }
 
 /// Valid values of WorldConfig's own numbers (seed: any).
 struct WorldRanges {

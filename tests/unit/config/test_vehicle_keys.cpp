@@ -61,6 +61,9 @@ TEST(VehicleKeys, ReceiversMergeTheirKeysOverTheTopLevel) {
   EXPECT_EQ(gps1.settings.world.seed, 11u);
   EXPECT_EQ(gps1.settings.generation, protocol::ubx::Generation::kM8);
   EXPECT_EQ(gps2.settings.world.seed, 12u);
+  // A receiver's seed is its own; the sky keeps the top level's.
+  EXPECT_EQ(world::sky_seed(gps1.settings.world), 11u);
+  EXPECT_EQ(world::sky_seed(gps2.settings.world), 11u);
   EXPECT_EQ(gps2.settings.generation, protocol::ubx::Generation::kM9);
   EXPECT_EQ(gps2.lever_arm_m.x, 1.0);
   EXPECT_EQ(gps2.lever_arm_m.z, -0.2);
@@ -86,7 +89,10 @@ TEST(VehicleKeys, FleetExpandsTemplates) {
   EXPECT_EQ(v[2].id, "v2");
   const VehicleReceiverConfig& r = v[2].receivers[0];
   EXPECT_EQ(r.name, "gps1");
-  EXPECT_EQ(r.settings.world.seed, 11u);
+  // One sky (the top level's seed); each vehicle's own noise and clock.
+  EXPECT_EQ(r.settings.world.seed, 13u);
+  EXPECT_EQ(world::sky_seed(r.settings.world), 11u);
+  EXPECT_EQ(v[0].receivers[0].settings.world.seed, 11u);
   EXPECT_EQ(r.outputs[0].name, "gps-v2");
   EXPECT_EQ(std::get<PtyPortConfig>(r.outputs[0].transport).path, "/tmp/gnssemu/v2/gps1");
   EXPECT_EQ(std::get<TcpPortConfig>(r.outputs[1].transport).port, 5002);

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
@@ -263,4 +265,45 @@ TEST(EphemerisStore, MergedFilesActAsOne) {
   NavData other = pm;
   other.leap_seconds = 17;
   EXPECT_FALSE(merge({am, other}).leap_seconds.has_value());
+}
+
+// select(sat, t, until): the set chosen at t stays select()'s answer over
+// [t, until), at the switching times themselves (toes, midpoints, validity
+// edges) and on a grid, for every system, with and without continuation.
+TEST(EphemerisStore, SelectionSpanHoldsUpToItsEnd) {
+  const NavData nav = read_rinex_nav(kNav + "BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz");
+  for (const bool cont : {false, true}) {
+    const EphemerisStore store(nav.ephemerides, StoreOptions{cont});
+    const time::GpsTime t0 = store.first_valid() - 3600.0;
+    const double day_s = (store.last_valid() - t0) + 7200.0;
+    long checked = 0, reused = 0;
+    for (int i = 0; i < kNumSats; ++i) {
+      const SatId sat = SatId::from_index(i);
+      if (store.count(sat) == 0) continue;
+      std::vector<double> at_s;
+      for (double s = 0.0; s < day_s; s += 7.3) at_s.push_back(s);
+      for (const Ephemeris& e : nav.ephemerides) {
+        if (e.sat != sat) continue;
+        const double toe_s = e.toe - t0, hw = validity_half_window_s(e);
+        for (const double s : {toe_s, toe_s - hw, toe_s + hw, toe_s + 900.0, toe_s + 1800.0, toe_s + 3600.0})
+          for (const double d : {-1e-3, 0.0, 1e-3}) at_s.push_back(s + d);
+      }
+      std::sort(at_s.begin(), at_s.end());
+      time::GpsTime until = t0;
+      const Ephemeris* held = nullptr;
+      for (const double s : at_s) {
+        const time::GpsTime t = t0 + s;
+        const Ephemeris* now = store.select(sat, t);
+        if (t < until) {
+          ASSERT_EQ(now, held) << sat.index() << " at " << s;
+          ++reused;
+        } else {
+          held = store.select(sat, t, until);
+          ASSERT_EQ(held, now);
+        }
+        ++checked;
+      }
+    }
+    EXPECT_GT(reused, checked / 2);  // the switching times come in clusters
+  }
 }

@@ -14,6 +14,7 @@
 #include "core/receiver/fix.hpp"
 #include "core/world/truth.hpp"
 #include "core/pipeline/pipeline.hpp"
+#include "core/receiver/solver.hpp"
 
 namespace gnssemu::receiver::test {
 
@@ -116,6 +117,16 @@ inline PipelineConfig gm_white_world(PipelineConfig c = snapshot()) {
   c.receiver.solver.tropo = atmosphere::TropoCorrection::kNone;
   c.receiver.solver.sigma_c_m_sqrt_hz = 0.0;
   c.world.errors.thermal_model = world::ThermalModel::kFixed;
+  return c;
+}
+
+/// The solver without atmospheric corrections or a C/N0 weight term (the
+/// residual test at its default P_fa): for skies built without atmosphere.
+inline SolverConfig plain_solver() {
+  SolverConfig c;
+  c.iono = atmosphere::IonoCorrection::kNone;
+  c.tropo = atmosphere::TropoCorrection::kNone;
+  c.sigma_c_m_sqrt_hz = 0.0;
   return c;
 }
 

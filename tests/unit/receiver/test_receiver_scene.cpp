@@ -147,7 +147,8 @@ TEST_F(ReceiverScene, FaultExclusionDropsBiasedSatellitesFromTheSolution) {
     excluded += ex;
     with_exclusion += ex > 0;
   }
-  EXPECT_GT(fixes, 50);
+  // 36 to 76 of the 200 epochs over seeds 1-10 (the orbit/clock draws decide).
+  EXPECT_GT(fixes, 30);
   EXPECT_GT(with_exclusion, 10);
   // What is excluded is mostly what is biased.
   EXPECT_GT(excluded_nlos, excluded / 2);

@@ -61,13 +61,7 @@ struct Sky {
   }
 };
 
-SolverConfig plain_solver() {
-  SolverConfig c;
-  c.iono = atmosphere::IonoCorrection::kNone;
-  c.tropo = atmosphere::TropoCorrection::kNone;
-  c.sigma_c_m_sqrt_hz = 0.0;
-  return c;  // residual test at the default P_fa = 1e-3
-}
+using test::plain_solver;
 
 const std::vector<std::array<double, 2>> kNine = {{0, 75},  {30, 40},  {100, 40}, {170, 40}, {250, 40},
                                                   {320, 40}, {70, 15}, {200, 15}, {290, 15}};

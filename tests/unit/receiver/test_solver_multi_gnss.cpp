@@ -66,13 +66,7 @@ struct Sky {
   }
 };
 
-SolverConfig plain_solver() {
-  SolverConfig c;
-  c.iono = atmosphere::IonoCorrection::kNone;
-  c.tropo = atmosphere::TropoCorrection::kNone;
-  c.sigma_c_m_sqrt_hz = 0.0;
-  return c;
-}
+using test::plain_solver;
 
 constexpr GnssSystem G = GnssSystem::kGps, R = GnssSystem::kGlonass, E = GnssSystem::kGalileo,
                      C = GnssSystem::kBeiDou, J = GnssSystem::kQzss;
