@@ -109,7 +109,7 @@ int main(int argc, char** argv) {
     std::vector<std::unique_ptr<pipeline::Pipeline>> rx;
     for (int i = 0; i < n; ++i) rx.push_back(std::make_unique<pipeline::Pipeline>(store, config_for(all, 1 + i)));
     pipeline::Pipeline lone(store, config_for(all, 1000));
-    world::SharedSky sky(store, all);
+    world::SharedSky sky(store, all, world::sky_errors_config(config_for(all, 1).world));
     std::vector<Ecef> antennas(static_cast<std::size_t>(n));
     std::vector<world::Truth> truth(static_cast<std::size_t>(n));
     const double rss_setup = rss_mb();

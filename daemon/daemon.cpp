@@ -86,7 +86,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
       period_s_(1.0 / cfg.rate_hz),
       output_delay_s_(cfg.time.output_delay_s),
       rate_hz_(cfg.rate_hz),
-      sky_(store_, sky_systems(config::resolve_vehicles(cfg))),
+      sky_(store_, sky_systems(config::resolve_vehicles(cfg)), world::sky_errors_config(cfg.world)),
       timer_(io),
       retry_timer_(io),
       socket_(io),
