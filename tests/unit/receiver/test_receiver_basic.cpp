@@ -214,16 +214,22 @@ TEST(ReceiverBasic, SatellitesOfEverySystemGoThroughInSatIdOrder) {
   EXPECT_GE(compared, 10);
 }
 
-TEST(ReceiverBasic, DisabledSystemIsNeitherTrackedNorReported) {
-  // CFG-GNSS with Galileo off: its satellites stay in the sky (the world
-  // models them) but the receiver neither tracks nor lists them; enabled
-  // again, they come back.
-  std::vector<orbit::Ephemeris> mixed = test::nominal_constellation(kToe, 6);
+/// The nominal constellation of per_plane satellites per plane with every
+/// other satellite relabelled Galileo (I/NAV E1-B sets).
+std::vector<orbit::Ephemeris> gps_and_galileo(int per_plane) {
+  std::vector<orbit::Ephemeris> mixed = test::nominal_constellation(kToe, per_plane);
   for (std::size_t i = 0; i < mixed.size(); i += 2) {
     mixed[i].sat = SatId(GnssSystem::kGalileo, mixed[i].sat.number);
     mixed[i].gal_data_sources = 517;
   }
-  const orbit::EphemerisStore store(mixed);
+  return mixed;
+}
+
+TEST(ReceiverBasic, DisabledSystemIsNeitherTrackedNorReported) {
+  // CFG-GNSS with Galileo off: its satellites stay in the sky (the world
+  // models them) but the receiver neither tracks nor lists them; enabled
+  // again, they come back.
+  const orbit::EphemerisStore store(gps_and_galileo(6));
   PipelineConfig cfg = test::snapshot();
   cfg.receiver.max_channels = kMaxSatsInView;
   cfg.world.systems = SystemSet::only(GnssSystem::kGps).with(GnssSystem::kGalileo);
@@ -357,12 +363,7 @@ TEST(ReceiverBasic, RawMeasurementsFollowTheTrackedSatellites) {
 
 TEST(ReceiverBasic, ChannelBudgetPerSystem) {
   // CFG-GNSS maxTrkCh: at most 4 GPS channels; the rest go to Galileo.
-  std::vector<orbit::Ephemeris> mixed = test::nominal_constellation(kToe, 8);
-  for (std::size_t i = 0; i < mixed.size(); i += 2) {
-    mixed[i].sat = SatId(GnssSystem::kGalileo, mixed[i].sat.number);
-    mixed[i].gal_data_sources = 517;
-  }
-  const orbit::EphemerisStore store(mixed);
+  const orbit::EphemerisStore store(gps_and_galileo(8));
   PipelineConfig cfg = test::snapshot();
   cfg.world.systems = SystemSet::only(GnssSystem::kGps).with(GnssSystem::kGalileo);
   Pipeline p(store, cfg);
@@ -385,12 +386,7 @@ TEST(ReceiverBasic, ChannelBudgetPerSystem) {
 TEST(ReceiverBasic, SolutionSatelliteCapKeepsTheHighest) {
   // The NEO-M9N above 8 Hz uses at most 16 satellites: the cap keeps the
   // highest ones, the others stay tracked and unused, and the fix holds.
-  std::vector<orbit::Ephemeris> mixed = test::nominal_constellation(kToe, 8);
-  for (std::size_t i = 0; i < mixed.size(); i += 2) {
-    mixed[i].sat = SatId(GnssSystem::kGalileo, mixed[i].sat.number);
-    mixed[i].gal_data_sources = 517;
-  }
-  const orbit::EphemerisStore store(mixed);
+  const orbit::EphemerisStore store(gps_and_galileo(8));
   PipelineConfig cfg = test::snapshot();
   cfg.receiver.max_channels = kMaxSatsInView;
   cfg.world.systems = SystemSet::only(GnssSystem::kGps).with(GnssSystem::kGalileo);
