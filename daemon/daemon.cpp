@@ -497,7 +497,9 @@ void Daemon::emit_epoch(const time::GpsTime& t, double demo_elapsed_s, bool fall
     antennas_.push_back(rig.truth.pos_m);
   }
   if (base_) antennas_.push_back(base_->position_ecef_m());
-  sky_.update(t, antennas_);
+  // A lone receiver steps its world's own sky, as gnssemu batch does (the
+  // lockstep run stays byte-identical to batch); several share this one.
+  if (shared_sky()) sky_.update(t, antennas_);
   if (base_ && base_->is_epoch(t)) {
     base_bytes_.clear();
     base_->step(sky_, base_bytes_);
@@ -512,7 +514,7 @@ void Daemon::emit_epoch(const time::GpsTime& t, double demo_elapsed_s, bool fall
 
 void Daemon::emit_rig_epoch(Rig& rig, const time::GpsTime& t, double run_s) {
   const world::Truth& truth = rig.truth;
-  const receiver::Fix& fix = rig.receiver->step(sky_, truth);
+  const receiver::Fix& fix = shared_sky() ? rig.receiver->step(sky_, truth) : rig.receiver->step(t, truth);
   const receiver::RawEpoch& raw = rig.receiver->receiver().raw();
   rig.device.on_epoch(fix, chip_clock_s(t),
                       protocol::ubx::RawSource{&raw, &store_, {&raw_nav_.klobuchar, &raw_nav_.utc, raw.leap_seconds}});

@@ -105,6 +105,8 @@ private:
   /// The device's CFG-NAV5 (dynModel, static hold) and GNSS selection into the receiver.
   /// [base]: its station and NTRIP caster (setup; throws gnssemu::Error).
   void start_base();
+  /// Several receivers (or a base) read one sky per epoch; a lone receiver its world's own.
+  bool shared_sky() const noexcept { return rigs_.size() > 1 || base_ != nullptr; }
   void apply_chip_settings(Rig& rig);
   /// A host on channel src of rig changed the device: follow its reset, epoch
   /// period and the other ports' line settings.
