@@ -39,6 +39,27 @@ constexpr std::string_view fix_type_name(FixType t) noexcept {
 /// statistics count as a fix.
 constexpr bool is_gnss_fix(FixType t) noexcept { return t == FixType::k2D || t == FixType::k3D; }
 
+/// Carrier-phase solution state (NAV-PVT flags carrSoln; GGA quality 5 float, 4 fixed).
+enum class CarrierSolution : uint8_t { kNone = 0, kFloat = 1, kFixed = 2 };
+
+/// Position relative to a reference station or a moving base (NAV-RELPOSNED,
+/// NMEA HDT/THS): the baseline from the reference antenna to this one.
+struct RelativePosition {
+  bool valid = false;          ///< relPosValid: a baseline is computed this epoch
+  bool moving_base = false;    ///< isMoving: the reference moves (moving-baseline heading)
+  bool ref_pos_miss = false;   ///< refPosMiss: the reference position was not available this epoch (extrapolated)
+  bool ref_obs_miss = false;   ///< refObsMiss: the reference observations were not available this epoch (extrapolated)
+  CarrierSolution carr_soln = CarrierSolution::kNone;
+  int ref_station_id = 0;      ///< DF003, 0..4095
+  double n_m = 0.0, e_m = 0.0, d_m = 0.0;  ///< baseline in the reference's local NED frame, m
+  double length_m = 0.0;       ///< |baseline|, m
+  double heading_rad = 0.0;    ///< of the baseline's horizontal part, [0, 2pi) from true north
+  bool heading_valid = false;  ///< relPosHeadingValid
+  double acc_n_m = 0.0, acc_e_m = 0.0, acc_d_m = 0.0;  ///< 1-sigma, m
+  double acc_length_m = 0.0;   ///< 1-sigma, m
+  double acc_heading_rad = 0.0;///< 1-sigma, rad
+};
+
 /// The antenna supervisor's state (MON-HW aStatus).
 enum class AntennaStatus : uint8_t { kOk, kShort, kOpen };
 
@@ -90,6 +111,16 @@ struct Fix {
 
   double clock_bias_s = 0.0;   ///< estimated receiver clock bias
   double clock_drift_s_s = 0.0;///< estimated receiver clock drift
+
+  /// Differential corrections applied to the solution (NAV-PVT flags diffSoln;
+  /// GGA quality 2 without a carrier solution).
+  bool diff_soln = false;
+  CarrierSolution carr_soln = CarrierSolution::kNone;
+  /// Age of the corrections the solution used, s (rover epoch - base epoch;
+  /// < 0: none). GGA field 13, NAV-PVT flags3 lastCorrectionAge.
+  double corr_age_s = -1.0;
+  int ref_station_id = -1;     ///< reference station of the corrections (GGA field 14); -1 none
+  RelativePosition rel_pos;    ///< NAV-RELPOSNED
 
   Dop dop;
   int num_used = 0;            ///< satellites in the solution

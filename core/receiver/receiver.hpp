@@ -13,6 +13,7 @@
 
 #include "core/orbit/nav_data.hpp"
 #include "core/receiver/acquisition.hpp"
+#include "core/receiver/corrections.hpp"
 #include "core/receiver/fix.hpp"
 #include "core/receiver/hatch_filter.hpp"
 #include "core/receiver/navigator.hpp"
@@ -39,6 +40,9 @@ public:
   /// every tracked signal of an enabled system, on the receiver's clock.
   const RawEpoch& raw() const noexcept { return raw_; }
   const ReceiverConfig& config() const noexcept { return config_; }
+  /// The correction link's state the RTK stage reads at every step (nullptr:
+  /// no link). The caller keeps *c alive and updates it between steps.
+  void set_corrections(const Corrections* c) noexcept { corrections_ = c; }
 
   /// Restart navigation (CFG-RST): every satellite is lost and searched
   /// again, the filter starts over; keep says what the receiver remembers.
@@ -117,6 +121,9 @@ private:
   std::array<HatchFilter, kNumSats> hatch_{};
   std::array<std::uint32_t, kNumSats> discontinuities_{};  ///< the world's count at the last update
   std::array<bool, kNumSats> smoothed_last_{};  ///< smoothed at the previous epoch
+
+  // Corrections (not owned).
+  const Corrections* corrections_ = nullptr;
 
   // Raw measurements.
   RawEpoch raw_;
