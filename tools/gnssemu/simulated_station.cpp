@@ -9,12 +9,17 @@ namespace gnssemu::cli {
 
 observation::ObsData simulate_station(const observation::ObsData& real, const orbit::NavData& nav,
                                       const orbit::EphemerisStore& store, const world::WorldConfig& world,
-                                      const Ecef& antenna_m, double mask_rad) {
+                                      const Ecef& antenna_m, double mask_rad, SystemSet systems) {
   observation::ObsData out;
   out.source = real.source + " (simulated)";
   out.header.rinex_version = 3.05;
-  out.header.file_system = 'G';
-  out.header.types_of(GnssSystem::kGps) = {"C1C", "S1C"};
+  out.header.file_system = systems == SystemSet::only(GnssSystem::kGps) ? 'G' : 'M';
+  for (int k = 0; k < kNumSystems; ++k) {
+    const auto sys = static_cast<GnssSystem>(k);
+    if (!systems.has(sys)) continue;
+    if (sys == GnssSystem::kBeiDou) out.header.types_of(sys) = {"C2I", "S2I"};  // B1I (RINEX 3.02+ band 2)
+    else out.header.types_of(sys) = {"C1C", "S1C"};
+  }
   out.header.interval_s = real.header.interval_s;
   world::World w(store, world);
   w.set_klobuchar_shape(nav.klobuchar);
@@ -28,7 +33,7 @@ observation::ObsData simulate_station(const observation::ObsData& real, const or
     sim.t = o.t_rx_local;
     for (int i = 0; i < o.num_sats; ++i) {
       const world::SatObservable& s = o.sats[static_cast<std::size_t>(i)];
-      if (!s.above_mask || !s.received || s.sat.system != GnssSystem::kGps) continue;  // GPS observations only
+      if (!s.above_mask || !s.received || !systems.has(s.sat.system)) continue;
       observation::SatObs so;
       so.sat = s.sat;
       so.values = {observation::ObsValue{s.pseudorange_m, true, 0, 0}, observation::ObsValue{s.cn0_dbhz, true, 0, 0}};

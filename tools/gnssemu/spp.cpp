@@ -188,11 +188,11 @@ const SppEpoch& SppEngine::solve(const observation::ObsEpoch& epoch) {
 
 std::vector<Enu> spp_error_series(const observation::ObsData& obs, const orbit::NavData& nav,
                                   const orbit::EphemerisStore& store, const receiver::ReceiverConfig& receiver,
-                                  const Ecef& station, double step_s, int* fixes) {
+                                  const Ecef& station, double step_s, int* fixes, SystemSet systems) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   if (fixes != nullptr) *fixes = 0;
   if (obs.epochs.empty()) return {};
-  SppEngine engine(nav, store, obs.header, receiver);
+  SppEngine engine(nav, store, obs.header, receiver, systems);
   const geo::LocalFrame frame(geo::lla_from_ecef(station));
   const time::GpsTime t0 = obs.epochs.front().t;
   const long n_grid = std::lround((obs.epochs.back().t - t0) / step_s) + 1;

@@ -93,7 +93,8 @@ private:
 /// where an epoch has no fix). fixes (optional): epochs with a fix.
 std::vector<Enu> spp_error_series(const observation::ObsData& obs, const orbit::NavData& nav,
                                   const orbit::EphemerisStore& store, const receiver::ReceiverConfig& receiver,
-                                  const Ecef& station, double step_s, int* fixes = nullptr);
+                                  const Ecef& station, double step_s, int* fixes = nullptr,
+                                  SystemSet systems = SystemSet::only(GnssSystem::kGps));
 
 struct SppSummary {
   int epochs = 0;

@@ -158,12 +158,13 @@ std::vector<Enu> filtered_error_series(const Day& d, const observation::ObsData&
 
 /// Real against simulated: obs of day d, the world w simulated for seeds 1..seeds.
 Comparison compare(const std::string& title, const Day& d, const observation::ObsData& obs, world::WorldConfig w,
-                   const config::Config& base, double mask_rad, int seeds) {
+                   const config::Config& base, double mask_rad, int seeds,
+                   SystemSet systems = SystemSet::only(GnssSystem::kGps)) {
   const double step_s = cli::grid_step_s(obs);
   const receiver::ReceiverConfig rx = comparison_receiver(base, mask_rad);
   Comparison c;
   c.title = title;
-  c.real = stats_of(cli::spp_error_series(obs, d.nav, *d.store, rx, d.arp, step_s), step_s);
+  c.real = stats_of(cli::spp_error_series(obs, d.nav, *d.store, rx, d.arp, step_s, nullptr, systems), step_s);
   switch_off(w, g_without);
   for (int seed = 1; seed <= seeds; ++seed) {
     w.seed = static_cast<uint64_t>(seed);
@@ -173,8 +174,9 @@ Comparison compare(const std::string& title, const Day& d, const observation::Ob
       c.sims.push_back(stats_of(filtered_error_series(d, obs, w, filtered), step_s));
       continue;
     }
-    const observation::ObsData sim = cli::simulate_station(obs, d.nav, *d.store, w, d.arp, mask_rad);
-    c.sims.push_back(stats_of(cli::spp_error_series(sim, d.nav, *d.store, rx, d.arp, step_s), step_s));
+    const observation::ObsData sim = cli::simulate_station(obs, d.nav, *d.store, w, d.arp, mask_rad, systems);
+    c.sims.push_back(
+        stats_of(cli::spp_error_series(sim, d.nav, *d.store, rx, d.arp, step_s, nullptr, systems), step_s));
   }
   return c;
 }
@@ -247,6 +249,26 @@ Summary print(const Comparison& c, std::ostream& out, std::ostream* csv) {
   return s;
 }
 
+/// The multi-system gain: each size metric with `systems` over the same with
+/// GPS alone, real against simulated (the ratio per seed: both runs of a
+/// seed share its world's draws).
+void print_gain(const std::string& title, const Comparison& gps, const Comparison& multi, std::ostream& out,
+                std::ostream* csv) {
+  out << "\n#### " << title << "\n\n| metric | real GPS | real multi | real ratio | simulated ratio (mean ± sd over "
+      << gps.sims.size() << " seeds) |\n|---|---|---|---|---|\n";
+  for (std::size_t k = 0; k < 5; ++k) {
+    std::vector<double> r;
+    for (std::size_t i = 0; i < gps.sims.size() && i < multi.sims.size(); ++i) r.push_back(multi.sims[i].v[k] / gps.sims[i].v[k]);
+    const double m = statistics::mean(r);
+    const double sd = std::sqrt(statistics::variance(r, m) * static_cast<double>(r.size()) /
+                                std::max<double>(static_cast<double>(r.size()) - 1.0, 1.0));
+    const double real = multi.real.v[k] / gps.real.v[k];
+    out << fmt::format("| {} | {:.3f} m | {:.3f} m | {:.3f} | {:.3f} ± {:.3f} |\n", Stats::kName[k], gps.real.v[k],
+                       multi.real.v[k], real, m, sd);
+    if (csv != nullptr) *csv << fmt::format("{},{} ratio,{:.4f},{:.4f},{:.4f},{:.2f}\n", title, Stats::kName[k], real, m, sd, 100.0 * (m - real) / real);
+  }
+}
+
 void print_fit(const cli::CalibrationResult& r, std::ostream& out) {
   const cli::AtmosphereBiasFit& b = r.bias;
   const cli::ProcessFit& p = r.processes;
@@ -281,6 +303,12 @@ int run(int argc, char** argv) {
                "simulate with the whole default receiver (navigation filter, 1 Hz) at the antenna instead of "
                "solving simulated observations epoch by epoch");
   app.add_option("--csv", csv_path, "also write title,metric,real,sim_mean,sim_sd,rel_pct rows here");
+  std::string gain_letters;
+  std::vector<std::string> gain_days;
+  app.add_option("--gain-day", gain_days, "with --gain: a day (NAME of a --day) to compare; the others train");
+  app.add_option("--gain", gain_letters,
+                 "instead: for each day with these systems (RINEX letters, e.g. G,R,E,C) the size metrics against "
+                 "GPS alone, real and simulated, the model fitted (GPS) on the other stations' days");
   CLI11_PARSE(app, argc, argv);
   const double mask_rad = mask_deg * kDegToRad;
 
@@ -315,7 +343,31 @@ int run(int argc, char** argv) {
     if (std::find(stations.begin(), stations.end(), d.station) == stations.end()) stations.push_back(d.station);
 
   std::vector<std::pair<std::string, Summary>> summary;
-  if (default_world || !profile.empty()) {
+  if (!gain_letters.empty()) {
+    const std::optional<SystemSet> multi = parse_systems(gain_letters);
+    if (!multi || multi->empty()) throw Error("--gain: '" + gain_letters + "' is not a list of RINEX system letters");
+    out << "### Multi-system gain (" << seeds << " seeds, mask " << mask_deg << " deg, systems " << gain_letters
+        << ")\n";
+    const auto is_gain_day = [&](const Day& d) {
+      return std::find(gain_days.begin(), gain_days.end(), d.name) != gain_days.end();
+    };
+    for (const Day& d : days) {
+      if (!is_gain_day(d) || (!only.empty() && d.station != only)) continue;
+      std::vector<cli::CalibrationInput> train;  // the GPS days of the other stations
+      for (const Day& o : days)
+        if (o.station != d.station && !is_gain_day(o)) train.push_back(input_of(o, o.obs, mask_rad));
+      const world::WorldConfig w =
+          train.empty() ? base.world : cli::fitted_world(cli::calibrate(train, base), base.world);
+      const Comparison g = compare(d.name + " GPS", d, d.obs, w, base, mask_rad, seeds);
+      const Comparison m = compare(d.name + " " + gain_letters, d, d.obs, w, base, mask_rad, seeds, *multi);
+      summary.emplace_back(g.title, print(g, out, csv));
+      summary.emplace_back(m.title, print(m, out, csv));
+      print_gain(d.name + ": " + gain_letters + " over GPS", g, m, out, csv);
+      out.flush();
+    }
+    half_day.clear();
+    stations.clear();
+  } else if (default_world || !profile.empty()) {
     const std::string what = default_world ? "the built-in default world" : "profile " + profile;
     out << "### " << what << " (" << seeds << " seeds, mask " << mask_deg << " deg)\n";
     for (const Day& d : days) {

@@ -30,10 +30,20 @@ def main():
     ap.add_argument("--profile", help="this receiver profile (ublox_m8, geodetic) against every day")
     ap.add_argument("--filtered", action="store_true", help="simulate with the whole default receiver (filter)")
     ap.add_argument("--without", action="append", default=[], help="switch a simulated term off (error budget)")
+    ap.add_argument("--gain", metavar="LETTERS",
+                    help="instead: the multi-system gain (e.g. G,R,E,C) at the multi-system days, the model fitted on "
+                         "the GPS days")
     a = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         argv = [os.path.abspath(a.tool), "--seeds", str(a.seeds), "--half-day", a.half_day]
-        for d in station_days.days(a.data):
+        days = station_days.days(a.data)
+        if a.gain:
+            multi = station_days.multi_system_days(a.data)
+            days += multi
+            argv += ["--gain", a.gain]
+            for d in multi:
+                argv += ["--gain-day", d.name]
+        for d in days:
             argv += ["--day", f"{d.name},{d.station},{d.obs},{station_days.spp_vs_rtklib.plain_copy(d.nav, tmp)}"]
         if a.only:
             argv += ["--only", a.only]

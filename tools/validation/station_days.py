@@ -24,6 +24,13 @@ DAYS = [
     ("ROAP-2009-181", "ROAP", "obs/roap1810.09o.gz", "nav/brdc1810.09n"),
 ]
 
+# Days with every system's observations and the same day's multi-system nav
+# (the multi-system gain; errmodel_validation.py --gain): name, station, obs, nav.
+MULTI_SYSTEM_DAYS = [
+    ("BELE-2024-010", "BELE", "obs/BELE00BRA_R_20240100000_01D_30S_MO.crx.gz", "nav/BRDC00IGS_R_20240100000_01D_MN.rnx.gz"),
+    ("TLSE-2024-001-15min", "TLSE", "obs/TLSE00FRA_R_20240011200_15M_01S_MO.crx.gz", "nav/BRDC00IGS_R_20240010000_01D_MN.rnx.gz"),
+]
+
 
 class Day:
     def __init__(self, data, name, station, obs, nav):
@@ -34,6 +41,10 @@ class Day:
 
 def days(data=DEFAULT_DATA):
     return [Day(data, *d) for d in DAYS]
+
+
+def multi_system_days(data=DEFAULT_DATA):
+    return [Day(data, *d) for d in MULTI_SYSTEM_DAYS]
 
 
 def _header(obs):
