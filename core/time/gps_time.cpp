@@ -61,6 +61,9 @@ std::optional<GpsTime> GpsTime::make(int32_t week, double tow_s) noexcept {
 double GpsTime::total_s() const noexcept { return week_ * kSecondsPerWeek + tow_s_; }
 
 GpsTime GpsTime::operator+(double dt_s) const noexcept {
+  // Within the week (the per-epoch case): no division, no floor. NaN and
+  // infinities fail the test and take the general path.
+  if (const double t = tow_s_ + dt_s; t >= 0.0 && t < kSecondsPerWeek) return GpsTime(week_, t, Normalised{});
   if (!std::isfinite(dt_s)) return *this;
   int32_t w = 0;
   double tow = 0.0;
