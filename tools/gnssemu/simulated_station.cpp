@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/gnssemu/simulated_station.hpp"
 
+#include <optional>
+#include <string>
+
 #include "core/common/error.hpp"
+#include "core/common/gnss_signals.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/world/world.hpp"
 
@@ -16,9 +20,10 @@ observation::ObsData simulate_station(const observation::ObsData& real, const or
   out.header.file_system = systems == SystemSet::only(GnssSystem::kGps) ? 'G' : 'M';
   for (int k = 0; k < kNumSystems; ++k) {
     const auto sys = static_cast<GnssSystem>(k);
-    if (!systems.has(sys)) continue;
-    if (sys == GnssSystem::kBeiDou) out.header.types_of(sys) = {"C2I", "S2I"};  // B1I (RINEX 3.02+ band 2)
-    else out.header.types_of(sys) = {"C1C", "S1C"};
+    const std::optional<SignalId> l1 = signal_of(sys, 0);
+    if (!systems.has(sys) || !l1) continue;
+    const std::string code = signal_info(*l1).rinex_code;  // "1C"; BeiDou B1I "2I"
+    out.header.types_of(sys) = {"C" + code, "S" + code};
   }
   out.header.interval_s = real.header.interval_s;
   world::World w(store, world);

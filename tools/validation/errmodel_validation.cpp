@@ -181,6 +181,12 @@ Comparison compare(const std::string& title, const Day& d, const observation::Ob
   return c;
 }
 
+/// Sample standard deviation over the seeds (n - 1 in the denominator).
+double sample_sd(const std::vector<double>& v, double mean_v) {
+  const double n = static_cast<double>(v.size());
+  return std::sqrt(statistics::variance(v, mean_v) * n / std::max(n - 1.0, 1.0));
+}
+
 struct Summary {
   double mean_abs_pct = 0.0, max_abs_pct = 0.0, corr_pct = 0.0, seed_mean_pct = 0.0, seed_sd_pct = 0.0;
   double spread_pct = 0.0;  ///< mean seed-to-seed coefficient of variation of the five size metrics
@@ -214,8 +220,7 @@ Summary print(const Comparison& c, std::ostream& out, std::ostream* csv) {
     std::vector<double> v;
     for (const Stats& x : c.sims) v.push_back(x.v[static_cast<std::size_t>(k)]);
     const double m = statistics::mean(v);
-    const double sd = std::sqrt(statistics::variance(v, m) * static_cast<double>(v.size()) /
-                                std::max<double>(static_cast<double>(v.size()) - 1.0, 1.0));
+    const double sd = sample_sd(v, m);
     const double real = c.real.v[static_cast<std::size_t>(k)];
     rel[static_cast<std::size_t>(k)] = 100.0 * (m - real) / real;
     const int digits = k == 5 ? 0 : 3;  // seconds / metres
@@ -258,14 +263,16 @@ void print_gain(const std::string& title, const Comparison& gps, const Compariso
       << gps.sims.size() << " seeds) |\n|---|---|---|---|---|\n";
   for (std::size_t k = 0; k < 5; ++k) {
     std::vector<double> r;
-    for (std::size_t i = 0; i < gps.sims.size() && i < multi.sims.size(); ++i) r.push_back(multi.sims[i].v[k] / gps.sims[i].v[k]);
+    for (std::size_t i = 0; i < gps.sims.size() && i < multi.sims.size(); ++i)
+      r.push_back(multi.sims[i].v[k] / gps.sims[i].v[k]);
     const double m = statistics::mean(r);
-    const double sd = std::sqrt(statistics::variance(r, m) * static_cast<double>(r.size()) /
-                                std::max<double>(static_cast<double>(r.size()) - 1.0, 1.0));
+    const double sd = sample_sd(r, m);
     const double real = multi.real.v[k] / gps.real.v[k];
     out << fmt::format("| {} | {:.3f} m | {:.3f} m | {:.3f} | {:.3f} ± {:.3f} |\n", Stats::kName[k], gps.real.v[k],
                        multi.real.v[k], real, m, sd);
-    if (csv != nullptr) *csv << fmt::format("{},{} ratio,{:.4f},{:.4f},{:.4f},{:.2f}\n", title, Stats::kName[k], real, m, sd, 100.0 * (m - real) / real);
+    if (csv != nullptr)
+      *csv << fmt::format("{},{} ratio,{:.4f},{:.4f},{:.4f},{:.2f}\n", title, Stats::kName[k], real, m, sd,
+                          100.0 * (m - real) / real);
   }
 }
 
