@@ -169,11 +169,14 @@ void RtkEngine::free_slot(int s) noexcept {
 }
 
 bool RtkEngine::update(const int* idx, const double* h, int nh, double v, double r, double gate2) noexcept {
+  // P is symmetric: P h from the rows of h's states, and the whole of P
+  // updated row by row (contiguous, vectorised) rather than one triangle.
   const int n = n_states();
-  for (int i = 0; i < n; ++i) {
-    double s = 0.0;
-    for (int k = 0; k < nh; ++k) s += p_[i][idx[k]] * h[k];
-    ph_[i] = s;
+  for (int i = 0; i < n; ++i) ph_[i] = 0.0;
+  for (int k = 0; k < nh; ++k) {
+    const double hk = h[k];
+    const auto& row = p_[static_cast<std::size_t>(idx[k])];
+    for (int i = 0; i < n; ++i) ph_[i] += hk * row[i];
   }
   double s = r;
   for (int k = 0; k < nh; ++k) s += h[k] * ph_[idx[k]];
@@ -182,15 +185,14 @@ bool RtkEngine::update(const int* idx, const double* h, int nh, double v, double
   for (int i = 0; i < n; ++i) x_[i] += ph_[i] * inv * v;
   for (int i = 0; i < n; ++i) {
     const double ki = ph_[i] * inv;
-    for (int j = i; j < n; ++j) {
-      p_[i][j] -= ki * ph_[j];
-      p_[j][i] = p_[i][j];
-    }
+    if (ki == 0.0) continue;
+    auto& row = p_[static_cast<std::size_t>(i)];
+    for (int j = 0; j < n; ++j) row[j] -= ki * ph_[j];
   }
   return true;
 }
 
-void RtkEngine::process_base(const Corrections& c) noexcept {
+void RtkEngine::process_base(const Corrections& c, const world::SharedSky* sky) noexcept {
   ++base_stamp_;
   base_revision_ = c.revision;
   base_seen_ = true;
@@ -205,7 +207,7 @@ void RtkEngine::process_base(const Corrections& c) noexcept {
       ++status_.unmatched;  // a satellite the rover does not see
       continue;
     }
-    const TransmitState ts = transmit_state(*eph, b.t_rx, m.pseudorange_m);
+    const TransmitState ts = transmit_state(sky, *eph, b.t_rx, m.pseudorange_m);
     const Range g = geometric_range(ts.state.pos_m, arp);
     BaseSignal& bs = base_[static_cast<std::size_t>(key_of(m))];
     bs.stamp = base_stamp_;
@@ -268,7 +270,7 @@ void RtkEngine::step(const RawEpoch& rover, const world::Observables& obs, const
     eph_stamp_[k] = epoch_;
   }
   for (int i = 0; i < fix.num_sats; ++i) el_rad_[static_cast<std::size_t>(fix.sats[i].sat.index())] = fix.sats[i].el_rad;
-  if (!base_seen_ || c.revision != base_revision_) process_base(c);
+  if (!base_seen_ || c.revision != base_revision_) process_base(c, obs.sky);
 
   double dt_s = init_ ? fix.t - t_last_ : 0.0;
   const Ecef nav_pos = fix.pos_m;
@@ -292,6 +294,7 @@ void RtkEngine::step(const RawEpoch& rover, const world::Observables& obs, const
   for (int sys = 0; sys < kNumSystems; ++sys) zero_cross(kClockState0 + sys);
 
   // Pass 1: code. Pass 2: carrier (new ambiguities from the code-updated clock).
+  for (int i = 0; i < rover.num_meas; ++i) geom_[static_cast<std::size_t>(i)].valid = false;
   for (int pass = 0; pass < 2; ++pass) {
     for (int i = 0; i < rover.num_meas; ++i) {
       const RawMeasurement& m = rover.meas[static_cast<std::size_t>(i)];
@@ -301,9 +304,24 @@ void RtkEngine::step(const RawEpoch& rover, const world::Observables& obs, const
       if (bs.stamp != base_stamp_ || !m.pseudorange_valid || eph_stamp_[k] != epoch_ || eph_[k] == nullptr) continue;
       const double el = el_rad_[k];
       if (el < cfg_.elevation_mask_rad) continue;
-      const TransmitState ts = transmit_state(obs.sky, *eph_[k], rover.t_rx, m.pseudorange_m);
-      const Range g = geometric_range(ts.state.pos_m, x_lin_);
-      const double sat_clock_m = kSpeedOfLight_m_s * ts.state.clk_bias_s;
+      // The geometry once per satellite: its band-1 measurement follows its band-0 one.
+      Geometry& geo = geom_[static_cast<std::size_t>(i)];
+      if (pass == 0) {
+        if (i > 0 && rover.meas[static_cast<std::size_t>(i - 1)].sat == m.sat && geom_[static_cast<std::size_t>(i - 1)].valid) {
+          geo = geom_[static_cast<std::size_t>(i - 1)];
+        } else {
+          const TransmitState ts = transmit_state(obs.sky, *eph_[k], rover.t_rx, m.pseudorange_m);
+          const Range gr = geometric_range(ts.state.pos_m, x_lin_);
+          geo.range_m = gr.range_m;
+          geo.e = gr.e;
+          geo.sat_clock_m = kSpeedOfLight_m_s * ts.state.clk_bias_s;
+          geo.valid = true;
+        }
+      } else if (!geo.valid) {
+        continue;
+      }
+      const Range g{geo.range_m, geo.e};
+      const double sat_clock_m = geo.sat_clock_m;
       const int sys = static_cast<int>(m.sat.system);
       const int ic = kClockState0 + sys;
       const double dpos = -(g.e.dot(Ecef(x_[0], x_[1], x_[2]) - x_lin_));

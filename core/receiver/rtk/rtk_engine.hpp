@@ -114,7 +114,8 @@ private:
 
   void reset_filter(const Ecef& pos_m) noexcept;
   void clear_link_fields(Fix& fix) const noexcept;
-  void process_base(const Corrections& c) noexcept;
+  /// sky: the rover epoch's broadcast orbits (Taylor steps back to the base epoch), or null.
+  void process_base(const Corrections& c, const world::SharedSky* sky) noexcept;
   void predict(double dt_s, const Fix& fix) noexcept;
   int slot_for(int key, GnssSystem sys, int band, double wavelength_m) noexcept;
   void reset_ambiguity(int s, double value_cyc, double var_cyc2) noexcept;
@@ -138,6 +139,14 @@ private:
   std::uint32_t base_stamp_ = 0;
   std::uint32_t base_revision_ = 0;
   bool base_seen_ = false;
+  /// A rover measurement's satellite this epoch.
+  struct Geometry {
+    bool valid = false;
+    double range_m = 0.0;      ///< at the linearisation point, Earth rotation included
+    Vec3 e;                    ///< unit line of sight rover -> satellite
+    double sat_clock_m = 0.0;  ///< c x broadcast satellite clock at transmit time
+  };
+  std::array<Geometry, kMaxRawMeasurements> geom_{};
   // Per satellite this epoch.
   std::array<const orbit::Ephemeris*, kNumSats> eph_{};
   std::array<std::uint32_t, kNumSats> eph_stamp_{};
