@@ -134,6 +134,7 @@ RtkResult run_rtk(const orbit::EphemerisStore& store, SystemSet systems, const t
   corr.station.station_id = 1;
   corr.station.position_valid = true;
   corr.station.arp_ecef_m = base_m;
+  corr.glonass_cpb_valid = true;  // the base sends 1230 with its MSM, as F9P bases do
   rover.receiver().set_corrections(&corr);
   std::vector<double> us_rtk, us_m8, us_wide;
   long allocs = 0;

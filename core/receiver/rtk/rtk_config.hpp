@@ -33,7 +33,10 @@ struct RtkConfig {
   double ar_interval_s = 1.0;
   /// While fixed, new ambiguities are searched for this often, s.
   double refix_interval_s = 10.0;
-  /// Beyond this baseline no integer fix is tried (float only, counted), m.
+  /// Beyond this baseline the F9P warns "DGNSS baseline big" (IMF9 R08 §3.1.5.4), m.
+  double warn_baseline_m = 50.0e3;
+  /// Beyond this baseline no integer fix is tried (float only, counted), m. Ours:
+  /// the atmosphere no longer cancels (RTKLIB's manual gives ~10-20 km for L1 fixes).
   double max_fix_baseline_m = 100.0e3;
   /// A moving base's epoch is used this long after its time only (no motion extrapolation), s.
   double moving_base_max_age_s = 1.0;

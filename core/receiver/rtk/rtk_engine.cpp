@@ -286,6 +286,9 @@ void RtkEngine::step(const RawEpoch& rover, const world::Observables& obs, const
   const bool use_carrier = age_s <= cfg_.max_carrier_age_s;
   const double baseline_m = (x_lin_ - c.station.arp_ecef_m).norm();
   status_.baseline_m = baseline_m;
+  if (baseline_m > cfg_.warn_baseline_m) ++status_.baseline_big;
+  // GLONASS inter-frequency code-phase biases: no GLONASS fix without 1230 (IMF9 R02 §3.1).
+  glonass_ar_ = c.glonass_cpb_valid;
   const double atmo_m = cfg_.baseline_sigma_m_m * baseline_m + cfg_.age_sigma_m_s * std::max(age_s, 0.0);
   for (int s = 0; s < n_slots_; ++s) slots_[static_cast<std::size_t>(s)].in_use = false;
 
@@ -384,8 +387,12 @@ void RtkEngine::step(const RawEpoch& rover, const world::Observables& obs, const
     if (!slots_[static_cast<std::size_t>(s)].in_use) free_slot(s);
 
   if (status_.num_code_sd < kMinCodeSats) {
+    // Not enough common satellites: the standalone fix stands, and the
+    // filter starts over with the next usable epoch rather than carry
+    // ambiguities through an outage the code cannot check.
     fixed_ = false;
-    return;  // not enough common satellites: the standalone fix stands
+    init_ = false;
+    return;
   }
   const bool carrier = status_.num_phase_sd >= kMinPhaseSats;
   if (!carrier) fixed_ = false;
@@ -437,6 +444,7 @@ bool RtkEngine::try_fix(double t_s) noexcept {
   int nc = 0;
   for (int s = 0; s < n_slots_; ++s) {
     const Slot& sl = slots_[static_cast<std::size_t>(s)];
+    if (sl.system == GnssSystem::kGlonass && !glonass_ar_) continue;
     if (sl.in_use && sl.half_r && sl.half_b && sl.lock_r_s >= cfg_.min_lock_s && sl.lock_b_s >= cfg_.min_lock_s)
       cand[static_cast<std::size_t>(nc++)] = s;
   }

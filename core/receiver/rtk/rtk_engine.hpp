@@ -54,6 +54,7 @@ struct RtkStatus {
   std::uint32_t fixes = 0;            ///< searches that passed ratio and validation
   std::uint32_t fix_rejections = 0;   ///< held fixes dropped by the carrier residual test
   std::uint32_t slips = 0;            ///< ambiguities reset (lock restart, half cycle, innovation)
+  std::uint32_t baseline_big = 0;     ///< epochs beyond warn_baseline_m (INF-WARNING "DGNSS baseline big")
   std::uint32_t long_baseline = 0;    ///< epochs beyond max_fix_baseline_m (float only)
   std::uint32_t unmatched = 0;        ///< base signals the rover does not track (ignored)
   std::uint32_t stale = 0;            ///< epochs with corrections older than the DGNSS timeout
@@ -167,6 +168,7 @@ private:
 
   // Integer resolution.
   bool fixed_ = false;
+  bool glonass_ar_ = false;  ///< 1230 received: GLONASS ambiguities may be fixed
   double last_ar_s_ = -1.0e300;
   Lambda lambda_;
   AmbMat q_dd_{};

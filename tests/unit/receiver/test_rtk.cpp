@@ -318,6 +318,7 @@ TEST(Rtk, BaseFarAwayStaysFloatAndCounts) {
   EXPECT_EQ(fixed, 0);
   EXPECT_GT(floats, 0);
   EXPECT_GT(rig.status().long_baseline, 0u);
+  EXPECT_GT(rig.status().baseline_big, 0u);
 }
 
 }  // namespace
