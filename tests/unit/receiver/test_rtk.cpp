@@ -75,6 +75,7 @@ public:
     queue_.push_back(base_.receiver().raw());
     if (link_ && static_cast<int>(queue_.size()) > latency_) {
       corr_.obs = queue_.front();
+      corr_.obs.num_meas = std::min(corr_.obs.num_meas, base_meas_limit_);
       corr_.obs_valid = corr_.obs.time_valid && corr_.obs.num_meas > 0;
       ++corr_.revision;
     }
@@ -101,6 +102,8 @@ public:
   }
   void set_velocity(const Ecef& v) { base_vel_ = rover_vel_ = v; }
   void stop_link() { link_ = false; }
+  /// The base antenna sees only its first n signals (a blocked antenna).
+  void limit_base(int n) { base_meas_limit_ = n; }
   void set_moving_base() {
     moving_base_ = true;
     corr_.station.moving = true;
@@ -125,6 +128,7 @@ private:
   std::uint32_t slips_ = 0;
   bool link_ = true;
   bool moving_base_ = false;
+  int base_meas_limit_ = kMaxRawMeasurements;
 };
 
 double rtk_median(std::vector<double> v) {
@@ -235,6 +239,7 @@ TEST(Rtk, StoppedCorrectionsGiveDgnssThenStandaloneAfterTheTimeout) {
   rig.stop_link();
   const time::GpsTime t_stop = t;
   bool dgnss_seen = false;
+  std::vector<double> dgnss_err, dgnss_acc;
   for (int i = 1; i <= 70; ++i) {
     const Fix& f = rig.step(t_stop + static_cast<double>(i));
     const double age = static_cast<double>(i);
@@ -244,6 +249,9 @@ TEST(Rtk, StoppedCorrectionsGiveDgnssThenStandaloneAfterTheTimeout) {
       EXPECT_TRUE(f.diff_soln) << i;
       EXPECT_EQ(f.carr_soln, CarrierSolution::kNone) << i;
       dgnss_seen = true;
+      const Enu e = error_enu(f.pos_m, rig.rover_truth());
+      dgnss_err.push_back(std::hypot(e.x, e.y));
+      dgnss_acc.push_back(f.h_acc_m);
     } else if (age > 60.5) {
       EXPECT_FALSE(f.diff_soln) << i;
       EXPECT_EQ(f.carr_soln, CarrierSolution::kNone);
@@ -252,6 +260,8 @@ TEST(Rtk, StoppedCorrectionsGiveDgnssThenStandaloneAfterTheTimeout) {
     }
   }
   EXPECT_TRUE(dgnss_seen);
+  std::printf("DGNSS (corrections 30-60 s old): horizontal error median %.3f m, hAcc median %.3f m\n",
+              rtk_median(dgnss_err), rtk_median(dgnss_acc));
 }
 
 TEST(Rtk, WrongBaseCoordinatesOffsetTheRoverByTheSameVector) {
@@ -303,6 +313,27 @@ TEST(Rtk, MovingBaselineOneMetreHeading) {
               "accHeading %.3f deg\n", valid, fixed, rms, acc_deg);
   ASSERT_GT(fixed, 100);
   EXPECT_LT(rms, 1.5);
+}
+
+TEST(Rtk, HeadingLostWhenTheBaseAntennaIsBlocked) {
+  const Ecef base = geo::ecef_from_lla(kSite);
+  RtkRig rig(base, offset_enu(base, 0.0, 1.0, 0.0));
+  rig.set_moving_base();
+  bool fixed = false;
+  for (int i = 0; i < 100; ++i) fixed = rig.step(kToe + static_cast<double>(i)).rel_pos.carr_soln == CarrierSolution::kFixed;
+  ASSERT_TRUE(fixed);
+  rig.limit_base(3);
+  for (int i = 100; i < 110; ++i) {
+    const Fix& f = rig.step(kToe + static_cast<double>(i));
+    EXPECT_FALSE(f.rel_pos.heading_valid) << i;
+    EXPECT_EQ(f.type, FixType::k3D);  // the rover's own fix goes on
+  }
+  rig.limit_base(kMaxRawMeasurements);
+  int back = -1;
+  for (int i = 110; i < 300 && back < 0; ++i)
+    if (rig.step(kToe + static_cast<double>(i)).rel_pos.carr_soln == CarrierSolution::kFixed) back = i - 110;
+  std::printf("heading back (fixed) %d s after the base antenna sees the sky again\n", back);
+  EXPECT_GE(back, 0);
 }
 
 TEST(Rtk, BaseFarAwayStaysFloatAndCounts) {
