@@ -21,6 +21,7 @@
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
 #include "core/pipeline/pipeline.hpp"
+#include "core/world/shared_sky.hpp"
 #include "tests/support/alloc_counter.hpp"
 
 namespace {
@@ -110,6 +111,93 @@ Result run(const orbit::EphemerisStore& store, const pipeline::PipelineConfig& c
   return r;
 }
 
+struct RtkResult {
+  double m8_us = 0, wide_us = 0, rtk_us = 0, rtk_p99_us = 0, allocs_per_epoch = 0, fixed = 0, flt = 0, dgnss = 0, h_err_fixed_m = 0;
+};
+
+/// The RTK rover (64 channels) against the same antenna without corrections
+/// (M8: 32 channels; wide: the rover's 64 channels, no RTK stage), one
+/// shared sky with a base 2 km away, 8 Hz, each step timed (world + receiver).
+RtkResult run_rtk(const orbit::EphemerisStore& store, SystemSet systems, const time::GpsTime& t0, int epochs) {
+  pipeline::PipelineConfig cfg = config_for(true, systems);
+  cfg.world.sky_seed = 1;
+  pipeline::PipelineConfig base_cfg = cfg, rtk_cfg = cfg;
+  base_cfg.world.seed = 5;
+  rtk_cfg.world.seed = 9;
+  rtk_cfg.receiver.max_channels = 64;
+  world::SharedSky sky(store, systems, world::sky_errors_config(cfg.world));
+  pipeline::Pipeline base(store, base_cfg), rover(store, rtk_cfg), m8(store, cfg), wide(store, rtk_cfg);
+  const Lla site{39.6 * kDegToRad, 22.4 * kDegToRad, 100.0};
+  const Ecef rover_m = geo::ecef_from_lla(site);
+  const Ecef base_m(rover_m + geo::enu_to_ecef_vector(Enu(1200.0, -1600.0, 3.0), site.lat_rad, site.lon_rad));
+  receiver::Corrections corr;
+  corr.station.station_id = 1;
+  corr.station.position_valid = true;
+  corr.station.arp_ecef_m = base_m;
+  corr.glonass_cpb_valid = true;  // the base sends 1230 with its MSM, as F9P bases do
+  rover.receiver().set_corrections(&corr);
+  std::vector<double> us_rtk, us_m8, us_wide;
+  long allocs = 0;
+  RtkResult r;
+  int counted = 0;
+  const int warm_up = 480;  // 60 s: acquisition and ephemerides
+  for (int k = -warm_up; k < epochs; ++k) {
+    const time::GpsTime t = t0 + 0.125 * (k + warm_up);
+    const Ecef ants[2] = {base_m, rover_m};
+    sky.update(t, ants);
+    base.step(sky, [&] {
+      world::Truth tr;
+      tr.t = t;
+      tr.pos_m = base_m;
+      tr.valid = true;
+      return tr;
+    }());
+    corr.obs = base.receiver().raw();
+    corr.obs_valid = corr.obs.time_valid && corr.obs.num_meas > 0;
+    ++corr.revision;
+    world::Truth tr;
+    tr.t = t;
+    tr.pos_m = rover_m;
+    tr.valid = true;
+    const long a0 = gnssemu::support::allocation_count();
+    const double c0 = cpu_us();
+    const receiver::Fix& f = rover.step(sky, tr);
+    const double c1 = cpu_us();
+    const long a1 = gnssemu::support::allocation_count();
+    m8.step(sky, tr);
+    const double c2 = cpu_us();
+    wide.step(sky, tr);
+    const double c3 = cpu_us();
+    if (k < 0) continue;
+    us_rtk.push_back(c1 - c0);
+    us_m8.push_back(c2 - c1);
+    us_wide.push_back(c3 - c2);
+    allocs += a1 - a0;
+    ++counted;
+    r.fixed += f.carr_soln == receiver::CarrierSolution::kFixed;
+    r.flt += f.carr_soln == receiver::CarrierSolution::kFloat;
+    r.dgnss += f.diff_soln && f.carr_soln == receiver::CarrierSolution::kNone;
+    if (f.carr_soln == receiver::CarrierSolution::kFixed) {
+      const Enu e = geo::ecef_to_enu_vector(f.pos_m - rover_m, site.lat_rad, site.lon_rad);
+      r.h_err_fixed_m += std::hypot(e.x, e.y);
+    }
+  }
+  for (double x : us_rtk) r.rtk_us += x;
+  for (double x : us_m8) r.m8_us += x;
+  for (double x : us_wide) r.wide_us += x;
+  r.wide_us /= counted;
+  r.rtk_us /= counted;
+  r.m8_us /= counted;
+  std::sort(us_rtk.begin(), us_rtk.end());
+  r.rtk_p99_us = us_rtk[static_cast<std::size_t>(0.99 * static_cast<double>(us_rtk.size() - 1))];
+  r.allocs_per_epoch = static_cast<double>(allocs) / counted;
+  if (r.fixed > 0) r.h_err_fixed_m /= r.fixed;
+  r.fixed /= counted;
+  r.flt /= counted;
+  r.dgnss /= counted;
+  return r;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -152,6 +240,18 @@ int main(int argc, char** argv) {
     }
     std::printf("mean over the cases: GPS-only %.2f us/epoch, G,R,E,C,J %.2f us/epoch (ratio %.2f)\n",
                 sum_us[0] / n_cases, sum_us[1] / n_cases, sum_us[1] / sum_us[0]);
+    std::printf("\nRTK rover (base 2 km, 8 Hz, shared sky) against the same antenna without corrections (M8 default)\n");
+    std::printf("%-10s %7s %9s %9s %9s %9s %7s %10s %7s %7s %7s %11s\n", "systems", "start_h", "m8_us", "wide_us", "rtk_us", "rtk_p99",
+                "ratio", "allocs/ep", "fixed", "float", "dgnss", "h_err_fix_m");
+    for (const double start_h : {1.0, 3.0}) {
+      for (int s = 0; s < 2; ++s) {
+        const SystemSet set = s == 0 ? gps : four;
+        const RtkResult r = run_rtk(store, set, day + start_h * 3600.0, epochs);
+        std::printf("%-10s %7.1f %9.2f %9.2f %9.2f %9.2f %7.2f %10.3f %7.3f %7.3f %7.3f %11.4f\n", systems_text(set).data(),
+                    start_h, r.m8_us, r.wide_us, r.rtk_us, r.rtk_p99_us, r.rtk_us / r.m8_us, r.allocs_per_epoch, r.fixed, r.flt,
+                    r.dgnss, r.h_err_fixed_m);
+      }
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "receiver_bench: %s\n", e.what());
     return 1;

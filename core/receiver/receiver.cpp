@@ -74,6 +74,7 @@ void Receiver::set_klobuchar(const orbit::KlobucharParams& p) {
 void Receiver::restart(const StartState& keep) noexcept {
   acq_.restart(keep);
   nav_.reset();
+  rtk_.reset();
   for (HatchFilter& h : hatch_) h.reset();
   smoothed_last_.fill(false);
   raw_.num_meas = 0;
@@ -313,6 +314,7 @@ const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs)
       if (out_.type != FixType::kNone) fill_solution();
     }
     fix_.spoof_det_state = spoof_.update(fix_);
+    rtk_.step(raw_, obs, corrections_, fix_);
     return fix_;
   }
 
@@ -340,6 +342,7 @@ const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs)
   }
   fill_solution();
   fix_.spoof_det_state = spoof_.update(fix_);
+  rtk_.step(raw_, obs, corrections_, fix_);
   return fix_;
 }
 

@@ -19,6 +19,7 @@
 #include "core/receiver/navigator.hpp"
 #include "core/receiver/raw_measurements.hpp"
 #include "core/receiver/receiver_config.hpp"
+#include "core/receiver/rtk/rtk_engine.hpp"
 #include "core/receiver/solver.hpp"
 #include "core/world/observables.hpp"
 
@@ -43,6 +44,12 @@ public:
   /// The correction link's state the RTK stage reads at every step (nullptr:
   /// no link). The caller keeps *c alive and updates it between steps.
   void set_corrections(const Corrections* c) noexcept { corrections_ = c; }
+  /// CFG-NAVSPG-CONSTR_DGNSSTO: corrections older than this are not used, s (> 0).
+  void set_dgnss_timeout_s(double s) noexcept { rtk_.set_dgnss_timeout_s(s); }
+  /// The differential stage's settings (noise terms, ratio threshold, ages).
+  void set_rtk_config(const rtk::RtkConfig& c) noexcept { rtk_.set_config(c); }
+  /// The differential stage (its counters and last ratio).
+  const rtk::RtkEngine& rtk() const noexcept { return rtk_; }
 
   /// Restart navigation (CFG-RST): every satellite is lost and searched
   /// again, the filter starts over; keep says what the receiver remembers.
@@ -122,8 +129,9 @@ private:
   std::array<std::uint32_t, kNumSats> discontinuities_{};  ///< the world's count at the last update
   std::array<bool, kNumSats> smoothed_last_{};  ///< smoothed at the previous epoch
 
-  // Corrections (not owned).
+  // Corrections (not owned) and the differential stage that reads them.
   const Corrections* corrections_ = nullptr;
+  rtk::RtkEngine rtk_;
 
   // Raw measurements.
   RawEpoch raw_;

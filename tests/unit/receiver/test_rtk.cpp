@@ -1,0 +1,356 @@
+// SPDX-License-Identifier: Apache-2.0
+// The differential stage from the observables: a base receiver and a rover
+// under one shared sky, the base's raw epoch handed to the rover as its
+// corrections (as the RTCM decoder would fill them).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <vector>
+
+#include "core/geo/geodesy.hpp"
+#include "core/orbit/ephemeris_store.hpp"
+#include "core/pipeline/pipeline.hpp"
+#include "core/receiver/rtk/lambda.hpp"
+#include "core/world/shared_sky.hpp"
+#include "synthetic_sky.hpp"
+
+namespace gnssemu::receiver {
+namespace {
+
+using test::kSite;
+using test::kToe;
+
+pipeline::PipelineConfig rig_config(std::uint64_t seed, bool smooth_sky) {
+  pipeline::PipelineConfig c;
+  c.world.seed = seed;
+  c.world.sky_seed = 1;
+  if (smooth_sky) {
+    // The broadcast orbit/clock residual and the TEC perturbation are
+    // first-order Gauss-Markov paths: 4 cm per second per satellite at the
+    // defaults, where real ones change by millimetres.
+    c.world.errors.orbit_clock.sigma_m = 0.0;
+    c.world.atmosphere.ionosphere.perturbation.sigma = 0.0;
+  }
+  return c;
+}
+
+Ecef offset_enu(const Ecef& from, double e_m, double n_m, double u_m) {
+  const Lla l = geo::lla_from_ecef(from);
+  return Ecef(from + geo::enu_to_ecef_vector(Enu(e_m, n_m, u_m), l.lat_rad, l.lon_rad));
+}
+
+Enu error_enu(const Ecef& pos, const Ecef& truth) {
+  const Lla l = geo::lla_from_ecef(truth);
+  return geo::ecef_to_enu_vector(pos - truth, l.lat_rad, l.lon_rad);
+}
+
+/// Base and rover on one sky; corrections delayed by latency epochs.
+class RtkRig {
+public:
+  /// latency: epochs between the base's measurement and its use (0: time-matched).
+  RtkRig(const Ecef& base_m, const Ecef& rover_m, int latency = 0, bool smooth_sky = false)
+      : store_(test::nominal_constellation(kToe, 5)),
+        base_cfg_(rig_config(7, smooth_sky)),
+        rover_cfg_(rig_config(11, smooth_sky)),
+        sky_(store_, SystemSet::all(), world::sky_errors_config(base_cfg_.world)),
+        base_(store_, base_cfg_),
+        rover_(store_, rover_cfg_),
+        base_m_(base_m),
+        rover_m_(rover_m),
+        latency_(latency) {
+    corr_.station.station_id = 42;
+    corr_.station.position_valid = true;
+    corr_.station.arp_ecef_m = base_m;
+    rover_.receiver().set_corrections(&corr_);
+  }
+
+  /// One epoch at t; the rover's antenna moves with vel (ECEF m/s) from its start.
+  const Fix& step(const time::GpsTime& t) {
+    const Ecef ants[2] = {base_m_, rover_m_};
+    sky_.update(t, ants);
+    base_.step(sky_, test::truth_at(base_m_, t, base_vel_));
+    queue_.push_back(base_.receiver().raw());
+    if (link_ && static_cast<int>(queue_.size()) > latency_) {
+      corr_.obs = queue_.front();
+      corr_.obs.num_meas = std::min(corr_.obs.num_meas, base_meas_limit_);
+      corr_.obs_valid = corr_.obs.time_valid && corr_.obs.num_meas > 0;
+      ++corr_.revision;
+    }
+    while (static_cast<int>(queue_.size()) > latency_) queue_.pop_front();
+    if (moving_base_) corr_.station.arp_ecef_m = base_.last_fix().pos_m;
+    const world::Observables& o = rover_.world().step(sky_, test::truth_at(rover_m_, t, rover_vel_),
+                                                      rover_.receiver().config().elevation_mask_rad);
+    obs_ = o;
+    for (int i = 0; i < obs_.num_sats; ++i) {
+      world::SatObservable& s = obs_.sats[i];
+      s.carrier_phase_cycles += slip_cycles_;
+      s.carrier_discontinuities += slips_;
+    }
+    return rover_.receiver().step(t, obs_);
+  }
+  /// Every satellite's carrier jumps by cycles from now on, flagged as a discontinuity.
+  void slip_all(double cycles) {
+    slip_cycles_ += cycles;
+    ++slips_;
+  }
+  void move(const Ecef& base_m, const Ecef& rover_m) {
+    base_m_ = base_m;
+    rover_m_ = rover_m;
+  }
+  void set_velocity(const Ecef& v) { base_vel_ = rover_vel_ = v; }
+  void stop_link() { link_ = false; }
+  /// The base antenna sees only its first n signals (a blocked antenna).
+  void limit_base(int n) { base_meas_limit_ = n; }
+  void set_moving_base() {
+    moving_base_ = true;
+    corr_.station.moving = true;
+  }
+  Corrections& corrections() { return corr_; }
+  const Ecef& rover_truth() const { return rover_m_; }
+  const Ecef& base_truth() const { return base_m_; }
+  const rtk::RtkStatus& status() { return rover_.receiver().rtk().status(); }
+
+private:
+  orbit::EphemerisStore store_;
+  pipeline::PipelineConfig base_cfg_, rover_cfg_;
+  world::SharedSky sky_;
+  pipeline::Pipeline base_, rover_;
+  Ecef base_m_, rover_m_;
+  Ecef base_vel_, rover_vel_;
+  int latency_;
+  Corrections corr_;
+  std::deque<RawEpoch> queue_;
+  world::Observables obs_;
+  double slip_cycles_ = 0.0;
+  std::uint32_t slips_ = 0;
+  bool link_ = true;
+  bool moving_base_ = false;
+  int base_meas_limit_ = kMaxRawMeasurements;
+};
+
+double rtk_median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+TEST(RtkLambda, FindsTheIntegersOfACorrelatedFloatVector) {
+  // Float ambiguities near (3, -2, 7) with strongly correlated errors.
+  rtk::AmbMat q{};
+  const int n = 3;
+  const double c[3][3] = {{0.09, 0.085, 0.08}, {0.085, 0.09, 0.084}, {0.08, 0.084, 0.09}};
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) q[i][j] = c[i][j];
+  rtk::AmbVec a{};
+  a[0] = 3.21;
+  a[1] = -1.78;
+  a[2] = 7.19;
+  rtk::Lambda lambda;
+  const rtk::LambdaResult& r = lambda.solve(a, q, n);
+  ASSERT_TRUE(r.ok);
+  EXPECT_EQ(r.best[0], 3.0);
+  EXPECT_EQ(r.best[1], -2.0);
+  EXPECT_EQ(r.best[2], 7.0);
+  EXPECT_GT(r.ratio(), 1.0);
+}
+
+TEST(Rtk, StaticOneKmFloatThenFixedCentimetres) {
+  const Ecef base = geo::ecef_from_lla(kSite);
+  RtkRig rig(base, offset_enu(base, 800.0, 600.0, 5.0));
+  double t_float = -1.0, t_fixed = -1.0;
+  std::vector<double> h_err, h_acc;
+  int fixed_epochs = 0;
+  for (int i = 0; i < 600; ++i) {
+    const Fix& f = rig.step(kToe + static_cast<double>(i));
+    ASSERT_TRUE(test::all_finite(f));
+    if (f.carr_soln != CarrierSolution::kNone && t_float < 0.0) t_float = i;
+    if (f.carr_soln == CarrierSolution::kFixed) {
+      if (t_fixed < 0.0) t_fixed = i;
+      ++fixed_epochs;
+      const Enu e = error_enu(f.pos_m, rig.rover_truth());
+      h_err.push_back(std::hypot(e.x, e.y));
+      h_acc.push_back(f.h_acc_m);
+      EXPECT_TRUE(f.diff_soln);
+      EXPECT_EQ(f.ref_station_id, 42);
+      EXPECT_NEAR(f.corr_age_s, 0.0, 0.01);
+      EXPECT_TRUE(f.rel_pos.valid);
+      EXPECT_NEAR(f.rel_pos.length_m, 1000.0, 0.5);
+    }
+  }
+  std::printf("static 1 km: float at %.0f s, fixed at %.0f s, fixed %d/600 epochs, h error median %.4f m, "
+              "h_acc median %.4f m, ratio %.1f, searches %u\n",
+              t_float, t_fixed, fixed_epochs, rtk_median(h_err), rtk_median(h_acc), rig.status().ratio,
+              rig.status().ar_attempts);
+  EXPECT_GE(t_float, 0.0);
+  EXPECT_GE(t_fixed, t_float);
+  EXPECT_LT(t_fixed, 300.0);
+  EXPECT_LE(rtk_median(h_err), 0.02);
+  EXPECT_LT(rtk_median(h_acc), 0.03);
+}
+
+TEST(Rtk, OneSecondOldBaseEpochStillFixes) {
+  // The base's epoch one second older than the rover's: each side's
+  // geometry at its own time. Smooth sky errors (see rig_config).
+  const Ecef base = geo::ecef_from_lla(kSite);
+  RtkRig rig(base, offset_enu(base, 800.0, 600.0, 5.0), 1, true);
+  std::vector<double> h_err;
+  double t_fixed = -1.0;
+  for (int i = 0; i < 300; ++i) {
+    const Fix& f = rig.step(kToe + static_cast<double>(i));
+    if (f.carr_soln != CarrierSolution::kFixed) continue;
+    if (t_fixed < 0.0) t_fixed = i;
+    EXPECT_NEAR(f.corr_age_s, 1.0, 0.01);
+    const Enu e = error_enu(f.pos_m, rig.rover_truth());
+    h_err.push_back(std::hypot(e.x, e.y));
+  }
+  std::printf("1 s old base epoch: fixed at %.0f s, %zu/300 fixed, h error median %.4f m\n", t_fixed, h_err.size(),
+              rtk_median(h_err));
+  EXPECT_GT(h_err.size(), 200u);
+  EXPECT_LE(rtk_median(h_err), 0.02);
+}
+
+TEST(Rtk, CycleSlipsFallBackToFloatAndRefix) {
+  const Ecef base = geo::ecef_from_lla(kSite);
+  RtkRig rig(base, offset_enu(base, -300.0, 900.0, 0.0));
+  int t_fixed = -1;
+  for (int i = 0; i < 400 && t_fixed < 0; ++i)
+    if (rig.step(kToe + static_cast<double>(i)).carr_soln == CarrierSolution::kFixed) t_fixed = i;
+  ASSERT_GE(t_fixed, 0);
+  rig.slip_all(17.0);
+  const time::GpsTime t_slip = kToe + static_cast<double>(t_fixed + 1);
+  const Fix& f = rig.step(t_slip);
+  EXPECT_EQ(f.carr_soln, CarrierSolution::kFloat);
+  int refix = -1;
+  for (int i = 1; i < 400 && refix < 0; ++i)
+    if (rig.step(t_slip + static_cast<double>(i)).carr_soln == CarrierSolution::kFixed) refix = i;
+  std::printf("slips: fixed at %d s, re-fixed %d s after every satellite slipped\n", t_fixed, refix);
+  EXPECT_GT(refix, 0);
+}
+
+TEST(Rtk, StoppedCorrectionsGiveDgnssThenStandaloneAfterTheTimeout) {
+  const Ecef base = geo::ecef_from_lla(kSite);
+  RtkRig rig(base, offset_enu(base, 500.0, 0.0, 0.0));
+  time::GpsTime t = kToe;
+  for (int i = 0; i < 120; ++i, t = t + 1.0) rig.step(t);
+  ASSERT_TRUE(rig.step(t).diff_soln);
+  rig.stop_link();
+  const time::GpsTime t_stop = t;
+  bool dgnss_seen = false;
+  std::vector<double> dgnss_err, dgnss_acc;
+  for (int i = 1; i <= 70; ++i) {
+    const Fix& f = rig.step(t_stop + static_cast<double>(i));
+    const double age = static_cast<double>(i);
+    if (age <= 30.0) {
+      EXPECT_TRUE(f.diff_soln) << i;
+    } else if (age <= 59.5) {
+      EXPECT_TRUE(f.diff_soln) << i;
+      EXPECT_EQ(f.carr_soln, CarrierSolution::kNone) << i;
+      dgnss_seen = true;
+      const Enu e = error_enu(f.pos_m, rig.rover_truth());
+      dgnss_err.push_back(std::hypot(e.x, e.y));
+      dgnss_acc.push_back(f.h_acc_m);
+    } else if (age > 60.5) {
+      EXPECT_FALSE(f.diff_soln) << i;
+      EXPECT_EQ(f.carr_soln, CarrierSolution::kNone);
+      EXPECT_LT(f.corr_age_s, 0.0);
+      EXPECT_EQ(f.type, FixType::k3D);
+    }
+  }
+  EXPECT_TRUE(dgnss_seen);
+  std::printf("DGNSS (corrections 30-60 s old): horizontal error median %.3f m, hAcc median %.3f m\n",
+              rtk_median(dgnss_err), rtk_median(dgnss_acc));
+}
+
+TEST(Rtk, WrongBaseCoordinatesOffsetTheRoverByTheSameVector) {
+  const Ecef base = geo::ecef_from_lla(kSite);
+  RtkRig rig(base, offset_enu(base, 200.0, 300.0, 0.0));
+  const Ecef wrong = offset_enu(base, 0.40, -0.25, 0.30);
+  rig.corrections().station.arp_ecef_m = wrong;
+  std::vector<double> de, dn, du;
+  for (int i = 0; i < 500; ++i) {
+    const Fix& f = rig.step(kToe + static_cast<double>(i));
+    if (f.carr_soln != CarrierSolution::kFixed) continue;
+    const Enu e = error_enu(f.pos_m, rig.rover_truth());
+    de.push_back(e.x);
+    dn.push_back(e.y);
+    du.push_back(e.z);
+  }
+  ASSERT_FALSE(de.empty());
+  EXPECT_NEAR(rtk_median(de), 0.40, 0.03);
+  EXPECT_NEAR(rtk_median(dn), -0.25, 0.03);
+  EXPECT_NEAR(rtk_median(du), 0.30, 0.06);
+}
+
+TEST(Rtk, MovingBaselineOneMetreHeading) {
+  const Ecef base = geo::ecef_from_lla(kSite);
+  const double heading = 30.0 * kDegToRad;
+  RtkRig rig(base, offset_enu(base, std::sin(heading), std::cos(heading), 0.0));
+  rig.set_moving_base();
+  std::vector<double> err_deg;
+  double acc_deg = 0.0;
+  int valid = 0, fixed = 0;
+  for (int i = 0; i < 400; ++i) {
+    const Fix& f = rig.step(kToe + static_cast<double>(i));
+    ASSERT_TRUE(test::all_finite(f));
+    EXPECT_FALSE(f.diff_soln);  // the rover's own position stays standalone
+    if (!f.rel_pos.heading_valid) continue;
+    ++valid;
+    if (f.rel_pos.carr_soln != CarrierSolution::kFixed) continue;
+    ++fixed;
+    double d = (f.rel_pos.heading_rad - heading) / kDegToRad;
+    d = std::remainder(d, 360.0);
+    err_deg.push_back(d);
+    acc_deg = f.rel_pos.acc_heading_rad / kDegToRad;
+    EXPECT_NEAR(f.rel_pos.length_m, 1.0, 0.03);
+  }
+  double ss = 0.0;
+  for (double d : err_deg) ss += d * d;
+  const double rms = err_deg.empty() ? NAN : std::sqrt(ss / static_cast<double>(err_deg.size()));
+  std::printf("moving baseline 1 m: heading valid %d, fixed %d of 400 epochs, heading error rms %.3f deg, "
+              "accHeading %.3f deg\n", valid, fixed, rms, acc_deg);
+  ASSERT_GT(fixed, 100);
+  EXPECT_LT(rms, 1.5);
+}
+
+TEST(Rtk, HeadingLostWhenTheBaseAntennaIsBlocked) {
+  const Ecef base = geo::ecef_from_lla(kSite);
+  RtkRig rig(base, offset_enu(base, 0.0, 1.0, 0.0));
+  rig.set_moving_base();
+  bool fixed = false;
+  for (int i = 0; i < 100; ++i) fixed = rig.step(kToe + static_cast<double>(i)).rel_pos.carr_soln == CarrierSolution::kFixed;
+  ASSERT_TRUE(fixed);
+  rig.limit_base(3);
+  for (int i = 100; i < 110; ++i) {
+    const Fix& f = rig.step(kToe + static_cast<double>(i));
+    EXPECT_FALSE(f.rel_pos.heading_valid) << i;
+    EXPECT_EQ(f.type, FixType::k3D);  // the rover's own fix goes on
+  }
+  rig.limit_base(kMaxRawMeasurements);
+  int back = -1;
+  for (int i = 110; i < 300 && back < 0; ++i)
+    if (rig.step(kToe + static_cast<double>(i)).rel_pos.carr_soln == CarrierSolution::kFixed) back = i - 110;
+  std::printf("heading back (fixed) %d s after the base antenna sees the sky again\n", back);
+  EXPECT_GE(back, 0);
+}
+
+TEST(Rtk, BaseFarAwayStaysFloatAndCounts) {
+  const Ecef base = geo::ecef_from_lla(kSite);
+  RtkRig rig(base, offset_enu(base, 150.0e3, 0.0, 0.0));
+  int fixed = 0, floats = 0;
+  for (int i = 0; i < 200; ++i) {
+    const Fix& f = rig.step(kToe + static_cast<double>(i));
+    ASSERT_TRUE(test::all_finite(f));
+    fixed += f.carr_soln == CarrierSolution::kFixed;
+    floats += f.carr_soln == CarrierSolution::kFloat;
+  }
+  EXPECT_EQ(fixed, 0);
+  EXPECT_GT(floats, 0);
+  EXPECT_GT(rig.status().long_baseline, 0u);
+  EXPECT_GT(rig.status().baseline_big, 0u);
+}
+
+}  // namespace
+}  // namespace gnssemu::receiver
