@@ -161,7 +161,8 @@ def main():
             systems.add("R")
             codes.add("R" + row["code"])
             n += 1
-            lam = C / (1602e6)  # the shift is below 0.5 ms: the channel's carrier changes it by < 1e-6 m
+            # The shift is below 0.5 ms: the channel's carrier changes it by < 1e-6 m.
+            lam = C / (1602e6 if row["code"] == "1C" else 1246e6)
             worst["C"] = max(worst["C"], abs(pr - (float(row["pseudorange_m"]) - float(row["doppler_hz"]) * lam * (tow_ms / 1000 - tow))))
     print(f"{n} observations of {sorted(systems)} compared, {missing} not in the RINEX file; worst |diff|: "
           + ", ".join(f"{k} {v:.6f}" for k, v in sorted(worst.items()))
