@@ -34,6 +34,33 @@ constexpr double kClockResetStep_s = 0.5e-3;
 // aiding spares the search: a few loop time constants).
 constexpr double kAidingGain_db = 3.0;
 constexpr double kAidedPullIn_s = 1.0;
+// Preamble of a navigation data frame (GPS LNAV TLM: 8 bits at 50 bit/s), s.
+constexpr double kPreamble_s = 0.16;
+
+/// Period of the data frame whose preamble tells a Costas loop's sign, s:
+/// GPS/QZSS LNAV subframe 6 s (IS-GPS-200 §20.3.2), BeiDou D1 subframe 6 s
+/// (BDS ICD B1I §5.2.3), GLONASS string 2 s (GLONASS ICD §3.3.2.6), Galileo
+/// I/NAV page part 2 s (OS SIS ICD §4.3.2), SBAS message 1 s (RTCA DO-229).
+double data_frame_s(GnssSystem sys) noexcept {
+  switch (sys) {
+    case GnssSystem::kGlonass:
+    case GnssSystem::kGalileo: return 2.0;
+    case GnssSystem::kSbas: return 1.0;
+    default: return 6.0;
+  }
+}
+
+/// A data signal's half-cycle ambiguity is resolved once a whole frame
+/// preamble fell within its lock: the lock (lock_s, s) began before the last
+/// frame start (frames on the GPS time grid, tow_s) and the preamble has passed.
+bool half_cycle_resolved(SignalId sig, double lock_s, double tow_s) noexcept {
+  const SignalInfo& info = signal_info(sig);
+  if (info.pilot) return true;
+  const double frame_s = data_frame_s(info.system);
+  double since_s = std::fmod(tow_s - kPreamble_s, frame_s);
+  if (since_s < 0.0) since_s += frame_s;
+  return lock_s >= since_s + kPreamble_s;
+}
 
 /// The loop's own 1-sigma estimates at C/N0 cn0_dbhz (RAWX prStdev, cpStdev,
 /// doStdev) from the tracking-noise formulas the world's loops follow with
@@ -325,9 +352,9 @@ void Receiver::raw_measurement(SatId sat, int glonass_channel, int band, const R
   m.carrier_phase_cycles = sig.carrier_phase_cycles;
   m.lock_time_s = lock_s;
   m.carrier_valid = true;
-  // A Costas loop's half-cycle ambiguity is resolved once a data preamble is
-  // found, within one 6 s subframe; a dataless pilot's PLL has none.
-  m.half_cycle_resolved = signal_info(sig.id).pilot || m.lock_time_s >= 6.0;
+  // A Costas loop's half-cycle ambiguity is resolved by the next frame
+  // preamble; a dataless pilot's PLL has none.
+  m.half_cycle_resolved = half_cycle_resolved(sig.id, m.lock_time_s, raw_.t_rx.tow_s());
 }
 
 const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs) noexcept {
