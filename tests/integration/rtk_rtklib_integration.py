@@ -118,6 +118,7 @@ def main():
     ap.add_argument("--nav", required=True)
     ap.add_argument("--bands", type=int, default=2, help="signals per satellite of base and rover (1 or 2)")
     ap.add_argument("--seconds", type=int, default=90, help="how long str2str pulls the base's RTCM")
+    ap.add_argument("--profile", help="[receiver] profile of base and rover (docs/models.md \"Receiver profiles\")")
     ap.add_argument("--min-fix", type=float, default=0.95)
     ap.add_argument("--max-median-m", type=float, default=0.02)
     a = ap.parse_args()
@@ -139,6 +140,7 @@ file = "{os.path.abspath(a.nav)}"
 [time]
 start = "{START}"
 [receiver]
+{f'profile = "{a.profile}"' if a.profile else ""}
 constellations = ["G", "E", "C"]
 generation = "m9"
 raw_data = true
