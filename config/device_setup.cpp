@@ -18,6 +18,14 @@ protocol::ubx::OutputSetup output_setup(const OutputPortConfig& port) {
   return o;
 }
 
+int default_bands(protocol::ubx::Generation g) noexcept {
+  switch (g) {
+    case protocol::ubx::Generation::kM8:
+    case protocol::ubx::Generation::kM9: return 1;
+  }
+  return 1;
+}
+
 SystemSet chip_systems(const Config& config) { return protocol::ubx::gnss_capabilities(config.generation).supported; }
 
 bool coast_as_no_fix(const Config& config) {

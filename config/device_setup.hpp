@@ -22,6 +22,10 @@ bool coast_as_no_fix(const Config& config);
 /// enabling one by CFG-GNSS / CFG-SIGNAL finds its satellites there.
 SystemSet chip_systems(const Config& config);
 
+/// Signals the chip tracks per satellite by default ([receiver] bands when
+/// not given): 1 for the single-band M8 and M9.
+int default_bands(protocol::ubx::Generation g) noexcept;
+
 /// The chip behind config's outputs, at epoch period 1 / rate_hz. Its sky
 /// is [receiver] constellations among nav_systems (the systems the nav data
 /// holds: orbit::systems_of).

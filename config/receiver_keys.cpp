@@ -364,6 +364,21 @@ void write_state_file(TomlWriter& w, const Field<Config>& f, const Config& c) {
   if (!c.state_file.empty()) w.key(f.key, string_text(w.path_text(c.state_file)), f.note);
 }
 
+// Unset, a table that names the generation takes that chip's default;
+// otherwise the value it inherits stays (a [base] or [[vehicle.receiver]]
+// over the top level's).
+void read_bands(TableReader& t, const Field<Config>& f, Config& c) {
+  if (t.find(f.key) == nullptr) {
+    if (t.find("generation") != nullptr) c.receiver.bands = default_bands(c.generation);
+    return;
+  }
+  c.receiver.bands = static_cast<int>(t.integer(f.key, std::nullopt, 1, kNumBands));
+}
+
+void write_bands(TomlWriter& w, const Field<Config>& f, const Config& c) {
+  if (c.receiver.bands != default_bands(c.generation)) w.key(f.key, std::to_string(c.receiver.bands), f.note);
+}
+
 void read_constellations(TableReader& t, const Field<Config>& f, Config& c) {
   if (t.find(f.key) == nullptr) return;  // parse_config_text gives the chip's set
   const std::string name = t.full_name(f.key);
@@ -407,6 +422,13 @@ constexpr Field<Config> kReceiverFields[] = {
         "generation", "the u-blox chip every output presents (docs/ubx.md \"Generations\"): `m8` a NEO-M8N "
                       "(protocol 18, legacy CFG messages only, MON-HW), `m9` a NEO-M9N (protocol 32.01: CFG-VALSET/"
                       "VALGET/VALDEL beside the legacy CFG messages, MON-RF, SEC-SIG; no NAV-SVINFO)"),
+    custom<Config>("bands", "", "1 or 2",
+                   "signals tracked per satellite: 1 the L1-band signal (GPS/QZSS L1 C/A, GLONASS L1OF, Galileo "
+                   "E1C, BeiDou B1I, SBAS L1); 2 also the second frequency (GPS/QZSS L2CL, GLONASS L2OF, Galileo "
+                   "E5bQ, BeiDou B2I) in RXM-RAWX, RINEX and RTCM MSM, with its own ionosphere, group delays, C/N0, "
+                   "noise and lock (docs/models.md \"Second frequency\"). The position fix uses the L1 band",
+                   read_bands, write_bands)
+        .default_doc("the generation's: 1 for `m8` and `m9`"),
     boolean<&Config::raw_data>(
         "raw_data", "the chip's firmware has raw data output, as an M8T/M8P-class timing or high-precision firmware "
                     "(docs/raw-output.md \"Availability\"): RXM-RAWX and RXM-SFRBX go out where a port or a host "

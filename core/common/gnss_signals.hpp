@@ -45,20 +45,28 @@ struct SignalInfo {
   char rinex_code[3];     ///< RINEX 3 observation code: band digit + attribute ("1C", "2L", "7Q", "2I")
   uint8_t ubx_sig_id;     ///< UBX sigId (RXM-RAWX, NAV-SIG); BeiDou D2 (GEO) adds 1
   uint8_t rtcm_msm_sig;   ///< RTCM 3 MSM signal id (1 = the signal mask's MSB)
+  /// Minimum received power of the tracked component at the user antenna,
+  /// dBW (docs/models.md "Second frequency": IS-GPS-200 Table 3-Va,
+  /// GLONASS ICD 5.1 §3.3.1.6, Galileo OS SIS ICD §2.3.3, BDS ICD B1I/B2I
+  /// §4.4.1; a data/pilot pair's pilot carries half of the signal's power).
+  double min_power_dbw;
+  /// A dataless pilot: its carrier loop is a pure PLL (no Costas half-cycle
+  /// ambiguity, whole-cycle slips).
+  bool pilot;
 };
 
 inline constexpr std::array<SignalInfo, kNumSignals> kSignals{{
-    {SignalId::kGpsL1CA, GnssSystem::kGps, 0, 1575.42e6, 0.0, "1C", 0, 2},
-    {SignalId::kGpsL2CL, GnssSystem::kGps, 1, 1227.60e6, 0.0, "2L", 3, 16},
-    {SignalId::kGloL1OF, GnssSystem::kGlonass, 0, 1602.0e6, 0.5625e6, "1C", 0, 2},
-    {SignalId::kGloL2OF, GnssSystem::kGlonass, 1, 1246.0e6, 0.4375e6, "2C", 2, 8},
-    {SignalId::kGalE1C, GnssSystem::kGalileo, 0, 1575.42e6, 0.0, "1C", 0, 2},
-    {SignalId::kGalE5bQ, GnssSystem::kGalileo, 1, 1207.140e6, 0.0, "7Q", 6, 15},
-    {SignalId::kBdsB1I, GnssSystem::kBeiDou, 0, 1561.098e6, 0.0, "2I", 0, 2},
-    {SignalId::kBdsB2I, GnssSystem::kBeiDou, 1, 1207.140e6, 0.0, "7I", 2, 14},
-    {SignalId::kQzsL1CA, GnssSystem::kQzss, 0, 1575.42e6, 0.0, "1C", 0, 2},
-    {SignalId::kQzsL2CL, GnssSystem::kQzss, 1, 1227.60e6, 0.0, "2L", 5, 16},
-    {SignalId::kSbasL1CA, GnssSystem::kSbas, 0, 1575.42e6, 0.0, "1C", 0, 2},
+    {SignalId::kGpsL1CA, GnssSystem::kGps, 0, 1575.42e6, 0.0, "1C", 0, 2, -158.5, false},
+    {SignalId::kGpsL2CL, GnssSystem::kGps, 1, 1227.60e6, 0.0, "2L", 3, 16, -163.0, true},
+    {SignalId::kGloL1OF, GnssSystem::kGlonass, 0, 1602.0e6, 0.5625e6, "1C", 0, 2, -161.0, false},
+    {SignalId::kGloL2OF, GnssSystem::kGlonass, 1, 1246.0e6, 0.4375e6, "2C", 2, 8, -167.0, false},
+    {SignalId::kGalE1C, GnssSystem::kGalileo, 0, 1575.42e6, 0.0, "1C", 0, 2, -160.0, true},
+    {SignalId::kGalE5bQ, GnssSystem::kGalileo, 1, 1207.140e6, 0.0, "7Q", 6, 15, -158.0, true},
+    {SignalId::kBdsB1I, GnssSystem::kBeiDou, 0, 1561.098e6, 0.0, "2I", 0, 2, -163.0, false},
+    {SignalId::kBdsB2I, GnssSystem::kBeiDou, 1, 1207.140e6, 0.0, "7I", 2, 14, -163.0, false},
+    {SignalId::kQzsL1CA, GnssSystem::kQzss, 0, 1575.42e6, 0.0, "1C", 0, 2, -158.5, false},
+    {SignalId::kQzsL2CL, GnssSystem::kQzss, 1, 1227.60e6, 0.0, "2L", 5, 16, -163.0, true},
+    {SignalId::kSbasL1CA, GnssSystem::kSbas, 0, 1575.42e6, 0.0, "1C", 0, 2, -161.0, false},
 }};
 
 constexpr const SignalInfo& signal_info(SignalId s) noexcept { return kSignals[static_cast<std::size_t>(s)]; }
@@ -74,6 +82,14 @@ constexpr std::optional<SignalId> signal_of(GnssSystem sys, int band) noexcept {
 /// Carrier of signal s for a satellite on GLONASS channel k (other systems ignore k), Hz.
 constexpr double signal_carrier_hz(SignalId s, int glonass_channel = 0) noexcept {
   return signal_info(s).freq_hz + glonass_channel * signal_info(s).step_hz;
+}
+
+/// C/N0 of the second signal of sys over its L1-band signal's at the same
+/// antenna, dB (the difference of their minimum received powers); 0 when sys
+/// has no second signal.
+constexpr double band1_power_offset_db(GnssSystem sys) noexcept {
+  const std::optional<SignalId> s0 = signal_of(sys, 0), s1 = signal_of(sys, 1);
+  return s0 && s1 ? signal_info(*s1).min_power_dbw - signal_info(*s0).min_power_dbw : 0.0;
 }
 
 static_assert(kSignals[static_cast<std::size_t>(SignalId::kSbasL1CA)].id == SignalId::kSbasL1CA);

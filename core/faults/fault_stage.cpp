@@ -135,15 +135,29 @@ void FaultStage::degrade(world::SatObservable& o, double cn0_dbhz) noexcept {
   o.cn0_dbhz = cn0_dbhz;
 }
 
+void FaultStage::degrade_band1(world::SatObservable& o, double cn0_dbhz) noexcept {
+  // Its C/N0 only: the receiver tracks it by that; its noise stays the world's.
+  world::SecondSignal& b = o.band1;
+  if (!b.received || !(cn0_dbhz < b.cn0_dbhz)) return;
+  b.received = cn0_dbhz > kNoSignal_dbhz;
+  b.cn0_dbhz = b.received ? cn0_dbhz : 0.0;
+}
+
 void FaultStage::shift(world::SatObservable& o, double delta_m, double rate_m_s) noexcept {
   o.pseudorange_m += delta_m;
   o.carrier_phase_cycles += delta_m / o.wavelength_m;
   o.doppler_hz -= rate_m_s / o.wavelength_m;
+  world::SecondSignal& b = o.band1;
+  if (!b.received) return;
+  b.pseudorange_m += delta_m;
+  b.carrier_phase_cycles += delta_m / b.wavelength_m;
+  b.doppler_hz -= rate_m_s / b.wavelength_m;
 }
 
 void FaultStage::break_lock(world::SatObservable& o) noexcept {
   o.lock_break = true;
   ++o.carrier_discontinuities;
+  ++o.band1.carrier_discontinuities;
 }
 
 void FaultStage::let_go(const std::array<bool, kNumSats>& held, world::Observables& obs) noexcept {
@@ -191,6 +205,7 @@ void FaultStage::sky_block(const FaultEvent& e, double f, world::Observables& ob
     const double az = o.az_rad / kDegToRad, el = o.el_rad / kDegToRad;
     if (!(full_circle || in_sector(az, az0, az1)) || el < el0 || el > el1) continue;
     if (e.has(Param::kLossDb)) {
+      degrade_band1(o, o.band1.cn0_dbhz - e.value(Param::kLossDb, f));
       degrade(o, o.cn0_dbhz - e.value(Param::kLossDb, f));
     } else {
       o.received = false;
@@ -390,6 +405,16 @@ void FaultStage::apply(const time::GpsTime& t, const world::Truth& truth, world:
         i0_w_hz += interference_density_w_hz(a.power_w, a.kind, a.band, band);
       }
       degrade(o, effective_cn0_dbhz(o.cn0_dbhz, n0_dbw_hz_, i0_w_hz));
+      if (o.band1.received) {
+        // The second signal sees the jammers that overlap its own band.
+        const SignalBand band1{o.band1.carrier_hz, signal::system_signal(o.sat.system).main_lobe_half_width_hz};
+        double i1_w_hz = 0.0;
+        for (int k = 0; k < n_jam; ++k) {
+          const ActiveJammer& a = jam_[static_cast<std::size_t>(k)];
+          i1_w_hz += interference_density_w_hz(a.power_w, a.kind, a.band, band1);
+        }
+        degrade_band1(o, effective_cn0_dbhz(o.band1.cn0_dbhz, n0_dbw_hz_, i1_w_hz));
+      }
     }
   }
 }

@@ -106,6 +106,8 @@ private:
   /// and the carrier slips the lower C/N0 brings (the loops' jitter
   /// difference), and drop it below 0 dB-Hz.
   void degrade(world::SatObservable& o, double cn0_dbhz) noexcept;
+  /// The same for the second signal's C/N0 alone (dual-band worlds).
+  void degrade_band1(world::SatObservable& o, double cn0_dbhz) noexcept;
   /// Shift a satellite's signal by delta_m (code and carrier alike) and its
   /// range rate by rate_m_s.
   static void shift(world::SatObservable& o, double delta_m, double rate_m_s) noexcept;

@@ -78,6 +78,22 @@ struct Ephemeris {
 /// system table), GLONASS by the set's FDMA channel.
 constexpr double carrier_hz(const Ephemeris& eph) noexcept { return l1_carrier_hz(eph.sat.system, eph.glo_channel); }
 
+/// Group delay a user of the satellite's second signal subtracts from the
+/// broadcast clock, s; gamma = (f1 / f2)^2 of its two carriers. GPS and
+/// QZSS: gamma TGD (IS-GPS-200 §20.3.3.3.3.2, gamma = (77/60)^2); Galileo:
+/// gamma BGD(E1,E5b) for E5b (OS SIS ICD §5.1.5); BeiDou: TGD2 for B2I (BDS
+/// ICD B1I §5.2.4.10); GLONASS (its L1/L2 delay is not in the nav data read)
+/// and SBAS: 0.
+constexpr double band1_group_delay_s(const Ephemeris& eph, double gamma) noexcept {
+  switch (eph.sat.system) {
+    case GnssSystem::kGps:
+    case GnssSystem::kQzss:
+    case GnssSystem::kGalileo: return gamma * eph.tgd_s;
+    case GnssSystem::kBeiDou: return eph.tgd2_s;
+    default: return 0.0;
+  }
+}
+
 /// Satellite state at a GPS time.
 struct SatState {
   Ecef pos_m;                  ///< ECEF position at t, in the ECEF frame of time t

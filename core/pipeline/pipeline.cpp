@@ -5,9 +5,20 @@ namespace gnssemu::pipeline {
 
 Broadcast broadcast_of(const orbit::NavData& nav) { return Broadcast{nav.klobuchar, nav.leap_seconds}; }
 
+namespace {
+
+/// The world a receiver needs: the bands it tracks.
+world::WorldConfig world_for(const PipelineConfig& c) {
+  world::WorldConfig w = c.world;
+  w.bands = c.receiver.bands;
+  return w;
+}
+
+}  // namespace
+
 Pipeline::Pipeline(const orbit::EphemerisStore& store, const PipelineConfig& config, const Broadcast& broadcast,
                    const world::SceneSetup& scene)
-    : world_(store, config.world), receiver_(config.receiver, config.world.seed) {
+    : world_(store, world_for(config)), receiver_(config.receiver, config.world.seed) {
   world_.set_klobuchar_shape(broadcast.klobuchar);
   receiver_.set_klobuchar(broadcast.klobuchar);
   if (broadcast.leap_seconds) receiver_.set_leap_seconds(*broadcast.leap_seconds);

@@ -29,6 +29,38 @@ constexpr double kMaxSmoothingGap_s = 2.0;
 // millisecond clock adjustment (RAWX recStat clkReset), s: drift moves it by
 // microseconds per epoch.
 constexpr double kClockResetStep_s = 0.5e-3;
+// The second signal, aided by the first's loops: C/N0 it is found at below
+// the unaided acquisition threshold, dB, and its pull-in time, s (carrier
+// aiding spares the search: a few loop time constants).
+constexpr double kAidingGain_db = 3.0;
+constexpr double kAidedPullIn_s = 1.0;
+// Preamble of a navigation data frame (GPS LNAV TLM: 8 bits at 50 bit/s), s.
+constexpr double kPreamble_s = 0.16;
+
+/// Period of the data frame whose preamble tells a Costas loop's sign, s:
+/// GPS/QZSS LNAV subframe 6 s (IS-GPS-200 §20.3.2), BeiDou D1 subframe 6 s
+/// (BDS ICD B1I §5.2.3), GLONASS string 2 s (GLONASS ICD §3.3.2.6), Galileo
+/// I/NAV page part 2 s (OS SIS ICD §4.3.2), SBAS message 1 s (RTCA DO-229).
+double data_frame_s(GnssSystem sys) noexcept {
+  switch (sys) {
+    case GnssSystem::kGlonass:
+    case GnssSystem::kGalileo: return 2.0;
+    case GnssSystem::kSbas: return 1.0;
+    default: return 6.0;
+  }
+}
+
+/// A data signal's half-cycle ambiguity is resolved once a whole frame
+/// preamble fell within its lock: the lock (lock_s, s) began before the last
+/// frame start (frames on the GPS time grid, tow_s) and the preamble has passed.
+bool half_cycle_resolved(SignalId sig, double lock_s, double tow_s) noexcept {
+  const SignalInfo& info = signal_info(sig);
+  if (info.pilot) return true;
+  const double frame_s = data_frame_s(info.system);
+  double since_s = std::fmod(tow_s - kPreamble_s, frame_s);
+  if (since_s < 0.0) since_s += frame_s;
+  return lock_s >= since_s + kPreamble_s;
+}
 
 /// The loop's own 1-sigma estimates at C/N0 cn0_dbhz (RAWX prStdev, cpStdev,
 /// doStdev) from the tracking-noise formulas the world's loops follow with
@@ -78,12 +110,18 @@ void Receiver::restart(const StartState& keep) noexcept {
   for (HatchFilter& h : hatch_) h.reset();
   smoothed_last_.fill(false);
   raw_.num_meas = 0;
-  lock_time_s_.fill(0.0);
+  clear_locks();
   if (!keep.position) {
     have_fix_ = false;
     have_3d_ = false;
   }
   no_fix_epoch();
+}
+
+void Receiver::clear_locks() noexcept {
+  for (auto& band : lock_time_s_) band.fill(0.0);
+  band1_tracked_.fill(false);
+  band1_pull_in_s_.fill(0.0);
 }
 
 void Receiver::set_dynamic_model(DynamicModel m) noexcept {
@@ -245,37 +283,79 @@ void Receiver::raw_stage(const world::Observables& obs, double dt_s) noexcept {
   raw_clock_s_ = clock_s;
   raw_clock_known_ = std::isfinite(clock_s);
   raw_.num_meas = 0;
-  std::array<bool, kNumSats> locked{};
+  const bool two_bands = config_.bands > 1;
+  PerBand<bool> locked{};
+  std::array<bool, kNumSats> band1_now{}, pulling{};
   for (int i = 0; i < obs.num_sats; ++i) {
     const world::SatObservable& o = obs.sats[i];
     const std::size_t k = static_cast<std::size_t>(o.sat.index());
     if (!systems_.has(o.sat.system) || !tracked_[k]) continue;
     const std::optional<SignalId> sig = signal_of(o.sat.system, 0);
     if (!sig) continue;
-    RawMeasurement& m = raw_.meas[static_cast<std::size_t>(raw_.num_meas++)];
-    m = RawMeasurement{};
-    m.sat = o.sat;
-    m.signal = *sig;
-    m.glonass_channel = o.eph != nullptr ? o.eph->glo_channel : 0;
-    m.pseudorange_m = o.pseudorange_m;
-    m.doppler_hz = o.doppler_hz;
-    m.cn0_dbhz = std::max(o.cn0_dbhz, kMinReportedCn0_dbhz);
-    m.pseudorange_valid = true;
-    loop_sigmas(m.cn0_dbhz, o.wavelength_m, m);
-    if (o.carrier_valid) {
-      const bool continuous = o.carrier_discontinuities == raw_discontinuities_[k] && !acq_.new_lock(o.sat);
-      lock_time_s_[k] = continuous ? lock_time_s_[k] + dt_s : 0.0;
-      raw_discontinuities_[k] = o.carrier_discontinuities;
-      locked[k] = true;
-      m.carrier_phase_cycles = o.carrier_phase_cycles;
-      m.lock_time_s = lock_time_s_[k];
-      m.carrier_valid = true;
-      // The Costas loop's half-cycle ambiguity is resolved once a data preamble is found: within one 6 s subframe.
-      m.half_cycle_resolved = m.lock_time_s >= 6.0;
+    const int glonass_channel = o.eph != nullptr ? o.eph->glo_channel : 0;
+    const bool new_lock = acq_.new_lock(o.sat);
+    const RawSignal first{*sig, o.pseudorange_m, o.doppler_hz, o.cn0_dbhz, o.wavelength_m, o.carrier_valid,
+                          o.carrier_phase_cycles, o.carrier_discontinuities};
+    raw_measurement(o.sat, glonass_channel, 0, first, new_lock, dt_s, locked[0][k]);
+    if (two_bands && band1_tracked(o, dt_s, band1_now[k], pulling[k])) {
+      const world::SecondSignal& b = o.band1;
+      const RawSignal second{*signal_of(o.sat.system, 1), b.pseudorange_m, b.doppler_hz, b.cn0_dbhz, b.wavelength_m,
+                             b.carrier_valid, b.carrier_phase_cycles, b.carrier_discontinuities};
+      raw_measurement(o.sat, glonass_channel, 1, second, new_lock || !band1_tracked_[k], dt_s, locked[1][k]);
     }
   }
-  for (std::size_t k = 0; k < locked.size(); ++k)
-    if (!locked[k]) lock_time_s_[k] = 0.0;
+  for (int b = 0; b < config_.bands; ++b) {
+    const auto ub = static_cast<std::size_t>(b);
+    for (std::size_t k = 0; k < kNumSats; ++k)
+      if (!locked[ub][k]) lock_time_s_[ub][k] = 0.0;
+  }
+  if (!two_bands) return;
+  band1_tracked_ = band1_now;
+  for (std::size_t k = 0; k < kNumSats; ++k)
+    if (!pulling[k]) band1_pull_in_s_[k] = 0.0;
+}
+
+bool Receiver::band1_tracked(const world::SatObservable& o, double dt_s, bool& now, bool& pulling) noexcept {
+  const std::size_t k = static_cast<std::size_t>(o.sat.index());
+  const world::SecondSignal& b = o.band1;
+  // The first signal's loops aid the second's (code phase, Doppler): it is
+  // found at a lower C/N0 (kAidingGain_db) and pulled in within kAidedPullIn_s;
+  // it is lost by its own C/N0 alone.
+  const double need_dbhz =
+      band1_tracked_[k] ? config_.tracking.lose_dbhz : config_.tracking.acquire_dbhz - kAidingGain_db;
+  pulling = b.received && b.cn0_dbhz >= need_dbhz;
+  if (!pulling) return now = false;
+  if (!band1_tracked_[k]) band1_pull_in_s_[k] += dt_s;
+  now = band1_tracked_[k] || band1_pull_in_s_[k] >= kAidedPullIn_s;
+  return now;
+}
+
+void Receiver::raw_measurement(SatId sat, int glonass_channel, int band, const RawSignal& sig, bool new_lock,
+                               double dt_s, bool& locked) noexcept {
+  const std::size_t k = static_cast<std::size_t>(sat.index());
+  const auto ub = static_cast<std::size_t>(band);
+  RawMeasurement& m = raw_.meas[static_cast<std::size_t>(raw_.num_meas++)];
+  m = RawMeasurement{};
+  m.sat = sat;
+  m.signal = sig.id;
+  m.glonass_channel = glonass_channel;
+  m.pseudorange_m = sig.pseudorange_m;
+  m.doppler_hz = sig.doppler_hz;
+  m.cn0_dbhz = std::max(sig.cn0_dbhz, kMinReportedCn0_dbhz);
+  m.pseudorange_valid = true;
+  loop_sigmas(m.cn0_dbhz, sig.wavelength_m, m);
+  if (!sig.carrier_valid) return;
+  double& lock_s = lock_time_s_[ub][k];
+  const bool continuous = sig.discontinuities == raw_discontinuities_[ub][k] && !new_lock;
+  lock_s = continuous ? lock_s + dt_s : 0.0;
+  raw_discontinuities_[ub][k] = sig.discontinuities;
+  locked = true;
+  m.carrier_phase_cycles = sig.carrier_phase_cycles;
+  m.lock_time_s = lock_s;
+  m.carrier_valid = true;
+  // A Costas loop's half-cycle ambiguity is resolved by the next frame
+  // preamble; a dataless pilot's PLL has none.
+  m.half_cycle_resolved = half_cycle_resolved(sig.id, m.lock_time_s, raw_.t_rx.tow_s());
 }
 
 const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs) noexcept {
@@ -303,7 +383,7 @@ const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs)
     acq_.lose_all(dt_s);
     smoothed_last_.fill(false);
     raw_.num_meas = 0;
-    lock_time_s_.fill(0.0);
+    clear_locks();
     fix_.time_valid = modelled ? acq_.time_known() : fix_.time_valid;
     no_fix_epoch();
     if (config_.filter.type == NavFilterType::kKalman) {

@@ -99,6 +99,22 @@ private:
   void cap_measurements() noexcept;
   /// raw_ from the observables of the tracked satellites.
   void raw_stage(const world::Observables& obs, double dt_s) noexcept;
+  /// One signal of a satellite as the world gives it.
+  struct RawSignal {
+    SignalId id;
+    double pseudorange_m, doppler_hz, cn0_dbhz, wavelength_m;
+    bool carrier_valid;
+    double carrier_phase_cycles;
+    std::uint32_t discontinuities;
+  };
+  /// Append sig (band 0 or 1) of sat to raw_; new_lock: its loop (re)started
+  /// this epoch; locked set when its carrier is tracked.
+  void raw_measurement(SatId sat, int glonass_channel, int band, const RawSignal& sig, bool new_lock, double dt_s,
+                       bool& locked) noexcept;
+  /// The second signal of o (its first tracked) is tracked this epoch (also
+  /// set in now); pulling: its C/N0 is enough (its pull-in time runs).
+  bool band1_tracked(const world::SatObservable& o, double dt_s, bool& now, bool& pulling) noexcept;
+  void clear_locks() noexcept;
   void fill_solution() noexcept;
   /// No fix beyond the operational limits or the dynamic model's sanity limits.
   bool within_limits() const noexcept;
@@ -135,8 +151,14 @@ private:
 
   // Raw measurements.
   RawEpoch raw_;
-  std::array<double, kNumSats> lock_time_s_{};  ///< carrier tracked without a discontinuity, s
-  std::array<std::uint32_t, kNumSats> raw_discontinuities_{};  ///< the world's count at the last raw epoch
+  // Per band (index band, then SatId::index()).
+  template <class T> using PerBand = std::array<std::array<T, kNumSats>, kNumBands>;
+  PerBand<double> lock_time_s_{};  ///< carrier tracked without a discontinuity, s
+  PerBand<std::uint32_t> raw_discontinuities_{};  ///< the world's count at the last raw epoch
+  /// The second signal: tracked at the last epoch; time its C/N0 has been
+  /// enough while the first signal was tracked (its aided pull-in), s.
+  std::array<bool, kNumSats> band1_tracked_{};
+  std::array<double, kNumSats> band1_pull_in_s_{};
   double raw_clock_s_ = 0.0;       ///< the receiver clock's offset (local - GPS time) at the last raw epoch, s
   bool raw_clock_known_ = false;
 

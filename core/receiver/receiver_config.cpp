@@ -65,7 +65,8 @@ void validate(const ReceiverConfig& c) {
   using R = ReceiverRanges;
   check_ranges(kWhat, {{c.elevation_mask_rad * kRadToDeg, R::elevation_mask_deg, "elevation_mask_deg"},
                        {c.max_pdop, R::max_pdop, "max_pdop"},
-                       {static_cast<double>(c.max_channels), R::max_channels, "max_channels"}});
+                       {static_cast<double>(c.max_channels), R::max_channels, "max_channels"},
+                       {static_cast<double>(c.bands), R::bands, "bands"}});
   signal::validate(c.tracking);
   validate(c.solver);
   validate(c.acquisition);

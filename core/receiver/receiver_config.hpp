@@ -9,6 +9,7 @@
 
 #include "core/atmosphere/receiver_corrections.hpp"
 #include "core/common/constants.hpp"
+#include "core/common/gnss_signals.hpp"
 #include "core/common/range.hpp"
 #include "core/common/sat_id.hpp"
 #include "core/common/violation.hpp"
@@ -131,6 +132,10 @@ struct ReceiverConfig {
   NavFilterConfig filter;          ///< carrier smoothing, Kalman filter, dynamic model, static hold
   OperationalLimits limits;
   SpoofDetectionConfig spoof_detection;  ///< NAV-STATUS spoofDetState criteria
+  /// Signals tracked per satellite (1 or 2): 1 the L1-band signal; 2 also
+  /// each system's second signal (gnss_signals.hpp band 1) in the raw
+  /// measurements. The position solution uses the L1-band signal either way.
+  int bands = 1;
 };
 
 /// Valid values of ReceiverConfig's own numbers (the mask in degrees, as
@@ -140,6 +145,7 @@ struct ReceiverRanges {
   static constexpr Range elevation_mask_deg{0.0, 90.0, "deg", false, true};
   static constexpr Range max_pdop{1.0, 1000.0, ""};
   static constexpr Range max_channels{4.0, kMaxSatsInView, ""};
+  static constexpr Range bands{1.0, kNumBands, ""};  ///< integer
 };
 
 /// Throws gnssemu::Error for a value out of its range anywhere in c.

@@ -5,6 +5,7 @@
 // frequency jitter in the Doppler, and the loss of continuity when the path
 // switches between LOS and NLOS or the range jumps by more than a code loop
 // follows. Pure functions and one small per-satellite state; no allocation.
+#include <cmath>
 #include <cstdint>
 
 #include "core/common/constants.hpp"
@@ -68,6 +69,23 @@ double fll_range_rate_sigma_m_s(double cn0_dbhz, const CarrierConfig& c,
 /// Costas loop's rho = 1 / (4 sigma^2) (A. J. Viterbi, Principles of Coherent
 /// Communication, 1966; the factor 4 because the discriminator is pi-periodic).
 double cycle_slip_probability(double sigma_rad, double bandwidth_hz, double dt_s) noexcept;
+
+/// Amplitude of the reflection the carrier multipath assumes, relative to the
+/// direct signal (a single specular reflection).
+inline constexpr double kCarrierReflectionAmplitude = 0.2;
+
+/// Carrier-phase multipath of a signal of wavelength_m (m, > 0) whose code
+/// sees code_multipath_m (m) from the same reflection: one reflection of
+/// relative amplitude a delayed by d = code_multipath_m / a (the code error
+/// of a narrow correlator is about a d) shifts the phase by
+/// atan2(a sin phi, 1 + a cos phi), phi = 2 pi d / lambda (Braasch, in
+/// Parkinson & Spilker, GPS: Theory and Applications I, ch. 14): bounded by
+/// asin(a) lambda / (2 pi), so it scales with the wavelength, m.
+inline double carrier_multipath_m(double code_multipath_m, double wavelength_m) noexcept {
+  constexpr double a = kCarrierReflectionAmplitude;
+  const double phi = 2.0 * kPi * code_multipath_m / (a * wavelength_m);
+  return std::atan2(a * std::sin(phi), 1.0 + a * std::cos(phi)) * wavelength_m / (2.0 * kPi);
+}
 
 /// Continuity of one satellite's carrier as the world keeps it between epochs.
 struct CarrierTrack {

@@ -21,6 +21,24 @@ inline constexpr double kQuietNoiseRise_db = 1.0;
 /// The antenna as the receiver's supervisor sees it (MON-HW aStatus).
 enum class AntennaState : uint8_t { kOk, kShort, kOpen };
 
+/// The second signal of a satellite (gnss_signals.hpp band 1), modelled only
+/// for worlds of dual-band receivers: its own C/N0, noise, multipath, group
+/// delays and carrier lock; geometry, troposphere, orbit and clock are the
+/// L1-band signal's.
+struct SecondSignal {
+  /// Modelled and received (the system has a second signal, the world
+  /// models band 1 and the path reaches the antenna).
+  bool received = false;
+  double cn0_dbhz = 0.0;                ///< dB-Hz (a fault may lower it alone: a jammer on one band)
+  double pseudorange_m = 0.0;           ///< code pseudorange, m
+  double carrier_hz = 0.0;              ///< carrier, Hz
+  double wavelength_m = 0.0;            ///< its wavelength, m
+  double doppler_hz = 0.0;              ///< Hz, positive when approaching
+  bool carrier_valid = false;           ///< as SatObservable::carrier_valid, for this band
+  double carrier_phase_cycles = 0.0;    ///< cycles of wavelength_m, an arbitrary integer per lock
+  std::uint32_t carrier_discontinuities = 0;  ///< this band's new locks and slips so far
+};
+
 /// One satellite above the horizon with a healthy ephemeris.
 struct SatObservable {
   SatId sat;                            ///< the satellite
@@ -52,6 +70,7 @@ struct SatObservable {
   /// epoch (a discontinuous truth): the receiver loses lock on it. Only
   /// while [signal.carrier] is enabled (or set by the fault stage).
   bool lock_break = false;
+  SecondSignal band1;                   ///< the second frequency (dual-band worlds only)
   // Path truth of the scene stage (analysis only; zero without a scene).
   bool nlos = false;                    ///< received via reflections only
   bool blocked = false;                 ///< no signal path (not received)

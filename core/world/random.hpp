@@ -48,6 +48,13 @@ constexpr uint64_t sat_stream(SatId sat) noexcept {
   return (static_cast<uint64_t>(sat.system) << 8) | static_cast<uint64_t>(sat.number);
 }
 
+/// Random stream of sat's signal on band (0: sat_stream, which the L1-band
+/// signal has always drawn from; band 1 in bit 20 and up, clear of every
+/// other stream).
+constexpr uint64_t band_stream(SatId sat, int band) noexcept {
+  return sat_stream(sat) | (static_cast<uint64_t>(band) << 20);
+}
+
 /// Stream id of the receiver clock (0: no satellite has number 0).
 inline constexpr uint64_t kClockStream = 0;
 /// First stream of the two azimuthal-gradient processes: 33 and 34, above

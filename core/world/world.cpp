@@ -84,22 +84,23 @@ void World::advance(const SharedSky& sky, const time::GpsTime& t) noexcept {
   t_prev_ = t;
 }
 
-double World::multipath_m(SatId sat, uint64_t stream, const time::GpsTime& t, uint64_t epoch,
+double World::multipath_m(int band, SatId sat, uint64_t stream, const time::GpsTime& t, uint64_t epoch,
                           double el_rad) noexcept {
   const ErrorModelConfig& c = config_.errors;
   if (!(c.multipath.sigma_m > 0.0)) return 0.0;
   const GaussMarkovConfig unit{1.0, c.multipath.tau_s};
   const std::size_t k = static_cast<std::size_t>(sat.index());
-  double& x = multipath_unit_[k];
-  if (!multipath_started_[k]) {
+  const auto b = static_cast<std::size_t>(band);
+  double& x = multipath_unit_[b][k];
+  if (!multipath_started_[b][k]) {
     x = gauss_markov_init(unit, rng_.normal(stream, epoch, Purpose::kMultipathInit));
-    multipath_started_[k] = true;
+    multipath_started_[b][k] = true;
   } else {
-    const double dt_s = t - multipath_t_[k];
+    const double dt_s = t - multipath_t_[b][k];
     if (std::isfinite(dt_s) && dt_s > 0.0)
       x = gauss_markov_step(x, dt_s, unit, rng_.normal(stream, epoch, Purpose::kMultipathStep));
   }
-  multipath_t_[k] = t;
+  multipath_t_[b][k] = t;
   return c.multipath.sigma_m / multipath_sin_el(el_rad) * x;
 }
 
@@ -257,7 +258,7 @@ void World::observables_stage(const SharedSky& sky, const time::GpsTime& t, uint
     const orbit::Ephemeris* eph = o.eph;
     const double cn0 = o.cn0_dbhz;
     const double thermal_m = noise_.code_sigma_m(cn0) * rng_.normal(stream, epoch, Purpose::kThermal);
-    const double multipath = multipath_m(sat, stream, t, epoch, s.el_rad);
+    const double multipath = multipath_m(0, sat, stream, t, epoch, s.el_rad);
     const double orbit_clock_m = orbit_clock_process(config_.errors.orbit_clock, sat.system).sigma_m *
                                  sky.errors().value(SkyProcess::kOrbitClock, sat);
     const double gradient_m = gradient_now_m_[0] * std::cos(s.az_rad) + gradient_now_m_[1] * std::sin(s.az_rad);
@@ -271,41 +272,31 @@ void World::observables_stage(const SharedSky& sky, const time::GpsTime& t, uint
     const double rr_m_s = s.range_rate_m_s + kSpeedOfLight_m_s * (rx_drift_s_s - s.clk_drift_s_s) + rr_noise_m_s;
     o.pseudorange_m = pr_m;
     o.doppler_hz = -rr_m_s / o.wavelength_m;
-    carrier_observable(o, s, epoch, rx_clock_s, orbit_clock_m, gradient_m);
+    carrier_observable(o, s, epoch, rx_clock_s, orbit_clock_m, gradient_m, multipath);
+    if (config_.bands > 1) second_signal(o, s, t, epoch, rx_clock_s, rx_drift_s_s, orbit_clock_m, gradient_m);
   }
-  for (int i = 0; i < n_sats_; ++i) {
-    const std::size_t k = static_cast<std::size_t>(sats_[static_cast<std::size_t>(i)].index());
-    if (!carrier_seen_[k]) carrier_[k].continuous = false;
+  for (int b = 0; b < config_.bands; ++b) {
+    const auto ub = static_cast<std::size_t>(b);
+    for (int i = 0; i < n_sats_; ++i) {
+      const std::size_t k = static_cast<std::size_t>(sats_[static_cast<std::size_t>(i)].index());
+      if (!carrier_seen_[ub][k]) carrier_[ub][k].continuous = false;
+    }
   }
 }
 
-// The carrier range has the code's delays except the ionosphere's, which
-// advances the phase by as much as it delays the code; code multipath and
-// thermal code noise are not in it, the NLOS path length is.
-void World::carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch, double rx_clock_s,
-                               double orbit_clock_m, double gradient_m) noexcept {
-  const std::size_t k = static_cast<std::size_t>(o.sat.index());
-  const uint64_t stream = sat_stream(o.sat);
-  CarrierTrack& c = carrier_[k];
-  carrier_seen_[k] = true;
+double World::carrier_offset_cycles(CarrierTrack& c, uint64_t stream, uint64_t epoch, bool restart, double sigma_rad,
+                                    bool pilot, bool nlos) noexcept {
   const CarrierConfig& cc = config_.carrier;
-  // No carrier tracking: no phase, so no lock breaks or slips to model.
-  if (!cc.enabled) return;
-  // Lock break: the range moved by more than its rate explains.
-  if (c.continuous && dt_s_ > 0.0) {
-    const double explained_m = 0.5 * (c.range_rate_m_s + s.range_rate_m_s) * dt_s_;
-    o.lock_break = std::fabs(s.range_m - c.range_m - explained_m) > cc.lock_break_m;
-  }
-  bool restart = !c.continuous || o.lock_break;
+  restart = restart || !c.continuous;
   double slip_cycles = 0.0;
-  const double sigma_rad =
-      std::hypot(pll_jitter_rad(o.cn0_dbhz, cc.pll_bandwidth_hz, cc.integration_s), cc.oscillator_sigma_rad);
   if (!restart) {
-    if (o.nlos != c.nlos) {
+    if (nlos != c.nlos) {
       restart = true;  // a different path: the loop re-locks on it
     } else if (rng_.uniform(stream, epoch, Purpose::kCycleSlip, 0) <
                cycle_slip_probability(sigma_rad, cc.pll_bandwidth_hz, dt_s_)) {
-      slip_cycles = rng_.uniform(stream, epoch, Purpose::kCycleSlip, 1) < 0.5 ? -0.5 : 0.5;
+      // A Costas loop slips by half a cycle, a pilot's pure PLL by a whole one.
+      const double size = pilot ? 1.0 : 0.5;
+      slip_cycles = rng_.uniform(stream, epoch, Purpose::kCycleSlip, 1) < 0.5 ? -size : size;
     }
   }
   if (restart) {
@@ -317,7 +308,73 @@ void World::carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch
     ++c.discontinuities;
   }
   c.continuous = true;
-  c.nlos = o.nlos;
+  c.nlos = nlos;
+  return c.offset_cycles;
+}
+
+// The second signal: the first's geometry, clocks, troposphere and path, its
+// own carrier, ionosphere (1 / f^2), group delays, C/N0, noise, multipath and lock.
+void World::second_signal(SatObservable& o, const SkySat& s, const time::GpsTime& t, uint64_t epoch,
+                          double rx_clock_s, double rx_drift_s_s, double orbit_clock_m, double gradient_m) noexcept {
+  const std::optional<SignalId> sig = signal_of(o.sat.system, 1);
+  if (!sig) return;
+  const std::size_t k = static_cast<std::size_t>(o.sat.index());
+  const uint64_t stream = band_stream(o.sat, 1);
+  const orbit::Ephemeris& eph = *o.eph;
+  SecondSignal& b = o.band1;
+  b.received = true;
+  b.cn0_dbhz = std::max(o.cn0_dbhz + band1_power_offset_db(o.sat.system), 0.0);
+  b.carrier_hz = signal_carrier_hz(*sig, eph.glo_channel);
+  b.wavelength_m = kSpeedOfLight_m_s / b.carrier_hz;
+  const double f_ratio = o.carrier_hz / b.carrier_hz;
+  const double gamma = f_ratio * f_ratio;
+  const PathEffects& e = path_[k];
+  const double iono_m = e.iono_m * gamma;
+  const double common_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - band1_group_delay_s(eph, gamma))) +
+                          orbit_clock_m + (e.delay_m - e.iono_m) + gradient_m;
+  const double thermal_m = noise_.code_sigma_m(b.cn0_dbhz) * rng_.normal(stream, epoch, Purpose::kThermal);
+  const double multipath = multipath_m(1, o.sat, stream, t, epoch, s.el_rad);
+  b.pseudorange_m = common_m + iono_m + thermal_m + multipath + config_.receiver_ifb_m;
+  const double rr_noise_m_s =
+      noise_.range_rate_sigma_m_s(b.cn0_dbhz, b.wavelength_m) * rng_.normal(stream, epoch, Purpose::kDoppler);
+  b.doppler_hz = -(s.range_rate_m_s + kSpeedOfLight_m_s * (rx_drift_s_s - s.clk_drift_s_s) + rr_noise_m_s) / b.wavelength_m;
+  const CarrierConfig& cc = config_.carrier;
+  if (!cc.enabled) return;
+  CarrierTrack& c = carrier_[1][k];
+  carrier_seen_[1][k] = true;
+  const double sigma_rad =
+      std::hypot(pll_jitter_rad(b.cn0_dbhz, cc.pll_bandwidth_hz, cc.integration_s), cc.oscillator_sigma_rad);
+  const double offset = carrier_offset_cycles(c, stream, epoch, o.lock_break, sigma_rad, signal_info(*sig).pilot, o.nlos);
+  b.carrier_discontinuities = c.discontinuities;
+  const double phase_noise_m =
+      sigma_rad / (2.0 * kPi) * b.wavelength_m * rng_.normal(stream, epoch, Purpose::kCarrierNoise);
+  const double carrier_m = common_m - iono_m + phase_noise_m + carrier_multipath_m(multipath, b.wavelength_m);
+  b.carrier_valid = true;
+  b.carrier_phase_cycles = carrier_m / b.wavelength_m + offset;
+}
+
+// The carrier range has the code's delays except the ionosphere's, which
+// advances the phase by as much as it delays the code; code multipath and
+// thermal code noise are not in it, the NLOS path length is.
+void World::carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch, double rx_clock_s,
+                               double orbit_clock_m, double gradient_m, double multipath_m) noexcept {
+  const std::size_t k = static_cast<std::size_t>(o.sat.index());
+  const uint64_t stream = sat_stream(o.sat);
+  CarrierTrack& c = carrier_[0][k];
+  carrier_seen_[0][k] = true;
+  const CarrierConfig& cc = config_.carrier;
+  // No carrier tracking: no phase, so no lock breaks or slips to model.
+  if (!cc.enabled) return;
+  // Lock break: the range moved by more than its rate explains.
+  if (c.continuous && dt_s_ > 0.0) {
+    const double explained_m = 0.5 * (c.range_rate_m_s + s.range_rate_m_s) * dt_s_;
+    o.lock_break = std::fabs(s.range_m - c.range_m - explained_m) > cc.lock_break_m;
+  }
+  const double sigma_rad =
+      std::hypot(pll_jitter_rad(o.cn0_dbhz, cc.pll_bandwidth_hz, cc.integration_s), cc.oscillator_sigma_rad);
+  const std::optional<SignalId> sig = signal_of(o.sat.system, 0);
+  const bool pilot = sig && signal_info(*sig).pilot;
+  const double offset = carrier_offset_cycles(c, stream, epoch, o.lock_break, sigma_rad, pilot, o.nlos);
   c.range_m = s.range_m;
   c.range_rate_m_s = s.range_rate_m_s;
   o.carrier_discontinuities = c.discontinuities;
@@ -325,9 +382,10 @@ void World::carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch
   const double phase_noise_m =
       sigma_rad / (2.0 * kPi) * o.wavelength_m * rng_.normal(stream, epoch, Purpose::kCarrierNoise);
   const double carrier_m = s.range_m + kSpeedOfLight_m_s * (rx_clock_s - (s.clk_bias_s - o.eph->tgd_s)) +
-                           orbit_clock_m + e.delay_m - 2.0 * e.iono_m + gradient_m + phase_noise_m;
+                           orbit_clock_m + e.delay_m - 2.0 * e.iono_m + gradient_m + phase_noise_m +
+                           carrier_multipath_m(multipath_m, o.wavelength_m);
   o.carrier_valid = true;
-  o.carrier_phase_cycles = carrier_m / o.wavelength_m + c.offset_cycles;
+  o.carrier_phase_cycles = carrier_m / o.wavelength_m + offset;
 }
 
 const Observables& World::step(const time::GpsTime& t, const Truth& truth, double mask_rad) noexcept {
@@ -350,10 +408,11 @@ const Observables& World::step(const SharedSky& sky, const Truth& truth, double 
   obs_.num_sats = 0;
   n_in_sky_ = 0;
   n_above_ = 0;
-  carrier_seen_.fill(false);
+  for (auto& seen : carrier_seen_) seen.fill(false);
   obs_.antenna_connected = truth.valid && truth.pos_m.finite() && truth.vel_m_s.finite();
   if (!obs_.antenna_connected) {
-    for (CarrierTrack& c : carrier_) c.continuous = false;
+    for (auto& band : carrier_)
+      for (CarrierTrack& c : band) c.continuous = false;
     return obs_;
   }
 

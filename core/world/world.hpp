@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "core/atmosphere/term_cache.hpp"
+#include "core/common/gnss_signals.hpp"
 #include "core/common/sat_id.hpp"
 #include "core/common/vec3.hpp"
 #include "core/geo/local_frame.hpp"
@@ -86,8 +87,10 @@ public:
 
 private:
   void advance(const SharedSky& sky, const time::GpsTime& t) noexcept;
-  /// The multipath of sat (stream its random stream) at t, m, brought forward from its last step.
-  double multipath_m(SatId sat, uint64_t stream, const time::GpsTime& t, uint64_t epoch, double el_rad) noexcept;
+  /// The code multipath of sat's signal on band (stream its random stream)
+  /// at t, m, brought forward from its last step.
+  double multipath_m(int band, SatId sat, uint64_t stream, const time::GpsTime& t, uint64_t epoch,
+                     double el_rad) noexcept;
   void sky_stage(const SharedSky& sky, const time::GpsTime& t, const Truth& truth, const Lla& rx_lla,
                  double mask_rad) noexcept;
   void propagation_stage(const SharedSky& sky, const time::GpsTime& t, const Lla& rx_lla, const Ecef& rx_pos_m) noexcept;
@@ -98,7 +101,16 @@ private:
   /// satellite (o: its pseudorange already set); rx_clock_s the receiver clock
   /// bias, s, gradient_m the azimuthal delay on its line of sight, m.
   void carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch, double rx_clock_s,
-                          double orbit_clock_m, double gradient_m) noexcept;
+                          double orbit_clock_m, double gradient_m, double multipath_m) noexcept;
+  /// The second signal of a received satellite (o: its first signal set),
+  /// from the same geometry, clocks and troposphere.
+  void second_signal(SatObservable& o, const SkySat& s, const time::GpsTime& t, uint64_t epoch, double rx_clock_s,
+                     double rx_drift_s_s, double orbit_clock_m, double gradient_m) noexcept;
+  /// One band's carrier track of a received satellite: a new lock, a slip or
+  /// neither this epoch (restart: the path or the range broke the lock), and
+  /// the whole and half cycles the track adds to the phase.
+  double carrier_offset_cycles(CarrierTrack& c, uint64_t stream, uint64_t epoch, bool restart, double sigma_rad,
+                               bool pilot, bool nlos) noexcept;
   /// G_N, G_E of the azimuthal gradient at t for a receiver at lon_rad.
   void gradient_now(const SharedSky& sky, const time::GpsTime& t, double lon_rad) noexcept;
 
@@ -117,9 +129,11 @@ private:
   double zwd_pert_m_ = 0.0;                 ///< zenith wet delay perturbation, m
   // Multipath per satellite (by SatId::index()), stepped when the satellite
   // is received, over the time since it last was.
-  std::array<double, kNumSats> multipath_unit_{};   ///< unit multipath Gauss–Markov state
-  std::array<time::GpsTime, kNumSats> multipath_t_{};  ///< when it was last stepped
-  std::array<bool, kNumSats> multipath_started_{};
+  // Per band (index band, then SatId::index()).
+  template <class T> using PerBand = std::array<std::array<T, kNumSats>, kNumBands>;
+  PerBand<double> multipath_unit_{};         ///< unit multipath Gauss–Markov state
+  PerBand<time::GpsTime> multipath_t_{};     ///< when it was last stepped
+  PerBand<bool> multipath_started_{};
   uint64_t epoch_ = 0;          ///< step() calls so far (random-stream counter)
   bool started_ = false;
   time::GpsTime t_prev_;
@@ -153,8 +167,8 @@ private:
   signal::LinkBudgetModel link_;
   std::array<double, kNumSats> cn0_dbhz_{};
   // Carrier (observables stage).
-  std::array<CarrierTrack, kNumSats> carrier_{};
-  std::array<bool, kNumSats> carrier_seen_{};  ///< received this epoch
+  PerBand<CarrierTrack> carrier_{};
+  PerBand<bool> carrier_seen_{};  ///< received this epoch
 };
 
 }  // namespace gnssemu::world

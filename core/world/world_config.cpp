@@ -16,7 +16,9 @@ void validate(const WorldConfig& c) {
   const AtmosphereConfig& a = c.atmosphere;
   check_ranges(
       "world config",
-      {{e.thermal_sigma_m, E::thermal_sigma_m, "errors.thermal_sigma_m"},
+      {{static_cast<double>(c.bands), WorldRanges::bands, "bands"},
+       {c.receiver_ifb_m, WorldRanges::receiver_ifb_m, "receiver_ifb_m"},
+       {e.thermal_sigma_m, E::thermal_sigma_m, "errors.thermal_sigma_m"},
        {e.doppler_sigma_m_s, E::doppler_sigma_m_s, "errors.doppler_sigma_m_s"},
        {e.orbit_clock.sigma_m, Gm::sigma_m, "errors.orbit_clock.sigma_m"},
        {e.orbit_clock.tau_s, Gm::tau_s, "errors.orbit_clock.tau_s"},

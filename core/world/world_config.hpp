@@ -160,6 +160,13 @@ struct WorldConfig {
   /// constellations, `[receiver] constellations`); the others' satellites are
   /// not in the sky this world computes, whatever the nav data hold.
   SystemSet systems = SystemSet::only(GnssSystem::kGps);
+  /// Bands modelled per satellite: 1 the L1-band signal; 2 also each
+  /// system's second signal (SatObservable::band1), for a receiver that
+  /// tracks it (its `[receiver] bands`).
+  int bands = 1;
+  /// The receiver's code delay on the second signal over the first (its
+  /// inter-frequency bias), m; the phase's lies in the ambiguity.
+  double receiver_ifb_m = 0.3;
 };
 
 /// The sky seed of c (its own, else its seed).
@@ -168,6 +175,8 @@ inline uint64_t sky_seed(const WorldConfig& c) noexcept { return c.sky_seed.valu
 /// Valid values of WorldConfig's own numbers (seed: any).
 struct WorldRanges {
   static constexpr Range nominal_cn0_dbhz{10.0, 60.0, "dB-Hz"};
+  static constexpr Range bands{1.0, 2.0, ""};  ///< integer
+  static constexpr Range receiver_ifb_m{-100.0, 100.0, "m"};
 };
 
 /// Throws gnssemu::Error for a value out of its range anywhere in c (its

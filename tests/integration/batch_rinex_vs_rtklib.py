@@ -65,6 +65,8 @@ def main():
     ap.add_argument("--median-diff", type=float, default=0.05, help="largest allowed median 3D difference, m")
     ap.add_argument("--min-common", type=float, default=0.9,
                     help="smallest allowed fraction of gnssemu's fixes rnx2rtkp also solves")
+    ap.add_argument("--bands", type=int, default=1,
+                    help="signals per satellite (batch --bands); 2: rnx2rtkp reads both and solves on L1 alike")
     a = ap.parse_args()
     rnx2rtkp = shutil.which("rnx2rtkp")
     if rnx2rtkp is None:
@@ -73,11 +75,23 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         obs, nav, errors = (os.path.join(tmp, n) for n in ("run.obs", "run.nav", "errors.csv"))
         subprocess.run([a.gnssemu, "batch", "--config", a.config, "--truth", a.truth, "--systems", a.systems,
-                        "--preset", "rtklib", "--rinex-obs", obs, "--rinex-nav", nav, "--errors", errors],
+                        "--preset", "rtklib", "--rinex-obs", obs, "--rinex-nav", nav, "--errors", errors,
+                        "--bands", str(a.bands)],
                        check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         conf = os.path.join(tmp, "single.conf")
         with open(conf, "w") as f:
             f.write(RTKLIB_CONF.format(mask=a.mask, navsys=navsys(a.systems)))
+        types = {}
+        with open(obs) as f:
+            for line in f:
+                if "END OF HEADER" in line:
+                    break
+                if line[60:].startswith("SYS / # / OBS TYPES") and line[0] != " ":
+                    types[line[0]] = line[7:58].split()
+        print("RINEX observation types: " + "; ".join(f"{k} {' '.join(v)}" for k, v in sorted(types.items())))
+        if a.bands > 1 and any(len({t[1:] for t in v}) < 2 for v in types.values()):
+            print("FAIL: a system without its second signal in the header")
+            return 1
         pos = os.path.join(tmp, "rtk.pos")
         subprocess.run([rnx2rtkp, "-k", conf, "-o", pos, obs, nav], check=True, stdout=subprocess.DEVNULL,
                        stderr=subprocess.DEVNULL)

@@ -47,13 +47,18 @@ ubx_messages = ["NAV-PVT", "RXM-RAWX", "RXM-SFRBX"]
 protocols_out = ["ubx"]
 """
 
+# The RINEX code of each system's L1-band signal (core/common/gnss_signals.hpp);
+# any other code of the system is its second frequency.
+BAND0_CODE = {"G": "1C", "R": "1C", "E": "1C", "C": "2I", "J": "1C", "S": "1C"}
+
 RXM_RAWX = (0x02, 0x15)
 RXM_SFRBX = (0x02, 0x13)
 LETTER = {0: "G", 1: "S", 2: "E", 3: "C", 5: "J", 6: "R"}
 
 
 def rawx_epochs(data):
-    """{(week, rcvTow): {"G05": (pr, cp, do, cno, trk)}} from the RXM-RAWX frames."""
+    """{(week, rcvTow): {("G05", band): (pr, cp, do, cno, trk)}} from the RXM-RAWX frames (band 0: the
+    L1-band signal, UBX sigId 0 or 1; 1: the second frequency)."""
     out = {}
     for kind, m in split_stream(data)[0]:
         if kind != "ubx" or (m[2], m[3]) != RXM_RAWX:
@@ -62,9 +67,9 @@ def rawx_epochs(data):
         tow, week, _, n = struct.unpack_from("<dHbB", p, 0)
         meas = {}
         for i in range(n):
-            pr, cp, do, gnss, sv, _, _, _, cno, _, _, _, trk = struct.unpack_from("<ddfBBBBHBBBBB", p, 16 + 32 * i)
+            pr, cp, do, gnss, sv, sig, _, _, cno, _, _, _, trk = struct.unpack_from("<ddfBBBBHBBBBB", p, 16 + 32 * i)
             num = sv - 192 if gnss == 5 and sv > 192 else sv
-            meas["%s%02d" % (LETTER[gnss], num)] = (pr, cp, do, cno, trk)
+            meas[("%s%02d" % (LETTER[gnss], num), 0 if sig <= 1 else 1)] = (pr, cp, do, cno, trk)
         out[(week, tow)] = meas
     return out
 
@@ -117,6 +122,7 @@ def main():
     ap.add_argument("--systems", default="G", help="RINEX letters whose ephemerides must come back")
     ap.add_argument("--obs-systems", default="G", help="RINEX letters whose observations must come back")
     ap.add_argument("--extra", default="", help="more [receiver] lines")
+    ap.add_argument("--bands", type=int, default=1, help="signals per satellite that must come back")
     args = ap.parse_args()
     for tool in ("convbin", "gpsdecode"):
         if shutil.which(tool) is None:
@@ -147,8 +153,9 @@ def main():
         for (week, tow), meas in raw.items():
             by_t[round(((week - 2190) * 604800 + tow) * 1e3)] = (week - 2190) * 604800 + tow, meas
         compared = 0
-        worst = {"C": 0.0, "L": 0.0, "D": 0.0, "S": 0.0}  # by observation kind: one signal per satellite
+        worst = {"C": 0.0, "L": 0.0, "D": 0.0, "S": 0.0}  # by observation kind
         systems_obs = set()
+        signals = set()  # (system, RINEX code) decoded
         for t, sats in rinex_obs(obs):
             hit = by_t.get(round(t * 1e3))
             if hit is None or abs(hit[0] - t) > 1e-7:
@@ -156,22 +163,32 @@ def main():
                 continue
             meas = hit[1]
             for sat, vals in sats.items():
-                if sat not in meas:
-                    failures.append("%s at %.7f not in RAWX" % (sat, t))
-                    continue
-                pr, cp, do, cno, trk = meas[sat]
-                want = {"C": pr if trk & 1 else None, "L": cp if trk & 2 else None, "D": do, "S": cno}
-                for k, v in vals.items():
-                    if want.get(k[0]) is not None:
-                        worst[k[0]] = max(worst[k[0]], abs(v - want[k[0]]))
-                systems_obs.add(sat[0])
-                compared += 1
+                for band in (0, 1):
+                    mine = {k: v for k, v in vals.items() if (k[1:3] == BAND0_CODE[sat[0]]) == (band == 0)}
+                    if not mine:
+                        continue
+                    if (sat, band) not in meas:
+                        failures.append("%s band %d at %.7f not in RAWX" % (sat, band, t))
+                        continue
+                    pr, cp, do, cno, trk = meas[(sat, band)]
+                    want = {"C": pr if trk & 1 else None, "L": cp if trk & 2 else None, "D": do, "S": cno}
+                    for k, v in mine.items():
+                        if want.get(k[0]) is not None:
+                            worst[k[0]] = max(worst[k[0]], abs(v - want[k[0]]))
+                        signals.add((sat[0], k[1:3]))
+                    systems_obs.add(sat[0])
+                    compared += 1
         tol = {"C": 0.0006, "L": 0.0006, "D": 0.0006, "S": 0.5}
         for k, w in worst.items():
             if w > tol[k]:
                 failures.append("%s differs from RAWX by %.4f (> %.4f)" % (k, w, tol[k]))
-        print("observations: %d satellite epochs compared (systems %s), largest |RINEX - RAWX|: %s"
-              % (compared, ",".join(sorted(systems_obs)), ", ".join("%s %.5f" % kv for kv in worst.items())))
+        print("observations: %d signal epochs compared (systems %s; signals %s), largest |RINEX - RAWX|: %s"
+              % (compared, ",".join(sorted(systems_obs)), " ".join(sorted(a + b for a, b in signals)),
+                 ", ".join("%s %.5f" % kv for kv in worst.items())))
+        if args.bands > 1:
+            for letter in args.obs_systems:
+                if not any(sys_ == letter and code != BAND0_CODE[letter] for sys_, code in signals):
+                    failures.append("no second-frequency observations of %s decoded" % letter)
         missing_obs = set(args.obs_systems) - systems_obs
         if missing_obs:
             failures.append("no observations decoded for %s" % ",".join(sorted(missing_obs)))

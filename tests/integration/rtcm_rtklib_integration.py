@@ -85,6 +85,7 @@ def main():
     ap.add_argument("--config", required=True)
     ap.add_argument("--msm", type=int, choices=(4, 7), default=7)
     ap.add_argument("--keep", help="keep the files in this folder")
+    ap.add_argument("--bands", type=int, choices=(1, 2), default=1, help="[receiver] bands of the base")
     a = ap.parse_args()
     if shutil.which("convbin") is None:
         print("convbin not installed (Debian rtklib)")
@@ -97,7 +98,7 @@ def main():
         text = f.read()
     cfg = f"{d}/base.toml"
     with open(cfg, "w") as f:
-        f.write(text.replace("[receiver]\n", '[receiver]\nconstellations = ["G", "R", "E", "C"]\n', 1)
+        f.write(text.replace("[receiver]\n", f'[receiver]\nconstellations = ["G", "R", "E", "C"]\nbands = {a.bands}\n', 1)
                 .replace('file = "nav/', f'file = "{os.path.dirname(os.path.abspath(a.config))}/nav/'))
     msgs = f"1005(10),107{m}(1),108{m}(1),109{m}(1),112{m}(1),1230(10),1019(30),1020(30),1042(30),1046(30)"
     run = [a.gnssemu, "base", "--config", cfg, "--lat", "48.88", "--lon", "2.30", "--height", "100",
@@ -119,6 +120,7 @@ def main():
     n = 0
     missing = 0
     systems = set()
+    codes = set()
     with open(f"{d}/raw.csv") as f:
         for row in csv.DictReader(f):
             tow = float(row["tow_s"])
@@ -134,12 +136,13 @@ def main():
                 missing += 1
                 continue
             systems.add(sat[0])
+            codes.add(sat[0] + code)
             n += 1
             worst["C"] = max(worst["C"], abs(pr - (float(row["pseudorange_m"]) - dop * lam * dt)))
             ph = obs.get((tow_ms, sat, "L" + code))
             if ph is not None:
                 diff = ph - (float(row["carrier_cycles"]) - dop * dt)
-                offsets[sat].add(round(diff))
+                offsets[(sat, code)].add(round(diff))
                 worst["L"] = max(worst["L"], abs(diff - round(diff)) * lam)
             if res_rate is not None:
                 worst["D"] = max(worst["D"], abs(obs[(tow_ms, sat, "D" + code)] - dop) * lam)
@@ -156,13 +159,18 @@ def main():
                 missing += 1
                 continue
             systems.add("R")
+            codes.add("R" + row["code"])
             n += 1
-            lam = C / (1602e6)  # the shift is below 0.5 ms: the channel's carrier changes it by < 1e-6 m
+            # The shift is below 0.5 ms: the channel's carrier changes it by < 1e-6 m.
+            lam = C / (1602e6 if row["code"] == "1C" else 1246e6)
             worst["C"] = max(worst["C"], abs(pr - (float(row["pseudorange_m"]) - float(row["doppler_hz"]) * lam * (tow_ms / 1000 - tow))))
     print(f"{n} observations of {sorted(systems)} compared, {missing} not in the RINEX file; worst |diff|: "
           + ", ".join(f"{k} {v:.6f}" for k, v in sorted(worst.items()))
           + f" (resolution: code {res_pr:.6f} m, phase {res_ph:.6f} m)")
+    print("signals: " + " ".join(sorted(codes)))
     ok = n > 0 and missing == 0 and systems == {"G", "R", "E", "C"}
+    if a.bands > 1:
+        ok &= {"G2L", "R2C", "E7Q", "C7I"} <= codes
     ok &= worst["C"] <= res_pr / 2 + 1e-3
     ok &= worst["L"] <= res_ph / 2 + 1e-3
     if res_rate is not None:

@@ -84,6 +84,7 @@ struct BatchArgs {
   std::optional<std::string> systems;  ///< --systems: RINEX letters; none: the config's [receiver] constellations
   std::string rinex_obs_path, rinex_nav_path;  ///< --rinex-obs, --rinex-nav
   std::string preset;          ///< --preset: "rtklib" or empty
+  std::optional<int> bands;    ///< --bands: 1 or 2; none: the config's [receiver] bands
 };
 
 /// Where satpos, sky and dop take their satellites from.
@@ -238,6 +239,7 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
   if (!a.reference_path.empty() && a.report_dir.empty()) throw Error("--cn0-reference needs --report DIR");
   config::Config cfg = config::load_config(a.config_path);
   cfg.world.systems = checked_systems(a.systems, cfg.world.systems);
+  if (a.bands) cfg.receiver.bands = *a.bands;
   if (a.preset == "rtklib") {
     // rnx2rtkp's single point on the receiver's own code: its models and
     // weights, a snapshot fix each epoch, no carrier smoothing.
@@ -545,6 +547,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   batch_cmd->add_option("--report", batch.report_dir, "write an HTML report with plots to DIR/report.html");
   batch_cmd->add_option("--systems", batch.systems,
                         std::string(kSystemsHelp) + "; default: the config's [receiver] constellations");
+  batch_cmd->add_option("--bands", batch.bands, "signals tracked per satellite, 1 or 2; default: the config's [receiver] bands")
+      ->check(CLI::Range(1, 2));
   batch_cmd->add_option("--cn0-reference", batch.reference_path,
                         "a real receiver's C/N0 for the report: NMEA log (GSV) or CSV with el_deg,cn0_dbhz");
   PlotArgs plot_args;

@@ -23,7 +23,7 @@ RinexOutput::RinexOutput(const config::Config& config, const orbit::NavData& nav
   info_.receiver_type = receiver_type(config.generation);
   info_.interval_s = config.rate_hz > 0.0 ? 1.0 / config.rate_hz : 0.0;
   info_.systems = config.world.systems.intersect(orbit::systems_of(nav_data));
-  info_.num_bands = 1;
+  info_.num_bands = config.receiver.bands;
   std::map<int, int> slots;  // the last set of each slot names its channel
   for (const orbit::Ephemeris& e : nav_data.ephemerides) {
     if (e.sat.system == GnssSystem::kGlonass) slots[e.sat.number] = e.glo_channel;

@@ -34,6 +34,7 @@ nominal_cn0_dbhz = 41.5
 max_pdop = 8.0
 max_channels = 12
 generation = "m9"
+bands = 2
 raw_data = true
 constellations = ["G", "E", "C"]  # not the m9 factory set, so it is written
 state_file = "state/ubx-state.txt"
