@@ -34,7 +34,8 @@ constexpr Choice<atmosphere::TropoCorrection> kTropoCorrections[] = {
     {"none", atmosphere::TropoCorrection::kNone}};
 
 constexpr Choice<protocol::ubx::Generation> kGenerations[] = {{"m8", protocol::ubx::Generation::kM8},
-                                                               {"m9", protocol::ubx::Generation::kM9}};
+                                                               {"m9", protocol::ubx::Generation::kM9},
+                                                               {"f9p", protocol::ubx::Generation::kF9P}};
 constexpr Choice<receiver::NavFilterType> kFilterTypes[] = {{"kalman", receiver::NavFilterType::kKalman},
                                                            {"none", receiver::NavFilterType::kNone}};
 constexpr Choice<receiver::StartMode> kStartModes[] = {
@@ -406,7 +407,8 @@ constexpr Field<Config> kReceiverFields[] = {
     either<kGenerations, &Config::generation>(
         "generation", "the u-blox chip every output presents (docs/ubx.md \"Generations\"): `m8` a NEO-M8N "
                       "(protocol 18, legacy CFG messages only, MON-HW), `m9` a NEO-M9N (protocol 32.01: CFG-VALSET/"
-                      "VALGET/VALDEL beside the legacy CFG messages, MON-RF, SEC-SIG; no NAV-SVINFO)"),
+                      "VALGET/VALDEL beside the legacy CFG messages, MON-RF, SEC-SIG; no NAV-SVINFO), `f9p` a ZED-F9P (HPG 1.32, protocol 27.31: L1/L2, "
+                      "the high-precision and RTK messages NAV-HPPOSLLH/HPPOSECEF/RELPOSNED, CFG-NAVHPG/TMODE/UART2 keys)"),
     boolean<&Config::raw_data>(
         "raw_data", "the chip's firmware has raw data output, as an M8T/M8P-class timing or high-precision firmware "
                     "(docs/raw-output.md \"Availability\"): RXM-RAWX and RXM-SFRBX go out where a port or a host "

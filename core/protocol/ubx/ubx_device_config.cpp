@@ -126,7 +126,7 @@ DeviceConfig DeviceConfig::factory_defaults(std::size_t uarts, Generation genera
   b.u1(0).zeros(3).u1(0).u1(0).zeros(6).u1(10).u1(50).zeros(2).u1(153).u1(76).zeros(2);
   c.store(msg::kCfgOdo, 0, b.span());
   b = {};  // CFG-NMEA version 1: NMEA 4.0 on the M8, 4.10 on the NEO-M9N (their logs, multi-gnss.md §7)
-  b.u1(0).u1(generation == Generation::kM9 ? 0x41 : 0x40).u1(0).u1(0).u4(0).u1(0).u1(0).u1(0).u1(1).zeros(2).zeros(6);
+  b.u1(0).u1(is_generation9(generation) ? 0x41 : 0x40).u1(0).u1(0).u4(0).u1(0).u1(0).u1(0).u1(1).zeros(2).zeros(6);
   c.store(msg::kCfgNmea, 0, b.span());
   b = {};  // CFG-PMS: full power
   b.u1(0).u1(0).u2(0).u2(0).zeros(2);

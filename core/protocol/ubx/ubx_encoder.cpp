@@ -48,6 +48,16 @@ bool reports_fix_ok(const Fix& fix, FixOverride reported) noexcept {
 MonVerConfig mon_ver_of(Generation g) {
   if (g == Generation::kM8) return {};
   MonVerConfig c;
+  if (g == Generation::kF9P) {
+    c.sw_version = "EXT CORE 1.00 (f4c834)";
+    c.hw_version = "00190000";
+    c.rom_base = "ROM BASE 0x118B2060";
+    c.fw_version = "HPG 1.32";
+    c.protocol_version = 27.31;
+    c.extensions = {"MOD=ZED-F9P", "GPS;GLO;GAL;BDS", "SBAS;QZSS"};
+    c.generation = g;
+    return c;
+  }
   c.sw_version = "EXT CORE 4.04 (7f89f7)";
   c.hw_version = "00190000";
   c.rom_base = "ROM BASE 0x118B2060";
@@ -68,10 +78,10 @@ void validate(const MonVerConfig& config) {
     bad("hw_version must be 8 hex digits (00080000 = M8), got '" + config.hw_version + "'");
   }
   if (config.fw_version.size() + 6 > kMaxStringChars) bad("fw_version too long");
-  const bool m9 = config.generation == Generation::kM9;
+  const bool m9 = is_generation9(config.generation);
   const double lo = m9 ? 27.0 : 18.0, hi = m9 ? 50.0 : 24.0;
   if (!std::isfinite(config.protocol_version) || config.protocol_version < lo || config.protocol_version >= hi) {
-    bad(std::string("protocol_version must be in ") + (m9 ? "[27, 50) for an M9" : "[18, 24) for an M8") +
+    bad(std::string("protocol_version must be in ") + (m9 ? "[27, 50) for a u-blox 9" : "[18, 24) for an M8") +
         " (PX4 uses CFG-VALSET from 27)");
   }
   if (config.rom_base.size() > kMaxStringChars) bad("rom_base too long");
