@@ -66,6 +66,11 @@ DeviceConfig DeviceConfig::factory_defaults(std::size_t uarts, Generation genera
   c.ports_[kPortUsb] = {kPortUsb, true, 0, 0, 0, in, out, 0, false};
   c.ports_[kPortSpi] = {kPortSpi, true, 0, 0x100, 0, in, out, 0, false};
   for (std::size_t u = 0; u < c.uarts(); ++u) c.ports_[c.column(u, kPortUart1)] = uart1;
+  if (generation == Generation::kF9P) {
+    // ZED-F9P UART2: 38400 8N1, RTCM 3 (and UBX) in, RTCM 3 out (HPG 1.32
+    // CFG-UART2 and CFG-UART2IN/OUTPROT defaults; docs/ubx.md §ZED-F9P).
+    c.ports_[kPortUart2] = {kPortUart2, true, 0, 0x8C0, 38400, proto::kUbx | proto::kRtcm3, proto::kRtcm3, 0, false};
+  }
   // NMEA GGA GLL GSA GSV RMC VTG at 1 on every existing port; TXT is on too.
   for (MsgId id : {msg::kNmeaGga, msg::kNmeaGll, msg::kNmeaGsa, msg::kNmeaGsv, msg::kNmeaRmc, msg::kNmeaVtg}) {
     for (std::size_t col = 0; col < c.columns(); ++col) {

@@ -122,6 +122,9 @@ bool cfg_gnss_valid(std::span<const std::uint8_t> p, Generation g) noexcept {
     if (!(cap.gnss_ids >> b.gnss_id & 1u)) return false;
     const std::uint8_t has = cap.signals[b.gnss_id];
     if ((b.signals() & has) == 0 || (b.signals() & ~has) != 0) return false;
+    // A second-band signal needs its L1-band one (ZED-F9P integration manual
+    // UBX-18010802 §3.1.2: L2/E5b alone is no configuration the F9P runs).
+    if (is_dual_band(g) && (b.signals() & 0x01) == 0) return false;
     const unsigned min_max = is_major_gnss_id(b.gnss_id) ? kMinMajorMaxTrk : 1u;
     if (b.max < std::max<unsigned>(b.res, min_max) || b.max > use) return false;
     reserved += b.res;

@@ -49,7 +49,7 @@ struct PeriodicMessage {
 };
 
 /// Rows in the order the configuration lists them (docs/configuration.md).
-inline constexpr std::array<PeriodicMessage, 21> kPeriodicMessages{{
+inline constexpr std::array<PeriodicMessage, 24> kPeriodicMessages{{
     {msg::kNavPvt, "NAV-PVT", EpochGroup::kBeforeNmea, true},
     {msg::kNavPosllh, "NAV-POSLLH", EpochGroup::kBeforeNmea, true},
     {msg::kNavVelned, "NAV-VELNED", EpochGroup::kBeforeNmea, true},
@@ -71,6 +71,10 @@ inline constexpr std::array<PeriodicMessage, 21> kPeriodicMessages{{
     {msg::kMonHw2, "MON-HW2", EpochGroup::kAfterNmea, true},
     {msg::kRxmRawx, "RXM-RAWX", EpochGroup::kAfterNmea, true, kAllGenerations, true},
     {msg::kRxmSfrbx, "RXM-SFRBX", EpochGroup::kAfterNmea, true, kAllGenerations, true},
+    // HPG firmware only (ubx_hpg.hpp).
+    {msg::kNavHpposecef, "NAV-HPPOSECEF", EpochGroup::kAfterNmea, true, kF9POnly},
+    {msg::kNavHpposllh, "NAV-HPPOSLLH", EpochGroup::kAfterNmea, true, kF9POnly},
+    {msg::kNavRelposned, "NAV-RELPOSNED", EpochGroup::kAfterNmea, true, kF9POnly},
 }};
 
 namespace detail {
