@@ -404,7 +404,7 @@ constexpr Field<Config> kReceiverFields[] = {
     integer<&Config::receiver, &ReceiverConfig::max_channels>("max_channels", Rr::max_channels,
                                                               "satellites tracked at most, every system together (highest first; 32 = the M8's and M9's "
                                                               "CFG-GNSS numTrkChHw); CFG-GNSS maxTrkCh limits each system within it"),
-    either<kGenerations, &Config::generation>(
+    choice<kGenerations, &Config::generation>(
         "generation", "the u-blox chip every output presents (docs/ubx.md \"Generations\"): `m8` a NEO-M8N "
                       "(protocol 18, legacy CFG messages only, MON-HW), `m9` a NEO-M9N (protocol 32.01: CFG-VALSET/"
                       "VALGET/VALDEL beside the legacy CFG messages, MON-RF, SEC-SIG; no NAV-SVINFO), `f9p` a ZED-F9P (HPG 1.32, protocol 27.31: L1/L2, "
