@@ -392,13 +392,24 @@ def socat_dump_frames(dump_path, direction):
 
 
 def case_gpsd_m9(rig):
+    gpsd_gen9(rig, M9, "32.01", "gpsd_m9")
+
+
+def case_gpsd_f9p(rig):
+    """gpsd identifies the emulated ZED-F9P (MON-VER MOD=ZED-F9P, PROTVER
+    27.31) over the pty and reports mode 3, as gpsd_m9 does for the M9N."""
+    dev = gpsd_gen9(rig, 'generation = "f9p"', "27.31", "gpsd_f9p")
+    assert "ZED-F9P" in json.dumps(dev), dev
+
+
+def gpsd_gen9(rig, receiver_toml, protver, label):
     """gpsd 3.22 (read-write) against an emulated M9, through socat so that
     what gpsd writes is on record: its u-blox driver identifies the M9N
     (MON-VER hwVersion 00190000, protocol 32.01) and reports mode 3. Every
     UBX command gpsd sends is answered; a CFG-VALSET/VALGET it sends (protocol
     >= 27) gets an ACK, not the M8's NAK."""
     path, out = pty_output(rig)  # factory port: NMEA out, UBX+NMEA in
-    rig.start_daemon(out, receiver_toml=M9)
+    rig.start_daemon(out, receiver_toml=receiver_toml)
     host = os.path.join(rig.tmp, "gpsd-side")
     dump = os.path.join(rig.tmp, "socat-dump.txt")
     with open(dump, "w") as f:
@@ -413,7 +424,7 @@ def case_gpsd_m9(rig):
     if "00190000" not in dev.get("subtype", ""):
         dev = read_json(pipe, 10, lambda m: m.get("class") == "DEVICE" and "00190000" in m.get("subtype", ""),
                         "DEVICE subtype with hwVersion 00190000")
-    assert "PROTVER 32.01" in dev.get("subtype1", "") or "32.01" in json.dumps(dev), dev
+    assert f"PROTVER {protver}" in dev.get("subtype1", "") or protver in json.dumps(dev), dev
     tpv = read_json(pipe, 15, lambda m: m.get("class") == "TPV" and m.get("mode") == 3, "TPV mode 3")
     if dev.get("native") != 1:  # gpsd switches the port to UBX (CFG-PRT) once it knows the chip
         read_json(pipe, 10, lambda m: m.get("class") == "DEVICE" and m.get("native") == 1, "native-mode DEVICE")
@@ -435,10 +446,11 @@ def case_gpsd_m9(rig):
     cfg_naked = sorted({c for c in naks if c[0] == 0x06 and c != (0x06, 0x01) and c in {(m[2], m[3]) for m in sent}})
     assert not cfg_naked, f"CFG commands of gpsd NAKed: {cfg_naked}"
     names = ", ".join(f"{c:02X}-{i:02X}" for c, i in ids)
-    vals = f"{len(val)} CFG-VAL*, all ACKed" if val else "no CFG-VAL* (it configures protocol 32 by CFG-PRT/CFG-MSG)"
-    print(f"  gpsd_m9: driver {dev['driver']} ({dev['subtype']}), native mode; TPV mode 3 at {tpv['lat']:.6f} "
+    vals = f"{len(val)} CFG-VAL*, all ACKed" if val else f"no CFG-VAL* (it configures protocol {protver} by CFG-PRT/CFG-MSG)"
+    print(f"  {label}: driver {dev['driver']} ({dev['subtype']}), native mode; TPV mode 3 at {tpv['lat']:.6f} "
           f"{tpv['lon']:.6f}; gpsd sent UBX {names}: {vals}; {svinfo_msgs} CFG-MSG NAV-SVINFO NAKed (no such "
           f"message from protocol 27), nothing else")
+    return dev
 
 
 def case_gpsd_nmea(rig):
@@ -941,10 +953,11 @@ CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx
          "jamming": case_jamming, "wallclock": case_wallclock, "cold_start": case_cold_start,
          "power_on_cold": case_power_on_cold, "nav5": case_nav5, "px4_faults": case_px4_faults,
          "ardupilot_faults": case_ardupilot_faults, "px4_m9": case_px4_m9,
-         "px4_f9p": case_px4_f9p, "px4_f9p_heading": case_px4_f9p_heading, "gpsd_m9": case_gpsd_m9,
+         "px4_f9p": case_px4_f9p, "px4_f9p_heading": case_px4_f9p_heading,
+         "gpsd_f9p": case_gpsd_f9p, "gpsd_m9": case_gpsd_m9,
          "ardupilot_m9": case_ardupilot_m9, "px4_m9_gnss": case_px4_m9_gnss, "ardupilot_gnss": case_ardupilot_gnss,
          "gpsd_m9_sky": case_gpsd_m9_sky}
-NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_m9_sky": ["gpsd", "gpspipe"], "gpsd_m9": ["gpsd", "gpspipe", "socat"], "gpsd_nmea": ["gpsd", "gpspipe"],
+NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_m9_sky": ["gpsd", "gpspipe"], "gpsd_m9": ["gpsd", "gpspipe", "socat"], "gpsd_f9p": ["gpsd", "gpspipe", "socat"], "gpsd_nmea": ["gpsd", "gpspipe"],
          "gpsdecode": ["gpsdecode"],
          "serial": ["socat", "stty"], "cold_start": ["gpsd", "gpspipe"],
          "power_on_cold": ["gpsd", "gpspipe"]}
