@@ -22,6 +22,7 @@ int default_bands(protocol::ubx::Generation g) noexcept {
   switch (g) {
     case protocol::ubx::Generation::kM8:
     case protocol::ubx::Generation::kM9: return 1;
+    case protocol::ubx::Generation::kF9P: return 2;  // L1C/A + L2C, E1 + E5b, B1I + B2I (ZED-F9P datasheet)
   }
   return 1;
 }

@@ -380,7 +380,7 @@ void write_ubx_messages(TomlWriter& w, const Field<OutputPortConfig>& f, const O
 
 std::string ubx_message_names() {
   return names_doc(names_of(ubx_periodic_messages())) +
-         ", no repeats; MON-RF and SEC-SIG only with `[receiver] generation = \"m9\"`, NAV-SVINFO only with `\"m8\"`, "
+         ", no repeats; MON-RF and SEC-SIG only with `[receiver] generation = \"m9\"` or `\"f9p\"`, NAV-HPPOSECEF, NAV-HPPOSLLH and NAV-RELPOSNED only with `\"f9p\"`, NAV-SVINFO only with `\"m8\"`, "
          "RXM-RAWX and RXM-SFRBX only with `[receiver] raw_data = true`";
 }
 

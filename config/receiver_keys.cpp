@@ -34,7 +34,8 @@ constexpr Choice<atmosphere::TropoCorrection> kTropoCorrections[] = {
     {"none", atmosphere::TropoCorrection::kNone}};
 
 constexpr Choice<protocol::ubx::Generation> kGenerations[] = {{"m8", protocol::ubx::Generation::kM8},
-                                                               {"m9", protocol::ubx::Generation::kM9}};
+                                                               {"m9", protocol::ubx::Generation::kM9},
+                                                               {"f9p", protocol::ubx::Generation::kF9P}};
 constexpr Choice<receiver::NavFilterType> kFilterTypes[] = {{"kalman", receiver::NavFilterType::kKalman},
                                                            {"none", receiver::NavFilterType::kNone}};
 constexpr Choice<receiver::StartMode> kStartModes[] = {
@@ -418,17 +419,18 @@ constexpr Field<Config> kReceiverFields[] = {
     integer<&Config::receiver, &ReceiverConfig::max_channels>("max_channels", Rr::max_channels,
                                                               "satellites tracked at most, every system together (highest first; 32 = the M8's and M9's "
                                                               "CFG-GNSS numTrkChHw); CFG-GNSS maxTrkCh limits each system within it"),
-    either<kGenerations, &Config::generation>(
+    choice<kGenerations, &Config::generation>(
         "generation", "the u-blox chip every output presents (docs/ubx.md \"Generations\"): `m8` a NEO-M8N "
                       "(protocol 18, legacy CFG messages only, MON-HW), `m9` a NEO-M9N (protocol 32.01: CFG-VALSET/"
-                      "VALGET/VALDEL beside the legacy CFG messages, MON-RF, SEC-SIG; no NAV-SVINFO)"),
+                      "VALGET/VALDEL beside the legacy CFG messages, MON-RF, SEC-SIG; no NAV-SVINFO), `f9p` a ZED-F9P (HPG 1.32, protocol 27.31: L1/L2, "
+                      "the high-precision and RTK messages NAV-HPPOSLLH/HPPOSECEF/RELPOSNED, CFG-NAVHPG/TMODE/UART2 keys)"),
     custom<Config>("bands", "", "1 or 2",
                    "signals tracked per satellite: 1 the L1-band signal (GPS/QZSS L1 C/A, GLONASS L1OF, Galileo "
                    "E1C, BeiDou B1I, SBAS L1); 2 also the second frequency (GPS/QZSS L2CL, GLONASS L2OF, Galileo "
                    "E5bQ, BeiDou B2I) in RXM-RAWX, RINEX and RTCM MSM, with its own ionosphere, group delays, C/N0, "
                    "noise and lock (docs/models.md \"Second frequency\"). The position fix uses the L1 band",
                    read_bands, write_bands)
-        .default_doc("the generation's: 1 for `m8` and `m9`"),
+        .default_doc("the generation's: 1 for `m8` and `m9`, 2 for `f9p`"),
     boolean<&Config::raw_data>(
         "raw_data", "the chip's firmware has raw data output, as an M8T/M8P-class timing or high-precision firmware "
                     "(docs/raw-output.md \"Availability\"): RXM-RAWX and RXM-SFRBX go out where a port or a host "

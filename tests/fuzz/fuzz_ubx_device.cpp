@@ -190,9 +190,10 @@ private:
 };
 
 constexpr std::array<std::uint32_t, 5> kBauds = {0, 9600, 38400, 115200, 230400};
-constexpr std::array<MsgId, 10> kRated = {msg::kNavPvt,     msg::kNavStatus,  msg::kNavDop,   msg::kNavSat,
-                                          msg::kNavSvinfo,  msg::kNavTimeutc, msg::kNmeaGga,  msg::kNmeaGsv,
-                                          msg::kRxmRawx,    msg::kRxmSfrbx};
+constexpr std::array<MsgId, 14> kRated = {msg::kNavPvt,        msg::kNavStatus,     msg::kNavDop,     msg::kNavSat,
+                                          msg::kNavSvinfo,     msg::kNavTimeutc,    msg::kNmeaGga,    msg::kNmeaGsv,
+                                          msg::kRxmRawx,       msg::kRxmSfrbx,      msg::kNavHpposllh, msg::kNavHpposecef,
+                                          msg::kNavRelposned,  msg::kNavSig};
 
 }  // namespace
 
@@ -200,11 +201,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   gnssemu::fuzz::InputSplitter in(data, size);
   DeviceSetup setup;
   // b0: ACK unknown CFG ids; b1: an M9, which answers CFG-VALSET/VALGET/VALDEL;
-  // b2: raw-data firmware (RXM-RAWX, RXM-SFRBX).
-  const int identity = in.control_in(0, 7);
+  // b2: raw-data firmware (RXM-RAWX, RXM-SFRBX); b3: a ZED-F9P (its keys,
+  // CFG-DGNSS/TMODE3, the high-precision messages), whatever b1 says.
+  const int identity = in.control_in(0, 15);
   setup.raw_firmware = (identity & 4) != 0;
   setup.ack_unknown_cfg = (identity & 1) != 0;
-  setup.mon_ver = mon_ver_of((identity & 2) != 0 ? Generation::kM9 : Generation::kM8);
+  setup.mon_ver = mon_ver_of((identity & 8) != 0   ? Generation::kF9P
+                             : (identity & 2) != 0 ? Generation::kM9
+                                                   : Generation::kM8);
   setup.nav_period_s = 1.0 / in.control_in(1, 10);
   const int outputs = in.control_in(1, 3);
   for (int k = 0; k < outputs; ++k) {

@@ -210,6 +210,12 @@ def mon_ver_m9():
                          "PROTVER=32.01", "MOD=NEO-M9N", "GPS;GLO;GAL;BDS", "SBAS;QZSS")
 
 
+def mon_ver_f9p():
+    """The emulated ZED-F9P's MON-VER (docs/ubx.md "ZED-F9P")."""
+    return mon_ver_frame("EXT CORE 1.00 (f4c834)", "00190000", "ROM BASE 0x118B2060", "FWVER=HPG 1.32",
+                         "PROTVER=27.31", "MOD=ZED-F9P", "GPS;GLO;GAL;BDS", "SBAS;QZSS")
+
+
 def key_value_bytes(key):
     """Bytes of a configuration key's value, from the key id's bits 28-30
     (1 and 2 one byte, 3 two, 4 four, 5 eight)."""
@@ -247,6 +253,13 @@ K_SIGNAL_GPS_ENA, K_SIGNAL_SBAS_ENA, K_SIGNAL_GAL_ENA, K_SIGNAL_BDS_ENA, K_SIGNA
 K_MSGOUT_NAV_PVT, K_MSGOUT_NAV_DOP, K_MSGOUT_NAV_SAT, K_MSGOUT_NAV_STATUS, K_MSGOUT_MON_RF, K_MSGOUT_RXM_RTCM = \
     0x20910006, 0x20910038, 0x20910015, 0x2091001A, 0x20910359, 0x20910268
 PX4_M9_RATE_MEAS_MS = 125  # configureDevice: 8 Hz on everything but an F9P
+PX4_F9P_RATE_MEAS_MS = 100  # configureDevice: 10 Hz on an F9P in normal mode, 8 Hz (125) for heading
+# UART2 and heading keys of PX4's RoverWithMovingBase mode (configureDevice).
+K_UART1OUT_RTCM3X = 0x10740004
+K_UART2_BAUDRATE, K_UART2_STOPBITS, K_UART2_DATABITS, K_UART2_PARITY = 0x40530001, 0x20530002, 0x20530003, 0x20530004
+K_UART2IN_UBX, K_UART2IN_NMEA, K_UART2IN_RTCM3X = 0x10750001, 0x10750002, 0x10750004
+K_UART2OUT_UBX, K_UART2OUT_RTCM3X = 0x10760001, 0x10760004
+K_MSGOUT_NAV_RELPOSNED, K_MSGOUT_NAV_HPPOSLLH = 0x2091008D, 0x20910033
 
 
 def px4_m9_probe_payload():
@@ -255,26 +268,36 @@ def px4_m9_probe_payload():
                    (K_UART1IN_NMEA, 0), (K_UART1OUT_UBX, 1), (K_UART1OUT_NMEA, 0)])
 
 
-def px4_m9_valset_payloads(dyn_model=7, sat_rate=10):
+def px4_m9_valset_payloads(dyn_model=7, sat_rate=10, f9p=False, heading=False, uart2_baud=230400):
     """PX4's configureDevice() VALSET blocks for a NEO-M9N (Board::u_blox9)
-    on a UART, output mode GPS, no GNSS selection, I2C protocols off, in
-    order, with whether PX4 requires their ACK."""
+    or, with f9p, a ZED-F9P (10 Hz, or 8 Hz as a moving-baseline rover with
+    heading, then its UART2/RELPOSNED block) on a UART, output mode GPS, no
+    GNSS selection, I2C protocols off, in order, with whether PX4 requires
+    their ACK (the DGNSSMODE block: never; an M9N NAKs it)."""
     port = lambda key, v: [(key + 1, v), (key + 3, v)]  # cfgValsetPort: UART1 and USB
-    return [
+    rate = PX4_M9_RATE_MEAS_MS if heading or not f9p else PX4_F9P_RATE_MEAS_MS
+    blocks = [
         (valset([(K_UART1IN_RTCM3X, 1), (K_USBIN_UBX, 1), (K_USBIN_RTCM3X, 1), (K_USBIN_NMEA, 0),
                  (K_USBOUT_UBX, 1), (K_USBOUT_NMEA, 0)]), True),
         (valset([(K_NAVSPG_FIXMODE, 3), (K_NAVSPG_UTCSTANDARD, 3), (K_NAVSPG_DYNMODEL, dyn_model)] +
                 [(k, 0) for k in K_ODO] +
-                [(K_ITFM_ENABLE, 1), (K_RATE_MEAS, PX4_M9_RATE_MEAS_MS), (K_RATE_NAV, 1), (K_RATE_TIMEREF, 0)]), True),
+                [(K_ITFM_ENABLE, 1), (K_RATE_MEAS, rate), (K_RATE_NAV, 1), (K_RATE_TIMEREF, 0)]), True),
         (valset([(K_NAVHPG_DGNSSMODE, 3)]), False),  # RTK: F9P only, NAK tolerated
         (valset(port(K_MSGOUT_NAV_PVT, 1) + port(K_MSGOUT_NAV_DOP, 1) + port(K_MSGOUT_NAV_SAT, sat_rate) +
                 port(K_MSGOUT_NAV_STATUS, 1) + port(K_MSGOUT_MON_RF, 1) + port(K_MSGOUT_RXM_RTCM, 1)), True),
-        (valset([(K_I2CIN_UBX, 0), (K_I2CIN_NMEA, 0), (K_I2CIN_RTCM3X, 0), (K_I2COUT_UBX, 0), (K_I2COUT_NMEA, 0)]),
-         True),
+        (valset([(K_I2CIN_UBX, 0), (K_I2CIN_NMEA, 0), (K_I2CIN_RTCM3X, 0), (K_I2COUT_UBX, 0), (K_I2COUT_NMEA, 0)] +
+                ([(0x10720004, 0)] if f9p else [])), True),  # I2COUTPROT_RTCM3X: F9P only
     ]
+    if heading:
+        blocks.append((valset([(K_UART1OUT_UBX, 1), (K_UART1OUT_RTCM3X, 0)] + port(K_MSGOUT_NAV_RELPOSNED, 1) +
+                              port(K_MSGOUT_NAV_HPPOSLLH, 1) +
+                              [(K_UART2_STOPBITS, 1), (K_UART2_DATABITS, 0), (K_UART2_PARITY, 0), (K_UART2IN_UBX, 0),
+                               (K_UART2IN_RTCM3X, 1), (K_UART2IN_NMEA, 0), (K_UART2OUT_UBX, 0), (K_UART2OUT_RTCM3X, 0),
+                               (K_UART2_BAUDRATE, uart2_baud)]), True))
+    return blocks
 
 
-def px4_startup_m9(s, fd, path, baud=115200):
+def px4_startup_m9(s, fd, path, baud=115200, f9p=False, heading=False):
     """PX4's protocol-27+ UART start-up against an M9, byte for byte
     (PX4-GPSDrivers ubx.cpp configure / configureDevice): the VALSET probe
     (UART1 8N1, UBX only) -> ACK; VALSET UART1 baud -> ACK at the old rate,
@@ -294,8 +317,9 @@ def px4_startup_m9(s, fd, path, baud=115200):
         s.pump(0.02)
     assert stty_speed(path) == baud, f"line at {stty_speed(path)}, want {baud} after the ACK"
     m = r.timed(s, fd, frame(0x0A, 0x04), is_ubx(0x0A, 0x04), 1.0, "MON-VER")
-    assert m == mon_ver_m9(), f"MON-VER: {m!r}"
-    for payload, required in px4_m9_valset_payloads():
+    assert m == (mon_ver_f9p() if f9p else mon_ver_m9()), f"MON-VER: {m!r}"
+    for payload, required in px4_m9_valset_payloads(f9p=f9p, heading=heading):
+        required = required or f9p  # an F9P ACKs every block, DGNSSMODE included
         what = f"reply to VALSET {payload[4:8][::-1].hex()}.."
         m = r.timed(s, fd, frame(0x06, 0x8A, payload), is_ack_for(0x06, 0x8A), 1.0, what)
         assert m == ack(0x06, 0x8A, required), f"{what}: got {m.hex()} (want {'ACK' if required else 'NAK'})"

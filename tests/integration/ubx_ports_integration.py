@@ -74,7 +74,7 @@ from itlib import RigBase, free_port
 from ubx_startup_faults import case_ardupilot_faults, case_px4_faults
 from ubx_host import (ARDUPILOT_M9_RATES, is_ubx, K_SIGNAL_BDS_ENA, K_SIGNAL_GAL_ENA, K_SIGNAL_GLO_ENA, K_SIGNAL_GPS_ENA,
                       K_SIGNAL_QZSS_ENA, K_SIGNAL_SBAS_ENA, ardupilot_cfg_gnss, valset, K_MSGOUT_MON_RF, K_MSGOUT_NAV_PVT, K_NAVSPG_DYNMODEL, K_RATE_MEAS, K_UART1_BAUDRATE,
-                      PX4_M9_RATE_MEAS_MS, Stream, ack, ardupilot_rates, ardupilot_startup, ardupilot_startup_m9, frame, is_ack_for, nmea,
+                      PX4_M9_RATE_MEAS_MS, PX4_F9P_RATE_MEAS_MS, K_NAVHPG_DGNSSMODE, K_UART2_BAUDRATE, K_UART2IN_RTCM3X, Stream, ack, ardupilot_rates, ardupilot_startup, ardupilot_startup_m9, frame, is_ack_for, nmea,
                       poll_cfg, pvt_fix_ok, px4_rates, px4_startup, px4_startup_m9, send, set_cfg, split_stream,
                       stty_speed, valget_values)
 import tty
@@ -253,6 +253,58 @@ def case_px4_m9(rig):
           f"{seconds:.0f} s, iTOW step {PX4_M9_RATE_MEAS_MS} ms, gnssFixOK; {rf_note}")
 
 
+F9P = 'generation = "f9p"'
+
+
+def px4_f9p_run(rig, heading):
+    """PX4 against an emulated ZED-F9P, in normal mode and as a dual-F9P
+    heading rover (UBXMode::RoverWithMovingBase): the protocol-27 start-up
+    with every block ACKed, DGNSSMODE included (PX4-GPSDrivers ubx.cpp
+    configureDevice), then NAV-PVT at 10 Hz (8 Hz with heading) with
+    gnssFixOK, and with heading NAV-RELPOSNED and NAV-HPPOSLLH every epoch,
+    RELPOSNED's iTOW equal to NAV-PVT's (what ArduPilot checks too)."""
+    if True:
+        path, out = pty_output(rig)
+        rig.start_daemon(out, receiver_toml=F9P)
+        fd = rig.open_tty(path)
+        s = Stream(fd)
+        replies = px4_startup_m9(s, fd, path, f9p=True, heading=heading)
+        s.wait_for(pvt_fix_ok, 4.0, "the first gnssFixOK")
+        seconds = 2.0
+        msgs = s.collect(seconds)
+        period = PX4_M9_RATE_MEAS_MS if heading else PX4_F9P_RATE_MEAS_MS
+        pvts = [m for _, k, m in msgs if k == "ubx" and m[2:4] == b"\x01\x07"]
+        itows = [struct.unpack_from("<I", m, 6)[0] for m in pvts]
+        steps_ms = {b - a for a, b in zip(itows, itows[1:])}
+        assert steps_ms == {period}, f"iTOW steps {sorted(steps_ms)} ms, want {period}"
+        assert all(m[6 + 21] & 1 for m in pvts), "NAV-PVT without gnssFixOK"
+        rel = [m for _, k, m in msgs if k == "ubx" and m[2:4] == b"\x01\x3c"]
+        hp = [m for _, k, m in msgs if k == "ubx" and m[2:4] == b"\x01\x14"]
+        if heading:
+            assert abs(len(rel) - len(pvts)) <= 1 and abs(len(hp) - len(pvts)) <= 1, (len(rel), len(hp), len(pvts))
+            assert all(len(m) == 8 + 64 and m[6] == 1 for m in rel), "NAV-RELPOSNED not version 1, 64 bytes"
+            rel_itows = {struct.unpack_from("<I", m, 6 + 4)[0] for m in rel}
+            assert rel_itows <= set(itows) | {itows[-1] + period}, "RELPOSNED iTOW not a NAV-PVT's"
+        else:
+            assert not rel, "NAV-RELPOSNED without PX4 asking for it"
+        got = valget_values(s, fd, [K_RATE_MEAS, K_NAVHPG_DGNSSMODE] + ([K_UART2_BAUDRATE, K_UART2IN_RTCM3X] if heading else []))
+        want = {K_RATE_MEAS: period, K_NAVHPG_DGNSSMODE: 3}
+        if heading:
+            want.update({K_UART2_BAUDRATE: 230400, K_UART2IN_RTCM3X: 1})
+        assert got == want, f"VALGET {got}, want {want}"
+        print(f"  px4_f9p{' heading' if heading else ''}: VALSET start-up answered, DGNSSMODE ACKed "
+              f"({replies.summary()}); {len(pvts)} NAV-PVT in {seconds:.0f} s, iTOW step {period} ms, gnssFixOK; "
+              f"{len(rel)} NAV-RELPOSNED, {len(hp)} NAV-HPPOSLLH")
+
+
+def case_px4_f9p(rig):
+    px4_f9p_run(rig, heading=False)
+
+
+def case_px4_f9p_heading(rig):
+    px4_f9p_run(rig, heading=True)
+
+
 def case_ardupilot(rig):
     path, out = pty_output(rig)
     rig.start_daemon(out)
@@ -340,13 +392,24 @@ def socat_dump_frames(dump_path, direction):
 
 
 def case_gpsd_m9(rig):
+    gpsd_gen9(rig, M9, "32.01", "gpsd_m9")
+
+
+def case_gpsd_f9p(rig):
+    """gpsd identifies the emulated ZED-F9P (MON-VER MOD=ZED-F9P, PROTVER
+    27.31) over the pty and reports mode 3, as gpsd_m9 does for the M9N."""
+    dev = gpsd_gen9(rig, 'generation = "f9p"', "27.31", "gpsd_f9p")
+    assert "ZED-F9P" in json.dumps(dev), dev
+
+
+def gpsd_gen9(rig, receiver_toml, protver, label):
     """gpsd 3.22 (read-write) against an emulated M9, through socat so that
     what gpsd writes is on record: its u-blox driver identifies the M9N
     (MON-VER hwVersion 00190000, protocol 32.01) and reports mode 3. Every
     UBX command gpsd sends is answered; a CFG-VALSET/VALGET it sends (protocol
     >= 27) gets an ACK, not the M8's NAK."""
     path, out = pty_output(rig)  # factory port: NMEA out, UBX+NMEA in
-    rig.start_daemon(out, receiver_toml=M9)
+    rig.start_daemon(out, receiver_toml=receiver_toml)
     host = os.path.join(rig.tmp, "gpsd-side")
     dump = os.path.join(rig.tmp, "socat-dump.txt")
     with open(dump, "w") as f:
@@ -361,7 +424,7 @@ def case_gpsd_m9(rig):
     if "00190000" not in dev.get("subtype", ""):
         dev = read_json(pipe, 10, lambda m: m.get("class") == "DEVICE" and "00190000" in m.get("subtype", ""),
                         "DEVICE subtype with hwVersion 00190000")
-    assert "PROTVER 32.01" in dev.get("subtype1", "") or "32.01" in json.dumps(dev), dev
+    assert f"PROTVER {protver}" in dev.get("subtype1", "") or protver in json.dumps(dev), dev
     tpv = read_json(pipe, 15, lambda m: m.get("class") == "TPV" and m.get("mode") == 3, "TPV mode 3")
     if dev.get("native") != 1:  # gpsd switches the port to UBX (CFG-PRT) once it knows the chip
         read_json(pipe, 10, lambda m: m.get("class") == "DEVICE" and m.get("native") == 1, "native-mode DEVICE")
@@ -383,10 +446,11 @@ def case_gpsd_m9(rig):
     cfg_naked = sorted({c for c in naks if c[0] == 0x06 and c != (0x06, 0x01) and c in {(m[2], m[3]) for m in sent}})
     assert not cfg_naked, f"CFG commands of gpsd NAKed: {cfg_naked}"
     names = ", ".join(f"{c:02X}-{i:02X}" for c, i in ids)
-    vals = f"{len(val)} CFG-VAL*, all ACKed" if val else "no CFG-VAL* (it configures protocol 32 by CFG-PRT/CFG-MSG)"
-    print(f"  gpsd_m9: driver {dev['driver']} ({dev['subtype']}), native mode; TPV mode 3 at {tpv['lat']:.6f} "
+    vals = f"{len(val)} CFG-VAL*, all ACKed" if val else f"no CFG-VAL* (it configures protocol {protver} by CFG-PRT/CFG-MSG)"
+    print(f"  {label}: driver {dev['driver']} ({dev['subtype']}), native mode; TPV mode 3 at {tpv['lat']:.6f} "
           f"{tpv['lon']:.6f}; gpsd sent UBX {names}: {vals}; {svinfo_msgs} CFG-MSG NAV-SVINFO NAKed (no such "
           f"message from protocol 27), nothing else")
+    return dev
 
 
 def case_gpsd_nmea(rig):
@@ -888,10 +952,12 @@ CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx
          "gpsdecode": case_gpsdecode, "serial": case_serial, "net": case_net, "budget": case_budget,
          "jamming": case_jamming, "wallclock": case_wallclock, "cold_start": case_cold_start,
          "power_on_cold": case_power_on_cold, "nav5": case_nav5, "px4_faults": case_px4_faults,
-         "ardupilot_faults": case_ardupilot_faults, "px4_m9": case_px4_m9, "gpsd_m9": case_gpsd_m9,
+         "ardupilot_faults": case_ardupilot_faults, "px4_m9": case_px4_m9,
+         "px4_f9p": case_px4_f9p, "px4_f9p_heading": case_px4_f9p_heading,
+         "gpsd_f9p": case_gpsd_f9p, "gpsd_m9": case_gpsd_m9,
          "ardupilot_m9": case_ardupilot_m9, "px4_m9_gnss": case_px4_m9_gnss, "ardupilot_gnss": case_ardupilot_gnss,
          "gpsd_m9_sky": case_gpsd_m9_sky}
-NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_m9_sky": ["gpsd", "gpspipe"], "gpsd_m9": ["gpsd", "gpspipe", "socat"], "gpsd_nmea": ["gpsd", "gpspipe"],
+NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_m9_sky": ["gpsd", "gpspipe"], "gpsd_m9": ["gpsd", "gpspipe", "socat"], "gpsd_f9p": ["gpsd", "gpspipe", "socat"], "gpsd_nmea": ["gpsd", "gpspipe"],
          "gpsdecode": ["gpsdecode"],
          "serial": ["socat", "stty"], "cold_start": ["gpsd", "gpspipe"],
          "power_on_cold": ["gpsd", "gpspipe"]}

@@ -12,6 +12,7 @@ namespace gnssemu::cli {
 namespace {
 
 const char* receiver_type(protocol::ubx::Generation g) {
+  if (g == protocol::ubx::Generation::kF9P) return "U-BLOX ZED-F9P";
   return g == protocol::ubx::Generation::kM9 ? "U-BLOX NEO-M9N" : "U-BLOX NEO-M8N";
 }
 

@@ -45,6 +45,8 @@ struct Epoch {
   char status = 'V';      // RMC, GLL: A valid, V invalid
   char pos_mode = 'N';    // RMC, VTG, GLL: N none, A autonomous, E estimated (dead reckoning)
   int nav_mode = 1;       // GSA: 1 none, 2 2D, 3 3D
+  double diff_age_s = -1.0;  // GGA age of differential corrections, s; < 0: empty
+  int diff_station = -1;     // GGA reference station id; < 0: empty
   Talker main{'G', 'P'};  // talker of every sentence but GSV
   UtcStamp utc;
   double lat_deg = 0.0, lon_deg = 0.0;
@@ -146,6 +148,18 @@ Epoch derive(const Fix& fix, const NmeaConfig& cfg, FixOverride reported) {
     set_fix_flags(e, fix.type == FixType::kDeadReckoning ? ReportedFix::kDeadReckoning
                      : fix.type == FixType::k3D          ? ReportedFix::k3D
                                                          : ReportedFix::k2D);
+  }
+  // Differential and RTK solutions (position fix flags: DGNSS quality 2 mode D,
+  // RTK float 5 F, RTK fixed 4 R), with the correction age and station the
+  // real F9K log prints ("...,M,0.0,2000"; receiver-logs/f9k_span_drive).
+  if (!reported && e.has_fix && fix.type != FixType::kDeadReckoning && fix.diff_soln) {
+    switch (fix.carr_soln) {
+      case receiver::CarrierSolution::kFixed: e.quality = 4; e.pos_mode = 'R'; break;
+      case receiver::CarrierSolution::kFloat: e.quality = 5; e.pos_mode = 'F'; break;
+      case receiver::CarrierSolution::kNone: e.quality = 2; e.pos_mode = 'D'; break;
+    }
+    if (std::isfinite(fix.corr_age_s) && fix.corr_age_s >= 0.0) e.diff_age_s = std::min(fix.corr_age_s, 999.9);
+    if (fix.ref_station_id >= 0) e.diff_station = std::min(fix.ref_station_id, 4095);
   }
   // NMEA 2.1 has no dead-reckoning quality: u-blox reports 1 (position fix flags).
   if (!e.pos_mode_field && e.quality == 6) e.quality = 1;
@@ -293,8 +307,16 @@ void write_gga(const Epoch& e, const NmeaSky& sky, const Emit& emit) {
   } else {
     for (int i = 0; i < 4; ++i) w.empty();
   }
-  w.empty();  // no DGPS
-  w.empty();
+  if (e.diff_age_s >= 0.0) {
+    w.fixed(e.diff_age_s, 1);
+  } else {
+    w.empty();
+  }
+  if (e.diff_station >= 0) {
+    w.integer(e.diff_station, 4);
+  } else {
+    w.empty();
+  }
   emit(w);
 }
 

@@ -31,14 +31,14 @@ using Pairs = std::span<const ValTransaction::Pending>;
 
 /// key/value pairs of a VALSET body (p from byte 4); false when a key is
 /// unknown, a value is cut short or there are more than 64.
-bool parse_pairs(std::span<const std::uint8_t> p, std::array<ValTransaction::Pending, kMaxKeysPerMessage>& out,
-                 std::size_t& n) noexcept {
+bool parse_pairs(std::span<const std::uint8_t> p, Generation g,
+                 std::array<ValTransaction::Pending, kMaxKeysPerMessage>& out, std::size_t& n) noexcept {
   n = 0;
   std::size_t off = 0;
   while (off < p.size()) {
     if (off + 4 > p.size() || n == out.size()) return false;
     const std::uint32_t id = u4_at(p, off);
-    const ConfigKey* k = find_config_key(id);
+    const ConfigKey* k = find_config_key(id, g);
     if (k == nullptr) return false;
     const std::size_t len = k->value_bytes();
     if (off + 4 + len > p.size()) return false;
@@ -98,16 +98,18 @@ bool add_pending(ValTransaction& t, Pairs pairs) noexcept {
 }
 
 /// Keys of a VALGET/VALDEL body (from byte 4): 1..64, each known or a wildcard matching some key.
-bool keys_ok(std::span<const std::uint8_t> p) noexcept {
+bool keys_ok(std::span<const std::uint8_t> p, Generation g) noexcept {
   if (p.empty() || p.size() % 4 != 0 || p.size() / 4 > kMaxKeysPerMessage) return false;
   for (std::size_t off = 0; off < p.size(); off += 4) {
     const std::uint32_t id = u4_at(p, off);
     if (!is_key_wildcard(id)) {
-      if (find_config_key(id) == nullptr) return false;
+      if (find_config_key(id, g) == nullptr) return false;
       continue;
     }
     const auto keys = config_keys();
-    if (std::none_of(keys.begin(), keys.end(), [&](const ConfigKey& k) { return key_matches(id, k.id); })) return false;
+    if (std::none_of(keys.begin(), keys.end(), [&](const ConfigKey& k) { return k.exists_on(g) && key_matches(id, k.id); })) {
+      return false;
+    }
   }
   return true;
 }
@@ -129,7 +131,7 @@ Reply handle_cfg_valset(HandlerContext& ctx, const FrameView& frame) {
   if (layers == 0 || (layers & ~(kLayerRam | kLayerSaved)) != 0 || action > kApply) return nak_cancel(ctx, id);
   std::array<ValTransaction::Pending, kMaxKeysPerMessage> pairs{};
   std::size_t n = 0;
-  if (!parse_pairs(p.subspan(4), pairs, n)) return nak_cancel(ctx, id);
+  if (!parse_pairs(p.subspan(4), ctx.generation, pairs, n)) return nak_cancel(ctx, id);
   const Pairs these{pairs.data(), n};
   ValTransaction& t = *ctx.transaction;
   switch (action) {
@@ -156,7 +158,7 @@ Reply handle_cfg_valget(HandlerContext& ctx, const FrameView& frame) {
   if (!has_config_interface(ctx.generation)) return handle_cfg_unknown(ctx, frame);
   const auto p = frame.payload;
   const MsgId id = frame.id;
-  if (p.size() < 4 || p[0] != 0 || !keys_ok(p.subspan(4))) return ack(ctx, id, false);
+  if (p.size() < 4 || p[0] != 0 || !keys_ok(p.subspan(4), ctx.generation)) return ack(ctx, id, false);
   const std::uint8_t layer = p[1];
   const DeviceConfig* src = layer == kGetRam                          ? &ctx.current
                             : layer == kGetBbr || layer == kGetFlash ? &ctx.saved
@@ -175,7 +177,7 @@ Reply handle_cfg_valget(HandlerContext& ctx, const FrameView& frame) {
   for (std::size_t off = 4; off < p.size() && emitted < kMaxKeysPerMessage; off += 4) {
     const std::uint32_t want = u4_at(p, off);
     for (const ConfigKey& k : config_keys()) {
-      if (!key_matches(want, k.id)) continue;
+      if (!k.exists_on(ctx.generation) || !key_matches(want, k.id)) continue;
       if (index++ < position) continue;
       if (emitted == kMaxKeysPerMessage) break;
       const std::uint64_t v = read_config_key(k, *src, ctx.uart);
@@ -194,7 +196,7 @@ Reply handle_cfg_valdel(HandlerContext& ctx, const FrameView& frame) {
   const auto p = frame.payload;
   const MsgId id = frame.id;
   // Version 0, or 1 without a transaction (VALDEL transactions are not modelled: NAK).
-  if (p.size() < 4 || p[0] > 1 || (p[0] == 1 && p[2] != 0) || !keys_ok(p.subspan(4))) return ack(ctx, id, false);
+  if (p.size() < 4 || p[0] > 1 || (p[0] == 1 && p[2] != 0) || !keys_ok(p.subspan(4), ctx.generation)) return ack(ctx, id, false);
   const std::uint8_t layers = p[1];
   if ((layers & kLayerSaved) == 0 || (layers & ~kLayerSaved) != 0) return ack(ctx, id, false);
   // Deleting from BBR/Flash reverts the saved value to the default.
@@ -203,7 +205,7 @@ Reply handle_cfg_valdel(HandlerContext& ctx, const FrameView& frame) {
   for (std::size_t off = 4; off < p.size(); off += 4) {
     const std::uint32_t want = u4_at(p, off);
     for (const ConfigKey& k : config_keys()) {
-      if (!key_matches(want, k.id)) continue;
+      if (!k.exists_on(ctx.generation) || !key_matches(want, k.id)) continue;
       if (!write_config_key(k, staged, ctx.uart, read_config_key(k, ctx.defaults, ctx.uart))) {
         return ack(ctx, id, false);
       }

@@ -11,6 +11,7 @@ namespace gnssemu::protocol::ubx {
 namespace {
 
 constexpr std::int64_t kU1 = 0xFF, kU2 = 0xFFFF, kU4 = 0xFFFFFFFF;
+constexpr std::int64_t kI4Min = std::numeric_limits<std::int32_t>::min(), kI4Max = std::numeric_limits<std::int32_t>::max();
 
 constexpr ConfigKey plain(std::uint32_t id, std::string_view name, std::uint8_t slot, std::uint64_t dflt,
                           std::int64_t max) {
@@ -19,6 +20,29 @@ constexpr ConfigKey plain(std::uint32_t id, std::string_view name, std::uint8_t 
   k.plain_default = dflt;
   k.max = max;
   return k;
+}
+
+/// A key only the ZED-F9P knows.
+constexpr ConfigKey f9p(ConfigKey k) {
+  k.generations = kF9POnly;
+  return k;
+}
+
+/// A plain F9P enum in [min, max].
+constexpr ConfigKey f9p_enum(std::uint32_t id, std::string_view name, std::uint8_t slot, std::uint64_t dflt,
+                             std::int64_t min, std::int64_t max) {
+  ConfigKey k = plain(id, name, slot, dflt, max);
+  k.min = min;
+  return f9p(k);
+}
+
+/// A plain F9P key holding a signed value in [min, max] (I1/I4).
+constexpr ConfigKey f9p_signed(std::uint32_t id, std::string_view name, std::uint8_t slot, std::int64_t min,
+                               std::int64_t max) {
+  ConfigKey k = plain(id, name, slot, 0, max);
+  k.min = min;
+  k.is_signed = true;
+  return f9p(k);
 }
 
 /// inProtoMask/outProtoMask bit (proto:: bit index) of a port.
@@ -56,6 +80,7 @@ struct MsgOutRow {
   std::uint32_t i2c_id;
   std::string_view name;
   MsgId msg;
+  GenerationSet generations = kGen9;
 };
 constexpr MsgOutRow kMsgOutRows[] = {
     {0x20910006, "CFG-MSGOUT-UBX_NAV_PVT", msg::kNavPvt},
@@ -78,6 +103,24 @@ constexpr MsgOutRow kMsgOutRows[] = {
     {0x20910268, "CFG-MSGOUT-UBX_RXM_RTCM", kRxmRtcm},
     {0x209102A4, "CFG-MSGOUT-UBX_RXM_RAWX", msg::kRxmRawx},
     {0x20910231, "CFG-MSGOUT-UBX_RXM_SFRBX", msg::kRxmSfrbx},
+    // The ZED-F9P's high-precision and RTK messages (SparkFun u-blox_config_keys.h, HPG 1.32).
+    {0x20910033, "CFG-MSGOUT-UBX_NAV_HPPOSLLH", msg::kNavHpposllh, kF9POnly},
+    {0x2091002E, "CFG-MSGOUT-UBX_NAV_HPPOSECEF", msg::kNavHpposecef, kF9POnly},
+    {0x2091008D, "CFG-MSGOUT-UBX_NAV_RELPOSNED", msg::kNavRelposned, kF9POnly},
+    {0x209106B6, "CFG-MSGOUT-UBX_RXM_COR", msg::kRxmCor, kF9POnly},
+    // RTCM 3 output of a base or moving base (CFG-MSG class 0xF5, id = the number's low byte).
+    {0x209102BD, "CFG-MSGOUT-RTCM_3X_TYPE1005", MsgId{0xF5, 0x05}, kF9POnly},
+    {0x2091035E, "CFG-MSGOUT-RTCM_3X_TYPE1074", MsgId{0xF5, 0x4A}, kF9POnly},
+    {0x209102CC, "CFG-MSGOUT-RTCM_3X_TYPE1077", MsgId{0xF5, 0x4D}, kF9POnly},
+    {0x20910363, "CFG-MSGOUT-RTCM_3X_TYPE1084", MsgId{0xF5, 0x54}, kF9POnly},
+    {0x209102D1, "CFG-MSGOUT-RTCM_3X_TYPE1087", MsgId{0xF5, 0x57}, kF9POnly},
+    {0x20910368, "CFG-MSGOUT-RTCM_3X_TYPE1094", MsgId{0xF5, 0x5E}, kF9POnly},
+    {0x20910318, "CFG-MSGOUT-RTCM_3X_TYPE1097", MsgId{0xF5, 0x61}, kF9POnly},
+    {0x2091036D, "CFG-MSGOUT-RTCM_3X_TYPE1124", MsgId{0xF5, 0x7C}, kF9POnly},
+    {0x209102D6, "CFG-MSGOUT-RTCM_3X_TYPE1127", MsgId{0xF5, 0x7F}, kF9POnly},
+    {0x20910303, "CFG-MSGOUT-RTCM_3X_TYPE1230", MsgId{0xF5, 0xE6}, kF9POnly},
+    {0x209102FE, "CFG-MSGOUT-RTCM_3X_TYPE4072_0", MsgId{0xF5, 0xFE}, kF9POnly},
+    {0x20910381, "CFG-MSGOUT-RTCM_3X_TYPE4072_1", MsgId{0xF5, 0xFD}, kF9POnly},
     {0x209100BA, "CFG-MSGOUT-NMEA_ID_GGA", msg::kNmeaGga},
     {0x209100C9, "CFG-MSGOUT-NMEA_ID_GLL", msg::kNmeaGll},
     {0x209100BF, "CFG-MSGOUT-NMEA_ID_GSA", msg::kNmeaGsa},
@@ -192,6 +235,46 @@ constexpr ConfigKey kFixedKeys[] = {
     gnss(0x10310012, "CFG-SIGNAL-QZSS_L1CA_ENA", 5, 16),
     gnss(0x10310025, "CFG-SIGNAL-GLO_ENA", 6, 0),
     gnss(0x10310018, "CFG-SIGNAL-GLO_L1_ENA", 6, 16),
+    // The F9P's second band (sigCfgMask bits 4/5 = flags bits 20/21) and QZSS L1S (bit 2).
+    f9p(gnss(0x10310003, "CFG-SIGNAL-GPS_L2C_ENA", 0, 20)),
+    f9p(gnss(0x1031000A, "CFG-SIGNAL-GAL_E5B_ENA", 2, 21)),
+    f9p(gnss(0x1031000E, "CFG-SIGNAL-BDS_B2_ENA", 3, 20)),
+    f9p(gnss(0x10310014, "CFG-SIGNAL-QZSS_L1S_ENA", 5, 18)),
+    f9p(gnss(0x10310015, "CFG-SIGNAL-QZSS_L2C_ENA", 5, 20)),
+    f9p(gnss(0x1031001A, "CFG-SIGNAL-GLO_L2_ENA", 6, 20)),
+    // CFG-NAVHPG-DGNSSMODE: 2 RTK float (no ambiguity fixing), 3 RTK fixed (factory).
+    f9p_enum(0x20140011, "CFG-NAVHPG-DGNSSMODE", 8, 3, 2, 3),
+    // UART2 (the F9P's second UART: RTCM between a moving base and its rover).
+    f9p(prot(0x10750001, "CFG-UART2INPROT-UBX", kInProto, kPortUart2, 0)),
+    f9p(prot(0x10750002, "CFG-UART2INPROT-NMEA", kInProto, kPortUart2, 1)),
+    f9p(prot(0x10750004, "CFG-UART2INPROT-RTCM3X", kInProto, kPortUart2, 5)),
+    f9p(prot(0x10760001, "CFG-UART2OUTPROT-UBX", kOutProto, kPortUart2, 0)),
+    f9p(prot(0x10760002, "CFG-UART2OUTPROT-NMEA", kOutProto, kPortUart2, 1)),
+    f9p(prot(0x10760004, "CFG-UART2OUTPROT-RTCM3X", kOutProto, kPortUart2, 5)),
+    f9p(ConfigKey{0x40530001, "CFG-UART2-BAUDRATE", kUartBaud, kPortUart2, kNone, 0, 0, 32, false, 0, kU4}),
+    f9p(ConfigKey{0x20530002, "CFG-UART2-STOPBITS", kUartFraming, kPortUart2, kNone, 2, 0, 8, false, 1, 1}),
+    f9p(ConfigKey{0x20530003, "CFG-UART2-DATABITS", kUartFraming, kPortUart2, kNone, 3, 0, 8, false, 0, 0}),
+    f9p(ConfigKey{0x20530004, "CFG-UART2-PARITY", kUartFraming, kPortUart2, kNone, 4, 0, 8, false, 0, 0}),
+    f9p(plain(0x10530005, "CFG-UART2-ENABLED", 9, 1, 1)),
+    // CFG-TMODE: the base station's survey-in or fixed position (cm, 0.1 mm HP parts,
+    // 1e-7 deg; accuracies 0.1 mm; survey-in duration s).
+    f9p(plain(0x20030001, "CFG-TMODE-MODE", 10, 0, 2)),
+    f9p(plain(0x20030002, "CFG-TMODE-POS_TYPE", 11, 0, 1)),
+    f9p_signed(0x40030003, "CFG-TMODE-ECEF_X", 12, kI4Min, kI4Max),
+    f9p_signed(0x40030004, "CFG-TMODE-ECEF_Y", 13, kI4Min, kI4Max),
+    f9p_signed(0x40030005, "CFG-TMODE-ECEF_Z", 14, kI4Min, kI4Max),
+    f9p_signed(0x20030006, "CFG-TMODE-ECEF_X_HP", 15, -99, 99),
+    f9p_signed(0x20030007, "CFG-TMODE-ECEF_Y_HP", 16, -99, 99),
+    f9p_signed(0x20030008, "CFG-TMODE-ECEF_Z_HP", 17, -99, 99),
+    f9p_signed(0x40030009, "CFG-TMODE-LAT", 18, -900000000, 900000000),
+    f9p_signed(0x4003000A, "CFG-TMODE-LON", 19, -1800000000, 1800000000),
+    f9p_signed(0x4003000B, "CFG-TMODE-HEIGHT", 20, kI4Min, kI4Max),
+    f9p_signed(0x2003000C, "CFG-TMODE-LAT_HP", 21, -99, 99),
+    f9p_signed(0x2003000D, "CFG-TMODE-LON_HP", 22, -99, 99),
+    f9p_signed(0x2003000E, "CFG-TMODE-HEIGHT_HP", 23, -99, 99),
+    f9p(plain(0x4003000F, "CFG-TMODE-FIXED_POS_ACC", 24, 100, kU4)),
+    f9p(plain(0x40030010, "CFG-TMODE-SVIN_MIN_DUR", 25, 60, kU4)),
+    f9p(plain(0x40030011, "CFG-TMODE-SVIN_ACC_LIMIT", 26, 500, kU4)),
     // CFG-NMEA-PROTVER: 21, 23, 40, 41, 42 (= 4.11) for nmeaVersion 0x21 .. 0x4B.
     field(0x20930001, "CFG-NMEA-PROTVER", kNmeaProtver, msg::kCfgNmea, 1, 0, 8, 21, 42, bits_of({21, 23, 40, 41, 42})),
     // The other CFG-NMEA fields (legacy CFG-NMEA v1: filter 0, numSV 2, flags 3, gnssToFilter 4,
@@ -229,6 +312,7 @@ constexpr std::array<ConfigKey, kNumKeys> kKeys = [] {
     for (std::uint8_t port = 0; port < kMsgOutPorts; ++port) {
       ConfigKey k{m.i2c_id + port, m.name, KeyStore::kMsgOut, port, m.msg};
       k.max = kU1;
+      k.generations = m.generations;
       keys[n++] = k;
     }
   }
@@ -336,6 +420,11 @@ const ConfigKey* find_config_key(std::uint32_t key_id) noexcept {
     if (k.id == key_id) return &k;
   }
   return nullptr;
+}
+
+const ConfigKey* find_config_key(std::uint32_t key_id, Generation g) noexcept {
+  const ConfigKey* k = find_config_key(key_id);
+  return k != nullptr && k->exists_on(g) ? k : nullptr;
 }
 
 std::string config_key_name(const ConfigKey& k) {

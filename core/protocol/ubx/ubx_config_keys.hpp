@@ -19,6 +19,7 @@
 #include "core/protocol/ubx/ubx_device_config.hpp"
 #include "core/protocol/ubx/ubx_encoder.hpp"
 #include "core/protocol/ubx/ubx_frame.hpp"
+#include "core/protocol/ubx/ubx_message_table.hpp"
 
 namespace gnssemu::protocol::ubx {
 
@@ -52,6 +53,12 @@ struct ConfigKey {
   std::uint64_t allowed = 0;     ///< non-zero: value must be < 64 with its bit set (enums with gaps)
   std::uint8_t slot = 0;         ///< kPlain: index into DeviceConfig plain values
   std::uint64_t plain_default = 0;  ///< kPlain: factory value
+  /// Generations whose firmware knows the key: a VALSET, VALGET or VALDEL
+  /// naming it elsewhere is NAKed whole (PX4-GPSDrivers relies on an M9
+  /// NAKing CFG-NAVHPG-DGNSSMODE).
+  GenerationSet generations = kGen9;
+
+  constexpr bool exists_on(Generation g) const noexcept { return (generations & generation_bit(g)) != 0; }
 
   /// Bytes of the value on the wire: key id bits 28-30 (1: one bit in a
   /// byte, 2: 1, 3: 2, 4: 4, 5: 8 bytes); 0 for reserved size codes.
@@ -70,10 +77,13 @@ struct ConfigKey {
 /// Port name suffixes of MSGOUT keys, by u-blox port id (I2C = DDC).
 inline constexpr std::array<std::string_view, 5> kMsgOutPortSuffix{"_I2C", "_UART1", "_UART2", "_USB", "_SPI"};
 
-/// Every key the emulated M9 knows, in table order (VALGET wildcards answer in it).
+/// Every key of every generation, in table order (VALGET wildcards answer
+/// in it; skip the rows !exists_on the chip's generation).
 std::span<const ConfigKey> config_keys() noexcept;
-/// The row of key_id, or nullptr when unknown.
+/// The row of key_id, or nullptr when unknown to every generation.
 const ConfigKey* find_config_key(std::uint32_t key_id) noexcept;
+/// The row of key_id when generation g knows it, else nullptr.
+const ConfigKey* find_config_key(std::uint32_t key_id, Generation g) noexcept;
 /// Full u-blox name ("CFG-MSGOUT-UBX_NAV_PVT_UART1"), for docs and tests.
 std::string config_key_name(const ConfigKey& k);
 
@@ -114,7 +124,7 @@ struct ValTransaction {
   bool open = false;
   std::uint8_t layers = 0;   ///< VALSET layers bits of the transaction
   std::size_t size = 0;      ///< pending pairs
-  std::array<Pending, 384> pending{};  ///< last value per key (a transaction holds at most every key once)
+  std::array<Pending, 512> pending{};  ///< last value per key (a transaction holds at most every key once)
   DeviceConfig scratch, scratch_ram;  ///< staged saved and RAM configurations
 
   void cancel() noexcept {

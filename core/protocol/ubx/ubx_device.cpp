@@ -110,7 +110,7 @@ InputResult Device::handle_ubx(Link at, const FrameView& frame, double now_s, st
   if (cfg && frame.id != msg::kCfgValset) val_.cancel();
   HandlerContext ctx{current_, saved_, defaults_, at.output, at.port_id, out, encoder_, last_fix_, info_,
                      ack_unknown_cfg_, generation(), std::nullopt, &val_};
-  const Handler handle = find_handler(frame.id);
+  const Handler handle = cfg && !cfg_message_exists(frame.id, generation()) ? handle_cfg_unknown : find_handler(frame.id);
   r.reply = handle != nullptr ? handle(ctx, frame) : Reply::kNone;
   if (ctx.reset) {
     r.reset = ctx.reset;
@@ -198,6 +198,7 @@ void Device::diff(Link at, InputResult& r) const noexcept {
     r.gnss_changed = true;
   }
   if (block_differs(before_, current_, msg::kCfgNmea)) r.nmea_config_changed = true;
+  if (!(ubx::hpg_settings(before_) == ubx::hpg_settings(current_))) r.hpg_changed = true;
   if (!(saved_before_ == saved_)) r.saved_changed = true;
 }
 

@@ -31,6 +31,7 @@
 #include "core/protocol/ubx/ubx_frame.hpp"
 #include "core/protocol/ubx/ubx_gnss.hpp"
 #include "core/protocol/ubx/ubx_handlers.hpp"
+#include "core/protocol/ubx/ubx_hpg.hpp"
 #include "core/protocol/ubx/ubx_message_list.hpp"
 #include "core/protocol/ubx/ubx_message_table.hpp"
 #include "core/protocol/ubx/ubx_reset.hpp"
@@ -126,6 +127,8 @@ struct InputResult {
   bool gnss_changed = false;
   /// The NMEA settings changed (CFG-NMEA, CFG-NMEA-* keys): Device::nmea_settings().
   bool nmea_config_changed = false;
+  /// The F9P's RTK, UART2 or base-mode settings changed: Device::hpg_settings().
+  bool hpg_changed = false;
   /// The saved (BBR/flash) configuration changed (CFG-CFG save or clear,
   /// VALSET/VALDEL to BBR or Flash): write the state file (Device::saved()).
   bool saved_changed = false;
@@ -215,6 +218,9 @@ public:
   NavRateLimits nav_rate_limits() const noexcept;
   /// Tracking channels in all and per system (CFG-GNSS as now set).
   ChannelLimits channel_limits() const noexcept;
+  /// The ZED-F9P's RTK mode, correction time-out, UART2 and base (time)
+  /// mode as now configured (ubx_hpg.hpp; factory values on other generations).
+  HpgSettings hpg_settings() const noexcept { return ubx::hpg_settings(current_); }
 
   /// Settings of the port at at.
   const PortSettings& port(Link at) const noexcept { return current_.port(column(at)); }

@@ -66,6 +66,11 @@ DeviceConfig DeviceConfig::factory_defaults(std::size_t uarts, Generation genera
   c.ports_[kPortUsb] = {kPortUsb, true, 0, 0, 0, in, out, 0, false};
   c.ports_[kPortSpi] = {kPortSpi, true, 0, 0x100, 0, in, out, 0, false};
   for (std::size_t u = 0; u < c.uarts(); ++u) c.ports_[c.column(u, kPortUart1)] = uart1;
+  if (generation == Generation::kF9P) {
+    // ZED-F9P UART2: 38400 8N1, RTCM 3 (and UBX) in, RTCM 3 out (HPG 1.32
+    // CFG-UART2 and CFG-UART2IN/OUTPROT defaults; docs/ubx.md §ZED-F9P).
+    c.ports_[kPortUart2] = {kPortUart2, true, 0, 0x8C0, 38400, proto::kUbx | proto::kRtcm3, proto::kRtcm3, 0, false};
+  }
   // NMEA GGA GLL GSA GSV RMC VTG at 1 on every existing port; TXT is on too.
   for (MsgId id : {msg::kNmeaGga, msg::kNmeaGll, msg::kNmeaGsa, msg::kNmeaGsv, msg::kNmeaRmc, msg::kNmeaVtg}) {
     for (std::size_t col = 0; col < c.columns(); ++col) {
@@ -126,7 +131,7 @@ DeviceConfig DeviceConfig::factory_defaults(std::size_t uarts, Generation genera
   b.u1(0).zeros(3).u1(0).u1(0).zeros(6).u1(10).u1(50).zeros(2).u1(153).u1(76).zeros(2);
   c.store(msg::kCfgOdo, 0, b.span());
   b = {};  // CFG-NMEA version 1: NMEA 4.0 on the M8, 4.10 on the NEO-M9N (their logs, multi-gnss.md §7)
-  b.u1(0).u1(generation == Generation::kM9 ? 0x41 : 0x40).u1(0).u1(0).u4(0).u1(0).u1(0).u1(0).u1(1).zeros(2).zeros(6);
+  b.u1(0).u1(is_generation9(generation) ? 0x41 : 0x40).u1(0).u1(0).u4(0).u1(0).u1(0).u1(0).u1(1).zeros(2).zeros(6);
   c.store(msg::kCfgNmea, 0, b.span());
   b = {};  // CFG-PMS: full power
   b.u1(0).u1(0).u2(0).u2(0).zeros(2);

@@ -49,7 +49,7 @@ inline constexpr std::size_t kMaxStoredBytes = 112;
 inline constexpr std::size_t kMaxStoredBlocks = 24;
 /// Configuration-interface values no legacy CFG message holds (the plain
 /// keys of ubx_config_keys.hpp).
-inline constexpr std::size_t kMaxPlainValues = 16;
+inline constexpr std::size_t kMaxPlainValues = 32;
 
 /// A CFG payload kept verbatim and returned on poll. index distinguishes
 /// CFG-TP5 tpIdx and CFG-INF protocolID; 0 otherwise.

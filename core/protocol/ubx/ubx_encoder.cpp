@@ -17,6 +17,7 @@
 
 #include "core/protocol/ubx/ubx_encoder_detail.hpp"
 #include "core/protocol/ubx/ubx_gnss.hpp"
+#include "core/protocol/ubx/ubx_hpg.hpp"
 
 namespace gnssemu::protocol::ubx {
 
@@ -30,6 +31,21 @@ constexpr std::uint8_t kChipGenM8 = 4;       // NAV-SVINFO globalFlags chipGen (
 constexpr std::uint8_t kUtcStandardUsno = 3;  // NAV-TIMEUTC: UTC from GPS (USNO)
 constexpr std::size_t kMaxExtensions = 10;
 constexpr std::size_t kMaxStringChars = 29;   // CH[30] with NUL
+
+/// NAV-PVT flags3 bits 1-4 lastCorrectionAge (protocol 27 and later): 0
+/// none, then the age bins < 1, 2, 5, 10, 15, 20, 30, 45, 60, 90, 120 s and >= 120 s.
+std::uint8_t last_correction_age(double age_s) noexcept {
+  if (!(age_s >= 0.0)) return 0;
+  constexpr double kUpper[] = {1, 2, 5, 10, 15, 20, 30, 45, 60, 90, 120};
+  std::uint8_t code = 12;
+  for (std::uint8_t i = 0; i < std::size(kUpper); ++i) {
+    if (age_s < kUpper[i]) {
+      code = static_cast<std::uint8_t>(i + 1);
+      break;
+    }
+  }
+  return static_cast<std::uint8_t>(code << 1);
+}
 
 void put_string(char* dst, std::size_t size, const std::string& s) noexcept {
   std::memset(dst, 0, size);
@@ -48,6 +64,16 @@ bool reports_fix_ok(const Fix& fix, FixOverride reported) noexcept {
 MonVerConfig mon_ver_of(Generation g) {
   if (g == Generation::kM8) return {};
   MonVerConfig c;
+  if (g == Generation::kF9P) {
+    c.sw_version = "EXT CORE 1.00 (f4c834)";
+    c.hw_version = "00190000";
+    c.rom_base = "ROM BASE 0x118B2060";
+    c.fw_version = "HPG 1.32";
+    c.protocol_version = 27.31;
+    c.extensions = {"MOD=ZED-F9P", "GPS;GLO;GAL;BDS", "SBAS;QZSS"};
+    c.generation = g;
+    return c;
+  }
   c.sw_version = "EXT CORE 4.04 (7f89f7)";
   c.hw_version = "00190000";
   c.rom_base = "ROM BASE 0x118B2060";
@@ -68,10 +94,10 @@ void validate(const MonVerConfig& config) {
     bad("hw_version must be 8 hex digits (00080000 = M8), got '" + config.hw_version + "'");
   }
   if (config.fw_version.size() + 6 > kMaxStringChars) bad("fw_version too long");
-  const bool m9 = config.generation == Generation::kM9;
+  const bool m9 = is_generation9(config.generation);
   const double lo = m9 ? 27.0 : 18.0, hi = m9 ? 50.0 : 24.0;
   if (!std::isfinite(config.protocol_version) || config.protocol_version < lo || config.protocol_version >= hi) {
-    bad(std::string("protocol_version must be in ") + (m9 ? "[27, 50) for an M9" : "[18, 24) for an M8") +
+    bad(std::string("protocol_version must be in ") + (m9 ? "[27, 50) for a u-blox 9" : "[18, 24) for an M8") +
         " (PX4 uses CFG-VALSET from 27)");
   }
   if (config.rom_base.size() > kMaxStringChars) bad("rom_base too long");
@@ -118,7 +144,10 @@ std::size_t UbxEncoder::nav_pvt_as(const Fix& fix, FixOverride reported, std::st
   }
   m.tAcc = c.has_time ? to_acc<std::uint32_t>(fix.time_acc_s * 1e9) : 0xFFFFFFFF;
   m.fixType = c.fix_type;
-  m.flags = c.fix_ok ? 0x01 : 0x00;  // gnssFixOK; no DGNSS, no carrier solution
+  m.flags = c.fix_ok ? 0x01 : 0x00;  // gnssFixOK
+  if (c.has_fix && fix.diff_soln) m.flags |= 0x02;  // diffSoln
+  if (c.has_fix) m.flags |= static_cast<std::uint8_t>(static_cast<unsigned>(fix.carr_soln) << 6);  // carrSoln
+  if (is_generation9(config_.generation)) m.flags3 = last_correction_age(fix.corr_age_s);
   m.numSV = c.num_sv;
   if (c.has_fix) {
     m.lon = to_int<std::int32_t>(c.lon_deg * 1e7);
@@ -138,9 +167,9 @@ std::size_t UbxEncoder::nav_pvt_as(const Fix& fix, FixOverride reported, std::st
   } else {
     m.hAcc = m.vAcc = m.sAcc = 0xFFFFFFFF;
     m.headAcc = to_acc<std::uint32_t>(180.0 * 1e5);
-    m.flags3 = 0x01;  // invalidLlh
   }
   m.pDOP = dop_u2(fix.dop.pdop, c.has_fix);
+  if (!c.has_fix) m.flags3 |= 0x01;  // invalidLlh
   return append_message(out, msg::kNavPvt, m);
 }
 
@@ -362,9 +391,10 @@ std::size_t UbxEncoder::mon_hw(const Fix& fix, const EpochInfo& info, std::strin
 
 std::size_t UbxEncoder::mon_rf(const Fix& fix, const EpochInfo& info, std::string& out) const {
   const FrontEnd f = front_end(fix, info);
-  std::uint8_t buf[sizeof(wire::MonRfHeader) + sizeof(wire::MonRfBlock)];
+  std::uint8_t buf[sizeof(wire::MonRfHeader) + 2 * sizeof(wire::MonRfBlock)];
   wire::MonRfHeader h{};
-  h.nBlocks = 1;  // a NEO-M9N is L1 only
+  // A NEO-M9N is L1 only; a ZED-F9P has an L1 and an L2/L5 front end (blockId 1).
+  h.nBlocks = is_dual_band(config_.generation) ? 2 : 1;
   wire::MonRfBlock b{};
   b.flags = static_cast<std::uint8_t>(f.jamming_state);
   b.antStatus = f.ant_status;
@@ -374,8 +404,11 @@ std::size_t UbxEncoder::mon_rf(const Fix& fix, const EpochInfo& info, std::strin
   b.jamInd = f.jam_ind;
   b.magI = b.magQ = f.mag_iq;  // ofsI, ofsQ 0: a balanced front end
   std::memcpy(buf, &h, sizeof h);
-  std::memcpy(buf + sizeof h, &b, sizeof b);
-  return append_frame(out, msg::kMonRf, {buf, sizeof buf});
+  for (std::uint8_t i = 0; i < h.nBlocks; ++i) {
+    b.blockId = i;  // the second band shares the first's front end until the world models its own
+    std::memcpy(buf + sizeof h + i * sizeof b, &b, sizeof b);
+  }
+  return append_frame(out, msg::kMonRf, {buf, sizeof h + h.nBlocks * sizeof b});
 }
 
 std::size_t UbxEncoder::sec_sig(const Fix& fix, const EpochInfo& info, std::string& out) const {
@@ -404,7 +437,8 @@ bool UbxEncoder::can_encode(MsgId id) noexcept {
          id == msg::kNavSol || id == msg::kNavVelned || id == msg::kNavTimegps || id == msg::kNavTimeutc ||
          id == msg::kNavSat || id == msg::kNavSvinfo || id == msg::kNavEoe || id == msg::kMonHw ||
          id == msg::kMonRf || id == msg::kSecSig || id == msg::kMonVer || id == msg::kNavSig ||
-         id == msg::kNavTimeglo || id == msg::kNavTimegal || id == msg::kNavTimebds || id == msg::kMonHw2;
+         id == msg::kNavTimeglo || id == msg::kNavTimegal || id == msg::kNavTimebds || id == msg::kMonHw2 ||
+         id == msg::kNavHpposllh || id == msg::kNavHpposecef || id == msg::kNavRelposned;
 }
 
 std::size_t UbxEncoder::encode(MsgId id, const Fix& fix, const EpochInfo& info, std::string& out) const {
@@ -429,6 +463,9 @@ std::size_t UbxEncoder::encode(MsgId id, const Fix& fix, const EpochInfo& info, 
   if (id == msg::kNavTimegal) return nav_timegal(fix, out);
   if (id == msg::kNavTimebds) return nav_timebds(fix, out);
   if (id == msg::kMonHw2) return mon_hw2(fix, info, out);
+  if (id == msg::kNavHpposllh) return ubx::nav_hpposllh(fix, out);
+  if (id == msg::kNavHpposecef) return ubx::nav_hpposecef(fix, out);
+  if (id == msg::kNavRelposned) return ubx::nav_relposned(fix, out);
   return 0;
 }
 

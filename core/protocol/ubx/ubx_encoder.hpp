@@ -73,9 +73,9 @@ struct EpochInfo {
 };
 
 /// Largest output of one epoch with every message enabled and
-/// kMaxSatsInView satellites (NAV-SAT, NAV-SVINFO, NAV-SIG about 1.2-1.6 KB
-/// each). Reserve out.size() + this to never allocate.
-inline constexpr std::size_t kMaxEpochBytes = 8192;
+/// kMaxSatsInView satellites (NAV-SAT, NAV-SVINFO about 1.2-1.6 KB each,
+/// NAV-SIG of both bands 3.1 KB). Reserve out.size() + this to never allocate.
+inline constexpr std::size_t kMaxEpochBytes = 12288;
 
 /// Encoders append one complete frame to out and return the bytes appended.
 /// They never throw; they allocate only when out lacks capacity. A Fix
@@ -100,8 +100,9 @@ public:
   /// One channel per satellite in fix.sats[0..num_sats) as an M8 numbers it
   /// (svinfo_svid in ubx_gnss.hpp); chipGen 4 (M8).
   std::size_t nav_svinfo(const receiver::Fix& fix, std::string& out) const;
-  /// NAV-SIG version 0 (M9): one L1-band signal per satellite (sigId 0;
-  /// BeiDou GEOs 1 = B1I D2), GLONASS freqId k + 7, C/N0, quality, and
+  /// NAV-SIG version 0 (M9, F9P): one L1-band signal per satellite (sigId 0;
+  /// BeiDou GEOs 1 = B1I D2), on the F9P followed by its second-band signal
+  /// (gnss_signals.hpp sigIds), GLONASS freqId k + 7, C/N0, quality, and
   /// which measurements and corrections the solution used.
   std::size_t nav_sig(const receiver::Fix& fix, std::string& out) const;
   /// NAV-TIMEGLO: GLONASS time (UTC + 3 h) as time of day, day in the four-year

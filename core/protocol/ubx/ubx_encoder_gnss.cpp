@@ -5,6 +5,7 @@
 // description; checked against pygpsdata-MIXED.log (docs/ubx.md §Multi-GNSS).
 #include <cstring>
 
+#include "core/common/gnss_signals.hpp"
 #include "core/common/gnss_systems.hpp"
 #include "core/protocol/ubx/ubx_encoder.hpp"
 #include "core/protocol/ubx/ubx_encoder_detail.hpp"
@@ -120,32 +121,43 @@ std::size_t UbxEncoder::nav_timeglo(const Fix& fix, std::string& out) const {
 
 std::size_t UbxEncoder::nav_sig(const Fix& fix, std::string& out) const {
   const Common c = derive(fix);
-  std::uint8_t buf[sizeof(wire::NavSigHeader) + kMaxSatsInView * sizeof(wire::NavSigSig)];
+  std::uint8_t buf[sizeof(wire::NavSigHeader) + kNumBands * kMaxSatsInView * sizeof(wire::NavSigSig)];
   wire::NavSigHeader h{};
   h.iTOW = c.itow;
   std::size_t len = sizeof h;
+  const int bands = is_dual_band(config_.generation) ? kNumBands : 1;
   for_each_in_ubx_order(fix, [&](const SatInfo& s) {
-    wire::NavSigSig g{};
-    g.gnssId = system_info(s.sat.system).ubx_gnss_id;
-    g.svId = ubx_sv_id(s.sat);
-    // L1 band only (NEO-M9N): sigId 0, BeiDou GEOs send B1I D2 (sigId 1; F9T log C62).
-    g.sigId = is_beidou_geo(s.sat) ? 1 : 0;
-    g.freqId = s.sat.system == GnssSystem::kGlonass
-                   ? static_cast<std::uint8_t>(std::clamp(s.glonass_channel, kGlonassMinChannel, kGlonassMaxChannel) + 7)
-                   : 0;
-    const bool used = s.used && c.has_fix;
-    g.prRes = used ? to_int<std::int16_t>(s.residual_m * 10.0) : 0;
-    g.cno = cno_u1(s);
-    g.qualityInd = quality_ind(s);
-    g.corrSource = 0;             // no SBAS/RTCM corrections applied
-    g.ionoModel = used ? 1 : 0;   // broadcast Klobuchar (GPS) on the single-frequency solution
-    std::uint16_t flags = s.healthy ? 1 : 2;
-    if (s.smoothed) flags |= 1u << 2;
-    if (used) flags |= 1u << 3 | 1u << 5;  // prUsed, doUsed (real logs: 0x29 for a used signal)
-    g.sigFlags = flags;
-    std::memcpy(buf + len, &g, sizeof g);
-    len += sizeof g;
-    ++h.numSigs;
+    for (int band = 0; band < bands; ++band) {
+      const std::optional<SignalId> sig = signal_of(s.sat.system, band);
+      if (!sig) continue;  // SBAS: L1 only
+      wire::NavSigSig g{};
+      g.gnssId = system_info(s.sat.system).ubx_gnss_id;
+      g.svId = ubx_sv_id(s.sat);
+      // BeiDou GEOs send D2 (sigId + 1; F9T log C62).
+      g.sigId = static_cast<std::uint8_t>(signal_info(*sig).ubx_sig_id + (is_beidou_geo(s.sat) ? 1 : 0));
+      g.freqId = s.sat.system == GnssSystem::kGlonass
+                     ? static_cast<std::uint8_t>(std::clamp(s.glonass_channel, kGlonassMinChannel, kGlonassMaxChannel) + 7)
+                     : 0;
+      // The second band reports the satellite's state until the Fix carries its own per band.
+      const bool used = s.used && c.has_fix;
+      g.prRes = used ? to_int<std::int16_t>(s.residual_m * 10.0) : 0;
+      g.cno = cno_u1(s);
+      g.qualityInd = quality_ind(s);
+      // corrSource 4: RTCM 3 OSR when the solution is differential; ionoModel 1:
+      // broadcast Klobuchar (GPS) on a single-frequency solution.
+      g.corrSource = used && fix.diff_soln ? 4 : 0;
+      g.ionoModel = used ? 1 : 0;
+      std::uint16_t flags = s.healthy ? 1 : 2;
+      if (s.smoothed) flags |= 1u << 2;
+      if (used) flags |= 1u << 3 | 1u << 5;  // prUsed, doUsed (real logs: 0x29 for a used signal)
+      // Corrected code (b6 prCorrUsed); a carrier solution also uses and corrects the carrier (b4 crUsed, b7 crCorrUsed).
+      if (used && fix.diff_soln) flags |= 1u << 6;
+      if (used && fix.carr_soln != receiver::CarrierSolution::kNone) flags |= 1u << 4 | 1u << 7;
+      g.sigFlags = flags;
+      std::memcpy(buf + len, &g, sizeof g);
+      len += sizeof g;
+      ++h.numSigs;
+    }
   });
   std::memcpy(buf, &h, sizeof h);
   return append_frame(out, msg::kNavSig, {buf, len});

@@ -30,6 +30,13 @@ constexpr GnssCapabilities kM8{32, 3, 0x7F, {0x01, 0x01, 0x01, 0x01, 0x01, 0x05,
 constexpr GnssCapabilities kM9{32, 4, 0x6F, {0x01, 0x01, 0x01, 0x01, 0x00, 0x01, 0x01},
                                set_of({kGps, kGlonass, kGalileo, kBeiDou, kQzss, kSbas}),
                                set_of({kGps, kGlonass, kGalileo, kBeiDou, kQzss, kSbas})};
+// ZED-F9P: L1 and L2 band (GPS L2C 0x10, Galileo E5b 0x20, BeiDou B2I 0x10, QZSS L1S 0x04
+// and L2C 0x10, GLONASS L2OF 0x10; ZED-F9P interface description UBX-18010854, legacy
+// CFG-GNSS sigCfgMask); its integration manual UBX-18010802 §3.1.2 enables every system
+// on both bands from the factory.
+constexpr GnssCapabilities kF9P{60, 4, 0x6F, {0x11, 0x01, 0x21, 0x11, 0x00, 0x15, 0x11},
+                                set_of({kGps, kGlonass, kGalileo, kBeiDou, kQzss, kSbas}),
+                                set_of({kGps, kGlonass, kGalileo, kBeiDou, kQzss, kSbas})};
 
 // Factory CFG-GNSS: channel counts as u-center's defaults (PX4-GPSDrivers ubx.cpp), flags
 // 0x01010001 = L1 signal on + enable; 0x01010000 the same signal, disabled.
@@ -51,6 +58,16 @@ constexpr std::uint8_t kM9Factory[] = {
     3, 8, 16, 0, 0x01, 0x00, 0x01, 0x01,         // BeiDou B1I
     5, 0, 3, 0, 0x01, 0x00, 0x01, 0x01,          // QZSS L1C/A
     6, 8, 14, 0, 0x01, 0x00, 0x01, 0x01,         // GLONASS L1OF
+};
+
+constexpr std::uint8_t kF9PFactory[] = {
+    0, 60, 60, 6,                                //
+    0, 8, 16, 0, 0x01, 0x00, 0x11, 0x01,         // GPS L1C/A + L2C
+    1, 1, 3, 0, 0x01, 0x00, 0x01, 0x01,          // SBAS L1C/A
+    2, 4, 12, 0, 0x01, 0x00, 0x21, 0x01,         // Galileo E1 + E5b
+    3, 8, 16, 0, 0x01, 0x00, 0x11, 0x01,         // BeiDou B1I + B2I
+    5, 0, 4, 0, 0x01, 0x00, 0x11, 0x01,          // QZSS L1C/A + L2C
+    6, 8, 12, 0, 0x01, 0x00, 0x11, 0x01,         // GLONASS L1OF + L2OF
 };
 
 struct Block {
@@ -80,9 +97,12 @@ std::optional<GnssSystem> system_of_gnss_id(std::uint8_t gnss_id) noexcept {
   return std::nullopt;
 }
 
-const GnssCapabilities& gnss_capabilities(Generation g) noexcept { return g == Generation::kM9 ? kM9 : kM8; }
+const GnssCapabilities& gnss_capabilities(Generation g) noexcept {
+  return g == Generation::kF9P ? kF9P : g == Generation::kM9 ? kM9 : kM8;
+}
 
 std::span<const std::uint8_t> factory_cfg_gnss(Generation g) noexcept {
+  if (g == Generation::kF9P) return kF9PFactory;
   if (g == Generation::kM9) return kM9Factory;
   return kM8Factory;
 }
@@ -102,6 +122,9 @@ bool cfg_gnss_valid(std::span<const std::uint8_t> p, Generation g) noexcept {
     if (!(cap.gnss_ids >> b.gnss_id & 1u)) return false;
     const std::uint8_t has = cap.signals[b.gnss_id];
     if ((b.signals() & has) == 0 || (b.signals() & ~has) != 0) return false;
+    // A second-band signal needs its L1-band one (ZED-F9P integration manual
+    // UBX-18010802 §3.1.2: L2/E5b alone is no configuration the F9P runs).
+    if (is_dual_band(g) && (b.signals() & 0x01) == 0) return false;
     const unsigned min_max = is_major_gnss_id(b.gnss_id) ? kMinMajorMaxTrk : 1u;
     if (b.max < std::max<unsigned>(b.res, min_max) || b.max > use) return false;
     reserved += b.res;
@@ -184,6 +207,7 @@ std::uint8_t ubx_sv_id(SatId id) noexcept {
 
 NavRateLimits nav_rate_limits(Generation g, SystemSet enabled) noexcept {
   if (g == Generation::kM9) return {25.0, 8.0, 16};
+  if (g == Generation::kF9P) return {kF9PMaxRtkRateHz, 1e9, kMaxSatsInView};
   int majors = 0;
   for (const GnssSystem s : {kGps, kGlonass, kGalileo, kBeiDou}) majors += enabled.has(s) ? 1 : 0;
   return {majors <= 1 ? 18.0 : 10.0, 1e9, kMaxSatsInView};

@@ -89,6 +89,10 @@ struct NavRateLimits {
   double sat_cap_above_hz;
   int max_solution_sats;       ///< kMaxSatsInView: no cap
 };
+/// ZED-F9P: RTK solutions up to 20 Hz (SparkFun RTK documentation of the
+/// ZED-F9P; PX4-GPSDrivers ubx.cpp configures it at 10 Hz, 8 Hz as a
+/// moving-baseline base or rover). The emulator runs at most 10 Hz anyway.
+inline constexpr double kF9PMaxRtkRateHz = 20.0;
 /// M8: 18 Hz with one major GNSS, 10 Hz with more (NEO-M8 data sheet
 /// UBX-15031086, "Max navigation update rate"); NEO-M9N: 25 Hz, and at most
 /// 16 satellites in the solution above 8 Hz (PX4-GPSDrivers ubx.cpp, which

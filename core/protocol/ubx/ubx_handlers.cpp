@@ -38,6 +38,8 @@ constexpr HandlerRow kHandlers[] = {
     {msg::kCfgNmea, handle_cfg_stored, {4, 12, 20}},
     {msg::kCfgPms, handle_cfg_stored, {8}},
     {msg::kCfgLogfilter, handle_cfg_stored, {12}},
+    {msg::kCfgDgnss, handle_cfg_dgnss},
+    {msg::kCfgTmode3, handle_cfg_tmode3},
     {msg::kCfgValset, handle_cfg_valset},
     {msg::kCfgValget, handle_cfg_valget},
     {msg::kCfgValdel, handle_cfg_valdel},
@@ -61,6 +63,12 @@ Handler find_handler(MsgId id) noexcept {
     return handle_output_poll;
   }
   return nullptr;
+}
+
+bool cfg_message_exists(MsgId id, Generation g) noexcept {
+  if (id == msg::kCfgPm2 || id == msg::kCfgRxm || id == msg::kCfgPms) return g != Generation::kF9P;
+  if (id == msg::kCfgDgnss || id == msg::kCfgTmode3) return g == Generation::kF9P;
+  return true;
 }
 
 std::array<std::uint16_t, 3> stored_set_lengths(MsgId id) noexcept {

@@ -91,6 +91,14 @@ Reply handle_cfg_rst(HandlerContext& ctx, const FrameView& frame);
 Reply handle_cfg_valset(HandlerContext& ctx, const FrameView& frame);
 Reply handle_cfg_valget(HandlerContext& ctx, const FrameView& frame);
 Reply handle_cfg_valdel(HandlerContext& ctx, const FrameView& frame);
+// The ZED-F9P's legacy RTK and base messages (ubx_cfg_hpg.cpp): answered on
+// an F9P, else as handle_cfg_unknown.
+Reply handle_cfg_dgnss(HandlerContext& ctx, const FrameView& frame);
+Reply handle_cfg_tmode3(HandlerContext& ctx, const FrameView& frame);
+/// The generation has legacy CFG message id: an F9P dropped CFG-PM2,
+/// CFG-RXM and CFG-PMS (its interface description lists no such message)
+/// and an M8 or M9 lacks CFG-DGNSS and CFG-TMODE3.
+bool cfg_message_exists(MsgId id, Generation g) noexcept;
 // Everything else (ubx_handlers.cpp).
 /// CFG ids an M8 lacks: CFG-VALSET/VALGET/VALDEL and the rest.
 Reply handle_cfg_unknown(HandlerContext& ctx, const FrameView& frame);

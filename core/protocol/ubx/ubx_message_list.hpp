@@ -21,7 +21,7 @@ public:
     std::string_view label;          ///< "NAV-PVT", "GGA" (static storage)
     Protocol protocol = Protocol::kUbx;
   };
-  /// Largest epoch: every periodic UBX message (21), NMEA sentence (7 plus
+  /// Largest epoch: every periodic UBX message (24), NMEA sentence (7 plus
   /// the GSV parts of every system) and an RXM-SFRBX per satellite in view.
   static constexpr std::size_t kMaxMessages = 224;
   /// Bytes of the largest epoch (UBX kMaxEpochBytes + nmea::kMaxEpochBytes,

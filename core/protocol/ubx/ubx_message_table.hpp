@@ -27,7 +27,10 @@ constexpr GenerationSet generation_bit(Generation g) noexcept {
 }
 inline constexpr GenerationSet kM8Only = generation_bit(Generation::kM8);
 inline constexpr GenerationSet kM9Only = generation_bit(Generation::kM9);
-inline constexpr GenerationSet kAllGenerations = kM8Only | kM9Only;
+inline constexpr GenerationSet kF9POnly = generation_bit(Generation::kF9P);
+/// Protocol 27 and later: the M9 and the F9P.
+inline constexpr GenerationSet kGen9 = kM9Only | kF9POnly;
+inline constexpr GenerationSet kAllGenerations = kM8Only | kGen9;
 
 struct PeriodicMessage {
   MsgId id;
@@ -46,7 +49,7 @@ struct PeriodicMessage {
 };
 
 /// Rows in the order the configuration lists them (docs/configuration.md).
-inline constexpr std::array<PeriodicMessage, 21> kPeriodicMessages{{
+inline constexpr std::array<PeriodicMessage, 24> kPeriodicMessages{{
     {msg::kNavPvt, "NAV-PVT", EpochGroup::kBeforeNmea, true},
     {msg::kNavPosllh, "NAV-POSLLH", EpochGroup::kBeforeNmea, true},
     {msg::kNavVelned, "NAV-VELNED", EpochGroup::kBeforeNmea, true},
@@ -57,17 +60,21 @@ inline constexpr std::array<PeriodicMessage, 21> kPeriodicMessages{{
     {msg::kNavSat, "NAV-SAT", EpochGroup::kAfterNmea, true},
     {msg::kNavSvinfo, "NAV-SVINFO", EpochGroup::kAfterNmea, true, kM8Only},
     {msg::kMonHw, "MON-HW", EpochGroup::kAfterNmea, true},
-    {msg::kMonRf, "MON-RF", EpochGroup::kAfterNmea, true, kM9Only},
-    {msg::kSecSig, "SEC-SIG", EpochGroup::kAfterNmea, true, kM9Only},
+    {msg::kMonRf, "MON-RF", EpochGroup::kAfterNmea, true, kGen9},
+    {msg::kSecSig, "SEC-SIG", EpochGroup::kAfterNmea, true, kGen9},
     {msg::kNavEoe, "NAV-EOE", EpochGroup::kAfterNmea, true},
     {msg::kNavTimegps, "NAV-TIMEGPS", EpochGroup::kAfterNmea, false},
-    {msg::kNavSig, "NAV-SIG", EpochGroup::kAfterNmea, true, kM9Only},
+    {msg::kNavSig, "NAV-SIG", EpochGroup::kAfterNmea, true, kGen9},
     {msg::kNavTimeglo, "NAV-TIMEGLO", EpochGroup::kAfterNmea, true},
     {msg::kNavTimegal, "NAV-TIMEGAL", EpochGroup::kAfterNmea, true},
     {msg::kNavTimebds, "NAV-TIMEBDS", EpochGroup::kAfterNmea, true},
     {msg::kMonHw2, "MON-HW2", EpochGroup::kAfterNmea, true},
     {msg::kRxmRawx, "RXM-RAWX", EpochGroup::kAfterNmea, true, kAllGenerations, true},
     {msg::kRxmSfrbx, "RXM-SFRBX", EpochGroup::kAfterNmea, true, kAllGenerations, true},
+    // HPG firmware only (ubx_hpg.hpp).
+    {msg::kNavHpposecef, "NAV-HPPOSECEF", EpochGroup::kAfterNmea, true, kF9POnly},
+    {msg::kNavHpposllh, "NAV-HPPOSLLH", EpochGroup::kAfterNmea, true, kF9POnly},
+    {msg::kNavRelposned, "NAV-RELPOSNED", EpochGroup::kAfterNmea, true, kF9POnly},
 }};
 
 namespace detail {

@@ -167,7 +167,8 @@ TEST(ConfigPorts, Errors) {
   EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nubx_messages = [\"NAV-PVT\", \"NAV-XYZ\"]\n")),
             "t.toml:10: output[0].ubx_messages: unknown UBX message 'NAV-XYZ' (known: NAV-PVT NAV-POSLLH "
             "NAV-VELNED NAV-STATUS NAV-DOP NAV-SOL NAV-TIMEUTC NAV-SAT NAV-SVINFO MON-HW MON-RF SEC-SIG NAV-EOE "
-            "NAV-SIG NAV-TIMEGLO NAV-TIMEGAL NAV-TIMEBDS MON-HW2 RXM-RAWX RXM-SFRBX)");
+            "NAV-SIG NAV-TIMEGLO NAV-TIMEGAL NAV-TIMEBDS MON-HW2 RXM-RAWX RXM-SFRBX NAV-HPPOSECEF NAV-HPPOSLLH "
+            "NAV-RELPOSNED)");
   EXPECT_EQ(error_of(port("path = \"/tmp/a\"\nubx_messages = [\"NAV-PVT\", \"NAV-PVT\"]\n")),
             "t.toml:10: output[0].ubx_messages: 'NAV-PVT' listed twice");
   // A set whose protocol is off is kept: a host may turn the protocol on (CFG-PRT, $PUBX,41).

@@ -83,7 +83,9 @@ TEST(UbxHandlers, TableRoutesEveryClass) {
   EXPECT_EQ(find_handler(msg::kCfgPrt), &handle_cfg_prt);
   EXPECT_EQ(find_handler(msg::kCfgRst), &handle_cfg_rst);
   EXPECT_EQ(find_handler(msg::kCfgValset), &handle_cfg_valset);  // an M8 still NAKs it (test_ubx_cfg_val.cpp)
-  EXPECT_EQ(find_handler(MsgId{0x06, 0x70}), &handle_cfg_unknown);  // CFG-DGNSS: not on an M8N
+  EXPECT_EQ(find_handler(MsgId{0x06, 0x70}), &handle_cfg_dgnss);  // CFG-DGNSS: an F9P's; an M8N NAKs it
+  EXPECT_FALSE(cfg_message_exists(MsgId{0x06, 0x70}, Generation::kM8));
+  EXPECT_EQ(find_handler(MsgId{0x06, 0x7F}), &handle_cfg_unknown);
   EXPECT_EQ(find_handler(msg::kMonVer), &handle_mon_ver);
   EXPECT_EQ(find_handler(msg::kNavPvt), &handle_output_poll);
   EXPECT_EQ(find_handler(msg::kMonHw), &handle_output_poll);

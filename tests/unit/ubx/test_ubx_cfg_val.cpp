@@ -203,18 +203,23 @@ TEST(UbxCfgVal, LegacyBlocksSeeTheKeys) {
 }
 
 /// Every key: a valid value other than the current one goes in and reads back.
-TEST(UbxCfgVal, EveryKeyRoundTrips) {
-  Device d(m9_setup());
+class UbxCfgValGen : public ::testing::TestWithParam<Generation> {};
+
+TEST_P(UbxCfgValGen, EveryKeyRoundTrips) {
+  DeviceSetup setup;
+  setup.mon_ver = mon_ver_of(GetParam());
+  Device d(setup);
   ValHost uart1(d);
   ValHost usb(d, {0, kPortUsb});
   for (const ConfigKey& k : config_keys()) {
+    if (!k.exists_on(GetParam())) continue;
     SCOPED_TRACE(config_key_name(k));
     // A port's own protocol keys are set from another port (UBX off would cut the host off).
     const bool own = (k.store == KeyStore::kInProto || k.store == KeyStore::kOutProto) && k.port == kPortUart1;
     ValHost& h = own ? usb : uart1;
     const std::uint64_t now = h.value(0, k.id);
     std::vector<std::uint64_t> candidates{static_cast<std::uint64_t>(k.max), static_cast<std::uint64_t>(k.min), 1, 0,
-                                          38400, 3};
+                                          38400, 3, 115200};
     if (k.is_signed) candidates.push_back(static_cast<std::uint64_t>(k.min) & ((1ull << (8 * k.value_bytes())) - 1));
     std::uint64_t pick = now;
     for (const std::uint64_t c : candidates) {
@@ -226,7 +231,7 @@ TEST(UbxCfgVal, EveryKeyRoundTrips) {
     if (pick == now) {  // one valid value only (8N1 framing)
       EXPECT_EQ(k.store, KeyStore::kUartFraming);
     }
-    EXPECT_EQ(h.value(7, k.id), read_config_key(k, DeviceConfig::factory_defaults(1, Generation::kM9), 0));
+    EXPECT_EQ(h.value(7, k.id), read_config_key(k, DeviceConfig::factory_defaults(1, GetParam()), 0));
     // The only signal of an enabled system cannot go: that VALSET is NAKed (test_ubx_gnss.cpp).
     if (k.store == KeyStore::kGnss && k.shift == 16 && pick == 0) {
       EXPECT_FALSE(h.acked(msg::kCfgValset, valset(kRam, {{k.id, pick}})));
@@ -238,6 +243,9 @@ TEST(UbxCfgVal, EveryKeyRoundTrips) {
     EXPECT_TRUE(h.acked(msg::kCfgValset, valset(kRam, {{k.id, now}})));  // back, so the hosts keep talking
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Generations, UbxCfgValGen, ::testing::Values(Generation::kM9, Generation::kF9P),
+                         [](const auto& p) { return std::string(generation_name(p.param)); });
 
 TEST(UbxCfgVal, BadInputIsNakedAndNothingApplied) {
   Device d(m9_setup());
@@ -374,8 +382,11 @@ TEST(UbxCfgVal, WildcardsAndPaging) {
     EXPECT_LE(page.size(), 64u);
     for (const auto& kv : page) seen.push_back(kv.first);
   }
-  ASSERT_EQ(seen.size(), config_keys().size());
-  for (std::size_t i = 0; i < seen.size(); ++i) EXPECT_EQ(seen[i], config_keys()[i].id);
+  std::vector<std::uint32_t> m9_keys;
+  for (const ConfigKey& k : config_keys()) {
+    if (k.exists_on(Generation::kM9)) m9_keys.push_back(k.id);
+  }
+  EXPECT_EQ(seen, m9_keys);
   // Unknown key, unknown group, too many keys, a wrong length: NAK.
   EXPECT_TRUE(h.get(0, {kRateMeas, 0x30219999}).empty());
   EXPECT_TRUE(h.get(0, {0x00EEFFFF}).empty());
@@ -404,7 +415,10 @@ TEST(UbxCfgVal, KeyTableMatchesItsSources) {
     ASSERT_NE(k, nullptr) << name;
     EXPECT_EQ(config_key_name(*k), name);
   }
-  EXPECT_EQ(find_config_key(0x20140011), nullptr);  // CFG-NAVHPG-DGNSSMODE: an F9P key, an M9N NAKs it
+  // CFG-NAVHPG-DGNSSMODE: an F9P key, an M9N NAKs it.
+  EXPECT_EQ(find_config_key(0x20140011, Generation::kM9), nullptr);
+  ASSERT_NE(find_config_key(0x20140011, Generation::kF9P), nullptr);
+  EXPECT_EQ(config_key_name(*find_config_key(0x20140011, Generation::kF9P)), "CFG-NAVHPG-DGNSSMODE");
   EXPECT_EQ(ConfigKey::value_bytes_of(0x10730001), 1u);
   EXPECT_EQ(ConfigKey::value_bytes_of(0x30210001), 2u);
   EXPECT_EQ(ConfigKey::value_bytes_of(0x40520001), 4u);

@@ -74,14 +74,18 @@ std::string range_of(const ConfigKey& k) {
 }
 
 std::string generate() {
-  const DeviceConfig defaults = DeviceConfig::factory_defaults(1, Generation::kM9);  // the keys are the M9's
+  // Defaults as the first generation that knows the key has them.
+  const DeviceConfig m9 = DeviceConfig::factory_defaults(1, Generation::kM9);
+  const DeviceConfig f9p = DeviceConfig::factory_defaults(1, Generation::kF9P);
   std::ostringstream s;
   s << kBegin << "\n\n";
-  s << "| key id | name | size | values | default (I2C/UART1/UART2/USB/SPI) | state it reads and writes |\n";
-  s << "|---|---|---|---|---|---|\n";
+  s << "| key id | name | size | values | default (I2C/UART1/UART2/USB/SPI) | chips | state it reads and writes |\n";
+  s << "|---|---|---|---|---|---|---|\n";
   const auto keys = config_keys();
   for (std::size_t i = 0; i < keys.size(); ++i) {
     const ConfigKey& k = keys[i];
+    const DeviceConfig& defaults = k.exists_on(Generation::kM9) ? m9 : f9p;
+    const char* chips = k.exists_on(Generation::kM9) ? "m9, f9p" : "f9p";
     if (k.store == KeyStore::kMsgOut) {
       // One row per message: ids I2C, UART1, UART2, USB, SPI = base + 0..4.
       std::string defaults_per_port;
@@ -90,12 +94,12 @@ std::string generate() {
         defaults_per_port += std::to_string(read_config_key(keys[i + p], defaults, 0));
       }
       s << "| " << hex(k.id, 8) << "+0..4 | " << k.name << "_{I2C,UART1,UART2,USB,SPI} | 1 byte | 0 … 255 | "
-        << defaults_per_port << " | " << where(k) << " |\n";
+        << defaults_per_port << " | " << chips << " | " << where(k) << " |\n";
       i += kMsgOutPortSuffix.size() - 1;
       continue;
     }
     s << "| " << hex(k.id, 8) << " | " << config_key_name(k) << " | " << type_of(k) << " | " << range_of(k) << " | "
-      << read_config_key(k, defaults, 0) << " | " << where(k) << " |\n";
+      << read_config_key(k, defaults, 0) << " | " << chips << " | " << where(k) << " |\n";
   }
   s << "\n" << kEnd;
   return s.str();
