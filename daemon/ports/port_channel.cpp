@@ -25,6 +25,10 @@ public:
     ch_.reply_.clear();
     ch_.handle_result(source, ch_.device_.handle_nmea(ch_.link(), sentence, ch_.reply_));
   }
+  void on_rtcm(std::span<const uint8_t> payload, bool crc_ok) override {
+    ch_.reply_.clear();
+    ch_.handle_result(source, ch_.device_.handle_rtcm(ch_.link(), payload, crc_ok, ch_.reply_));
+  }
 
 private:
   PortChannel& ch_;

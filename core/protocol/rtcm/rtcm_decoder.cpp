@@ -43,7 +43,9 @@ void Decoder::set_glonass_channel(int slot, int channel) noexcept {
   glonass_fcn_[static_cast<std::size_t>(slot)] = static_cast<std::int8_t>(channel);
 }
 
-DecodeResult Decoder::decode(std::span<const std::uint8_t> payload, time::GpsTime now, int leap_seconds) noexcept {
+DecodeResult Decoder::decode(std::span<const std::uint8_t> payload, time::GpsTime now, receiver::Corrections& out,
+                             int leap_seconds) noexcept {
+  out_ = &out;
   DecodeResult res;
   res.message = message_number(payload);
   if (payload.size() >= 3) {
@@ -80,7 +82,7 @@ bool Decoder::decode_station(std::span<const std::uint8_t> payload, int number, 
   }
   BitReader r(payload);
   r.u(12);
-  receiver::ReferenceStation& st = out_.station;
+  receiver::ReferenceStation& st = out_->station;
   st.station_id = static_cast<int>(r.u(12));
   r.u(6 + 4);  // DF021 ITRF year, DF022-024 systems, DF141
   st.arp_ecef_m.x = static_cast<double>(r.s(38)) * 1e-4;
@@ -92,7 +94,7 @@ bool Decoder::decode_station(std::span<const std::uint8_t> payload, int number, 
   st.position_valid = true;
   st.moving = false;
   st.position_time = now;
-  ++out_.revision;
+  ++out_->revision;
   ++stats_.station;
   return true;
 }
@@ -108,15 +110,15 @@ bool Decoder::decode_biases(std::span<const std::uint8_t> payload, DecodeResult&
     res.station_id = 0;
     return false;
   }
-  for (std::size_t i = 0; i < out_.glonass_cpb_m.size(); ++i) {
+  for (std::size_t i = 0; i < out_->glonass_cpb_m.size(); ++i) {
     if (!((mask << i) & 8u)) {
-      out_.glonass_cpb_m[i] = 0.0;
+      out_->glonass_cpb_m[i] = 0.0;
       continue;
     }
     const std::int64_t v = r.s(16);
-    out_.glonass_cpb_m[i] = v == -32768 ? 0.0 : static_cast<double>(v) * 0.02;
+    out_->glonass_cpb_m[i] = v == -32768 ? 0.0 : static_cast<double>(v) * 0.02;
   }
-  out_.glonass_cpb_valid = mask != 0;
+  out_->glonass_cpb_valid = mask != 0;
   ++stats_.glonass_biases;
   return true;
 }
@@ -134,7 +136,7 @@ bool Decoder::decode_ublox(std::span<const std::uint8_t> payload, time::GpsTime 
   if (sub == 1) return true;
   // A moving base: the rover solves the baseline. Its position only where
   // the layout is ours (a real F9P's is not public).
-  receiver::ReferenceStation& st = out_.station;
+  receiver::ReferenceStation& st = out_->station;
   st.moving = true;
   if (const auto pvt = decode_reference_pvt(payload)) {
     res.station_id = pvt->station_id;
@@ -144,7 +146,7 @@ bool Decoder::decode_ublox(std::span<const std::uint8_t> payload, time::GpsTime 
     st.position_valid = true;
     st.position_time = now;
   }
-  ++out_.revision;
+  ++out_->revision;
   return true;
 }
 
@@ -155,11 +157,11 @@ void Decoder::complete(time::GpsTime now) noexcept {
               const int ia = a.sat.index(), ib = b.sat.index();
               return ia != ib ? ia < ib : signal_info(a.signal).band < signal_info(b.signal).band;
             });
-  out_.obs = pending_;
-  out_.obs_valid = true;
-  out_.obs_received = now;
-  out_.obs_station_id = pending_station_;
-  ++out_.revision;
+  out_->obs = pending_;
+  out_->obs_valid = true;
+  out_->obs_received = now;
+  out_->obs_station_id = pending_station_;
+  ++out_->revision;
   ++stats_.epochs;
   pending_valid_ = false;
 }

@@ -59,13 +59,13 @@ struct DecoderStats {
 
 class Decoder {
 public:
-  /// out: where decoded corrections go; outlives the decoder.
-  explicit Decoder(receiver::Corrections& out) noexcept : out_(out) { glonass_fcn_.fill(kUnknownFcn); }
+  Decoder() noexcept { glonass_fcn_.fill(kUnknownFcn); }
 
   /// One payload (message number in its first 12 bits, CRC already
-  /// checked). now: the rover's GPS time (resolves the epoch's week and
-  /// day, stamps arrival). leap_seconds: GPS - UTC, s (GLONASS time).
-  DecodeResult decode(std::span<const std::uint8_t> payload, time::GpsTime now, int leap_seconds = 18) noexcept;
+  /// checked) into out. now: the rover's GPS time (resolves the epoch's
+  /// week and day, stamps arrival). leap_seconds: GPS - UTC, s (GLONASS time).
+  DecodeResult decode(std::span<const std::uint8_t> payload, time::GpsTime now, receiver::Corrections& out,
+                      int leap_seconds = 18) noexcept;
 
   /// Forget a partly received epoch (the link was reset).
   void reset() noexcept { pending_valid_ = false; }
@@ -76,7 +76,6 @@ public:
   void set_glonass_channel(int slot, int channel) noexcept;
 
   const DecoderStats& stats() const noexcept { return stats_; }
-  const receiver::Corrections& corrections() const noexcept { return out_; }
 
 private:
   static constexpr std::int8_t kUnknownFcn = 127;
@@ -88,7 +87,7 @@ private:
   /// Hands the pending epoch to out_.
   void complete(time::GpsTime now) noexcept;
 
-  receiver::Corrections& out_;
+  receiver::Corrections* out_ = nullptr;  ///< during decode() only
   receiver::RawEpoch pending_;
   bool pending_valid_ = false;
   int pending_station_ = 0;

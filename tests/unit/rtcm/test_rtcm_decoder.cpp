@@ -58,9 +58,10 @@ RawEpoch epoch_of(std::initializer_list<GnssSystem> systems, int nsat, int nband
 /// Every frame of bytes through the decoder.
 struct Feed : FrameSink {
   Decoder& dec;
+  Corrections& c;
   std::vector<DecodeResult> results;
-  explicit Feed(Decoder& d) : dec(d) {}
-  void on_frame(std::span<const std::uint8_t> p) override { results.push_back(dec.decode(p, kNow)); }
+  Feed(Decoder& d, Corrections& out) : dec(d), c(out) {}
+  void on_frame(std::span<const std::uint8_t> p) override { results.push_back(dec.decode(p, kNow, c)); }
   void run(const std::string& s) {
     FrameReader r(*this);
     r.feed({reinterpret_cast<const std::uint8_t*>(s.data()), s.size()});
@@ -78,10 +79,10 @@ TEST(RtcmDecoder, Msm7AndMsm4RoundTripWithinResolution) {
     std::string out;
     enc.append_epoch(e, SystemSet::all(), out);
     Corrections c;
-    Decoder dec(c);
+    Decoder dec;
     // MSM4 has no GLONASS channel: the receiver learns it elsewhere.
     for (int n = 1; n <= 6; ++n) dec.set_glonass_channel(n, (n % 14) - 7);
-    Feed feed(dec);
+    Feed feed(dec, c);
     feed.run(out);
     ASSERT_EQ(feed.results.size(), 5u);
     EXPECT_TRUE(feed.results.back().epoch_complete);
@@ -125,8 +126,8 @@ TEST(RtcmDecoder, Msm4GlonassWithoutChannelHasNoPhase) {
   std::string out;
   enc.append_epoch(e, SystemSet::all(), out);
   Corrections c;
-  Decoder dec(c);
-  Feed(dec).run(out);
+  Decoder dec;
+  Feed(dec, c).run(out);
   ASSERT_EQ(c.obs.num_meas, 3);
   EXPECT_TRUE(c.obs.meas[0].pseudorange_valid);
   EXPECT_FALSE(c.obs.meas[0].carrier_valid);
@@ -139,8 +140,8 @@ TEST(RtcmDecoder, EpochSpansSplitMessagesAndCompletesOnTheLast) {
   const MsmEpochStats st = enc.append_epoch(e, SystemSet::all(), out);
   ASSERT_GT(st.messages, 2);
   Corrections c;
-  Decoder dec(c);
-  Feed feed(dec);
+  Decoder dec;
+  Feed feed(dec, c);
   feed.run(out);
   for (std::size_t i = 0; i + 1 < feed.results.size(); ++i) EXPECT_FALSE(feed.results[i].epoch_complete);
   EXPECT_TRUE(feed.results.back().epoch_complete);
@@ -152,7 +153,7 @@ TEST(RtcmDecoder, EpochSpansSplitMessagesAndCompletesOnTheLast) {
   later.t_rx += 1.0;
   std::string next;
   enc.append_epoch(later, SystemSet::all(), next);
-  Feed again(dec);
+  Feed again(dec, c);
   again.run(first_only);
   again.run(next);
   EXPECT_EQ(dec.stats().unterminated_epochs, 1u);
@@ -187,8 +188,8 @@ TEST(RtcmDecoder, StationBiasesAnd4072) {
   append_station(st, true, out);
   append_glonass_biases(2003, true, {0.5, std::nullopt, -1.24, std::nullopt}, out);
   Corrections c;
-  Decoder dec(c);
-  Feed feed(dec);
+  Decoder dec;
+  Feed feed(dec, c);
   feed.run(out);
   ASSERT_EQ(feed.results.size(), 2u);
   EXPECT_EQ(feed.results[0].message, 1006);
@@ -211,7 +212,7 @@ TEST(RtcmDecoder, StationBiasesAnd4072) {
   append_reference_pvt({12, 345600000u, Ecef{4e6, 5e5, 4.9e6}}, mb);
   const std::array<std::uint8_t, 5> sub1{0xFE, 0x80, 0x01, 0x12, 0x34};
   append_frame(sub1, mb);
-  Feed f2(dec);
+  Feed f2(dec, c);
   f2.run(mb);
   ASSERT_EQ(f2.results.size(), 2u);
   EXPECT_EQ(f2.results[0].message, 4072);
@@ -236,27 +237,27 @@ std::vector<std::uint8_t> gps_msm7_payload() {
 
 TEST(RtcmDecoder, BadInputIsCountedNeverUsed) {
   Corrections c;
-  Decoder dec(c);
+  Decoder dec;
   // Unknown message number, ephemeris (known, not used), an empty payload.
   std::array<std::uint8_t, 4> unknown{0x3E, 0x70, 0, 0};  // 999
-  EXPECT_FALSE(dec.decode(unknown, kNow).used);
+  EXPECT_FALSE(dec.decode(unknown, kNow, c).used);
   std::array<std::uint8_t, 4> eph{0x3F, 0xB0, 0, 0};      // 1019
-  EXPECT_FALSE(dec.decode(eph, kNow).used);
-  EXPECT_EQ(dec.decode({}, kNow).message, 0);
+  EXPECT_FALSE(dec.decode(eph, kNow, c).used);
+  EXPECT_EQ(dec.decode({}, kNow, c).message, 0);
   EXPECT_EQ(dec.stats().unknown_messages, 2u);
   EXPECT_EQ(dec.stats().not_used, 1u);
   // A satellite mask bit more than the payload holds: dropped whole.
   std::vector<std::uint8_t> p = gps_msm7_payload();
   p[10] |= 0x01;  // a satellite of the mask's first bytes
-  EXPECT_FALSE(dec.decode(p, kNow).used);
+  EXPECT_FALSE(dec.decode(p, kNow, c).used);
   EXPECT_EQ(dec.stats().bad_masks, 1u);
   // Truncated MSM and truncated 1005.
   p = gps_msm7_payload();
   p.resize(p.size() - 5);
-  EXPECT_FALSE(dec.decode(p, kNow).used);
+  EXPECT_FALSE(dec.decode(p, kNow, c).used);
   EXPECT_EQ(dec.stats().bad_masks, 2u);
   std::array<std::uint8_t, 6> short1005{0x3E, 0xD7, 0xD3, 0, 0, 0};
-  EXPECT_FALSE(dec.decode(short1005, kNow).used);
+  EXPECT_FALSE(dec.decode(short1005, kNow, c).used);
   EXPECT_EQ(dec.stats().truncated, 1u);
   EXPECT_FALSE(c.obs_valid);
   EXPECT_FALSE(c.station.position_valid);
@@ -269,7 +270,7 @@ TEST(RtcmDecoder, BadInputIsCountedNeverUsed) {
   auto flip = [&p](std::size_t bit) { p[bit / 8] = static_cast<std::uint8_t>(p[bit / 8] ^ (0x80u >> (bit % 8))); };
   flip(kMsmHeaderBits + 64 + 1);
   flip(kMsmHeaderBits + 64 + 3);
-  EXPECT_TRUE(dec.decode(p, kNow).used);
+  EXPECT_TRUE(dec.decode(p, kNow, c).used);
   EXPECT_EQ(dec.stats().unknown_signals, 4u);
   EXPECT_EQ(c.obs.num_meas, 0);
 }
@@ -280,12 +281,14 @@ TEST(RtcmDecoder, DecodingDoesNotAllocate) {
   std::string out;
   enc.append_epoch(e, SystemSet::all(), out);
   Corrections c;
-  Decoder dec(c);
+  Decoder dec;
   struct Sink : FrameSink {
     Decoder* d;
-    void on_frame(std::span<const std::uint8_t> p) override { d->decode(p, kNow); }
+    Corrections* c;
+    void on_frame(std::span<const std::uint8_t> p) override { d->decode(p, kNow, *c); }
   } sink;
   sink.d = &dec;
+  sink.c = &c;
   FrameReader reader(sink);
   const long before = support::allocation_count();
   for (int i = 0; i < 5; ++i) reader.feed({reinterpret_cast<const std::uint8_t*>(out.data()), out.size()});
