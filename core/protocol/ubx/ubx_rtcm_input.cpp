@@ -30,6 +30,13 @@ std::size_t rxm_rtcm(const rtcm::DecodeResult& r, bool crc_failed, std::string& 
   return append_frame(out, msg::kRxmRtcm, p);
 }
 
+void RtcmInput::learn_glonass_channels(const receiver::RawEpoch& own) noexcept {
+  for (int i = 0; i < own.num_meas && i < receiver::kMaxRawMeasurements; ++i) {
+    const receiver::RawMeasurement& m = own.meas[static_cast<std::size_t>(i)];
+    if (m.sat.system == GnssSystem::kGlonass) decoder_.set_glonass_channel(m.sat.number, m.glonass_channel);
+  }
+}
+
 rtcm::DecodeResult RtcmInput::take(std::span<const std::uint8_t> payload, bool crc_ok) noexcept {
   if (outage_) {
     ++stats_.outage;

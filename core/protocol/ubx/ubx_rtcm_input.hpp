@@ -49,6 +49,9 @@ public:
     now_ = t;
     leap_seconds_ = leap_seconds;
   }
+  /// The GLONASS channels of the satellites the rover tracks: an MSM4
+  /// carries none, so the base's GLONASS carrier phases need them.
+  void learn_glonass_channels(const receiver::RawEpoch& own) noexcept;
   /// A correction-link outage (fault): frames are lost before the decoder.
   void set_outage(bool on) noexcept { outage_ = on; }
   bool outage() const noexcept { return outage_; }

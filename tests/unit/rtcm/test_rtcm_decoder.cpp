@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -297,4 +299,59 @@ TEST(RtcmDecoder, DecodingDoesNotAllocate) {
 }
 
 }  // namespace decoder_test
+}  // namespace gnssemu::protocol::rtcm
+
+namespace gnssemu::protocol::rtcm {
+namespace decoder_real_test {
+
+/// RTKLIB's str2str made MSM7 from a real NEO-M8T's RXM-RAWX (tests/data/README.md);
+/// RTKLIB's convbin decodes the same file into the RINEX values below.
+TEST(RtcmDecoderRealFile, Str2strMsm7OfANeoM8tAgreesWithConvbin) {
+  std::ifstream f(std::string(GNSSEMU_TEST_DATA) + "/receiver-logs/ublox-neo-m8t-str2str.rtcm3", std::ios::binary);
+  ASSERT_TRUE(f) << "missing test data";
+  const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  receiver::Corrections c;
+  Decoder dec;
+  const time::GpsTime now = time::GpsTime::from_calendar({2017, 12, 28, 20, 56, 0.0});
+  struct Sink : FrameSink {
+    Decoder* d;
+    receiver::Corrections* c;
+    time::GpsTime now;
+    std::vector<receiver::RawEpoch> epochs;
+    void on_frame(std::span<const std::uint8_t> p) override {
+      if (d->decode(p, now, *c).epoch_complete) epochs.push_back(c->obs);
+    }
+  } sink;
+  sink.d = &dec;
+  sink.c = &c;
+  sink.now = now;
+  FrameReader reader(sink);
+  reader.feed({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()});
+  reader.finish();
+  EXPECT_EQ(reader.stats().crc_errors, 0u);
+  EXPECT_EQ(dec.stats().bad_masks, 0u);
+  ASSERT_EQ(sink.epochs.size(), 39u);  // convbin: 39 epochs
+  const receiver::RawEpoch& first = sink.epochs.front();
+  // convbin: "> 2017 12 28 20 56 03.9920000  0 10" (GPS time, leap seconds not applied).
+  const time::GpsTime want_t = time::GpsTime::from_calendar({2017, 12, 28, 20, 56, 3.992});
+  EXPECT_NEAR(first.t_rx - want_t, 0.0, 1e-6);
+  ASSERT_EQ(first.num_meas, 10);
+  struct Row {
+    int prn;
+    double c1c_m, l1c_cycles;
+  };
+  // convbin's C1C and L1C of the first epoch.
+  const Row rows[] = {{4, 21478168.193, 112868689.207}, {10, 18209344.773, 95691379.586},
+                      {32, 18191129.764, 95594454.382}};
+  for (const Row& r : rows) {
+    const receiver::RawMeasurement* m = nullptr;
+    for (int i = 0; i < first.num_meas; ++i)
+      if (first.meas[static_cast<std::size_t>(i)].sat == SatId(GnssSystem::kGps, r.prn)) m = &first.meas[static_cast<std::size_t>(i)];
+    ASSERT_NE(m, nullptr) << "G" << r.prn;
+    EXPECT_NEAR(m->pseudorange_m, r.c1c_m, 0.001) << "G" << r.prn;
+    EXPECT_NEAR(m->carrier_phase_cycles, r.l1c_cycles, 0.001) << "G" << r.prn;
+  }
+}
+
+}  // namespace decoder_real_test
 }  // namespace gnssemu::protocol::rtcm
