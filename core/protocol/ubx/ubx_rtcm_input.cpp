@@ -50,7 +50,8 @@ rtcm::DecodeResult RtcmInput::take(std::span<const std::uint8_t> payload, bool c
     return r;
   }
   ++stats_.frames;
-  const rtcm::DecodeResult r = decoder_.decode(payload, now_, corrections_, leap_seconds_);
+  if (stale_) ++stats_.stale;
+  const rtcm::DecodeResult r = decoder_.decode(payload, now_, stale_ ? stale_sink_ : corrections_, leap_seconds_);
   if (r.used) ++stats_.used;
   return r;
 }

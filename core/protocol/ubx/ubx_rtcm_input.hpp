@@ -30,6 +30,7 @@ struct RtcmInputStats {
   std::uint64_t crc_failed = 0;  ///< frames whose CRC-24Q failed
   std::uint64_t ignored = 0;     ///< frames on a port whose inProtoMask has no RTCM3
   std::uint64_t outage = 0;      ///< frames lost to a correction-link outage fault
+  std::uint64_t stale = 0;       ///< frames a stale-corrections fault kept from the corrections
   std::uint64_t used = 0;        ///< messages the corrections took
 };
 
@@ -55,6 +56,9 @@ public:
   /// A correction-link outage (fault): frames are lost before the decoder.
   void set_outage(bool on) noexcept { outage_ = on; }
   bool outage() const noexcept { return outage_; }
+  /// Stale corrections (fault): frames arrive and are reported, but the
+  /// corrections keep what they held, so their age grows.
+  void set_stale(bool on) noexcept { stale_ = on; }
 
   const receiver::Corrections& corrections() const noexcept { return corrections_; }
   const rtcm::DecoderStats& decoder_stats() const noexcept { return decoder_.stats(); }
@@ -66,6 +70,8 @@ private:
   time::GpsTime now_;
   int leap_seconds_ = 18;
   bool outage_ = false;
+  bool stale_ = false;
+  receiver::Corrections stale_sink_;  ///< where a stale link's messages go
   RtcmInputStats stats_;
 };
 

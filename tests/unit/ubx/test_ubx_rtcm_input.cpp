@@ -142,6 +142,20 @@ TEST(UbxRtcmInput, OutageFaultLosesFrames) {
   EXPECT_TRUE(d.corrections().obs_valid);
 }
 
+TEST(UbxRtcmInput, StaleFaultKeepsTheCorrectionsAsTheyWere) {
+  Device d(rtcm_port());
+  d.on_epoch(fix_at(time::GpsTime(2300, 345600.0)), 1.0);
+  RtcmHost h(d);
+  h.send(corrections_bytes());
+  const std::uint32_t revision = d.corrections().revision;
+  d.on_epoch(fix_at(time::GpsTime(2300, 345601.0)), 2.0);
+  d.rtcm_input().set_stale(true);
+  h.send(corrections_bytes());
+  EXPECT_EQ(d.corrections().revision, revision);
+  EXPECT_EQ(d.corrections().obs_received, time::GpsTime(2300, 345600.0));
+  EXPECT_EQ(d.rtcm_input().stats().stale, 3u);
+}
+
 TEST(UbxRtcmInput, TruncatedFrameDoesNotHideTheUbxAfterIt) {
   Device d(rtcm_port());
   RtcmHost h(d);
