@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // [base]: the RTCM reference station (docs/base-station.md). Its position,
-// station id, messages and [base.ntrip] caster endpoint; any key of [receiver] on it overrides the top level's for the base
+// station id, messages, [base.ntrip] caster endpoint and [[base.output]] ports; any key of [receiver] on it overrides the top level's for the base
 // alone (its own seed, profile, errors), as on a [[vehicle.receiver]].
 #include "config/base_station.hpp"
 #include "config/config_keys.hpp"
@@ -75,8 +75,8 @@ constexpr Field<BaseConfig> kBaseFields[] = {
 constexpr Section<BaseConfig> kBase{kBaseFields};
 
 constexpr std::string_view kBaseTakes =
-    "[base] takes lat_deg, lon_deg, height_m, station_id, antenna_height_m, messages, [base.ntrip] "
-    "and the keys of [receiver]";
+    "[base] takes lat_deg, lon_deg, height_m, station_id, antenna_height_m, messages, [base.ntrip], "
+    "[[base.output]] and the keys of [receiver]";
 
 }  // namespace
 
@@ -90,6 +90,15 @@ void read_base(TableReader& t, const Field<Config>& f, Config& c) {
   if (std::optional<TableReader> n = bt->table("ntrip", false)) {
     b.ntrip.enabled = true;
     read_section(*n, kNtrip, b.ntrip);
+  }
+  for (TableReader& o : bt->table_array("output")) {
+    OutputPortConfig port;
+    read_section(o, kBaseOutputKeys, port);
+    port.protocols_in = 0;  // the base's stream only leaves
+    std::vector<OutputPortConfig> before = c.outputs;
+    before.insert(before.end(), b.outputs.begin(), b.outputs.end());
+    check_unique_port(o, before, port);
+    b.outputs.push_back(std::move(port));
   }
   bt->finish(kBaseTakes);
   c.base = std::move(b);
@@ -105,6 +114,7 @@ void write_base(TomlWriter& w, const Field<Config>& f, const Config& c) {
   Config own = with_receiver_settings(Config{}, c.base->settings);
   write_rows(w, kReceiverKeys, own);
   if (c.base->ntrip.enabled) write_table(w, kNtrip, base + ".ntrip", {}, c.base->ntrip);
+  for (const OutputPortConfig& o : c.base->outputs) write_table(w, kBaseOutputKeys, base + ".output", {}, o, true);
   w.set_table(outer);
 }
 
@@ -118,6 +128,9 @@ void describe_base(KeyDocs& d, const Field<Config>& f, const Config&) {
   d.add(std::move(any));
   d.enter("ntrip");
   describe_section(d, kNtrip, NtripCasterConfig{});
+  d.leave();
+  d.enter("output");  // name, type and baud of [[output]]
+  describe_section(d, kBaseOutputKeys, OutputPortConfig{});
   d.leave();
   d.leave();
 }

@@ -203,6 +203,10 @@ struct BaseConfig {
   ReceiverSettings settings;      ///< merged: top level + [base]'s own receiver keys
   std::vector<BaseMessage> messages;      ///< in the order given
   NtripCasterConfig ntrip;        ///< [base.ntrip]
+  /// [[base.output]]: ports carrying the base's RTCM stream as it is made
+  /// (no input, protocols_in 0); their names and ports are unique among
+  /// every [[output]].
+  std::vector<OutputPortConfig> outputs;
   int line = 0;                   ///< line of [base] (for messages)
 };
 

@@ -22,6 +22,8 @@ extern const Section<Config> kSignalKeys;
 extern const Section<OutputPortConfig> kOutputKeys;
 /// One [[fleet.output]] template: [[output]]'s keys, port_base for port (output_keys.cpp).
 extern const Section<OutputPortConfig> kFleetOutputKeys;
+/// [[base.output]]: name, type and its keys, baud.
+extern const Section<OutputPortConfig> kBaseOutputKeys;
 /// [scene] (scene_keys.cpp).
 extern const Section<SceneConfig> kSceneKeys;
 

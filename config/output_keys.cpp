@@ -289,17 +289,20 @@ void write_baud(TomlWriter& w, const Field<OutputPortConfig>& f, const OutputPor
 std::string baud_range() { return bauds_text() + "; 0 only for tcp, udp, file"; }
 
 constexpr Choice<uint16_t> kProtocols[] = {{"ubx", proto::kUbx}, {"nmea", proto::kNmea}};
+/// Input may also be RTCM 3 corrections (inProtoMask bit 5).
+constexpr Choice<uint16_t> kInProtocols[] = {{"ubx", proto::kUbx}, {"nmea", proto::kNmea}, {"rtcm3", proto::kRtcm3}};
 
+template <const auto& kTable>
 uint16_t read_protocols(TableReader& t, std::string_view key, uint16_t def) {
   const std::string name = t.full_name(key);
   uint16_t mask = 0;
   const toml::array* a = t.string_array(
       key, "an array of strings", "protocol names (strings)", [&](const toml::node& e, const std::string& s) {
         uint16_t bit = 0;
-        for (const auto& p : kProtocols) bit = p.name == s ? p.value : bit;
+        for (const auto& p : kTable) bit = p.name == s ? p.value : bit;
         if (bit == 0) {
           t.fail(e, name + ": unknown protocol '" + s + "' (known: " +
-                        known_names(kChoiceNames<kProtocols>, ChoiceStyle::kOneOf) + ")");
+                        known_names(kChoiceNames<kTable>, ChoiceStyle::kOneOf) + ")");
         }
         if ((mask & bit) != 0) t.fail(e, name + ": '" + s + "' listed twice");
         mask = static_cast<uint16_t>(mask | bit);
@@ -309,7 +312,7 @@ uint16_t read_protocols(TableReader& t, std::string_view key, uint16_t def) {
 
 std::string protocols_text(uint16_t mask) {
   std::vector<std::string_view> names;
-  for (const auto& p : kProtocols) {
+  for (const auto& p : kInProtocols) {
     if ((mask & p.value) != 0) names.push_back(p.name);
   }
   return strings_text(names);
@@ -317,7 +320,7 @@ std::string protocols_text(uint16_t mask) {
 
 void read_protocols_in(TableReader& t, const Field<OutputPortConfig>& f, OutputPortConfig& port) {
   const bool input = has_input(port.type());
-  port.protocols_in = read_protocols(t, f.key, input ? proto::kUbx | proto::kNmea : 0);
+  port.protocols_in = read_protocols<kInProtocols>(t, f.key, input ? proto::kUbx | proto::kNmea : 0);
   if (!input && port.protocols_in != 0) {
     t.fail(*t.find(f.key), t.full_name(f.key) + ": a port of type \"" + std::string(port_type_name(port.type())) +
                                "\" has no input; use []");
@@ -329,7 +332,7 @@ void write_protocols_in(TomlWriter& w, const Field<OutputPortConfig>& f, const O
 }
 
 void read_protocols_out(TableReader& t, const Field<OutputPortConfig>& f, OutputPortConfig& port) {
-  port.protocols_out = read_protocols(t, f.key, proto::kUbx | proto::kNmea);
+  port.protocols_out = read_protocols<kProtocols>(t, f.key, proto::kUbx | proto::kNmea);
 }
 
 void write_protocols_out(TomlWriter& w, const Field<OutputPortConfig>& f, const OutputPortConfig& port) {
@@ -338,8 +341,10 @@ void write_protocols_out(TomlWriter& w, const Field<OutputPortConfig>& f, const 
 
 constexpr Field<OutputPortConfig> protocols_in_field() {
   Field<OutputPortConfig> row = custom<OutputPortConfig>(
-      "protocols_in", "", "subset of `\"ubx\"`, `\"nmea\"`",
-      "input the port accepts (UBX CFG messages and polls, `$PUBX` commands); file and udp ports have no input",
+      "protocols_in", "", "subset of `\"ubx\"`, `\"nmea\"`, `\"rtcm3\"`",
+      "input the port accepts (UBX CFG messages and polls, `$PUBX` commands, RTCM 3 corrections: docs/rtk.md); "
+      "`\"rtcm3\"` is added to the chip's own (a ZED-F9P takes RTCM 3 on UART1 and UART2 from the factory); "
+      "file and udp ports have no input",
       read_protocols_in, write_protocols_in);
   row.doc_default = "pty, serial, tcp: `[\"ubx\", \"nmea\"]`; file, udp: `[]`";
   return row;
@@ -535,8 +540,20 @@ constexpr auto kFleetOutputFields = [] {
   return rows;
 }();
 
+// [[base.output]]: the rows of [[output]] a port carrying the base's RTCM
+// stream has (it takes no input and has no message set of its own).
+constexpr auto kBaseOutputFields = [] {
+  std::array<Field<OutputPortConfig>, 3> rows{};
+  std::size_t n = 0;
+  for (const Field<OutputPortConfig>& f : kOutputFields) {
+    if (f.key == "name" || f.key == "type" || f.key == "baud") rows[n++] = f;
+  }
+  return rows;
+}();
+
 constexpr Section<OutputPortConfig> kOutputKeys{kOutputFields};
 constexpr Section<OutputPortConfig> kFleetOutputKeys{kFleetOutputFields};
+constexpr Section<OutputPortConfig> kBaseOutputKeys{kBaseOutputFields};
 
 void check_unique_port(TableReader& t, const std::vector<OutputPortConfig>& before, const OutputPortConfig& port) {
   for (const OutputPortConfig& prev : before) {

@@ -161,6 +161,13 @@ void Daemon::start_base() {
     spdlog::info("base {}: NTRIP caster on 127.0.0.1:{}/{} ({})", cfg_.base->station_id, caster_->port(),
                  cfg_.base->ntrip.mountpoint, base_->format_details());
   }
+  for (const config::OutputPortConfig& o : cfg_.base->outputs) {
+    validate_port(o);
+    base_ports_.push_back(open_port(o, io_));
+    base_ports_.back()->start(nullptr);
+    spdlog::info("base {}: RTCM on output {}: {} ({})", cfg_.base->station_id, o.name, base_ports_.back()->describe(),
+                 base_->format_details());
+  }
 }
 
 void Daemon::lock_grid_from(const time::GpsTime& t) noexcept {
@@ -185,6 +192,8 @@ void Daemon::restart_receiver(Rig& rig, receiver::StartMode start) {
   std::unique_ptr<faults::FaultStage> faults = rig.receiver ? rig.receiver->take_faults() : nullptr;
   rig.receiver = config::make_pipeline(c, store_, pipeline::broadcast_of(constellation_.nav), scene_.get());
   rig.receiver->adopt_faults(std::move(faults));
+  // The corrections its ports' hosts send (RTCM 3 on any port that takes it).
+  rig.receiver->receiver().set_corrections(&rig.device.corrections());
   apply_chip_settings(rig);
 }
 
@@ -504,6 +513,7 @@ void Daemon::emit_epoch(const time::GpsTime& t, double demo_elapsed_s, bool fall
     base_bytes_.clear();
     base_->step(sky_, base_bytes_);
     if (caster_) caster_->publish(base_bytes_);
+    for (const auto& port : base_ports_) port->write_epoch(base_bytes_);
   }
   ++epochs_;
   last_epoch_t_ = t;

@@ -234,6 +234,8 @@ private:
   std::unique_ptr<config::BaseStation> base_;  ///< [base]: null without one
   std::unique_ptr<NtripCaster> caster_;        ///< [base.ntrip]: null without one
   std::string base_bytes_;                     ///< the base's epoch, reused
+  /// [[base.output]]: ports carrying the base's RTCM stream.
+  std::vector<std::unique_ptr<OutputPort>> base_ports_;
   SystemdNotify notify_;
   TruthAllowList allow_;
   asio::steady_timer tick_timer_;

@@ -12,6 +12,25 @@
 
 namespace gnssemu::daemon {
 
+namespace {
+
+CorrectionCounters correction_counters(const protocol::ubx::Device& d, const receiver::Fix& fix) noexcept {
+  const protocol::ubx::RtcmInputStats& in = d.rtcm_input().stats();
+  const receiver::Corrections& c = d.corrections();
+  CorrectionCounters out;
+  out.messages = in.frames;
+  out.used = in.used;
+  out.crc_failed = in.crc_failed;
+  out.ignored = in.ignored;
+  out.lost = in.outage;
+  out.epochs = d.rtcm_input().decoder_stats().epochs;
+  if (c.station.position_valid || c.station.moving) out.station_id = c.station.station_id;
+  if (c.obs_valid && fix.time_valid) out.age_s = fix.t - c.obs_received;
+  return out;
+}
+
+}  // namespace
+
 void Daemon::refresh_status_setup() {
   for (const auto& rp : rigs_) {
     Rig& rig = *rp;
@@ -94,6 +113,7 @@ void Daemon::record_status(Rig& rig, double run_s, const receiver::Fix& fix) noe
   tc.fresh = tc.simulator && router_.router(v).driver_fresh(now);
   tc.demo = demo_drives(v);
   rig.status.set_truth(tc);
+  rig.status.set_corrections(correction_counters(rig.device, fix));
 
   for (std::size_t i = 0; i < rig.channels.size(); ++i) {
     const PortChannel& c = *rig.channels[i];

@@ -98,8 +98,8 @@ constexpr std::string_view kTypeNames[] = {"jammer", "spoofer", "outage", "sky_b
 constexpr std::string_view kJammerKinds[] = {"wideband", "narrowband", "cw"};
 constexpr std::string_view kSpoofModes[] = {"drag", "time_push", "meacon", "takeover"};
 constexpr std::string_view kOutageKinds[] = {"blockage", "open", "short"};
-constexpr std::string_view kLinkFaults[] = {"byte_loss", "corrupt", "drop",  "latency",
-                                            "freeze",    "stop",    "rate", "wrong_fix"};
+constexpr std::string_view kLinkFaults[] = {"byte_loss", "corrupt", "drop",      "latency",     "freeze",
+                                            "stop",      "rate",    "wrong_fix", "rtcm_outage", "rtcm_stale"};
 
 }  // namespace
 

@@ -96,7 +96,10 @@ enum class SpoofMode : std::uint8_t { kDrag, kTimePush, kMeacon, kTakeover };
 /// Outages: every signal blocked (a tunnel), or the antenna open / shorted.
 enum class OutageKind : std::uint8_t { kBlockage, kOpen, kShort };
 /// Link faults of a port (applied by the daemon's ports, not in the core).
-enum class LinkFault : std::uint8_t { kByteLoss, kCorrupt, kDrop, kLatency, kFreeze, kStop, kRate, kWrongFix };
+/// rtcm_outage and rtcm_stale act on the RTCM 3 a host sends the port (docs/rtk.md).
+enum class LinkFault : std::uint8_t {
+  kByteLoss, kCorrupt, kDrop, kLatency, kFreeze, kStop, kRate, kWrongFix, kRtcmOutage, kRtcmStale
+};
 
 /// The string key of a type ("kind", "mode", "antenna", "fault"), or empty.
 std::string_view mode_key(FaultType t) noexcept;

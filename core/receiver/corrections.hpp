@@ -34,6 +34,7 @@ struct Corrections {
   /// with the same epoch time, merged; obs.t_rx is the base's epoch, GPS).
   RawEpoch obs;
   bool obs_valid = false;
+  int obs_station_id = 0;             ///< DF003 of obs's MSMs (a rover pairs it with station.station_id)
   time::GpsTime obs_received;         ///< rover time the epoch became complete (GPS)
   /// 1230 GLONASS code-phase biases, m: L1 C/A, L1 P, L2 C/A, L2 P (DF423-DF426).
   std::array<double, 4> glonass_cpb_m{};

@@ -70,6 +70,8 @@ LinkFaultSet active_link_faults(std::span<const faults::FaultStatus> status, std
       case LinkFault::kLatency: s.latency_s += std::max(0.0, e.value(Param::kLatencyMs, f)) * 1e-3; break;
       case LinkFault::kFreeze: s.freeze = true; break;
       case LinkFault::kStop: s.stop = true; break;
+      case LinkFault::kRtcmOutage: s.rtcm_outage = true; break;
+      case LinkFault::kRtcmStale: s.rtcm_stale = true; break;
       case LinkFault::kRate: {
         const double hz = e.value(Param::kRateHz, f);
         if (hz > 0.0 && (s.rate_hz == 0.0 || hz < s.rate_hz)) s.rate_hz = hz;
@@ -119,7 +121,9 @@ std::optional<std::string> check_port_events(std::span<const FaultEvent> events,
       case LinkFault::kRate: missing = needs(Param::kRateHz); break;
       case LinkFault::kWrongFix: missing = needs(Param::kFixType); break;
       case LinkFault::kFreeze:
-      case LinkFault::kStop: break;
+      case LinkFault::kStop:
+      case LinkFault::kRtcmOutage:
+      case LinkFault::kRtcmStale: break;
     }
     if (missing) return missing;
   }

@@ -37,9 +37,11 @@ struct LinkFaultSet {
   double latency_s = 0.0;  ///< added delay, s (>= 0)
   double rate_hz = 0.0;    ///< output rate, Hz (0: the navigation rate)
   protocol::FixOverride fix_type;  ///< reported instead of the receiver's
+  bool rtcm_outage = false;  ///< RTCM 3 from the host is lost before the chip
+  bool rtcm_stale = false;   ///< RTCM 3 arrives but the corrections stay as they were
   bool any() const noexcept {
     return stop || freeze || byte_loss > 0.0 || corrupt > 0.0 || drop > 0.0 || latency_s > 0.0 || rate_hz > 0.0 ||
-           fix_type.has_value();
+           fix_type.has_value() || rtcm_outage || rtcm_stale;
   }
 };
 

@@ -25,6 +25,14 @@ public:
     ch_.reply_.clear();
     ch_.handle_result(source, ch_.device_.handle_nmea(ch_.link(), sentence, ch_.reply_));
   }
+  void on_rtcm(std::span<const uint8_t> payload, bool crc_ok) override {
+    // The correction link's faults on this port (docs/rtk.md).
+    const LinkFaultSet& f = ch_.link_.active();
+    ch_.device_.rtcm_input().set_outage(f.rtcm_outage);
+    ch_.device_.rtcm_input().set_stale(f.rtcm_stale);
+    ch_.reply_.clear();
+    ch_.handle_result(source, ch_.device_.handle_rtcm(ch_.link(), payload, crc_ok, ch_.reply_));
+  }
 
 private:
   PortChannel& ch_;

@@ -216,6 +216,18 @@ void StatusProducer::write_json(std::string& out, std::size_t history_max) const
   w.end_object();
   w.end_object();
 
+  w.key("corrections");
+  w.begin_object();
+  w.field_int("messages", static_cast<int64_t>(corrections_.messages));
+  w.field_int("used", static_cast<int64_t>(corrections_.used));
+  w.field_int("crc_failed", static_cast<int64_t>(corrections_.crc_failed));
+  w.field_int("ignored", static_cast<int64_t>(corrections_.ignored));
+  w.field_int("lost", static_cast<int64_t>(corrections_.lost));
+  w.field_int("epochs", static_cast<int64_t>(corrections_.epochs));
+  w.field_int("station_id", corrections_.station_id);
+  w.field("age_s", corrections_.age_s, 2);
+  w.end_object();
+
   w.key("error");
   w.begin_object();
   w.field_bool("valid", error_valid_);

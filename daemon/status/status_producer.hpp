@@ -60,6 +60,18 @@ struct TruthCounters {
   bool demo = false;               ///< the demo trajectory drives the receiver
 };
 
+/// RTCM 3 corrections the receiver's ports took (docs/rtk.md).
+struct CorrectionCounters {
+  uint64_t messages = 0;    ///< frames with a good CRC on a port that takes RTCM 3
+  uint64_t used = 0;        ///< messages the corrections took
+  uint64_t crc_failed = 0;
+  uint64_t ignored = 0;     ///< frames on ports without RTCM 3 input
+  uint64_t lost = 0;        ///< frames lost to a correction-link outage fault
+  uint64_t epochs = 0;      ///< complete base epochs
+  int station_id = -1;      ///< reference station (1005/1006/4072.0); -1 none yet
+  double age_s = std::numeric_limits<double>::quiet_NaN();  ///< rover time - last base epoch's arrival, s; NaN none
+};
+
 /// One fault of the fault stage, as the timeline shows it.
 struct FaultStatus {
   std::string id;           ///< unique per event, e.g. "3"
@@ -93,6 +105,7 @@ public:
   /// Counters of port i (< ports), updated every epoch. No allocation.
   void set_port_counters(std::size_t i, const PortCounters& c) noexcept;
   void set_truth(const TruthCounters& c) noexcept;
+  void set_corrections(const CorrectionCounters& c) noexcept { corrections_ = c; }
   /// The faults the fault stage runs (allocates only when the list grows).
   void set_faults(std::span<const FaultStatus> faults);
   /// Record one epoch. No allocation, no exception.
@@ -153,6 +166,7 @@ private:
   std::array<double, kHistory> scratch_{};
 
   TruthCounters truth_counters_;
+  CorrectionCounters corrections_;
   RateMeter truth_rate_;
   std::vector<PortSlot> ports_;
   std::vector<FaultStatus> faults_;

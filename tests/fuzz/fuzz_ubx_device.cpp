@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Host input to the emulated u-blox: bytes through one StreamDecoder per
-// output into Device::handle_ubx / handle_nmea, on one to three outputs
+// output into Device::handle_ubx / handle_nmea / handle_rtcm, on one to three outputs
 // (and, on output 0, as seen from the chip's other ports), an M8 or an M9, with navigation
 // epochs, idle resyncs and decoder resets in between, as the daemon's
 // PortChannel drives them. The input's front is the byte stream (a recorded
@@ -174,6 +174,11 @@ public:
     const InputResult r = device_.handle_nmea(link_, sentence, out_);
     check(r, before);
   }
+  void on_rtcm(std::span<const std::uint8_t> payload, bool crc_ok) override {
+    const std::size_t before = out_.size();
+    const InputResult r = device_.handle_rtcm(link_, payload, crc_ok, out_);
+    check(r, before);
+  }
   double now_s = 0.0;
 
 private:
@@ -215,6 +220,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     OutputSetup o;
     o.baud_bps = kBauds[static_cast<std::size_t>(in.control_in(0, kBauds.size() - 1))];
     o.protocols_in = static_cast<std::uint16_t>(in.control_in(0, 3));
+    if (o.protocols_in == 3) o.protocols_in |= proto::kRtcm3;  // a port taking all three
     o.protocols_out = static_cast<std::uint16_t>(in.control_in(0, 3));
     for (const MsgId id : kRated) {
       const int rate = in.control_in(0, 3);

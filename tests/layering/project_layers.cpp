@@ -35,11 +35,15 @@ Rules project_rules() {
       {"nmea", "core/protocol/nmea", {"time"}, {"core/receiver/fix.hpp"}},
       // Navigation messages re-encoded from the broadcast ephemerides (RXM-SFRBX).
       {"navmsg", "core/protocol/navmsg", {"orbit"}, {}},
-      {"ubx", "core/protocol/ubx", {"nmea", "navmsg"}, {"core/receiver/raw_measurements.hpp"}},
+      // RTCM 3 arrives on a u-blox port beside UBX and NMEA (RXM-RTCM).
+      {"ubx", "core/protocol/ubx", {"nmea", "navmsg", "rtcm"},
+       {"core/receiver/raw_measurements.hpp", "core/receiver/corrections.hpp"}},
       // RINEX writers: the receiver's raw measurements (plain data) and the nav data.
       {"rinex", "core/rinex", {"orbit", "observation"}, {"core/receiver/raw_measurements.hpp"}},
-      // RTCM encodes a RawEpoch (plain header) and the broadcast ephemerides.
-      {"rtcm", "core/protocol/rtcm", {"orbit"}, {"core/receiver/raw_measurements.hpp"}},
+      // RTCM encodes a RawEpoch (plain header) and the broadcast ephemerides,
+      // and decodes into the rover's Corrections (plain header).
+      {"rtcm", "core/protocol/rtcm", {"orbit"},
+       {"core/receiver/raw_measurements.hpp", "core/receiver/corrections.hpp"}},
       {"config", "config", {"pipeline", "ubx", "rtcm", "observation"}, {}},
       // gnssemud's rooms: truth input, ports, status and control sit side by
       // side below the vehicle loop (daemon/ itself), which alone ties them.

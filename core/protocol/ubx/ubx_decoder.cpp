@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "core/protocol/rtcm/rtcm_frame.hpp"
+
 namespace gnssemu::protocol::ubx {
 
 namespace {
@@ -17,9 +19,12 @@ int hex_value(std::uint8_t c) noexcept {
   return -1;
 }
 
-bool is_start(std::uint8_t c) noexcept { return c == kSync1 || c == kDollar; }
+bool is_start(std::uint8_t c) noexcept { return c == kSync1 || c == kDollar || c == rtcm::kPreamble; }
 
 }  // namespace
+
+static_assert(kMaxPayloadBytes + kFrameOverheadBytes >= rtcm::kMaxPayloadBytes + rtcm::kFrameOverheadBytes,
+              "the buffer holds the longest RTCM 3 frame");
 
 void StreamDecoder::drop(std::size_t n) noexcept {
   n = std::min(n, size_);
@@ -77,6 +82,31 @@ void StreamDecoder::parse(DecoderSink& sink) noexcept {
       }
       ++stats_.ubx_frames;
       sink.on_ubx(FrameView{MsgId{buf_[2], buf_[3]}, {buf_.data() + kHeaderBytes, len}});
+      drop(total);
+      continue;
+    }
+    if (first == rtcm::kPreamble) {
+      if (size_ < 3) return;
+      const std::size_t len = static_cast<std::size_t>(buf_[1] & 0x03u) << 8 | buf_[2];
+      if ((buf_[1] & 0xFCu) != 0) {  // reserved bits: not a frame
+        ++stats_.garbage_bytes;
+        drop(1);
+        continue;
+      }
+      const std::size_t total = len + rtcm::kFrameOverheadBytes;
+      if (size_ < total) return;
+      const std::uint32_t want = static_cast<std::uint32_t>(buf_[3 + len]) << 16 |
+                                 static_cast<std::uint32_t>(buf_[4 + len]) << 8 | buf_[5 + len];
+      const std::span<const std::uint8_t> payload(buf_.data() + 3, len);
+      if (rtcm::crc24q({buf_.data(), 3 + len}) != want) {
+        ++stats_.rtcm_bad_crc;
+        ++stats_.garbage_bytes;
+        sink.on_rtcm(payload, false);
+        drop(1);
+        continue;
+      }
+      ++stats_.rtcm_frames;
+      sink.on_rtcm(payload, true);
       drop(total);
       continue;
     }

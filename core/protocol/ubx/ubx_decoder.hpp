@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
-// Streaming decoder for the receive side of a port: UBX frames and NMEA
-// sentences (host commands such as $PUBX,41) interleaved with garbage, as a
-// u-blox port accepts them. Bounded memory (one max-size frame), no
+// Streaming decoder for the receive side of a port: UBX frames, NMEA
+// sentences (host commands such as $PUBX,41) and RTCM 3 frames (0xD3,
+// CRC-24Q: corrections) interleaved with garbage, as a u-blox port accepts
+// them (CFG-PRT inProtoMask; the device decides which it takes). Bounded memory (one max-size frame), no
 // allocation after construction, never throws. After a bad frame it rescans
 // from the byte after the false sync, so a valid frame hidden in garbage is
 // still found.
@@ -24,6 +25,8 @@ inline constexpr std::size_t kMaxNmeaBytes = 120;
 struct DecoderStats {
   std::uint64_t ubx_frames = 0;         ///< good UBX frames delivered
   std::uint64_t nmea_sentences = 0;     ///< good NMEA sentences delivered
+  std::uint64_t rtcm_frames = 0;        ///< good RTCM 3 frames delivered
+  std::uint64_t rtcm_bad_crc = 0;       ///< RTCM 3 headers whose CRC-24Q did not match
   std::uint64_t ubx_bad_checksum = 0;
   std::uint64_t ubx_bad_length = 0;     ///< length field > kMaxPayloadBytes
   std::uint64_t nmea_bad_checksum = 0;  ///< '*hh' present but wrong or not hex
@@ -41,6 +44,13 @@ public:
   virtual void on_ubx(const FrameView& frame) = 0;
   /// sentence: from '$' up to and including "*hh", without CR LF; checksum verified.
   virtual void on_nmea(std::string_view sentence) = 0;
+  /// An RTCM 3 frame's payload (message number in its first 12 bits).
+  /// crc_ok false: a header whose CRC failed (what RXM-RTCM reports as
+  /// crcFailed); the decoder then rescans from the byte after the 0xD3.
+  virtual void on_rtcm(std::span<const std::uint8_t> payload, bool crc_ok) {
+    (void)payload;
+    (void)crc_ok;
+  }
 };
 
 class StreamDecoder {

@@ -251,6 +251,8 @@ void Device::restart_navigation(double now_s) noexcept {
 void Device::on_epoch(const receiver::Fix& fix, double now_s, const RawSource& raw) noexcept {
   last_fix_ = fix;
   raw_ = raw;
+  if (fix.time_valid) rtcm_.set_time(fix.t, fix.leap_seconds);
+  if (raw.epoch != nullptr) rtcm_.learn_glonass_channels(*raw.epoch);
   if (raw.epoch != nullptr && raw.epoch->time_valid) {
     // SFRBX sends what finished since the last epoch: one period after a gap.
     const double dt = raw.epoch->t_rx - last_raw_t_;

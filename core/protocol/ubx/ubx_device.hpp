@@ -35,6 +35,7 @@
 #include "core/protocol/ubx/ubx_message_list.hpp"
 #include "core/protocol/ubx/ubx_message_table.hpp"
 #include "core/protocol/ubx/ubx_reset.hpp"
+#include "core/protocol/ubx/ubx_rtcm_input.hpp"
 #include "core/protocol/ubx/ubx_rxm.hpp"
 #include "core/receiver/fix.hpp"
 
@@ -173,6 +174,16 @@ public:
   /// received at at: $PUBX,41 (port protocols and baud), $PUBX,40 (NMEA
   /// rates), $xxGPQ/GNQ polls (answered in out). Others are ignored.
   InputResult handle_nmea(Link at, std::string_view sentence, std::string& out);
+  /// An RTCM 3 frame's payload received at at (crc_ok false: its CRC
+  /// failed): decoded into corrections() where the port's inProtoMask has
+  /// RTCM3, ignored elsewhere; an RXM-RTCM in out where at enables it.
+  /// Never throws; no allocation once out has capacity.
+  InputResult handle_rtcm(Link at, std::span<const std::uint8_t> payload, bool crc_ok, std::string& out);
+  /// The corrections the ports' RTCM input filled (the receiver reads them).
+  const receiver::Corrections& corrections() const noexcept { return rtcm_.corrections(); }
+  /// The correction input: counters, and the link-outage fault.
+  const RtcmInput& rtcm_input() const noexcept { return rtcm_; }
+  RtcmInput& rtcm_input() noexcept { return rtcm_; }
 
   /// Start of a navigation epoch at now_s: keeps fix for compose() and
   /// polls, counts epochs for rates > 1, updates uptime and ttff. raw: the
@@ -267,6 +278,7 @@ private:
   double raw_period_s_ = 0.0;  ///< time since the previous epoch's raw data, s
   time::GpsTime last_raw_t_;
   DeviceStats stats_;
+  RtcmInput rtcm_;  ///< RTCM 3 from the ports' hosts
 };
 
 }  // namespace gnssemu::protocol::ubx

@@ -264,7 +264,7 @@ name = "ecu"
 type = "pty"
 path = "/tmp/gnssemu/ecu"
 baud = 115200
-protocols_in = ["nmea"]
+protocols_in = ["nmea", "rtcm3"]
 protocols_out = ["nmea"]
 ubx_messages = ["NAV-SAT", "NAV-PVT"]
 nmea_version = "2.3"
@@ -309,6 +309,29 @@ port = 2102
 mountpoint = "SYD0"
 user = "rover"
 password = "secret"
+
+[[base.output]]
+name = "rtcm_net"
+type = "tcp"
+bind = "::1"
+port = 2948
+
+[[base.output]]
+name = "rtcm_radio"
+type = "serial"
+device = "/dev/ttyUSB1"
+baud = 57600
+
+[[base.output]]
+name = "rtcm_pty"
+type = "pty"
+path = "/tmp/gnssemu/rtcm"
+
+[[base.output]]
+name = "rtcm_udp"
+type = "udp"
+address = "127.0.0.3"
+port = 10111
 
 [scene]
 mesh = "scenes/street_canyon.toml"

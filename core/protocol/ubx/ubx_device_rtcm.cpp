@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: Apache-2.0
+// Device: RTCM 3 input on a port (ubx_rtcm_input.hpp).
+#include "core/protocol/ubx/ubx_device.hpp"
+
+namespace gnssemu::protocol::ubx {
+
+InputResult Device::handle_rtcm(Link at, std::span<const std::uint8_t> payload, bool crc_ok, std::string& out) {
+  InputResult r;
+  if (!valid(at) || (current_.port(column(at)).in_proto_mask & proto::kRtcm3) == 0) {
+    rtcm_.count_ignored();
+    ++stats_.ignored;
+    return r;
+  }
+  const bool lost = rtcm_.outage();
+  const rtcm::DecodeResult res = rtcm_.take(payload, crc_ok);
+  // A lost frame never reached the chip: nothing to report.
+  if (lost || !current_.port(column(at)).outputs_ubx() || message_rate(at, msg::kRxmRtcm) == 0) return r;
+  r.bytes = rxm_rtcm(res, !crc_ok, out);
+  r.label = "RXM-RTCM";
+  return r;
+}
+
+}  // namespace gnssemu::protocol::ubx
