@@ -12,11 +12,21 @@
 
 #include "config/config_keys.hpp"
 #include "config/device_setup.hpp"
+#include "config/receiver_config.hpp"
 
 namespace gnssemu::config {
 
 ReceiverSettings receiver_settings(const Config& c) {
   return {c.rate_hz, c.world, c.receiver, c.generation, c.raw_data, c.state_file, c.profile};
+}
+
+Config receiver_config(const Config& top, const VehicleConfig& v, const VehicleReceiverConfig& r) {
+  Config rc = with_receiver_settings(top, r.settings);
+  rc.outputs = r.outputs;
+  rc.truth.vehicle = v.id;
+  rc.vehicles.clear();
+  rc.fleet.reset();
+  return rc;
 }
 
 Config with_receiver_settings(Config c, const ReceiverSettings& settings) {

@@ -11,6 +11,7 @@
 #include "config/device_setup.hpp"
 #include "config/nav_setup.hpp"
 #include "config/pipeline_setup.hpp"
+#include "config/receiver_config.hpp"
 #include "config/scene_loader.hpp"
 #include "core/common/error.hpp"
 #include "daemon/epoch_schedule.hpp"
@@ -97,12 +98,8 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
   const SystemSet nav_systems = orbit::systems_of(constellation_.nav);
   for (std::size_t v = 0; v < vehicles.size(); ++v) {
     for (const config::VehicleReceiverConfig& r : vehicles[v].receivers) {
-      config::Config rc = config::with_receiver_settings(cfg, r.settings);
-      rc.outputs = r.outputs;
-      rc.truth.vehicle = vehicles[v].id;
-      rc.vehicles.clear();
-      rc.fleet.reset();
-      rigs_.push_back(std::make_unique<Rig>(vehicles[v].id, r.name, v, rc, r.lever_arm_m, nav_systems));
+      rigs_.push_back(std::make_unique<Rig>(vehicles[v].id, r.name, v, config::receiver_config(cfg, vehicles[v], r),
+                                            r.lever_arm_m, nav_systems));
     }
   }
   vehicles_.resize(router_.size());
@@ -268,6 +265,8 @@ double Daemon::chip_clock_s(const time::GpsTime& t) const noexcept {
 void Daemon::open_channel(Rig& rig, std::size_t i, std::unique_ptr<OutputPort> port) {
   rig.channels[i] = std::make_unique<PortChannel>(std::move(port), rig.device, i, [this] { return now_s(); });
   PortChannel& c = *rig.channels[i];
+  // In lockstep the serial line is simulated too: its budget drains in simulation time.
+  if (cfg_.time.mode != config::TimeMode::kRealtime) c.set_line_clock([this] { return line_s_; });
   c.use_idle_timer(io_);
   c.set_link_seed(rig.cfg.world.seed);
   Rig* r = &rig;  // rigs_ holds each Rig by pointer: it stays put
@@ -506,15 +505,16 @@ void Daemon::emit_epoch(const time::GpsTime& t, double demo_elapsed_s, bool fall
     antennas_.push_back(rig.truth.pos_m);
   }
   if (base_) antennas_.push_back(base_->position_ecef_m());
-  // A lone receiver steps its world's own sky, as gnssemu batch does (the
-  // lockstep run stays byte-identical to batch); several share this one.
-  if (shared_sky()) sky_.update(t, antennas_);
+  // A receiver's observables do not depend on which others read the sky
+  // (SkyErrors' grid is GPS time's), so each is gnssemu batch's.
+  sky_.update(t, antennas_);
   if (base_ && base_->is_epoch(t)) {
     base_bytes_.clear();
     base_->step(sky_, base_bytes_);
     if (caster_) caster_->publish(base_bytes_);
     for (const auto& port : base_ports_) port->write_epoch(base_bytes_);
   }
+  if (epochs_ > 0 && t > last_epoch_t_) line_s_ += t - last_epoch_t_;
   ++epochs_;
   last_epoch_t_ = t;
   const double run_s = run_time_s(t);
@@ -524,7 +524,7 @@ void Daemon::emit_epoch(const time::GpsTime& t, double demo_elapsed_s, bool fall
 
 void Daemon::emit_rig_epoch(Rig& rig, const time::GpsTime& t, double run_s) {
   const world::Truth& truth = rig.truth;
-  const receiver::Fix& fix = shared_sky() ? rig.receiver->step(sky_, truth) : rig.receiver->step(t, truth);
+  const receiver::Fix& fix = rig.receiver->step(sky_, truth);
   const receiver::RawEpoch& raw = rig.receiver->receiver().raw();
   rig.device.on_epoch(fix, chip_clock_s(t),
                       protocol::ubx::RawSource{&raw, &store_, {&raw_nav_.klobuchar, &raw_nav_.utc, raw.leap_seconds}});
@@ -599,8 +599,21 @@ void Daemon::receive() {
                                  return;
                                }
                                on_datagram(n);
+                               drain_truth();
                                receive();
                              });
+}
+
+void Daemon::drain_truth() {
+  // The truth socket's share of a wake-up: what the kernel holds, up to
+  // kTruthPerWake datagrams, before the other handlers (ports, timers) run again.
+  for (int k = 0; k < kTruthPerWake; ++k) {
+    boost::system::error_code ec;
+    if (socket_.available(ec) == 0 || ec) return;
+    const std::size_t n = socket_.receive_from(asio::buffer(rx_buf_), peer_, 0, ec);
+    if (ec) return;
+    on_datagram(n);
+  }
 }
 
 void Daemon::on_datagram(std::size_t n) {

@@ -52,6 +52,10 @@ namespace gnssemu::daemon {
 
 namespace asio = boost::asio;
 
+/// Truth datagrams taken per wake-up of the truth socket (a port's input
+/// takes 1 kB per wake-up within its InputBudget).
+inline constexpr int kTruthPerWake = 64;
+
 class Daemon final : private ControlTarget {
 public:
   /// nav: the configured nav data as read (kept to re-date the constellation
@@ -105,8 +109,6 @@ private:
   /// The device's CFG-NAV5 (dynModel, static hold) and GNSS selection into the receiver.
   /// [base]: its station and NTRIP caster (setup; throws gnssemu::Error).
   void start_base();
-  /// Several receivers (or a base) read one sky per epoch; a lone receiver its world's own.
-  bool shared_sky() const noexcept { return rigs_.size() > 1 || base_ != nullptr; }
   void apply_chip_settings(Rig& rig);
   /// A host on channel src of rig changed the device: follow its reset, epoch
   /// period and the other ports' line settings.
@@ -114,6 +116,8 @@ private:
   void arm_timer();
   void on_timer(const boost::system::error_code& ec);
   void receive();
+  /// Up to kTruthPerWake more datagrams the kernel already holds.
+  void drain_truth();
   void on_datagram(std::size_t n);
   void lockstep_advance(const time::GpsTime& stamp);
   /// Lockstep: the next epoch is the first of the rate's grid at or after t.
@@ -252,6 +256,7 @@ private:
   time::GpsTime lock_next_;     // lockstep: GPS time of the next epoch: (lock_week_, lock_k_ / rate_hz_)
   int32_t lock_week_ = 0;
   double lock_k_ = 0.0;         // lockstep: index of the next epoch in lock_week_ (whole; may pass the week's end)
+  double line_s_ = 0.0;         // lockstep: simulation time the serial lines have run, s (their byte budget's clock)
   time::GpsTime chip_origin_;   // lockstep: GPS time of the chip's power-on (start, then the first packet's epoch)
   time::GpsTime last_epoch_t_;  // GPS time of the last epoch emitted
   uint64_t epochs_ = 0;

@@ -37,7 +37,6 @@ enum class Purpose : uint64_t {
   kSkyInit = 20,           ///< shared sky processes (sky_errors.hpp): stationary start at a coarse node
   kSkyCoarse = 21,         ///< coarse node step
   kSkyFine = 22,           ///< fine node of the bridge between two coarse nodes
-  kSkyJump = 23,           ///< a time jump over many coarse nodes
 };
 
 /// Random stream of a satellite: (system << 8) | RINEX number. GPS is system

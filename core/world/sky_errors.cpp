@@ -10,9 +10,12 @@ namespace gnssemu::world {
 
 namespace {
 
-// A time jump of more coarse steps than this (about 4.5 h) is crossed in one
-// exact step instead of node by node.
-constexpr int64_t kMaxCoarseCatchUp = 256;
+static_assert(kSkyFineStep_s == 1.0, "fine nodes are GPS seconds");
+
+constexpr int64_t kSecondsPerWeek = 604800;
+
+/// floor(a / b) for b > 0.
+int64_t floor_div(int64_t a, int64_t b) noexcept { return a / b - (a % b < 0 ? 1 : 0); }
 
 /// Stream of process p of sat (regional processes: sat invalid, number 0):
 /// the process in bits 12 and up, clear of every satellite stream.
@@ -54,6 +57,8 @@ SkyErrors::SkyErrors(const SkyErrorsConfig& config) noexcept : config_(config), 
     k.tau_s = tau_s;
     k.phi_coarse = std::exp(-kSkyCoarseStep_s / tau_s);
     k.sd_coarse = std::sqrt(one_minus_phi2(kSkyCoarseStep_s, tau_s));
+    k.block = std::clamp(static_cast<int64_t>(std::ceil(kSkyBlockTaus * tau_s / kSkyCoarseStep_s)), int64_t{1},
+                         kSkyMaxBlock);
     // Node j+1 given node j and the coarse node at kSkyFinePerCoarse: with
     // phi_a over the step, phi_r over the rest and phi_b over both, the
     // conditional mean is a f_j + b c1 and the variance below.
@@ -72,34 +77,47 @@ SkyErrors::SkyErrors(const SkyErrorsConfig& config) noexcept : config_(config), 
   }
 }
 
+double SkyErrors::coarse_next(double x, const Coefficients& k, uint64_t stream, int64_t n) const noexcept {
+  return k.phi_coarse * x + k.sd_coarse * rng_.normal(stream, static_cast<uint64_t>(n + 1), Purpose::kSkyCoarse);
+}
+
 void SkyErrors::coarse_to(Grid& g, const Coefficients& k, uint64_t stream) const noexcept {
-  const int64_t n = node_ / kSkyFinePerCoarse;
-  if (g.coarse < 0) {
-    g.coarse = n;
-    g.c0 = rng_.normal(stream, static_cast<uint64_t>(n), Purpose::kSkyInit);
-    g.c1 = k.phi_coarse * g.c0 + k.sd_coarse * rng_.normal(stream, static_cast<uint64_t>(n + 1), Purpose::kSkyCoarse);
+  const int64_t n = floor_div(node_, kSkyFinePerCoarse);
+  if (g.started && g.coarse == n) return;
+  const int64_t block = floor_div(n, k.block);
+  if (g.started && g.coarse < n && floor_div(g.coarse, k.block) + 1 >= block && n - g.coarse <= k.block) {
+    // Node by node (the same steps as a cold start's walks).
+    while (g.coarse < n) {
+      const int64_t m = ++g.coarse;
+      g.c0 = g.c1;
+      if (floor_div(m, k.block) * k.block == m) {
+        // m starts a block: the walk from the last block's start takes over, a new one starts.
+        g.c0 = g.next1;
+        g.next1 = rng_.normal(stream, static_cast<uint64_t>(m), Purpose::kSkyInit);
+      }
+      g.c1 = coarse_next(g.c0, k, stream, m);
+      g.next1 = coarse_next(g.next1, k, stream, m);
+    }
     g.fine = -1;
     return;
   }
-  if (g.coarse >= n) return;
-  if (n - g.coarse > kMaxCoarseCatchUp) {
-    // c1 is node coarse + 1; one exact step from it to node n.
-    const double gap_s = kSkyCoarseStep_s * static_cast<double>(n - g.coarse - 1);
-    g.c1 = std::exp(-gap_s / k.tau_s) * g.c1 +
-           std::sqrt(one_minus_phi2(gap_s, k.tau_s)) * rng_.normal(stream, static_cast<uint64_t>(n), Purpose::kSkyJump);
-    g.coarse = n - 1;
-  }
-  while (g.coarse < n) {
-    g.c0 = g.c1;
-    ++g.coarse;
-    g.c1 = k.phi_coarse * g.c0 +
-           k.sd_coarse * rng_.normal(stream, static_cast<uint64_t>(g.coarse + 1), Purpose::kSkyCoarse);
-  }
+  // Cold start (or a jump): walk from the block before n's, and from n's block's start.
+  const int64_t anchor = (block - 1) * k.block;
+  double x = rng_.normal(stream, static_cast<uint64_t>(anchor), Purpose::kSkyInit);
+  for (int64_t m = anchor; m < n; ++m) x = coarse_next(x, k, stream, m);
+  const int64_t start = block * k.block;
+  double y = rng_.normal(stream, static_cast<uint64_t>(start), Purpose::kSkyInit);
+  for (int64_t m = start; m <= n; ++m) y = coarse_next(y, k, stream, m);
+  g.started = true;
+  g.coarse = n;
+  g.c0 = x;
+  g.c1 = coarse_next(x, k, stream, n);
+  g.next1 = y;
   g.fine = -1;
 }
 
 void SkyErrors::fine_to(Grid& g, const Coefficients& k, uint64_t stream) const noexcept {
-  const int j = static_cast<int>(node_ % kSkyFinePerCoarse);
+  const int j = static_cast<int>(node_ - floor_div(node_, kSkyFinePerCoarse) * kSkyFinePerCoarse);
   const uint64_t base = static_cast<uint64_t>(g.coarse) * kSkyFinePerCoarse;
   const auto next = [&](int i, double f) {
     const auto u = static_cast<std::size_t>(i);
@@ -121,15 +139,15 @@ void SkyErrors::fine_to(Grid& g, const Coefficients& k, uint64_t stream) const n
 }
 
 void SkyErrors::begin(const time::GpsTime& t, std::span<const SatId> sats, long sats_revision) noexcept {
-  if (!started_) {
-    origin_ = t;
-    started_ = true;
-  }
-  const double s = (t - origin_) / kSkyFineStep_s;
-  if (!std::isfinite(s) || s < static_cast<double>(node_) + frac_) return;  // time going back: hold
-  node_ = static_cast<int64_t>(std::floor(s));
-  frac_ = s - static_cast<double>(node_);
-  const int64_t coarse = node_ / kSkyFinePerCoarse;
+  const double tow_s = t.tow_s();
+  const double whole_s = std::floor(tow_s);
+  const int64_t node = static_cast<int64_t>(t.week()) * kSecondsPerWeek + static_cast<int64_t>(whole_s);
+  const double frac = tow_s - whole_s;
+  if (started_ && (node < node_ || (node == node_ && frac < frac_))) return;  // time going back: hold
+  started_ = true;
+  node_ = node;
+  frac_ = frac;
+  const int64_t coarse = floor_div(node_, kSkyFinePerCoarse);
   if (coarse != chains_at_ || sats_revision != chains_revision_) {
     for (int p = 0; p < kNumSatProcesses; ++p) {
       const Coefficients& k = coef_[static_cast<std::size_t>(p)];
@@ -155,7 +173,7 @@ void SkyErrors::step(SatId sat) noexcept {
     const Coefficients& k = coef_[static_cast<std::size_t>(p)];
     if (!k.on) continue;
     Grid& g = sat_[static_cast<std::size_t>(p)][static_cast<std::size_t>(sat.index())];
-    if (g.coarse < 0) continue;  // not in the sky's list
+    if (!g.started) continue;  // not in the sky's list
     fine_to(g, k, stream_of(p, sat));
   }
 }

@@ -9,15 +9,20 @@
 // that a value is a pure function of (seed, process, satellite, time): which
 // receivers read, how often, and which satellites they see change nothing.
 //
-// Coarse nodes every kSkyCoarseStep_s form an exact Gauss–Markov chain,
-// stepped for every satellite; fine nodes every kSkyFineStep_s between two
-// coarse nodes are drawn from the process conditioned on both (the
-// Gauss–Markov bridge: Gaussian conditioning of the exact discretisation,
-// Brown & Hwang, Introduction to Random Signals and Applied Kalman
-// Filtering, 4th ed., §2.9), only for satellites an antenna sees: a rising
-// satellite catches up from its last coarse node in at most
-// kSkyFinePerCoarse steps. A value between fine nodes is their linear
-// interpolation. Never throws, never allocates.
+// The grid is GPS time's own: fine node k is second k since the GPS epoch,
+// coarse node n is fine node n * kSkyFinePerCoarse. A coarse node's value is
+// the exact Gauss–Markov chain walked from a stationary draw at the start of
+// the block before its own (blocks of ~20 correlation times), so that it is
+// a function of the node alone and not of when the sky started; the walk
+// from the next block's start, kept beside it, takes over at that block
+// (they differ there by e^-20 of the process's sigma, from the forgotten
+// start). Fine nodes every kSkyFineStep_s between two coarse nodes are drawn
+// from the process conditioned on both (the Gauss–Markov bridge: Gaussian
+// conditioning of the exact discretisation, Brown & Hwang, Introduction to
+// Random Signals and Applied Kalman Filtering, 4th ed., §2.9), only for
+// satellites an antenna sees: a rising satellite catches up from its last
+// coarse node in at most kSkyFinePerCoarse steps. A value between fine
+// nodes is their linear interpolation. Never throws, never allocates.
 #include <array>
 #include <cstdint>
 #include <span>
@@ -46,6 +51,11 @@ inline constexpr int kNumSatProcesses = 2;
 inline constexpr double kSkyFineStep_s = 1.0;
 inline constexpr int kSkyFinePerCoarse = 64;
 inline constexpr double kSkyCoarseStep_s = kSkyFineStep_s * kSkyFinePerCoarse;
+/// Correlation times per block (the start's weight e^-20 at the block's
+/// end), and the most coarse nodes in a block (~73 h: a cold start walks at
+/// most twice as many per satellite).
+inline constexpr double kSkyBlockTaus = 20.0;
+inline constexpr int64_t kSkyMaxBlock = 4096;
 
 struct SkyErrorsConfig {
   /// Seed of the sky's draws: the run's top-level seed, shared by every
@@ -82,10 +92,13 @@ public:
 
 private:
   /// One process on the grid: coarse nodes c0 (index coarse) and c1 (the
-  /// next), fine nodes f0 (index fine in the coarse step) and f1 (the next).
+  /// next) of the walk from the block before coarse's, next1 node coarse + 1
+  /// of the walk from coarse's block's start, fine nodes f0 (index fine in
+  /// the coarse step) and f1 (the next).
   struct Grid {
-    int64_t coarse = -1;  ///< -1: not started
-    double c0 = 0.0, c1 = 0.0;
+    bool started = false;
+    int64_t coarse = 0;
+    double c0 = 0.0, c1 = 0.0, next1 = 0.0;
     int fine = -1;  ///< -1: no fine node yet in this coarse step
     double f0 = 0.0, f1 = 0.0;
     double value = 0.0;
@@ -95,19 +108,21 @@ private:
     bool on = false;
     double tau_s = 0.0;
     double phi_coarse = 0.0, sd_coarse = 0.0;
+    int64_t block = 1;  ///< coarse nodes per block
     /// Fine node j+1 = a[j] f_j + b[j] c1 + sd[j] w.
     std::array<double, kSkyFinePerCoarse> a{}, b{}, sd{};
   };
 
   void coarse_to(Grid& g, const Coefficients& k, uint64_t stream) const noexcept;
+  /// The coarse chain's value at node n + 1 from its value x at node n.
+  double coarse_next(double x, const Coefficients& k, uint64_t stream, int64_t n) const noexcept;
   void fine_to(Grid& g, const Coefficients& k, uint64_t stream) const noexcept;
 
   SkyErrorsConfig config_;
   CounterRng rng_;
   std::array<Coefficients, kNumSkyProcesses> coef_{};
   bool started_ = false;
-  time::GpsTime origin_;  ///< the first begin(): fine node 0
-  int64_t node_ = 0;      ///< fine node at or before the current time
+  int64_t node_ = 0;      ///< fine node (GPS second) at or before the current time
   double frac_ = 0.0;     ///< position of the current time between node_ and node_ + 1, [0, 1)
   int64_t chains_at_ = -1;    ///< coarse node the satellites' chains were last brought to
   long chains_revision_ = 0;  ///< of the satellite list then

@@ -42,7 +42,8 @@ PortChannel::PortChannel(std::unique_ptr<OutputPort> port, ubx::Device& device, 
     : port_(std::move(port)),
       device_(device),
       output_(output),
-      clock_(std::move(clock)),
+      clock_(clock),
+      line_clock_(std::move(clock)),
       budget_(port_->config().baud),
       line_(port_->config().baud != 0),
       sink_(std::make_unique<Sink>(*this)),
@@ -186,7 +187,7 @@ void PortChannel::handle_result(int source, const ubx::InputResult& r) {
     port_->set_baud_after_drain(baud);
     if (line_) {
       reset_after_feed_ = true;  // bytes after the switch arrive at the new rate
-      budget_.set_baud(baud, clock_());
+      budget_.set_baud(baud, line_clock_());
       warned_ = false;  // new figures deserve a new warning
     }
   }
@@ -209,7 +210,7 @@ void PortChannel::follow_device(bool reset) noexcept {
 
 void PortChannel::switch_baud(uint32_t baud) noexcept {
   port_->set_baud_after_drain(baud);
-  budget_.set_baud(baud, clock_());
+  budget_.set_baud(baud, line_clock_());
 }
 
 void PortChannel::count_drop(std::string_view label) {
@@ -228,7 +229,7 @@ void PortChannel::send_reply(int source, std::string_view label) noexcept {
     return;
   }
   // Replies share the TX buffer with the epochs: a full buffer drops them too.
-  if (!budget_.admit(reply_.size(), clock_())) {
+  if (!budget_.admit(reply_.size(), line_clock_())) {
     count_drop(label);
     if (!warned_) {
       warned_ = true;
@@ -292,6 +293,7 @@ void PortChannel::send_composed(double now) noexcept {
     return;
   }
   const std::uint64_t epoch = device_.epoch_count();
+  const double line_s = line_clock_();
   out_.clear();
   out_ends_.clear();
   epoch_bytes_ = 0;
@@ -300,7 +302,7 @@ void PortChannel::send_composed(double now) noexcept {
     const std::string_view held = link_.held();
     std::size_t begin = 0;
     for (const std::size_t end : link_.held_ends()) {
-      admit(held.substr(begin, end - begin), "frozen epoch", now);
+      admit(held.substr(begin, end - begin), "frozen epoch", line_s);
       begin = end;
     }
   } else {
@@ -309,7 +311,7 @@ void PortChannel::send_composed(double now) noexcept {
       const ubx::MessageList::Message& m = messages[i];
       if (link_.drops(epoch, i)) continue;
       const std::size_t begin = out_.size();
-      if (admit(epoch_.bytes(m), m.label, now) && link_.corrupts(epoch, i)) {
+      if (admit(epoch_.bytes(m), m.label, line_s) && link_.corrupts(epoch, i)) {
         break_checksum(std::span<char>(out_.data() + begin, out_.size() - begin));
       }
     }

@@ -67,6 +67,9 @@ public:
   /// epochs and replies a latency link fault held back when they are due, on timers of
   /// io (the daemon). Without it only check_idle() and check_delayed() do (tests).
   void use_idle_timer(boost::asio::io_context& io);
+  /// The clock of the line's byte budget, s (default: the channel's clock).
+  /// In lockstep the line is simulated too: it drains in simulation time.
+  void set_line_clock(Clock clock) { line_clock_ = std::move(clock); }
   /// Sources whose input has been quiet for kInputIdleS with a partial frame
   /// pending: give the frame up and rescan what is held (replies go out).
   /// Returns true while some source still holds a partial frame.
@@ -134,6 +137,7 @@ private:
   protocol::ubx::Device& device_;
   std::size_t output_;
   Clock clock_;
+  Clock line_clock_;  ///< of budget_
   TxBudget budget_;
   bool line_;  ///< the port has a line rate that baud changes act on
   std::map<int, std::unique_ptr<Input>> inputs_;

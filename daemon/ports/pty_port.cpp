@@ -15,6 +15,7 @@
 #include <boost/asio/posix/stream_descriptor.hpp>
 
 #include "core/common/error.hpp"
+#include "daemon/ports/input_budget.hpp"
 #include "daemon/ports/port_impl.hpp"
 
 namespace gnssemu::daemon::detail {
@@ -49,7 +50,7 @@ void share_with_dialout(int fd) {
 class PtyPort final : public OutputPort {
 public:
   PtyPort(const config::OutputPortConfig& cfg, const config::PtyPortConfig& pty, asio::io_context& io)
-      : OutputPort(cfg), pty_(pty), master_sd_(io) {
+      : OutputPort(cfg), pty_(pty), master_sd_(io), pacer_(io) {
     std::array<char, 128> name{};
     int master = -1;
     if (::openpty(&master, &slave_, name.data(), nullptr, nullptr) != 0) {
@@ -162,7 +163,7 @@ private:
       }
       stats_.bytes_from_reader += n;
       if (listener_ != nullptr) listener_->on_port_input(0, {rx_.data(), n});
-      read();
+      pacer_.next(n, [this] { read(); });
     });
   }
 
@@ -186,6 +187,7 @@ private:
 
   config::PtyPortConfig pty_;
   asio::posix::stream_descriptor master_sd_;
+  InputPacer pacer_;
   int slave_ = -1;
   std::string slave_name_;
   bool linked_ = false;

@@ -19,6 +19,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/common/error.hpp"
+#include "daemon/ports/input_budget.hpp"
 #include "daemon/ports/port_impl.hpp"
 
 namespace gnssemu::daemon::detail {
@@ -144,7 +145,7 @@ private:
 class SerialPort final : public OutputPort {
 public:
   SerialPort(const config::OutputPortConfig& cfg, const config::SerialPortConfig& serial, asio::io_context& io)
-      : OutputPort(cfg), device_(serial.device), sd_(io), retry_timer_(io), drain_timer_(io), baud_(cfg.baud) {
+      : OutputPort(cfg), device_(serial.device), sd_(io), retry_timer_(io), drain_timer_(io), pacer_(io), baud_(cfg.baud) {
     queue_.reserve(kMaxQueuedBytes);
     held_.reserve(kMaxQueuedBytes);
   }
@@ -265,7 +266,9 @@ private:
       }
       stats_.bytes_from_reader += n;
       if (listener_ != nullptr) listener_->on_port_input(0, {rx_.data(), n});
-      read();
+      pacer_.next(n, [this, gen] {
+        if (gen == generation_ && !stopped_) read();
+      });
     });
   }
 
@@ -327,6 +330,7 @@ private:
   asio::posix::stream_descriptor sd_;
   asio::steady_timer retry_timer_;
   asio::steady_timer drain_timer_;
+  InputPacer pacer_;
   Line line_;
   uint32_t baud_;
   uint32_t pending_baud_ = 0;

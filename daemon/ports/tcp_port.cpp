@@ -12,6 +12,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/common/error.hpp"
+#include "daemon/ports/input_budget.hpp"
 #include "daemon/ports/port_impl.hpp"
 
 namespace gnssemu::daemon::detail {
@@ -101,8 +102,9 @@ protected:
 
 private:
   struct Client {
-    explicit Client(asio::io_context& io) : socket(io) {}
+    explicit Client(asio::io_context& io) : socket(io), pacer(io) {}
     tcp::socket socket;
+    InputPacer pacer;
     int id = 0;
     std::string queue;
     bool writing = false;
@@ -151,7 +153,10 @@ private:
       }
       stats_.bytes_from_reader += n;
       if (listener_ != nullptr) listener_->on_port_input(c->id, {c->rx.data(), n});
-      read(c);
+      // A closed socket: the client (or the port) is gone.
+      c->pacer.next(n, [this, c] {
+        if (c->socket.is_open()) read(c);
+      });
     });
   }
 
@@ -191,6 +196,7 @@ private:
     spdlog::info("output {}: client {} gone ({} epochs dropped for it)", config_.name, c->id, c->dropped);
     boost::system::error_code ec;
     c->socket.close(ec);
+    c->pacer.cancel();
     clients_.erase(it);
     if (listener_ != nullptr) listener_->on_source_closed(c->id);
   }

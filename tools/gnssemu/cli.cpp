@@ -16,9 +16,11 @@
 
 #include "config/config.hpp"
 #include "config/footprint_file.hpp"
+#include "config/nav_setup.hpp"
+#include "config/receiver_config.hpp"
+#include "config/scenario_file.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
-#include "config/nav_setup.hpp"
 #include "core/observation/rinex_obs.hpp"
 #include "core/orbit/almanac.hpp"
 #include "core/orbit/constellation.hpp"
@@ -26,16 +28,15 @@
 #include "core/orbit/rinex_nav.hpp"
 #include "core/protocol/ubx/ubx_gnss.hpp"
 #include "core/scene/scene.hpp"
-#include "config/scenario_file.hpp"
+#include "tools/gnssemu/base_command.hpp"
 #include "tools/gnssemu/batch.hpp"
-#include "tools/gnssemu/rinex_output.hpp"
+#include "tools/gnssemu/bench_multipath.hpp"
 #include "tools/gnssemu/calibrate.hpp"
 #include "tools/gnssemu/plot.hpp"
 #include "tools/gnssemu/report.hpp"
-#include "tools/gnssemu/sats_csv.hpp"
-#include "tools/gnssemu/bench_multipath.hpp"
-#include "tools/gnssemu/base_command.hpp"
+#include "tools/gnssemu/rinex_output.hpp"
 #include "tools/gnssemu/satpos.hpp"
+#include "tools/gnssemu/sats_csv.hpp"
 #include "tools/gnssemu/sky.hpp"
 #include "tools/gnssemu/spp.hpp"
 #include "tools/gnssemu/sweep/sweep_cli.hpp"
@@ -78,6 +79,7 @@ struct SceneArgs {
 struct BatchArgs {
   std::string config_path, truth_path, nmea_path, errors_path, ubx_path;
   std::string scenario_path;   ///< --scenario
+  std::string vehicle, receiver;  ///< --vehicle / --receiver: one receiver of a fleet's file
   std::string sats_path;       ///< --sats
   std::string report_dir;      ///< --report
   std::string reference_path;  ///< --cn0-reference (with --report)
@@ -230,6 +232,20 @@ private:
   std::ostream* stream_ = nullptr;
 };
 
+// One receiver of a file's vehicles as the daemon runs it: its merged
+// settings (the sky still the top level's seed) and its outputs.
+config::Config fleet_receiver(const config::Config& cfg, const std::string& vehicle, const std::string& receiver) {
+  for (const config::VehicleConfig& v : config::resolve_vehicles(cfg)) {
+    if (v.id != vehicle) continue;
+    for (const config::VehicleReceiverConfig& r : v.receivers) {
+      if (!receiver.empty() && r.name != receiver) continue;
+      return config::receiver_config(cfg, v, r);
+    }
+    throw Error(cfg.source, 0, "vehicle " + vehicle + " has no receiver " + receiver);
+  }
+  throw Error(cfg.source, 0, "no vehicle " + vehicle + " in the file");
+}
+
 int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) {
   if ((a.nmea_path == "-") + (a.errors_path == "-") + (a.ubx_path == "-") + (a.sats_path == "-") +
           (a.rinex_obs_path == "-") + (a.rinex_nav_path == "-") >
@@ -238,6 +254,7 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
   }
   if (!a.reference_path.empty() && a.report_dir.empty()) throw Error("--cn0-reference needs --report DIR");
   config::Config cfg = config::load_config(a.config_path);
+  if (!a.vehicle.empty()) cfg = fleet_receiver(cfg, a.vehicle, a.receiver);
   cfg.world.systems = checked_systems(a.systems, cfg.world.systems);
   if (a.bands) cfg.receiver.bands = *a.bands;
   if (a.preset == "rtklib") {
@@ -541,6 +558,11 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
                         "least squares, no smoothing)")
       ->check(CLI::IsMember({"rtklib"}));
   batch_cmd->add_option("--scenario", batch.scenario_path, "fault scenario TOML ([[event]] tables, docs/faults.md)");
+  batch_cmd->add_option("--vehicle", batch.vehicle,
+                        "run this [[vehicle]] / [fleet] vehicle's receiver as gnssemud runs it (its settings, the "
+                        "top level's sky)");
+  batch_cmd->add_option("--receiver", batch.receiver, "with --vehicle: this receiver of it (default: its first)")
+      ->needs("--vehicle");
   batch_cmd->add_option("--sats", batch.sats_path,
                         "write per epoch and satellite gps_week,tow_s,sat,prn,az_deg,el_deg,cn0_dbhz,tracked,used here "
                         "('-' = stdout)");

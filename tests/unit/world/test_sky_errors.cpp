@@ -216,6 +216,80 @@ TEST(SkyErrors, ValuesDoNotDependOnWhoReadsOrHowOften) {
   EXPECT_GT(compared, 3000);
 }
 
+// Across block boundaries (tau 100 s: a block of 32 coarse nodes) a sky
+// started late holds the same values as one running since long before, and
+// the walk taking over at a block's start moves the value by nothing visible.
+TEST(SkyErrors, BlocksKeepValuesPureAndContinuous) {
+  SkyErrorsConfig c;
+  c.tau_s = {100.0, 0.0, 100.0, 0.0, 0.0, 0.0};
+  SkyErrors early(c), late(c);
+  const std::array<SatId, 2> sats{SatId::from_index(0), SatId::from_index(40)};
+  double last = 0.0, largest_step = 0.0;
+  int compared = 0;
+  for (int k = 0; k < 3 * 2048 * 2; ++k) {
+    const time::GpsTime t = kStart + 0.5 * k;
+    early.begin(t, sats, 1);
+    for (const SatId s : sats) early.step(s);
+    const double v = early.value(SkyProcess::kOrbitClock, sats[1]);
+    if (k > 0) largest_step = std::max(largest_step, std::fabs(v - last));
+    last = v;
+    if (k < 3001) continue;
+    late.begin(t, sats, 1);
+    for (const SatId s : sats) late.step(s);
+    for (const SatId s : sats) ASSERT_EQ(early.value(SkyProcess::kOrbitClock, s), late.value(SkyProcess::kOrbitClock, s));
+    ASSERT_EQ(early.value(SkyProcess::kIonoScale), late.value(SkyProcess::kIonoScale));
+    ++compared;
+  }
+  EXPECT_GT(compared, 9000);
+  // A 0.5 s step of a unit process with tau 100 s: sqrt(1 - e^-0.01) ~ 0.1 sigma; a jump would stand out.
+  EXPECT_LT(largest_step, 0.5);
+}
+
+// A receiver's observables do not depend on the sky it reads beyond its own
+// antenna: a sky of its systems started at its first epoch with its antenna
+// alone, and a sky of every system started 50 min earlier off the second
+// grid with a second antenna 4000 km away (other satellites evaluated and
+// culled), give it bit-identical observables across coarse nodes.
+TEST(SkyErrors, ObservablesDoNotDependOnOtherAntennasOrTheSkysStart) {
+  const orbit::EphemerisStore store(nav().ephemerides);
+  WorldConfig cfg;
+  cfg.systems = SystemSet::only(GnssSystem::kGps).with(GnssSystem::kGlonass);
+  cfg.errors.gradient.process.sigma_m = 0.05;
+  cfg.errors.iono_scale.sigma = 0.2;
+  const SkyErrorsConfig sc = sky_errors_config(cfg);
+  SharedSky own(store, cfg.systems, sc), fleet(store, every_system(), sc);
+  World w_own(store, cfg), w_fleet(store, cfg);
+  const Vec3 far_m(-2.0e6, 3.0e6, -1.5e6);
+  for (int k = -3000; k < 0; k += 7) {
+    const Truth other = truth_at(kStart + (0.3 + k), far_m);
+    fleet.update(kStart + (0.3 + k), std::span<const Ecef>(&other.pos_m, 1));
+  }
+  int compared = 0;
+  for (int k = 0; k <= 5 * 200; ++k) {
+    const time::GpsTime t = kStart + 0.2 * k;
+    const Truth tr = truth_at(t), other = truth_at(t, far_m);
+    const std::array<Ecef, 2> antennas{other.pos_m, tr.pos_m};
+    own.update(t, std::span<const Ecef>(&tr.pos_m, 1));
+    fleet.update(t, antennas);
+    const Observables& a = w_own.step(own, tr, 5.0 * kDegToRad);
+    const Observables& b = w_fleet.step(fleet, tr, 5.0 * kDegToRad);
+    ASSERT_EQ(a.num_sats, b.num_sats) << k;
+    for (int i = 0; i < a.num_sats; ++i) {
+      const SatObservable& x = a.sats[i];
+      const SatObservable& y = b.sats[i];
+      ASSERT_EQ(x.sat, y.sat);
+      ASSERT_EQ(x.received, y.received);
+      ASSERT_EQ(x.pseudorange_m, y.pseudorange_m) << k << " " << x.sat.index();
+      ASSERT_EQ(x.doppler_hz, y.doppler_hz);
+      ASSERT_EQ(x.cn0_dbhz, y.cn0_dbhz);
+      ASSERT_EQ(x.carrier_valid, y.carrier_valid);
+      ASSERT_EQ(x.carrier_phase_cycles, y.carrier_phase_cycles);
+      if (x.received) ++compared;
+    }
+  }
+  EXPECT_GT(compared, 10000);
+}
+
 }  // namespace
 }  // namespace sky_errors_test
 }  // namespace gnssemu::world
