@@ -27,6 +27,10 @@ int default_bands(protocol::ubx::Generation g) noexcept {
   return 1;
 }
 
+bool default_raw_data(protocol::ubx::Generation g) noexcept {
+  return g == protocol::ubx::Generation::kF9P;  // HPG firmware outputs RXM-RAWX/SFRBX (ZED-F9P Integration Manual)
+}
+
 SystemSet chip_systems(const Config& config) { return protocol::ubx::gnss_capabilities(config.generation).supported; }
 
 bool coast_as_no_fix(const Config& config) {

@@ -23,8 +23,12 @@ bool coast_as_no_fix(const Config& config);
 SystemSet chip_systems(const Config& config);
 
 /// Signals the chip tracks per satellite by default ([receiver] bands when
-/// not given): 1 for the single-band M8 and M9.
+/// not given): 1 for the single-band M8 and M9, 2 for the F9P.
 int default_bands(protocol::ubx::Generation g) noexcept;
+
+/// Whether the chip's standard firmware outputs raw data ([receiver] raw_data
+/// when not given): the F9P's does, the NEO-M8N's and NEO-M9N's do not.
+bool default_raw_data(protocol::ubx::Generation g) noexcept;
 
 /// The chip behind config's outputs, at epoch period 1 / rate_hz. Its sky
 /// is [receiver] constellations among nav_systems (the systems the nav data

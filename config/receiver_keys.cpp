@@ -380,6 +380,18 @@ void write_bands(TomlWriter& w, const Field<Config>& f, const Config& c) {
   if (c.receiver.bands != default_bands(c.generation)) w.key(f.key, std::to_string(c.receiver.bands), f.note);
 }
 
+void read_raw_data(TableReader& t, const Field<Config>& f, Config& c) {
+  if (t.find(f.key) == nullptr) {
+    if (t.find("generation") != nullptr) c.raw_data = default_raw_data(c.generation);
+    return;
+  }
+  c.raw_data = t.boolean(f.key, std::nullopt);
+}
+
+void write_raw_data(TomlWriter& w, const Field<Config>& f, const Config& c) {
+  if (c.raw_data != default_raw_data(c.generation)) w.key(f.key, c.raw_data ? "true" : "false", f.note);
+}
+
 void read_constellations(TableReader& t, const Field<Config>& f, Config& c) {
   if (t.find(f.key) == nullptr) return;  // parse_config_text gives the chip's set
   const std::string name = t.full_name(f.key);
@@ -431,10 +443,12 @@ constexpr Field<Config> kReceiverFields[] = {
                    "noise and lock (docs/models.md \"Second frequency\"). The position fix uses the L1 band",
                    read_bands, write_bands)
         .default_doc("the generation's: 1 for `m8` and `m9`, 2 for `f9p`"),
-    boolean<&Config::raw_data>(
-        "raw_data", "the chip's firmware has raw data output, as an M8T/M8P-class timing or high-precision firmware "
-                    "(docs/raw-output.md \"Availability\"): RXM-RAWX and RXM-SFRBX go out where a port or a host "
-                    "enables them; false (a NEO-M8N's or NEO-M9N's standard firmware): they stay silent"),
+    custom<Config>("raw_data", "bool", "—",
+                   "the chip's firmware has raw data output, as an M8T/M8P-class timing or the F9P's high-precision "
+                   "firmware (docs/raw-output.md \"Availability\"): RXM-RAWX and RXM-SFRBX go out where a port or a "
+                   "host enables them; false (a NEO-M8N's or NEO-M9N's standard firmware): they stay silent",
+                   read_raw_data, write_raw_data)
+        .default_doc("the generation's: false for `m8` and `m9`, true for `f9p`"),
     custom<Config>("constellations", "", "RINEX letters `G` GPS, `R` GLONASS, `E` Galileo, `C` BeiDou, `J` QZSS, "
                    "`S` SBAS; at least one, no repeats",
                    "the systems in the receiver's sky: satellites of the other systems in the nav data are not "
