@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/protocol/ubx/ubx_gnss.hpp"
+#include "core/protocol/ubx/ubx_hpg.hpp"
 
 namespace gnssemu::config {
 
@@ -63,6 +64,9 @@ void apply_chip_settings(const protocol::ubx::Device& device, receiver::Receiver
   const double period_s = device.config().nav_period_s();
   const bool capped = period_s > 0.0 && 1.0 / period_s > lim.sat_cap_above_hz + 1e-9;
   rx.set_max_solution_sats(capped ? lim.max_solution_sats : kMaxSatsInView);
+  const protocol::ubx::HpgSettings hpg = device.hpg_settings();
+  rx.set_dgnss_timeout_s(hpg.dgnss_timeout_s);
+  rx.set_rtk_fix_ambiguities(hpg.dgnss_mode == protocol::ubx::DgnssMode::kRtkFixed);
 }
 
 }  // namespace gnssemu::config

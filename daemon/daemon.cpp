@@ -220,6 +220,12 @@ void Daemon::on_host_input(Rig& rig, std::size_t src, const protocol::ubx::Input
                  static_cast<unsigned>(n.staticHoldMaxDist));
     apply_chip_settings(rig);
   }
+  if (result.hpg_changed) {
+    const protocol::ubx::HpgSettings h = rig.device.hpg_settings();
+    spdlog::info("output {}: RTK mode {}, DGNSS timeout {} s", outputs[src].name,
+                 h.dgnss_mode == protocol::ubx::DgnssMode::kRtkFixed ? "fixed" : "float", h.dgnss_timeout_s);
+    apply_chip_settings(rig);
+  }
   if (result.ports_changed || result.reset) {
     for (std::size_t i = 0; i < rig.channels.size(); ++i) log_port_change(rig, i);
   }

@@ -46,6 +46,8 @@ public:
   void set_corrections(const Corrections* c) noexcept { corrections_ = c; }
   /// CFG-NAVSPG-CONSTR_DGNSSTO: corrections older than this are not used, s (> 0).
   void set_dgnss_timeout_s(double s) noexcept { rtk_.set_dgnss_timeout_s(s); }
+  /// CFG-NAVHPG-DGNSSMODE: fixed (true, factory) or float-only RTK.
+  void set_rtk_fix_ambiguities(bool on) noexcept { rtk_.set_fix_ambiguities(on); }
   /// The differential stage's settings (noise terms, ratio threshold, ages).
   void set_rtk_config(const rtk::RtkConfig& c) noexcept { rtk_.set_config(c); }
   /// The differential stage (its counters and last ratio).

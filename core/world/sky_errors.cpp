@@ -74,6 +74,18 @@ SkyErrors::SkyErrors(const SkyErrorsConfig& config) noexcept : config_(config), 
       k.b[i] = phi_r * q_a / q_b;
       k.sd[i] = std::sqrt(std::max(q_a * q_r / q_b, 0.0));
     }
+    // Slow processes: the bridge's mean alone, scaled back to unit variance
+    // by the variance the mean carries, 1 - q(t) q(T - t) / q(T) at node j.
+    k.smooth = tau_s >= kSkySmoothTaus * kSkyCoarseStep_s;
+    if (k.smooth) {
+      const double q_t = one_minus_phi2(kSkyCoarseStep_s, tau_s);
+      for (int j = 0; j <= kSkyFinePerCoarse; ++j) {
+        const double t_s = kSkyFineStep_s * j;
+        const double v = one_minus_phi2(t_s, tau_s) * one_minus_phi2(kSkyCoarseStep_s - t_s, tau_s) / q_t;
+        k.scale[static_cast<std::size_t>(j)] = 1.0 / std::sqrt(std::max(1.0 - v, 1e-12));
+        if (j < kSkyFinePerCoarse) k.sd[static_cast<std::size_t>(j)] = 0.0;
+      }
+    }
   }
 }
 
@@ -135,7 +147,12 @@ void SkyErrors::fine_to(Grid& g, const Coefficients& k, uint64_t stream) const n
     ++g.fine;
     g.f1 = next(g.fine, g.f0);
   }
-  g.value = g.f0 + frac_ * (g.f1 - g.f0);
+  if (k.smooth) {
+    const double v0 = g.f0 * k.scale[static_cast<std::size_t>(j)], v1 = g.f1 * k.scale[static_cast<std::size_t>(j + 1)];
+    g.value = v0 + frac_ * (v1 - v0);
+  } else {
+    g.value = g.f0 + frac_ * (g.f1 - g.f0);
+  }
 }
 
 void SkyErrors::begin(const time::GpsTime& t, std::span<const SatId> sats, long sats_revision) noexcept {

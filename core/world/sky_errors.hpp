@@ -23,6 +23,14 @@
 // satellites an antenna sees: a rising satellite catches up from its last
 // coarse node in at most kSkyFinePerCoarse steps. A value between fine
 // nodes is their linear interpolation. Never throws, never allocates.
+//
+// A process slower than kSkySmoothTaus coarse steps (the broadcast
+// orbit/clock residual and the TEC perturbation, tau 1800 s) takes the
+// bridge's mean without its draw, scaled back to unit variance: such errors
+// drift over hours and are smooth over seconds, where a first-order path
+// moves ~3 % of its sigma each second (4 cm at the orbit/clock's 1.2 m) and
+// would not cancel against a 1-s-old RTK base (docs/models.md). Faster
+// processes keep the bridge's draws: their roughness is their own.
 #include <array>
 #include <cstdint>
 #include <span>
@@ -56,6 +64,8 @@ inline constexpr double kSkyCoarseStep_s = kSkyFineStep_s * kSkyFinePerCoarse;
 /// most twice as many per satellite).
 inline constexpr double kSkyBlockTaus = 20.0;
 inline constexpr int64_t kSkyMaxBlock = 4096;
+/// Processes with tau at least this many coarse steps are smooth between nodes.
+inline constexpr double kSkySmoothTaus = 8.0;
 
 struct SkyErrorsConfig {
   /// Seed of the sky's draws: the run's top-level seed, shared by every
@@ -111,6 +121,9 @@ private:
     int64_t block = 1;  ///< coarse nodes per block
     /// Fine node j+1 = a[j] f_j + b[j] c1 + sd[j] w.
     std::array<double, kSkyFinePerCoarse> a{}, b{}, sd{};
+    /// Smooth: no draws, fine node j is the bridge's mean times scale[j].
+    bool smooth = false;
+    std::array<double, kSkyFinePerCoarse + 1> scale{};
   };
 
   void coarse_to(Grid& g, const Coefficients& k, uint64_t stream) const noexcept;

@@ -27,6 +27,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from itlib import RigBase, free_port, run_rig  # noqa: E402
 
 RXM_RTCM = b"\xb5\x62\x02\x32\x08\x00"
+DGNSSTO_KEY = 0x201100C4  # CFG-NAVSPG-CONSTR_DGNSSTO, U1 s
+DGNSS_TIMEOUT_S = 10
 
 
 def ubx(cls, mid, payload):
@@ -73,15 +75,22 @@ def local_example(source, tmp):
     return path, ports, ("generation = \"f9p\"" in text)
 
 
-def check_rtk_quality(nmea_text, is_f9p):
-    """RTK engine: GGA quality 5 (float) then 4 (fixed) while the feed runs.
-    Needs the F9P generation and the receiver's RTK stage; until both are in
-    the build this only reports what the rover printed."""
-    qualities = [int(m.group(1)) for m in re.finditer(r"\$G[NP]GGA,[^,]*,[^,]*,[^,]*,[^,]*,[^,]*,(\d)", nmea_text)]
-    print(f"GGA qualities seen: {sorted(set(qualities))}")
+GGA_QUALITY = re.compile(rb"\$G[NP]GGA,[^,]*,[^,]*,[^,]*,[^,]*,[^,]*,(\d)")
+
+
+def check_rtk_quality(received, t_first_fixed, is_f9p):
+    """An F9P rover with the feed running: GGA quality 5 (float) before 4
+    (fixed), and fixed in the end; another chip reports no RTK state."""
+    qualities = [int(m.group(1)) for m in GGA_QUALITY.finditer(received)]
+    print(f"GGA qualities in order of first sight: {list(dict.fromkeys(qualities))}, "
+          f"fixed {t_first_fixed if t_first_fixed is None else round(t_first_fixed, 1)} s after the feed started")
     if not is_f9p:
-        print("rover is not an F9P: the RTK quality check (5 then 4) is not run")
+        assert not {4, 5} & set(qualities), "a chip without RTK reported an RTK state"
         return
+    assert 4 in qualities, f"no RTK fixed GGA (qualities {sorted(set(qualities))})"
+    first_fixed = qualities.index(4)
+    assert 5 in qualities[:first_fixed], "RTK fixed without float before it"
+    assert qualities[-1] == 4, f"the last GGA is quality {qualities[-1]}, not fixed"
 
 
 class Rig(RigBase):
@@ -105,14 +114,22 @@ def body(rig):
                      "--from", f"127.0.0.1:{ports['base']}", "--to", pty, "--report", "2"],
                     stdout=fwd_log, stderr=subprocess.STDOUT)
     received = b""
-    deadline = time.monotonic() + 12
-    while time.monotonic() < deadline:
+    t_feed = time.monotonic()
+    t_first_fixed = None
+    # At least 12 s; an F9P until it has been fixed for 3 s (at most 90 s).
+    while True:
+        now = time.monotonic()
+        if now - t_feed >= 12 and (not is_f9p or now - t_feed >= 90 or
+                                   (t_first_fixed is not None and now - t_feed >= t_first_fixed + 3)):
+            break
         r, _, _ = select.select([fd], [], [], 0.5)
         if r:
             try:
                 received += os.read(fd, 65536)
             except BlockingIOError:
                 pass
+        if t_first_fixed is None and any(m.group(1) == b"4" for m in GGA_QUALITY.finditer(received)):
+            t_first_fixed = time.monotonic() - t_feed
     reports = received.count(RXM_RTCM)
     s = status(ports["status"])["corrections"]
     print(f"feeding: RXM-RTCM {reports}, status corrections {s}")
@@ -121,15 +138,44 @@ def body(rig):
     assert s["epochs"] >= 3, s
     assert s["station_id"] == 42, s
     assert s["age_s"] is not None and s["age_s"] <= 2.5, s
-    check_rtk_quality(received.decode(errors="replace"), is_f9p)
+    check_rtk_quality(received, t_first_fixed, is_f9p)
 
+    if is_f9p:
+        # As a host does: corrections older than 10 s are not used (CFG-NAVSPG-CONSTR_DGNSSTO, RAM).
+        os.write(fd, ubx(0x06, 0x8A, [0, 1, 0, 0] + list(DGNSSTO_KEY.to_bytes(4, "little")) + [DGNSS_TIMEOUT_S]))
     rig.stop(fwd)
     fwd_log.close()
-    time.sleep(6)
+    t_stop = time.monotonic()
+    after_stop = b""
+    while time.monotonic() - t_stop < 6:
+        r, _, _ = select.select([fd], [], [], 0.5)
+        if r:
+            try:
+                after_stop += os.read(fd, 65536)
+            except BlockingIOError:
+                pass
     after = status(ports["status"])["corrections"]
     print(f"feed stopped 6 s: status corrections {after}")
     assert after["age_s"] >= s["age_s"] + 4.0, (s, after)
     assert after["messages"] == s["messages"] or after["messages"] - s["messages"] < 20
+    if is_f9p:
+        # Back to a standalone (1) or differential (2) fix once the corrections time out.
+        t_standalone = None
+        while time.monotonic() - t_stop < DGNSS_TIMEOUT_S + 20 and t_standalone is None:
+            r, _, _ = select.select([fd], [], [], 0.5)
+            if r:
+                try:
+                    after_stop += os.read(fd, 65536)
+                except BlockingIOError:
+                    pass
+            tail = [int(m.group(1)) for m in GGA_QUALITY.finditer(after_stop)][-2:]
+            if tail and all(q in (1, 2) for q in tail) and 1 in tail:
+                t_standalone = time.monotonic() - t_stop
+        seen = list(dict.fromkeys(int(m.group(1)) for m in GGA_QUALITY.finditer(after_stop)))
+        print(f"feed stopped: GGA qualities {seen}, standalone {t_standalone} s after the stop "
+              f"(DGNSS timeout {DGNSS_TIMEOUT_S} s)")
+        assert t_standalone is not None, f"still RTK/DGNSS {DGNSS_TIMEOUT_S + 20} s after the feed stopped: {seen}"
+        assert t_standalone >= DGNSS_TIMEOUT_S - 3, f"standalone after {t_standalone:.1f} s, before the timeout"
     os.close(fd)
 
 
@@ -138,7 +184,7 @@ def main():
     ap.add_argument("--gnssemud", required=True)
     ap.add_argument("--source", required=True, help="the project's source tree")
     a = ap.parse_args()
-    return run_rig(Rig(a), body, 90)
+    return run_rig(Rig(a), body, 200)
 
 
 if __name__ == "__main__":

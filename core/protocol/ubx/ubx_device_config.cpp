@@ -67,6 +67,11 @@ DeviceConfig DeviceConfig::factory_defaults(std::size_t uarts, Generation genera
   c.ports_[kPortSpi] = {kPortSpi, true, 0, 0x100, 0, in, out, 0, false};
   for (std::size_t u = 0; u < c.uarts(); ++u) c.ports_[c.column(u, kPortUart1)] = uart1;
   if (generation == Generation::kF9P) {
+    // ZED-F9P: RTCM 3 in on every port, UART1 at 38400 (HPG 1.32
+    // CFG-*INPROT-RTCM3X, CFG-UART1-BAUDRATE defaults; reference/nmea0183.md).
+    for (PortSettings& p : c.ports_)
+      if (p.exists) p.in_proto_mask = static_cast<std::uint16_t>(p.in_proto_mask | proto::kRtcm3);
+    for (std::size_t u = 0; u < c.uarts(); ++u) c.ports_[c.column(u, kPortUart1)].baud_bps = 38400;
     // ZED-F9P UART2: 38400 8N1, RTCM 3 (and UBX) in, RTCM 3 out (HPG 1.32
     // CFG-UART2 and CFG-UART2IN/OUTPROT defaults; docs/ubx.md §ZED-F9P).
     c.ports_[kPortUart2] = {kPortUart2, true, 0, 0x8C0, 38400, proto::kUbx | proto::kRtcm3, proto::kRtcm3, 0, false};

@@ -25,6 +25,8 @@ struct RtkConfig {
   double pos_process_m_sqrt_s = 0.05;
   /// Ambiguity random walk, cycles/sqrt(s) (RTKLIB prn[0] 1e-4).
   double amb_process_cyc_sqrt_s = 1.0e-4;
+  /// Integer ambiguities are searched and held (CFG-NAVHPG-DGNSSMODE 3, factory); false: float only (mode 2).
+  bool fix_ambiguities = true;
   double ratio_threshold = 3.0;       ///< LAMBDA ratio test (RTKLIB default 3.0)
   int min_fix_ambiguities = 4;        ///< fewest double differences to fix
   /// Carrier lock before an ambiguity joins the integer search (half cycle resolved too), s.

@@ -406,6 +406,8 @@ void RtkEngine::step(const RawEpoch& rover, const world::Observables& obs, const
     if (baseline_m > cfg_.max_fix_baseline_m) {
       ++status_.long_baseline;
       fixed_ = false;
+    } else if (!cfg_.fix_ambiguities) {
+      fixed_ = false;
     } else {
       if (fixed_) {
         Ecef fp;

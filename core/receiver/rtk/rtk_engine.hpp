@@ -67,6 +67,7 @@ public:
   void set_config(const RtkConfig& c) noexcept { cfg_ = c; }
   const RtkConfig& config() const noexcept { return cfg_; }
   /// CFG-NAVSPG-CONSTR_DGNSSTO, s (> 0; others ignored).
+  void set_fix_ambiguities(bool on) noexcept { cfg_.fix_ambiguities = on; }
   void set_dgnss_timeout_s(double s) noexcept {
     if (s > 0.0) cfg_.dgnss_timeout_s = s;
   }

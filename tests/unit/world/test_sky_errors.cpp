@@ -60,6 +60,50 @@ TEST(SkyErrors, DefaultConfigIsTheDefaultWorlds) {
   EXPECT_EQ(sky_errors_config(c).seed, 3u);
 }
 
+// A slow process (the orbit/clock residual's 1800 s) is smooth over
+// seconds and keeps unit variance and its correlation across coarse nodes:
+// its 1-s change is a few per mille of sigma, a rough first-order path's
+// would be sqrt(2 / 1800) = 3.3 %.
+TEST(SkyErrors, SlowProcessIsSmoothWithUnitVariance) {
+  SkyErrorsConfig c;
+  c.tau_s = {1800.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  SkyErrors e(c);
+  std::vector<SatId> sats;
+  for (int i = 0; i < kNumSats; ++i) sats.push_back(SatId::from_index(i));
+  constexpr int kSteps = 20000;  // 1 s apart
+  constexpr int kLag = 900;      // tau / 2
+  std::vector<std::vector<double>> x(sats.size(), std::vector<double>(kSteps));
+  for (int k = 0; k < kSteps; ++k) {
+    e.begin(kStart + 1.0 * k + 0.25, sats, 0);
+    for (std::size_t i = 0; i < sats.size(); ++i) {
+      e.step(sats[i]);
+      x[i][static_cast<std::size_t>(k)] = e.value(SkyProcess::kOrbitClock, sats[i]);
+    }
+  }
+  double s2 = 0.0, d2 = 0.0, lag = 0.0;
+  long m = 0, m_d = 0, m_lag = 0;
+  for (const std::vector<double>& xs : x) {
+    for (std::size_t k = 0; k < xs.size(); ++k) {
+      s2 += xs[k] * xs[k];
+      ++m;
+      if (k > 0) {
+        d2 += (xs[k] - xs[k - 1]) * (xs[k] - xs[k - 1]);
+        ++m_d;
+      }
+      if (k + kLag < xs.size()) {
+        lag += xs[k] * xs[k + kLag];
+        ++m_lag;
+      }
+    }
+  }
+  // ~250 satellites x 11 correlation times: the variance is known to ~3 %.
+  EXPECT_NEAR(s2 / static_cast<double>(m), 1.0, 0.08);
+  EXPECT_NEAR(lag / static_cast<double>(m_lag), std::exp(-0.5), 0.06);
+  const double rms_step = std::sqrt(d2 / static_cast<double>(m_d));
+  EXPECT_LT(rms_step, 0.006);
+  EXPECT_GT(rms_step, 0.001);  // still moving
+}
+
 // Unit variance at every fine node and between them, and the correlation
 // exp(-lag / tau) across coarse nodes, over many independent satellites.
 TEST(SkyErrors, GridProcessIsUnitGaussMarkov) {
