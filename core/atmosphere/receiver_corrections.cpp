@@ -2,6 +2,7 @@
 #include "core/atmosphere/receiver_corrections.hpp"
 
 #include "core/atmosphere/klobuchar.hpp"
+#include "core/common/constants.hpp"
 #include "core/atmosphere/troposphere.hpp"
 
 namespace gnssemu::atmosphere {
@@ -10,6 +11,12 @@ double receiver_iono_delay_m(const orbit::KlobucharParams& params, double lat_ra
                              double el_rad, double tow_s) noexcept {
   if (params.valid) return klobuchar_delay_l1_m(params, lat_rad, lon_rad, az_rad, el_rad, tow_s);
   return klobuchar_delay_l1_m(rtklib_default_klobuchar(), lat_rad, lon_rad, az_rad, el_rad, tow_s);
+}
+
+double receiver_iono_delay_m(const orbit::KlobucharParams& params, double lat_rad, double lon_rad, double az_rad,
+                             double el_rad, double tow_s, double wavelength_m) noexcept {
+  const double r = wavelength_m / kL1Wavelength_m;
+  return receiver_iono_delay_m(params, lat_rad, lon_rad, az_rad, el_rad, tow_s) * r * r;
 }
 
 double receiver_tropo_delay_m(double lat_rad, double height_m, double el_rad, double doy,

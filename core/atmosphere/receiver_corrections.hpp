@@ -32,6 +32,12 @@ enum class TropoCorrection {
 double receiver_iono_delay_m(const orbit::KlobucharParams& params, double lat_rad, double lon_rad, double az_rad,
                              double el_rad, double tow_s) noexcept;
 
+/// The same delay on a carrier of wavelength_m (> 0), m: L1's times
+/// (f_L1 / f)^2 = (lambda / lambda_L1)^2 (IS-GPS-200 20.3.3.3.3.2; GLONASS
+/// L1OF and BeiDou B1I differ from L1 by 1.7 % and 0.9 %).
+double receiver_iono_delay_m(const orbit::KlobucharParams& params, double lat_rad, double lon_rad, double az_rad,
+                             double el_rad, double tow_s, double wavelength_m) noexcept;
+
 /// Receiver's tropospheric correction, m (>= 0). lat_rad; height_m:
 /// ellipsoidal (clamped to [-1 km, 100 km]); el_rad (held at >= 1 deg);
 /// doy: day of year, fractional allowed.

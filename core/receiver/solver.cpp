@@ -117,11 +117,8 @@ void Solver::update_corrections(const SolverInput& in, const Ecef& pos, const Ll
     const double el = std::atan2(u, std::hypot(e, n));
     double az = std::atan2(e, n);
     if (az < 0.0) az += 2.0 * kPi;
-    // Klobuchar gives the L1 delay; other carriers scale by (f_L1/f)^2 = (lambda/lambda_L1)^2
-    // (IS-GPS-200 20.3.3.3.3.2; GLONASS FDMA and BeiDou B1I differ from L1 by 1.7 % and 0.9 %).
-    const double f_ratio = in.meas[i].wavelength_m / kL1Wavelength_m;
     const double i_m =
-        iono ? atmosphere::receiver_iono_delay_m(klobuchar_, lla.lat_rad, lla.lon_rad, az, el, tow_s) * f_ratio * f_ratio
+        iono ? atmosphere::receiver_iono_delay_m(klobuchar_, lla.lat_rad, lla.lon_rad, az, el, tow_s, in.meas[i].wavelength_m)
              : 0.0;
     s.corr_m = i_m;
     if (tropo) s.corr_m += atmosphere::receiver_tropo_delay_m(lla.lat_rad, lla.height_m, el, in.doy, cfg_.tropo);

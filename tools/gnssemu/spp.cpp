@@ -23,20 +23,12 @@ double receiver_correction_m(const orbit::KlobucharParams& k, const Lla& rx, dou
                              const time::GpsTime& t, const receiver::SolverConfig& solver, double* variance_m2,
                              double carrier_hz) {
   const double doy = t.fractional_day_of_year();
-  const double l1_iono_m = solver.iono == atmosphere::IonoCorrection::kKlobuchar
-                               ? atmosphere::receiver_iono_delay_m(k, rx.lat_rad, rx.lon_rad, az_rad, el_rad, t.tow_s())
-                               : 0.0;
-  const double ratio = kL1Freq_hz / carrier_hz;
-  const bool l1 = carrier_hz == kL1Freq_hz;
-  const double iono_m = l1 ? l1_iono_m : l1_iono_m * ratio * ratio;
-  if (variance_m2 != nullptr) {
-    const double sin_el = std::sin(el_rad);
-    *variance_m2 = receiver::correction_variance_m2(solver, l1_iono_m, sin_el);
-    if (!l1) {
-      const double tropo_var = receiver::correction_variance_m2(solver, 0.0, sin_el);
-      *variance_m2 = tropo_var + (*variance_m2 - tropo_var) * ratio * ratio;
-    }
-  }
+  const double iono_m = solver.iono == atmosphere::IonoCorrection::kKlobuchar
+                            ? atmosphere::receiver_iono_delay_m(k, rx.lat_rad, rx.lon_rad, az_rad, el_rad, t.tow_s(),
+                                                                kSpeedOfLight_m_s / carrier_hz)
+                            : 0.0;
+  // The solver's variance of the same correction (its sigma scales with the delay).
+  if (variance_m2 != nullptr) *variance_m2 = receiver::correction_variance_m2(solver, iono_m, std::sin(el_rad));
   return iono_m + atmosphere::receiver_tropo_delay_m(rx.lat_rad, rx.height_m, el_rad, doy, solver.tropo);
 }
 
