@@ -14,6 +14,7 @@
 #include "core/protocol/rtcm/rtcm_station.hpp"
 #include "core/protocol/ubx/ubx_decoder.hpp"
 #include "core/protocol/ubx/ubx_device.hpp"
+#include "core/protocol/ubx/ubx_encoder.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {
@@ -118,6 +119,29 @@ TEST(UbxRtcmInput, TakenWhereThePortHasRtcm3AndReportedByRxmRtcm) {
   EXPECT_EQ(c.obs_received, time::GpsTime(2300, 345600.0));
   EXPECT_EQ(d.rtcm_input().stats().crc_failed, 1u);
   EXPECT_EQ(d.rtcm_input().decoder_stats().unknown_messages, 1u);
+}
+
+TEST(UbxRtcmInput, F9pReportsEachCorrectionMessageInRxmCor) {
+  DeviceSetup s = rtcm_port();
+  s.mon_ver = mon_ver_of(Generation::kF9P);
+  Device d(s);
+  d.on_epoch(fix_at(time::GpsTime(2300, 345600.0)), 1.0);
+  RtcmHost h(d);
+  h.send(frame_bytes(msg::kCfgMsg, {0x02, 0x34, 1}));  // RXM-COR on this port
+  ASSERT_EQ(test::split_frames(h.tx).back().id, msg::kAckAck);
+  h.send(corrections_bytes());
+  std::vector<test::Frame> cor;
+  for (const test::Frame& f : test::split_frames(h.tx))
+    if (f.id == msg::kRxmCor) cor.push_back(f);
+  EXPECT_TRUE(h.rxm_rtcm().empty());  // RXM-RTCM stays off
+  ASSERT_EQ(cor.size(), 3u);          // 1005, 1077, 1097
+  const auto msg_type = [](const test::Frame& f) { return test::u2(f.payload, 8); };
+  EXPECT_EQ(msg_type(cor[0]), 1005);
+  EXPECT_EQ(msg_type(cor[1]), 1077);
+  EXPECT_EQ(msg_type(cor[2]), 1097);
+  const std::uint32_t status = test::u4(cor[1].payload, 4);
+  EXPECT_EQ(status & 0x1Fu, 1u);         // protocol RTCM3
+  EXPECT_EQ((status >> 7) & 3u, 2u);     // msgUsed: used
 }
 
 TEST(UbxRtcmInput, IgnoredOnAPortWithoutRtcm3) {
