@@ -131,6 +131,7 @@ struct Fix {
   double sigma_uere_m = 0.0;   ///< user equivalent range error assumed by the solver
   double range_rms_m = 0.0;    ///< RMS of post-fit residuals (GST field 2)
   double sigma_e_m = 0.0, sigma_n_m = 0.0, sigma_u_m = 0.0;
+  double cov_en_m2 = 0.0;      ///< east-north covariance, m^2 (the error ellipse's tilt)
   double h_acc_m = 0.0;        ///< horizontal accuracy (as u-blox hAcc)
   double v_acc_m = 0.0;        ///< vertical accuracy (vAcc)
   double speed_acc_m_s = 0.0;  ///< sAcc

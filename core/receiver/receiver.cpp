@@ -145,6 +145,7 @@ void Receiver::no_fix_epoch() noexcept {
   fix_.sigma_uere_m = 0.0;
   fix_.range_rms_m = 0.0;
   fix_.sigma_e_m = fix_.sigma_n_m = fix_.sigma_u_m = kNoFixAccuracy_m;
+  fix_.cov_en_m2 = 0.0;
   fix_.h_acc_m = fix_.v_acc_m = kNoFixAccuracy_m;
   fix_.speed_acc_m_s = kNoFixSpeedAccuracy_m_s;
   fix_.time_acc_s = kNoFixTimeAccuracy_s;
@@ -471,6 +472,7 @@ void Receiver::fill_solution() noexcept {
   f.sigma_e_m = std::sqrt(q[0][0]);
   f.sigma_n_m = std::sqrt(q[1][1]);
   f.sigma_u_m = std::sqrt(q[2][2]);
+  f.cov_en_m2 = q[0][1];
   f.h_acc_m = std::sqrt(q[0][0] + q[1][1]);
   f.v_acc_m = f.sigma_u_m;
   f.speed_acc_m_s = std::sqrt(qv[0][0] + qv[1][1] + qv[2][2]);

@@ -48,6 +48,7 @@ struct Epoch {
   double diff_age_s = -1.0;  // GGA age of differential corrections, s; < 0: empty
   int diff_station = -1;     // GGA reference station id; < 0: empty
   Talker main{'G', 'P'};  // talker of every sentence but GSV
+  NmeaDevice device = NmeaDevice::kM9;
   UtcStamp utc;
   double lat_deg = 0.0, lon_deg = 0.0;
   double alt_msl_m = 0.0, geoid_sep_m = 0.0;
@@ -116,6 +117,7 @@ void set_fix_flags(Epoch& e, ReportedFix f) {
 Epoch derive(const Fix& fix, const NmeaConfig& cfg, FixOverride reported) {
   Epoch e;
   e.version = cfg.version;
+  e.device = cfg.device;
   e.v4 = has_system_ids(cfg.version);
   e.pos_mode_field = cfg.version != NmeaVersion::k21;
   e.has_time = fix.time_valid;
@@ -413,19 +415,50 @@ void put_sigmas(SentenceWriter& w, const Fix& fix) {
   w.fixed(clamp_finite(fix.sigma_u_m, 0.0, kMaxSigma_m), 1);
 }
 
+// A GST value: the M8 prints one decimal (ref §3); the NEO-M9N and ZED-F9P
+// two below 1 m, one below 10 m and none above (M9N "837,2.5,2.4,126,0.98,
+// 1.0,3.1", F9P rangeRms "43"; receiver-logs/gpsd).
+void put_gst_value(SentenceWriter& w, double v, NmeaDevice device) {
+  v = clamp_finite(v, 0.0, kMaxSigma_m);
+  if (device == NmeaDevice::kM8) return w.fixed(v, 1);
+  const int decimals = std::round(v * 100.0) < 100.0 ? 2 : std::round(v * 10.0) < 100.0 ? 1 : 0;
+  w.fixed(v, decimals);
+}
+
+// sqrt(chi2(2 dof, 0.95)) = sqrt(-2 ln 0.05): the NEO-M9N's ellipse axes are
+// 2.45 times its stdLat/stdLong (2.5,2.4 beside 0.98,1.0 in every epoch of
+// ublox-neo-m9n-nmea.log), the 95 % ellipse of the same covariance.
+constexpr double kEllipse95 = 2.4477468306808166;
+
+// stdMajor, stdMinor, orient (degrees from true north, [0, 180)) of the
+// east-north covariance, or three empty fields.
+void put_ellipse(SentenceWriter& w, const Fix& fix, NmeaDevice device) {
+  const double ee = fix.sigma_e_m * fix.sigma_e_m, nn = fix.sigma_n_m * fix.sigma_n_m, en = fix.cov_en_m2;
+  if (device != NmeaDevice::kM9 || !std::isfinite(ee + nn + en)) {
+    for (int i = 0; i < 3; ++i) w.empty();
+    return;
+  }
+  const double mean = 0.5 * (ee + nn), r = std::hypot(0.5 * (nn - ee), en);
+  put_gst_value(w, kEllipse95 * std::sqrt(mean + r), device);
+  put_gst_value(w, kEllipse95 * std::sqrt(std::max(mean - r, 0.0)), device);
+  double orient_deg = 0.5 * std::atan2(2.0 * en, nn - ee) * kRadToDeg;
+  if (orient_deg < 0.0) orient_deg += 180.0;
+  if (std::round(orient_deg) >= 180.0) orient_deg = 0.0;
+  w.fixed(orient_deg, 0);
+}
+
 // GST time,rangeRms,stdMajor,stdMinor,orient,stdLat,stdLong,stdAlt. The
-// ellipse fields stay empty as on the M8 (ref §3): the Fix carries no
-// east-north covariance, and an ellipse from sigma_e / sigma_n alone would
-// claim an orientation the solver never computed. Empty values without a fix.
+// ellipse is empty on the M8 (ref §3) and the ZED-F9P (its log), the 95 %
+// ellipse on the NEO-M9N. Empty values without a fix.
 void write_gst(const Epoch& e, const Fix& fix, const Emit& emit) {
   SentenceWriter w(Address(e.main, "GST"));
   put_time(w, e);
   if (e.has_fix) {
-    w.fixed(clamp_finite(fix.range_rms_m, 0.0, kMaxSigma_m), 1);
-    w.empty();
-    w.empty();
-    w.empty();
-    put_sigmas(w, fix);
+    put_gst_value(w, fix.range_rms_m, e.device);
+    put_ellipse(w, fix, e.device);
+    put_gst_value(w, fix.sigma_n_m, e.device);
+    put_gst_value(w, fix.sigma_e_m, e.device);
+    put_gst_value(w, fix.sigma_u_m, e.device);
   } else {
     for (int i = 0; i < 7; ++i) w.empty();
   }

@@ -42,6 +42,7 @@ enum class GsvTalker : std::uint8_t {
 enum class NmeaDevice : std::uint8_t {
   kM8,  ///< NEO-M8N/MAX-M8Q: GSV signalId 0 (all signals) in 4.10 mode
   kM9,  ///< NEO-M9N: GSV signalId of the L1 signal (1; Galileo E1 7)
+  kF9,  ///< ZED-F9P: as the M9, with a GSV group per signal
 };
 
 struct NmeaSettings {

@@ -627,6 +627,7 @@ void RtkEngine::write_output(const Corrections& c, double age_s, bool carrier, b
   fix.sigma_e_m = std::sqrt(std::max(cl[0][0], 0.0));
   fix.sigma_n_m = std::sqrt(std::max(cl[1][1], 0.0));
   fix.sigma_u_m = std::sqrt(std::max(cl[2][2], 0.0));
+  fix.cov_en_m2 = cl[0][1];
   fix.h_acc_m = std::hypot(fix.sigma_e_m, fix.sigma_n_m);
   fix.v_acc_m = fix.sigma_u_m;
 }

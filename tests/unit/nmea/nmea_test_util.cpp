@@ -41,6 +41,7 @@ receiver::Fix fix_from_json(const nlohmann::json& j) {
   f.range_rms_m = j.value("range_rms_m", 0.0);
   f.sigma_e_m = j.value("sigma_e_m", 0.0);
   f.sigma_n_m = j.value("sigma_n_m", 0.0);
+  f.cov_en_m2 = j.value("cov_en_m2", 0.0);
   f.sigma_u_m = j.value("sigma_u_m", 0.0);
   f.h_acc_m = j.value("h_acc_m", std::hypot(f.sigma_e_m, f.sigma_n_m));
   f.v_acc_m = j.value("v_acc_m", f.sigma_u_m);

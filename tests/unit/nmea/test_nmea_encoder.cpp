@@ -90,8 +90,36 @@ TEST(NmeaEncoder, ThreeDimensionalFixFields) {
   EXPECT_EQ(lines[5].substr(0, lines[5].find('*')), "$GPGSV,3,2,10,16,03,200,,18,42,010,44,23,38,230,44,26,20,170,38,1");
   EXPECT_EQ(lines[6].substr(0, lines[6].find('*')), "$GPGSV,3,3,10,28,65,100,47,29,71,156,47,1");
   EXPECT_EQ(lines[7].substr(0, lines[7].find('*')), "$GPGLL,4717.11398,N,00833.91590,E,120000.25,A,A");
-  EXPECT_EQ(lines[8].substr(0, lines[8].find('*')), "$GPGST,120000.25,1.8,,,,1.7,1.3,2.2");
+  // NEO-M9N: the 95 % ellipse of the east-north covariance (north-aligned
+  // here: no correlation), 2.45 sigma_n and 2.45 sigma_e.
+  EXPECT_EQ(lines[8].substr(0, lines[8].find('*')), "$GPGST,120000.25,1.8,4.2,3.2,0,1.7,1.3,2.2");
   EXPECT_EQ(lines[9].substr(0, lines[9].find('*')), "$GPZDA,120000.25,01,01,2022,00,00");
+}
+
+// GST per device: the M8 and ZED-F9P leave the ellipse empty (their logs),
+// the M8 prints one decimal, the M9/F9 two below 1 m and none above 10 m.
+TEST(NmeaEncoder, GstFollowsTheDevice) {
+  receiver::Fix f = sample_fix_3d();
+  f.sigma_n_m = 0.981;
+  f.sigma_e_m = 0.5;
+  f.cov_en_m2 = 0.3;  // correlation 0.61: the major axis leans east of north
+  f.sigma_u_m = 12.4;
+  f.range_rms_m = 0.84;
+  auto gst = [&](NmeaDevice d) {
+    NmeaConfig c = all_sentences(NmeaVersion::k411);
+    c.device = d;
+    const auto lines = encode(f, c);
+    return lines[8].substr(0, lines[8].find('*'));
+  };
+  EXPECT_EQ(gst(NmeaDevice::kM8), "$GPGST,120000.25,0.8,,,,1.0,0.5,12.4");
+  EXPECT_EQ(gst(NmeaDevice::kF9), "$GPGST,120000.25,0.84,,,,0.98,0.50,12");
+  // Eigen-decomposition of [[ee, en], [en, nn]] = [[0.25, 0.3], [0.3, 0.962]]:
+  // lambda = 0.6062 +- 0.4657, axes 2.4477 * sqrt(lambda) = 2.53, 0.917; the
+  // major axis at 0.5 atan2(0.6, 0.712) = 20.05 deg from north.
+  EXPECT_EQ(gst(NmeaDevice::kM9), "$GPGST,120000.25,0.84,2.5,0.92,20,0.98,0.50,12");
+  // An anticorrelated error leans west: orientation in (90, 180).
+  f.cov_en_m2 = -0.3;
+  EXPECT_EQ(gst(NmeaDevice::kM9), "$GPGST,120000.25,0.84,2.5,0.92,160,0.98,0.50,12");
 }
 
 TEST(NmeaEncoder, VersionFields) {
@@ -379,9 +407,11 @@ TEST(NmeaEncoder, SentencesAgreeWithEachOther) {
     }
     // One HDOP.
     EXPECT_EQ(gga[7], gsa[15]);
-    // GST horizontal sigmas agree with h_acc (= sqrt(sigma_n^2 + sigma_e^2)).
+    // GST horizontal sigmas agree with h_acc (= sqrt(sigma_n^2 + sigma_e^2)),
+    // and the ellipse's axes hold the same variance 2.4477^2 times (95 %).
     EXPECT_NEAR(std::hypot(std::stod(gst[5]), std::stod(gst[6])), f.h_acc_m, 0.071);
-    EXPECT_EQ(std::stod(gst[7]), std::round(f.sigma_u_m * 10.0) / 10.0);
+    EXPECT_NEAR(std::hypot(std::stod(gst[2]), std::stod(gst[3])), 2.4477 * f.h_acc_m, 0.71);  // whole metres above 10 m
+    EXPECT_NEAR(std::stod(gst[7]), f.sigma_u_m, f.sigma_u_m < 10.0 ? 0.051 : 0.51);
   }
 }
 

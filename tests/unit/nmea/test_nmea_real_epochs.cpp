@@ -126,6 +126,11 @@ Parsed fix_from_epoch(const std::vector<Sentence>& epoch, NmeaVersion v) {
       f.sigma_n_m = std::stod(x[5]);
       f.sigma_e_m = std::stod(x[6]);
       f.sigma_u_m = std::stod(x[7]);
+      if (!x[2].empty()) {  // the 95 % ellipse (M9N) gives the east-north covariance
+        const double a = std::stod(x[2]) / 2.4477468306808166, b = std::stod(x[3]) / 2.4477468306808166;
+        const double th = std::stod(x[4]) * kDegToRad;
+        f.cov_en_m2 = (a * a - b * b) * std::sin(th) * std::cos(th);
+      }
     }
   }
   // GSA i lists system i+1 (4.10: its systemId; 4.0: the same order).
@@ -233,14 +238,11 @@ TEST(NmeaRealEpochs, NeoM9nNmea410) {
             {"GLL:6", kDgps},
             {"VTG:6", kKmh},
             {"GST:1", kRangeRms},
-            {"GST:2", "error ellipse: the Fix has no east-north covariance"},
-            {"GST:3", "error ellipse: the Fix has no east-north covariance"},
-            {"GST:4", "error ellipse: the Fix has no east-north covariance"},
-            {"GST:5", "the M9N prints sigmas below 1 m with two decimals (0.98), we with one"}}});
+            {"GST:4", "orientation: the two-digit stdLat/stdLong (0.98, 1.0) fix it only to several degrees"}}});
 }
 
 TEST(NmeaRealEpochs, ZedF9pNmea410) {
-  compare({"ublox-zed-f9p-nmea-excerpt.log", NmeaDevice::kM9, NmeaVersion::k410,
+  compare({"ublox-zed-f9p-nmea-excerpt.log", NmeaDevice::kF9, NmeaVersion::k410,
            {{"GST:1", kRangeRms}, {"VTG:6", kKmh}}});
 }
 

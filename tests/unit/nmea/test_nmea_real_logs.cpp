@@ -150,14 +150,16 @@ TEST(NmeaRealLogs, MatchesUblox8InNmea40Mode) {
   compare_with_log({"ublox-8-excerpt.log", NmeaVersion::k23, {}});
 }
 
-// The M9N prints GST sigmas with two significant digits and fills the ellipse;
-// its rangeRms is a firmware artefact (e.g. 228650). Only field counts are compared.
+// GST decimals on the M9N follow the value (0.98 but 1.0), so the sample fix's
+// sigmas cannot share the log's format: only field counts are compared here;
+// test_nmea_real_epochs.cpp compares GST value by value on the log's own epoch.
 TEST(NmeaRealLogs, MatchesNeoM9nInNmea410Mode) {
   compare_with_log({"ublox-neo-m9n-nmea-excerpt.log", NmeaVersion::k410, {"GST"}});
   compare_with_log({"ublox-neo-m9n-nmea-excerpt.log", NmeaVersion::k411, {"GST"}});
 }
 
-// The F9P's GST rangeRms is the same artefact; its sigmas have one decimal as ours.
+// The F9P's GST rangeRms is a firmware artefact (43); its sigmas fall in the
+// one-decimal range (1 to 10 m) as the sample fix's do.
 TEST(NmeaRealLogs, MatchesZedF9pInNmea410Mode) {
   compare_with_log({"ublox-zed-f9p-nmea-excerpt.log", NmeaVersion::k410, {"GST:1"}});
 }
