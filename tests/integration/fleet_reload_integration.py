@@ -6,7 +6,8 @@ and "b" at 2 Hz, truth for both at 10 Hz; a host turns GSV off on a's pty
 file:line. Then the file drops "b" and adds "c", and a SIGHUP applies it:
 a's pty keeps emitting with no gap in its GGA times, no loss of its fix and
 GSV still off; b's pty disappears and b's packets count as unknown_vehicle;
-c's pty appears and gets a fix. Prints the largest GGA gap on "a" across the
+c's pty appears and gets a fix. A last reload changes c's seed (applied
+live) and its output's baud (logged as needing a restart). Prints the largest GGA gap on "a" across the
 reload and c's time to first fix from the signal. Loopback only, free
 ports, temp dir; stops itself in 120 s.
 
@@ -120,7 +121,7 @@ class Rig(RigBase):
     def pty(self, v):
         return os.path.join(self.tmp, f"{v}-gps1")
 
-    def write_config(self, vehicles, extra=""):
+    def write_config(self, vehicles, extra="", receiver_keys=None):
         text = f"""
 [origin]
 lat_deg = {ORIGIN[0]}
@@ -146,10 +147,12 @@ port = 0
 id = "{v}"
 [[vehicle.receiver]]
 name = "gps1"
+{(receiver_keys or {}).get(v, "")}
 [[vehicle.receiver.output]]
 name = "{v}-gps1"
 type = "pty"
 path = "{self.pty(v)}"
+{(receiver_keys or {}).get(v + "-output", "")}
 """
         # Written whole and renamed: the daemon never reads half a file.
         tmp = self.cfg + ".new"
@@ -275,6 +278,18 @@ def body(rig):
     gsv = readers["a"].count("GSV", gsv_off_at)
     assert gsv == 0, f"a sent {gsv} GSV after its host turned GSV off: its chip was reset"
     assert readers["c"].count("GSV", 0) > 0, "c (factory settings) sends no GSV"
+
+    # A changed vehicle: c's models apply live, its output's baud at a restart; a stays untouched.
+    rig.write_config(["a", "c"], receiver_keys={"c": "seed = 5", "c-output": "baud = 115200"})
+    mark2 = len(rig.log())
+    rig.daemon.send_signal(signal.SIGHUP)
+    live = rig.wait_log(r"reload: vehicle 'c' changed: applied live: (.*)", mark2)
+    later = rig.wait_log(r"reload: vehicle 'c' changed: needs a restart, running on the old values: (.*)", mark2)
+    assert live.group(1) == "gps1: receiver models (receiver restarted, hot)", live.group(1)
+    assert later.group(1) == "gps1: output c-gps1 protocols/messages/baud", later.group(1)
+    rig.wait_log(r"applied in [\d.]+ ms \(nothing; vehicles added: none; removed: none; changed: c; unchanged: a\)",
+                 mark2)
+    print(f"  c changed: live: {live.group(1)}; at a restart: {later.group(1)}")
 
     # b's packets are unknown now; the drops say so.
     rig.wait_log(r"unknown_vehicle \(vehicle 'b' is not configured\)", mark, limit_s=15)
