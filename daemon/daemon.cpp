@@ -279,6 +279,37 @@ void Daemon::open_channel(Rig& rig, std::size_t i, std::unique_ptr<OutputPort> p
   c.on_input([this, r, i](const protocol::ubx::InputResult& in) { on_host_input(*r, i, in); });
 }
 
+void Daemon::wire_rig(Rig& r, std::vector<std::unique_ptr<OutputPort>> ports, double power_on_s) {
+  r.device.power_on(power_on_s);
+  r.channels.resize(ports.size());
+  for (std::size_t i = 0; i < ports.size(); ++i) open_channel(r, i, std::move(ports[i]));
+  for (const auto& c : r.channels) c->start();
+  // Lines follow the chip's UART1s (a saved configuration may have changed their bauds).
+  if (!r.cfg.state_file.empty()) {
+    for (const auto& c : r.channels) c->follow_device(false);
+  }
+  for (const auto& c : r.channels) r.out_summary.emplace_back(c->output_summary());
+}
+
+void Daemon::print_ports(const Rig& rig) const {
+  for (const auto& c : rig.channels) {
+    std::printf("gnssemud: %s%s on %s\n", who(rig).c_str(), std::string(c->output_summary()).c_str(),
+                c->port().describe().c_str());
+  }
+}
+
+void Daemon::log_port_summary(const Rig& rig) const {
+  for (const auto& c : rig.channels) {
+    const PortStats& ps = c->port().stats();
+    std::string drops;
+    for (const auto& [name, n] : c->drops()) drops += fmt::format("{}{} {}", drops.empty() ? "" : ", ", name, n);
+    spdlog::info("{}output {}: {} epochs written, {} dropped; {} replies; {} bytes in; {} messages over the line "
+                 "budget{}{}",
+                 who(rig), c->port().config().name, ps.epochs_written, ps.epochs_dropped, ps.replies_written,
+                 ps.bytes_from_reader, c->stats().messages_dropped, drops.empty() ? "" : ": ", drops);
+  }
+}
+
 void Daemon::start() {
   t0_ = Clock::now();
   if (cfg_.time.use_wall_clock_date && cfg_.time.mode == config::TimeMode::kRealtime) {
@@ -292,19 +323,11 @@ void Daemon::start() {
   if (cfg_.time.mode != config::TimeMode::kRealtime) chip_origin_ = lock_next_;
   for (const auto& rp : rigs_) {
     Rig& r = *rp;
-    if (cfg_.time.mode == config::TimeMode::kRealtime) {
-      r.device.power_on(std::chrono::duration<double>(power_on_ - t0_).count());
-    } else {
-      r.device.power_on(0.0);
-    }
-    r.channels.resize(r.cfg.outputs.size());
-    for (std::size_t i = 0; i < r.cfg.outputs.size(); ++i) open_channel(r, i, open_port(r.cfg.outputs[i], io_));
-    for (const auto& c : r.channels) c->start();
-    // Lines follow the chip's UART1s (a saved configuration may have changed their bauds).
-    if (!r.cfg.state_file.empty()) {
-      for (const auto& c : r.channels) c->follow_device(false);
-    }
-    for (const auto& c : r.channels) r.out_summary.emplace_back(c->output_summary());
+    std::vector<std::unique_ptr<OutputPort>> ports;
+    for (const config::OutputPortConfig& o : r.cfg.outputs) ports.push_back(open_port(o, io_));
+    wire_rig(r, std::move(ports),
+             cfg_.time.mode == config::TimeMode::kRealtime ? std::chrono::duration<double>(power_on_ - t0_).count()
+                                                           : 0.0);
   }
 
   boost::system::error_code ec;
@@ -319,12 +342,7 @@ void Daemon::start() {
   }
   const auto local = socket_.local_endpoint(ec);
 
-  for (const auto& rp : rigs_) {
-    for (const auto& c : rp->channels) {
-      std::printf("gnssemud: %s%s on %s\n", who(*rp).c_str(), std::string(c->output_summary()).c_str(),
-                  c->port().describe().c_str());
-    }
-  }
+  for (const auto& rp : rigs_) print_ports(*rp);
   std::printf("gnssemud: truth input udp %s:%u\n", local.address().to_string().c_str(),
               static_cast<unsigned>(local.port()));
   start_status_page();
@@ -388,16 +406,8 @@ void Daemon::shutdown() {
   }
   bool any_channel = false;
   for (const auto& rp : rigs_) {
-    for (const auto& c : rp->channels) {
-      any_channel = true;
-      const PortStats& ps = c->port().stats();
-      std::string drops;
-      for (const auto& [name, n] : c->drops()) drops += fmt::format("{}{} {}", drops.empty() ? "" : ", ", name, n);
-      spdlog::info("{}output {}: {} epochs written, {} dropped; {} replies; {} bytes in; {} messages over the line "
-                   "budget{}{}",
-                   who(*rp), c->port().config().name, ps.epochs_written, ps.epochs_dropped, ps.replies_written,
-                   ps.bytes_from_reader, c->stats().messages_dropped, drops.empty() ? "" : ": ", drops);
-    }
+    any_channel = any_channel || !rp->channels.empty();
+    log_port_summary(*rp);
   }
   if (any_channel) {
     if (fleet_) {

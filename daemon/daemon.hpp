@@ -36,6 +36,7 @@
 #include "daemon/ports/ntrip_caster.hpp"
 #include "daemon/ports/output_port.hpp"
 #include "daemon/ports/port_channel.hpp"
+#include "daemon/reload_plan.hpp"
 #include "daemon/rig.hpp"
 #include "daemon/run_plan.hpp"
 #include "daemon/service/signals.hpp"
@@ -164,6 +165,34 @@ private:
   void note_other_vehicle(const std::string& id);
   /// Wire port to output i of rig's device (replacing what was there).
   void open_channel(Rig& rig, std::size_t i, std::unique_ptr<OutputPort> port);
+  /// Power rig's chip on at chip clock power_on_s and wire ports (one per
+  /// output, opened) to its outputs (start-up, a vehicle a reload adds).
+  void wire_rig(Rig& rig, std::vector<std::unique_ptr<OutputPort>> ports, double power_on_s);
+  /// "gnssemud: ego/gps1: NMEA on pty ..." on stdout, one line per output.
+  void print_ports(const Rig& rig) const;
+  /// Each output's counters in the log (the exit summary; a removed vehicle's).
+  void log_port_summary(const Rig& rig) const;
+  // SIGHUP reload (daemon_reload.cpp).
+  /// A reload's change to one running receiver, built before anything running is touched.
+  struct RigUpdate {
+    Rig* rig = nullptr;
+    config::Config cfg;  ///< its configuration in the loaded file (on the running top level)
+    ReloadPlan plan;     ///< its live part is applied
+    bool lever_arm = false;
+    Vec3 lever_arm_m;
+    std::unique_ptr<pipeline::Pipeline> receiver;        ///< plan.receiver or plan.scene: the new one
+    std::vector<std::unique_ptr<OutputPort>> reopened;  ///< one per plan.reopen, open
+  };
+  /// Builds u's receiver and opens its reopened ports (scene: the one it will
+  /// run in). Throws; touches nothing running.
+  void prepare_rig_update(RigUpdate& u, const scene::Scene* scene);
+  /// Applies a prepared update to its rig (the scene already swapped).
+  void apply_rig_update(RigUpdate& u);
+  /// The fleet form's reload: vehicles added, removed, kept or changed
+  /// (FleetReloadPlan); top: the top level's plan, whose receiver and scene
+  /// parts a fleet takes per vehicle or at a restart. Throws before anything
+  /// running is touched; returns the summary for the log.
+  std::string reload_fleet(const config::Config& loaded, ReloadPlan& top);
   // Scenario and control socket (daemon_control.cpp).
   /// A fresh fault stage with the scenario's events, time zero at the next epoch.
   void restart_scenario();

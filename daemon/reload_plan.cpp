@@ -48,6 +48,13 @@ ReloadPlan plan_reload(const Config& running, const Config& loaded) {
   restart_if("[status]", [](Config& m, const Config& l) { m.status = l.status; });
   restart_if("[control]", [](Config& m, const Config& l) { m.control = l.control; });
 
+  // The form (one receiver on the top level's [[output]], or vehicles) is the daemon's shape.
+  const bool was_fleet = !running.vehicles.empty() || running.fleet.has_value();
+  if (was_fleet != (!loaded.vehicles.empty() || loaded.fleet.has_value())) {
+    p.need_restart.emplace_back(was_fleet ? "[[vehicle]]/[fleet] replaced by top-level [[output]]"
+                                          : "top-level [[output]] replaced by [[vehicle]]/[fleet]");
+    return p;
+  }
   if (running.outputs.size() != loaded.outputs.size()) {
     p.need_restart.push_back("outputs added or removed (" + std::to_string(running.outputs.size()) + " -> " +
                              std::to_string(loaded.outputs.size()) + ")");

@@ -9,7 +9,9 @@
 // stay open. Needs a restart (logged, the running value kept): [origin],
 // [nav], [time], rate_hz, [truth] bind/port, outputs added or removed, and
 // an output's protocols, messages or baud (the emulated chip's stored
-// configuration, which hosts may have changed since), and its name.
+// configuration, which hosts may have changed since), and its name; a
+// change between the single-vehicle form and [[vehicle]]/[fleet]. A fleet's
+// vehicles: FleetReloadPlan, which applies this plan per receiver.
 #include <cstddef>
 #include <string>
 #include <vector>

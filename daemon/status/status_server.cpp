@@ -357,6 +357,10 @@ void accept_loop(const std::shared_ptr<StatusServer::Shared>& shared) {
 
 void StatusServer::accept() { accept_loop(shared_); }
 
+void StatusServer::set_producer(const StatusProducer& producer) noexcept {
+  if (!shared_->stopped) shared_->producer = &producer;
+}
+
 void StatusServer::publish() noexcept {
   Shared& s = *shared_;
   if (s.stopped || s.producer == nullptr) return;

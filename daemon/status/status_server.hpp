@@ -61,6 +61,9 @@ public:
   /// /api/status?vehicle= picks with selector, /api/receivers lists with
   /// lister (without them: 404).
   void set_selector(Selector selector, Lister lister);
+  /// The producer /api/status without a vehicle reads (the first receiver
+  /// went with its vehicle in a reload); the same lifetime rule.
+  void set_producer(const StatusProducer& producer) noexcept;
   /// A new epoch is in the producer: queue it on every event stream. Never
   /// blocks; a stream whose backlog would pass kMaxEventBacklogBytes is closed.
   void publish() noexcept;

@@ -7,7 +7,7 @@ namespace gnssemu::daemon {
 
 FleetRouter::FleetRouter(const TrackParams& params, config::TimeMode mode, const std::vector<std::string>& ids,
                          const std::string& driving)
-    : single_(ids.size() == 1 && ids.front().empty()), ids_(ids) {
+    : params_(params), mode_(mode), single_(ids.size() == 1 && ids.front().empty()), ids_(ids) {
   routers_.reserve(ids.size());
   for (const std::string& id : ids) routers_.emplace_back(params, mode, single_ ? driving : id);
   attitude_.resize(ids.size());
@@ -50,7 +50,33 @@ std::optional<time::GpsTime> FleetRouter::reached(double now_s) const noexcept {
 }
 
 void FleetRouter::set_params(const TrackParams& params) noexcept {
+  params_ = params;
   for (TruthRouter& r : routers_) r.set_params(params);
+}
+
+std::vector<std::optional<std::size_t>> FleetRouter::reshape(const std::vector<std::string>& ids) {
+  std::vector<std::optional<std::size_t>> moved(ids_.size());
+  std::vector<TruthRouter> routers;
+  std::vector<std::optional<Attitude>> attitude;
+  routers.reserve(ids.size());
+  for (std::size_t v = 0; v < ids.size(); ++v) {
+    const std::optional<std::size_t> old = find(ids[v]);
+    if (old) {
+      routers.push_back(std::move(routers_[*old]));
+      attitude.push_back(attitude_[*old]);
+      moved[*old] = v;
+    } else {
+      routers.emplace_back(params_, mode_, ids[v]);
+      attitude.emplace_back();
+    }
+  }
+  ids_ = ids;
+  routers_ = std::move(routers);
+  attitude_ = std::move(attitude);
+  by_id_.clear();
+  for (std::size_t v = 0; v < ids_.size(); ++v) by_id_.emplace_back(ids_[v], v);
+  std::sort(by_id_.begin(), by_id_.end());
+  return moved;
 }
 
 }  // namespace gnssemu::daemon

@@ -57,7 +57,15 @@ public:
   /// New timeouts for every vehicle ([truth] reloaded); the tracks are kept.
   void set_params(const TrackParams& params) noexcept;
 
+  /// The vehicles become ids (a reload of the fleet form): a vehicle in both
+  /// keeps its router (track, clock map, driver) and attitude, a new one
+  /// starts empty, a missing one is gone (its packets kUnknownVehicle).
+  /// Returns, per old index, its new index (none: removed). Setup only.
+  std::vector<std::optional<std::size_t>> reshape(const std::vector<std::string>& ids);
+
 private:
+  TrackParams params_;
+  config::TimeMode mode_;
   bool single_;
   std::vector<std::string> ids_;
   std::vector<TruthRouter> routers_;

@@ -98,3 +98,24 @@ TEST(FleetRouter, LockstepWaitsForEveryFreshVehicle) {
   EXPECT_TRUE(r.any_fresh(2.5));
   EXPECT_FALSE(r.any_fresh(10.0));
 }
+
+TEST(FleetRouter, ReshapeKeepsTheTracksOfTheVehiclesThatStay) {
+  FleetRouter r(kFleetParams, config::TimeMode::kRealtime, {"a", "b"});
+  ASSERT_TRUE(r.ingest(fleet_sample("a", 1.0, 10.0), kFleetT0, 0.0).in.accepted);
+  ASSERT_TRUE(r.ingest(fleet_sample("b", 1.0, 20.0), kFleetT0, 0.0).in.accepted);
+  const std::vector<std::optional<std::size_t>> moved = r.reshape({"b", "c"});
+  ASSERT_EQ(moved.size(), 2u);
+  EXPECT_FALSE(moved[0]);  // a removed
+  ASSERT_TRUE(moved[1]);
+  EXPECT_EQ(*moved[1], 0u);
+  EXPECT_EQ(r.size(), 2u);
+  EXPECT_EQ(r.id(1), "c");
+  EXPECT_TRUE(r.router(0).has_driver());
+  EXPECT_DOUBLE_EQ(r.router(0).truth_at(kFleetT0, 0.0).pos_m.x, 20.0);  // b's track went with it
+  EXPECT_FALSE(r.router(1).has_driver());
+  EXPECT_EQ(r.ingest(fleet_sample("a", 2.0, 10.0), kFleetT0, 0.1).in.reason, DropReason::kUnknownVehicle);
+  const FleetRouter::Routed rc = r.ingest(fleet_sample("c", 2.0, 30.0), kFleetT0, 0.1);
+  ASSERT_TRUE(rc.vehicle);
+  EXPECT_EQ(*rc.vehicle, 1u);
+  EXPECT_TRUE(rc.in.accepted && rc.in.driving);
+}
