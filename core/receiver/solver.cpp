@@ -123,6 +123,7 @@ void Solver::update_corrections(const SolverInput& in, const Ecef& pos, const Ll
   const Vec3 up = geo::up_unit_ecef(lla);
   const Vec3 east{-std::sin(lla.lon_rad), std::cos(lla.lon_rad), 0.0};
   const Vec3 north = up.cross(east);
+  const atmosphere::ReceiverTropo tropo_at(lla.lat_rad, lla.height_m, in.doy, cfg_.tropo);
   for (int i = 0; i < n_; ++i) {
     Sat& s = sats_[i];
     const std::size_t o = static_cast<std::size_t>(orig_[static_cast<std::size_t>(i)]);
@@ -140,7 +141,7 @@ void Solver::update_corrections(const SolverInput& in, const Ecef& pos, const Ll
         iono ? atmosphere::receiver_iono_delay_m(klobuchar_, lla.lat_rad, lla.lon_rad, az, el, tow_s, in.meas[i].wavelength_m)
              : 0.0;
     s.corr_m = i_m;
-    if (tropo) s.corr_m += atmosphere::receiver_tropo_delay_m(lla.lat_rad, lla.height_m, el, in.doy, cfg_.tropo);
+    if (tropo) s.corr_m += tropo_at.delay_m(el);
     s.model_var_m2 = correction_variance_m2(cfg_, i_m, std::sin(el));
     if (cache) {
       corr_cached_[o] = true;
