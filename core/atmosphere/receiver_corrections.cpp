@@ -19,19 +19,28 @@ double receiver_iono_delay_m(const orbit::KlobucharParams& params, double lat_ra
   return receiver_iono_delay_m(params, lat_rad, lon_rad, az_rad, el_rad, tow_s) * r * r;
 }
 
-double receiver_tropo_delay_m(double lat_rad, double height_m, double el_rad, double doy,
-                              TropoCorrection model) noexcept {
-  switch (model) {
+ReceiverTropo::ReceiverTropo(double lat_rad, double height_m, double doy, TropoCorrection model) noexcept
+    : model_(model), lat_rad_(lat_rad), height_m_(height_m), standard_(lat_rad, height_m, doy) {
+  if (model == TropoCorrection::kZhdNiell) zhd_m_ = exponential_zhd_m(height_m);
+}
+
+double ReceiverTropo::delay_m(double el_rad) const noexcept {
+  switch (model_) {
     case TropoCorrection::kNone:
       return 0.0;
     case TropoCorrection::kSaastamoinenNiell:
-      return standard_troposphere_correction_m(lat_rad, height_m, el_rad, doy);
+      return standard_.correction_m(el_rad);
     case TropoCorrection::kZhdNiell:
-      return exponential_zhd_m(height_m) * niell_mapping(el_rad, lat_rad, height_m, doy).hydro;
+      return zhd_m_ * standard_.niell()(el_rad).hydro;
     case TropoCorrection::kSaastamoinenCosZ:
-      return standard_troposphere_cosz_m(lat_rad, height_m, el_rad);
+      return standard_troposphere_cosz_m(lat_rad_, height_m_, el_rad);
   }
   return 0.0;
+}
+
+double receiver_tropo_delay_m(double lat_rad, double height_m, double el_rad, double doy,
+                              TropoCorrection model) noexcept {
+  return ReceiverTropo(lat_rad, height_m, doy, model).delay_m(el_rad);
 }
 
 double receiver_zhd_m(double lat_rad, double height_m) noexcept {

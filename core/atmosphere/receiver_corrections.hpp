@@ -4,6 +4,7 @@
 // ionosphere and a standard-atmosphere troposphere. Plain functions so that
 // the emulated receiver (core/receiver), `gnssemu spp` and `calibrate` share
 // one implementation. Never throw, never NaN for finite inputs.
+#include "core/atmosphere/troposphere.hpp"
 #include "core/orbit/nav_data.hpp"
 
 namespace gnssemu::atmosphere {
@@ -43,6 +44,20 @@ double receiver_iono_delay_m(const orbit::KlobucharParams& params, double lat_ra
 /// doy: day of year, fractional allowed.
 double receiver_tropo_delay_m(double lat_rad, double height_m, double el_rad, double doy,
                               TropoCorrection model = TropoCorrection::kSaastamoinenNiell) noexcept;
+
+/// receiver_tropo_delay_m() at one place and day for many elevations: what
+/// does not depend on the elevation computed once (the same bits).
+class ReceiverTropo {
+public:
+  ReceiverTropo(double lat_rad, double height_m, double doy, TropoCorrection model) noexcept;
+  double delay_m(double el_rad) const noexcept;
+
+private:
+  TropoCorrection model_;
+  double lat_rad_, height_m_;
+  StandardTroposphereAt standard_;
+  double zhd_m_ = 0.0;  ///< kZhdNiell: exponential_zhd_m(height_m)
+};
 
 /// Zenith hydrostatic delay of the receiver's standard atmosphere
 /// (Saastamoinen with the standard pressure at height_m), m.

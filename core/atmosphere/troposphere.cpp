@@ -94,28 +94,33 @@ double exponential_zhd_m(double height_m, double a_m, double b_per_m) noexcept {
   return a_m * std::exp(-b_per_m * clamp_height(height_m));
 }
 
-NiellMapping niell_mapping(double el_rad, double lat_rad, double height_m, double doy) noexcept {
-  const double el = std::isfinite(el_rad) ? std::clamp(el_rad, kMinMappingEl_rad, 0.5 * kPi) : 0.5 * kPi;
+NiellAt::NiellAt(double lat_rad, double height_m, double doy) noexcept {
   const double lat = std::isfinite(lat_rad) ? std::clamp(lat_rad, -0.5 * kPi, 0.5 * kPi) : 0.0;
   const double abs_lat_deg = std::fabs(lat) * kRadToDeg;
   const double day = std::isfinite(doy) ? doy : 28.0;
-  const double sin_el = std::sin(el);
 
   double y = (day - 28.0) / 365.25;
   if (lat < 0.0) y += 0.5;  // southern hemisphere: half a year
   const double cosy = std::cos(2.0 * kPi * y);
 
-  double ah[3];
-  double aw[3];
   for (int k = 0; k < 3; ++k) {
-    ah[k] = interp_row(kHydroAvg[k], abs_lat_deg) - interp_row(kHydroAmp[k], abs_lat_deg) * cosy;
-    aw[k] = interp_row(kWet[k], abs_lat_deg);
+    ah_[k] = interp_row(kHydroAvg[k], abs_lat_deg) - interp_row(kHydroAmp[k], abs_lat_deg) * cosy;
+    aw_[k] = interp_row(kWet[k], abs_lat_deg);
   }
-  const double h_km = clamp_height(height_m) * 1e-3;
+  h_km_ = clamp_height(height_m) * 1e-3;
+}
+
+NiellMapping NiellAt::operator()(double el_rad) const noexcept {
+  const double el = std::isfinite(el_rad) ? std::clamp(el_rad, kMinMappingEl_rad, 0.5 * kPi) : 0.5 * kPi;
+  const double sin_el = std::sin(el);
   NiellMapping m;
-  m.hydro = marini(sin_el, ah[0], ah[1], ah[2]) + (1.0 / sin_el - marini(sin_el, kAht, kBht, kCht)) * h_km;
-  m.wet = marini(sin_el, aw[0], aw[1], aw[2]);
+  m.hydro = marini(sin_el, ah_[0], ah_[1], ah_[2]) + (1.0 / sin_el - marini(sin_el, kAht, kBht, kCht)) * h_km_;
+  m.wet = marini(sin_el, aw_[0], aw_[1], aw_[2]);
   return m;
+}
+
+NiellMapping niell_mapping(double el_rad, double lat_rad, double height_m, double doy) noexcept {
+  return NiellAt(lat_rad, height_m, doy)(el_rad);
 }
 
 void validate(const TroposphereConfig& cfg) {
@@ -146,11 +151,20 @@ double Troposphere::slant_delay_m(double lat_rad, double height_m, double el_rad
   return zhd_m(lat_rad, height_m) * m.hydro + zwd_m(height_m) * m.wet;
 }
 
-double standard_troposphere_correction_m(double lat_rad, double height_m, double el_rad, double doy) noexcept {
+StandardTroposphereAt::StandardTroposphereAt(double lat_rad, double height_m, double doy) noexcept
+    : niell_(lat_rad, height_m, doy) {
   const Meteo met = standard_atmosphere(height_m, 0.7);
-  const NiellMapping m = niell_mapping(el_rad, lat_rad, height_m, doy);
-  return saastamoinen_zhd_m(met.pressure_hpa, lat_rad, height_m) * m.hydro +
-         saastamoinen_zwd_m(met.temperature_k, met.water_vapour_hpa) * m.wet;
+  zhd_m_ = saastamoinen_zhd_m(met.pressure_hpa, lat_rad, height_m);
+  zwd_m_ = saastamoinen_zwd_m(met.temperature_k, met.water_vapour_hpa);
+}
+
+double StandardTroposphereAt::correction_m(double el_rad) const noexcept {
+  const NiellMapping m = niell_(el_rad);
+  return zhd_m_ * m.hydro + zwd_m_ * m.wet;
+}
+
+double standard_troposphere_correction_m(double lat_rad, double height_m, double el_rad, double doy) noexcept {
+  return StandardTroposphereAt(lat_rad, height_m, doy).correction_m(el_rad);
 }
 
 double standard_troposphere_cosz_m(double lat_rad, double height_m, double el_rad) noexcept {

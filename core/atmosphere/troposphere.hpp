@@ -50,6 +50,18 @@ struct NiellMapping {
 /// [-1000, 100000] m; doy: day of year, fractional allowed (1..366.99).
 NiellMapping niell_mapping(double el_rad, double lat_rad, double height_m, double doy) noexcept;
 
+/// niell_mapping() at one place and day for many elevations: the
+/// coefficients interpolated once, the same arithmetic (the same bits).
+class NiellAt {
+public:
+  NiellAt(double lat_rad, double height_m, double doy) noexcept;
+  NiellMapping operator()(double el_rad) const noexcept;
+
+private:
+  double ah_[3], aw_[3];
+  double h_km_;
+};
+
 enum class ZhdModel {
   kExponential,   ///< exponential_zhd_m(h, zhd_a_m, zhd_b_per_m)
   kSaastamoinen,  ///< saastamoinen_zhd_m(standard_atmosphere(h))
@@ -105,6 +117,19 @@ private:
 /// The receiver's own correction: Saastamoinen ZHD + ZWD with the standard
 /// atmosphere (RH 0.7, as RTKLIB) mapped with Niell, m.
 double standard_troposphere_correction_m(double lat_rad, double height_m, double el_rad, double doy) noexcept;
+
+/// standard_troposphere_correction_m() at one place and day for many
+/// elevations: zenith delays and mapping coefficients computed once.
+class StandardTroposphereAt {
+public:
+  StandardTroposphereAt(double lat_rad, double height_m, double doy) noexcept;
+  double correction_m(double el_rad) const noexcept;
+  const NiellAt& niell() const noexcept { return niell_; }
+
+private:
+  NiellAt niell_;
+  double zhd_m_, zwd_m_;
+};
 
 /// The same zenith delays mapped with 1/sin(el) (= 1/cos z, RTKLIB tropmodel), m.
 /// el_rad held at >= 1 deg.

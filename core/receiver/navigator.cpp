@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/geo/geodesy.hpp"
+#include "core/receiver/enu_rotation.hpp"
 #include "core/receiver/small_matrix.hpp"
 
 namespace gnssemu::receiver {
@@ -259,13 +260,14 @@ void Navigator::step(double dt_s, const SolverInput& in, const SolverOutput& sna
   // Post-fit residuals; the used geometry for DOP and the reported accuracy.
   Mat4 nu{}, nw{};
   double sum_post2 = 0.0;
+  const EnuRotation to_enu(out.lla.lat_rad, out.lla.lon_rad);
   for (int i = 0; i < n; ++i) {
     if (out.excluded[i]) continue;
     const MeasurementRow& m = rows_[i];
     const NavVector h{-m.los.x, -m.los.y, -m.los.z, 0.0, 0.0, 0.0, 1.0, 0.0};
     out.residual_m[i] = m.range_resid_m - moved(h);
     sum_post2 += out.residual_m[i] * out.residual_m[i];
-    const Enu e = geo::ecef_to_enu_vector(m.los, out.lla.lat_rad, out.lla.lon_rad);
+    const Enu e = to_enu(m.los);
     const Vec4 g{-e.x, -e.y, -e.z, 1.0};
     for (int a = 0; a < 4; ++a)
       for (int b = 0; b < 4; ++b) {

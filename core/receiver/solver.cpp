@@ -7,6 +7,7 @@
 #include "core/atmosphere/receiver_corrections.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/world/sky.hpp"
+#include "core/receiver/enu_rotation.hpp"
 #include "core/receiver/small_matrix.hpp"
 #include "core/receiver/transmit_state.hpp"
 #include "core/receiver/weight_model.hpp"
@@ -89,7 +90,9 @@ Solver::Solver(const SolverConfig& cfg, double max_pdop) noexcept
       max_pdop_(max_pdop),
       z_pfa_(cfg.residual_test_pfa > 0.0 && cfg.residual_test_pfa < 0.5
                  ? upper_normal_quantile(cfg.residual_test_pfa)
-                 : 0.0) {}
+                 : 0.0) {
+  for (int i = 0; i < kMaxSatsInView; ++i) orig_[static_cast<std::size_t>(i)] = i;
+}
 
 double Solver::chi2_threshold(int dof) const noexcept {
   // Wilson & Hilferty (1931) cube-root normal approximation of the quantile.
@@ -106,12 +109,29 @@ void Solver::update_corrections(const SolverInput& in, const Ecef& pos, const Ll
   if (corr_valid_ && (pos - corr_pos_).norm() < kCorrectionRefresh_m) return;
   corr_valid_ = true;
   corr_pos_ = pos;
+  // Within solve() the corrections at its first position are kept per
+  // measurement: the exclusion re-solves start from the same prior.
+  const bool same_pos = corr_cache_valid_ && pos.x == corr_cache_pos_.x && pos.y == corr_cache_pos_.y &&
+                        pos.z == corr_cache_pos_.z;
+  const bool cache = in_solve_ && (same_pos || !corr_cache_valid_);
+  if (cache && !corr_cache_valid_) {
+    corr_cache_valid_ = true;
+    corr_cache_pos_ = pos;
+    corr_cached_.fill(false);
+  }
   const double tow_s = in.t_rx_local.tow_s();
   const Vec3 up = geo::up_unit_ecef(lla);
   const Vec3 east{-std::sin(lla.lon_rad), std::cos(lla.lon_rad), 0.0};
   const Vec3 north = up.cross(east);
+  const atmosphere::ReceiverTropo tropo_at(lla.lat_rad, lla.height_m, in.doy, cfg_.tropo);
   for (int i = 0; i < n_; ++i) {
     Sat& s = sats_[i];
+    const std::size_t o = static_cast<std::size_t>(orig_[static_cast<std::size_t>(i)]);
+    if (cache && corr_cached_[o]) {
+      s.corr_m = corr_cache_m_[o];
+      s.model_var_m2 = corr_cache_var_m2_[o];
+      continue;
+    }
     const Vec3 d = world::rotate_earth(s.pos_m, kOmegaEarth_rad_s * s.since_tx_s) - pos;
     const double e = d.dot(east), n = d.dot(north), u = d.dot(up);
     const double el = std::atan2(u, std::hypot(e, n));
@@ -121,8 +141,13 @@ void Solver::update_corrections(const SolverInput& in, const Ecef& pos, const Ll
         iono ? atmosphere::receiver_iono_delay_m(klobuchar_, lla.lat_rad, lla.lon_rad, az, el, tow_s, in.meas[i].wavelength_m)
              : 0.0;
     s.corr_m = i_m;
-    if (tropo) s.corr_m += atmosphere::receiver_tropo_delay_m(lla.lat_rad, lla.height_m, el, in.doy, cfg_.tropo);
+    if (tropo) s.corr_m += tropo_at.delay_m(el);
     s.model_var_m2 = correction_variance_m2(cfg_, i_m, std::sin(el));
+    if (cache) {
+      corr_cached_[o] = true;
+      corr_cache_m_[o] = s.corr_m;
+      corr_cache_var_m2_[o] = s.model_var_m2;
+    }
   }
 }
 
@@ -200,9 +225,10 @@ bool Solver::finish(const SolverInput& in, const Ecef& pos, double clock_m, bool
   VecN unused{};
   Vec4 gv{};
   double chi2 = 0.0, sum_v2 = 0.0, sum_s2 = 0.0;
+  const EnuRotation to_enu(lla.lat_rad, lla.lon_rad);
   for (int i = 0; i < n_; ++i) {
     const Sat& s = sats_[i];
-    const Enu e = geo::ecef_to_enu_vector(s.los, lla.lat_rad, lla.lon_rad);
+    const Enu e = to_enu(s.los);
     const Vec4 h{-e.x, -e.y, -e.z, 1.0};
     const VecN hn = design_row(-e.x, -e.y, -e.z, s.col);
     accumulate(nu, unused, hn, 1.0, 0.0, ns);
@@ -285,9 +311,19 @@ bool Solver::finish(const SolverInput& in, const Ecef& pos, double clock_m, bool
 }
 
 void Solver::solve(const SolverInput& in, SolverOutput& out) noexcept {
+  in_solve_ = true;
+  corr_cache_valid_ = false;
+  solve_epoch(in, out);
+  in_solve_ = false;
+  subset_prepared_ = false;
+  for (int i = 0; i < kMaxSatsInView; ++i) orig_[static_cast<std::size_t>(i)] = i;  // measurement_model: identity
+}
+
+void Solver::solve_epoch(const SolverInput& in, SolverOutput& out) noexcept {
   // idx[j]: index in `in` of measurement j of the set being solved.
-  std::array<int, kMaxSatsInView> idx{};
+  std::array<int, kMaxSatsInView>& idx = orig_;
   for (int i = 0; i < kMaxSatsInView; ++i) idx[i] = i;
+  subset_prepared_ = false;
   const SolverInput* cur = &in;
   Outcome o = solve_all(*cur, out);
   // Every measurement of in, prepared: measurement_model reuses them.
@@ -309,6 +345,7 @@ void Solver::solve(const SolverInput& in, SolverOutput& out) noexcept {
       idx[j] = idx[j + 1];
     }
     --subset_.num_meas;
+    subset_prepared_ = true;
     o = solve_all(subset_, out);
   }
   if (o != Outcome::kFix) {
@@ -334,9 +371,10 @@ int Solver::worst_residual(const SolverOutput& out) const noexcept {
   // Q the weighted covariance of the solution (ENU + clock).
   int worst = 0;
   double worst_w = -1.0;
+  const EnuRotation to_enu(out.lla.lat_rad, out.lla.lon_rad);
   for (int i = 0; i < n_; ++i) {
     const Sat& s = sats_[i];
-    const Enu e = geo::ecef_to_enu_vector(s.los, out.lla.lat_rad, out.lla.lon_rad);
+    const Enu e = to_enu(s.los);
     const VecN h = design_row(-e.x, -e.y, -e.z, s.col);
     const VecN qh = mul(q_, h, num_states_);
     double hqh = 0.0;
@@ -357,6 +395,13 @@ bool Solver::prepare(const SolverInput& in) noexcept {
   for (int i = 0; i < n_; ++i) {
     const Measurement& m = in.meas[i];
     Sat& s = sats_[i];
+    if (subset_prepared_) {
+      // A measurement of the whole set, prepared there from the same inputs.
+      s = solved_sats_[static_cast<std::size_t>(orig_[static_cast<std::size_t>(i)])];
+      s.corr_m = 0.0;
+      s.model_var_m2 = 0.0;
+      continue;
+    }
     if (m.eph == nullptr || !std::isfinite(m.pseudorange_m) || !std::isfinite(m.doppler_hz) ||
         !(m.wavelength_m > 0.0) || !std::isfinite(m.wavelength_m)) {
       n_ = 0;  // malformed input: no fix rather than a guess

@@ -191,6 +191,19 @@ private:
   std::array<double, kNumSystems> bias_m_{};  ///< inter-system bias of column 4 + i during the solve, m
   /// Last solution's biases per system (measurement_model).
   std::array<double, kNumSystems> solved_isb_m_{};
+  /// Within solve(): an exclusion's re-solve takes its satellites from the
+  /// whole set's (solved_sats_) and the corrections computed for them at
+  /// the same position from this cache (the same arithmetic on the same
+  /// inputs, so the same bits), by each measurement's index in solve()'s
+  /// input (orig_).
+  void solve_epoch(const SolverInput& in, SolverOutput& out) noexcept;
+  bool in_solve_ = false;
+  bool subset_prepared_ = false;  ///< prepare() copies solved_sats_[orig_[i]]
+  std::array<int, kMaxSatsInView> orig_{};
+  bool corr_cache_valid_ = false;
+  Ecef corr_cache_pos_;
+  std::array<bool, kMaxSatsInView> corr_cached_{};
+  std::array<double, kMaxSatsInView> corr_cache_m_{}, corr_cache_var_m2_{};
   MatN q_{};  ///< weighted covariance of the last finish() (ENU + clock states)
   orbit::KlobucharParams klobuchar_;  // invalid: RTKLIB defaults
   bool corr_valid_ = false;           // corr_m computed at corr_pos_
