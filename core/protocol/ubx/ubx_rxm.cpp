@@ -8,6 +8,7 @@
 
 #include "core/common/constants.hpp"
 #include "core/common/gnss_systems.hpp"
+#include "core/protocol/navmsg/galileo_inav.hpp"
 #include "core/protocol/navmsg/glonass_nav.hpp"
 #include "core/protocol/navmsg/gps_lnav.hpp"
 #include "core/protocol/ubx/ubx_gnss.hpp"
@@ -116,6 +117,8 @@ UnitGrid unit_grid(GnssSystem sys, int leap_s) noexcept {
     case GnssSystem::kGps:
     case GnssSystem::kQzss:
       return {navmsg::kLnavSubframe_s, 0.0};
+    case GnssSystem::kGalileo:
+      return {navmsg::kInavPagePair_s, 0.0};
     case GnssSystem::kGlonass:
       // Strings start on the even seconds of the GLONASST day: GPST - leap + 3 h.
       return {navmsg::kGlonassString_s, static_cast<double>(((leap_s % 2) + 2) % 2)};
@@ -136,6 +139,26 @@ bool encode_unit(const RawSource& src, const receiver::RawMeasurement& m, const 
     if (eph == nullptr) return false;
     const navmsg::GlonassString s = navmsg::glonass_string(*eph, slot, src.iono.leap_seconds);
     rxm_sfrbx(m.sat, m.glonass_channel, s, g, out);
+    return true;
+  }
+  if (m.sat.system == GnssSystem::kGalileo) {
+    // GST = GPST: week and TOW as GPS time's.
+    const double tow_end = t_end - time::GpsTime((t_end - navmsg::kInavPagePair_s).week(), 0.0);
+    const int type = navmsg::inav_e1b_word_type(tow_end);
+    if (!navmsg::inav_word_produced(type)) return false;
+    // One set per subframe: the set of the subframe's start.
+    const double into_subframe = std::fmod(tow_end - navmsg::kInavPagePair_s, navmsg::kInavSubframe_s);
+    const orbit::Ephemeris* eph =
+        src.ephemerides->select(m.sat, t_end - navmsg::kInavPagePair_s - into_subframe);
+    if (eph == nullptr) return false;
+    const navmsg::InavPagePair p = navmsg::galileo_inav_page_pair(
+        *eph, type, t_end - navmsg::kInavPagePair_s,
+        {src.galileo_nequick, src.iono.utc, src.iono.leap_seconds});
+    // Nine words, as a real ZED-F9P (HPG 1.12) sends them (rtk-raw.md §1.3), the
+    // ninth 0: RTKLIB 2.4.3 takes no Galileo page from fewer than 44 payload bytes.
+    std::array<std::uint32_t, 9> words{};
+    std::copy(p.begin(), p.end(), words.begin());
+    rxm_sfrbx(m.sat, 0, words, g, out);
     return true;
   }
   const orbit::Ephemeris* eph = src.ephemerides->select(m.sat, t_end - 1.0);

@@ -16,7 +16,7 @@
 namespace gnssemu::protocol::navmsg {
 namespace {
 
-const orbit::NavData& igs() {
+const orbit::NavData& igs_glonass() {
   static const orbit::NavData d =
       orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz");
   return d;
@@ -86,7 +86,7 @@ TEST(GlonassStringSlot, FramesStartWithTheGlonasstDay) {
 
 TEST(GlonassStrings, EveryFieldDecodesToTheEphemerisWithinOneLsb) {
   int checked = 0;
-  for (const orbit::Ephemeris& eph : igs().ephemerides) {
+  for (const orbit::Ephemeris& eph : igs_glonass().ephemerides) {
     if (eph.sat.system != GnssSystem::kGlonass) continue;
     SCOPED_TRACE(static_cast<int>(eph.sat.number));
     // The frame that starts 4 min after tb.
@@ -135,7 +135,7 @@ TEST(GlonassStrings, EveryFieldDecodesToTheEphemerisWithinOneLsb) {
 
 TEST(GlonassStrings, ACorruptedStringIsRejected) {
   const orbit::Ephemeris* eph = nullptr;
-  for (const orbit::Ephemeris& e : igs().ephemerides) {
+  for (const orbit::Ephemeris& e : igs_glonass().ephemerides) {
     if (e.sat.system == GnssSystem::kGlonass) eph = &e;
   }
   ASSERT_NE(eph, nullptr);

@@ -5,11 +5,13 @@
 // firmware, at the rates CFG-MSG and CFG-VALSET set.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
 
 #include "core/orbit/rinex_nav.hpp"
+#include "core/protocol/navmsg/galileo_inav.hpp"
 #include "core/protocol/navmsg/glonass_nav.hpp"
 #include "core/protocol/ubx/ubx_device.hpp"
 #include "core/protocol/ubx/ubx_rxm.hpp"
@@ -302,6 +304,39 @@ TEST(RxmSfrbxDue, GlonassSendsStringsOneToFiveOfEveryFrame) {
       EXPECT_NEAR(d->eph.tau_n_s, sel->tau_n_s, 1e-9);
     }
   }
+}
+
+TEST(RxmSfrbxDue, GalileoSendsWordTypesZeroToSixOnE1b) {
+  const orbit::NavData nav =
+      orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz");
+  const orbit::EphemerisStore store{nav.ephemerides};
+  const SatId sat(GnssSystem::kGalileo, 2);
+  // 30 s from a subframe start (GST tow a multiple of 30 s).
+  const time::GpsTime t0(2296, 266400.0 + 0.05);
+  const std::vector<std::string> p = sfrbx_of(store, sat, 0, t0, 30, 18);
+  ASSERT_EQ(p.size(), 13u);  // 15 page pairs less the two almanac words
+  std::array<navmsg::InavPagePair, 7> pairs{};
+  std::array<int, 7> seen{};
+  for (const std::string& m : p) {
+    EXPECT_EQ(static_cast<int>(m[0]), 2);  // gnssId Galileo
+    EXPECT_EQ(static_cast<int>(m[1]), 2);
+    EXPECT_EQ(static_cast<int>(m[2]), 1);  // sigId E1-B on the M9
+    EXPECT_EQ(static_cast<int>(m[4]), 9);  // numWords
+    navmsg::InavPagePair w{};
+    for (std::size_t i = 0; i < 8; ++i) std::memcpy(&w[i], m.data() + 8 + 4 * i, 4);
+    const auto type = static_cast<std::size_t>(w[0] >> 24 & 0x3F);  // after even/odd and page type
+    ASSERT_LE(type, 6u);
+    pairs[type] = w;
+    ++seen[type];
+  }
+  for (std::size_t t = 1; t <= 6; ++t) EXPECT_EQ(seen[t], 1) << t;
+  const auto d = navmsg::decode_galileo_inav(pairs);
+  ASSERT_TRUE(d.has_value());
+  const orbit::Ephemeris* sel = store.select(sat, t0);
+  ASSERT_NE(sel, nullptr);
+  EXPECT_EQ(d->eph.iode, sel->iode);
+  EXPECT_EQ(d->eph.toe, sel->toe);
+  EXPECT_NEAR(d->eph.sqrt_a_sqrtm, sel->sqrt_a_sqrtm, std::ldexp(1.0, -19));
 }
 
 TEST(RxmDevice, StandardFirmwareStaysSilent) {
