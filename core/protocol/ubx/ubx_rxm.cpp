@@ -8,6 +8,7 @@
 
 #include "core/common/constants.hpp"
 #include "core/common/gnss_systems.hpp"
+#include "core/protocol/navmsg/beidou_d1.hpp"
 #include "core/protocol/navmsg/galileo_inav.hpp"
 #include "core/protocol/navmsg/glonass_nav.hpp"
 #include "core/protocol/navmsg/gps_lnav.hpp"
@@ -119,6 +120,9 @@ UnitGrid unit_grid(GnssSystem sys, int leap_s) noexcept {
       return {navmsg::kLnavSubframe_s, 0.0};
     case GnssSystem::kGalileo:
       return {navmsg::kInavPagePair_s, 0.0};
+    case GnssSystem::kBeiDou:
+      // Subframes start on the 6-s grid of the BDT week: GPST - 14 s.
+      return {navmsg::kD1Subframe_s, 2.0};
     case GnssSystem::kGlonass:
       // Strings start on the even seconds of the GLONASST day: GPST - leap + 3 h.
       return {navmsg::kGlonassString_s, static_cast<double>(((leap_s % 2) + 2) % 2)};
@@ -159,6 +163,17 @@ bool encode_unit(const RawSource& src, const receiver::RawMeasurement& m, const 
     std::array<std::uint32_t, 9> words{};
     std::copy(p.begin(), p.end(), words.begin());
     rxm_sfrbx(m.sat, 0, words, g, out);
+    return true;
+  }
+  if (m.sat.system == GnssSystem::kBeiDou) {
+    if (is_beidou_geo(m.sat)) return false;  // D2 not produced
+    const time::GpsTime start = t_end - navmsg::kD1Subframe_s;
+    const int id = navmsg::d1_subframe_id(start);
+    if (id > 3) return false;  // almanac
+    // Subframes 1-3 of a frame carry one set: the set of the frame's start.
+    const orbit::Ephemeris* eph = src.ephemerides->select(m.sat, start - navmsg::kD1Subframe_s * (id - 1));
+    if (eph == nullptr) return false;
+    rxm_sfrbx(m.sat, 0, navmsg::beidou_d1_subframe(*eph, id, start, src.beidou_klobuchar), g, out);
     return true;
   }
   const orbit::Ephemeris* eph = src.ephemerides->select(m.sat, t_end - 1.0);

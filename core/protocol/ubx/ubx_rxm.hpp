@@ -54,6 +54,7 @@ struct RawSource {
   const orbit::EphemerisStore* ephemerides = nullptr;  ///< the sets the satellites broadcast
   navmsg::LnavIonoUtc iono;                            ///< GPS subframe 4 page 18; GLONASS and Galileo leap seconds, GST - UTC
   const orbit::NequickParams* galileo_nequick = nullptr;  ///< Galileo I/NAV word type 5; null: zeros
+  const orbit::KlobucharParams* beidou_klobuchar = nullptr;  ///< BeiDou D1 subframe 1; null: zeros
 };
 
 /// One RXM-SFRBX, closed as "RXM-SFRBX", for every subframe (string, page
