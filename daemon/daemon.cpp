@@ -543,7 +543,7 @@ void Daemon::emit_rig_epoch(Rig& rig, const time::GpsTime& t, double run_s) {
   const receiver::Fix& fix = rig.receiver->step(sky_, truth);
   const receiver::RawEpoch& raw = rig.receiver->receiver().raw();
   rig.device.on_epoch(fix, chip_clock_s(t),
-                      protocol::ubx::RawSource{&raw, &store_, {&raw_nav_.klobuchar, &raw_nav_.utc, raw.leap_seconds}});
+                      protocol::ubx::RawSource{&raw, &store_, {&raw_nav_.klobuchar, &raw_nav_.utc, raw.leap_seconds}, &raw_nav_.galileo_nequick, &raw_nav_.beidou_klobuchar});
   // Port events act on the ports (docs/faults.md "Link faults"); no stage: none.
   faults::FaultStage* stage = rig.receiver->faults();
   const std::span<const faults::FaultStatus> link_status =

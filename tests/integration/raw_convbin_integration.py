@@ -198,6 +198,7 @@ def main():
         # Navigation: convbin's ephemerides against the input's.
         matched, worst_m, worst_clk = 0, 0.0, 0.0
         systems = set()
+        per_system = {}  # letter: (states compared, largest position difference m)
         for dt in range(0, args.seconds + 1, 30):
             tow = args.tow + dt
             a = satpos(args.gnssemu, nav, args.week, tow)
@@ -210,9 +211,13 @@ def main():
                 worst_m = max(worst_m, d)
                 worst_clk = max(worst_clk, abs(float(row["clk_bias_s"]) - float(ref["clk_bias_s"])))
                 systems.add(sat[0])
+                n, w = per_system.get(sat[0], (0, 0.0))
+                per_system[sat[0]] = (n + 1, max(w, d))
                 matched += 1
         print("navigation: %d satellite states compared (systems %s), largest position difference %.4f m, "
               "clock %.3g s" % (matched, ",".join(sorted(systems)), worst_m, worst_clk))
+        print("navigation by system: " + ", ".join("%s %d states, %.4f m" % (k, n, w)
+                                                  for k, (n, w) in sorted(per_system.items())))
         if worst_m > 0.001:
             failures.append("decoded ephemerides differ by %.4f m (> 1 mm)" % worst_m)
         if worst_clk > 1e-12:

@@ -75,7 +75,7 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
     if (sum.epochs == 0) power_on = t;
     ++sum.epochs;
     const receiver::RawEpoch& raw = rx->receiver().raw();
-    device.on_epoch(fix, t - power_on, protocol::ubx::RawSource{&raw, &store, {&nav.klobuchar, &nav.utc, raw.leap_seconds}});
+    device.on_epoch(fix, t - power_on, protocol::ubx::RawSource{&raw, &store, {&nav.klobuchar, &nav.utc, raw.leap_seconds}, &nav.galileo_nequick, &nav.beidou_klobuchar});
     device.compose({}, messages, protocol::ubx::Layout::kLine);
     for (const protocol::ubx::MessageList::Message& m : messages.messages()) {
       std::ostream* log = m.protocol == protocol::ubx::Protocol::kNmea ? nmea : ubx;

@@ -8,6 +8,9 @@
 
 #include "core/common/constants.hpp"
 #include "core/common/gnss_systems.hpp"
+#include "core/protocol/navmsg/beidou_d1.hpp"
+#include "core/protocol/navmsg/galileo_inav.hpp"
+#include "core/protocol/navmsg/glonass_nav.hpp"
 #include "core/protocol/navmsg/gps_lnav.hpp"
 #include "core/protocol/ubx/ubx_gnss.hpp"
 
@@ -110,11 +113,19 @@ struct UnitGrid {
   double offset_s = 0.0;
 };
 
-UnitGrid unit_grid(GnssSystem sys) noexcept {
+UnitGrid unit_grid(GnssSystem sys, int leap_s) noexcept {
   switch (sys) {
     case GnssSystem::kGps:
     case GnssSystem::kQzss:
       return {navmsg::kLnavSubframe_s, 0.0};
+    case GnssSystem::kGalileo:
+      return {navmsg::kInavPagePair_s, 0.0};
+    case GnssSystem::kBeiDou:
+      // Subframes start on the 6-s grid of the BDT week: GPST - 14 s.
+      return {navmsg::kD1Subframe_s, 2.0};
+    case GnssSystem::kGlonass:
+      // Strings start on the even seconds of the GLONASST day: GPST - leap + 3 h.
+      return {navmsg::kGlonassString_s, static_cast<double>(((leap_s % 2) + 2) % 2)};
     default:
       return {};
   }
@@ -123,6 +134,48 @@ UnitGrid unit_grid(GnssSystem sys) noexcept {
 /// Encode the unit of m's satellite ending at t_end (a GPS time on the grid); false: none.
 bool encode_unit(const RawSource& src, const receiver::RawMeasurement& m, const time::GpsTime& t_end, Generation g,
                  std::string& out) {
+  if (m.sat.system == GnssSystem::kGlonass) {
+    const navmsg::GlonassStringSlot slot = navmsg::glonass_string_slot(t_end, src.iono.leap_seconds);
+    if (slot.string > navmsg::kGlonassStringsProduced) return false;
+    // A satellite changes sets at frame boundaries only: the set of the frame's start.
+    const time::GpsTime frame_start = t_end - navmsg::kGlonassString_s * slot.string;
+    const orbit::Ephemeris* eph = src.ephemerides->select(m.sat, frame_start);
+    if (eph == nullptr) return false;
+    const navmsg::GlonassString s = navmsg::glonass_string(*eph, slot, src.iono.leap_seconds);
+    rxm_sfrbx(m.sat, m.glonass_channel, s, g, out);
+    return true;
+  }
+  if (m.sat.system == GnssSystem::kGalileo) {
+    // GST = GPST: week and TOW as GPS time's.
+    const double tow_end = t_end - time::GpsTime((t_end - navmsg::kInavPagePair_s).week(), 0.0);
+    const int type = navmsg::inav_e1b_word_type(tow_end);
+    if (!navmsg::inav_word_produced(type)) return false;
+    // One set per subframe: the set of the subframe's start.
+    const double into_subframe = std::fmod(tow_end - navmsg::kInavPagePair_s, navmsg::kInavSubframe_s);
+    const orbit::Ephemeris* eph =
+        src.ephemerides->select(m.sat, t_end - navmsg::kInavPagePair_s - into_subframe);
+    if (eph == nullptr) return false;
+    const navmsg::InavPagePair p = navmsg::galileo_inav_page_pair(
+        *eph, type, t_end - navmsg::kInavPagePair_s,
+        {src.galileo_nequick, src.iono.utc, src.iono.leap_seconds});
+    // Nine words, as a real ZED-F9P (HPG 1.12) sends them (rtk-raw.md §1.3), the
+    // ninth 0: RTKLIB 2.4.3 takes no Galileo page from fewer than 44 payload bytes.
+    std::array<std::uint32_t, 9> words{};
+    std::copy(p.begin(), p.end(), words.begin());
+    rxm_sfrbx(m.sat, 0, words, g, out);
+    return true;
+  }
+  if (m.sat.system == GnssSystem::kBeiDou) {
+    if (is_beidou_geo(m.sat)) return false;  // D2 not produced
+    const time::GpsTime start = t_end - navmsg::kD1Subframe_s;
+    const int id = navmsg::d1_subframe_id(start);
+    if (id > 3) return false;  // almanac
+    // Subframes 1-3 of a frame carry one set: the set of the frame's start.
+    const orbit::Ephemeris* eph = src.ephemerides->select(m.sat, start - navmsg::kD1Subframe_s * (id - 1));
+    if (eph == nullptr) return false;
+    rxm_sfrbx(m.sat, 0, navmsg::beidou_d1_subframe(*eph, id, start, src.beidou_klobuchar), g, out);
+    return true;
+  }
   const orbit::Ephemeris* eph = src.ephemerides->select(m.sat, t_end - 1.0);
   if (eph == nullptr) return false;
   switch (m.sat.system) {
@@ -151,7 +204,7 @@ int rxm_sfrbx_due(const RawSource& src, double period_s, Generation g, MessageLi
   for (int i = 0; i < raw.num_meas; ++i) {
     const receiver::RawMeasurement& m = raw.meas[static_cast<std::size_t>(i)];
     if (signal_info(m.signal).band != 0 || !m.pseudorange_valid || !std::isfinite(m.pseudorange_m)) continue;
-    const UnitGrid grid = unit_grid(m.sat.system);
+    const UnitGrid grid = unit_grid(m.sat.system, src.iono.leap_seconds);
     if (grid.unit_s == 0.0) continue;
     // Transmit time now and at the previous epoch, on the unit grid of the week.
     const time::GpsTime tx = raw.t_rx - m.pseudorange_m / kSpeedOfLight_m_s;

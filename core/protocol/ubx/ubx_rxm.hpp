@@ -13,6 +13,7 @@
 #include "core/common/sat_id.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/protocol/navmsg/gps_lnav.hpp"
+#include "core/orbit/nav_data.hpp"
 #include "core/protocol/ubx/ubx_frame.hpp"
 #include "core/protocol/ubx/ubx_generation.hpp"
 #include "core/protocol/ubx/ubx_message_list.hpp"
@@ -51,7 +52,9 @@ std::size_t rxm_sfrbx(SatId sat, int glonass_channel, std::span<const std::uint3
 struct RawSource {
   const receiver::RawEpoch* epoch = nullptr;           ///< this epoch's measurements
   const orbit::EphemerisStore* ephemerides = nullptr;  ///< the sets the satellites broadcast
-  navmsg::LnavIonoUtc iono;                            ///< GPS subframe 4 page 18
+  navmsg::LnavIonoUtc iono;                            ///< GPS subframe 4 page 18; GLONASS and Galileo leap seconds, GST - UTC
+  const orbit::NequickParams* galileo_nequick = nullptr;  ///< Galileo I/NAV word type 5; null: zeros
+  const orbit::KlobucharParams* beidou_klobuchar = nullptr;  ///< BeiDou D1 subframe 1; null: zeros
 };
 
 /// One RXM-SFRBX, closed as "RXM-SFRBX", for every subframe (string, page

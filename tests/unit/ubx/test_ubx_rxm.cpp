@@ -5,11 +5,14 @@
 // firmware, at the rates CFG-MSG and CFG-VALSET set.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
 
 #include "core/orbit/rinex_nav.hpp"
+#include "core/protocol/navmsg/galileo_inav.hpp"
+#include "core/protocol/navmsg/glonass_nav.hpp"
 #include "core/protocol/ubx/ubx_device.hpp"
 #include "core/protocol/ubx/ubx_rxm.hpp"
 #include "ubx_test_util.hpp"
@@ -234,6 +237,106 @@ TEST(RxmDevice, CfgMsgEnablesRawxAndSfrbxOnRawFirmware) {
   // 30 s = five subframe ends per satellite; of them subframes 1-3 are sent
   // (subframe 4 only on page 18, 5 never).
   EXPECT_EQ(sfrbx, 3 * 3);
+}
+
+/// SFRBX payloads rxm_sfrbx_due sends for one satellite tracked at 1 Hz over
+/// [t0, t0 + seconds), 70 ms away, locked throughout.
+std::vector<std::string> sfrbx_of(const orbit::EphemerisStore& store, SatId sat, int channel, const time::GpsTime& t0,
+                                  int seconds, int leap_s) {
+  std::vector<std::string> out;
+  receiver::RawEpoch raw;
+  raw.time_valid = true;
+  raw.num_meas = 1;
+  receiver::RawMeasurement& m = raw.meas[0];
+  m.sat = sat;
+  m.signal = *signal_of(sat.system, 0);
+  m.glonass_channel = channel;
+  m.pseudorange_m = 2.1e7;
+  m.pseudorange_valid = m.carrier_valid = true;
+  m.lock_time_s = 100.0;
+  MessageList list;
+  for (int s = 0; s < seconds; ++s) {
+    raw.t_rx = t0 + s;
+    list.clear();
+    rxm_sfrbx_due(RawSource{&raw, &store, {nullptr, nullptr, leap_s}}, 1.0, Generation::kM9, list);
+    for (const auto& msg : list.messages()) {
+      const std::string_view f = list.bytes(msg);
+      out.emplace_back(f.substr(6, f.size() - 8));
+    }
+  }
+  return out;
+}
+
+TEST(RxmSfrbxDue, GlonassSendsStringsOneToFiveOfEveryFrame) {
+  const orbit::NavData nav =
+      orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz");
+  const orbit::EphemerisStore store{nav.ephemerides};
+  const orbit::Ephemeris* eph = nullptr;
+  for (const orbit::Ephemeris& e : nav.ephemerides) {
+    if (e.sat.system == GnssSystem::kGlonass && e.glo_channel < 0) {
+      eph = &e;
+      break;
+    }
+  }
+  ASSERT_NE(eph, nullptr);
+  // 60 s from 5 min after tb: two whole 30-s frames of the GLONASST day.
+  const std::vector<std::string> p = sfrbx_of(store, eph->sat, eph->glo_channel, eph->toe + 300.0, 60, 18);
+  ASSERT_EQ(p.size(), 10u);
+  std::array<navmsg::GlonassString, 5> strings{};
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(static_cast<std::uint8_t>(p[i][0]), 6);  // gnssId GLONASS
+    EXPECT_EQ(static_cast<int>(p[i][1]), eph->sat.number);
+    EXPECT_EQ(static_cast<int>(p[i][3]), eph->glo_channel + 7);  // freqId
+    EXPECT_EQ(static_cast<int>(p[i][4]), 4);                     // numWords
+    navmsg::GlonassString s{};
+    for (std::size_t w = 0; w < 4; ++w) std::memcpy(&s[w], p[i].data() + 8 + 4 * w, 4);
+    EXPECT_EQ(s[0] >> 27, i % 5 + 1);  // string number
+    EXPECT_EQ(s[2] >> 11 & 0xFF, navmsg::glonass_hamming(s));
+    strings[i % 5] = s;
+    if (i % 5 == 4) {
+      const auto d = navmsg::decode_glonass_strings(strings, eph->glo_channel, 18);
+      ASSERT_TRUE(d.has_value());
+      const orbit::Ephemeris* sel = store.select(eph->sat, eph->toe + 300.0);
+      ASSERT_NE(sel, nullptr);
+      EXPECT_EQ(d->eph.toe, sel->toe);
+      EXPECT_NEAR(d->eph.pos_m.x, sel->pos_m.x, 0.25);
+      EXPECT_NEAR(d->eph.tau_n_s, sel->tau_n_s, 1e-9);
+    }
+  }
+}
+
+TEST(RxmSfrbxDue, GalileoSendsWordTypesZeroToSixOnE1b) {
+  const orbit::NavData nav =
+      orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz");
+  const orbit::EphemerisStore store{nav.ephemerides};
+  const SatId sat(GnssSystem::kGalileo, 2);
+  // 30 s from a subframe start (GST tow a multiple of 30 s).
+  const time::GpsTime t0(2296, 266400.0 + 0.05);
+  const std::vector<std::string> p = sfrbx_of(store, sat, 0, t0, 30, 18);
+  ASSERT_EQ(p.size(), 13u);  // 15 page pairs less the two almanac words
+  std::array<navmsg::InavPagePair, 7> pairs{};
+  std::array<int, 7> seen{};
+  for (const std::string& m : p) {
+    EXPECT_EQ(static_cast<int>(m[0]), 2);  // gnssId Galileo
+    EXPECT_EQ(static_cast<int>(m[1]), 2);
+    EXPECT_EQ(static_cast<int>(m[2]), 1);  // sigId E1-B on the M9
+    EXPECT_EQ(static_cast<int>(m[4]), 9);  // numWords
+    navmsg::InavPagePair w{};
+    for (std::size_t i = 0; i < 8; ++i) std::memcpy(&w[i], m.data() + 8 + 4 * i, 4);
+    const auto type = static_cast<std::size_t>(w[0] >> 24 & 0x3F);  // after even/odd and page type
+    ASSERT_LE(type, 6u);
+    pairs[type] = w;
+    ++seen[type];
+  }
+  for (std::size_t t = 1; t <= 6; ++t) EXPECT_EQ(seen[t], 1) << t;
+  const auto d = navmsg::decode_galileo_inav(pairs);
+  ASSERT_TRUE(d.has_value());
+  const orbit::Ephemeris* sel = store.select(sat, t0);
+  ASSERT_NE(sel, nullptr);
+  EXPECT_EQ(d->eph.iode, sel->iode);
+  EXPECT_EQ(d->eph.toe, sel->toe);
+  EXPECT_NEAR(d->eph.sqrt_a_sqrtm, sel->sqrt_a_sqrtm, std::ldexp(1.0, -19));
 }
 
 TEST(RxmDevice, StandardFirmwareStaysSilent) {
