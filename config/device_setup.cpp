@@ -42,6 +42,7 @@ protocol::ubx::DeviceSetup device_setup(const Config& config, SystemSet nav_syst
   protocol::ubx::DeviceSetup s;
   s.mon_ver = protocol::ubx::mon_ver_of(config.generation);
   s.raw_firmware = config.raw_data;
+  s.sbas_diffcorr = config.receiver.sbas;
   s.nav_period_s = 1.0 / config.rate_hz;
   const receiver::NavFilterConfig& f = config.receiver.filter;
   s.dyn_model = static_cast<std::uint8_t>(f.dynamic_model);
@@ -58,7 +59,11 @@ void apply_chip_settings(const protocol::ubx::Device& device, receiver::Receiver
   const protocol::ubx::wire::CfgNav5& n = device.config().nav5;
   if (const auto m = receiver::dynamic_model_from_ubx(n.dynModel)) rx.set_dynamic_model(*m);
   rx.set_static_hold(0.01 * n.staticHoldThresh, n.staticHoldMaxDist);
-  rx.set_systems(device.enabled_systems());
+  // CFG-SBAS mode off: no GEO is tracked; usage without diffCorr: none corrects.
+  const protocol::ubx::SbasSettings sbas = device.sbas_settings();
+  const SystemSet systems = device.enabled_systems();
+  rx.set_systems(sbas.enabled ? systems : systems.without(GnssSystem::kSbas));
+  rx.set_sbas(sbas.enabled && sbas.diffcorr);
   rx.set_channel_limits(device.channel_limits().per_system);
   const protocol::ubx::NavRateLimits lim = device.nav_rate_limits();
   const double period_s = device.config().nav_period_s();

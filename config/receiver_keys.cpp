@@ -449,6 +449,12 @@ constexpr Field<Config> kReceiverFields[] = {
                    "host enables them; false (a NEO-M8N's or NEO-M9N's standard firmware): they stay silent",
                    read_raw_data, write_raw_data)
         .default_doc("the generation's: false for `m8` and `m9`, true for `f9p`"),
+    boolean<&Config::receiver, &ReceiverConfig::sbas>(
+        "sbas", "SBAS corrections, as a u-blox's factory CFG-SBAS (usage diffCorr; a host's CFG-SBAS or "
+                "CFG-SBAS-USE_DIFFCORR changes it): once a GEO of the service whose area holds the receiver is "
+                "decoded for 120 s, GPS satellites get its orbit/clock corrections (after 300 s its ionosphere) "
+                "and the fix is differential (GGA quality 2, NAV-PVT diffSoln; docs/models.md \"SBAS\"). false: "
+                "SBAS GEOs are tracked and ranged only"),
     custom<Config>("constellations", "", "RINEX letters `G` GPS, `R` GLONASS, `E` Galileo, `C` BeiDou, `J` QZSS, "
                    "`S` SBAS; at least one, no repeats",
                    "the systems in the receiver's sky: satellites of the other systems in the nav data are not "

@@ -181,7 +181,10 @@ const Ephemeris* EphemerisStore::select(SatId sat, const time::GpsTime& t) const
     }
   }
   // A satellite flagged unhealthy in its current set is not used, even if
-  // an older healthy set is still within its validity window.
+  // an older healthy set is still within its validity window. An SBAS GEO's
+  // health is its ranging's: flagged, it still broadcasts its corrections and
+  // stays in the sky (tracked and decoded, not ranged: receiver SatInfo::healthy).
+  if (chosen != nullptr && sat.system == GnssSystem::kSbas) return chosen;
   return chosen != nullptr && healthy(*chosen) ? chosen : nullptr;
 }
 

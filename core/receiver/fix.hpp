@@ -82,6 +82,10 @@ struct SatInfo {
   bool excluded = false;      ///< tracked, but removed from the solution by fault detection (residual test)
   bool ephemeris = true;      ///< the receiver has its broadcast ephemeris (decoded, or kept over a restart)
   bool smoothed = false;      ///< its pseudorange is carrier-smoothed
+  /// SBAS corrections (fast and long-term) applied to its pseudorange this
+  /// epoch; sbas_iono: its ionospheric delay from the SBAS grid, not Klobuchar.
+  bool sbas_corr = false;
+  bool sbas_iono = false;
   double pseudorange_m = 0.0; ///< measured (with all errors), m
   double doppler_hz = 0.0;    ///< measured Doppler of the satellite's carrier, Hz
   double residual_m = 0.0;    ///< post-fit pseudorange residual, m (used only)
@@ -115,6 +119,9 @@ struct Fix {
   /// Differential corrections applied to the solution (NAV-PVT flags diffSoln;
   /// GGA quality 2 without a carrier solution).
   bool diff_soln = false;
+  /// The differential corrections are an SBAS's (GGA station 0000, no age, as
+  /// the real NEO-M9N prints); false with diff_soln: RTCM.
+  bool sbas_soln = false;
   CarrierSolution carr_soln = CarrierSolution::kNone;
   /// Age of the corrections the solution used, s (rover epoch - base epoch;
   /// < 0: none). GGA field 13, NAV-PVT flags3 lastCorrectionAge.

@@ -105,6 +105,7 @@ void Receiver::set_klobuchar(const orbit::KlobucharParams& p) {
 
 void Receiver::restart(const StartState& keep) noexcept {
   acq_.restart(keep);
+  sbas_.reset();
   nav_.reset();
   rtk_.reset();
   for (HatchFilter& h : hatch_) h.reset();
@@ -244,6 +245,8 @@ void Receiver::measurement_stage(const world::Observables& obs, double dt_s) noe
     m.doppler_hz = si.doppler_hz;
     m.wavelength_m = o.wavelength_m;
     m.cn0_dbhz = si.cn0_dbhz;
+    m.iono_given = false;
+    m.iono_m = 0.0;
     meas_sat_[static_cast<std::size_t>(in_.num_meas++)] = p;
   }
   smoothed_last_ = smoothed_now;
@@ -395,6 +398,7 @@ const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs)
       if (out_.type != FixType::kNone) fill_solution();
     }
     fix_.spoof_det_state = spoof_.update(fix_);
+    sbas_.step(dt_s, {}, have_fix_ ? &last_lla_ : nullptr);
     rtk_.step(raw_, obs, corrections_, fix_);
     return fix_;
   }
@@ -402,6 +406,7 @@ const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs)
   tracking_stage(t, obs, dt_s);
   fix_.time_valid = modelled ? acq_.time_known() : true;
   measurement_stage(obs, dt_s);
+  sbas_stage(obs, dt_s);
   raw_stage(obs, dt_s);
 
   // Its own corrections and solution, warm-started from the last fix.
@@ -424,7 +429,46 @@ const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs)
   fill_solution();
   fix_.spoof_det_state = spoof_.update(fix_);
   rtk_.step(raw_, obs, corrections_, fix_);
+  sbas_fix_flags();
   return fix_;
+}
+
+void Receiver::sbas_stage(const world::Observables& obs, double dt_s) noexcept {
+  meas_sbas_.fill(false);
+  meas_sbas_iono_.fill(false);
+  sbas_.step(dt_s, std::span<const SatInfo>(fix_.sats.data(), static_cast<std::size_t>(fix_.num_sats)),
+             have_fix_ ? &last_lla_ : nullptr);
+  if (!config_.sbas || !sbas_.orbit_clock()) return;
+  // Both lists are in SatId order.
+  int j = 0;
+  for (int i = 0; i < in_.num_meas; ++i) {
+    const SatId sat = meas_sat_[static_cast<std::size_t>(i)];
+    while (j < obs.num_sats && obs.sats[j].sat < sat) ++j;
+    if (j >= obs.num_sats || obs.sats[j].sat != sat) continue;
+    const world::SatObservable& o = obs.sats[j];
+    if (!o.sbas_valid || !world::sbas_corrects(sat.system)) continue;
+    Measurement& m = in_.meas[static_cast<std::size_t>(i)];
+    m.pseudorange_m -= o.sbas_orbit_clock_m;
+    meas_sbas_[static_cast<std::size_t>(i)] = true;
+    if (sbas_.iono()) {
+      m.iono_given = true;
+      m.iono_m = o.sbas_iono_m;
+      meas_sbas_iono_[static_cast<std::size_t>(i)] = true;
+    }
+  }
+}
+
+void Receiver::sbas_fix_flags() noexcept {
+  if (fix_.diff_soln || !is_gnss_fix(fix_.type)) return;
+  for (int i = 0; i < fix_.num_sats; ++i) {
+    if (!fix_.sats[i].used || !fix_.sats[i].sbas_corr) continue;
+    // The real NEO-M9N prints station 0000 and no age for an SBAS fix.
+    fix_.diff_soln = true;
+    fix_.sbas_soln = true;
+    fix_.ref_station_id = 0;
+    fix_.corr_age_s = -1.0;
+    return;
+  }
 }
 
 bool Receiver::within_limits() const noexcept {
@@ -484,12 +528,15 @@ void Receiver::fill_solution() noexcept {
     if (si.sat != meas_sat_[static_cast<std::size_t>(k)]) continue;
     si.used = f.type != FixType::kDeadReckoning && !out_.excluded[k];  // excluded: tracked, not used
     si.excluded = out_.excluded[k];
+    si.sbas_corr = meas_sbas_[static_cast<std::size_t>(k)];
+    si.sbas_iono = meas_sbas_iono_[static_cast<std::size_t>(k)];
     si.residual_m = out_.residual_m[k++];
   }
 
   have_fix_ = true;
   last_fix_t_ = f.t;
   last_pos_m_ = f.pos_m;
+  last_lla_ = f.lla;
   last_vel_m_s_ = f.vel_m_s;
   last_clock_m_ = out_.clock_m;
   last_drift_m_s_ = out_.drift_m_s;

@@ -20,6 +20,7 @@
 #include "core/receiver/raw_measurements.hpp"
 #include "core/receiver/receiver_config.hpp"
 #include "core/receiver/rtk/rtk_engine.hpp"
+#include "core/receiver/sbas_reception.hpp"
 #include "core/receiver/solver.hpp"
 #include "core/world/observables.hpp"
 
@@ -87,6 +88,12 @@ public:
   /// construction). Throws gnssemu::Error for non-finite values.
   void set_klobuchar(const orbit::KlobucharParams& p);
 
+  /// CFG-SBAS (mode enabled and usage diffCorr; on the M9 CFG-SBAS-USE_DIFFCORR):
+  /// SBAS corrections applied from now on (config().sbas after construction).
+  void set_sbas(bool on) noexcept { config_.sbas = on; }
+  /// What the receiver decodes of the SBAS GEOs it tracks.
+  const SbasReception& sbas() const noexcept { return sbas_; }
+
   const Acquisition& acquisition() const noexcept { return acq_; }
   const Navigator& navigator() const noexcept { return nav_; }
 
@@ -97,6 +104,11 @@ private:
   /// from the usable ones (carrier-smoothed with the filter).
   void measurement_stage(const world::Observables& obs, double dt_s) noexcept;
   void no_fix_epoch() noexcept;
+  /// SBAS reception, then its corrections on the solver's measurements
+  /// (obs: the epoch's observables, in SatId order as the measurements).
+  void sbas_stage(const world::Observables& obs, double dt_s) noexcept;
+  /// diff_soln from the satellites used with SBAS corrections (unless RTK set it).
+  void sbas_fix_flags() noexcept;
   /// Keep the max_solution_sats_ highest of the solver's measurements (SatId order kept).
   void cap_measurements() noexcept;
   /// raw_ from the observables of the tracked satellites.
@@ -171,6 +183,10 @@ private:
   SolverOutput snap_;  ///< the snapshot solution of the epoch
   SolverOutput out_;   ///< the reported solution (snapshot or filter)
   std::array<SatId, kMaxSatsInView> meas_sat_{};  ///< satellite of each solver measurement
+  /// Each solver measurement's SBAS corrections: orbit/clock, and ionosphere.
+  std::array<bool, kMaxSatsInView> meas_sbas_{}, meas_sbas_iono_{};
+  SbasReception sbas_;
+  Lla last_lla_;  ///< of the last fix (the SBAS service area)
   bool have_fix_ = false;
   time::GpsTime last_fix_t_;
   Ecef last_pos_m_, last_vel_m_s_;

@@ -136,6 +136,11 @@ struct ReceiverConfig {
   /// each system's second signal (gnss_signals.hpp band 1) in the raw
   /// measurements. The position solution uses the L1-band signal either way.
   int bands = 1;
+  /// SBAS corrections (u-blox CFG-SBAS usage diffCorr, factory on): applied
+  /// to the systems SBAS L1 corrects once a GEO of the service covering the
+  /// receiver is decoded long enough (sbas_reception.hpp); the fix is then
+  /// differential. false: SBAS GEOs are tracked (and ranged) only.
+  bool sbas = true;
 };
 
 /// Valid values of ReceiverConfig's own numbers (the mask in degrees, as

@@ -137,12 +137,14 @@ void Solver::update_corrections(const SolverInput& in, const Ecef& pos, const Ll
     const double el = std::atan2(u, std::hypot(e, n));
     double az = std::atan2(e, n);
     if (az < 0.0) az += 2.0 * kPi;
+    const Measurement& m = in.meas[i];
     const double i_m =
-        iono ? atmosphere::receiver_iono_delay_m(klobuchar_, lla.lat_rad, lla.lon_rad, az, el, tow_s, in.meas[i].wavelength_m)
-             : 0.0;
+        m.iono_given ? m.iono_m
+        : iono       ? atmosphere::receiver_iono_delay_m(klobuchar_, lla.lat_rad, lla.lon_rad, az, el, tow_s, m.wavelength_m)
+                     : 0.0;
     s.corr_m = i_m;
     if (tropo) s.corr_m += tropo_at.delay_m(el);
-    s.model_var_m2 = correction_variance_m2(cfg_, i_m, std::sin(el));
+    s.model_var_m2 = correction_variance_m2(cfg_, m.iono_given ? 0.0 : i_m, std::sin(el));
     if (cache) {
       corr_cached_[o] = true;
       corr_cache_m_[o] = s.corr_m;

@@ -33,6 +33,10 @@ struct Measurement {
   /// Variance of corrections already applied to pseudorange_m by the caller
   /// (`gnssemu spp` corrects before the solver; correction_variance_m2), m^2.
   double correction_var_m2 = 0.0;
+  /// The slant ionospheric delay at wavelength_m is known (an SBAS grid's,
+  /// iono_m, m): used instead of the broadcast model, without its variance.
+  bool iono_given = false;
+  double iono_m = 0.0;
 };
 
 struct SolverInput {

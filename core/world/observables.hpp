@@ -71,6 +71,14 @@ struct SatObservable {
   /// while [signal.carrier] is enabled (or set by the fault stage).
   bool lock_break = false;
   SecondSignal band1;                   ///< the second frequency (dual-band worlds only)
+  /// What the SBAS whose service area holds the antenna broadcasts for this
+  /// satellite (its ground network's estimates, each the world's own error
+  /// plus the service's residual; world/sbas_service.hpp): set for received
+  /// satellites of the systems SBAS L1 corrects. Whether a receiver decodes
+  /// them is its own affair (a GEO of that service tracked long enough).
+  bool sbas_valid = false;
+  double sbas_orbit_clock_m = 0.0;      ///< the satellite's orbit/clock range error in pseudorange_m, m
+  double sbas_iono_m = 0.0;             ///< slant ionospheric delay at carrier_hz, m
   // Path truth of the scene stage (analysis only; zero without a scene).
   bool nlos = false;                    ///< received via reflections only
   bool blocked = false;                 ///< no signal path (not received)

@@ -37,6 +37,10 @@ enum class Purpose : uint64_t {
   kSkyInit = 20,           ///< shared sky processes (sky_errors.hpp): stationary start at a coarse node
   kSkyCoarse = 21,         ///< coarse node step
   kSkyFine = 22,           ///< fine node of the bridge between two coarse nodes
+  kSbasOrbitClockInit = 23,  ///< residual of an SBAS's orbit/clock correction per satellite
+  kSbasOrbitClockStep = 24,
+  kSbasIonoInit = 25,        ///< residual of an SBAS's ionospheric correction per satellite
+  kSbasIonoStep = 26,
 };
 
 /// Random stream of a satellite: (system << 8) | RINEX number. GPS is system

@@ -273,6 +273,7 @@ void World::observables_stage(const SharedSky& sky, const time::GpsTime& t, uint
     o.pseudorange_m = pr_m;
     o.doppler_hz = -rr_m_s / o.wavelength_m;
     carrier_observable(o, s, epoch, rx_clock_s, orbit_clock_m, gradient_m, multipath);
+    if (sbas_service_ != nullptr && sbas_corrects(sat.system)) sbas_estimates(o, t, epoch, orbit_clock_m, path_[k].iono_m);
     if (config_.bands > 1) second_signal(o, s, t, epoch, rx_clock_s, rx_drift_s_s, orbit_clock_m, gradient_m);
   }
   for (int b = 0; b < config_.bands; ++b) {
@@ -282,6 +283,35 @@ void World::observables_stage(const SharedSky& sky, const time::GpsTime& t, uint
       if (!carrier_seen_[ub][k]) carrier_[ub][k].continuous = false;
     }
   }
+}
+
+void World::sbas_estimates(SatObservable& o, const time::GpsTime& t, uint64_t epoch, double orbit_clock_m,
+                           double iono_m) noexcept {
+  // Correlation time of the residuals: an estimate (docs/models.md "SBAS"):
+  // the network's estimates are renewed every few minutes (long-term and
+  // ionospheric messages, RTCA DO-229 Table A-8) and wander over a pass.
+  constexpr GaussMarkovConfig kUnit{1.0, 600.0};
+  const std::size_t k = static_cast<std::size_t>(o.sat.index());
+  const uint64_t stream = sat_stream(o.sat);
+  double& oc = sbas_unit_[0][k];
+  double& io = sbas_unit_[1][k];
+  if (!sbas_started_[k]) {
+    oc = gauss_markov_init(kUnit, rng_.normal(stream, epoch, Purpose::kSbasOrbitClockInit));
+    io = gauss_markov_init(kUnit, rng_.normal(stream, epoch, Purpose::kSbasIonoInit));
+    sbas_started_[k] = true;
+  } else {
+    const double dt_s = t - sbas_t_[k];
+    if (std::isfinite(dt_s) && dt_s > 0.0) {
+      oc = gauss_markov_step(oc, dt_s, kUnit, rng_.normal(stream, epoch, Purpose::kSbasOrbitClockStep));
+      io = gauss_markov_step(io, dt_s, kUnit, rng_.normal(stream, epoch, Purpose::kSbasIonoStep));
+    }
+  }
+  sbas_t_[k] = t;
+  const SbasService& s = *sbas_service_;
+  const double f_ratio = kL1Freq_hz / o.carrier_hz;
+  o.sbas_valid = true;
+  o.sbas_orbit_clock_m = orbit_clock_m - s.sisre_m * oc;
+  o.sbas_iono_m = iono_m + s.iono_vertical_m * sbas_obliquity(o.el_rad) * f_ratio * f_ratio * io;
 }
 
 double World::carrier_offset_cycles(CarrierTrack& c, uint64_t stream, uint64_t epoch, bool restart, double sigma_rad,
@@ -417,6 +447,7 @@ const Observables& World::step(const SharedSky& sky, const Truth& truth, double 
   }
 
   const Lla rx_lla = geo::lla_from_ecef(truth.pos_m);
+  sbas_service_ = sbas_service_at(rx_lla);
   gradient_now(sky, t, rx_lla.lon_rad);
   sky_stage(sky, t, truth, rx_lla, mask_rad);
   propagation_stage(sky, t, rx_lla, truth.pos_m);

@@ -26,6 +26,7 @@
 #include "core/world/observables.hpp"
 #include "core/world/propagation.hpp"
 #include "core/world/random.hpp"
+#include "core/world/sbas_service.hpp"
 #include "core/world/shared_sky.hpp"
 #include "core/world/sky.hpp"
 #include "core/world/truth.hpp"
@@ -111,6 +112,9 @@ private:
   /// the whole and half cycles the track adds to the phase.
   double carrier_offset_cycles(CarrierTrack& c, uint64_t stream, uint64_t epoch, bool restart, double sigma_rad,
                                bool pilot, bool nlos) noexcept;
+  /// o's SBAS estimates (o received, iono_m its ionospheric delay, m).
+  void sbas_estimates(SatObservable& o, const time::GpsTime& t, uint64_t epoch, double orbit_clock_m,
+                      double iono_m) noexcept;
   /// G_N, G_E of the azimuthal gradient at t for a receiver at lon_rad.
   void gradient_now(const SharedSky& sky, const time::GpsTime& t, double lon_rad) noexcept;
 
@@ -134,6 +138,12 @@ private:
   PerBand<double> multipath_unit_{};         ///< unit multipath Gauss–Markov state
   PerBand<time::GpsTime> multipath_t_{};     ///< when it was last stepped
   PerBand<bool> multipath_started_{};
+  // Residuals of the SBAS corrections per satellite (unit Gauss–Markov:
+  // orbit/clock, ionosphere), stepped when the satellite is received.
+  const SbasService* sbas_service_ = nullptr;  ///< the service whose area holds the antenna this epoch
+  std::array<std::array<double, kNumSats>, 2> sbas_unit_{};
+  std::array<time::GpsTime, kNumSats> sbas_t_{};
+  std::array<bool, kNumSats> sbas_started_{};
   uint64_t epoch_ = 0;          ///< step() calls so far (random-stream counter)
   bool started_ = false;
   time::GpsTime t_prev_;

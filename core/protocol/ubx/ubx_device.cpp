@@ -92,6 +92,11 @@ Device::Device(const DeviceSetup& setup)
   current_.nav5.dynModel = setup.dyn_model;
   current_.nav5.staticHoldThresh = setup.static_hold_thresh_cm_s;
   current_.nav5.staticHoldMaxDist = setup.static_hold_max_dist_m;
+  if (const StoredBlock* b = current_.stored(msg::kCfgSbas); b != nullptr && b->size >= 2) {
+    StoredBlock sbas = *b;
+    sbas.bytes[1] = static_cast<std::uint8_t>(setup.sbas_diffcorr ? sbas.bytes[1] | 0x02 : sbas.bytes[1] & ~0x02);
+    current_.store(msg::kCfgSbas, 0, sbas.payload());
+  }
   save_config();
   apply_nmea(false);
 }
@@ -212,6 +217,12 @@ void Device::load_saved(const DeviceConfig& saved) {
   after_input(boot);  // the saved CFG-RATE sets the epoch period
   // A saved CFG-NMEA a host changed replaces the output's configured version and settings.
   apply_nmea(block_differs(defaults_, current_, msg::kCfgNmea));
+}
+
+SbasSettings Device::sbas_settings() const noexcept {
+  const StoredBlock* b = current_.stored(msg::kCfgSbas);
+  if (b == nullptr || b->size < 2) return {};
+  return SbasSettings{(b->bytes[0] & 0x01) != 0, (b->bytes[1] & 0x02) != 0};
 }
 
 SystemSet Device::enabled_systems() const noexcept { return ubx::enabled_systems(current_); }

@@ -86,6 +86,9 @@ struct DeviceSetup {
   /// where a host enables them. A NEO-M8N's or NEO-M9N's standard firmware
   /// has none; they then stay silent at any rate (docs/raw-output.md).
   bool raw_firmware = false;
+  /// CFG-SBAS usage diffCorr from the factory ([receiver] sbas): SBAS
+  /// corrections applied (a u-blox's factory setting) or not.
+  bool sbas_diffcorr = true;
   /// One per output; empty: one factory UART1.
   std::vector<OutputSetup> outputs;
   /// Systems the emulator puts in the sky ([receiver] constellations). The
@@ -146,6 +149,13 @@ struct InputResult {
 struct DeviceStats {
   std::uint64_t acks = 0, naks = 0, polls = 0, resets = 0;
   std::uint64_t ignored = 0;  ///< non-CFG input we do not answer, or input on a port with that protocol off
+};
+
+/// CFG-SBAS mode b0 (SBAS enabled: GEOs tracked) and usage b1 diffCorr
+/// (their corrections applied).
+struct SbasSettings {
+  bool enabled = true;
+  bool diffcorr = true;
 };
 
 class Device {
@@ -229,6 +239,8 @@ public:
   NavRateLimits nav_rate_limits() const noexcept;
   /// Tracking channels in all and per system (CFG-GNSS as now set).
   ChannelLimits channel_limits() const noexcept;
+  /// CFG-SBAS as now set (the M9's CFG-SBAS-USE_* keys map onto it).
+  SbasSettings sbas_settings() const noexcept;
   /// The ZED-F9P's RTK mode, correction time-out, UART2 and base (time)
   /// mode as now configured (ubx_hpg.hpp; factory values on other generations).
   HpgSettings hpg_settings() const noexcept { return ubx::hpg_settings(current_); }

@@ -327,6 +327,9 @@ std::size_t UbxEncoder::nav_sat(const Fix& fix, std::string& out) const {
     if (s.smoothed) flags |= 1u << 7;
     if (s.healthy) flags |= 1u << 12;                          // almAvail
     if (s.healthy && s.ephemeris) flags |= 1u << 8 | 1u << 11;  // orbitSource ephemeris, ephAvail
+    // b6 diffCorr (corrections for it received), b16 sbasCorrUsed (applied in the solution).
+    if (s.sbas_corr) flags |= 1u << 6;
+    if (used && s.sbas_corr) flags |= 1u << 16;
     sv.flags = flags;
     std::memcpy(buf + len, &sv, sizeof sv);
     len += sizeof sv;
@@ -356,6 +359,7 @@ std::size_t UbxEncoder::nav_svinfo(const Fix& fix, std::string& out) const {
     // orbitAvail + orbitEph (or orbitAlm without its ephemeris), or unhealthy; b7 smoothed
     flags |= s.healthy ? (s.ephemeris ? 0x0C : 0x24) : 0x10;
     if (s.smoothed) flags |= 0x80;
+    if (s.sbas_corr) flags |= 0x02;  // diffCorr: differential correction data available
     ch.flags = flags;
     ch.quality = quality_ind(s);
     ch.cno = cno_u1(s);

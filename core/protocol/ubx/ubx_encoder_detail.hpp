@@ -54,6 +54,7 @@ struct Common {
   bool has_time = false;
   bool has_fix = false;   ///< a position to report (a GNSS fix or dead reckoning)
   bool fix_ok = false;    ///< a GNSS fix: gnssFixOK / gpsFixOk (not set for dead reckoning only)
+  bool diff_soln = false; ///< a fix with differential corrections (SBAS, RTCM): diffSoln
   std::uint8_t fix_type = 0;
   std::uint32_t itow = 0;    // ms
   std::int32_t ftow_ns = 0;  // tow - iTOW, ns
@@ -79,6 +80,7 @@ inline Common derive(const Fix& fix, FixOverride reported = std::nullopt) noexce
   Common c;
   c.has_time = has_time(fix);
   c.has_fix = has_fix(fix);
+  c.diff_soln = c.has_fix && fix.diff_soln;
   // iTOW is the epoch rounded to the ms; carry into the week.
   std::int64_t week = fix.t.week();
   std::int64_t ms = std::llround(fix.t.tow_s() * 1000.0);
@@ -139,8 +141,8 @@ inline Common derive(const Fix& fix, FixOverride reported = std::nullopt) noexce
 }
 
 inline std::uint8_t nav_flags(const Common& c) noexcept {
-  // b0 gpsFixOk, b2 wknSet, b3 towSet (NAV-STATUS and NAV-SOL share these).
-  return static_cast<std::uint8_t>((c.fix_ok ? 0x01 : 0) | (c.has_time ? 0x0C : 0));
+  // b0 gpsFixOk, b1 diffSoln, b2 wknSet, b3 towSet (NAV-STATUS and NAV-SOL share these).
+  return static_cast<std::uint8_t>((c.fix_ok ? 0x01 : 0) | (c.diff_soln ? 0x02 : 0) | (c.has_time ? 0x0C : 0));
 }
 
 /// NAV-SAT qualityInd: 7 code+carrier locked, 4 code locked, 1 searching, 0 idle.

@@ -143,15 +143,17 @@ std::size_t UbxEncoder::nav_sig(const Fix& fix, std::string& out) const {
       g.prRes = used ? to_int<std::int16_t>(s.residual_m * 10.0) : 0;
       g.cno = cno_u1(s);
       g.qualityInd = quality_ind(s);
-      // corrSource 4: RTCM 3 OSR when the solution is differential; ionoModel 1:
-      // broadcast Klobuchar (GPS) on a single-frequency solution.
-      g.corrSource = used && fix.diff_soln ? 4 : 0;
-      g.ionoModel = used ? 1 : 0;
+      // corrSource 1 SBAS for a satellite the SBAS corrected, 4 RTCM 3 OSR when
+      // the solution is differential from RTCM; ionoModel 2 SBAS grid where it
+      // gave the delay, else 1 broadcast Klobuchar (GPS) on a single-frequency solution.
+      const bool corrected = used && (s.sbas_corr || (fix.diff_soln && !fix.sbas_soln));
+      g.corrSource = !corrected ? 0 : s.sbas_corr ? 1 : 4;
+      g.ionoModel = !used ? 0 : s.sbas_iono ? 2 : 1;
       std::uint16_t flags = s.healthy ? 1 : 2;
       if (s.smoothed) flags |= 1u << 2;
       if (used) flags |= 1u << 3 | 1u << 5;  // prUsed, doUsed (real logs: 0x29 for a used signal)
       // Corrected code (b6 prCorrUsed); a carrier solution also uses and corrects the carrier (b4 crUsed, b7 crCorrUsed).
-      if (used && fix.diff_soln) flags |= 1u << 6;
+      if (corrected) flags |= 1u << 6;
       if (used && fix.carr_soln != receiver::CarrierSolution::kNone) flags |= 1u << 4 | 1u << 7;
       g.sigFlags = flags;
       std::memcpy(buf + len, &g, sizeof g);

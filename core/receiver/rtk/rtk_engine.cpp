@@ -110,6 +110,7 @@ void RtkEngine::reset_filter(const Ecef& pos_m) noexcept {
 
 void RtkEngine::clear_link_fields(Fix& fix) const noexcept {
   fix.diff_soln = false;
+  fix.sbas_soln = false;
   fix.carr_soln = CarrierSolution::kNone;
   fix.corr_age_s = -1.0;
   fix.ref_station_id = -1;

@@ -36,6 +36,7 @@ max_channels = 12
 generation = "m9"
 bands = 2
 raw_data = true
+sbas = false
 constellations = ["G", "E", "C"]  # not the m9 factory set, so it is written
 state_file = "state/ubx-state.txt"
 filter = "none"

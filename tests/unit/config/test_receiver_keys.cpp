@@ -3,6 +3,7 @@
 // core, the solver's and the receiver's rules, the receiver's own
 // corrections and error models; each assertion pins "file:line: reason".
 #include <string>
+#include <vector>
 
 #include "config/device_setup.hpp"
 #include "core/protocol/ubx/ubx_device.hpp"
@@ -281,6 +282,34 @@ TEST(ReceiverGenerationConfig, ChipRateCapsTheM9Solution) {
   EXPECT_EQ(cap("generation = \"m9\"\nrate_hz = 10\n"), 16);
   EXPECT_EQ(cap("generation = \"m9\"\nrate_hz = 8\n"), kMaxSatsInView);
   EXPECT_EQ(cap("generation = \"m8\"\nrate_hz = 10\n"), kMaxSatsInView);
+}
+
+TEST(ReceiverSbasConfig, KeyAndHostCfgSbasReachTheReceiver) {
+  // [receiver] sbas seeds the chip's CFG-SBAS usage diffCorr; a host's CFG-SBAS
+  // (M8) or CFG-SBAS-USE_DIFFCORR (M9) then decides; mode off stops tracking GEOs.
+  using protocol::ubx::FrameView;
+  using protocol::ubx::Link;
+  namespace msg = protocol::ubx::msg;
+  const auto state = [](const std::string& keys, protocol::ubx::MsgId id, const std::vector<std::uint8_t>& payload) {
+    const Config c = parse(kBase + "[receiver]\n" + keys);
+    protocol::ubx::Device chip(device_setup(c));
+    std::string out;
+    if (!payload.empty()) chip.handle_ubx(Link{}, FrameView{id, payload}, 0.0, out);
+    receiver::Receiver rx(c.receiver);
+    apply_chip_settings(chip, rx);
+    return std::pair{rx.config().sbas, rx.systems().has(GnssSystem::kSbas)};
+  };
+  const std::vector<std::uint8_t> none;
+  EXPECT_EQ(state("", msg::kCfgSbas, none), std::pair(true, true));
+  EXPECT_EQ(state("sbas = false\n", msg::kCfgSbas, none), std::pair(false, true));
+  EXPECT_EQ(state("", msg::kCfgSbas, {1, 1, 3, 0, 0, 0, 0, 0}), std::pair(false, true));   // ranging only
+  EXPECT_EQ(state("", msg::kCfgSbas, {0, 3, 3, 0, 0, 0, 0, 0}), std::pair(false, false));  // SBAS disabled
+  EXPECT_EQ(state("sbas = false\n", msg::kCfgSbas, {1, 3, 3, 0, 0, 0, 0, 0}), std::pair(true, true));
+  // NEO-M9N: CFG-VALSET (RAM) CFG-SBAS-USE_DIFFCORR = 0, then = 1.
+  const std::vector<std::uint8_t> diffcorr_off{0, 1, 0, 0, 0x04, 0x00, 0x36, 0x10, 0};
+  const std::vector<std::uint8_t> diffcorr_on{0, 1, 0, 0, 0x04, 0x00, 0x36, 0x10, 1};
+  EXPECT_EQ(state("generation = \"m9\"\n", msg::kCfgValset, diffcorr_off), std::pair(false, true));
+  EXPECT_EQ(state("generation = \"m9\"\nsbas = false\n", msg::kCfgValset, diffcorr_on), std::pair(true, true));
 }
 
 TEST(ReceiverDynamicsConfig, GeodeticProfileSolvesSnapshotsUnlessTheFileSaysOtherwise) {
