@@ -40,32 +40,34 @@ GnssSystem msm_system(int number) noexcept {
 
 const std::array<RtcmOutput::Kind, RtcmOutput::kKinds>& RtcmOutput::kinds() noexcept { return kKindTable; }
 
-RtcmOutput::RtcmOutput() { buf_.reserve(kMaxBytes); }
-
-void RtcmOutput::clear() noexcept {
-  buf_.clear();
-  count_ = 0;
+void RtcmOutput::start() {
+  if (!state_) {
+    state_ = std::make_unique<State>();
+    state_->buf.reserve(kMaxBytes);
+  }
+  state_->buf.clear();
 }
 
 void RtcmOutput::encode_kind(std::size_t kind, const receiver::Fix& fix, const receiver::RawEpoch& raw) noexcept {
-  const std::size_t begin = buf_.size();
+  std::string& buf = state_->buf;
+  const std::size_t begin = buf.size();
   const int number = kKindTable[kind].number;
   if (number == 4072) {
     const double tow_ms = std::round(raw.t_rx.tow_s() * 1e3);
-    rtcm::append_reference_pvt({0, static_cast<std::uint32_t>(tow_ms) % 604800000u, fix.pos_m}, buf_);
+    rtcm::append_reference_pvt({0, static_cast<std::uint32_t>(tow_ms) % 604800000u, fix.pos_m}, buf);
   } else if (number == 1005) {
     rtcm::StationInfo st;
     st.arp_ecef_m = fix.pos_m;
     st.glonass = st.galileo = true;
-    rtcm::append_station(st, false, buf_);
+    rtcm::append_station(st, false, buf);
   } else if (number == 1230) {
     // The world gives GLONASS no inter-frequency code-phase bias: zero, aligned.
-    rtcm::append_glonass_biases(0, true, {0.0, std::nullopt, 0.0, std::nullopt}, buf_);
+    rtcm::append_glonass_biases(0, true, {0.0, std::nullopt, 0.0, std::nullopt}, buf);
   } else {
-    rtcm::MsmEncoder& enc = number % 10 == 7 ? msm7_ : msm4_;
-    enc.append_epoch(raw, SystemSet::only(msm_system(number)), buf_);
+    rtcm::MsmEncoder& enc = number % 10 == 7 ? state_->msm7 : state_->msm4;
+    enc.append_epoch(raw, SystemSet::only(msm_system(number)), buf);
   }
-  if (buf_.size() > begin) frames_[count_++] = {kind, begin, buf_.size()};
+  if (buf.size() > begin) frames_[count_++] = {kind, begin, buf.size()};
 }
 
 }  // namespace gnssemu::protocol::ubx

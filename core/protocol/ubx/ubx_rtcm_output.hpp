@@ -11,7 +11,9 @@
 // "ArduPilot F9P").
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <string>
+#include <string_view>
 
 #include "core/protocol/rtcm/rtcm_msm.hpp"
 #include "core/protocol/ubx/ubx_frame.hpp"
@@ -34,37 +36,44 @@ public:
   static constexpr std::size_t kKinds = 11;
   static const std::array<Kind, kKinds>& kinds() noexcept;
 
-  RtcmOutput();
-
   /// Encodes the epoch's frames of the kinds wanted(id) says some port
-  /// sends; nothing without a valid time, position or raw epoch. No
-  /// allocation (reserved for the largest epoch).
+  /// sends; nothing without a valid time, position or raw epoch. The
+  /// encoders and buffer (≈ 40 KB) are made on the first epoch that wants
+  /// one (most receivers never do); no allocation after that.
   template <class Wanted>
-  void encode(const receiver::Fix& fix, const receiver::RawEpoch* raw, Wanted wanted) noexcept {
-    clear();
+  void encode(const receiver::Fix& fix, const receiver::RawEpoch* raw, Wanted wanted) {
+    count_ = 0;
     if (raw == nullptr || !raw->time_valid || !fix.time_valid || fix.type == receiver::FixType::kNone) return;
+    bool started = false;
     for (std::size_t i = 0; i < kKinds; ++i) {
-      if (wanted(kinds()[i].id)) encode_kind(i, fix, *raw);
+      if (!wanted(kinds()[i].id)) continue;
+      if (!started) start();
+      started = true;
+      encode_kind(i, fix, *raw);
     }
   }
-  void clear() noexcept;
 
   /// Frames of the last encode(): id, label and bytes.
   std::size_t size() const noexcept { return count_; }
   MsgId id(std::size_t i) const noexcept { return kinds()[frames_[i].kind].id; }
   const char* label(std::size_t i) const noexcept { return kinds()[frames_[i].kind].label; }
   std::string_view bytes(std::size_t i) const noexcept {
-    return std::string_view(buf_).substr(frames_[i].begin, frames_[i].end - frames_[i].begin);
+    return std::string_view(state_->buf).substr(frames_[i].begin, frames_[i].end - frames_[i].begin);
   }
 
 private:
+  /// Makes the state on first use and empties the buffer.
+  void start();
   void encode_kind(std::size_t kind, const receiver::Fix& fix, const receiver::RawEpoch& raw) noexcept;
   struct Frame {
     std::size_t kind = 0, begin = 0, end = 0;
   };
-  rtcm::MsmEncoder msm7_{0, rtcm::MsmKind::kMsm7};
-  rtcm::MsmEncoder msm4_{0, rtcm::MsmKind::kMsm4};
-  std::string buf_;
+  struct State {
+    rtcm::MsmEncoder msm7{0, rtcm::MsmKind::kMsm7};
+    rtcm::MsmEncoder msm4{0, rtcm::MsmKind::kMsm4};
+    std::string buf;
+  };
+  std::unique_ptr<State> state_;
   std::array<Frame, kKinds> frames_{};  ///< one per kind (an MSM split by its cell mask stays one)
   std::size_t count_ = 0;
 };
