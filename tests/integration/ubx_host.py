@@ -46,12 +46,41 @@ def nmea(body):
     return f"${body}*{cs:02X}\r\n".encode()
 
 
+def crc24q(data):
+    """RTCM 3's CRC-24Q (RTCM 10403.3 §4.2)."""
+    crc = 0
+    for x in data:
+        crc ^= x << 16
+        for _ in range(8):
+            crc <<= 1
+            if crc & 0x1000000:
+                crc ^= 0x1864CFB
+    return crc & 0xFFFFFF
+
+
+def rtcm_number(m):
+    """Message number of an RTCM 3 frame (DF002)."""
+    return (m[3] << 4) | (m[4] >> 4)
+
+
 def split_stream(data):
-    """(kind, bytes) for every complete UBX frame / NMEA line; rest returned."""
+    """(kind, bytes) for every complete UBX frame / NMEA line / RTCM 3 frame
+    (CRC checked); rest returned."""
     out = []
     i = 0
     while i < len(data):
-        if data[i:i + 2] == b"\xb5\x62":
+        if data[i] == 0xD3 and (i + 1 >= len(data) or data[i + 1] & 0xFC == 0):
+            if i + 3 > len(data):
+                break
+            n = 6 + ((data[i + 1] & 3) << 8 | data[i + 2])
+            if i + n > len(data):
+                break
+            if crc24q(data[i:i + n - 3]) == int.from_bytes(data[i + n - 3:i + n], "big"):
+                out.append(("rtcm", data[i:i + n]))
+                i += n
+            else:
+                i += 1
+        elif data[i:i + 2] == b"\xb5\x62":
             if i + 6 > len(data):
                 break
             n = 8 + struct.unpack_from("<H", data, i + 4)[0]
@@ -222,9 +251,10 @@ def key_value_bytes(key):
     return {1: 1, 2: 1, 3: 2, 4: 4, 5: 8}[key >> 28 & 7]
 
 
-def valset(pairs, layers=1):
-    """CFG-VALSET v0 payload; pairs: (key id, value), each value key_value_bytes(key) long."""
-    out = bytes([0, layers, 0, 0])
+def valset(pairs, layers=1, version=0):
+    """CFG-VALSET payload (version 0, or 1 with transaction 0 = none);
+    pairs: (key id, value), each value key_value_bytes(key) long."""
+    out = bytes([version, layers, 0, 0])
     for key, value in pairs:
         out += struct.pack("<I", key) + value.to_bytes(key_value_bytes(key), "little")
     return out
@@ -393,11 +423,11 @@ def set_cfg(s, fd, mid, payload, replies=None, limit_s=1.0):
         replies.times.append((f"CFG {mid:02X} set", t - t0))
 
 
-def ardupilot_probe(fd, path, probe):
-    """Send ArduPilot's probe; its $PUBX,41 moves the line to 230400 (the pty's termios follows)."""
+def ardupilot_probe(fd, path, probe, baud=230400):
+    """Send ArduPilot's probe; its $PUBX,41 moves the line to baud (the pty's termios follows)."""
     send(fd, probe)
     deadline = time.monotonic() + 3
-    while stty_speed(path) != 230400:
+    while stty_speed(path) != baud:
         assert time.monotonic() < deadline, f"pty termios {stty_speed(path)} after $PUBX,41"
         time.sleep(0.05)
 
@@ -518,7 +548,7 @@ def ardupilot_rate_step(s, fd, cls, mid, rate, replies):
         assert after[2 + 1] == rate, f"CFG-MSG {cls:02X}-{mid:02X} read back UART1 rate {after[3]}, set {rate}"
 
 
-def ardupilot_startup_m9(s, fd, path, fix_limit_s=4.0):
+def ardupilot_startup_m9(s, fd, path, fix_limit_s=4.0, probe=ARDUPILOT_PROBE, baud=230400, save=True):
     """ArduPilot 4.5 against a NEO-M9N: the probe, CFG-PRT poll (port id),
     NAV-PVT rate and CFG-RATE 200 ms, then (NAV-PVT seen) SOL/STATUS/POSLLH/
     VELNED off, TIMEGPS 5, the NAV-SVINFO poll it sends while the generation
@@ -527,7 +557,7 @@ def ardupilot_startup_m9(s, fd, path, fix_limit_s=4.0):
     00190000 is UBLOX_M9), CFG-CFG save. Nothing may be NAKed: ArduPilot
     ignores a NAK and asks again forever. Returns (Replies, MON-VER frame)."""
     r = Replies()
-    ardupilot_probe(fd, path, ARDUPILOT_PROBE)
+    ardupilot_probe(fd, path, probe, baud)
     prt = poll_cfg(s, fd, 0x00, b"", r)
     assert len(prt) == 20 and prt[0] == 1, prt.hex()
     ardupilot_rate_step(s, fd, 0x01, 0x07, 1, r)
@@ -561,10 +591,138 @@ def ardupilot_startup_m9(s, fd, path, fix_limit_s=4.0):
     assert len(gnss) == 4 + 8 * gnss[3] and gnss[3] >= 1, gnss.hex()
     steps([(0x01, 0x04), (0x0A, 0x09), (0x0A, 0x0B)])  # DOP, MON-HW, MON-HW2
     mv = r.timed(s, fd, frame(0x0A, 0x04), is_ubx(0x0A, 0x04), 2.0, "MON-VER")
+    if save:
+        ardupilot_save(s, fd, r)
+    return r, mv
+
+
+def ardupilot_save(s, fd, r):
+    """CFG-CFG save (_save_cfg: saveMask SAVE_CFG_ALL 0x061F) once configured;
+    nothing NAKed up to here."""
     set_cfg(s, fd, 0x09, struct.pack("<III", 0, 0x061F, 0), r)
     naks = [m for _, k, m in s.seen if k == "ubx" and m[2:4] == b"\x05\x00"]
     assert not naks, f"NAKed: {[m[6:8].hex() for m in naks]}"
-    return r, mv
+
+
+# --- ArduPilot on an F9 (protocol 27) ------------------------------------------
+# AP_GPS_UBLOX.cpp/.h (4.4-4.5): MON-VER hwVersion "00190000" with swVersion
+# "EXT CORE 1" is UBLOX_F9, which has supports_F9_config(). The legacy CFG
+# loop above still runs; on the pass after MON-VER, STEP_TMODE VALGETs
+# CFG-TMODE-MODE and sets 0 if it is not, and for GPS_TYPE 17/18
+# STEP_RTK_MOVBASE runs _configure_config_set over the moving-baseline list.
+# _configure_config_set: one CFG-VALGET (version 0, layer 0 = RAM, position
+# 0) naming every key of the list. _parse_gps(MSG_CFG_VALGET): for each key
+# of the reply whose value differs, at once a CFG-VALSET of that key alone
+# (_configure_valset: version 1, layers = UBX_VALSET_LAYER_ALL 7 by default,
+# transaction 0); the list is done when a later VALGET reads every key as
+# listed (done_mask). ACKs are not waited for: while unconfigured the loop
+# sends its next step every 750 ms (_delay_time) and walks the list again,
+# so a reply later than that costs a repeated VALGET, not the start-up.
+# A NAK of the many-key VALGET makes it fall back to one key per VALGET.
+AP_TMODE_MODE = 0x20030001
+AP_VALSET_LAYERS = 0x07          # UBX_VALSET_LAYER_ALL
+ARDUPILOT_CONFIG_STEP_S = 0.75   # _delay_time while unconfigured, once NAV-PVT is seen
+K_UART2_ENABLED = 0x10530005
+# CFG-MSGOUT-RTCM_3X_TYPE{4072_0, 4072_1, 1077, 1087, 1097, 1127, 1230}, I2C ids (UART1 +1, UART2 +2).
+AP_MB_RTCM_I2C = (0x209102FE, 0x20910381, 0x209102CC, 0x209102D1, 0x20910318, 0x209102D6, 0x20910303)
+RTK_MB_RTCM_RATE = 1
+# AP_GPS.cpp send_blob_start: GPS_TYPE 17/18 without GPS_DRV_OPTIONS
+# UBX_MBUseUart2 probe at 460800 (RTCM between the receivers goes through the
+# autopilot); otherwise 230400.
+ARDUPILOT_PROBE_460800 = bytes.fromhex("B5 62 06 01 03 00 01 06 01 12 4F") + b"$PUBX,41,1,0023,0001,460800,0*11\r\n"
+
+
+def ardupilot_mb_list(role, uart2):
+    """config_MB_{Base,Rover}_uart{1,2} of AP_GPS_UBLOX.cpp, in order: (key, value)."""
+    rel = lambda port, v: (K_MSGOUT_NAV_RELPOSNED + port, v)
+    rtcm = lambda port, v: [(k + port, v) for k in AP_MB_RTCM_I2C]
+    if role == "base" and not uart2:
+        return ([(K_UART1OUT_RTCM3X, 1), (K_UART2OUT_RTCM3X, 0), rel(1, 0), rel(2, 0)] +
+                rtcm(1, RTK_MB_RTCM_RATE) + rtcm(2, 0))
+    if role == "base":
+        return ([(K_UART2_ENABLED, 1), (K_UART2_BAUDRATE, 460800), (K_UART2OUT_RTCM3X, 1), (K_UART1OUT_RTCM3X, 0),
+                 (K_UART1IN_RTCM3X, 1), rel(2, 0), rel(1, 0)] + rtcm(2, RTK_MB_RTCM_RATE) + rtcm(1, 0))
+    if role == "rover" and not uart2:
+        return ([(K_UART2OUT_RTCM3X, 0), (K_UART1IN_RTCM3X, 1), (K_UART2IN_RTCM3X, 0), rel(1, 1), rel(2, 0)] +
+                rtcm(1, 0) + rtcm(2, 0))
+    if role == "rover":
+        return ([(K_UART2_ENABLED, 1), (K_UART2_BAUDRATE, 460800), (K_UART2OUT_RTCM3X, 0), (K_UART2IN_RTCM3X, 1),
+                 (K_UART1IN_RTCM3X, 0), rel(1, 1), rel(2, 0)] + rtcm(2, 0) + rtcm(1, 0))
+    raise ValueError(f"role {role!r}: want 'base' or 'rover'")
+
+
+def parse_valget(data):
+    """{key: value} of a CFG-VALGET reply frame, keys in reply order."""
+    p, out, off = data[6:-2], {}, 4
+    while off < len(p):
+        key = struct.unpack_from("<I", p, off)[0]
+        n = key_value_bytes(key)
+        assert off + 4 + n <= len(p), f"VALGET reply cut inside key {key:08x}"
+        out[key] = int.from_bytes(p[off + 4:off + 4 + n], "little")
+        off += 4 + n
+    return out
+
+
+def ardupilot_config_set(s, fd, pairs, r, what, limit_s=ARDUPILOT_CONFIG_STEP_S):
+    """One walk of _configure_config_set over pairs: the VALGET of every key,
+    its reply then ACK within limit_s; one VALSET v1 (layers 7) per key read
+    back different, sent back to back, each ACKed within limit_s of the
+    reply. Returns the keys it set, {key: value read before}."""
+    t0 = time.monotonic()
+    send(fd, frame(0x06, 0x8B, valget([k for k, _ in pairs])))
+    t, data = s.wait_for(lambda k, m: k == "ubx" and m[2:4] in (b"\x06\x8b", b"\x05\x00"), limit_s,
+                         f"{what}: VALGET reply")
+    assert data[2:4] == b"\x06\x8b", f"{what}: VALGET of {len(pairs)} keys NAKed (ArduPilot then asks one by one)"
+    r.times.append((f"{what} VALGET", t - t0))
+    a = s.wait_for(is_ack_for(0x06, 0x8B), limit_s, f"{what}: ACK after VALGET")[1]
+    assert a == ack(0x06, 0x8B), a.hex()
+    got = parse_valget(data)
+    assert list(got) == [k for k, _ in pairs], f"{what}: reply keys {[hex(k) for k in got]} not the list's"
+    wrong = {k: got[k] for k, v in pairs if got[k] != v}
+    t1 = time.monotonic()
+    for k, v in pairs:
+        if k in wrong:
+            send(fd, frame(0x06, 0x8A, valset([(k, v)], AP_VALSET_LAYERS, version=1)))
+    for k in wrong:
+        t, a = s.wait_for(is_ack_for(0x06, 0x8A), limit_s, f"{what}: ACK of VALSET {k:08x}")
+        assert a == ack(0x06, 0x8A), f"{what}: VALSET {k:08x} NAKed"
+        r.times.append((f"{what} VALSET {k:08x}", t - t1))
+    return wrong
+
+
+def ardupilot_f9_steps(s, fd, r, role=None, uart2=False):
+    """The F9 steps of the pass after MON-VER: STEP_TMODE, then for role
+    'base'/'rover' (GPS_TYPE 17/18) STEP_RTK_MOVBASE; each repeated until
+    a VALGET reads every key as wanted (at most 3 walks). Returns
+    {step: keys set on the first walk}."""
+    steps = [("TMODE", [(AP_TMODE_MODE, 0)])]
+    if role:
+        steps.append((f"MB {role}{' uart2' if uart2 else ''}", ardupilot_mb_list(role, uart2)))
+    out = {}
+    for what, pairs in steps:
+        out[what] = ardupilot_config_set(s, fd, pairs, r, what)
+        for _ in range(2):
+            if not ardupilot_config_set(s, fd, pairs, r, what):
+                break
+        else:
+            raise AssertionError(f"{what}: keys still differ after three walks")
+    return out
+
+
+def ardupilot_startup_f9p(s, fd, path, role=None, uart2=False, fix_limit_s=4.0):
+    """ArduPilot 4.5 against a ZED-F9P with GPS_TYPE 1 (role None), 17
+    ('base') or 18 ('rover'): the probe (460800 for 17/18 unless uart2),
+    the legacy pass of ardupilot_startup_m9 with MON-VER giving UBLOX_F9,
+    then ardupilot_f9_steps and CFG-CFG save; nothing NAKed. Returns
+    (Replies, MON-VER frame, {step: keys set})."""
+    mb_uart1 = role is not None and not uart2
+    r, mv = ardupilot_startup_m9(s, fd, path, fix_limit_s, probe=ARDUPILOT_PROBE_460800 if mb_uart1 else ARDUPILOT_PROBE,
+                                 baud=460800 if mb_uart1 else 230400, save=False)
+    sw, hw = mv[6:6 + 30], mv[6 + 30:6 + 40]
+    assert hw.startswith(b"00190000") and sw.startswith(b"EXT CORE 1"), f"not UBLOX_F9 to ArduPilot: {sw!r} {hw!r}"
+    set_keys = ardupilot_f9_steps(s, fd, r, role, uart2)
+    ardupilot_save(s, fd, r)
+    return r, mv, set_keys
 
 
 # --- reading what the host got -----------------------------------------------

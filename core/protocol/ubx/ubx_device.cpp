@@ -287,6 +287,19 @@ void Device::on_epoch(const receiver::Fix& fix, double now_s, const RawSource& r
     info_.ttff_ms = std::max<std::uint32_t>(1, info_.msss_ms);
   }
   info_.itfm = itfm_settings(current_);
+  if (generation() == Generation::kF9P) {
+    rtcm_out_.encode(fix, raw.epoch, [this](MsgId id) { return rtcm_wanted(id); });
+  }
+}
+
+bool Device::rtcm_wanted(MsgId id) const noexcept {
+  for (std::size_t o = 0; o < outputs(); ++o) {
+    for (std::uint8_t p = 0; p < kNumPorts; ++p) {
+      const std::size_t col = column(Link{o, p});
+      if ((current_.port(col).out_proto_mask & proto::kRtcm3) != 0 && due(col, id)) return true;
+    }
+  }
+  return false;
 }
 
 bool Device::due(std::size_t col, MsgId id) const noexcept {
@@ -333,6 +346,13 @@ void Device::compose(Link at, MessageList& out, Layout layout, FixOverride repor
     nmea_[at.output].encode_epoch(last_fix_, sentences, out.buffer(), &closer, reported);
   }
   if (layout == Layout::kLine) ubx_messages(false);
+  if ((current_.port(col).out_proto_mask & proto::kRtcm3) != 0) {
+    for (std::size_t i = 0; i < rtcm_out_.size(); ++i) {
+      if (!due(col, rtcm_out_.id(i))) continue;
+      out.buffer().append(rtcm_out_.bytes(i));
+      out.close(rtcm_out_.label(i), Protocol::kRtcm3);
+    }
+  }
 }
 
 void Device::raw_message(const PeriodicMessage& m, MessageList& out) const noexcept {

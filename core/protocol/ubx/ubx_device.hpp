@@ -36,6 +36,7 @@
 #include "core/protocol/ubx/ubx_message_table.hpp"
 #include "core/protocol/ubx/ubx_reset.hpp"
 #include "core/protocol/ubx/ubx_rtcm_input.hpp"
+#include "core/protocol/ubx/ubx_rtcm_output.hpp"
 #include "core/protocol/ubx/ubx_rxm.hpp"
 #include "core/receiver/fix.hpp"
 
@@ -260,6 +261,8 @@ private:
   bool valid(Link at) const noexcept { return at.output < outputs() && at.port_id < kNumPorts; }
   std::size_t column(Link at) const noexcept { return current_.column(at.output, at.port_id); }
   bool due(std::size_t column, MsgId id) const noexcept;
+  /// Some port sends id this epoch with RTCM 3 in its outProtoMask.
+  bool rtcm_wanted(MsgId id) const noexcept;
   /// Fill the change flags of r and the host's baud switch from before_ to current_.
   void diff(Link at, InputResult& r) const noexcept;
   void restart_navigation(double now_s) noexcept;
@@ -291,6 +294,7 @@ private:
   time::GpsTime last_raw_t_;
   DeviceStats stats_;
   RtcmInput rtcm_;  ///< RTCM 3 from the ports' hosts
+  RtcmOutput rtcm_out_;  ///< the F9P's own RTCM 3 of the last epoch (a moving base)
 };
 
 }  // namespace gnssemu::protocol::ubx

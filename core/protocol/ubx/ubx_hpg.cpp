@@ -124,7 +124,10 @@ std::size_t nav_relposned(const Fix& fix, std::string& out) {
   m.refStationId = static_cast<std::uint16_t>(std::clamp(r.ref_station_id, 0, 4095));
   std::uint32_t flags = 0;
   if (c.fix_ok) flags |= 1u << 0;
-  if (fix.diff_soln) flags |= 1u << 1;
+  // A relative position is differential by construction: with a moving base
+  // the rover's NAV-PVT stays standalone (diff_soln false) but RELPOSNED's
+  // baseline comes from the base's observations.
+  if (fix.diff_soln || r.valid) flags |= 1u << 1;
   if (r.valid) {
     const HpSplit n = hp_split(r.n_m, 1e-4), e = hp_split(r.e_m, 1e-4), d = hp_split(r.d_m, 1e-4),
                   len = hp_split(r.length_m, 1e-4);

@@ -12,7 +12,7 @@
 
 namespace gnssemu::protocol::ubx {
 
-enum class Protocol : std::uint8_t { kUbx, kNmea };
+enum class Protocol : std::uint8_t { kUbx, kNmea, kRtcm3 };
 
 class MessageList {
 public:
@@ -22,12 +22,13 @@ public:
     Protocol protocol = Protocol::kUbx;
   };
   /// Largest epoch: every periodic UBX message (24), NMEA sentence (7 plus
-  /// the GSV parts of every system) and an RXM-SFRBX per satellite in view.
-  static constexpr std::size_t kMaxMessages = 224;
+  /// the GSV parts of every system), an RXM-SFRBX per satellite in view
+  /// and the F9P's RTCM 3 output (11).
+  static constexpr std::size_t kMaxMessages = 240;
   /// Bytes of the largest epoch (UBX kMaxEpochBytes + nmea::kMaxEpochBytes,
   /// RXM-RAWX of every measurement (6.2 KB) and an SFRBX per satellite in
-  /// view (5.4 KB), rounded up).
-  static constexpr std::size_t kMaxBytes = 32768;
+  /// view (5.4 KB), the F9P's RTCM 3 output (8 KB), rounded up).
+  static constexpr std::size_t kMaxBytes = 40960;
 
   /// Reserves for the largest epoch: filling it never allocates.
   MessageList() {

@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "core/common/constants.hpp"
+#include "core/protocol/rtcm/rtcm_ublox.hpp"
 #include "core/protocol/ubx/ubx_device.hpp"
 #include "core/protocol/ubx/ubx_hpg.hpp"
 #include "core/protocol/ubx/ubx_message_table.hpp"
@@ -370,6 +371,62 @@ TEST(UbxF9p, HpMessagesGoOutWhereEnabledAndOnlyOnTheF9p) {
   Device m9(setup_of(Generation::kM9));
   Host hm9(m9);
   EXPECT_FALSE(hm9.acked(msg::kCfgValset, valset({{kHpposllhUart1, 1}})));
+}
+
+// ArduPilot's GPS_TYPE 17 list (docs/ubx.md "ArduPilot F9P"): RTCM 3 out on
+// UART1 and CFG-MSGOUT-RTCM_3X 4072.0 and 1077 there; each epoch then
+// carries them, framed, the 4072.0 with the fix's position. Off again
+// without RTCM 3 in the port's outProtoMask.
+TEST(UbxF9p, MovingBaseSendsTheRtcmItsKeysEnable) {
+  constexpr std::uint32_t kUart1OutRtcm = 0x10740004, k4072Uart1 = 0x209102FF, k1077Uart1 = 0x209102CD;
+  Device d(setup_of(Generation::kF9P));
+  Host h(d);
+  ASSERT_TRUE(h.acked(msg::kCfgValset, valset({{kUart1OutRtcm, 1}, {k4072Uart1, 1}, {k1077Uart1, 1}})));
+  receiver::RawEpoch raw;
+  raw.t_rx = time::GpsTime(2190, 345600.0);
+  raw.time_valid = true;
+  raw.num_meas = 5;
+  for (int i = 0; i < raw.num_meas; ++i) {
+    receiver::RawMeasurement& m = raw.meas[static_cast<std::size_t>(i)];
+    m.sat = SatId::gps(i + 1);
+    m.signal = SignalId::kGpsL1CA;
+    m.pseudorange_m = 2.1e7 + 1e5 * i;
+    m.carrier_phase_cycles = m.pseudorange_m / 0.19029367;
+    m.cn0_dbhz = 45.0;
+    m.lock_time_s = 60.0;
+    m.pseudorange_valid = m.carrier_valid = m.half_cycle_resolved = true;
+  }
+  const receiver::Fix fix = test::sample_fix();
+  const auto rtcm_of = [&](const MessageList& list) {
+    std::vector<std::pair<int, std::string>> out;  // message number, frame
+    for (const auto& m : list.messages()) {
+      if (m.protocol != Protocol::kRtcm3) continue;
+      const std::string b(list.bytes(m));
+      EXPECT_EQ(static_cast<std::uint8_t>(b[0]), 0xD3);
+      out.emplace_back((static_cast<std::uint8_t>(b[3]) << 4) | (static_cast<std::uint8_t>(b[4]) >> 4), b);
+    }
+    return out;
+  };
+  d.on_epoch(fix, 1.0, RawSource{&raw, nullptr, {}});
+  MessageList list;
+  d.compose(Link{}, list);
+  const auto got = rtcm_of(list);
+  ASSERT_EQ(got.size(), 2u);
+  EXPECT_EQ(got[0].first, 4072);
+  EXPECT_EQ(got[1].first, 1077);
+  const std::string& f = got[0].second;
+  const std::size_t len = (static_cast<std::uint8_t>(f[1]) & 3u) << 8 | static_cast<std::uint8_t>(f[2]);
+  const auto pvt = rtcm::decode_reference_pvt(
+      std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(f.data()) + 3, len));
+  ASSERT_TRUE(pvt.has_value());
+  EXPECT_EQ(pvt->tow_ms, 345600000u);
+  EXPECT_NEAR(pvt->arp_ecef_m.x, fix.pos_m.x, 1e-4);
+  EXPECT_NEAR(pvt->arp_ecef_m.z, fix.pos_m.z, 1e-4);
+  ASSERT_TRUE(h.acked(msg::kCfgValset, valset({{kUart1OutRtcm, 0}})));
+  raw.t_rx = time::GpsTime(2190, 345601.0);
+  d.on_epoch(fix, 2.0, RawSource{&raw, nullptr, {}});
+  d.compose(Link{}, list);
+  EXPECT_TRUE(rtcm_of(list).empty());
 }
 
 TEST(UbxF9p, RateLimitAndCapabilities) {
