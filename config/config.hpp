@@ -144,8 +144,10 @@ struct OutputPortConfig {
   PortTransport transport;        ///< the port type and its own settings
   /// Line rate, bit/s (8N1: 10 bits per byte). Applied on a serial port,
   /// recorded on a pty; sets the per-epoch byte budget. 0: no line (no
-  /// budget), allowed for file/tcp/udp only.
+  /// budget), allowed for file/tcp/udp only. Unset on a pty or serial
+  /// port: the generation's UART1 factory rate (settled after [receiver]).
   uint32_t baud = 9600;
+  bool baud_given = false;  ///< `baud` was in the file
   /// What the port's input accepts and what it sends: u-blox CFG-PRT
   /// inProtoMask / outProtoMask bits (protocol::ubx::proto).
   uint16_t protocols_in = protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea;

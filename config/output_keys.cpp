@@ -9,6 +9,7 @@
 #include "config/config_keys.hpp"
 #include "config/message_names.hpp"
 #include "core/common/error.hpp"
+#include "core/protocol/ubx/ubx_device_config.hpp"
 #include "core/protocol/ubx/ubx_message_table.hpp"
 
 namespace gnssemu::config {
@@ -280,6 +281,7 @@ void read_baud(TableReader& t, const Field<OutputPortConfig>& f, OutputPortConfi
                                bauds_text() + ")" + (line ? "" : " or 0 (no line budget)"));
   }
   port.baud = static_cast<uint32_t>(baud);
+  port.baud_given = t.find(f.key) != nullptr;
 }
 
 void write_baud(TomlWriter& w, const Field<OutputPortConfig>& f, const OutputPortConfig& port) {
@@ -498,7 +500,7 @@ constexpr Field<OutputPortConfig> kOutputFields[] = {
                              "line rate: applied on a serial port, recorded on a pty; sets the per-epoch byte budget "
                              "(10 bits per byte); 0 = no line, no budget",
                              read_baud, write_baud)
-        .default_doc("pty, serial: `9600`; others `0`"),
+        .default_doc("pty, serial: the chip's UART1 factory rate, `9600` (`m8`) or `38400` (`m9`, `f9p`); others `0`"),
     protocols_in_field(),
     custom<OutputPortConfig>("protocols_out", "", "subset of `\"ubx\"`, `\"nmea\"`",
                              "protocols the port may send (u-blox outProtoMask); hosts change it with CFG-PRT or "
@@ -573,6 +575,9 @@ void check_unique_port(TableReader& t, const std::vector<OutputPortConfig>& befo
 }
 
 void check_output_generation(TableReader& t, const Field<Config>&, Config& c) {
+  for (OutputPortConfig& p : c.outputs) {
+    if (!p.baud_given && is_line(p.type())) p.baud = protocol::ubx::DeviceConfig::factory_uart1_baud(c.generation);
+  }
   for (std::size_t i = 0; i < c.outputs.size(); ++i) {
     for (const MessageRate& m : c.outputs[i].ubx_messages) {
       const protocol::ubx::MsgId id{m.msg_class, m.msg_id};

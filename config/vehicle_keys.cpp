@@ -229,6 +229,7 @@ VehicleReceiverConfig read_receiver(TableReader& r, const Config& top) {
   Config ports = with_receiver_settings(Config{}, out.settings);
   ports.outputs = out.outputs;
   check_output_generation(r, Field<Config>{}, ports);
+  out.outputs = std::move(ports.outputs);  // with the generation's line rates
   r.finish(kReceiverTakes);
   return out;
 }
@@ -355,6 +356,7 @@ void read_fleet(TableReader& t, const Field<Config>& f, Config& c) {
   Config ports = c;
   ports.outputs = fleet.outputs;
   check_output_generation(*ft, Field<Config>{}, ports);
+  fleet.outputs = std::move(ports.outputs);  // with the generation's line rates
   ft->finish("[fleet] takes count and [[fleet.output]]");
   for (int i = 0; i < fleet.count; ++i) {
     for (const VehicleConfig& v : c.vehicles) {

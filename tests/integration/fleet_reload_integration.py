@@ -25,7 +25,7 @@ import sys
 import threading
 import time
 
-from itlib import RigBase, free_port, run_rig
+from itlib import RigBase, free_port, run_rig, enu_to_latlon as itlib_enu_to_latlon
 from ubx_host import frame
 
 ORIGIN = (48.8738, 2.2950, 100.0)
@@ -35,12 +35,7 @@ FIX_TOLERANCE_M = 15.0
 
 
 def enu_to_latlon(e, n):
-    lat0 = math.radians(ORIGIN[0])
-    a, f = 6378137.0, 1 / 298.257223563
-    e2 = f * (2 - f)
-    w = math.sqrt(1 - e2 * math.sin(lat0) ** 2)
-    return (ORIGIN[0] + math.degrees(n / (a * (1 - e2) / w ** 3 + ORIGIN[2])),
-            ORIGIN[1] + math.degrees(e / ((a / w + ORIGIN[2]) * math.cos(lat0))))
+    return itlib_enu_to_latlon(ORIGIN, e, n)
 
 
 def nmea_deg(v, hemi):

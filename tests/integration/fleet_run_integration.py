@@ -23,7 +23,7 @@ import time
 import urllib.error
 import urllib.request
 
-from itlib import RigBase, free_port, gpsd_daemon_main
+from itlib import RigBase, free_port, gpsd_daemon_main, enu_to_latlon as itlib_enu_to_latlon
 
 ORIGIN = (48.8738, 2.2950, 100.0)
 A_ENU = (120.0, -80.0)    # vehicle a, m east/north of the origin
@@ -35,12 +35,7 @@ UNKNOWN_IDS = 300
 
 
 def enu_to_latlon(e, n):
-    lat0 = math.radians(ORIGIN[0])
-    a, f = 6378137.0, 1 / 298.257223563
-    e2 = f * (2 - f)
-    w = math.sqrt(1 - e2 * math.sin(lat0) ** 2)
-    return (ORIGIN[0] + math.degrees(n / (a * (1 - e2) / w ** 3 + ORIGIN[2])),
-            ORIGIN[1] + math.degrees(e / ((a / w + ORIGIN[2]) * math.cos(lat0))))
+    return itlib_enu_to_latlon(ORIGIN, e, n)
 
 
 def horizontal_m(lat_a, lon_a, lat_b, lon_b):

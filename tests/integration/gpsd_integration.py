@@ -30,7 +30,7 @@ import sys
 import threading
 import time
 
-from itlib import RigBase, free_port
+from itlib import RigBase, free_port, enu_to_latlon as itlib_enu_to_latlon
 
 ORIGIN = (48.8738, 2.2950, 100.0)  # lat deg, lon deg, height m
 RADIUS_M = 50.0
@@ -47,15 +47,7 @@ GPS_MINUS_UTC_S = 18.0            # LEAP SECONDS in brdc0010.22n
 
 
 def enu_to_latlon(e, n):
-    """Small-offset ENU -> lat/lon (deg) at ORIGIN; < 1 mm error at 150 m."""
-    lat0 = math.radians(ORIGIN[0])
-    a, f = 6378137.0, 1 / 298.257223563
-    e2 = f * (2 - f)
-    w = math.sqrt(1 - e2 * math.sin(lat0) ** 2)
-    r_n = a / w
-    r_m = a * (1 - e2) / w ** 3
-    return (ORIGIN[0] + math.degrees(n / (r_m + ORIGIN[2])),
-            ORIGIN[1] + math.degrees(e / ((r_n + ORIGIN[2]) * math.cos(lat0))))
+    return itlib_enu_to_latlon(ORIGIN, e, n)
 
 
 def horizontal_m(lat_a, lon_a, lat_b, lon_b):

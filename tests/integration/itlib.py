@@ -3,6 +3,7 @@
 that owns its processes and temp dir and tears them down even on failure."""
 import argparse
 import json
+import math
 import os
 import queue
 import shutil
@@ -12,6 +13,19 @@ import subprocess
 import tempfile
 import threading
 import time
+
+
+def enu_to_latlon(origin, e, n):
+    """Small-offset ENU (m) -> lat/lon (deg) at origin (lat deg, lon deg, h m);
+    meridian and prime-vertical radii of WGS 84, < 1 mm error at 150 m."""
+    lat0 = math.radians(origin[0])
+    a, f = 6378137.0, 1 / 298.257223563
+    e2 = f * (2 - f)
+    w = math.sqrt(1 - e2 * math.sin(lat0) ** 2)
+    r_n = a / w
+    r_m = a * (1 - e2) / w ** 3
+    return (origin[0] + math.degrees(n / (r_m + origin[2])),
+            origin[1] + math.degrees(e / ((r_n + origin[2]) * math.cos(lat0))))
 
 
 def free_port(kind):

@@ -53,6 +53,10 @@ std::uint32_t section_of(MsgId id) noexcept {
 
 }  // namespace
 
+std::uint32_t DeviceConfig::factory_uart1_baud(Generation generation) noexcept {
+  return generation == Generation::kM8 ? 9600 : 38400;
+}
+
 DeviceConfig DeviceConfig::factory_defaults(std::size_t uarts, Generation generation) {
   DeviceConfig c;
   // Ports (NEO-M8N: DDC, UART1, USB, SPI; no UART2). UART 8N1 = mode 0x8C0.
@@ -61,17 +65,15 @@ DeviceConfig DeviceConfig::factory_defaults(std::size_t uarts, Generation genera
   for (std::uint8_t p = 0; p < kNumPorts; ++p) c.ports_[p].port_id = p;
   const std::uint16_t in = proto::kUbx | proto::kNmea | proto::kRtcm2;
   const std::uint16_t out = proto::kUbx | proto::kNmea;
-  const PortSettings uart1{kPortUart1, true, 0, 0x8C0, 9600, in, out, 0, false};
+  const PortSettings uart1{kPortUart1, true, 0, 0x8C0, factory_uart1_baud(generation), in, out, 0, false};
   c.ports_[kPortDdc] = {kPortDdc, true, 0, 0x42u << 1, 0, in, out, 0, false};
   c.ports_[kPortUsb] = {kPortUsb, true, 0, 0, 0, in, out, 0, false};
   c.ports_[kPortSpi] = {kPortSpi, true, 0, 0x100, 0, in, out, 0, false};
   for (std::size_t u = 0; u < c.uarts(); ++u) c.ports_[c.column(u, kPortUart1)] = uart1;
   if (generation == Generation::kF9P) {
-    // ZED-F9P: RTCM 3 in on every port, UART1 at 38400 (HPG 1.32
-    // CFG-*INPROT-RTCM3X, CFG-UART1-BAUDRATE defaults; reference/nmea0183.md).
+    // ZED-F9P: RTCM 3 in on every port (HPG 1.32 CFG-*INPROT-RTCM3X defaults).
     for (PortSettings& p : c.ports_)
       if (p.exists) p.in_proto_mask = static_cast<std::uint16_t>(p.in_proto_mask | proto::kRtcm3);
-    for (std::size_t u = 0; u < c.uarts(); ++u) c.ports_[c.column(u, kPortUart1)].baud_bps = 38400;
     // ZED-F9P UART2: 38400 8N1, RTCM 3 (and UBX) in, RTCM 3 out (HPG 1.32
     // CFG-UART2 and CFG-UART2IN/OUTPROT defaults; docs/ubx.md §ZED-F9P).
     c.ports_[kPortUart2] = {kPortUart2, true, 0, 0x8C0, 38400, proto::kUbx | proto::kRtcm3, proto::kRtcm3, 0, false};

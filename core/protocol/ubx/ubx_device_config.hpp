@@ -69,6 +69,9 @@ public:
   /// 1 Hz, GPS time; NAV5 portable/auto; the generation's factory CFG-GNSS
   /// (ubx_gnss.hpp: M8 GPS+GLONASS+QZSS+SBAS, NEO-M9N every system).
   static DeviceConfig factory_defaults(std::size_t uarts = 1, Generation generation = Generation::kM8);
+  /// UART1's factory line rate, bit/s: 9600 on the NEO-M8N, 38400 on the
+  /// NEO-M9N and ZED-F9P (reference/nmea0183.md §defaults).
+  static std::uint32_t factory_uart1_baud(Generation generation) noexcept;
 
   wire::CfgRate rate{};
   wire::CfgNav5 nav5{};

@@ -87,6 +87,20 @@ TEST(ConfigPorts, DefaultsAreAFactoryM8) {
   EXPECT_TRUE(p.nmea_rates.empty());
 }
 
+// An unset baud is the chip's UART1 factory rate: 9600 on the NEO-M8N,
+// 38400 on the NEO-M9N and ZED-F9P; a given one stays.
+TEST(ConfigPorts, UnsetBaudIsTheGenerationsFactoryRate) {
+  const std::string pty = "[[output]]\nname = \"a\"\npath = \"/tmp/a\"\n";
+  const std::string tcp = "[[output]]\nname = \"b\"\ntype = \"tcp\"\nport = 4001\n";
+  EXPECT_EQ(parse(kBase + "[receiver]\ngeneration = \"m9\"\n" + pty).outputs.at(0).baud, 38400u);
+  EXPECT_EQ(parse(kBase + "[receiver]\ngeneration = \"f9p\"\n" + pty).outputs.at(0).baud, 38400u);
+  EXPECT_EQ(parse(kBase + "[receiver]\ngeneration = \"m8\"\n" + pty).outputs.at(0).baud, 9600u);
+  EXPECT_EQ(parse(kBase + "[receiver]\ngeneration = \"m9\"\n" + pty + "baud = 9600\n").outputs.at(0).baud, 9600u);
+  EXPECT_EQ(parse(kBase + "[receiver]\ngeneration = \"m9\"\n" + tcp).outputs.at(0).baud, 0u);  // no line
+  const Config m9 = parse(kBase + "[receiver]\ngeneration = \"m9\"\n" + pty);
+  EXPECT_EQ(parse(to_toml(m9, kData)).outputs.at(0).baud, 38400u);
+}
+
 TEST(ConfigPorts, RoundTrip) {
   const Config c = parse(kAllTypes);
   const Config back = parse(to_toml(c, kData));

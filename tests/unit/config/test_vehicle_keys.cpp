@@ -48,6 +48,18 @@ TEST(VehicleKeys, SingleVehicleFormIsOneVehicleWithOneReceiver) {
   EXPECT_EQ(resolve_vehicles(parse(kBase))[0].id, "");  // any vehicle
 }
 
+TEST(VehicleKeys, UnsetBaudIsTheReceiversGenerationsFactoryRate) {
+  const std::vector<VehicleConfig> v = resolve_vehicles(parse(kTwoVehicles + "[[vehicle.receiver]]\n"
+                                                                             "name = \"gps2\"\n"
+                                                                             "generation = \"f9p\"\n"
+                                                                             "[[vehicle.receiver.output]]\n"
+                                                                             "name = \"a\"\n"
+                                                                             "path = \"/tmp/gnssemu/wing/gps2\"\n"));
+  EXPECT_EQ(v.at(0).receivers.at(0).outputs.at(0).baud, 9600u);   // m8 from the top level
+  EXPECT_EQ(v.at(0).receivers.at(1).outputs.at(0).baud, 0u);      // m9 over tcp: no line
+  EXPECT_EQ(v.at(1).receivers.at(1).outputs.at(0).baud, 38400u);  // f9p pty
+}
+
 TEST(VehicleKeys, ReceiversMergeTheirKeysOverTheTopLevel) {
   const Config c = parse(kTwoVehicles);
   EXPECT_TRUE(c.outputs.empty());
