@@ -3,9 +3,11 @@
 """The shipped multi-GNSS nav file (config/nav/README.md) from an IGS merged
 broadcast file (RINEX 3 `MN`, e.g. shared/data/nav/BRDC00IGS_R_20240100000_01D_MN.rnx.gz):
 
-  - systems G, R, E, C, J kept; NavIC (I) and SBAS (S) records dropped (SBAS
-    messages are valid for minutes, so they are most of the file; NavIC is
-    not modelled);
+  - systems G, R, E, C, J, S kept; NavIC (I) records dropped (not modelled);
+  - SBAS: a GEO's record serves |t - toc| <= 360 s (RTKLIB MAXDTOE_S, the
+    store's rule), and the source has one every 16-256 s; per GEO the first
+    is kept, then the last one less than SBAS_SPAN_S after the last kept, so
+    that the kept windows still cover the day without a gap;
   - a record listed twice (same text: the merge of several stations) kept once;
   - Galileo: I/NAV records only (data-source bit 9, what the store uses); of
     several with one toe the first transmitted (the store's choice); and per
@@ -22,7 +24,8 @@ import calendar
 import gzip
 import sys
 
-KEEP = set("GRECJ")
+KEEP = set("GRECJS")
+SBAS_SPAN_S = 700  # < 2 x 360 s: neighbouring windows overlap
 
 
 def records(lines):
@@ -64,6 +67,24 @@ def thin_hourly(recs):
     return out
 
 
+def thin_sbas(recs):
+    """Per GEO (records in toc order): the first, then the latest one within SBAS_SPAN_S of the last kept."""
+    out = []
+    by_sat = {}
+    for rec in sorted(recs, key=lambda r: (r[0][:3], toc_s(r))):
+        by_sat.setdefault(rec[0][:3], []).append(rec)
+    for sat_recs in by_sat.values():
+        kept = [sat_recs[0]]
+        for i, rec in enumerate(sat_recs[1:], 1):
+            nxt = sat_recs[i + 1] if i + 1 < len(sat_recs) else None
+            # Keep rec when the next one would be too far from the last kept.
+            if nxt is None or toc_s(nxt) - toc_s(kept[-1]) > SBAS_SPAN_S:
+                if toc_s(rec) != toc_s(kept[-1]):
+                    kept.append(rec)
+        out.extend(kept)
+    return out
+
+
 def main(src, dst):
     text = gzip.open(src, "rt").read().splitlines()
     end = next(i for i, l in enumerate(text) if l[60:].strip() == "END OF HEADER")
@@ -74,7 +95,7 @@ def main(src, dst):
                 continue
             seen_bds.add(line[:4])
         header.append(line)
-    kept, seen, galileo = [], set(), {}
+    kept, seen, galileo, sbas = [], set(), {}, []
     for rec in records(text[end + 1:]):
         sys_letter = rec[0][0]
         if sys_letter not in KEEP:
@@ -85,6 +106,9 @@ def main(src, dst):
         seen.add(key)
         if sys_letter == "E" and not inav(rec):
             continue
+        if sys_letter == "S":
+            sbas.append(rec)
+            continue
         if sys_letter == "E":
             k = rec[0][:23]  # satellite and toc
             if k in galileo and field(galileo[k][7], 0) <= field(rec[7], 0):
@@ -93,7 +117,8 @@ def main(src, dst):
             continue
         kept.append(rec)
     kept.extend(thin_hourly(galileo.values()))
-    order = "GRECJ"
+    kept.extend(thin_sbas(sbas))
+    order = "GRECJS"
     kept.sort(key=lambda r: (order.index(r[0][0]), r[0][:3]))  # stable: file order within a satellite
     out, counts = [], {}
     for rec in kept:
@@ -101,7 +126,7 @@ def main(src, dst):
         counts[rec[0][0]] = counts.get(rec[0][0], 0) + 1
     with open(dst, "wb") as raw, gzip.GzipFile(filename="", mode="wb", fileobj=raw, mtime=0) as f:
         f.write(("\n".join(header + out) + "\n").encode("ascii"))
-    print(" ".join(f"{s}{counts.get(s, 0)}" for s in "GRECJ"), "records")
+    print(" ".join(f"{s}{counts.get(s, 0)}" for s in order), "records")
 
 
 if __name__ == "__main__":

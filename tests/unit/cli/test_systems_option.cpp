@@ -155,11 +155,11 @@ TEST(SystemsOption, BatchTracksTheConfiguredOrChosenSystems) {
   std::string truth = "gps_week,tow_s,lat_deg,lon_deg,height_m\n";
   for (int k = 0; k <= 20; ++k) truth += "2296," + std::to_string(302400 + k) + ",48.8738,2.295,100\n";  // 2024-01-10 12:00
   const std::string truth_path = dir.write("truth.csv", truth);
-  // No constellations: every system in the sky, the M8 tracking its factory set (GPS, GLONASS, QZSS, SBAS; the
-  // nav has no SBAS, QZSS is not above Paris).
+  // No constellations: every system in the sky, the M8 tracking its factory set (GPS, GLONASS, QZSS, SBAS;
+  // QZSS is not above Paris).
   const CliResult m8 = run({"batch", "--config", cfg, "--truth", truth_path, "--sats", "-"});
   ASSERT_EQ(m8.status, 0) << m8.err;
-  EXPECT_EQ(systems_in(parse_csv(m8.out)), (std::set<char>{'G', 'R'}));
+  EXPECT_EQ(systems_in(parse_csv(m8.out)), (std::set<char>{'G', 'R', 'S'}));
   EXPECT_NE(m8.err.find("systems G,R,E,C,J,S in the sky, the chip tracks G,R,J,S"), std::string::npos) << m8.err;
   const CliResult gps = run({"batch", "--config", cfg, "--truth", truth_path, "--sats", "-", "--systems", "G"});
   ASSERT_EQ(gps.status, 0) << gps.err;

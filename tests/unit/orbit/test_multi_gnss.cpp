@@ -361,11 +361,11 @@ TEST(NavSystems, SystemsOfTheData) {
   EXPECT_TRUE(systems_of(NavData{}).empty());
 }
 
-// The shipped default nav data (config/nav): GPS, GLONASS, Galileo, BeiDou
-// and QZSS, every satellite's sets covering the whole day.
-TEST(NavSystems, ShippedDefaultHoldsFiveSystems) {
+// The shipped default nav data (config/nav): GPS, GLONASS, Galileo, BeiDou,
+// QZSS and the SBAS GEOs, every satellite's sets covering the whole day.
+TEST(NavSystems, ShippedDefaultHoldsEverySystem) {
   const NavData d = read_rinex_nav(std::string(GNSSEMU_SOURCE_DIR) + "/config/nav/BRDC00IGS_R_20240100000_01D_MN_gnssemu.rnx.gz");
-  EXPECT_EQ(systems_of(d), SystemSet::all().without(GnssSystem::kSbas));
+  EXPECT_EQ(systems_of(d), SystemSet::all());
   EXPECT_EQ(d.skipped_records, 0);
   const EphemerisStore store(d.ephemerides);
   std::array<int, kNumSystems> healthy{};
@@ -378,6 +378,25 @@ TEST(NavSystems, ShippedDefaultHoldsFiveSystems) {
   EXPECT_GE(healthy[2], 22);  // E
   EXPECT_GE(healthy[3], 40);  // C
   EXPECT_GE(healthy[4], 3);   // J
+  EXPECT_GE(healthy[5], 8);   // S
+}
+
+// The thinned SBAS records (tools/make_default_nav.py) leave no gap: every
+// GEO healthy at 00:10 stays selectable every 30 s until 23:50.
+TEST(NavSystems, ShippedDefaultSbasCoversTheDay) {
+  const NavData d = read_rinex_nav(std::string(GNSSEMU_SOURCE_DIR) + "/config/nav/BRDC00IGS_R_20240100000_01D_MN_gnssemu.rnx.gz");
+  const EphemerisStore store(d.ephemerides);
+  const time::GpsTime day(2296, 3 * 86400.0);  // 2024-01-10 00:00 GPST
+  int geos = 0;
+  for (int i = 0; i < kNumSats; ++i) {
+    const SatId sat = SatId::from_index(i);
+    if (sat.system != GnssSystem::kSbas || store.select(sat, day + 600.0) == nullptr) continue;
+    ++geos;
+    int gaps = 0;
+    for (double t = 600.0; t <= 86400.0 - 600.0; t += 30.0) gaps += store.select(sat, day + t) == nullptr ? 1 : 0;
+    EXPECT_EQ(gaps, 0) << sat.number;
+  }
+  EXPECT_GE(geos, 8);
 }
 
 // The shipped default moved to a later date serves every system at the
@@ -402,5 +421,6 @@ TEST(NavSystems, ShippedDefaultServesEverySystemDaysOn) {
     EXPECT_GE(n[2], 22) << later_s;
     EXPECT_GE(n[3], 40) << later_s;
     EXPECT_GE(n[4], 3) << later_s;
+    EXPECT_GE(n[5], 8) << later_s;  // SBAS GEOs held past the data
   }
 }
