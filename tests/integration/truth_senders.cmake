@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-# Truth senders (docs/truth-protocol.md): binary truth from the C++ sender
+# Truth senders (docs/truth-protocol.md, docs/sitl.md): binary truth from the C++ sender
 # through gnssemud to NMEA on a pty, and the CARLA example's self-test.
 # Included from tests/integration/CMakeLists.txt, after Python3 is found.
 foreach(case static mixed flood)
@@ -18,3 +18,15 @@ endforeach()
 add_test(NAME senders.carla_truth_self_test
   COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/senders/carla_truth.py --self-test)
 set_tests_properties(senders.carla_truth_self_test PROPERTIES LABELS unit TIMEOUT 30)
+
+# Autopilot SITL truth (MAVLink SIM_STATE) through mavlink_truth.py into a
+# three-vehicle fleet (docs/sitl.md); the bridge's frame parser on its own.
+add_test(NAME integration.truth.sitl_bridge
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/sitl_bridge_integration.py
+    --gnssemud $<TARGET_FILE:gnssemud>
+    --bridge ${PROJECT_SOURCE_DIR}/tools/senders/mavlink_truth.py
+    --nav ${PROJECT_SOURCE_DIR}/config/nav/BRDC00IGS_R_20240100000_01D_MN_gnssemu.rnx.gz)
+set_tests_properties(integration.truth.sitl_bridge PROPERTIES LABELS integration TIMEOUT 120)
+add_test(NAME senders.mavlink_truth_self_test
+  COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/senders/mavlink_truth.py --self-test)
+set_tests_properties(senders.mavlink_truth_self_test PROPERTIES LABELS unit TIMEOUT 30)
