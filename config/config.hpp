@@ -148,6 +148,7 @@ struct OutputPortConfig {
   /// port: the generation's UART1 factory rate (settled after [receiver]).
   uint32_t baud = 9600;
   bool baud_given = false;  ///< `baud` was in the file
+  bool nmea_version_given = false;  ///< `nmea_version` was in the file (else the chip's factory version)
   /// What the port's input accepts and what it sends: u-blox CFG-PRT
   /// inProtoMask / outProtoMask bits (protocol::ubx::proto).
   uint16_t protocols_in = protocol::ubx::proto::kUbx | protocol::ubx::proto::kNmea;

@@ -37,7 +37,8 @@ std::string claimed_path(const PortTransport& transport);
 /// Every port's ubx_messages exist on [receiver] generation (NAV-SVINFO up
 /// to the M8, MON-RF and SEC-SIG from the M9). Throws naming the message's
 /// line in the [[output]] that lists it. Gives a pty or serial port without
-/// `baud` the generation's UART1 factory rate.
+/// `baud` the generation's UART1 factory rate, and a port without
+/// `nmea_version` the generation's factory NMEA version.
 void check_output_generation(TableReader& t, const Field<Config>& f, Config& c);
 
 /// [[vehicle]] (vehicle_keys.cpp): read after [receiver], [atmosphere] and

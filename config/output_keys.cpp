@@ -492,6 +492,18 @@ constexpr Field<OutputPortConfig> rates_field() {
   return row;
 }
 
+void read_nmea_version(TableReader& t, const Field<OutputPortConfig>& f, OutputPortConfig& port) {
+  read_choice<OutputPortConfig, kNmeaVersions, ChoiceStyle::kOneOf>(t, f, port);
+  port.nmea_version_given = t.find(f.key) != nullptr;
+}
+
+constexpr Field<OutputPortConfig> nmea_version_field(std::string_view meaning) {
+  Field<OutputPortConfig> row =
+      choice<kNmeaVersions, &OutputPortConfig::nmea, &protocol::nmea::NmeaConfig::version>("nmea_version", meaning);
+  row.read = read_nmea_version;
+  return row.default_doc("the chip's factory version: `4.0` for `m8`, `4.10` for `m9` and `f9p` (as the real logs)");
+}
+
 constexpr Field<OutputPortConfig> kOutputFields[] = {
     custom<OutputPortConfig>("name", "", "non-empty, no spaces", "name in logs; unique", read_name, write_name)
         .needed(),
@@ -510,8 +522,8 @@ constexpr Field<OutputPortConfig> kOutputFields[] = {
                              "periodic UBX messages at rate 1 (u-blox factory default: none); hosts change them with "
                              "CFG-MSG",
                              read_ubx_messages, write_ubx_messages),
-    choice<kNmeaVersions, &OutputPortConfig::nmea, &protocol::nmea::NmeaConfig::version>(
-        "nmea_version", "NMEA 0183 version of the sentences (must be a string: `4.11` unquoted is a float and "
+    nmea_version_field(
+        "NMEA 0183 version of the sentences (must be a string: `4.11` unquoted is a float and "
                         "rejected)"),
     custom<OutputPortConfig>("sentences", "", sentence_names,
                              "sentences sent each epoch; the order in the file does not matter, they go out in "
@@ -577,6 +589,9 @@ void check_unique_port(TableReader& t, const std::vector<OutputPortConfig>& befo
 void check_output_generation(TableReader& t, const Field<Config>&, Config& c) {
   for (OutputPortConfig& p : c.outputs) {
     if (!p.baud_given && is_line(p.type())) p.baud = protocol::ubx::DeviceConfig::factory_uart1_baud(c.generation);
+    if (!p.nmea_version_given) {
+      p.nmea.version = protocol::nmea::factory_settings(protocol::ubx::nmea_device(c.generation)).version;
+    }
   }
   for (std::size_t i = 0; i < c.outputs.size(); ++i) {
     for (const MessageRate& m : c.outputs[i].ubx_messages) {

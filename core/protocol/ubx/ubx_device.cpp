@@ -22,9 +22,7 @@ std::vector<nmea::NmeaEncoder> nmea_encoders(const DeviceSetup& setup) {
   out.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     nmea::NmeaConfig c;
-    c.device = setup.mon_ver.generation == Generation::kM8   ? nmea::NmeaDevice::kM8
-               : setup.mon_ver.generation == Generation::kM9 ? nmea::NmeaDevice::kM9
-                                                             : nmea::NmeaDevice::kF9;
+    c.device = nmea_device(setup.mon_ver.generation);
     if (i < setup.outputs.size()) {
       c.version = setup.outputs[i].nmea_version;
       c.course_min_speed_m_s = setup.outputs[i].course_min_speed_m_s;

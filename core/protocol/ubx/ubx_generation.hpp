@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <string_view>
 
+#include "core/protocol/nmea/nmea_settings.hpp"
+
 namespace gnssemu::protocol::ubx {
 
 enum class Generation : std::uint8_t {
@@ -31,6 +33,12 @@ constexpr bool has_config_interface(Generation g) noexcept { return g != Generat
 /// A u-blox 9 (protocol 27+): the M9's and F9P's conventions where they
 /// differ from the M8's (sigIds, NMEA 4.10, MON-RF).
 constexpr bool is_generation9(Generation g) noexcept { return g != Generation::kM8; }
+
+/// The NMEA conventions of the generation's firmware (GSV signal ids, factory
+/// NMEA version: nmea::factory_settings).
+constexpr nmea::NmeaDevice nmea_device(Generation g) noexcept {
+  return g == Generation::kM8 ? nmea::NmeaDevice::kM8 : g == Generation::kM9 ? nmea::NmeaDevice::kM9 : nmea::NmeaDevice::kF9;
+}
 
 /// Two RF front ends (L1 and L2/L5 band): MON-RF blocks, NAV-SIG bands.
 constexpr bool is_dual_band(Generation g) noexcept { return g == Generation::kF9P; }

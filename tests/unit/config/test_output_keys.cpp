@@ -101,6 +101,23 @@ TEST(ConfigPorts, UnsetBaudIsTheGenerationsFactoryRate) {
   EXPECT_EQ(parse(to_toml(m9, kData)).outputs.at(0).baud, 38400u);
 }
 
+// An unset nmea_version is the chip's factory version (the real logs: MAX-M8Q
+// 4.0, NEO-M9N and ZED-F9P 4.10); a given one stays, and survives to_toml.
+TEST(ConfigPorts, UnsetNmeaVersionIsTheGenerationsFactoryVersion) {
+  using protocol::nmea::NmeaVersion;
+  const std::string pty = "[[output]]\nname = \"a\"\npath = \"/tmp/a\"\n";
+  const auto version = [&](const std::string& gen, const std::string& extra) {
+    return parse(kBase + "[receiver]\ngeneration = \"" + gen + "\"\n" + pty + extra).outputs.at(0).nmea.version;
+  };
+  EXPECT_EQ(version("m8", ""), NmeaVersion::k40);
+  EXPECT_EQ(version("m9", ""), NmeaVersion::k410);
+  EXPECT_EQ(version("f9p", ""), NmeaVersion::k410);
+  EXPECT_EQ(version("m8", "nmea_version = \"4.11\"\n"), NmeaVersion::k411);
+  EXPECT_EQ(version("m9", "nmea_version = \"2.3\"\n"), NmeaVersion::k23);
+  const Config m9 = parse(kBase + "[receiver]\ngeneration = \"m9\"\n" + pty);
+  EXPECT_EQ(parse(to_toml(m9, kData)).outputs.at(0).nmea.version, NmeaVersion::k410);
+}
+
 TEST(ConfigPorts, RoundTrip) {
   const Config c = parse(kAllTypes);
   const Config back = parse(to_toml(c, kData));
