@@ -23,7 +23,7 @@
 #include "core/orbit/rinex_nav.hpp"
 #include "core/pipeline/pipeline.hpp"
 #include "core/pipeline/receiver_profile.hpp"
-#include "core/protocol/ubx/ubx_encoder.hpp"
+#include "core/protocol/ubx/wire/ubx_encoder.hpp"
 #include "tests/support/alloc_counter.hpp"
 
 namespace {

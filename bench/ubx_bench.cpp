@@ -15,9 +15,9 @@
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
-#include "core/protocol/ubx/ubx_decoder.hpp"
+#include "core/protocol/ubx/wire/ubx_decoder.hpp"
 #include "core/pipeline/pipeline.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
 #include "tests/support/alloc_counter.hpp"
 
 namespace {

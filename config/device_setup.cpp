@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "core/protocol/ubx/ubx_gnss.hpp"
-#include "core/protocol/ubx/ubx_hpg.hpp"
+#include "core/protocol/ubx/config/ubx_gnss.hpp"
+#include "core/protocol/ubx/config/ubx_hpg.hpp"
 
 namespace gnssemu::config {
 

@@ -4,7 +4,7 @@
 // [[output]] is one UART1 of one chip (docs/ports.md), set up as its
 // section says and saved as the chip's stored configuration.
 #include "config/config.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
 #include "core/receiver/receiver.hpp"
 
 namespace gnssemu::config {

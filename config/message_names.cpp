@@ -4,7 +4,7 @@
 #include <array>
 
 #include "core/protocol/nmea/nmea_sentences.hpp"
-#include "core/protocol/ubx/ubx_message_table.hpp"
+#include "core/protocol/ubx/wire/ubx_message_table.hpp"
 
 namespace gnssemu::config {
 namespace {

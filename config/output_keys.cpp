@@ -9,8 +9,8 @@
 #include "config/config_keys.hpp"
 #include "config/message_names.hpp"
 #include "core/common/error.hpp"
-#include "core/protocol/ubx/ubx_device_config.hpp"
-#include "core/protocol/ubx/ubx_message_table.hpp"
+#include "core/protocol/ubx/config/ubx_device_config.hpp"
+#include "core/protocol/ubx/wire/ubx_message_table.hpp"
 
 namespace gnssemu::config {
 

@@ -14,7 +14,7 @@
 #include "config/device_setup.hpp"
 #include "core/common/vec3.hpp"
 #include "core/pipeline/pipeline.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
 #include "core/world/truth.hpp"
 #include "daemon/fault_log.hpp"
 #include "daemon/ports/port_channel.hpp"

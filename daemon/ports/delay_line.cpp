@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "core/protocol/ubx/ubx_message_list.hpp"
+#include "core/protocol/ubx/wire/ubx_message_list.hpp"
 
 namespace gnssemu::daemon {
 

@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "core/protocol/ubx/ubx_message_list.hpp"
+#include "core/protocol/ubx/wire/ubx_message_list.hpp"
 
 namespace gnssemu::daemon {
 

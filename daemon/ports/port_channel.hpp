@@ -20,8 +20,8 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include "core/faults/fault_stage.hpp"
-#include "core/protocol/ubx/ubx_decoder.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
+#include "core/protocol/ubx/wire/ubx_decoder.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
 #include "daemon/ports/delay_line.hpp"
 #include "daemon/ports/link_faults.hpp"
 #include "daemon/ports/output_port.hpp"

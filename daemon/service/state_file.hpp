@@ -5,7 +5,7 @@
 // configuration"). The text format is the core's (DeviceConfig::to_text).
 #include <string>
 
-#include "core/protocol/ubx/ubx_device.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
 
 namespace gnssemu::daemon {
 

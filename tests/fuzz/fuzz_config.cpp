@@ -16,7 +16,7 @@
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
 #include "fuzz_support.hpp"
 
 namespace {

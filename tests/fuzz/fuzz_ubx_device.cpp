@@ -17,8 +17,8 @@
 
 #include "core/common/constants.hpp"
 #include "core/orbit/ephemeris_store.hpp"
-#include "core/protocol/ubx/ubx_decoder.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
+#include "core/protocol/ubx/wire/ubx_decoder.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
 #include "fuzz_support.hpp"
 
 namespace {

@@ -36,6 +36,8 @@ Rules project_rules() {
       // Navigation messages re-encoded from the broadcast ephemerides (RXM-SFRBX).
       {"navmsg", "core/protocol/navmsg", {"orbit"}, {}},
       // RTCM 3 arrives on a u-blox port beside UBX and NMEA (RXM-RTCM).
+      // Its rooms (wire, config, handlers, device) are one layer: encoders
+      // read the configuration and handlers answer with encoders.
       {"ubx", "core/protocol/ubx", {"nmea", "navmsg", "rtcm"},
        {"core/receiver/raw_measurements.hpp", "core/receiver/corrections.hpp"}},
       // RINEX writers: the receiver's raw measurements (plain data) and the nav data.

@@ -158,7 +158,7 @@ TEST(ProjectLayers, PlantedIncludesUpTheLayersAreFound) {
   EXPECT_TRUE(bad("core/signal/tracking.cpp", "\"core/world/world.hpp\""));
   EXPECT_TRUE(bad("core/world/world.cpp", "\"core/receiver/fix.hpp\""));
   EXPECT_TRUE(bad("core/protocol/nmea/nmea_encoder.hpp", "\"core/receiver/receiver.hpp\""));
-  EXPECT_TRUE(bad("core/protocol/nmea/nmea_encoder.hpp", "\"core/protocol/ubx/ubx_frame.hpp\""));
+  EXPECT_TRUE(bad("core/protocol/nmea/nmea_encoder.hpp", "\"core/protocol/ubx/wire/ubx_frame.hpp\""));
   EXPECT_TRUE(bad("core/receiver/receiver.cpp", "\"config/config.hpp\""));
   EXPECT_TRUE(bad("config/config.cpp", "\"daemon/daemon.hpp\""));
   EXPECT_TRUE(bad("daemon/daemon.cpp", "\"tools/gnssemu/batch.hpp\""));
@@ -180,7 +180,9 @@ TEST(ProjectLayers, DocumentedEdgesPass) {
   EXPECT_TRUE(good("core/world/world.hpp", "\"core/scene/scene.hpp\""));
   EXPECT_TRUE(good("core/receiver/receiver.hpp", "\"core/world/world.hpp\""));
   EXPECT_TRUE(good("core/protocol/nmea/nmea_encoder.hpp", "\"core/receiver/fix.hpp\""));
-  EXPECT_TRUE(good("core/protocol/ubx/ubx_encoder.hpp", "\"core/receiver/fix.hpp\""));
+  EXPECT_TRUE(good("core/protocol/ubx/wire/ubx_encoder.hpp", "\"core/receiver/fix.hpp\""));
+  EXPECT_TRUE(good("core/protocol/ubx/wire/ubx_encoder.cpp", "\"core/protocol/ubx/config/ubx_gnss.hpp\""));
+  EXPECT_TRUE(good("core/protocol/ubx/config/ubx_device_config.cpp", "\"core/protocol/ubx/wire/ubx_encoder.hpp\""));
   EXPECT_TRUE(good("daemon/daemon.cpp", "<boost/asio.hpp>"));
   EXPECT_TRUE(good("tools/gnssemu/sky.cpp", "\"daemon/truth_track.hpp\""));
   EXPECT_TRUE(good("tests/unit/nmea/test_nmea_alloc.cpp", "\"tests/support/alloc_counter.hpp\""));

@@ -16,7 +16,7 @@
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
 #include "core/statistics/statistics.hpp"
 
 namespace gnssemu::cli {

@@ -26,7 +26,7 @@
 #include "core/orbit/constellation.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
-#include "core/protocol/ubx/ubx_gnss.hpp"
+#include "core/protocol/ubx/config/ubx_gnss.hpp"
 #include "core/scene/scene.hpp"
 #include "tools/gnssemu/base_command.hpp"
 #include "tools/gnssemu/batch.hpp"

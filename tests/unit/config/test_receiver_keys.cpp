@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "config/device_setup.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
 #include "test_helpers.hpp"
 
 namespace gnssemu::config::test::receiver_keys_test {

@@ -11,8 +11,8 @@
 
 #include "config/device_setup.hpp"
 #include "core/common/constants.hpp"
-#include "core/protocol/ubx/ubx_frame.hpp"
-#include "core/protocol/ubx/ubx_message_table.hpp"
+#include "core/protocol/ubx/wire/ubx_frame.hpp"
+#include "core/protocol/ubx/wire/ubx_message_table.hpp"
 #include "daemon/ports/port_channel.hpp"
 
 namespace gnssemu::daemon::test {

@@ -14,8 +14,8 @@
 #include <spdlog/spdlog.h>
 
 #include "config/device_setup.hpp"
-#include "core/protocol/ubx/ubx_frame.hpp"
-#include "core/protocol/ubx/ubx_message_table.hpp"
+#include "core/protocol/ubx/wire/ubx_frame.hpp"
+#include "core/protocol/ubx/wire/ubx_message_table.hpp"
 #include "daemon/ports/port_channel.hpp"
 #include "daemon/ports/tx_budget.hpp"
 #include "tests/support/alloc_counter.hpp"

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "core/protocol/ubx/ubx_decoder.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
-#include "core/protocol/ubx/ubx_message_table.hpp"
+#include "core/protocol/ubx/wire/ubx_decoder.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
+#include "core/protocol/ubx/wire/ubx_message_table.hpp"
 #include "tests/support/alloc_counter.hpp"
 #include "ubx_test_util.hpp"
 

@@ -3,7 +3,7 @@
 // settings, whichever output a host is on.
 #include <gtest/gtest.h>
 
-#include "core/protocol/ubx/ubx_handlers.hpp"
+#include "core/protocol/ubx/handlers/ubx_handlers.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

@@ -3,7 +3,7 @@
 // the asking host's own UART1, the other ports are the chip's.
 #include <gtest/gtest.h>
 
-#include "core/protocol/ubx/ubx_handlers.hpp"
+#include "core/protocol/ubx/handlers/ubx_handlers.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

@@ -3,8 +3,8 @@
 // configuration is the whole chip's, every output's UART1 included.
 #include <gtest/gtest.h>
 
-#include "core/protocol/ubx/ubx_handlers.hpp"
-#include "core/protocol/ubx/ubx_reset.hpp"
+#include "core/protocol/ubx/handlers/ubx_handlers.hpp"
+#include "core/protocol/ubx/config/ubx_reset.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

@@ -6,7 +6,7 @@
 
 #include <algorithm>
 
-#include "core/protocol/ubx/ubx_handlers.hpp"
+#include "core/protocol/ubx/handlers/ubx_handlers.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/protocol/ubx/ubx_config_keys.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
+#include "core/protocol/ubx/config/ubx_config_keys.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

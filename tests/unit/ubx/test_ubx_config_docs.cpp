@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "core/protocol/ubx/ubx_config_keys.hpp"
+#include "core/protocol/ubx/config/ubx_config_keys.hpp"
 
 namespace gnssemu::protocol::ubx {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/protocol/ubx/ubx_decoder.hpp"
+#include "core/protocol/ubx/wire/ubx_decoder.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

@@ -8,9 +8,9 @@
 #include <cstring>
 #include <string>
 
-#include "core/protocol/ubx/ubx_decoder.hpp"
-#include "core/protocol/ubx/ubx_messages.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
+#include "core/protocol/ubx/wire/ubx_decoder.hpp"
+#include "core/protocol/ubx/wire/ubx_messages.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

@@ -6,7 +6,7 @@
 
 #include <random>
 
-#include "core/protocol/ubx/ubx_device.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

@@ -9,8 +9,8 @@
 
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
-#include "core/protocol/ubx/ubx_encoder.hpp"
-#include "core/protocol/ubx/ubx_messages.hpp"
+#include "core/protocol/ubx/wire/ubx_encoder.hpp"
+#include "core/protocol/ubx/wire/ubx_messages.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

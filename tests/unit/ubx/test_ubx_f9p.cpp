@@ -10,10 +10,10 @@
 
 #include "core/common/constants.hpp"
 #include "core/protocol/rtcm/rtcm_ublox.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
-#include "core/protocol/ubx/ubx_hpg.hpp"
-#include "core/protocol/ubx/ubx_message_table.hpp"
-#include "core/protocol/ubx/ubx_messages.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
+#include "core/protocol/ubx/config/ubx_hpg.hpp"
+#include "core/protocol/ubx/wire/ubx_message_table.hpp"
+#include "core/protocol/ubx/wire/ubx_messages.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

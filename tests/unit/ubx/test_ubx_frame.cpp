@@ -3,9 +3,9 @@
 // shared/reference/ubx.md §1 (each recomputed by hand there).
 #include <gtest/gtest.h>
 
-#include "core/protocol/ubx/ubx_encoder.hpp"
-#include "core/protocol/ubx/ubx_frame.hpp"
-#include "core/protocol/ubx/ubx_messages.hpp"
+#include "core/protocol/ubx/wire/ubx_encoder.hpp"
+#include "core/protocol/ubx/wire/ubx_frame.hpp"
+#include "core/protocol/ubx/wire/ubx_messages.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "core/common/error.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
-#include "core/protocol/ubx/ubx_gnss.hpp"
-#include "core/protocol/ubx/ubx_messages.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
+#include "core/protocol/ubx/config/ubx_gnss.hpp"
+#include "core/protocol/ubx/wire/ubx_messages.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx::gnss_test {

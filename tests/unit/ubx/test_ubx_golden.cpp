@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/protocol/ubx/ubx_encoder.hpp"
+#include "core/protocol/ubx/wire/ubx_encoder.hpp"
 #include "nmea_test_util.hpp"
 #include "ubx_test_util.hpp"
 

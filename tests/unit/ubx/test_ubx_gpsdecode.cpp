@@ -15,7 +15,7 @@
 #include <unistd.h>
 
 #include "core/common/constants.hpp"
-#include "core/protocol/ubx/ubx_encoder.hpp"
+#include "core/protocol/ubx/wire/ubx_encoder.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

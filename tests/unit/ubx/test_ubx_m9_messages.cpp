@@ -6,10 +6,10 @@
 
 #include <cstring>
 
-#include "core/protocol/ubx/ubx_device.hpp"
-#include "core/protocol/ubx/ubx_front_end.hpp"
-#include "core/protocol/ubx/ubx_message_table.hpp"
-#include "core/protocol/ubx/ubx_messages.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
+#include "core/protocol/ubx/device/ubx_front_end.hpp"
+#include "core/protocol/ubx/wire/ubx_message_table.hpp"
+#include "core/protocol/ubx/wire/ubx_messages.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

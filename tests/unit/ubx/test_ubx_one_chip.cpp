@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "core/protocol/ubx/ubx_device.hpp"
-#include "core/protocol/ubx/ubx_message_table.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
+#include "core/protocol/ubx/wire/ubx_message_table.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

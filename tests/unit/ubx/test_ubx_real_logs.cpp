@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/protocol/ubx/ubx_messages.hpp"
+#include "core/protocol/ubx/wire/ubx_messages.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "core/protocol/nmea/reported_fix.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
-#include "core/protocol/ubx/ubx_message_list.hpp"
-#include "core/protocol/ubx/ubx_message_table.hpp"
-#include "core/protocol/ubx/ubx_messages.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
+#include "core/protocol/ubx/wire/ubx_message_list.hpp"
+#include "core/protocol/ubx/wire/ubx_message_table.hpp"
+#include "core/protocol/ubx/wire/ubx_messages.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

@@ -12,9 +12,9 @@
 #include "core/protocol/rtcm/rtcm_frame.hpp"
 #include "core/protocol/rtcm/rtcm_msm.hpp"
 #include "core/protocol/rtcm/rtcm_station.hpp"
-#include "core/protocol/ubx/ubx_decoder.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
-#include "core/protocol/ubx/ubx_encoder.hpp"
+#include "core/protocol/ubx/wire/ubx_decoder.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
+#include "core/protocol/ubx/wire/ubx_encoder.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

@@ -13,8 +13,8 @@
 #include "core/orbit/rinex_nav.hpp"
 #include "core/protocol/navmsg/galileo_inav.hpp"
 #include "core/protocol/navmsg/glonass_nav.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
-#include "core/protocol/ubx/ubx_rxm.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
+#include "core/protocol/ubx/wire/ubx_rxm.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

@@ -7,9 +7,9 @@
 
 #include <cstring>
 
-#include "core/protocol/ubx/ubx_encoder.hpp"
-#include "core/protocol/ubx/ubx_gnss.hpp"
-#include "core/protocol/ubx/ubx_messages.hpp"
+#include "core/protocol/ubx/wire/ubx_encoder.hpp"
+#include "core/protocol/ubx/config/ubx_gnss.hpp"
+#include "core/protocol/ubx/wire/ubx_messages.hpp"
 #include "ubx_test_util.hpp"
 
 namespace gnssemu::protocol::ubx {

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "core/common/constants.hpp"
-#include "core/protocol/ubx/ubx_decoder.hpp"
+#include "core/protocol/ubx/wire/ubx_decoder.hpp"
 #include "nmea_test_util.hpp"
 
 namespace gnssemu::protocol::ubx::test {

@@ -6,10 +6,10 @@
 #include <string_view>
 #include <vector>
 
-#include "core/protocol/ubx/ubx_config_keys.hpp"
-#include "core/protocol/ubx/ubx_device.hpp"
-#include "core/protocol/ubx/ubx_frame.hpp"
-#include "core/protocol/ubx/ubx_handlers.hpp"
+#include "core/protocol/ubx/config/ubx_config_keys.hpp"
+#include "core/protocol/ubx/device/ubx_device.hpp"
+#include "core/protocol/ubx/wire/ubx_frame.hpp"
+#include "core/protocol/ubx/handlers/ubx_handlers.hpp"
 #include "core/receiver/fix.hpp"
 
 namespace gnssemu::protocol::ubx::test {

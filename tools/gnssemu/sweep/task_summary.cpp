@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "core/geo/geodesy.hpp"
-#include "core/protocol/ubx/ubx_front_end.hpp"
+#include "core/protocol/ubx/device/ubx_front_end.hpp"
 #include "core/statistics/statistics.hpp"
 #include "tools/gnssemu/sweep/csv_row.hpp"
 
