@@ -59,6 +59,7 @@ receiver::RawEpoch sample_raw() {
   c.sat = SatId(GnssSystem::kBeiDou, 3);  // GEO: D2
   c.signal = SignalId::kBdsB1I;
   c.pseudorange_m = 36000000.0;
+  c.carrier_phase_cycles = 187456789.25;
   c.pseudorange_valid = c.carrier_valid = true;
   c.half_cycle_resolved = c.half_cycle_subtracted = true;
   receiver::RawMeasurement& j = r.meas[3];
@@ -104,7 +105,9 @@ TEST(RxmRawx, HeaderAndMeasurementFields) {
   EXPECT_EQ(at<std::uint16_t>(p, k + 24), 0);
   EXPECT_EQ(p[k + 28], 15);
   EXPECT_EQ(p[k + 30], 0x01);
-  // BeiDou GEO on an M8: sigId byte reserved (0); subHalfCyc.
+  // BeiDou GEO on an M8: sigId byte reserved (0); subHalfCyc; cpMes half a
+  // cycle behind, as RTKLIB's decode_rxmrawx expects of u-blox (it adds 0.5).
+  EXPECT_DOUBLE_EQ(at<double>(p, c + 8), 187456789.25 - 0.5);
   EXPECT_EQ(p[c + 20], 3);
   EXPECT_EQ(p[c + 22], 0);
   EXPECT_EQ(p[c + 30], 0x0F);

@@ -62,7 +62,12 @@ std::size_t rxm_rawx(const receiver::RawEpoch& raw, Generation g, std::string& o
     const receiver::RawMeasurement& m = raw.meas[static_cast<std::size_t>(i)];
     std::uint8_t* q = payload.data() + kRawxHeaderBytes + kRawxMeasBytes * static_cast<std::size_t>(i);
     put(q, m.pseudorange_m);
-    put(q + 8, m.carrier_valid ? m.carrier_phase_cycles : 0.0);
+    // u-blox reports a BeiDou GEO's phase half a cycle behind the MEOs' convention:
+    // RTKLIB's decode_rxmrawx adds 0.5 to it ("half-cycle shift correction for
+    // BDS GEO"), so the chip's cpMes carries -0.5 and a converted RINEX gets
+    // the phase back. MSM (RTCM) carries the phase itself.
+    const double cp_shift_cycles = is_beidou_geo(m.sat) ? -0.5 : 0.0;
+    put(q + 8, m.carrier_valid ? m.carrier_phase_cycles + cp_shift_cycles : 0.0);
     put(q + 16, static_cast<float>(m.doppler_hz));
     q[20] = system_info(m.sat.system).ubx_gnss_id;
     q[21] = ubx_sv_id(m.sat);
