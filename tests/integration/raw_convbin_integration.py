@@ -29,8 +29,8 @@ import tempfile
 from ubx_host import split_stream
 
 CONFIG = """[origin]
-lat_deg = 48.8738
-lon_deg = 2.295
+lat_deg = {lat}
+lon_deg = {lon}
 height_m = 100.0
 [nav]
 file = "{nav}"
@@ -68,7 +68,7 @@ def rawx_epochs(data):
         meas = {}
         for i in range(n):
             pr, cp, do, gnss, sv, sig, _, _, cno, _, _, _, trk = struct.unpack_from("<ddfBBBBHBBBBB", p, 16 + 32 * i)
-            num = sv - 192 if gnss == 5 and sv > 192 else sv
+            num = sv - 192 if gnss == 5 and sv > 192 else sv - 100 if gnss == 1 else sv  # RINEX J01, S20
             meas[("%s%02d" % (LETTER[gnss], num), 0 if sig <= 1 else 1)] = (pr, cp, do, cno, trk)
         out[(week, tow)] = meas
     return out
@@ -123,6 +123,9 @@ def main():
     ap.add_argument("--obs-systems", default="G", help="RINEX letters whose observations must come back")
     ap.add_argument("--extra", default="", help="more [receiver] lines")
     ap.add_argument("--bands", type=int, default=1, help="signals per satellite that must come back")
+    ap.add_argument("--lat", type=float, default=48.8738, help="receiver latitude, deg")
+    ap.add_argument("--lon", type=float, default=2.295, help="receiver longitude, deg")
+    ap.add_argument("--need-geo", action="store_true", help="BeiDou GEO phases must be among those compared")
     args = ap.parse_args()
     for tool in ("convbin", "gpsdecode"):
         if shutil.which(tool) is None:
@@ -132,13 +135,16 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         cfg = os.path.join(tmp, "c.toml")
         with open(cfg, "w") as f:
-            f.write(CONFIG.format(nav=os.path.abspath(args.nav), extra=args.extra.replace("\\n", "\n")))
+            f.write(CONFIG.format(nav=os.path.abspath(args.nav), extra=args.extra.replace("\\n", "\n"),
+                                  lat=args.lat, lon=args.lon))
         truth = os.path.join(tmp, "t.csv")
         with open(truth, "w") as f:
-            f.write("gps_week,tow_s,lat_deg,lon_deg,height_m\n%d,%.1f,48.8738,2.295,100\n%d,%.1f,48.8738,2.295,100\n"
-                    % (args.week, args.tow, args.week, args.tow + args.seconds))
+            f.write("gps_week,tow_s,lat_deg,lon_deg,height_m\n%d,%.1f,%.6f,%.6f,100\n%d,%.1f,%.6f,%.6f,100\n"
+                    % (args.week, args.tow, args.lat, args.lon, args.week, args.tow + args.seconds, args.lat, args.lon))
         ubx = os.path.join(tmp, "o.ubx")
-        r = subprocess.run([args.gnssemu, "batch", "--config", cfg, "--truth", truth, "--ubx", ubx],
+        own_obs = os.path.join(tmp, "own.obs")
+        r = subprocess.run([args.gnssemu, "batch", "--config", cfg, "--truth", truth, "--ubx", ubx,
+                            "--rinex-obs", own_obs],
                            capture_output=True, text=True, timeout=120)
         assert r.returncode == 0, r.stderr
         data = open(ubx, "rb").read()
@@ -155,6 +161,7 @@ def main():
         compared = 0
         worst = {"C": 0.0, "L": 0.0, "D": 0.0, "S": 0.0}  # by observation kind
         systems_obs = set()
+        geo_phases = 0
         signals = set()  # (system, RINEX code) decoded
         for t, sats in rinex_obs(obs):
             hit = by_t.get(round(t * 1e3))
@@ -171,6 +178,9 @@ def main():
                         failures.append("%s band %d at %.7f not in RAWX" % (sat, band, t))
                         continue
                     pr, cp, do, cno, trk = meas[(sat, band)]
+                    if sat[0] == "C" and (int(sat[1:]) <= 5 or int(sat[1:]) >= 59) and trk & 2:
+                        cp += 0.5  # RTKLIB's "half-cycle shift correction for BDS GEO" (u-blox cpMes)
+                        geo_phases += 1
                     want = {"C": pr if trk & 1 else None, "L": cp if trk & 2 else None, "D": do, "S": cno}
                     for k, v in mine.items():
                         if want.get(k[0]) is not None:
@@ -189,6 +199,22 @@ def main():
             for letter in args.obs_systems:
                 if not any(sys_ == letter and code != BAND0_CODE[letter] for sys_, code in signals):
                     failures.append("no second-frequency observations of %s decoded" % letter)
+        if args.need_geo and geo_phases == 0:
+            failures.append("no BeiDou GEO phase compared")
+        # convbin's RINEX against the receiver's own (--rinex-obs): the same phases.
+        own = {round(t * 1e3): sats for t, sats in rinex_obs(own_obs)}
+        n_own, worst_own = 0, 0.0
+        for t, sats in rinex_obs(obs):
+            mine = own.get(round(t * 1e3), {})
+            for sat, vals in sats.items():
+                for k, v in vals.items():
+                    if k[0] == "L" and v is not None and mine.get(sat, {}).get(k) is not None:
+                        worst_own = max(worst_own, abs(v - mine[sat][k]))
+                        n_own += 1
+        print("convbin against --rinex-obs: %d phases compared (%d of them BeiDou GEO), largest difference %.4f cycles"
+              % (n_own, geo_phases, worst_own))
+        if n_own == 0 or worst_own > 0.0015:
+            failures.append("convbin's phases differ from --rinex-obs by %.4f cycles (%d compared)" % (worst_own, n_own))
         missing_obs = set(args.obs_systems) - systems_obs
         if missing_obs:
             failures.append("no observations decoded for %s" % ",".join(sorted(missing_obs)))
@@ -231,11 +257,12 @@ def main():
         log = dec.stderr.decode(errors="replace")
         reports = [json.loads(l) for l in dec.stdout.decode().splitlines() if l.startswith("{")]
         n_rawx = sum(1 for kind, m in split_stream(data)[0] if kind == "ubx" and (m[2], m[3]) == RXM_RAWX)
+        # gpsd 3.22 reads QZSS's LNAV subframes without a SUBFRAME report: GPS's are counted.
         n_gps_sf = sum(1 for kind, m in split_stream(data)[0]
-                       if kind == "ubx" and (m[2], m[3]) == RXM_SFRBX and m[6] in (0, 5))
+                       if kind == "ubx" and (m[2], m[3]) == RXM_SFRBX and m[6] == 0)
         n_sub = sum(1 for j in reports if j.get("class") == "SUBFRAME")
         n_rawx_dec = log.count("UBX-RXM-RAWX")
-        print("gpsd: %d of %d RAWX decoded, %d SUBFRAME reports for %d GPS/QZSS SFRBX, parity failures %d"
+        print("gpsd: %d of %d RAWX decoded, %d SUBFRAME reports for %d GPS SFRBX, parity failures %d"
               % (n_rawx_dec, n_rawx, n_sub, n_gps_sf, log.count("parity fail")))
         if n_rawx_dec != n_rawx:
             failures.append("gpsdecode decoded %d of %d RAWX" % (n_rawx_dec, n_rawx))
