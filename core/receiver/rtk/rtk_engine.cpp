@@ -103,6 +103,7 @@ void RtkEngine::reset() noexcept {
 void RtkEngine::reset_filter(const Ecef& pos_m) noexcept {
   reset();
   init_ = true;
+  init_arp_ = false;
   for (auto& row : p_) row.fill(0.0);
   x_.fill(0.0);
   x_[0] = pos_m.x;
@@ -225,12 +226,12 @@ void RtkEngine::process_base(const Corrections& c, const world::SharedSky* sky) 
   }
 }
 
-void RtkEngine::predict(double dt_s, const Vec3& vel_m_s, double speed_acc_m_s) noexcept {
-  const Vec3 dv = vel_m_s * dt_s;
+void RtkEngine::predict(double dt_s, const Vec3& shift_m, double shift_sigma_m) noexcept {
+  const Vec3 dv = shift_m;
   x_[0] += dv.x;
   x_[1] += dv.y;
   x_[2] += dv.z;
-  const double sv = speed_acc_m_s * dt_s;
+  const double sv = shift_sigma_m;
   const double q = sv * sv + cfg_.pos_process_m_sqrt_s * cfg_.pos_process_m_sqrt_s * dt_s;
   for (int i = 0; i < 3; ++i) p_[i][i] += q;
   const double qa = cfg_.amb_process_cyc_sqrt_s * cfg_.amb_process_cyc_sqrt_s * dt_s;
@@ -335,7 +336,17 @@ void RtkEngine::solve(const RawEpoch& rover, const NavSnapshot& nav, const Corre
     dt_s = 0.0;
   }
   t_last_ = nav.t;
-  predict(dt_s, nav.vel_m_s, nav.speed_acc_m_s);
+  if (c.station.moving) {
+    // The baseline, not the rover's track, is what stays (nearly) still: the
+    // rover's state follows the base's reported position, whose own
+    // standalone noise then cancels (the double differences fix rover - base).
+    const Vec3 shift = init_arp_ ? Vec3(c.station.arp_ecef_m - last_arp_m_) : Vec3{};
+    predict(dt_s, shift, 0.0);
+  } else {
+    predict(dt_s, nav.vel_m_s * dt_s, nav.speed_acc_m_s * dt_s);
+  }
+  last_arp_m_ = c.station.arp_ecef_m;
+  init_arp_ = true;
   x_lin_ = Ecef(x_[0], x_[1], x_[2]);
 
   const bool use_carrier = age_s <= cfg_.max_carrier_age_s;

@@ -147,7 +147,8 @@ private:
   void clear_link_fields(Fix& fix) const noexcept;
   /// sky: the rover epoch's broadcast orbits (Taylor steps back to the base epoch), or null.
   void process_base(const Corrections& c, const world::SharedSky* sky) noexcept;
-  void predict(double dt_s, const Vec3& vel_m_s, double speed_acc_m_s) noexcept;
+  /// Moves the rover state by shift_m (1-sigma shift_sigma_m) and adds the process noise of dt_s.
+  void predict(double dt_s, const Vec3& shift_m, double shift_sigma_m) noexcept;
   int slot_for(int key, GnssSystem sys, int band, double wavelength_m) noexcept;
   void reset_ambiguity(int s, double value_cyc, double var_cyc2) noexcept;
   void free_slot(int s) noexcept;
@@ -188,6 +189,8 @@ private:
   bool init_ = false;
   time::GpsTime t_last_;
   Ecef x_lin_;  ///< linearisation point (the predicted position) of this epoch
+  Ecef last_arp_m_;  ///< the reference position of the filter's last epoch (a moving base's moves)
+  bool init_arp_ = false;
   std::array<double, kMaxRtkStates> x_{};
   std::array<std::array<double, kMaxRtkStates>, kMaxRtkStates> p_{};
   std::array<double, kMaxRtkStates> ph_{};
