@@ -58,6 +58,11 @@ struct RelativePosition {
   double acc_n_m = 0.0, acc_e_m = 0.0, acc_d_m = 0.0;  ///< 1-sigma, m
   double acc_length_m = 0.0;   ///< 1-sigma, m
   double acc_heading_rad = 0.0;///< 1-sigma, rad
+  /// The epoch the baseline is for. A moving-base rover time-matches the
+  /// base's observations, so its baseline comes out once the base's epoch
+  /// has arrived: late set, t earlier than the Fix's own epoch.
+  time::GpsTime t;
+  bool late = false;
 };
 
 /// The antenna supervisor's state (MON-HW aStatus).

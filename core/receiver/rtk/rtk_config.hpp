@@ -40,7 +40,11 @@ struct RtkConfig {
   /// Beyond this baseline no integer fix is tried (float only, counted), m. Ours:
   /// the atmosphere no longer cancels (RTKLIB's manual gives ~10-20 km for L1 fixes).
   double max_fix_baseline_m = 100.0e3;
-  /// A moving base's epoch is used this long after its time only (no motion extrapolation), s.
+  /// A moving-base rover holds its epochs this long for the base's epoch of
+  /// the same time, then gives up on them (RELPOSNED refObsMiss), s. Ours:
+  /// u-blox names no limit for the F9P; the M8P's moving base propagated past
+  /// 700 ms and dropped out of float/fixed past 3 s (C94-M8P user guide
+  /// UBX-15031066 R07 §4.3.5).
   double moving_base_max_age_s = 1.0;
 };
 

@@ -24,6 +24,9 @@ constexpr double kPhaseGate2 = 25.0;
 constexpr double kMaxCodeInnovation_m = 30.0;
 constexpr int kMinPhaseSats = 5;              // 4 double differences
 constexpr int kMinCodeSats = 4;
+// A held rover epoch and a base epoch are the same measurement epoch: both
+// receivers measure on whole GPS milliseconds of one grid (at most 10 Hz here).
+constexpr double kEpochMatch_s = 0.025;
 // Validation of a held fix: carrier residuals against their sigma.
 constexpr double kMaxNormResidual = 5.0;
 constexpr double kMaxChi2PerDof = 4.0;
@@ -100,6 +103,7 @@ void RtkEngine::reset() noexcept {
 void RtkEngine::reset_filter(const Ecef& pos_m) noexcept {
   reset();
   init_ = true;
+  init_arp_ = false;
   for (auto& row : p_) row.fill(0.0);
   x_.fill(0.0);
   x_[0] = pos_m.x;
@@ -222,12 +226,12 @@ void RtkEngine::process_base(const Corrections& c, const world::SharedSky* sky) 
   }
 }
 
-void RtkEngine::predict(double dt_s, const Fix& fix) noexcept {
-  const Vec3 dv = fix.vel_m_s * dt_s;
+void RtkEngine::predict(double dt_s, const Vec3& shift_m, double shift_sigma_m) noexcept {
+  const Vec3 dv = shift_m;
   x_[0] += dv.x;
   x_[1] += dv.y;
   x_[2] += dv.z;
-  const double sv = fix.speed_acc_m_s * dt_s;
+  const double sv = shift_sigma_m;
   const double q = sv * sv + cfg_.pos_process_m_sqrt_s * cfg_.pos_process_m_sqrt_s * dt_s;
   for (int i = 0; i < 3; ++i) p_[i][i] += q;
   const double qa = cfg_.amb_process_cyc_sqrt_s * cfg_.amb_process_cyc_sqrt_s * dt_s;
@@ -254,15 +258,6 @@ void RtkEngine::step(const RawEpoch& rover, const world::Observables& obs, const
     fixed_ = false;
     return;
   }
-  const bool moving = c.station.moving;
-  if (moving && age_s > cfg_.moving_base_max_age_s) {
-    // The base has moved since its epoch: no baseline (RELPOSNED refObsMiss).
-    fix.rel_pos.moving_base = true;
-    fix.rel_pos.ref_obs_miss = true;
-    fix.rel_pos.ref_station_id = c.station.station_id;
-    fixed_ = false;
-    return;
-  }
 
   for (int i = 0; i < obs.num_sats; ++i) {
     const world::SatObservable& o = obs.sats[i];
@@ -271,17 +266,87 @@ void RtkEngine::step(const RawEpoch& rover, const world::Observables& obs, const
     eph_stamp_[k] = epoch_;
   }
   for (int i = 0; i < fix.num_sats; ++i) el_rad_[static_cast<std::size_t>(fix.sats[i].sat.index())] = fix.sats[i].el_rad;
+  if (c.station.moving) {
+    step_moving(rover, obs, c, fix);
+    return;
+  }
+  // A fixed base: its newest epoch with its age (the base does not move in between).
   if (!base_seen_ || c.revision != base_revision_) process_base(c, obs.sky);
+  solve(rover, NavSnapshot{fix.t, fix.pos_m, fix.vel_m_s, fix.speed_acc_m_s}, c, obs, fix);
+}
 
-  double dt_s = init_ ? fix.t - t_last_ : 0.0;
-  const Ecef nav_pos = fix.pos_m;
+void RtkEngine::step_moving(const RawEpoch& rover, const world::Observables& obs, const Corrections& c,
+                            Fix& fix) noexcept {
+  // The rover solves the baseline only with the base's observations of the
+  // same epoch (ZED-F9P integration manual UBX-18010802 §3.1.5.6: relPosValid
+  // "if the rover managed to get the time-matched observations in time"):
+  // it holds its own epoch until the base's arrives.
+  HeldEpoch& now = held_[static_cast<std::size_t>(held_next_)];
+  held_next_ = (held_next_ + 1) % kMovingBaseHeldEpochs;
+  now.pending = true;
+  now.raw = rover;
+  now.nav = NavSnapshot{fix.t, fix.pos_m, fix.vel_m_s, fix.speed_acc_m_s};
+
+  HeldEpoch* match = nullptr;
+  if (!base_seen_ || c.revision != base_revision_) {
+    for (HeldEpoch& h : held_) {
+      if (h.pending && std::fabs(h.raw.t_rx - c.obs.t_rx) < kEpochMatch_s) match = &h;
+    }
+  }
+  // Epochs the base can no longer match: older than the matched one (the
+  // base's epochs arrive in order) or held past the limit.
+  for (HeldEpoch& h : held_) {
+    if (!h.pending || &h == match) continue;
+    // Receiver times: whole epochs apart within the clocks' drift. < 0: time went back.
+    const double held_s = rover.t_rx - h.raw.t_rx;
+    if ((match != nullptr && h.raw.t_rx - match->raw.t_rx < 0.0) ||
+        held_s > cfg_.moving_base_max_age_s + kEpochMatch_s ||
+        held_s < 0.0) {
+      h.pending = false;
+      ++status_.moving_base_missed;
+    }
+  }
+  if (match == nullptr) {
+    // Nothing to solve this epoch: RELPOSNED without a baseline (refObsMiss).
+    fix.rel_pos.moving_base = true;
+    fix.rel_pos.ref_obs_miss = true;
+    fix.rel_pos.ref_station_id = c.station.station_id;
+    fix.rel_pos.t = fix.t;
+    return;
+  }
+  match->pending = false;
+  ++status_.moving_base_matched;
+  status_.moving_base_delay_s = fix.t - match->nav.t;
+  process_base(c, obs.sky);
+  solve(match->raw, match->nav, c, obs, fix);
+  fix.rel_pos.moving_base = true;
+  fix.rel_pos.ref_station_id = c.station.station_id;
+  fix.rel_pos.t = match->nav.t;
+  fix.rel_pos.late = fix.t - match->nav.t > 1e-6;
+}
+
+void RtkEngine::solve(const RawEpoch& rover, const NavSnapshot& nav, const Corrections& c,
+                      const world::Observables& obs, Fix& fix) noexcept {
+  const double age_s = rover.t_rx - c.obs.t_rx;
+  double dt_s = init_ ? nav.t - t_last_ : 0.0;
+  const Ecef nav_pos = nav.pos_m;
   if (!init_ || !std::isfinite(dt_s) || dt_s < 0.0 || dt_s > kMaxGap_s ||
       (Ecef(x_[0], x_[1], x_[2]) - nav_pos).norm() > kMaxJump_m) {
     reset_filter(nav_pos);
     dt_s = 0.0;
   }
-  t_last_ = fix.t;
-  predict(dt_s, fix);
+  t_last_ = nav.t;
+  if (c.station.moving) {
+    // The baseline, not the rover's track, is what stays (nearly) still: the
+    // rover's state follows the base's reported position, whose own
+    // standalone noise then cancels (the double differences fix rover - base).
+    const Vec3 shift = init_arp_ ? Vec3(c.station.arp_ecef_m - last_arp_m_) : Vec3{};
+    predict(dt_s, shift, 0.0);
+  } else {
+    predict(dt_s, nav.vel_m_s * dt_s, nav.speed_acc_m_s * dt_s);
+  }
+  last_arp_m_ = c.station.arp_ecef_m;
+  init_arp_ = true;
   x_lin_ = Ecef(x_[0], x_[1], x_[2]);
 
   const bool use_carrier = age_s <= cfg_.max_carrier_age_s;
@@ -397,7 +462,7 @@ void RtkEngine::step(const RawEpoch& rover, const world::Observables& obs, const
   }
   const bool carrier = status_.num_phase_sd >= kMinPhaseSats;
   if (!carrier) fixed_ = false;
-  const double t_s = fix.t.week() * 604800.0 + fix.t.tow_s();
+  const double t_s = nav.t.week() * 604800.0 + nav.t.tow_s();
   bool fixed = false;
   Ecef pos(x_[0], x_[1], x_[2]);
   Mat3 cov{};
@@ -586,6 +651,7 @@ void RtkEngine::write_output(const Corrections& c, double age_s, bool carrier, b
   const Lla base_lla = geo::lla_from_ecef(c.station.arp_ecef_m);
   RelativePosition& rp = fix.rel_pos;
   rp.valid = true;
+  rp.t = fix.t;
   rp.moving_base = c.station.moving;
   rp.carr_soln = cs;
   rp.ref_station_id = c.station.station_id;

@@ -10,7 +10,9 @@
 // of code and carrier per satellite and band, each receiver's measurement at
 // its own epoch with the satellite at its own transmit time (a base epoch
 // older by the link latency needs no extrapolation; RTKLIB manual 2.4.2
-// §E.7 "time-mismatch"). A Kalman filter over the rover position, one
+// §E.7 "time-mismatch"). A moving base is time-matched instead: the rover
+// holds its last epochs and solves the one whose time the base's newest
+// epoch has, so the baseline comes out late by the link's latency. A Kalman filter over the rover position, one
 // single-difference clock per system (white, re-initialised every epoch) and
 // one single-difference ambiguity per satellite and band (cycles; reset on a
 // lock-time restart, a half-cycle state change or a rejected innovation).
@@ -42,6 +44,10 @@ inline constexpr int kMaxSlots = 64;
 inline constexpr int kClockState0 = 3;
 inline constexpr int kAmbState0 = 3 + kNumSystems;
 inline constexpr int kMaxRtkStates = kAmbState0 + kMaxSlots;
+/// Rover epochs a moving-base rover holds for the base's epoch of the same
+/// time (1.2 s at the emulator's fastest 10 Hz; RtkConfig::moving_base_max_age_s
+/// gives up on them sooner).
+inline constexpr int kMovingBaseHeldEpochs = 12;
 
 /// Counters and the last epoch's figures (status page, tests, bench).
 struct RtkStatus {
@@ -58,6 +64,9 @@ struct RtkStatus {
   std::uint32_t long_baseline = 0;    ///< epochs beyond max_fix_baseline_m (float only)
   std::uint32_t unmatched = 0;        ///< base signals the rover does not track (ignored)
   std::uint32_t stale = 0;            ///< epochs with corrections older than the DGNSS timeout
+  std::uint32_t moving_base_matched = 0;  ///< rover epochs solved with the moving base's epoch of the same time
+  std::uint32_t moving_base_missed = 0;   ///< rover epochs whose base epoch never came (refObsMiss)
+  double moving_base_delay_s = 0.0;       ///< last matched epoch: rover epochs it waited for its base epoch, s
 };
 
 class RtkEngine {
@@ -114,11 +123,32 @@ private:
     std::uint32_t held_ref_arc = 0;
   };
 
+  /// What the filter takes from the navigation solution of an epoch.
+  struct NavSnapshot {
+    time::GpsTime t;
+    Ecef pos_m;
+    Vec3 vel_m_s;
+    double speed_acc_m_s = 0.0;
+  };
+  /// A rover epoch waiting for the moving base's epoch of the same time.
+  struct HeldEpoch {
+    bool pending = false;
+    RawEpoch raw;
+    NavSnapshot nav;
+  };
+
+  /// The moving-base path: hold this epoch, solve the held one the base's
+  /// newest epoch matches, give up on those it can no longer match.
+  void step_moving(const RawEpoch& rover, const world::Observables& obs, const Corrections& c, Fix& fix) noexcept;
+  /// One filter epoch: rover's measurements with nav its solution, against the processed base epoch.
+  void solve(const RawEpoch& rover, const NavSnapshot& nav, const Corrections& c, const world::Observables& obs,
+             Fix& fix) noexcept;
   void reset_filter(const Ecef& pos_m) noexcept;
   void clear_link_fields(Fix& fix) const noexcept;
   /// sky: the rover epoch's broadcast orbits (Taylor steps back to the base epoch), or null.
   void process_base(const Corrections& c, const world::SharedSky* sky) noexcept;
-  void predict(double dt_s, const Fix& fix) noexcept;
+  /// Moves the rover state by shift_m (1-sigma shift_sigma_m) and adds the process noise of dt_s.
+  void predict(double dt_s, const Vec3& shift_m, double shift_sigma_m) noexcept;
   int slot_for(int key, GnssSystem sys, int band, double wavelength_m) noexcept;
   void reset_ambiguity(int s, double value_cyc, double var_cyc2) noexcept;
   void free_slot(int s) noexcept;
@@ -159,6 +189,8 @@ private:
   bool init_ = false;
   time::GpsTime t_last_;
   Ecef x_lin_;  ///< linearisation point (the predicted position) of this epoch
+  Ecef last_arp_m_;  ///< the reference position of the filter's last epoch (a moving base's moves)
+  bool init_arp_ = false;
   std::array<double, kMaxRtkStates> x_{};
   std::array<std::array<double, kMaxRtkStates>, kMaxRtkStates> p_{};
   std::array<double, kMaxRtkStates> ph_{};
@@ -166,6 +198,10 @@ private:
   std::array<std::int8_t, kNumKeys> slot_of_{};  ///< -1 none (set in reset)
   int n_slots_ = 0;
   bool slot_map_ready_ = false;
+
+  // Moving base: the last rover epochs (a ring, oldest overwritten).
+  std::array<HeldEpoch, kMovingBaseHeldEpochs> held_{};
+  int held_next_ = 0;
 
   // Integer resolution.
   bool fixed_ = false;

@@ -72,15 +72,16 @@ public:
     const Ecef ants[2] = {base_m_, rover_m_};
     sky_.update(t, ants);
     base_.step(sky_, test::truth_at(base_m_, t, base_vel_));
-    queue_.push_back(base_.receiver().raw());
+    queue_.push_back({base_.receiver().raw(), base_.last_fix().pos_m});
     if (link_ && static_cast<int>(queue_.size()) > latency_) {
-      corr_.obs = queue_.front();
+      corr_.obs = queue_.front().raw;
+      // A moving base's 4072.0 carries its position of the same epoch.
+      if (moving_base_) corr_.station.arp_ecef_m = queue_.front().pos_m;
       corr_.obs.num_meas = std::min(corr_.obs.num_meas, base_meas_limit_);
       corr_.obs_valid = corr_.obs.time_valid && corr_.obs.num_meas > 0;
       ++corr_.revision;
     }
     while (static_cast<int>(queue_.size()) > latency_) queue_.pop_front();
-    if (moving_base_) corr_.station.arp_ecef_m = base_.last_fix().pos_m;
     const world::Observables& o = rover_.world().step(sky_, test::truth_at(rover_m_, t, rover_vel_),
                                                       rover_.receiver().config().elevation_mask_rad);
     obs_ = o;
@@ -122,7 +123,11 @@ private:
   Ecef base_vel_, rover_vel_;
   int latency_;
   Corrections corr_;
-  std::deque<RawEpoch> queue_;
+  struct BaseEpoch {
+    RawEpoch raw;
+    Ecef pos_m;
+  };
+  std::deque<BaseEpoch> queue_;
   world::Observables obs_;
   double slip_cycles_ = 0.0;
   std::uint32_t slips_ = 0;
@@ -313,6 +318,61 @@ TEST(Rtk, MovingBaselineOneMetreHeading) {
               "accHeading %.3f deg\n", valid, fixed, rms, acc_deg);
   ASSERT_GT(fixed, 100);
   EXPECT_LT(rms, 1.5);
+}
+
+TEST(Rtk, MovingBaseAtSpeedTimeMatchesALateBase) {
+  // The base's epoch reaches the rover one epoch late (through the host)
+  // while the vehicle drives at 5 m/s: the rover solves its own epoch of the
+  // base's time, so the baseline is the antennas' and comes out one epoch late.
+  const Ecef base = geo::ecef_from_lla(kSite);
+  const double heading = 30.0 * kDegToRad;
+  const Ecef rover = offset_enu(base, std::sin(heading), std::cos(heading), 0.0);
+  RtkRig rig(base, rover, 1);
+  rig.set_moving_base();
+  const Lla at = geo::lla_from_ecef(base);
+  const Vec3 vel = geo::enu_to_ecef_vector(Enu(5.0, 0.0, 0.0), at.lat_rad, at.lon_rad);
+  rig.set_velocity(Ecef(vel));
+  int late = 0, fixed = 0;
+  double worst_length_m = 0.0;
+  for (int i = 0; i < 300; ++i) {
+    const double t_s = static_cast<double>(i);
+    rig.move(Ecef(base + vel * t_s), Ecef(rover + vel * t_s));
+    const time::GpsTime t = kToe + t_s;
+    const Fix& f = rig.step(t);
+    ASSERT_TRUE(test::all_finite(f));
+    if (!f.rel_pos.valid) continue;
+    ASSERT_TRUE(f.rel_pos.late) << i;
+    EXPECT_NEAR(t - f.rel_pos.t, 1.0, 1e-9) << i;
+    ++late;
+    if (f.rel_pos.carr_soln != CarrierSolution::kFixed) continue;
+    ++fixed;
+    worst_length_m = std::max(worst_length_m, std::fabs(f.rel_pos.length_m - 1.0));
+  }
+  const rtk::RtkStatus& st = rig.status();
+  std::printf("moving base 1 m at 5 m/s, base 1 epoch late: %d baselines, %d fixed of 300 epochs, worst length error "
+              "%.3f m; matched %u, missed %u, delay %.1f s\n", late, fixed, worst_length_m, st.moving_base_matched,
+              st.moving_base_missed, st.moving_base_delay_s);
+  ASSERT_GT(fixed, 100);
+  EXPECT_LT(worst_length_m, 0.03);  // pairing with the previous base epoch would read 5 m off
+  EXPECT_DOUBLE_EQ(st.moving_base_delay_s, 1.0);
+}
+
+TEST(Rtk, MovingBaseGivesUpOnEpochsTheBaseNeverSends) {
+  const Ecef base = geo::ecef_from_lla(kSite);
+  RtkRig rig(base, offset_enu(base, 0.0, 1.0, 0.0), 1);
+  rig.set_moving_base();
+  for (int i = 0; i < 29; ++i) rig.step(kToe + static_cast<double>(i));
+  ASSERT_TRUE(rig.step(kToe + 29.0).rel_pos.valid);  // rover epoch 28 with base epoch 28
+  rig.stop_link();
+  const std::uint32_t missed0 = rig.status().moving_base_missed;
+  for (int i = 30; i < 35; ++i) {
+    const Fix& f = rig.step(kToe + static_cast<double>(i));
+    EXPECT_FALSE(f.rel_pos.valid) << i;
+    EXPECT_TRUE(f.rel_pos.ref_obs_miss) << i;
+    EXPECT_TRUE(f.rel_pos.moving_base) << i;
+  }
+  // Held at most 1 s (moving_base_max_age_s) at 1 Hz: epochs 29..32 are given up at 31..34.
+  EXPECT_EQ(rig.status().moving_base_missed - missed0, 4u);
 }
 
 TEST(Rtk, HeadingLostWhenTheBaseAntennaIsBlocked) {

@@ -301,6 +301,13 @@ TEST(UbxF9p, RelPosNedVersion1) {
   EXPECT_EQ(m.accHeading, 30000u);
   // gnssFixOK, diffSoln, relPosValid, carrSoln fixed, isMoving, relPosHeadingValid.
   EXPECT_EQ(m.flags, 0x1u | 0x2u | 0x4u | 2u << 3 | 0x20u | 0x100u);
+  // A moving-base rover's time-matched baseline of the previous epoch: its iTOW.
+  r.late = true;
+  r.t = fix.t - 0.2;
+  out.clear();
+  nav_relposned(fix, out);
+  EXPECT_EQ(only<wire::NavRelposnedV1>(out, msg::kNavRelposned).iTOW + 200u, itow_ms(fix));
+  r.late = false;
   r.valid = false;
   r.ref_obs_miss = true;
   out.clear();

@@ -121,6 +121,12 @@ std::size_t nav_relposned(const Fix& fix, std::string& out) {
   wire::NavRelposnedV1 m{};
   m.version = 1;
   m.iTOW = c.itow;
+  if (r.late) {
+    // A moving-base rover's time-matched baseline: the iTOW of its epoch (rounded as derive() does).
+    std::int64_t ms = std::llround(r.t.tow_s() * 1000.0);
+    if (ms >= kMsPerWeek) ms -= kMsPerWeek;
+    m.iTOW = static_cast<std::uint32_t>(std::max<std::int64_t>(ms, 0));
+  }
   m.refStationId = static_cast<std::uint16_t>(std::clamp(r.ref_station_id, 0, 4095));
   std::uint32_t flags = 0;
   if (c.fix_ok) flags |= 1u << 0;

@@ -324,10 +324,19 @@ void Device::compose(Link at, MessageList& out, Layout layout, FixOverride repor
   EpochInfo info = info_;
   info.reported_fix = reported;
   const bool ubx_on = current_.port(col).outputs_ubx();
+  // A moving-base rover's time-matched RELPOSNED belongs to the previous
+  // epoch: it leads, after that epoch's NAV-PVT and before this one's (a host
+  // pairing them by iTOW, as ArduPilot does, sees them in that order).
+  const bool late_relposned = last_fix_.rel_pos.late;
+  if (ubx_on && late_relposned && due(col, msg::kNavRelposned) &&
+      encoder_.encode(msg::kNavRelposned, last_fix_, info, out.buffer()) > 0) {
+    out.close("NAV-RELPOSNED", Protocol::kUbx);
+  }
   const auto ubx_messages = [&](bool before_nmea) {
     if (!ubx_on) return;
     for (const std::size_t i : kEpochOrder) {
       const PeriodicMessage& m = kPeriodicMessages[i];
+      if (late_relposned && m.id == msg::kNavRelposned) continue;
       if (layout == Layout::kLine && (m.group == EpochGroup::kBeforeNmea) != before_nmea) continue;
       if (!due(col, m.id)) continue;
       if (m.raw) {
