@@ -427,8 +427,10 @@ void Daemon::shutdown() {
 time::GpsTime Daemon::realtime_clock_gps() noexcept { return start_ + now_s(); }
 
 void Daemon::arm_timer() {
-  // Realtime: epoch k is measured at t0 + k / rate and leaves output_delay_s later.
-  const double delay_s = cfg_.time.mode == config::TimeMode::kRealtime ? output_delay_s_ : 0.0;
+  // Realtime: epoch k is measured at t0 + k / rate, computed compute_lead_s_
+  // before it leaves and sent output_delay_s after it.
+  const bool realtime = cfg_.time.mode == config::TimeMode::kRealtime;
+  const double delay_s = realtime ? output_delay_s_ - (send_pending_ ? 0.0 : compute_lead_s_) : 0.0;
   const auto base = std::chrono::nanoseconds(std::llround((sched_base_s_ + delay_s) * 1e9));
   timer_.expires_at(t0_ + base + std::chrono::nanoseconds(epoch_deadline_ns(index_, rate_hz_)));
   timer_.async_wait([this](const boost::system::error_code& ec) { on_timer(ec); });
@@ -470,8 +472,20 @@ void Daemon::on_timer(const boost::system::error_code& ec) {
   if (ec || stopped_) return;
   const double now = now_s();
   if (cfg_.time.mode == config::TimeMode::kRealtime) {
-    const double offset_s = sched_base_s_ + epoch_offset_s(index_, rate_hz_);
-    emit_epoch(start_ + offset_s, offset_s, false);
+    if (!send_pending_) {
+      const auto c0 = Clock::now();
+      const double offset_s = sched_base_s_ + epoch_offset_s(index_, rate_hz_);
+      emit_epoch(start_ + offset_s, offset_s, false, false);
+      const double took_s = std::chrono::duration<double>(Clock::now() - c0).count();
+      // A slow epoch now and then (a shared machine) must not make the next late:
+      // the lead follows the slowest recent epoch, forgetting it slowly.
+      compute_max_s_ = std::max(took_s, 0.97 * compute_max_s_);
+      compute_lead_s_ = std::clamp(2.0 * compute_max_s_ + 0.005, 0.0, output_delay_s_);
+      send_pending_ = true;
+      arm_timer();  // the same epoch's output time
+      return;
+    }
+    send_epochs();
   } else if (!router_.any_fresh(now)) {
     // Lockstep without a live simulator: keep the receivers talking at the
     // configured rate (demo before any simulator, no fix after one stopped).
@@ -505,7 +519,23 @@ void Daemon::lockstep_advance(const time::GpsTime& stamp) {
   }
 }
 
-void Daemon::emit_epoch(const time::GpsTime& t, double demo_elapsed_s, bool fallback_only) {
+void Daemon::send_epochs() noexcept {
+  send_pending_ = false;
+  for (const auto& rp : rigs_) send_rig_epoch(*rp);
+  publish_status();
+}
+
+void Daemon::send_rig_epoch(Rig& rig) noexcept {
+  faults::FaultStage* stage = rig.receiver->faults();
+  const std::span<const faults::FaultStatus> link_status =
+      stage != nullptr ? stage->status() : std::span<const faults::FaultStatus>{};
+  for (const auto& c : rig.channels) {
+    c->set_link_faults(link_status);
+    c->send_epoch();
+  }
+}
+
+void Daemon::emit_epoch(const time::GpsTime& t, double demo_elapsed_s, bool fallback_only, bool send) {
   note_coverage(t);
   const double now = now_s();
   for (std::size_t v = 0; v < vehicles_.size(); ++v) {
@@ -535,10 +565,11 @@ void Daemon::emit_epoch(const time::GpsTime& t, double demo_elapsed_s, bool fall
   last_epoch_t_ = t;
   const double run_s = run_time_s(t);
   last_run_s_ = run_s;
-  for (const auto& rp : rigs_) emit_rig_epoch(*rp, t, run_s);
+  for (const auto& rp : rigs_) emit_rig_epoch(*rp, t, run_s, send);
+  if (send) publish_status();
 }
 
-void Daemon::emit_rig_epoch(Rig& rig, const time::GpsTime& t, double run_s) {
+void Daemon::emit_rig_epoch(Rig& rig, const time::GpsTime& t, double run_s, bool send) {
   const world::Truth& truth = rig.truth;
   const receiver::Fix& fix = rig.receiver->step(sky_, truth);
   const receiver::RawEpoch& raw = rig.receiver->receiver().raw();
@@ -548,10 +579,7 @@ void Daemon::emit_rig_epoch(Rig& rig, const time::GpsTime& t, double run_s) {
   faults::FaultStage* stage = rig.receiver->faults();
   const std::span<const faults::FaultStatus> link_status =
       stage != nullptr ? stage->status() : std::span<const faults::FaultStatus>{};
-  for (const auto& c : rig.channels) {
-    c->set_link_faults(link_status);
-    c->send_epoch();
-  }
+  if (send) send_rig_epoch(rig);
   log_fault_transitions(rig, link_status, run_s);
   record_status(rig, run_s, fix);
   const int type = static_cast<int>(fix.type);
@@ -598,6 +626,7 @@ void Daemon::on_nav_period(Rig& rig, std::size_t src) {
   } else {
     lock_grid_from(lock_next_);  // the pending epoch, or the next one of the new grid
   }
+  if (send_pending_) send_epochs();  // the computed epoch leaves now, not never
   arm_timer();  // replaces the pending wait
 }
 

@@ -129,9 +129,12 @@ private:
   /// Epoch t for every receiver: each vehicle's truth (its track; the
   /// fallback when it has no driver or fallback_only), the shared sky at
   /// every antenna, then each rig. demo_elapsed_s: the demo circle's time.
-  void emit_epoch(const time::GpsTime& t, double demo_elapsed_s, bool fallback_only);
+  /// send false: the rigs' ports get the epoch later, from send_epochs().
+  void emit_epoch(const time::GpsTime& t, double demo_elapsed_s, bool fallback_only, bool send = true);
+  void send_epochs() noexcept;
   /// One rig's part of epoch t (the sky and rig.truth are set), run time run_s.
-  void emit_rig_epoch(Rig& rig, const time::GpsTime& t, double run_s);
+  void emit_rig_epoch(Rig& rig, const time::GpsTime& t, double run_s, bool send);
+  static void send_rig_epoch(Rig& rig) noexcept;
   /// The emulated chip's clock (NAV-STATUS msss, ttff), s: the wall clock in
   /// realtime; in lockstep epoch t's GPS time from chip_origin_, so uptime
   /// and ttff advance with the simulation as iTOW does, whatever its speed.
@@ -228,6 +231,9 @@ private:
   /// start, a reload, a rate change).
   void refresh_status_setup();
   void record_status(Rig& rig, double run_s, const receiver::Fix& fix) noexcept;
+  /// Every rig's port counters after the epoch's sends, then the status page's snapshot.
+  void publish_status() noexcept;
+  static void record_port_counters(Rig& rig) noexcept;
 
   asio::io_context& io_;
   config::Config cfg_;
@@ -251,6 +257,13 @@ private:
   world::SharedSky sky_;        ///< every satellite's state this epoch, read by every rig
   std::vector<Ecef> antennas_;  ///< this epoch's antenna positions (capacity: one per rig)
   double sched_base_s_ = 0.0;   // realtime: elapsed time of index 0 of the current rate
+  /// Realtime: the epoch is computed this long before its output time, then
+  /// every port sends at that time (twice the slowest recent epoch's compute
+  /// time + 5 ms, at most output_delay_s), so a fleet's last receiver is not
+  /// later on the wire than its first.
+  double compute_lead_s_ = 0.0;
+  double compute_max_s_ = 0.0;  ///< slowest recent epoch computation, decaying 3 % an epoch
+  bool send_pending_ = false;   // realtime: computed, waiting for its output time
 
   std::unique_ptr<StatusServer> status_server_;  ///< null: [status] port = 0
   std::optional<time::GpsTime> status_first_t_;  ///< run time 0 of the status history

@@ -114,7 +114,14 @@ void Daemon::record_status(Rig& rig, double run_s, const receiver::Fix& fix) noe
   tc.demo = demo_drives(v);
   rig.status.set_truth(tc);
   rig.status.set_corrections(correction_counters(rig.device, fix));
+}
 
+void Daemon::publish_status() noexcept {
+  for (const auto& rp : rigs_) record_port_counters(*rp);
+  if (status_server_) status_server_->publish();
+}
+
+void Daemon::record_port_counters(Rig& rig) noexcept {
   for (std::size_t i = 0; i < rig.channels.size(); ++i) {
     const PortChannel& c = *rig.channels[i];
     PortCounters pc;
@@ -130,7 +137,6 @@ void Daemon::record_status(Rig& rig, double run_s, const receiver::Fix& fix) noe
     pc.link_faults = c.stats().link_faults;
     rig.status.set_port_counters(i, pc);
   }
-  if (status_server_ && &rig == rigs_.back().get()) status_server_->publish();
 }
 
 }  // namespace gnssemu::daemon
