@@ -525,12 +525,16 @@ void Daemon::send_epochs() noexcept {
   publish_status();
 }
 
-void Daemon::send_rig_epoch(Rig& rig) noexcept {
+/// The port events acting on rig's ports (docs/faults.md "Link faults"); no stage: none.
+std::span<const faults::FaultStatus> Daemon::link_status(const Rig& rig) noexcept {
   faults::FaultStage* stage = rig.receiver->faults();
-  const std::span<const faults::FaultStatus> link_status =
-      stage != nullptr ? stage->status() : std::span<const faults::FaultStatus>{};
+  return stage != nullptr ? stage->status() : std::span<const faults::FaultStatus>{};
+}
+
+void Daemon::send_rig_epoch(Rig& rig) noexcept {
+  const std::span<const faults::FaultStatus> faults_now = link_status(rig);
   for (const auto& c : rig.channels) {
-    c->set_link_faults(link_status);
+    c->set_link_faults(faults_now);
     c->send_epoch();
   }
 }
@@ -575,12 +579,8 @@ void Daemon::emit_rig_epoch(Rig& rig, const time::GpsTime& t, double run_s, bool
   const receiver::RawEpoch& raw = rig.receiver->receiver().raw();
   rig.device.on_epoch(fix, chip_clock_s(t),
                       protocol::ubx::RawSource{&raw, &store_, {&raw_nav_.klobuchar, &raw_nav_.utc, raw.leap_seconds}, &raw_nav_.galileo_nequick, &raw_nav_.beidou_klobuchar});
-  // Port events act on the ports (docs/faults.md "Link faults"); no stage: none.
-  faults::FaultStage* stage = rig.receiver->faults();
-  const std::span<const faults::FaultStatus> link_status =
-      stage != nullptr ? stage->status() : std::span<const faults::FaultStatus>{};
   if (send) send_rig_epoch(rig);
-  log_fault_transitions(rig, link_status, run_s);
+  log_fault_transitions(rig, link_status(rig), run_s);
   record_status(rig, run_s, fix);
   const int type = static_cast<int>(fix.type);
   rig.last_num_used = fix.num_used;

@@ -135,6 +135,7 @@ private:
   /// One rig's part of epoch t (the sky and rig.truth are set), run time run_s.
   void emit_rig_epoch(Rig& rig, const time::GpsTime& t, double run_s, bool send);
   static void send_rig_epoch(Rig& rig) noexcept;
+  static std::span<const faults::FaultStatus> link_status(const Rig& rig) noexcept;
   /// The emulated chip's clock (NAV-STATUS msss, ttff), s: the wall clock in
   /// realtime; in lockstep epoch t's GPS time from chip_origin_, so uptime
   /// and ttff advance with the simulation as iTOW does, whatever its speed.

@@ -28,6 +28,17 @@ def enu_to_latlon(origin, e, n):
             origin[1] + math.degrees(e / ((r_n + origin[2]) * math.cos(lat0))))
 
 
+def parse_gga(line):
+    """(quality, lat deg, lon deg, altitude above sea level m or None) of a $--GGA sentence, or None."""
+    f = line.split("*")[0].split(",")
+    if len(f) < 7 or not f[0].endswith("GGA") or not f[2] or not f[4]:
+        return None
+    lat = int(f[2][:2]) + float(f[2][2:]) / 60.0
+    lon = int(f[4][:3]) + float(f[4][3:]) / 60.0
+    alt = float(f[9]) if len(f) > 9 and f[9] else None
+    return int(f[6] or 0), -lat if f[3] == "S" else lat, -lon if f[5] == "W" else lon, alt
+
+
 def free_port(kind):
     """A port on 127.0.0.1 that is free now (socket.SOCK_DGRAM or SOCK_STREAM)."""
     s = socket.socket(socket.AF_INET, kind)

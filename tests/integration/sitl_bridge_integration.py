@@ -25,7 +25,7 @@ import sys
 import threading
 import time
 
-from itlib import RigBase, free_port, run_rig, enu_to_latlon
+from itlib import RigBase, free_port, parse_gga, run_rig, enu_to_latlon
 
 ORIGIN = (48.8738, 2.2950, 100.0)
 GEOID_M = 46.5  # EGM2008 at the origin (the GGA geoid separation gnssemud prints there)
@@ -72,16 +72,6 @@ class FakeSitl(threading.Thread):
                             self.interval_s = p[1] * 1e-6
 
 
-def gga(line):
-    """(lat_deg, lon_deg, quality, alt_msl_m) of a GGA sentence, or None."""
-    f = line.split(",")
-    if len(f) < 10 or not f[0].endswith("GGA") or not f[2] or not f[6] or f[6] == "0":
-        return None
-    lat = int(f[2][:2]) + float(f[2][2:]) / 60.0
-    lon = int(f[4][:3]) + float(f[4][3:]) / 60.0
-    return (lat if f[3] == "N" else -lat), (lon if f[5] == "E" else -lon), int(f[6]), float(f[9])
-
-
 def body(rig):
     import mavlink_truth as mt
     a = rig.args
@@ -125,12 +115,12 @@ def body(rig):
                     continue
                 *lines, bufs[v] = bufs[v].split(b"\n")
                 for line in lines:
-                    g = gga(line.decode("ascii", "replace").strip())
-                    if g is None:
+                    g = parse_gga(line.decode("ascii", "replace").strip())
+                    if g is None or g[0] == 0 or g[3] is None:
                         continue
                     lat, lon = enu_to_latlon(ORIGIN, *INSTANCES[v][:2])
-                    dn = math.radians(g[0] - lat) * 6371000.0
-                    de = math.radians(g[1] - lon) * 6371000.0 * math.cos(math.radians(lat))
+                    dn = math.radians(g[1] - lat) * 6371000.0
+                    de = math.radians(g[2] - lon) * 6371000.0 * math.cos(math.radians(lat))
                     if math.hypot(de, dn) < TOLERANCE_M and abs(g[3] - INSTANCES[v][2]) < TOLERANCE_M:
                         good.setdefault(v, (math.hypot(de, dn), g[3]))
     finally:

@@ -29,7 +29,7 @@ import sys
 import time
 import tty
 
-from itlib import RigBase, free_port
+from itlib import RigBase, free_port, parse_gga
 
 ORIGIN = (48.8738, 2.2950, 100.0)   # lat deg, lon deg, height m
 FAR_LLA = (48.9050, 2.3300, 130.0)  # ~3.5 km north, ~2.6 km east of ORIGIN
@@ -44,16 +44,6 @@ def ground_distance_m(lat_a, lon_a, lat_b, lon_b):
     pa, pb = math.radians(lat_a), math.radians(lat_b)
     h = math.sin((pb - pa) / 2) ** 2 + math.cos(pa) * math.cos(pb) * math.sin(math.radians(lon_b - lon_a) / 2) ** 2
     return 2 * EARTH_RADIUS_M * math.asin(math.sqrt(h))
-
-
-def parse_gga(line):
-    """(quality, lat deg, lon deg) of a $--GGA sentence, or None."""
-    f = line.split("*")[0].split(",")
-    if len(f) < 7 or not f[0].endswith("GGA") or not f[2] or not f[4]:
-        return None
-    lat = int(f[2][:2]) + float(f[2][2:]) / 60.0
-    lon = int(f[4][:3]) + float(f[4][3:]) / 60.0
-    return int(f[6] or 0), -lat if f[3] == "S" else lat, -lon if f[5] == "W" else lon
 
 
 class Rig(RigBase):
@@ -113,7 +103,7 @@ level = "info"
                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 
     def gga(self, deadline):
-        """Next (quality, lat, lon) from the pty, or None at the deadline (monotonic s)."""
+        """Next (quality, lat, lon, alt) from the pty, or None at the deadline (monotonic s)."""
         while True:
             nl = self.buf.find(b"\n")
             if nl >= 0:
@@ -175,7 +165,7 @@ def converge_on_far_point(rig):
     near = lambda lat, lon: ground_distance_m(lat, lon, FAR_LLA[0], FAR_LLA[1]) <= TOLERANCE_M
     rig.wait_fix(20, near, f"GGA within {TOLERANCE_M:.0f} m of the far point")
     for _ in range(4):  # not a lucky one: the next fixes stay there
-        q, lat, lon = rig.wait_fix(5, lambda *_: True, "GGA with a fix")
+        q, lat, lon, _ = rig.wait_fix(5, lambda *_: True, "GGA with a fix")
         d = ground_distance_m(lat, lon, FAR_LLA[0], FAR_LLA[1])
         assert d <= TOLERANCE_M, f"fix {d:.1f} m from the far point"
     return d
@@ -217,7 +207,7 @@ def case_flood(rig):
     fixes = 0
     deadline = time.monotonic() + duration - 3.0
     while time.monotonic() < deadline:
-        q, lat, lon = rig.wait_fix(5, lambda *_: True, "GGA with a fix")
+        q, lat, lon, _ = rig.wait_fix(5, lambda *_: True, "GGA with a fix")
         r = ground_distance_m(lat, lon, *ORIGIN[:2])
         assert abs(r - FLOOD_RADIUS_M) <= TOLERANCE_M, f"fix {r:.1f} m from the origin during the flood"
         fixes += 1
