@@ -125,7 +125,7 @@ def main():
     ap.add_argument("--bands", type=int, default=1, help="signals per satellite that must come back")
     ap.add_argument("--lat", type=float, default=48.8738, help="receiver latitude, deg")
     ap.add_argument("--lon", type=float, default=2.295, help="receiver longitude, deg")
-    ap.add_argument("--need-geo", action="store_true", help="BeiDou GEO phases must be among those compared")
+    ap.add_argument("--need-geo", action="store_true", help="BeiDou GEO phases and D2 ephemerides must be among those compared")
     args = ap.parse_args()
     for tool in ("convbin", "gpsdecode"):
         if shutil.which(tool) is None:
@@ -224,6 +224,7 @@ def main():
         # Navigation: convbin's ephemerides against the input's.
         matched, worst_m, worst_clk = 0, 0.0, 0.0
         systems = set()
+        geo_states = 0  # BeiDou GEO states from convbin's D2 decode
         per_system = {}  # letter: (states compared, largest position difference m)
         for dt in range(0, args.seconds + 1, 30):
             tow = args.tow + dt
@@ -237,17 +238,21 @@ def main():
                 worst_m = max(worst_m, d)
                 worst_clk = max(worst_clk, abs(float(row["clk_bias_s"]) - float(ref["clk_bias_s"])))
                 systems.add(sat[0])
+                if sat[0] == "C" and (int(sat[1:]) <= 5 or int(sat[1:]) >= 59):
+                    geo_states += 1
                 n, w = per_system.get(sat[0], (0, 0.0))
                 per_system[sat[0]] = (n + 1, max(w, d))
                 matched += 1
-        print("navigation: %d satellite states compared (systems %s), largest position difference %.4f m, "
-              "clock %.3g s" % (matched, ",".join(sorted(systems)), worst_m, worst_clk))
+        print("navigation: %d satellite states compared (systems %s; %d BeiDou GEO states), largest position "
+              "difference %.4f m, clock %.3g s" % (matched, ",".join(sorted(systems)), geo_states, worst_m, worst_clk))
         print("navigation by system: " + ", ".join("%s %d states, %.4f m" % (k, n, w)
                                                   for k, (n, w) in sorted(per_system.items())))
         if worst_m > 0.001:
             failures.append("decoded ephemerides differ by %.4f m (> 1 mm)" % worst_m)
         if worst_clk > 1e-12:
             failures.append("decoded clocks differ by %.3g s" % worst_clk)
+        if args.need_geo and geo_states == 0:
+            failures.append("no BeiDou GEO ephemeris decoded from the D2 pages")
         missing = set(args.systems) - systems
         if missing:
             failures.append("no ephemeris decoded for %s" % ",".join(sorted(missing)))

@@ -11,7 +11,7 @@ namespace gnssemu::protocol::navmsg {
 
 namespace {
 
-using Info = BitString<224>;  // 26 data bits of word 1, 22 of each of words 2-10
+using Info = BeidouInfo;
 
 constexpr double kSc = kSemicircle_rad;
 constexpr std::uint32_t kPreamble = 0x712;  // 11100010010 (BDS ICD §5.2.4.1)
@@ -37,28 +37,6 @@ std::uint32_t raw(const Info& b, std::size_t& at, int n) noexcept {
   return v;
 }
 
-D1Subframe to_words(const Info& info) noexcept {
-  D1Subframe w{};
-  const std::uint32_t w1 = info.get(0, 26);
-  w[0] = w1 << 4 | bch15_11_parity(w1 & 0x7FF);
-  for (std::size_t k = 1; k < 10; ++k) {
-    const std::uint32_t d = info.get(26 + 22 * (k - 1), 22);
-    w[k] = d << 8 | bch15_11_parity(d >> 11) << 4 | bch15_11_parity(d & 0x7FF);
-  }
-  return w;
-}
-
-bool to_info(const D1Subframe& w, Info& info) noexcept {
-  if ((w[0] & 0xF) != bch15_11_parity(w[0] >> 4 & 0x7FF)) return false;
-  info.put(w[0] >> 4 & 0x3FFFFFF, 26);
-  for (std::size_t k = 1; k < 10; ++k) {
-    const std::uint32_t d = w[k] >> 8 & 0x3FFFFF;
-    if ((w[k] >> 4 & 0xF) != bch15_11_parity(d >> 11) || (w[k] & 0xF) != bch15_11_parity(d & 0x7FF)) return false;
-    info.put(d, 22);
-  }
-  return true;
-}
-
 }  // namespace
 
 std::uint32_t bch15_11_parity(std::uint32_t data11) noexcept {
@@ -69,6 +47,28 @@ std::uint32_t bch15_11_parity(std::uint32_t data11) noexcept {
     if (fb) r ^= 0x3;
   }
   return r;
+}
+
+D1Subframe beidou_words(const BeidouInfo& info) noexcept {
+  D1Subframe w{};
+  const std::uint32_t w1 = info.get(0, 26);
+  w[0] = w1 << 4 | bch15_11_parity(w1 & 0x7FF);
+  for (std::size_t k = 1; k < 10; ++k) {
+    const std::uint32_t d = info.get(26 + 22 * (k - 1), 22);
+    w[k] = d << 8 | bch15_11_parity(d >> 11) << 4 | bch15_11_parity(d & 0x7FF);
+  }
+  return w;
+}
+
+bool beidou_info(const D1Subframe& w, BeidouInfo& info) noexcept {
+  if ((w[0] & 0xF) != bch15_11_parity(w[0] >> 4 & 0x7FF)) return false;
+  info.put(w[0] >> 4 & 0x3FFFFFF, 26);
+  for (std::size_t k = 1; k < 10; ++k) {
+    const std::uint32_t d = w[k] >> 8 & 0x3FFFFF;
+    if ((w[k] >> 4 & 0xF) != bch15_11_parity(d >> 11) || (w[k] & 0xF) != bch15_11_parity(d & 0x7FF)) return false;
+    info.put(d, 22);
+  }
+  return true;
 }
 
 int d1_subframe_id(const time::GpsTime& t_start) noexcept {
@@ -94,10 +94,8 @@ D1Subframe beidou_d1_subframe(const orbit::Ephemeris& eph, int id, const time::G
     b.put(quantize_signed(eph.tgd_s, 0.1e-9, 10), 10);
     b.put(quantize_signed(eph.tgd2_s, 0.1e-9, 10), 10);
     const orbit::KlobucharParams k = klobuchar != nullptr ? *klobuchar : orbit::KlobucharParams{};
-    constexpr int kAlphaExp[4] = {-30, -27, -24, -24};
-    constexpr int kBetaExp[4] = {11, 14, 16, 16};
-    for (std::size_t i = 0; i < 4; ++i) b.put(quantize_signed(k.alpha[i], std::ldexp(1.0, kAlphaExp[i]), 8), 8);
-    for (std::size_t i = 0; i < 4; ++i) b.put(quantize_signed(k.beta[i], std::ldexp(1.0, kBetaExp[i]), 8), 8);
+    for (std::size_t i = 0; i < 4; ++i) b.put(quantize_signed(k.alpha[i], std::ldexp(1.0, kKlobucharAlphaExp[i]), 8), 8);
+    for (std::size_t i = 0; i < 4; ++i) b.put(quantize_signed(k.beta[i], std::ldexp(1.0, kKlobucharBetaExp[i]), 8), 8);
     b.put(quantize_signed(eph.af2_s_s2, std::ldexp(1.0, -66), 11), 11);
     b.put(quantize_signed(eph.af0_s, std::ldexp(1.0, -33), 24), 24);
     b.put(quantize_signed(eph.af1_s_s, std::ldexp(1.0, -50), 22), 22);
@@ -122,19 +120,19 @@ D1Subframe beidou_d1_subframe(const orbit::Ephemeris& eph, int id, const time::G
     b.put(quantize_signed(eph.omega0_rad / kSc, std::ldexp(1.0, -31), 32), 32);
     b.put(quantize_signed(eph.omega_rad / kSc, std::ldexp(1.0, -31), 32), 32);
   }
-  return to_words(b);
+  return beidou_words(b);
 }
 
-std::optional<D1Decoded> decode_beidou_d1(const std::array<D1Subframe, 3>& subframes, int prn) {
+std::optional<BeidouDecoded> decode_beidou_d1(const std::array<D1Subframe, 3>& subframes, int prn) {
   std::array<Info, 3> b;
   std::array<std::uint32_t, 3> sow{};
   for (std::size_t k = 0; k < 3; ++k) {
-    if (!to_info(subframes[k], b[k])) return std::nullopt;
+    if (!beidou_info(subframes[k], b[k])) return std::nullopt;
     if (b[k].get(0, 11) != kPreamble || b[k].get(15, 3) != k + 1) return std::nullopt;
     sow[k] = b[k].get(18, 20);
     if (k > 0 && sow[k] != sow[k - 1] + 6) return std::nullopt;
   }
-  D1Decoded d;
+  BeidouDecoded d;
   orbit::Ephemeris& e = d.eph;
   e.sat = {GnssSystem::kBeiDou, prn};
   d.sow_s = static_cast<int>(sow[0]);
@@ -146,10 +144,8 @@ std::optional<D1Decoded> decode_beidou_d1(const std::array<D1Subframe, 3>& subfr
   const double toc = uns(b[0], at, 17, 8.0);
   e.tgd_s = sgn(b[0], at, 10, 0.1e-9);
   e.tgd2_s = sgn(b[0], at, 10, 0.1e-9);
-  constexpr int kAlphaExp[4] = {-30, -27, -24, -24};
-  constexpr int kBetaExp[4] = {11, 14, 16, 16};
-  for (std::size_t i = 0; i < 4; ++i) d.alpha[i] = sgn(b[0], at, 8, std::ldexp(1.0, kAlphaExp[i]));
-  for (std::size_t i = 0; i < 4; ++i) d.beta[i] = sgn(b[0], at, 8, std::ldexp(1.0, kBetaExp[i]));
+  for (std::size_t i = 0; i < 4; ++i) d.alpha[i] = sgn(b[0], at, 8, std::ldexp(1.0, kKlobucharAlphaExp[i]));
+  for (std::size_t i = 0; i < 4; ++i) d.beta[i] = sgn(b[0], at, 8, std::ldexp(1.0, kKlobucharBetaExp[i]));
   e.af2_s_s2 = sgn(b[0], at, 11, std::ldexp(1.0, -66));
   e.af0_s = sgn(b[0], at, 24, std::ldexp(1.0, -33));
   e.af1_s_s = sgn(b[0], at, 22, std::ldexp(1.0, -50));
@@ -182,9 +178,7 @@ std::optional<D1Decoded> decode_beidou_d1(const std::array<D1Subframe, 3>& subfr
   };
   e.toe = near(toe);
   e.toc = near(toc);
-  static constexpr std::array<double, 15> kUra_m{2.4, 3.4, 4.85, 6.85, 9.65, 13.65, 24.0, 48.0,
-                                                 96.0, 192.0, 384.0, 768.0, 1536.0, 3072.0, 6144.0};
-  e.sv_accuracy_m = urai < 15 ? kUra_m[static_cast<std::size_t>(urai)] : 0.0;
+  e.sv_accuracy_m = ura_accuracy_m(urai);
   return d;
 }
 

@@ -85,10 +85,8 @@ void iono_utc_page(Data& b, const LnavIonoUtc& iono, int week) {
   b.put(1, 2);   // data id
   b.put(56, 6);  // SV id of page 18
   const orbit::KlobucharParams k = iono.klobuchar != nullptr ? *iono.klobuchar : orbit::KlobucharParams{};
-  constexpr int kAlphaExp[4] = {-30, -27, -24, -24};
-  constexpr int kBetaExp[4] = {11, 14, 16, 16};
-  for (int i = 0; i < 4; ++i) b.put(quantize_signed(k.alpha[static_cast<std::size_t>(i)], std::ldexp(1.0, kAlphaExp[i]), 8), 8);
-  for (int i = 0; i < 4; ++i) b.put(quantize_signed(k.beta[static_cast<std::size_t>(i)], std::ldexp(1.0, kBetaExp[i]), 8), 8);
+  for (std::size_t i = 0; i < 4; ++i) b.put(quantize_signed(k.alpha[i], std::ldexp(1.0, kKlobucharAlphaExp[i]), 8), 8);
+  for (std::size_t i = 0; i < 4; ++i) b.put(quantize_signed(k.beta[i], std::ldexp(1.0, kKlobucharBetaExp[i]), 8), 8);
   const orbit::UtcParams u = iono.utc != nullptr ? *iono.utc : orbit::UtcParams{};
   b.put(quantize_signed(u.a1_s_s, std::ldexp(1.0, -50), 24), 24);
   const std::uint32_t a0 = quantize_signed(u.a0_s, std::ldexp(1.0, -30), 32);
@@ -116,6 +114,10 @@ int ura_index(double accuracy_m) noexcept {
     if (accuracy_m <= kUraMax_m[i]) return static_cast<int>(i);
   }
   return 15;
+}
+
+double ura_accuracy_m(int index) noexcept {
+  return index >= 0 && index < static_cast<int>(kUraMax_m.size()) ? kUraMax_m[static_cast<std::size_t>(index)] : 0.0;
 }
 
 LnavSubframe gps_lnav_subframe(const orbit::Ephemeris& eph, int subframe_id, int week, double tow_end_s,

@@ -30,6 +30,9 @@ std::uint32_t lnav_parity(std::uint32_t word) noexcept;
 /// (IS-GPS-200N §20.3.3.3.1.3).
 int ura_index(double accuracy_m) noexcept;
 
+/// The accuracy a URA index stands for, m (its upper bound; 0 for 15, no prediction).
+double ura_accuracy_m(int index) noexcept;
+
 /// Broadcast ionosphere and UTC for subframe 4 page 18 (IS-GPS-200N §20.3.3.5.1.6-7).
 struct LnavIonoUtc {
   const orbit::KlobucharParams* klobuchar = nullptr;

@@ -71,6 +71,11 @@ constexpr std::int64_t sign_extend(std::uint32_t v, int n) noexcept {
   return (v >> (n - 1)) & 1u ? static_cast<std::int64_t>(v) - (std::int64_t{1} << n) : static_cast<std::int64_t>(v);
 }
 
+/// Klobuchar alpha_n and beta_n scales, 2^exp s/semicircle^n: the same in
+/// GPS LNAV (IS-GPS-200 Table 20-X) and BeiDou D1/D2 (BDS ICD §5.2.4.7).
+inline constexpr std::array<int, 4> kKlobucharAlphaExp{-30, -27, -24, -24};
+inline constexpr std::array<int, 4> kKlobucharBetaExp{11, 14, 16, 16};
+
 inline constexpr double kSemicircle_rad = 3.1415926535898;  ///< pi as IS-GPS-200 §20.3.3.3.3 fixes it
 
 }  // namespace gnssemu::protocol::navmsg

@@ -57,7 +57,7 @@ TEST(D1Subframe, EveryFieldDecodesToTheEphemerisWithinOneLsb) {
       for (const std::uint32_t w : sf[static_cast<std::size_t>(id - 1)]) EXPECT_EQ(w >> 30, 0u);
     }
     EXPECT_EQ(sf[0][0] >> 19, 0x712u);  // preamble
-    const std::optional<D1Decoded> d = decode_beidou_d1(sf, eph.sat.number);
+    const std::optional<BeidouDecoded> d = decode_beidou_d1(sf, eph.sat.number);
     ASSERT_TRUE(d.has_value());
     const orbit::Ephemeris& e = d->eph;
     EXPECT_EQ(e.toe, eph.toe);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/orbit/rinex_nav.hpp"
+#include "core/protocol/navmsg/beidou_d2.hpp"
 #include "core/protocol/navmsg/galileo_inav.hpp"
 #include "core/protocol/navmsg/glonass_nav.hpp"
 #include "core/protocol/ubx/device/ubx_device.hpp"
@@ -340,6 +341,55 @@ TEST(RxmSfrbxDue, GalileoSendsWordTypesZeroToSixOnE1b) {
   EXPECT_EQ(d->eph.iode, sel->iode);
   EXPECT_EQ(d->eph.toe, sel->toe);
   EXPECT_NEAR(d->eph.sqrt_a_sqrtm, sel->sqrt_a_sqrtm, std::ldexp(1.0, -19));
+}
+
+TEST(RxmSfrbxDue, BeidouGeoSendsD2PagesOneToTenOfSubframeOne) {
+  const orbit::NavData nav =
+      orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz");
+  const orbit::EphemerisStore store{nav.ephemerides};
+  const orbit::Ephemeris* eph = nullptr;
+  for (const orbit::Ephemeris& e : nav.ephemerides) {
+    if (is_beidou_geo(e.sat)) {
+      eph = &e;
+      break;
+    }
+  }
+  ASSERT_NE(eph, nullptr);
+  // 60 s at 1 Hz from 10 min after toe: two 30-s page cycles, one page every
+  // 3-s frame (its subframe 1 ends 0.6 s into the frame: 70 ms of flight later).
+  const time::GpsTime t0 = eph->toe + 600.0 + 0.05;
+  const std::vector<std::string> p = sfrbx_of(store, eph->sat, 0, t0, 60, 18);
+  ASSERT_EQ(p.size(), 20u);
+  std::array<navmsg::D1Subframe, navmsg::kD2Pages> pages{};
+  int prev_page = 0, decoded = 0;
+  for (const std::string& m : p) {
+    EXPECT_EQ(static_cast<int>(m[0]), 3);  // gnssId BeiDou
+    EXPECT_EQ(static_cast<int>(m[1]), eph->sat.number);
+    EXPECT_EQ(static_cast<int>(m[2]), 1);   // sigId B1I D2 on the M9
+    EXPECT_EQ(static_cast<int>(m[4]), 10);  // numWords
+    navmsg::D1Subframe w{};
+    for (std::size_t i = 0; i < 10; ++i) std::memcpy(&w[i], m.data() + 8 + 4 * i, 4);
+    EXPECT_EQ(w[0] >> 12 & 7, 1u);  // FraID: subframe 1 only
+    const int page = static_cast<int>(w[1] >> 14 & 0xF);
+    ASSERT_TRUE(page >= 1 && page <= navmsg::kD2Pages) << page;
+    if (prev_page != 0) {
+      EXPECT_EQ(page, prev_page % navmsg::kD2Pages + 1);  // no page skipped
+    }
+    prev_page = page;
+    pages[static_cast<std::size_t>(page - 1)] = w;
+    if (page == navmsg::kD2Pages) {
+      const auto d = navmsg::decode_beidou_d2(pages, eph->sat.number);
+      ASSERT_TRUE(d.has_value());
+      const orbit::Ephemeris* sel = store.select(eph->sat, t0);
+      ASSERT_NE(sel, nullptr);
+      EXPECT_EQ(d->eph.toe, sel->toe);
+      EXPECT_EQ(d->eph.iode, sel->iode & 0x1F);
+      EXPECT_NEAR(d->eph.sqrt_a_sqrtm, sel->sqrt_a_sqrtm, std::ldexp(1.0, -19));
+      EXPECT_NEAR(d->eph.omega0_rad, sel->omega0_rad, std::ldexp(navmsg::kSemicircle_rad, -31));
+      ++decoded;
+    }
+  }
+  EXPECT_EQ(decoded, 2);
 }
 
 TEST(RxmDevice, StandardFirmwareStaysSilent) {

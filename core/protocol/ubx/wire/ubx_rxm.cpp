@@ -9,6 +9,7 @@
 #include "core/common/constants.hpp"
 #include "core/common/gnss_systems.hpp"
 #include "core/protocol/navmsg/beidou_d1.hpp"
+#include "core/protocol/navmsg/beidou_d2.hpp"
 #include "core/protocol/navmsg/galileo_inav.hpp"
 #include "core/protocol/navmsg/glonass_nav.hpp"
 #include "core/protocol/navmsg/gps_lnav.hpp"
@@ -111,26 +112,33 @@ std::size_t rxm_sfrbx(SatId sat, int glonass_channel, std::span<const std::uint3
 
 namespace {
 
-/// Length of one SFRBX unit of a system's L1-band message, s, and the
-/// offset of the unit grid from GPS time's week start, s; 0: none produced.
+/// The SFRBX units of a satellite's L1-band message: their period, s, the
+/// offset of their ends from GPS time's week start, s, and their length, s
+/// (the time the satellite must be tracked through); 0: none produced.
 struct UnitGrid {
   double unit_s = 0.0;
   double offset_s = 0.0;
+  double length_s = 0.0;
 };
 
-UnitGrid unit_grid(GnssSystem sys, int leap_s) noexcept {
-  switch (sys) {
+UnitGrid unit_grid(SatId sat, int leap_s) noexcept {
+  if (is_beidou_geo(sat)) {
+    // D2 subframe 1 (the ephemeris pages) only: 0.6 s at the start of each
+    // 3-s frame of the BDT week (GPST - 14 s), so it ends 2.6 s into GPST's 3-s grid.
+    return {navmsg::kD2Frame_s, 2.0 + navmsg::kD2Subframe_s, navmsg::kD2Subframe_s};
+  }
+  switch (sat.system) {
     case GnssSystem::kGps:
     case GnssSystem::kQzss:
-      return {navmsg::kLnavSubframe_s, 0.0};
+      return {navmsg::kLnavSubframe_s, 0.0, navmsg::kLnavSubframe_s};
     case GnssSystem::kGalileo:
-      return {navmsg::kInavPagePair_s, 0.0};
+      return {navmsg::kInavPagePair_s, 0.0, navmsg::kInavPagePair_s};
     case GnssSystem::kBeiDou:
       // Subframes start on the 6-s grid of the BDT week: GPST - 14 s.
-      return {navmsg::kD1Subframe_s, 2.0};
+      return {navmsg::kD1Subframe_s, 2.0, navmsg::kD1Subframe_s};
     case GnssSystem::kGlonass:
       // Strings start on the even seconds of the GLONASST day: GPST - leap + 3 h.
-      return {navmsg::kGlonassString_s, static_cast<double>(((leap_s % 2) + 2) % 2)};
+      return {navmsg::kGlonassString_s, static_cast<double>(((leap_s % 2) + 2) % 2), navmsg::kGlonassString_s};
     default:
       return {};
   }
@@ -171,7 +179,15 @@ bool encode_unit(const RawSource& src, const receiver::RawMeasurement& m, const 
     return true;
   }
   if (m.sat.system == GnssSystem::kBeiDou) {
-    if (is_beidou_geo(m.sat)) return false;  // D2 not produced
+    if (is_beidou_geo(m.sat)) {
+      const time::GpsTime start = t_end - navmsg::kD2Subframe_s;
+      const int page = navmsg::d2_page(start);
+      // Pages 1-10 carry one set: the set at page 1's frame.
+      const orbit::Ephemeris* eph = src.ephemerides->select(m.sat, start - navmsg::kD2Frame_s * (page - 1));
+      if (eph == nullptr) return false;
+      rxm_sfrbx(m.sat, 0, navmsg::beidou_d2_page(*eph, page, start, src.beidou_klobuchar), g, out);
+      return true;
+    }
     const time::GpsTime start = t_end - navmsg::kD1Subframe_s;
     const int id = navmsg::d1_subframe_id(start);
     if (id > 3) return false;  // almanac
@@ -209,7 +225,7 @@ int rxm_sfrbx_due(const RawSource& src, double period_s, Generation g, MessageLi
   for (int i = 0; i < raw.num_meas; ++i) {
     const receiver::RawMeasurement& m = raw.meas[static_cast<std::size_t>(i)];
     if (signal_info(m.signal).band != 0 || !m.pseudorange_valid || !std::isfinite(m.pseudorange_m)) continue;
-    const UnitGrid grid = unit_grid(m.sat.system, src.iono.leap_seconds);
+    const UnitGrid grid = unit_grid(m.sat, src.iono.leap_seconds);
     if (grid.unit_s == 0.0) continue;
     // Transmit time now and at the previous epoch, on the unit grid of the week.
     const time::GpsTime tx = raw.t_rx - m.pseudorange_m / kSpeedOfLight_m_s;
@@ -217,7 +233,7 @@ int rxm_sfrbx_due(const RawSource& src, double period_s, Generation g, MessageLi
     const double units = std::floor((tx - week_start - grid.offset_s) / grid.unit_s);
     const time::GpsTime t_end = week_start + (grid.offset_s + units * grid.unit_s);
     if (!(tx - t_end < period_s)) continue;            // no unit ended within this epoch
-    if (!(m.lock_time_s + 1e-6 >= grid.unit_s)) continue;  // not tracked through the whole unit
+    if (!(m.lock_time_s + 1e-6 >= grid.length_s)) continue;  // not tracked through the whole unit
     if (encode_unit(src, m, t_end, g, out.buffer())) {
       out.close("RXM-SFRBX", Protocol::kUbx);
       ++added;
