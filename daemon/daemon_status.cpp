@@ -80,6 +80,10 @@ void Daemon::start_status_page() {
         }
         return out + "]";
       });
+  status_server_->set_roster([this](std::vector<OverviewEntry>& out) {
+    out.clear();
+    for (const auto& rp : rigs_) out.push_back(OverviewEntry{rp->vehicle, rp->name, &rp->status});
+  });
   const auto ep = status_server_->local_endpoint();
   const std::string host = ep.address().is_v6() ? "[" + ep.address().to_string() + "]" : ep.address().to_string();
   std::printf("gnssemud: status page http://%s:%u/\n", host.c_str(), static_cast<unsigned>(ep.port()));
@@ -111,6 +115,7 @@ void Daemon::record_status(Rig& rig, double run_s, const receiver::Fix& fix) noe
   const double now = now_s();
   tc.simulator = router_.router(v).has_driver();
   tc.fresh = tc.simulator && router_.router(v).driver_fresh(now);
+  tc.age_s = router_.router(v).driver_age_s(now);
   tc.demo = demo_drives(v);
   rig.status.set_truth(tc);
   rig.status.set_corrections(correction_counters(rig.device, fix));

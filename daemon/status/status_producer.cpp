@@ -115,6 +115,33 @@ void StatusProducer::update_error_stats() noexcept {
   cep95_m_ = statistics::percentile_nearest_rank_sorted(h, 0.95);
 }
 
+OverviewRow StatusProducer::overview() const noexcept {
+  OverviewRow r;
+  const bool has_fix = fix_.type != receiver::FixType::kNone;
+  r.epochs = epochs_;
+  r.fix_type = fix_.type;
+  r.carrier = has_fix ? fix_.carr_soln : receiver::CarrierSolution::kNone;
+  r.diff = has_fix && fix_.diff_soln;
+  r.num_used = fix_.num_used;
+  r.num_tracked = fix_.num_tracked;
+  r.num_visible = fix_.num_visible;
+  r.h_err_m = error_valid_ ? std::hypot(e_m_, n_m_) : kNaN;
+  r.h_acc_m = has_fix ? fix_.h_acc_m : kNaN;
+  r.cep95_m = cep95_m_;
+  r.truth_valid = truth_.valid;
+  r.truth_source = truth_counters_.simulator ? "simulator" : truth_counters_.demo ? "demo" : "none";
+  r.truth_fresh = truth_counters_.fresh;
+  r.truth_age_s = truth_counters_.simulator ? truth_counters_.age_s : kNaN;
+  r.faults = faults_;
+  r.ports = ports_.size();
+  for (const PortSlot& p : ports_) {
+    r.bytes_written += p.counters.bytes_written;
+    r.epochs_dropped += p.counters.epochs_dropped;
+    r.messages_dropped += p.counters.messages_dropped;
+  }
+  return r;
+}
+
 void StatusProducer::write_history(JsonWriter& w, std::size_t history_max) const noexcept {
   const std::size_t n = std::min(history_max, history_n_);
   const std::size_t first = (history_next_ + kHistory - n) % kHistory;
@@ -198,6 +225,7 @@ void StatusProducer::write_json(std::string& out, std::size_t history_max) const
   w.field_bool("valid", truth_.valid);
   w.field_string("source", truth_counters_.simulator ? "simulator" : truth_counters_.demo ? "demo" : "none");
   w.field_bool("fresh", truth_counters_.fresh);
+  w.field("age_s", truth_counters_.simulator ? truth_counters_.age_s : kNaN, 3);
   const Lla tl = geo::lla_from_ecef(truth_.pos_m);
   w.field("lat_deg", truth_.valid ? tl.lat_rad * kRadToDeg : kNaN, 8);
   w.field("lon_deg", truth_.valid ? tl.lon_rad * kRadToDeg : kNaN, 8);

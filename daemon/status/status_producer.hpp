@@ -17,6 +17,7 @@
 #include "core/receiver/fix.hpp"
 #include "core/world/truth.hpp"
 #include "daemon/ports/link_fault_stats.hpp"
+#include "daemon/status/overview.hpp"
 #include "daemon/truth/truth_packet.hpp"
 
 namespace gnssemu::daemon {
@@ -58,6 +59,7 @@ struct TruthCounters {
   bool simulator = false;          ///< a simulator's vehicle drives the receiver (else demo or none)
   bool fresh = false;              ///< its truth is within the timeout
   bool demo = false;               ///< the demo trajectory drives the receiver
+  double age_s = std::numeric_limits<double>::quiet_NaN();  ///< since the simulator's last packet, s; NaN: none
 };
 
 /// RTCM 3 corrections the receiver's ports took (docs/rtk.md).
@@ -115,6 +117,10 @@ public:
   /// history_max: newest history entries included (0: none). No allocation
   /// once out has the capacity.
   void write_json(std::string& out, std::size_t history_max = kHistory) const noexcept;
+
+  /// The receiver's row of the fleet overview (a view: valid until the next
+  /// set_faults). No allocation.
+  OverviewRow overview() const noexcept;
 
   uint64_t epochs() const noexcept { return epochs_; }
   const receiver::Fix& fix() const noexcept { return fix_; }

@@ -83,6 +83,8 @@ struct StatusServer::Shared {
   const StatusProducer* producer;  ///< null after stop()
   StatusServer::Selector selector;  ///< a fleet's receivers by vehicle id and name
   StatusServer::Lister lister;      ///< the fleet's receivers, JSON
+  StatusServer::Roster roster;      ///< the fleet's receivers for /api/overview
+  std::vector<OverviewEntry> entries;  ///< roster's output, reused between requests
   std::list<std::weak_ptr<Session>> sessions;
   std::string event;  ///< the newest event, "data: {...}\n\n"
   StatusServerStats stats;
@@ -194,6 +196,21 @@ private:
       std::string& body = res->body();
       body.reserve(64 * 1024);
       producer->write_json(body, history_param(query, StatusProducer::kHistory));
+    } else if (path == "/api/overview" && shared_->roster) {
+      if (shared_->producer == nullptr) {
+        respond_error(http::status::service_unavailable, "shutting down");
+        return;
+      }
+      OverviewQuery oq;
+      if (const std::string why = parse_overview_query(query, oq); !why.empty()) {
+        ++shared_->stats.bad_requests;
+        respond_error(http::status::bad_request, why);
+        return;
+      }
+      shared_->roster(shared_->entries);
+      res->set(http::field::content_type, "application/json");
+      res->body().reserve(512 + 600 * std::min(oq.limit, shared_->entries.size()));
+      write_overview(res->body(), shared_->entries, oq);
     } else if (path == "/api/receivers" && shared_->lister) {
       res->set(http::field::content_type, "application/json");
       res->body() = shared_->lister();
@@ -298,6 +315,8 @@ void StatusServer::set_selector(Selector selector, Lister lister) {
   shared_->selector = std::move(selector);
   shared_->lister = std::move(lister);
 }
+
+void StatusServer::set_roster(Roster roster) { shared_->roster = std::move(roster); }
 
 StatusServer::~StatusServer() { stop(); }
 

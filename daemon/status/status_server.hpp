@@ -11,12 +11,14 @@
 //   GET /api/status[?history=N]  StatusProducer::write_json
 //   GET /api/status?vehicle=ID[&receiver=NAME]  a fleet's receiver (set_selector)
 //   GET /api/receivers           the fleet's receivers, [{"vehicle":..,"receiver":..}] (set_selector)
+//   GET /api/overview[?limit=N&offset=M]  one row per receiver (set_roster, overview.hpp)
 //   GET /api/events              text/event-stream: one status (history=1) per epoch
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 #include <utility>  // before Asio: Boost 1.74 awaitable.hpp needs std::exchange
 
 #include <boost/asio/io_context.hpp>
@@ -61,6 +63,11 @@ public:
   /// /api/status?vehicle= picks with selector, /api/receivers lists with
   /// lister (without them: 404).
   void set_selector(Selector selector, Lister lister);
+  /// Fills out with every receiver, in the daemon's order (the producers'
+  /// lifetime rule as above).
+  using Roster = std::function<void(std::vector<OverviewEntry>& out)>;
+  /// /api/overview lists the roster's receivers (without one: 404).
+  void set_roster(Roster roster);
   /// The producer /api/status without a vehicle reads (the first receiver
   /// went with its vehicle in a reload); the same lifetime rule.
   void set_producer(const StatusProducer& producer) noexcept;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "daemon/truth/truth_router.hpp"
 
+#include <limits>
+
 namespace gnssemu::daemon {
 
 TruthRouter::TruthRouter(const TrackParams& params, config::TimeMode mode, std::string driving_vehicle)
@@ -78,6 +80,11 @@ world::Truth TruthRouter::truth_at(const time::GpsTime& t, double now_s) const n
 
 bool TruthRouter::driver_fresh(double now_s) const noexcept {
   return driver_ >= 0 && vehicles_[static_cast<std::size_t>(driver_)].track.fresh(now_s, params_);
+}
+
+double TruthRouter::driver_age_s(double now_s) const noexcept {
+  if (driver_ < 0) return std::numeric_limits<double>::quiet_NaN();
+  return now_s - vehicles_[static_cast<std::size_t>(driver_)].track.last_arrival_s();
 }
 
 std::optional<time::GpsTime> TruthRouter::driver_newest() const noexcept {

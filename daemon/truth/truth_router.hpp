@@ -44,6 +44,8 @@ public:
   bool has_driver() const noexcept { return driver_ >= 0; }
   /// Driving vehicle's last packet within the timeout.
   bool driver_fresh(double now_s) const noexcept;
+  /// Seconds since the driving vehicle's last accepted packet; NaN when none.
+  double driver_age_s(double now_s) const noexcept;
   /// Newest stamp of the driving vehicle, if any sample is held.
   std::optional<time::GpsTime> driver_newest() const noexcept;
   const std::string& driver_id() const noexcept { return driving_id_; }

@@ -175,6 +175,53 @@ def wait_fix(rig, v, r, limit_s):
     raise AssertionError(f"{v}/{r}: no 3D fix within {FIX_TOLERANCE_M} m of its antenna (last {last})")
 
 
+def http_get(rig, path):
+    """(status, body) of GET path on the status page."""
+    try:
+        with urllib.request.urlopen(f"http://127.0.0.1:{rig.http_port}{path}", timeout=5) as r:
+            return r.status, r.read().decode()
+    except urllib.error.HTTPError as e:
+        return e.code, e.read().decode()
+
+
+def check_overview(rig):
+    """/api/overview: a row per receiver in config order, b's scheduled outage,
+    rows equal to /api/status of the same epoch, limit/offset, bad queries 400."""
+    code, text = http_get(rig, "/api/overview")
+    assert code == 200, (code, text)
+    o = json.loads(text)
+    ids = [(x["vehicle"], x["receiver"]) for x in o["rows"]]
+    assert o["total"] == 3 and ids == list(EXPECTED), o
+    for x in o["rows"]:
+        scheduled = 1 if x["vehicle"] == "b" else 0
+        assert x["faults_scheduled"] == scheduled and x["faults_active"] == 0, x
+        assert x["fix_type"] == 3 and x["truth_source"] == "simulator" and x["truth_fresh"], x
+        assert x["h_err_m"] is not None and x["h_err_m"] < FIX_TOLERANCE_M, x
+        assert x["ports"] == 1 and x["bytes_written"] > 0, x
+    for (v, r) in EXPECTED:
+        for _ in range(20):
+            row = next(x for x in json.loads(http_get(rig, "/api/overview")[1])["rows"]
+                       if (x["vehicle"], x["receiver"]) == (v, r))
+            st = json.loads(http_get(rig, f"/api/status?history=0&vehicle={v}&receiver={r}")[1])
+            if st["epoch"]["count"] == row["epochs"]:
+                break
+        else:
+            raise AssertionError(f"{v}/{r}: /api/overview and /api/status never showed the same epoch")
+        for key in ("num_used", "num_tracked", "num_visible", "h_acc_m"):
+            assert row[key] == st["fix"][key], (v, r, key, row[key], st["fix"][key])
+        assert row["fix_type"] == st["fix"]["type"] and row["h_err_m"] == st["error"]["h_m"], (row, st["error"])
+    page = json.loads(http_get(rig, "/api/overview?limit=2&offset=1")[1])
+    assert page["total"] == 3 and [(x["vehicle"], x["receiver"]) for x in page["rows"]] == list(EXPECTED)[1:], page
+    for query, want in [("limit=0", "limit must be a whole number in [1, 1000]"),
+                        ("limit=1001", "limit must be a whole number in [1, 1000]"),
+                        ("limit=ten", "not 'ten'"), ("offset=-1", "offset must be a whole number"),
+                        ("limit=1&limit=2", "limit given twice"),
+                        ("vehicle=a", "unknown query parameter 'vehicle' (/api/overview takes limit, offset)")]:
+        code, text = http_get(rig, f"/api/overview?{query}")
+        assert code == 400 and want in text, (query, code, text)
+    print("  /api/overview: a row per receiver = /api/status, b's outage scheduled, limit/offset, bad queries 400")
+
+
 def body(rig):
     rig.start()
     rig.pipes = {}
@@ -211,6 +258,7 @@ def body(rig):
     b_faults = rig.ctl("--vehicle", "b", "--receiver", "gps1", "status")["status"]["faults"]
     a_faults = rig.ctl("--vehicle", "a", "--receiver", "gps1", "status")["status"]["faults"]
     assert len(b_faults) == 1 and len(a_faults) == 0, (b_faults, a_faults)
+    check_overview(rig)
     cleared = rig.ctl("clear")["cleared"]
     assert cleared == 1, f"clear (every receiver) removed {cleared}"
     bad = subprocess.run([rig.args.gnssemu, "ctl", "--socket", rig.sock, "--vehicle", "zz", "status"],

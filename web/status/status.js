@@ -2,7 +2,8 @@
 // The live status page (docs/status.md): /api/status once for the history,
 // then one status per epoch from /api/events (server-sent events). Renders
 // only what that JSON carries. A fleet's receiver (?vehicle=ID&receiver=NAME
-// in the page's address, picked in the header) is polled twice a second.
+// in the page's address, picked in the header or in the overview table of
+// every receiver, /api/overview once a second) is polled twice a second.
 'use strict';
 
 (() => {
@@ -189,21 +190,95 @@
     ? '&vehicle=' + encodeURIComponent(vehicle) + '&receiver=' + encodeURIComponent(params.get('receiver') || '')
     : '';
 
-  // The receiver selector: shown when the daemon runs more than one.
+  const pickSearch = (v, r) => '?vehicle=' + encodeURIComponent(v) + '&receiver=' + encodeURIComponent(r);
+
+  // The fleet overview (/api/overview): one row per receiver, refreshed every
+  // second, ordered by the clicked column (vehicle, receiver at first); a
+  // click on a row picks that receiver as the selector does.
+  const overview = { key: 'name', dir: 1, rows: [], shown: null };
+  const natural = new Intl.Collator(undefined, { numeric: true });
+  const fixText = (r) => (r.fix_type === 0 ? 'no fix' : r.fix_name === 'DR' ? 'dead reckoning'
+    : r.fix_name + (r.carrier === 'fixed' ? ' RTK fixed' : r.carrier === 'float' ? ' RTK float' : r.diff ? ' DGNSS' : ''));
+  const truthText = (r) => (r.truth_source === 'simulator'
+    ? `${r.truth_fresh ? 'simulator' : 'stopped'}${r.truth_age_s === null ? '' : ', ' + G.fmt(r.truth_age_s, 1, ' s ago')}`
+    : r.truth_source) + (r.truth_valid ? '' : ', no truth');
+  const faultText = (r) => (r.faults_active === 0 ? '—'
+    : r.active_faults.map((f) => `${f.type} ${f.id}`).join(', ')
+      + (r.faults_active > r.active_faults.length ? ` +${r.faults_active - r.active_faults.length}` : ''));
+  const SORT = {
+    name: (a, b) => natural.compare(a.vehicle, b.vehicle) || natural.compare(a.receiver, b.receiver),
+    fix: (a, b) => a.fix_type - b.fix_type || fixText(a).localeCompare(fixText(b)),
+    sats: (a, b) => a.num_used - b.num_used,
+    herr: (a, b) => (a.h_err_m ?? Infinity) - (b.h_err_m ?? Infinity),
+    hacc: (a, b) => (a.h_acc_m ?? Infinity) - (b.h_acc_m ?? Infinity),
+    truth: (a, b) => truthText(a).localeCompare(truthText(b)),
+    faults: (a, b) => a.faults_active - b.faults_active,
+    bytes: (a, b) => a.bytes_written - b.bytes_written,
+    dropped: (a, b) => (a.epochs_dropped + a.messages_dropped) - (b.epochs_dropped + b.messages_dropped),
+  };
+
+  function renderOverview() {
+    const cmp = SORT[overview.key];
+    const rows = overview.rows.slice().sort((a, b) => overview.dir * cmp(a, b) || SORT.name(a, b));
+    const body = $('overview-table').tBodies[0];
+    body.replaceChildren(...rows.map((r) => {
+      const tr = document.createElement('tr');
+      Object.assign(tr.dataset, { vehicle: r.vehicle, receiver: r.receiver, fixType: String(r.fix_type),
+        numUsed: String(r.num_used), faults: String(r.faults_active), epochs: String(r.epochs) });
+      if (overview.shown && r.vehicle === overview.shown.vehicle && r.receiver === overview.shown.receiver) tr.className = 'picked';
+      else if (r.faults_active > 0) tr.className = 'faulty';
+      const cells = [`${r.vehicle}/${r.receiver}`, fixText(r), `${r.num_used} / ${r.num_tracked} / ${r.num_visible}`,
+        G.fmt(r.h_err_m, 2, ' m'), G.fmt(r.h_acc_m, 2, ' m'), truthText(r), faultText(r),
+        String(r.bytes_written), `${r.epochs_dropped} / ${r.messages_dropped}`];
+      for (const c of cells) tr.appendChild(document.createElement('td')).textContent = c;
+      tr.title = `show ${r.vehicle}/${r.receiver}`;
+      tr.onclick = () => { location.search = pickSearch(r.vehicle, r.receiver); };
+      return tr;
+    }));
+    for (const th of $('overview-table').tHead.rows[0].cells) {
+      th.dataset.sorted = th.dataset.key === overview.key ? (overview.dir > 0 ? 'up' : 'down') : '';
+    }
+  }
+
+  function pollOverview() {
+    fetch('/api/overview')
+      .then((r) => (r.ok ? r.json() : Promise.reject(new Error(`/api/overview: ${r.status}`))))
+      .then((o) => {
+        overview.rows = o.rows;
+        text('overview-count', o.total > o.rows.length ? `(first ${o.rows.length} of ${o.total})` : `(${o.total})`);
+        renderOverview();
+      })
+      .catch((err) => console.warn('overview', err))
+      .finally(() => setTimeout(pollOverview, 1000));
+  }
+
+  // The receiver selector and the overview: shown when the daemon runs more than one.
   fetch('/api/receivers')
     .then((r) => (r.ok ? r.json() : []))
     .then((list) => {
       if (list.length < 2) return;
       const sel = $('receiver-select');
+      // Without ?vehicle= the page shows the first receiver (/api/status's default).
+      const shown = vehicle ? list.find((x) => x.vehicle === vehicle && x.receiver === params.get('receiver')) : list[0];
       for (const x of list) {
         const o = document.createElement('option');
-        o.value = '?vehicle=' + encodeURIComponent(x.vehicle) + '&receiver=' + encodeURIComponent(x.receiver);
+        o.value = pickSearch(x.vehicle, x.receiver);
         o.textContent = x.vehicle + '/' + x.receiver;
-        o.selected = vehicle ? x.vehicle === vehicle && x.receiver === params.get('receiver') : o.index === 0;
+        o.selected = x === shown;
+        if (o.selected) overview.shown = x;
         sel.appendChild(o);
       }
       sel.hidden = false;
       sel.onchange = () => { location.search = sel.value; };
+      for (const th of $('overview-table').tHead.rows[0].cells) {
+        th.onclick = () => {
+          overview.dir = overview.key === th.dataset.key ? -overview.dir : 1;
+          overview.key = th.dataset.key;
+          renderOverview();
+        };
+      }
+      $('panel-overview').hidden = false;
+      pollOverview();
     })
     .catch(() => {});
 

@@ -135,6 +135,38 @@ TEST_F(ServerFixture, BadRequestsGetAnErrorAndTheServerGoesOn) {
   EXPECT_GE(st.bad_requests, 4u);
 }
 
+TEST_F(ServerFixture, OverviewListsTheRosterAndRefusesABadQuery) {
+  const std::string get = "GET /api/overview HTTP/1.1\r\nConnection: close\r\n\r\n";
+  EXPECT_EQ(exchange(get).rfind("HTTP/1.1 404", 0), 0u) << "no roster: no overview";
+  on_io([this] {
+    server_->set_roster([this](std::vector<OverviewEntry>& out) {
+      out.clear();
+      out.push_back({"v0", "gps1", &producer_});
+      out.push_back({"v1", "gps1", &producer_});
+      out.push_back({"v1", "gps2", &producer_});
+    });
+  });
+  const std::string r = exchange(get);
+  ASSERT_EQ(r.rfind("HTTP/1.1 200", 0), 0u) << r;
+  EXPECT_NE(r.find("application/json"), std::string::npos);
+  const nlohmann::json j = nlohmann::json::parse(body_of(r));
+  EXPECT_EQ(j["total"], 3);
+  ASSERT_EQ(j["rows"].size(), 3u);
+  EXPECT_EQ(j["rows"][2]["vehicle"], "v1");
+  EXPECT_EQ(j["rows"][2]["receiver"], "gps2");
+  EXPECT_EQ(j["rows"][2]["fix_type"], 3);
+  const nlohmann::json two = nlohmann::json::parse(
+      body_of(exchange("GET /api/overview?limit=2&offset=1 HTTP/1.1\r\nConnection: close\r\n\r\n")));
+  ASSERT_EQ(two["rows"].size(), 2u);
+  EXPECT_EQ(two["rows"][0]["vehicle"], "v1");
+  const std::string bad = exchange("GET /api/overview?limit=0 HTTP/1.1\r\nConnection: close\r\n\r\n");
+  EXPECT_EQ(bad.rfind("HTTP/1.1 400", 0), 0u) << bad;
+  EXPECT_NE(bad.find("limit must be a whole number in [1, 1000]"), std::string::npos) << bad;
+  const std::string unknown = exchange("GET /api/overview?sort=fix HTTP/1.1\r\nConnection: close\r\n\r\n");
+  EXPECT_EQ(unknown.rfind("HTTP/1.1 400", 0), 0u) << unknown;
+  EXPECT_NE(unknown.find("unknown query parameter 'sort'"), std::string::npos) << unknown;
+}
+
 TEST_F(ServerFixture, ConnectionsBeyondTheLimitAreRefusedOthersServed) {
   std::vector<tcp::socket> idle;
   for (std::size_t i = 0; i < kMaxSessions + 10; ++i) idle.push_back(connect());
