@@ -111,6 +111,13 @@ def pvt_fix_ok(k, m):
     return k == "ubx" and m[2:4] == b"\x01\x07" and m[6 + 21] & 1
 
 
+def pvt_lost_after(stream, t0, t1):
+    """NAV-PVTs without gnssFixOK that arrived in (t0, t1], monotonic times:
+    a chip that restarts its GNSS engine drops its fix for a moment."""
+    return sum(1 for t, k, m in stream.seen
+               if t0 < t <= t1 and k == "ubx" and m[2:4] == b"\x01\x07" and not m[6 + 21] & 1)
+
+
 class Stream:
     """Reads a fd, splits messages, keeps arrival times. msgs is consumed by
     wait_for; seen keeps every message for analysis afterwards."""

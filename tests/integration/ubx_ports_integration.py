@@ -76,7 +76,7 @@ from ubx_startup_faults import case_ardupilot_faults, case_px4_faults
 from ubx_host import (ARDUPILOT_M9_RATES, AP_TMODE_MODE, ardupilot_startup_f9p, rtcm_number, is_ubx, K_SIGNAL_BDS_ENA, K_SIGNAL_GAL_ENA, K_SIGNAL_GLO_ENA, K_SIGNAL_GPS_ENA,
                       K_SIGNAL_QZSS_ENA, K_SIGNAL_SBAS_ENA, ardupilot_cfg_gnss, valset, K_MSGOUT_MON_RF, K_MSGOUT_NAV_PVT, K_NAVSPG_DYNMODEL, K_RATE_MEAS, K_UART1_BAUDRATE,
                       PX4_M9_RATE_MEAS_MS, PX4_F9P_RATE_MEAS_MS, K_NAVHPG_DGNSSMODE, K_UART2_BAUDRATE, K_UART2IN_RTCM3X, Stream, ack, ardupilot_rates, ardupilot_startup, ardupilot_startup_m9, frame, is_ack_for, nmea,
-                      poll_cfg, pvt_fix_ok, px4_rates, px4_startup, px4_startup_m9, send, set_cfg, split_stream,
+                      poll_cfg, pvt_fix_ok, pvt_lost_after, px4_rates, px4_startup, px4_startup_m9, send, set_cfg, split_stream,
                       stty_speed, valget_values)
 import tty
 
@@ -1077,12 +1077,18 @@ def case_px4_m9_gnss(rig):
         if k == "ubx" and m[2:4] == b"\x01\x35":
             before |= nav_sat_systems(m)[0]
     assert {0, 2, 3, 6} <= before, f"NAV-SAT before the restriction lists {names(before)}"
+    t_acks = []
     for pairs in ([(K_SIGNAL_GPS_ENA, 1), (K_SIGNAL_QZSS_ENA, 1), (K_SIGNAL_GAL_ENA, 1), (K_SIGNAL_BDS_ENA, 0),
                    (K_SIGNAL_GLO_ENA, 0)], [(K_SIGNAL_SBAS_ENA, 0)]):
         send(fd, frame(0x06, 0x8A, valset(pairs)))
-        m = s.wait_for(is_ack_for(0x06, 0x8A), 1.0, "reply to PX4's CFG-SIGNAL VALSET")[1]
+        t, m = s.wait_for(is_ack_for(0x06, 0x8A), 1.0, "reply to PX4's CFG-SIGNAL VALSET")
         assert m == ack(0x06, 0x8A), f"CFG-SIGNAL VALSET: got {m.hex()}"
-    s.wait_for(pvt_fix_ok, 8.0, "gnssFixOK after the GNSS restart")
+        t_acks.append(t)
+    t_fix, _ = s.wait_for(pvt_fix_ok, 8.0, "gnssFixOK after the GNSS restart")
+    # The chip restarts its GNSS engine on the change (M8/M9 interface descriptions, CFG-GNSS / CFG-SIGNAL):
+    # the fix drops for a moment.
+    lost = pvt_lost_after(s, t_acks[0], t_fix)
+    assert lost > 0, "no NAV-PVT without gnssFixOK after the GNSS change: the chip did not restart"
     after, used = set(), set()
     pvts = 0
     for _, k, m in s.collect(2.5):
@@ -1095,7 +1101,8 @@ def case_px4_m9_gnss(rig):
     assert {0, 2} <= used, f"satellites used after the restriction: {names(used)}"
     assert pvts > 0, "no NAV-PVT with gnssFixOK after the restriction"
     print(f"  px4_m9_gnss: NAV-SAT {names(before)} -> {names(after)} (used {names(used)}) after PX4's "
-          f"CFG-SIGNAL VALSETs (ACKed); {pvts} NAV-PVT with gnssFixOK in 2.5 s")
+          f"CFG-SIGNAL VALSETs (ACKed); the restart: {lost} NAV-PVT without a fix, gnssFixOK again "
+          f"{t_fix - t_acks[-1]:.1f} s after the last ACK; {pvts} NAV-PVT with gnssFixOK in 2.5 s")
 
 
 def svinfo_systems(m):
@@ -1128,8 +1135,11 @@ def case_ardupilot_gnss(rig):
     before = svinfo_systems(sv)[0]
     assert 6 in before and 2 not in before, f"factory M8 NAV-SVINFO lists {names(before)}"
     gnss = poll_cfg(s, fd, 0x3E, b"")
+    t_set = time.monotonic()
     set_cfg(s, fd, 0x3E, ardupilot_cfg_gnss(gnss, 5))
-    s.wait_for(pvt_fix_ok, 8.0, "gnssFixOK after the GNSS restart")
+    t_fix, _ = s.wait_for(pvt_fix_ok, 8.0, "gnssFixOK after the GNSS restart")
+    lost = pvt_lost_after(s, t_set, t_fix)
+    assert lost > 0, "no NAV-PVT without gnssFixOK after CFG-GNSS: the M8 did not restart its GNSS engine"
     t0 = time.monotonic()
     # Galileo was off: it is acquired after the restart (the acquisition
     # model decides when it is used).
@@ -1143,7 +1153,7 @@ def case_ardupilot_gnss(rig):
             break
     assert {0, 2} <= used, f"satellites used {time.monotonic() - t0:.0f} s after the restriction: {names(used)}"
     print(f"  ardupilot_gnss: NAV-SVINFO {names(before)} -> {names(after)} after ArduPilot's CFG-GNSS for mode 5 "
-          f"(ACKed); Galileo used {time.monotonic() - t0:.0f} s after the restart")
+          f"(ACKed); the restart: {lost} NAV-PVT without a fix; Galileo used {time.monotonic() - t0:.0f} s after it")
 
 
 def case_gpsd_m9_sky(rig):

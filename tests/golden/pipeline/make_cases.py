@@ -39,8 +39,9 @@ type = "pty"
 path = "/tmp/gnssemu-golden/gps0"
 baud = 115200
 ubx_messages = [{", ".join('"%s"' % m for m in ubx)}]
-sentences = [{", ".join('"%s"' % s for s in sentences)}]
 """
+    if sentences is not None:  # None: the emulated device's default set
+        out += f"""sentences = [{", ".join('"%s"' % s for s in sentences)}]\n"""
     if rates:
         out += "rates = { " + ", ".join(f"{k} = {v}" for k, v in rates.items()) + " }\n"
     return out
@@ -152,8 +153,25 @@ max_bounces = 2
     write("four_systems",
           base_config("BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz", PARIS, ubx=("NAV-PVT", "NAV-DOP", "NAV-SAT"),
                       sentences=("RMC", "GGA", "GSA", "GSV", "GST"),
-                      extra='constellations = ["G", "R", "E", "C", "J"]\nmax_channels = 32\n'),
+                      extra='constellations = ["G", "R", "E", "C", "J"]\n'
+                            'generation = "m9"  # an M8 tracks at most three major systems at once\nmax_channels = 32\n'),
           static_rows(2296, 262800.0, 262920.0, PARIS), lla_header)
+    # 8. A NEO-M8N as it ships (GPS + GLONASS + QZSS + SBAS, NMEA 4.0, its default sentences) with the
+    #    M8's per-system time messages, Paris, 2024-01-10 02:00 GPST.
+    write("m8_gps_glonass",
+          base_config("BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz", PARIS, sentences=None,
+                      ubx=("NAV-PVT", "NAV-SAT", "NAV-SVINFO", "NAV-TIMEGLO", "NAV-TIMEUTC", "MON-HW",
+                           "NAV-EOE"),
+                      extra='generation = "m8"\n'),
+          static_rows(2296, 266400.0, 266520.0, PARIS), lla_header)
+    # 9. A NEO-M9N as it ships (GPS + GLONASS + Galileo + BeiDou + QZSS + SBAS, NMEA 4.10, its default
+    #    sentences) with NAV-SIG and every system's time message.
+    write("m9_four_systems",
+          base_config("BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz", PARIS, sentences=None,
+                      ubx=("NAV-PVT", "NAV-SAT", "NAV-SIG", "NAV-TIMEGLO", "NAV-TIMEGAL", "NAV-TIMEBDS",
+                           "NAV-TIMEUTC", "MON-RF", "NAV-EOE"),
+                      extra='generation = "m9"\n'),
+          static_rows(2296, 266400.0, 266520.0, PARIS), lla_header)
 
 
 if __name__ == "__main__":

@@ -153,10 +153,11 @@ INSTANTIATE_TEST_SUITE_P(Cases, PipelineGolden, ::testing::ValuesIn(case_names()
                          [](const ::testing::TestParamInfo<std::string>& i) { return i.param; });
 
 TEST(PipelineGoldenCases, CoverWhatTheyMustCover) {
-  // Static open sky, 10 Hz motion, truth loss, buildings, a 2D fix, a week rollover, four systems.
+  // Static open sky, 10 Hz motion, truth loss, buildings, a 2D fix, a week rollover, four systems,
+  // and the M8 and NEO-M9N as they ship (their systems, NMEA version and sentences; NAV-SIG, NAV-TIME*).
   const auto names = case_names();
   for (const char* want : {"static_open_sky", "moving_10hz", "truth_loss", "building_canyon", "fix_2d", "week_rollover",
-                          "four_systems"}) {
+                          "four_systems", "m8_gps_glonass", "m9_four_systems"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
   }
 }

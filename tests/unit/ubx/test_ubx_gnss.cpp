@@ -620,5 +620,106 @@ TEST(UbxGnss, CfgGnssAndCfgNmeaChangeTheSentences) {
   EXPECT_TRUE(has(heads, "GPGGA") && !has(heads, "GNGSA")) << ::testing::PrintToString(heads);
 }
 
+/// The NMEA sentences (without '$' and checksum) of one epoch of fix.
+std::vector<std::string> nmea_epoch(Device& d, const receiver::Fix& fix) {
+  d.on_epoch(fix, 10.0);
+  MessageList list;
+  d.compose({}, list);
+  std::vector<std::string> out;
+  for (const MessageList::Message& m : list.messages()) {
+    const std::string_view b = list.bytes(m);
+    if (!b.empty() && b[0] == '$') out.emplace_back(b.substr(1, b.find('*') - 1));
+  }
+  return out;
+}
+
+/// Comma-separated fields of a sentence (the first: talker and type).
+std::vector<std::string> fields_of(const std::string& s) {
+  std::vector<std::string> f;
+  std::stringstream in(s);
+  for (std::string x; std::getline(in, x, ',');) f.push_back(x);
+  if (!s.empty() && s.back() == ',') f.emplace_back();
+  return f;
+}
+
+/// Every satellite number GSV names.
+std::vector<int> gsv_numbers(const std::vector<std::string>& epoch) {
+  std::vector<int> n;
+  for (const std::string& s : epoch) {
+    if (s.substr(2, 3) != "GSV") continue;
+    const std::vector<std::string> f = fields_of(s);
+    for (std::size_t i = 4; i + 3 < f.size(); i += 4) {
+      if (!f[i].empty()) n.push_back(std::stoi(f[i]));
+    }
+  }
+  return n;
+}
+
+TEST(UbxGnss, CfgNmeaVersionAndNumberingChangeTheSentences) {
+  // A NEO-M9N (factory NMEA 4.10, strict numbering) with GPS, GLONASS,
+  // Galileo and BeiDou satellites in the fix.
+  Device d(setup_of(Generation::kM9));
+  receiver::Fix fix = sample_fix();
+  ASSERT_GE(fix.num_sats, 6);
+  fix.sats[3].sat = SatId(GnssSystem::kGalileo, 5);
+  fix.sats[4].sat = SatId(GnssSystem::kBeiDou, 20);
+  fix.sats[5].sat = SatId(GnssSystem::kGlonass, 7);
+  const auto count = [](const std::vector<std::string>& e, std::string_view head) {
+    return std::count_if(e.begin(), e.end(), [&](const std::string& s) { return s.substr(0, 5) == head; });
+  };
+  const auto has_number = [](const std::vector<int>& v, int n) { return std::find(v.begin(), v.end(), n) != v.end(); };
+  std::vector<std::string> e = nmea_epoch(d, fix);
+  // 4.10: a GSA per system with its systemId (18 fields), a GSV per talker with
+  // a signalId, Galileo and BeiDou numbered within their own talkers.
+  EXPECT_GE(count(e, "GNGSA"), 4) << ::testing::PrintToString(e);
+  for (const std::string& s : e) {
+    if (s.substr(2, 3) == "GSA") {
+      EXPECT_EQ(fields_of(s).size(), 19u) << s;
+    }
+  }
+  ASSERT_EQ(count(e, "GAGSV"), 1) << ::testing::PrintToString(e);
+  EXPECT_EQ(count(e, "GBGSV"), 1);
+  EXPECT_TRUE(has_number(gsv_numbers(e), 5) && has_number(gsv_numbers(e), 20) && has_number(gsv_numbers(e), 71))
+      << ::testing::PrintToString(e);
+  // CFG-NMEA nmeaVersion 4.0 (0x40), strict: no systemId, no signalId, and
+  // Galileo and BeiDou have no NMEA 4.0 number, so they leave GSV and GSA
+  // (their GSV says 0 in view).
+  Host h{d};
+  ASSERT_TRUE(h.acked(msg::kCfgNmea, {0x00, 0x40, 0, 0x02, 0, 0, 0, 0, 0, 0, 0, 0}));
+  e = nmea_epoch(d, fix);
+  for (const std::string& s : e) {
+    if (s.substr(2, 3) == "GSA") {
+      EXPECT_EQ(fields_of(s).size(), 18u) << s;
+    }
+  }
+  for (const std::string& s : e) {
+    if (s.substr(0, 5) == "GAGSV" || s.substr(0, 5) == "GBGSV") {
+      EXPECT_EQ(fields_of(s)[3], "00") << s;  // the system is on, its satellites unnumbered
+    }
+  }
+  std::vector<int> n = gsv_numbers(e);
+  EXPECT_TRUE(has_number(n, 71) && !has_number(n, 305) && !has_number(n, 420)) << ::testing::PrintToString(n);
+  // svNumbering extended (1): Galileo 301-336 and BeiDou 401-437 come back.
+  ASSERT_TRUE(h.acked(msg::kCfgNmea, {0x00, 0x40, 0, 0x02, 0, 0, 0, 0, 1, 0, 0, 0}));
+  n = gsv_numbers(nmea_epoch(d, fix));
+  EXPECT_TRUE(has_number(n, 305) && has_number(n, 420)) << ::testing::PrintToString(n);
+  // NMEA 2.3 (0x23): GSV without the 4.10 signalId (4 + 4n fields).
+  ASSERT_TRUE(h.acked(msg::kCfgNmea, {0x00, 0x23, 0, 0x02, 0, 0, 0, 0, 0, 0, 0, 0}));
+  e = nmea_epoch(d, fix);
+  for (const std::string& s : e) {
+    if (s.substr(2, 3) == "GSV") {
+      EXPECT_EQ((fields_of(s).size() - 4) % 4, 0u) << s;
+    }
+  }
+  // Back to 4.10: the signalId returns (4 + 4n + 1 fields).
+  ASSERT_TRUE(h.acked(msg::kCfgNmea, {0x00, 0x41, 0, 0x02, 0, 0, 0, 0, 0, 0, 0, 0}));
+  e = nmea_epoch(d, fix);
+  for (const std::string& s : e) {
+    if (s.substr(2, 3) == "GSV") {
+      EXPECT_EQ((fields_of(s).size() - 4) % 4, 1u) << s;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace gnssemu::protocol::ubx::gnss_test
