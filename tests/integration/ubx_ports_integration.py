@@ -48,6 +48,9 @@ Cases (each bounded, every process killed and the temp dir removed on exit):
              GPS_GNSS_MODE = 5 on the M8 (CFG-GNSS) leave exactly those
              systems in NAV-SAT / NAV-SVINFO after the chip's restart, with a
              fix; gpsd 3.22 reports SKY gnssid for every system of the M9
+  state_file a host's saved configuration (5 Hz, NAV-PVT, UBX only) is what
+             the chip runs after a gnssemud restart; CFG-CFG clear and
+             another restart: factory-fresh
   cold_start gpsd (read-only, NMEA) reads the pty; after the power-on hot
              start's fix (mode 3) a host sends CFG-RST cold start: gpsd sees
              no fix (mode 1) for about the M8's cold TTFF (data sheet 29 s,
@@ -1182,6 +1185,56 @@ def case_gpsd_m9_sky(rig):
            for g in sorted({x.get("gnssid") for x in sats})}
     print("  gpsd_m9_sky: SKY " + ", ".join(f"{GNSS_NAMES.get(g, g)} {n} seen/{u} used" for g, (n, u) in per.items()))
 
+def case_state_file(rig):
+    """A configuration saved by a host survives a gnssemud restart, as a real
+    module's flash/BBR does ([receiver] state_file, docs/ubx.md "Saved
+    configuration"): the host sets 5 Hz (CFG-RATE), NAV-PVT on (CFG-MSG) and
+    UBX-only output (CFG-PRT), saves (CFG-CFG); the daemon is stopped and
+    started again, and with no host input the chip talks NAV-PVT at 5 Hz and
+    no NMEA. CFG-CFG clear, one more restart: factory-fresh (NMEA at 1 Hz)."""
+    state = os.path.join(rig.tmp, "chip.state")
+    path, out = pty_output(rig)
+    receiver = f'state_file = "{state}"'
+
+    def start():
+        rig.start_daemon(out, receiver_toml=receiver)
+        fd = rig.open_tty(path)
+        return fd, Stream(fd)
+
+    def what_it_says(s):
+        msgs = s.collect(3.0)
+        itows = [struct.unpack_from("<I", m, 6)[0] for _, k, m in msgs if k == "ubx" and m[2:4] == b"\x01\x07"]
+        steps = sorted({b - a for a, b in zip(itows, itows[1:])})
+        return itows, steps, sum(1 for _, k, _m in msgs if k == "nmea")
+
+    fd, s = start()
+    s.wait_for(lambda k, m: k == "nmea", 5.0, "factory NMEA")
+    set_cfg(s, fd, 0x08, struct.pack("<HHH", 200, 1, 1))               # CFG-RATE 200 ms
+    set_cfg(s, fd, 0x01, bytes([0x01, 0x07, 1]))                       # CFG-MSG NAV-PVT every epoch
+    set_cfg(s, fd, 0x00, struct.pack("<BBHIIHHHH", 1, 0, 0, 0x08C0, 9600, 0x03, 0x01, 0, 0))  # UART1: UBX out
+    set_cfg(s, fd, 0x09, struct.pack("<IIIB", 0, 0x0000061F, 0, 0x17))  # CFG-CFG save
+    assert os.path.exists(state), "no state file after CFG-CFG save"
+    rig.stop(rig.daemon)
+    os.close(fd)
+    rig.fds.remove(fd)
+
+    fd, s = start()
+    itows, steps, nmea_n = what_it_says(s)
+    assert len(itows) >= 10 and steps == [200] and nmea_n == 0, \
+        f"after the restart: {len(itows)} NAV-PVT in 3 s, iTOW steps {steps} ms, {nmea_n} NMEA sentences"
+    print(f"  state_file: restarted with the saved configuration: {len(itows)} NAV-PVT in 3 s (iTOW step 200 ms), "
+          f"no NMEA, no host input")
+    set_cfg(s, fd, 0x09, struct.pack("<IIIB", 0x0000061F, 0, 0, 0x17))  # CFG-CFG clear
+    rig.stop(rig.daemon)
+    os.close(fd)
+    rig.fds.remove(fd)
+
+    fd, s = start()
+    itows, steps, nmea_n = what_it_says(s)
+    assert not itows and nmea_n >= 6, f"after CFG-CFG clear and a restart: {len(itows)} NAV-PVT, {nmea_n} NMEA"
+    print(f"  state_file: after CFG-CFG clear and a restart factory-fresh: {nmea_n} NMEA sentences in 3 s, no NAV-PVT")
+
+
 CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx, "gpsd_nmea": case_gpsd_nmea,
          "gpsdecode": case_gpsdecode, "serial": case_serial, "net": case_net, "budget": case_budget,
          "jamming": case_jamming, "wallclock": case_wallclock, "cold_start": case_cold_start,
@@ -1193,7 +1246,7 @@ CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx
          "ardupilot_f9p_mb_rover": case_ardupilot_f9p_mb_rover,
          "ardupilot_f9p_mb_rover_uart2": case_ardupilot_f9p_mb_rover_uart2,
          "ardupilot_f9p_mb_base": case_ardupilot_f9p_mb_base, "ardupilot_f9p_heading": case_ardupilot_f9p_heading, "px4_m9_gnss": case_px4_m9_gnss, "ardupilot_gnss": case_ardupilot_gnss,
-         "gpsd_m9_sky": case_gpsd_m9_sky}
+         "gpsd_m9_sky": case_gpsd_m9_sky, "state_file": case_state_file}
 NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_m9_sky": ["gpsd", "gpspipe"], "gpsd_m9": ["gpsd", "gpspipe", "socat"], "gpsd_f9p": ["gpsd", "gpspipe", "socat"], "gpsd_nmea": ["gpsd", "gpspipe"],
          "gpsdecode": ["gpsdecode"],
          "serial": ["socat", "stty"], "cold_start": ["gpsd", "gpspipe"],
