@@ -47,7 +47,8 @@ Cases (each bounded, every process killed and the temp dir removed on exit):
              Galileo on the M9 (CFG-SIGNAL VALSET) and ArduPilot's
              GPS_GNSS_MODE = 5 on the M8 (CFG-GNSS) leave exactly those
              systems in NAV-SAT / NAV-SVINFO after the chip's restart, with a
-             fix; gpsd 3.22 reports SKY gnssid for every system of the M9
+             fix; gpsd 3.22 reports SKY gnssid for every system of the M9,
+             from UBX and (gpsd_m9_sky_nmea) from an NMEA-only port
   state_file a host's saved configuration (5 Hz, NAV-PVT, UBX only) is what
              the chip runs after a gnssemud restart; CFG-CFG clear and
              another restart: factory-fresh
@@ -1159,21 +1160,32 @@ def case_ardupilot_gnss(rig):
           f"(ACKed); the restart: {lost} NAV-PVT without a fix; Galileo used {time.monotonic() - t0:.0f} s after it")
 
 
-def case_gpsd_m9_sky(rig):
-    """gpsd 3.22 on an M9N in a four-system sky: SKY lists gnssid 0 (GPS),
-    2 (Galileo), 3 (BeiDou) and 6 (GLONASS) with used satellites of each, and
-    TPV mode 3."""
+# gpsd's satellite numbers per gnssid (gpsd.h: GPS, SBAS PRN, Galileo, BeiDou, QZSS, GLONASS slot).
+SVID_RANGE = {0: range(1, 33), 1: range(120, 159), 2: range(1, 37), 3: range(1, 64), 5: range(1, 11), 6: range(1, 33)}
+
+
+def gpsd_m9_sky(rig, nmea_only):
+    """SKY from gpsd on an M9N in a four-system sky: satellites of GPS,
+    Galileo, BeiDou and GLONASS, used ones of each (from NMEA: of GPS and
+    GLONASS, as gpsd 3.22 reads NMEA 4.10), each svid in its system's range."""
     rig.nav = rig.args.nav_mgnss
-    path, out = pty_output(rig)
+    path, out = pty_output(rig, extra='protocols_out = ["nmea"]' if nmea_only else "")
     # A fixed start: today's sky at some hours holds too few GLONASS
     # satellites above the mask for all four systems to be used.
     rig.start_daemon(out, receiver_toml=M9, extra_toml='[time]\nstart = "2024-01-10T09:00:00"\n')
-    pipe = gpsd_rig(rig, path, readonly=False)
+    pipe = gpsd_rig(rig, path, readonly=nmea_only)
     read_json(pipe, 20, lambda m: m.get("class") == "TPV" and m.get("mode") == 3, "TPV mode 3")
-    want = {0, 2, 3, 6}
+    # gpsd 3.22's NMEA path marks as used only the GSA numbers it can match in
+    # its own numbering: GPS and GLONASS; Galileo's and BeiDou's (NMEA 4.10,
+    # per-talker numbers) stay unused. It does the same with the real NEO-M9N
+    # log (gpsfake on ublox-neo-m9n-nmea.log: 184 SKYs, no Galileo or BeiDou
+    # satellite used, BeiDou 33 as SBAS svid 120).
+    want = {0, 6} if nmea_only else {0, 2, 3, 6}
     sky = read_json(pipe, 20, lambda m: m.get("class") == "SKY" and
-                    want <= {x.get("gnssid") for x in m.get("satellites", []) if x.get("used")},
-                    "SKY with used GPS, Galileo, BeiDou and GLONASS satellites", last_of="SKY")
+                    want <= {x.get("gnssid") for x in m.get("satellites", []) if x.get("used")} and
+                    {0, 2, 3, 6} <= {x.get("gnssid") for x in m.get("satellites", [])},
+                    "SKY with GPS, Galileo, BeiDou and GLONASS satellites, " +
+                    ("GPS and GLONASS" if nmea_only else "each system's") + " used", last_of="SKY")
     end = time.monotonic() + 8.0  # the first such SKY is early in acquisition: take one 8 s later
     while time.monotonic() < end:
         try:
@@ -1183,7 +1195,26 @@ def case_gpsd_m9_sky(rig):
     sats = sky["satellites"]
     per = {g: (sum(1 for x in sats if x.get("gnssid") == g), sum(1 for x in sats if x.get("gnssid") == g and x.get("used")))
            for g in sorted({x.get("gnssid") for x in sats})}
-    print("  gpsd_m9_sky: SKY " + ", ".join(f"{GNSS_NAMES.get(g, g)} {n} seen/{u} used" for g, (n, u) in per.items()))
+    # gpsd 3.22 reads a GBGSV number 33-63 (BeiDou-3 MEOs) as an SBAS PRN (the NMEA 2.x range 33-64):
+    # from NMEA only GPS, Galileo, BeiDou 1-32 and GLONASS are checked.
+    checked = [x for x in sats if not nmea_only or x.get("gnssid") in (0, 2, 3, 6)]
+    bad = [(x.get("gnssid"), x.get("svid")) for x in checked if x.get("svid") not in SVID_RANGE.get(x.get("gnssid"), ())]
+    assert not bad, f"SKY satellites outside their system's svid range: {bad}"
+    print(f"  gpsd_m9_sky{'_nmea' if nmea_only else ''}: SKY " +
+          ", ".join(f"{GNSS_NAMES.get(g, g)} {n} seen/{u} used" for g, (n, u) in per.items()) + "; every svid in range")
+
+
+def case_gpsd_m9_sky(rig):
+    """gpsd 3.22 (configuring the chip, UBX) on an M9N in a four-system sky:
+    SKY lists gnssid 0 (GPS), 2 (Galileo), 3 (BeiDou) and 6 (GLONASS) with
+    used satellites of each and svids in range, and TPV mode 3."""
+    gpsd_m9_sky(rig, nmea_only=False)
+
+
+def case_gpsd_m9_sky_nmea(rig):
+    """The same from an NMEA-only port, gpsd read-only: gpsd takes the
+    systems from the talkers of the M9's factory NMEA 4.10."""
+    gpsd_m9_sky(rig, nmea_only=True)
 
 def case_state_file(rig):
     """A configuration saved by a host survives a gnssemud restart, as a real
@@ -1246,8 +1277,9 @@ CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx
          "ardupilot_f9p_mb_rover": case_ardupilot_f9p_mb_rover,
          "ardupilot_f9p_mb_rover_uart2": case_ardupilot_f9p_mb_rover_uart2,
          "ardupilot_f9p_mb_base": case_ardupilot_f9p_mb_base, "ardupilot_f9p_heading": case_ardupilot_f9p_heading, "px4_m9_gnss": case_px4_m9_gnss, "ardupilot_gnss": case_ardupilot_gnss,
-         "gpsd_m9_sky": case_gpsd_m9_sky, "state_file": case_state_file}
-NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_m9_sky": ["gpsd", "gpspipe"], "gpsd_m9": ["gpsd", "gpspipe", "socat"], "gpsd_f9p": ["gpsd", "gpspipe", "socat"], "gpsd_nmea": ["gpsd", "gpspipe"],
+         "gpsd_m9_sky": case_gpsd_m9_sky,
+         "gpsd_m9_sky_nmea": case_gpsd_m9_sky_nmea, "state_file": case_state_file}
+NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_m9_sky": ["gpsd", "gpspipe"], "gpsd_m9_sky_nmea": ["gpsd", "gpspipe"], "gpsd_m9": ["gpsd", "gpspipe", "socat"], "gpsd_f9p": ["gpsd", "gpspipe", "socat"], "gpsd_nmea": ["gpsd", "gpspipe"],
          "gpsdecode": ["gpsdecode"],
          "serial": ["socat", "stty"], "cold_start": ["gpsd", "gpspipe"],
          "power_on_cold": ["gpsd", "gpspipe"]}
