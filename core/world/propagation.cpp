@@ -24,7 +24,7 @@ void AtmospherePropagation::set_klobuchar_shape(const orbit::KlobucharParams& p)
 }
 
 SlowTerms AtmospherePropagation::slow_terms(const Lla& rx, double az_rad, double el_rad, double tow_s,
-                                            double doy) const noexcept {
+                                            double doy) noexcept {
   SlowTerms s{};
   if (iono_on_) {
     const double per_tecu = iono_.mapping(el_rad) * atmosphere::iono_m_per_tecu(cfg_.ionosphere.freq_hz);
@@ -38,7 +38,7 @@ SlowTerms AtmospherePropagation::slow_terms(const Lla& rx, double az_rad, double
   }
   // Shells and layers are heights above the surface; the ellipsoidal height
   // stands in for it (no terrain model).
-  if (gases_on_) s[kAttenDb] += shells_.gas_attenuation(rx.height_m, el_rad).total_db;
+  if (gases_on_) s[kAttenDb] += gas_table_.total_db(shells_, rx.height_m, el_rad);
   if (clouds_rain_on_) {
     const atmosphere::CloudsRainAttenuation a = clouds_rain_.attenuation(rx.height_m, el_rad);
     s[kAttenDb] += a.clouds_db + a.rain_db;

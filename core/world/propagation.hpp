@@ -13,6 +13,7 @@
 #include "core/atmosphere/troposphere.hpp"
 #include "core/common/vec3.hpp"
 #include "core/orbit/nav_data.hpp"
+#include "core/world/gas_table.hpp"
 #include "core/world/world_config.hpp"
 
 namespace gnssemu::world {
@@ -55,8 +56,12 @@ public:
   bool any_on() const noexcept { return iono_on_ || tropo_on_ || atten_on(); }
 
   /// Slow terms seen from rx (geodetic, height above the ellipsoid) along
-  /// (az_rad, el_rad) at GPS time of week tow_s and day of year doy.
-  SlowTerms slow_terms(const Lla& rx, double az_rad, double el_rad, double tow_s, double doy) const noexcept;
+  /// (az_rad, el_rad) at GPS time of week tow_s and day of year doy. The
+  /// gases come from a table over elevation kept for the receiver's height
+  /// (GasAttenuationTable); clouds and rain are evaluated every call.
+  SlowTerms slow_terms(const Lla& rx, double az_rad, double el_rad, double tow_s, double doy) noexcept;
+  /// Quadrature evaluations of the gases so far (benchmarks).
+  long gas_evaluations() const noexcept { return gas_table_.evaluations(); }
 
   const atmosphere::Ionosphere& ionosphere() const noexcept { return iono_; }
   const atmosphere::Troposphere& troposphere() const noexcept { return tropo_; }
@@ -67,6 +72,7 @@ private:
   atmosphere::Troposphere tropo_;
   atmosphere::AtmosphereShells shells_;
   atmosphere::CloudsRain clouds_rain_;
+  GasAttenuationTable gas_table_;
   bool iono_on_, tropo_on_, gases_on_, clouds_rain_on_;
 };
 

@@ -74,13 +74,17 @@ BatchSummary run_batch(const config::Config& config, const orbit::NavData& nav, 
     const receiver::Fix& fix = rx->step(t, truth);
     if (sum.epochs == 0) power_on = t;
     ++sum.epochs;
-    const receiver::RawEpoch& raw = rx->receiver().raw();
-    device.on_epoch(fix, t - power_on, protocol::ubx::RawSource{&raw, &store, {&nav.klobuchar, &nav.utc, raw.leap_seconds}, &nav.galileo_nequick, &nav.beidou_klobuchar});
-    device.compose({}, messages, protocol::ubx::Layout::kLine);
-    for (const protocol::ubx::MessageList::Message& m : messages.messages()) {
-      std::ostream* log = m.protocol == protocol::ubx::Protocol::kNmea ? nmea : ubx;
-      const std::string_view bytes = messages.bytes(m);
-      if (log != nullptr) log->write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    // The device feeds only the NMEA and UBX logs: without them its
+    // encoding (a tenth of an epoch) is skipped.
+    if (nmea != nullptr || ubx != nullptr) {
+      const receiver::RawEpoch& raw = rx->receiver().raw();
+      device.on_epoch(fix, t - power_on, protocol::ubx::RawSource{&raw, &store, {&nav.klobuchar, &nav.utc, raw.leap_seconds}, &nav.galileo_nequick, &nav.beidou_klobuchar});
+      device.compose({}, messages, protocol::ubx::Layout::kLine);
+      for (const protocol::ubx::MessageList::Message& m : messages.messages()) {
+        std::ostream* log = m.protocol == protocol::ubx::Protocol::kNmea ? nmea : ubx;
+        const std::string_view bytes = messages.bytes(m);
+        if (log != nullptr) log->write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+      }
     }
     // A position without truth (the receiver coasting through an antenna
     // loss) has nothing to be compared with; dead reckoning is reported in

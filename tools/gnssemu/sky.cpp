@@ -42,7 +42,7 @@ int write_sky(const orbit::EphemerisStore& store, const SkyRequest& req, std::os
       << (req.scene ? ",los,bounces,nlos_delay_m,path_loss_db\n" : "\n");
   const Ecef rx = geo::ecef_from_lla(req.rx_lla);
   const world::WorldConfig defaults;
-  const world::AtmospherePropagation world(defaults.atmosphere);
+  world::AtmospherePropagation world(defaults.atmosphere);
   const signal::LinkBudgetModel link(defaults.signal.link);
   const double doy = req.t.fractional_day_of_year();
   const double zhd_m = atmosphere::receiver_zhd_m(req.rx_lla.lat_rad, req.rx_lla.height_m);
