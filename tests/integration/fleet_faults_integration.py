@@ -14,6 +14,9 @@ GGA; the state of each receiver read from /api/overview and
           receiver's C/N0 drop is the free-space one of its own distance, so
           the far one in the second phase loses what the near one lost in the
           first (100x the distance = 40 dB), the near one then loses its fix.
+  swarm   tools/senders/swarm_truth.py drives [fleet] count = 5 in a line
+          abreast 40 m apart: the daemon's truths are that far apart, the
+          middle one on the sender's circle, each receiver with its own fix.
   jump    v1's truth jumps 1000 km north between two packets: v0 and v2 miss
           no epoch and their errors stay; v1 behaves as a receiver carried
           off at that speed (no fix past the speed limit, then a fix at the
@@ -21,7 +24,7 @@ GGA; the state of each receiver read from /api/overview and
 
 Loopback only, free ports, temp dir; each case stops itself in 90 s.
 
-usage: fleet_faults_integration.py --gnssemud PATH --gnssemu PATH --nav FILE target|jammer|jump
+usage: fleet_faults_integration.py --gnssemud PATH --gnssemu PATH --nav FILE target|jammer|jump|swarm
 """
 import argparse
 import json
@@ -42,6 +45,7 @@ RATE_HZ = 2.0
 FIX_TOLERANCE_M = 15.0
 C_M_S = 299792458.0
 L1_HZ = 1575.42e6
+HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def horizontal_m(lat_a, lon_a, lat_b, lon_b):
@@ -95,6 +99,7 @@ class Rig(RigBase):
         self.http_port = free_port(socket.SOCK_STREAM)
         self.stop_sending = threading.Event()
         self.pos = {}  # vehicle -> (lat, lon); the sender reads it every packet
+        self.count = 3
         self.lock = threading.Lock()
 
     def pty(self, v):
@@ -124,7 +129,7 @@ enabled = false
 bind = "127.0.0.1"
 port = {self.http_port}
 [fleet]
-count = 3
+count = {self.count}
 [[fleet.output]]
 type = "pty"
 name = "{{vehicle}}"
@@ -132,7 +137,8 @@ path = "{self.tmp}/{{vehicle}}-{{receiver}}"
 """)
         return cfg
 
-    def start(self, scenario=None):
+    def start(self, scenario=None, sender=None):
+        """gnssemud (with scenario), pty readers, and the truth thread or sender (argv)."""
         argv = [self.args.gnssemud, "--config", self.config()]
         if scenario:
             argv += ["--scenario", scenario]
@@ -140,12 +146,16 @@ path = "{self.tmp}/{{vehicle}}-{{receiver}}"
         self.daemon_log = open(self.daemon_log_path, "w")
         self.daemon = self.spawn(argv, stdout=self.daemon_log, stderr=subprocess.STDOUT, text=True)
         deadline = time.monotonic() + 20
-        while not all(os.path.exists(self.pty(v)) for v in self.pos):
+        ids = [f"v{i}" for i in range(self.count)]
+        while not all(os.path.exists(self.pty(v)) for v in ids):
             if time.monotonic() > deadline or self.daemon.poll() is not None:
-                raise AssertionError("the three ptys did not appear")
+                raise AssertionError(f"the {self.count} ptys did not appear")
             time.sleep(0.1)
-        self.readers = {v: PtyReader(self.pty(v)) for v in self.pos}
-        threading.Thread(target=self.send, daemon=True).start()
+        self.readers = {v: PtyReader(self.pty(v)) for v in ids}
+        if sender:
+            self.spawn(sender, stdout=subprocess.DEVNULL, stderr=self.daemon_log)
+        else:
+            threading.Thread(target=self.send, daemon=True).start()
 
     def send(self):
         """10 Hz truth for every vehicle at self.pos."""
@@ -391,14 +401,64 @@ def case_jump(rig):
     print(f"  log: {jumps[0].split('warning ')[-1]}")
 
 
+def ecef(lat_deg, lon_deg, h_m):
+    """WGS 84 geodetic -> ECEF, m."""
+    a, f = 6378137.0, 1 / 298.257223563
+    e2 = f * (2 - f)
+    la, lo = math.radians(lat_deg), math.radians(lon_deg)
+    n = a / math.sqrt(1 - e2 * math.sin(la) ** 2)
+    return ((n + h_m) * math.cos(la) * math.cos(lo), (n + h_m) * math.cos(la) * math.sin(lo),
+            (n * (1 - e2) + h_m) * math.sin(la))
+
+
+def case_swarm(rig):
+    """tools/senders/swarm_truth.py --count 5 --formation line --spacing 40:
+    the daemon's five vehicles 40 m apart abreast, the middle one on the
+    100 m circle about the origin 30 m up, each with a fix on its own."""
+    rig.count = 5
+    spacing_m, radius_m, up_m = 40.0, 100.0, 30.0
+    sender = [sys.executable, os.path.join(HERE, "..", "..", "tools", "senders", "swarm_truth.py"),
+              "--port", str(rig.udp_port), "--count", "5", "--formation", "line", "--spacing", str(spacing_m),
+              "--radius", str(radius_m), "--up", str(up_m), "--speed", "10", "--rate", "10", "--duration", "60"]
+    rig.start(sender=sender)
+    o = rig.wait(lambda o: len(o) == 5 and all_fixed(o), 60, "a 3D fix on v0 .. v4")
+    ids = [f"v{i}" for i in range(5)]
+    assert sorted(o) == ids and all(x["truth_source"] == "simulator" and x["truth_fresh"] for x in o.values()), o
+    for _ in range(20):  # the five truths of one epoch
+        st = {v: rig.status(v) for v in ids}
+        if len({x["epoch"]["count"] for x in st.values()}) == 1:
+            break
+    else:
+        raise AssertionError("no epoch read on all five receivers")
+    pos = {v: ecef(x["truth"]["lat_deg"], x["truth"]["lon_deg"], x["truth"]["height_m"]) for v, x in st.items()}
+    worst = 0.0
+    for i in range(5):
+        for j in range(i + 1, 5):
+            d = math.dist(pos[ids[i]], pos[ids[j]])
+            worst = max(worst, abs(d - spacing_m * (j - i)))
+    assert worst < 0.5, f"spacing off by {worst:.3f} m"
+    mid = st["v2"]["truth"]
+    o0 = ecef(*ORIGIN)
+    up = (math.cos(math.radians(ORIGIN[0])) * math.cos(math.radians(ORIGIN[1])),
+          math.cos(math.radians(ORIGIN[0])) * math.sin(math.radians(ORIGIN[1])), math.sin(math.radians(ORIGIN[0])))
+    rel = [p - q for p, q in zip(ecef(mid["lat_deg"], mid["lon_deg"], mid["height_m"]), o0)]
+    rise = sum(r * u for r, u in zip(rel, up))
+    horiz = math.sqrt(max(0.0, sum(r * r for r in rel) - rise * rise))
+    assert abs(horiz - radius_m) < 0.5 and abs(rise - up_m) < 0.5, (horiz, rise)
+    print(f"  swarm_truth line of 5: every pair {spacing_m:g} m x index apart (worst {worst * 100:.1f} cm), "
+          f"v2 {horiz:.2f} m from the origin, {rise:.2f} m up; fixes "
+          + ", ".join(f"{o[v]['h_err_m']:.1f}" for v in ids) + " m from truth")
+    rig.finish()
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--gnssemud", required=True)
     ap.add_argument("--gnssemu", required=True)
     ap.add_argument("--nav", required=True)
-    ap.add_argument("case", choices=["target", "jammer", "jump"])
+    ap.add_argument("case", choices=["target", "jammer", "jump", "swarm"])
     args = ap.parse_args()
-    body = {"target": case_target, "jammer": case_jammer, "jump": case_jump}[args.case]
+    body = {"target": case_target, "jammer": case_jammer, "jump": case_jump, "swarm": case_swarm}[args.case]
     return run_rig(Rig(args), body, 90)
 
 
