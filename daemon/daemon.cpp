@@ -419,8 +419,10 @@ void Daemon::shutdown() {
                      vs.ever_driven ? "" : " (never heard)");
       }
     }
-    spdlog::info("truth: {} packets accepted, {} dropped{}{}; {} epochs, {} skipped", packets_ok_, drops_.total(),
-                 drops_.total() > 0 ? ": " : "", drop_counts_text(drops_.totals()), epochs_, epochs_skipped_);
+    const uint64_t single_jumps = fleet_ || vehicles_.empty() ? 0 : vehicles_.front().jumps;
+    spdlog::info("truth: {} packets accepted, {} dropped{}{}{}; {} epochs, {} skipped", packets_ok_, drops_.total(),
+                 drops_.total() > 0 ? ": " : "", drop_counts_text(drops_.totals()),
+                 single_jumps > 0 ? fmt::format("; {} jump(s)", single_jumps) : "", epochs_, epochs_skipped_);
   }
   for (const auto& rp : rigs_) rp->channels.clear();  // closes ports, removes pty symlinks
 }
@@ -707,7 +709,7 @@ void Daemon::on_datagram(std::size_t n) {
   }
   if (!in.driving) note_other_vehicle(parsed.sample.vehicle);
   if (in.driving) vs.ever_driven = true;
-  if (in.step.jump()) note_jump(v, in.step, now);
+  if (in.driving && in.step.jump()) note_jump(v, parsed.sample.vehicle, in.step, now);
   if (in.driving && !had_driver) {
     spdlog::info("truth: vehicle '{}' drives {}{}", vr.driver_id(), fleet_ ? "its receivers" : "the receiver",
                  cfg_.demo.enabled ? " (demo off for good)" : "");
@@ -723,7 +725,7 @@ void Daemon::on_datagram(std::size_t n) {
   }
 }
 
-void Daemon::note_jump(std::size_t v, const VehicleTrack::Step& step, double now) {
+void Daemon::note_jump(std::size_t v, const std::string& id, const VehicleTrack::Step& step, double now) {
   // Kept as sent: its receivers lose lock and reacquire where it now is.
   VehicleState& vs = vehicles_[v];
   ++vs.jumps;
@@ -733,7 +735,7 @@ void Daemon::note_jump(std::size_t v, const VehicleTrack::Step& step, double now
   vs.jumps_logged = vs.jumps;
   spdlog::warn("truth: vehicle '{}' jumped {:.3f} km in {:.3f} s ({:.3g} m/s, faster than any vehicle): kept as "
                "sent, its receivers lose lock and reacquire there; {} jump(s) in total{}",
-               router_.id(v), step.distance_m / 1000.0, step.dt_s, step.distance_m / std::max(step.dt_s, 1e-9),
+               id, step.distance_m / 1000.0, step.dt_s, step.distance_m / std::max(step.dt_s, 1e-9),
                vs.jumps, unlogged > 0 ? fmt::format(" ({} not logged)", unlogged) : "");
 }
 

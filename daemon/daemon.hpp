@@ -125,8 +125,9 @@ private:
   /// Up to kTruthPerWake more datagrams the kernel already holds.
   void drain_truth();
   void on_datagram(std::size_t n);
-  /// Count vehicle v's jump and log it, one line per kJumpLogPeriodS.
-  void note_jump(std::size_t v, const VehicleTrack::Step& step, double now);
+  /// Count the jump of vehicle id (routed to vehicles_[v]; the single form
+  /// tracks several ids in one) and log it, one line per kJumpLogPeriodS.
+  void note_jump(std::size_t v, const std::string& id, const VehicleTrack::Step& step, double now);
   void lockstep_advance(const time::GpsTime& stamp);
   /// Lockstep: the next epoch is the first of the rate's grid at or after t.
   void lock_grid_from(const time::GpsTime& t) noexcept;
