@@ -151,12 +151,14 @@ FaultEvent read_event(const toml::table& t, const std::string& file, const std::
       r.from = r.to = value_of(v, file, at, *spec);
     }
     e.put(spec->id, r);
-    // Range and cross-field rules per key, so the message points at its line.
-    if (const auto problem = faults::check_event(e)) {
-      if (problem->rfind(key + ":", 0) == 0) throw Error(file, line_of(v), where + "." + *problem);
-    }
   }
-  if (const auto problem = faults::check_event(e)) throw Error(file, e.line, where + ": " + *problem);
+  // Range and cross-field rules once every key is in (a key's companion may
+  // come after it: eirp_dbw before lat_deg), at the line of the key named.
+  if (const auto problem = faults::check_event(e)) {
+    const std::string named = problem->substr(0, problem->find(':'));
+    if (const toml::node* n = t.get(named)) throw Error(file, line_of(*n), where + "." + *problem);
+    throw Error(file, e.line, where + ": " + *problem);
+  }
   return e;
 }
 

@@ -413,13 +413,16 @@ void Daemon::shutdown() {
     if (fleet_) {
       for (std::size_t v = 0; v < vehicles_.size(); ++v) {
         const VehicleState& vs = vehicles_[v];
-        spdlog::info("truth: vehicle '{}': {} packets accepted, {} dropped{}{}{}", router_.id(v), vs.packets_ok,
+        spdlog::info("truth: vehicle '{}': {} packets accepted, {} dropped{}{}{}{}", router_.id(v), vs.packets_ok,
                      vs.drops.total(), vs.drops.total() > 0 ? ": " : "", drop_counts_text(vs.drops.totals()),
+                     vs.jumps > 0 ? fmt::format("; {} jump(s)", vs.jumps) : "",
                      vs.ever_driven ? "" : " (never heard)");
       }
     }
-    spdlog::info("truth: {} packets accepted, {} dropped{}{}; {} epochs, {} skipped", packets_ok_, drops_.total(),
-                 drops_.total() > 0 ? ": " : "", drop_counts_text(drops_.totals()), epochs_, epochs_skipped_);
+    const uint64_t single_jumps = fleet_ || vehicles_.empty() ? 0 : vehicles_.front().jumps;
+    spdlog::info("truth: {} packets accepted, {} dropped{}{}{}; {} epochs, {} skipped", packets_ok_, drops_.total(),
+                 drops_.total() > 0 ? ": " : "", drop_counts_text(drops_.totals()),
+                 single_jumps > 0 ? fmt::format("; {} jump(s)", single_jumps) : "", epochs_, epochs_skipped_);
   }
   for (const auto& rp : rigs_) rp->channels.clear();  // closes ports, removes pty symlinks
 }
@@ -706,6 +709,7 @@ void Daemon::on_datagram(std::size_t n) {
   }
   if (!in.driving) note_other_vehicle(parsed.sample.vehicle);
   if (in.driving) vs.ever_driven = true;
+  if (in.driving && in.step.jump()) note_jump(v, parsed.sample.vehicle, in.step, now);
   if (in.driving && !had_driver) {
     spdlog::info("truth: vehicle '{}' drives {}{}", vr.driver_id(), fleet_ ? "its receivers" : "the receiver",
                  cfg_.demo.enabled ? " (demo off for good)" : "");
@@ -719,6 +723,20 @@ void Daemon::on_datagram(std::size_t n) {
     // Every driven vehicle must have reached an epoch before it is computed.
     if (const std::optional<time::GpsTime> reached = router_.reached(now)) lockstep_advance(*reached);
   }
+}
+
+void Daemon::note_jump(std::size_t v, const std::string& id, const VehicleTrack::Step& step, double now) {
+  // Kept as sent: its receivers lose lock and reacquire where it now is.
+  VehicleState& vs = vehicles_[v];
+  ++vs.jumps;
+  if (now - vs.jump_logged_s < kJumpLogPeriodS) return;
+  const uint64_t unlogged = vs.jumps - vs.jumps_logged - 1;
+  vs.jump_logged_s = now;
+  vs.jumps_logged = vs.jumps;
+  spdlog::warn("truth: vehicle '{}' jumped {:.3f} km in {:.3f} s ({:.3g} m/s, faster than any vehicle): kept as "
+               "sent, its receivers lose lock and reacquire there; {} jump(s) in total{}",
+               id, step.distance_m / 1000.0, step.dt_s, step.distance_m / std::max(step.dt_s, 1e-9),
+               vs.jumps, unlogged > 0 ? fmt::format(" ({} not logged)", unlogged) : "");
 }
 
 void Daemon::align_to_packet_time(const time::GpsTime& stamp) {

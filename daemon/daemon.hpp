@@ -56,6 +56,8 @@ namespace asio = boost::asio;
 /// Truth datagrams taken per wake-up of the truth socket (a port's input
 /// takes 1 kB per wake-up within its InputBudget).
 inline constexpr int kTruthPerWake = 64;
+/// A vehicle's truth jumps are logged at most once per this period, s (the rest counted).
+inline constexpr double kJumpLogPeriodS = 5.0;
 
 class Daemon final : private ControlTarget {
 public:
@@ -100,6 +102,9 @@ private:
   struct VehicleState {
     DropStats drops;              ///< drops of its packets the router refused
     uint64_t packets_ok = 0;
+    uint64_t jumps = 0;           ///< accepted packets that jumped (VehicleTrack::Step::jump)
+    uint64_t jumps_logged = 0;    ///< of which logged (one line per vehicle per kJumpLogPeriodS)
+    double jump_logged_s = -1e300;  ///< monotonic time of the last jump line
     bool ever_driven = false;     ///< a simulator drove it: the demo is off for good
     world::Truth truth;           ///< its reference point, this epoch
     StatusLine line;              ///< its status line (rates since the last one)
@@ -120,6 +125,9 @@ private:
   /// Up to kTruthPerWake more datagrams the kernel already holds.
   void drain_truth();
   void on_datagram(std::size_t n);
+  /// Count the jump of vehicle id (routed to vehicles_[v]; the single form
+  /// tracks several ids in one) and log it, one line per kJumpLogPeriodS.
+  void note_jump(std::size_t v, const std::string& id, const VehicleTrack::Step& step, double now);
   void lockstep_advance(const time::GpsTime& stamp);
   /// Lockstep: the next epoch is the first of the rate's grid at or after t.
   void lock_grid_from(const time::GpsTime& t) noexcept;

@@ -59,6 +59,7 @@ TruthRouter::Ingest TruthRouter::ingest(const TruthSample& sample, const time::G
     return r;
   }
   r.restarted = added == VehicleTrack::AddResult::kRestarted;
+  r.step = v.track.last_step();
   r.accepted = true;
 
   if (driver_ < 0 && (driving_id_.empty() || driving_id_ == v.id)) {

@@ -28,6 +28,7 @@ public:
     bool driving = false;           ///< sample belongs to the driving vehicle
     bool reanchored = false;        ///< sim->GPS anchor (re)set by this sample
     bool restarted = false;         ///< the vehicle's history was restarted
+    VehicleTrack::Step step;        ///< from the vehicle's previous sample (step.jump(): a jump)
     time::GpsTime stamp;            ///< GPS stamp given to the sample
   };
 

@@ -13,6 +13,7 @@ VehicleTrack::AddResult VehicleTrack::add(double sim_time_s, const time::GpsTime
     track_.clear();
     result = AddResult::kRestarted;
   }
+  last_step_ = track_.size() > 0 ? Step{(pos_m - track_.newest().pos_m).norm(), t - track_.newest().t} : Step{};
   world::TruthSample s;
   s.t = t;
   s.pos_m = pos_m;

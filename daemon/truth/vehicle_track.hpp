@@ -34,6 +34,19 @@ public:
   /// 1 m/s. Slower senders (>= 20 Hz spacing) keep the segment velocity.
   static constexpr double kVelocityBaselineS = 0.05;
 
+  /// A step between consecutive samples this long (m) or more at this speed
+  /// (m/s) or more is a jump, not motion: faster than any orbit (7.8 km/s)
+  /// and too long for a sender's noise. Kept as sent (the receivers lose
+  /// lock and reacquire, as a real one carried off would); the caller logs it.
+  static constexpr double kJumpMinStepM = 1000.0;
+  static constexpr double kJumpMinSpeedMS = 10000.0;
+  /// The step the last accepted add() made from the sample before it.
+  struct Step {
+    double distance_m = 0.0;  ///< 0: the first sample, or the history restarted
+    double dt_s = 0.0;        ///< GPS stamp difference, s
+    bool jump() const noexcept { return distance_m >= kJumpMinStepM && distance_m >= kJumpMinSpeedMS * dt_s; }
+  };
+
   enum class AddResult {
     kAdded,
     kSimTimeBackwards,  ///< sim_time_s not increasing: dropped
@@ -70,12 +83,14 @@ public:
   const world::TruthSample& sample(std::size_t k) const noexcept { return track_.sample(k); }
   const world::TruthSample& newest() const noexcept { return track_.newest(); }
   double last_arrival_s() const noexcept { return last_arrival_s_; }
+  const Step& last_step() const noexcept { return last_step_; }
   std::optional<double> last_sim_time_s() const noexcept { return last_sim_time_s_; }
 
 private:
   world::TruthTrack track_;
   std::optional<double> last_sim_time_s_;
   double last_arrival_s_ = 0.0;
+  Step last_step_;
 };
 
 }  // namespace gnssemu::daemon

@@ -143,6 +143,28 @@ bandwidth_mhz = 1.0
                {"s.toml:5", "freq_mhz: 900 is out of range"});
 }
 
+// A rule across keys waits for the whole table: eirp_dbw comes before
+// lat_deg in the table's order, and the pair is complete only after it.
+TEST(ScenarioFile, PositionedJammerByLatLon) {
+  const auto ev = parse(R"([[event]]
+type = "jammer"
+start_s = 0
+eirp_dbw = -20
+lat_deg = 48.87
+lon_deg = 2.29
+height_m = 100
+gain_dbi = 0
+)");
+  ASSERT_EQ(ev.size(), 1u);
+  EXPECT_EQ(ev[0].param(Param::kEirpDbw).from, -20.0);
+  EXPECT_EQ(ev[0].param(Param::kLatDeg).from, 48.87);
+  EXPECT_EQ(ev[0].param(Param::kLonDeg).from, 2.29);
+  expect_error([] { parse("[[event]]\ntype = \"jammer\"\nstart_s = 0\neirp_dbw = -20\n"); },
+               {"s.toml:4", "eirp_dbw: needs distance_m or lat_deg and lon_deg"});
+  expect_error([] { parse("[[event]]\ntype = \"jammer\"\nstart_s = 0\neirp_dbw = -20\nlat_deg = 48\n"); },
+               {"s.toml:5", "lat_deg: lat_deg and lon_deg go together"});
+}
+
 TEST(ScenarioFile, ShippedExamplesAreValid) {
   const std::filesystem::path dir = std::filesystem::path(GNSSEMU_SOURCE_DIR) / "config/examples/scenarios";
   int n = 0;

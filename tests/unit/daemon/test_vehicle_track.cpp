@@ -120,6 +120,32 @@ TEST(VehicleTrack, StampNotAfterNewestRestartsHistory) {
   EXPECT_NEAR(tr.truth_at(kT0 + 0.2, 1.0, kParams).pos_m.x, 0.0, 1e-12);
 }
 
+// A step is a jump when it is >= 1 km and >= 10 km/s: 1000 km in 0.1 s is
+// one, a 2 km/s rocket's 200 m per packet and a 900 m step in 1 ms are not.
+TEST(VehicleTrack, StepsAndJumps) {
+  VehicleTrack tr = moving_track(3, 0.1);
+  EXPECT_NEAR(tr.last_step().distance_m, 1.0, 1e-9);
+  EXPECT_NEAR(tr.last_step().dt_s, 0.1, 1e-9);
+  EXPECT_FALSE(tr.last_step().jump());
+  const double x = 1000.0 + 10.0 * 0.2;
+  EXPECT_EQ(tr.add(0.3, kT0 + 0.3, Ecef(x + 1.0e6, 0.0, 0.0), std::nullopt, 0.3), VehicleTrack::AddResult::kAdded);
+  EXPECT_NEAR(tr.last_step().distance_m, 1.0e6, 1e-6);
+  EXPECT_TRUE(tr.last_step().jump());
+  EXPECT_EQ(tr.add(0.4, kT0 + 0.4, Ecef(x + 1.0e6 + 200.0, 0.0, 0.0), std::nullopt, 0.4),
+            VehicleTrack::AddResult::kAdded);
+  EXPECT_FALSE(tr.last_step().jump());
+  EXPECT_EQ(tr.add(0.401, kT0 + 0.401, Ecef(x + 1.0e6 + 1100.0, 0.0, 0.0), std::nullopt, 0.401),
+            VehicleTrack::AddResult::kAdded);
+  EXPECT_FALSE(tr.last_step().jump());  // 900 m: under the 1 km floor
+  EXPECT_EQ(tr.add(0.5, kT0 + 0.5, Ecef(x + 1.0e6 + 2200.0, 0.0, 0.0), std::nullopt, 0.5),
+            VehicleTrack::AddResult::kAdded);
+  EXPECT_TRUE(tr.last_step().jump());  // 1.1 km in 99 ms
+  // A restarted history has no step before its first sample.
+  EXPECT_EQ(tr.add(0.6, kT0, Ecef(0.0, 0.0, 0.0), std::nullopt, 0.6), VehicleTrack::AddResult::kRestarted);
+  EXPECT_EQ(tr.last_step().distance_m, 0.0);
+  EXPECT_FALSE(tr.last_step().jump());
+}
+
 TEST(VehicleTrack, RingKeepsNewestSamples) {
   const int n = static_cast<int>(VehicleTrack::kHistory) + 68;
   const VehicleTrack tr = moving_track(n, 0.1);
