@@ -442,6 +442,21 @@ def ardupilot_probe(fd, path, probe, baud=230400):
 ARDUPILOT_RATES = {(0x01, 0x07): 1, (0x01, 0x03): 1, (0x01, 0x06): 1, (0x01, 0x12): 1, (0x01, 0x04): 2, (0x0A, 0x09): 2}
 
 
+def px4_cfg_gnss(mask):
+    """The M8 CFG-GNSS PX4 sends for its GPS_1_GNSS mask (PX4-GPSDrivers src/ubx.cpp,
+    configureDevicePreV27): bit 0 GPS+QZSS, 1 SBAS, 2 Galileo, 3 BeiDou, 4 GLONASS.
+    msgVer 0, numTrkChHw 0, numTrkChUse 0xFF, 7 blocks in its order (gnssId, resTrkCh,
+    maxTrkCh, flags); a disabled system's block is all zero."""
+    gps, sbas, gal, bds, glo = (bool(mask >> i & 1) for i in range(5))
+    on = 0x00010001
+    blocks = [(0, 8, 16, gps), (5, 0, 3, gps), (1, 1, 3, sbas), (2, 4, 8, gal), (3, 8, 16, bds), (6, 8, 14, glo),
+              (4, 0, 0, False)]
+    out = bytes([0, 0, 0xFF, len(blocks)])
+    for gid, res, mx, en in blocks:
+        out += struct.pack("<BBBBI", gid, res if en else 0, mx if en else 0, 0, on if en else 0)
+    return out
+
+
 def ardupilot_cfg_gnss(polled, mode):
     """ArduPilot's CFG-GNSS for GPS_GNSS_MODE mode (AP_GPS_UBLOX.cpp,
     MSG_CFG_GNSS), from the polled payload: a wanted system (bit = gnssId)

@@ -42,7 +42,7 @@ Cases (each bounded, every process killed and the temp dir removed on exit):
   nav5       CFG-NAV5 dynModel drives the receiver: on the demo circle
              (5 m/s) NAV-PVT gSpeed is ~5 m/s, exactly 0 with the stationary
              model (velocity restricted to 0), ~5 m/s again with automotive
-  px4_m9_gnss, ardupilot_gnss, gpsd_m9_sky
+  px4_m9_gnss, px4_m8_gnss, ardupilot_gnss, gpsd_m9_sky
              on the multi-GNSS nav (--nav-mgnss): PX4's GPS_1_GNSS = GPS +
              Galileo on the M9 (CFG-SIGNAL VALSET) and ArduPilot's
              GPS_GNSS_MODE = 5 on the M8 (CFG-GNSS) leave exactly those
@@ -80,7 +80,7 @@ from ubx_startup_faults import case_ardupilot_faults, case_px4_faults
 from ubx_host import (ARDUPILOT_M9_RATES, AP_TMODE_MODE, ardupilot_startup_f9p, rtcm_number, is_ubx, K_SIGNAL_BDS_ENA, K_SIGNAL_GAL_ENA, K_SIGNAL_GLO_ENA, K_SIGNAL_GPS_ENA,
                       K_SIGNAL_QZSS_ENA, K_SIGNAL_SBAS_ENA, ardupilot_cfg_gnss, valset, K_MSGOUT_MON_RF, K_MSGOUT_NAV_PVT, K_NAVSPG_DYNMODEL, K_RATE_MEAS, K_UART1_BAUDRATE,
                       PX4_M9_RATE_MEAS_MS, PX4_F9P_RATE_MEAS_MS, K_NAVHPG_DGNSSMODE, K_UART2_BAUDRATE, K_UART2IN_RTCM3X, Stream, ack, ardupilot_rates, ardupilot_startup, ardupilot_startup_m9, frame, is_ack_for, nmea,
-                      poll_cfg, pvt_fix_ok, pvt_lost_after, px4_rates, px4_startup, px4_startup_m9, send, set_cfg, split_stream,
+                      poll_cfg, pvt_fix_ok, pvt_lost_after, px4_cfg_gnss, px4_rates, px4_startup, px4_startup_m9, send, set_cfg, split_stream,
                       stty_speed, valget_values)
 import tty
 
@@ -1105,6 +1105,44 @@ def case_px4_m9_gnss(rig):
           f"{t_fix - t_acks[-1]:.1f} s after the last ACK; {pvts} NAV-PVT with gnssFixOK in 2.5 s")
 
 
+def case_px4_m8_gnss(rig):
+    """PX4 on an M8 in a four-system sky (its legacy start-up, then the CFG-GNSS
+    of GPS_1_GNSS): the factory M8 tracks GPS, GLONASS (+ QZSS, SBAS); GPS +
+    Galileo + BeiDou (mask 13) is ACKed, the chip restarts (a NAV-PVT without
+    fix) and NAV-SVINFO then holds GPS, Galileo and BeiDou only, with a fix;
+    every system at once (mask 31, four major GNSS) is NAKed, as an M8 runs
+    at most three (multi-gnss.md), and the set stays."""
+    rig.nav = rig.args.nav_mgnss
+    path, out = pty_output(rig)
+    rig.start_daemon(out)
+    fd = rig.open_tty(path)
+    s = Stream(fd)
+    px4_startup(s, fd)
+    s.wait_for(pvt_fix_ok, 6.0, "the first gnssFixOK")
+    before = svinfo_systems(s.wait_for(is_ubx(0x01, 0x30), 3.0, "NAV-SVINFO (PX4 sets rate 5)")[1])[0]
+    assert 6 in before and not {2, 3} & before, f"factory M8 NAV-SVINFO lists {names(before)}"
+    t_set = time.monotonic()
+    set_cfg(s, fd, 0x3E, px4_cfg_gnss(1 | 4 | 8))
+    t_fix, _ = s.wait_for(pvt_fix_ok, 8.0, "gnssFixOK after the GNSS restart")
+    lost = pvt_lost_after(s, t_set, t_fix)
+    assert lost > 0, "no NAV-PVT without gnssFixOK after CFG-GNSS: the M8 did not restart its GNSS engine"
+    t0 = time.monotonic()
+    while True:
+        after, used = svinfo_systems(s.wait_for(is_ubx(0x01, 0x30), 3.0, "NAV-SVINFO")[1])
+        assert after <= {0, 2, 3, 5}, f"NAV-SVINFO after GPS_1_GNSS = GPS + Galileo + BeiDou lists {names(after)}"
+        if {0, 2, 3} <= used or time.monotonic() - t0 > 60:
+            break
+    assert {0, 2, 3} <= used, f"satellites used {time.monotonic() - t0:.0f} s after the change: {names(used)}"
+    send(fd, frame(0x06, 0x3E, px4_cfg_gnss(31)))
+    m = s.wait_for(is_ack_for(0x06, 0x3E), 1.0, "reply to CFG-GNSS with four major systems")[1]
+    assert m == ack(0x06, 0x3E, False), f"CFG-GNSS with GPS, Galileo, BeiDou and GLONASS: want NAK, got {m.hex()}"
+    still = svinfo_systems(s.wait_for(is_ubx(0x01, 0x30), 3.0, "NAV-SVINFO after the NAK")[1])[0]
+    assert still <= {0, 2, 3, 5}, f"after the NAK NAV-SVINFO lists {names(still)}"
+    print(f"  px4_m8_gnss: NAV-SVINFO {names(before)} -> {names(after)} after PX4's CFG-GNSS for mask 13 (ACKed; "
+          f"the restart: {lost} NAV-PVT without a fix); all used {time.monotonic() - t0:.0f} s after it; mask 31 "
+          f"NAKed, set kept")
+
+
 def svinfo_systems(m):
     """Systems of a NAV-SVINFO's channels by the M8's svid ranges (docs/ubx.md)."""
     def system(svid):
@@ -1276,7 +1314,7 @@ CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx
          "ardupilot_m9": case_ardupilot_m9, "ardupilot_f9p": case_ardupilot_f9p,
          "ardupilot_f9p_mb_rover": case_ardupilot_f9p_mb_rover,
          "ardupilot_f9p_mb_rover_uart2": case_ardupilot_f9p_mb_rover_uart2,
-         "ardupilot_f9p_mb_base": case_ardupilot_f9p_mb_base, "ardupilot_f9p_heading": case_ardupilot_f9p_heading, "px4_m9_gnss": case_px4_m9_gnss, "ardupilot_gnss": case_ardupilot_gnss,
+         "ardupilot_f9p_mb_base": case_ardupilot_f9p_mb_base, "ardupilot_f9p_heading": case_ardupilot_f9p_heading, "px4_m9_gnss": case_px4_m9_gnss, "px4_m8_gnss": case_px4_m8_gnss, "ardupilot_gnss": case_ardupilot_gnss,
          "gpsd_m9_sky": case_gpsd_m9_sky,
          "gpsd_m9_sky_nmea": case_gpsd_m9_sky_nmea, "state_file": case_state_file}
 NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_m9_sky": ["gpsd", "gpspipe"], "gpsd_m9_sky_nmea": ["gpsd", "gpspipe"], "gpsd_m9": ["gpsd", "gpspipe", "socat"], "gpsd_f9p": ["gpsd", "gpspipe", "socat"], "gpsd_nmea": ["gpsd", "gpspipe"],

@@ -155,6 +155,49 @@ TEST(UbxGnss, NavSigCarriesSignalFrequencyAndUse) {
   EXPECT_EQ(sig(6).cno, 35);
 }
 
+TEST(UbxGnss, NavSigQualityIndFollowsTracking) {
+  // u-blox's qualityInd (UBX-18010854 NAV-SIG): 7 code and carrier locked, 4 code
+  // locked (our weak-signal state below 30 dB-Hz), 1 signal searched, 0 no signal.
+  receiver::Fix fix = multi_fix();
+  fix.sats[2].cn0_dbhz = 25.0;  // E11 weak: code lock only
+  fix.sats[5].cn0_dbhz = 0.0;   // J02 above the mask, not tracked
+  fix.sats[5].tracked = fix.sats[5].used = false;
+  std::string out;
+  UbxEncoder(mon_ver_of(Generation::kM9)).nav_sig(fix, out);
+  const auto f = split_frames(out);
+  ASSERT_EQ(f.size(), 1u);
+  const auto& p = f[0].payload;
+  std::map<std::pair<int, int>, wire::NavSigSig> by_sat;
+  for (std::size_t i = 0; i < p[5]; ++i) {
+    wire::NavSigSig sg{};
+    std::memcpy(&sg, p.data() + 8 + 16 * i, sizeof sg);
+    by_sat[{sg.gnssId, sg.svId}] = sg;
+  }
+  EXPECT_EQ(by_sat.at({0, 3}).qualityInd, 7);   // G03 at 41 dB-Hz, used
+  EXPECT_EQ(by_sat.at({2, 11}).qualityInd, 4);  // E11 at 25 dB-Hz
+  EXPECT_EQ(by_sat.at({2, 11}).cno, 25);
+  if (by_sat.count({5, 2}) != 0) {
+    EXPECT_EQ(by_sat.at({5, 2}).qualityInd, 1);  // searched, no signal
+    EXPECT_EQ(by_sat.at({5, 2}).cno, 0);
+    EXPECT_EQ(by_sat.at({5, 2}).sigFlags & 0x38, 0);  // nothing used
+  }
+  // NAV-SAT (the same derivation) agrees for every satellite NAV-SIG lists.
+  out.clear();
+  UbxEncoder(mon_ver_of(Generation::kM9)).nav_sat(fix, out);
+  const auto sat_frames = split_frames(out);
+  ASSERT_EQ(sat_frames.size(), 1u);
+  const auto& q = sat_frames[0].payload;
+  for (std::size_t i = 0; i < q[5]; ++i) {
+    const std::uint8_t* sv = q.data() + 8 + 12 * i;
+    std::uint32_t flags = 0;
+    std::memcpy(&flags, sv + 8, 4);
+    const auto it = by_sat.find({sv[0], sv[1]});
+    if (it != by_sat.end()) {
+      EXPECT_EQ(flags & 7u, it->second.qualityInd) << int(sv[0]) << " " << int(sv[1]);
+    }
+  }
+}
+
 /// The epoch of pygpsdata-MIXED.log's NAV-TIMEGPS iTOW 473621000 (2020-10-23 11:33:23 UTC).
 receiver::Fix mixed_log_epoch() {
   receiver::Fix f = test::sample_fix();
