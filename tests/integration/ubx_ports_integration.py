@@ -42,7 +42,7 @@ Cases (each bounded, every process killed and the temp dir removed on exit):
   nav5       CFG-NAV5 dynModel drives the receiver: on the demo circle
              (5 m/s) NAV-PVT gSpeed is ~5 m/s, exactly 0 with the stationary
              model (velocity restricted to 0), ~5 m/s again with automotive
-  px4_m9_gnss, px4_m8_gnss, ardupilot_gnss, gpsd_m9_sky
+  px4_m9_gnss, px4_m8_gnss, ardupilot_gnss, ardupilot_m9_gnss, gpsd_m9_sky
              on the multi-GNSS nav (--nav-mgnss): PX4's GPS_1_GNSS = GPS +
              Galileo on the M9 (CFG-SIGNAL VALSET) and ArduPilot's
              GPS_GNSS_MODE = 5 on the M8 (CFG-GNSS) leave exactly those
@@ -1238,6 +1238,42 @@ def gpsd_m9_sky(rig, nmea_only):
           ", ".join(f"{GNSS_NAMES.get(g, g)} {n} seen/{u} used" for g, (n, u) in per.items()) + "; every svid in range")
 
 
+def case_ardupilot_m9_gnss(rig):
+    """ArduPilot with GPS_GNSS_MODE = 5 (GPS + Galileo) on a NEO-M9N in a
+    four-system sky: ArduPilot configures an M9 with the legacy messages
+    (docs/ubx.md "ArduPilot"), so it polls CFG-GNSS and sends it back with its
+    channel split; ACKed, the chip restarts (a NAV-PVT without fix), and
+    NAV-SAT then lists GPS and Galileo only (the factory GLONASS, BeiDou and
+    QZSS gone), both used."""
+    rig.nav = rig.args.nav_mgnss
+    path, out = pty_output(rig)
+    rig.start_daemon(out, receiver_toml=M9)
+    fd = rig.open_tty(path)
+    s = Stream(fd)
+    ardupilot_startup_m9(s, fd, path, fix_limit_s=6.0)
+    send(fd, frame(0x01, 0x35))
+    before = nav_sat_systems(s.wait_for(is_ubx(0x01, 0x35), 2.0, "NAV-SAT poll")[1])[0]
+    assert {0, 2, 3, 6} <= before, f"factory M9 NAV-SAT lists {names(before)}"
+    gnss = poll_cfg(s, fd, 0x3E, b"")
+    t_set = time.monotonic()
+    set_cfg(s, fd, 0x3E, ardupilot_cfg_gnss(gnss, 5))
+    t_fix, _ = s.wait_for(pvt_fix_ok, 8.0, "gnssFixOK after the GNSS restart")
+    lost = pvt_lost_after(s, t_set, t_fix)
+    assert lost > 0, "no NAV-PVT without gnssFixOK after CFG-GNSS: the M9 did not restart its GNSS engine"
+    t0 = time.monotonic()
+    while True:
+        time.sleep(1.0)
+        send(fd, frame(0x01, 0x35))
+        after, used = nav_sat_systems(s.wait_for(is_ubx(0x01, 0x35), 2.0, "NAV-SAT poll")[1])
+        assert after <= {0, 2}, f"NAV-SAT after GPS_GNSS_MODE 5 lists {names(after)}"
+        if {0, 2} <= used or time.monotonic() - t0 > 60:
+            break
+    assert {0, 2} <= used, f"satellites used {time.monotonic() - t0:.0f} s after the change: {names(used)}"
+    print(f"  ardupilot_m9_gnss: NAV-SAT {names(before)} -> {names(after)} after ArduPilot's CFG-GNSS for mode 5 "
+          f"(ACKed; the restart: {lost} NAV-PVT without a fix); GPS and Galileo used {time.monotonic() - t0:.0f} s "
+          f"after it")
+
+
 def case_gpsd_m9_sky(rig):
     """gpsd 3.22 (configuring the chip, UBX) on an M9N in a four-system sky:
     SKY lists gnssid 0 (GPS), 2 (Galileo), 3 (BeiDou) and 6 (GLONASS) with
@@ -1314,7 +1350,7 @@ CASES = {"px4": case_px4, "ardupilot": case_ardupilot, "gpsd_ubx": case_gpsd_ubx
          "ardupilot_m9": case_ardupilot_m9, "ardupilot_f9p": case_ardupilot_f9p,
          "ardupilot_f9p_mb_rover": case_ardupilot_f9p_mb_rover,
          "ardupilot_f9p_mb_rover_uart2": case_ardupilot_f9p_mb_rover_uart2,
-         "ardupilot_f9p_mb_base": case_ardupilot_f9p_mb_base, "ardupilot_f9p_heading": case_ardupilot_f9p_heading, "px4_m9_gnss": case_px4_m9_gnss, "px4_m8_gnss": case_px4_m8_gnss, "ardupilot_gnss": case_ardupilot_gnss,
+         "ardupilot_f9p_mb_base": case_ardupilot_f9p_mb_base, "ardupilot_f9p_heading": case_ardupilot_f9p_heading, "px4_m9_gnss": case_px4_m9_gnss, "px4_m8_gnss": case_px4_m8_gnss, "ardupilot_gnss": case_ardupilot_gnss, "ardupilot_m9_gnss": case_ardupilot_m9_gnss,
          "gpsd_m9_sky": case_gpsd_m9_sky,
          "gpsd_m9_sky_nmea": case_gpsd_m9_sky_nmea, "state_file": case_state_file}
 NEEDS = {"gpsd_ubx": ["gpsd", "gpspipe"], "gpsd_m9_sky": ["gpsd", "gpspipe"], "gpsd_m9_sky_nmea": ["gpsd", "gpspipe"], "gpsd_m9": ["gpsd", "gpspipe", "socat"], "gpsd_f9p": ["gpsd", "gpspipe", "socat"], "gpsd_nmea": ["gpsd", "gpspipe"],
