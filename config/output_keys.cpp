@@ -524,7 +524,8 @@ constexpr Field<OutputPortConfig> kOutputFields[] = {
                              read_ubx_messages, write_ubx_messages),
     nmea_version_field(
         "NMEA 0183 version of the sentences (must be a string: `4.11` unquoted is a float and "
-                        "rejected)"),
+                        "rejected); the chip's CFG-NMEA (one per chip) reports the first output's, and a host's "
+                        "CFG-NMEA changes every output's"),
     custom<OutputPortConfig>("sentences", "", sentence_names,
                              "sentences sent each epoch; the order in the file does not matter, they go out in "
                              "u-blox order",

@@ -11,6 +11,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/common/error.hpp"
@@ -696,6 +697,25 @@ std::vector<int> gsv_numbers(const std::vector<std::string>& epoch) {
     }
   }
   return n;
+}
+
+TEST(UbxGnss, CfgNmeaPollReportsTheConfiguredVersion) {
+  // CFG-NMEA is the chip's: a poll reports the version the first output prints
+  // (its factory one, or [[output]] nmea_version), so a host reads what it gets.
+  for (const auto& [g, v, want] : {std::tuple{Generation::kM8, nmea::NmeaVersion::k40, 0x40},
+                                   std::tuple{Generation::kM8, nmea::NmeaVersion::k411, 0x4B},
+                                   std::tuple{Generation::kM9, nmea::NmeaVersion::k410, 0x41},
+                                   std::tuple{Generation::kM9, nmea::NmeaVersion::k23, 0x23}}) {
+    DeviceSetup setup = setup_of(g);
+    setup.outputs.resize(1);
+    setup.outputs[0].nmea_version = v;
+    setup.outputs[0].protocols_in = setup.outputs[0].protocols_out = 0x03;
+    Device d(setup);
+    Host h{d};
+    const auto p = h.poll(msg::kCfgNmea);
+    ASSERT_GE(p.size(), 2u);
+    EXPECT_EQ(p[1], want) << static_cast<int>(g);
+  }
 }
 
 TEST(UbxGnss, CfgNmeaVersionAndNumberingChangeTheSentences) {

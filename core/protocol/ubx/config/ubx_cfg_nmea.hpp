@@ -54,6 +54,18 @@ inline CfgNmeaSettings cfg_nmea_settings(const DeviceConfig& c) noexcept {
   return s;
 }
 
+/// CFG-NMEA nmeaVersion of an NMEA version (0x21, 0x23, 0x40, 0x41, 0x4B).
+constexpr std::uint8_t cfg_nmea_version(nmea::NmeaVersion v) noexcept {
+  switch (v) {
+    case nmea::NmeaVersion::k21: return 0x21;
+    case nmea::NmeaVersion::k23: return 0x23;
+    case nmea::NmeaVersion::k40: return 0x40;
+    case nmea::NmeaVersion::k410: return 0x41;
+    case nmea::NmeaVersion::k411: return 0x4B;
+  }
+  return 0x40;
+}
+
 /// The encoder's settings from a host's CFG-NMEA: base supplies what CFG-NMEA
 /// does not carry (the device); systems are the ones the channels are
 /// assigned to. Values outside the message's ranges keep base's (the

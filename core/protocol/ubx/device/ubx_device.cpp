@@ -95,6 +95,13 @@ Device::Device(const DeviceSetup& setup)
     sbas.bytes[1] = static_cast<std::uint8_t>(setup.sbas_diffcorr ? sbas.bytes[1] | 0x02 : sbas.bytes[1] & ~0x02);
     current_.store(msg::kCfgSbas, 0, sbas.payload());
   }
+  // CFG-NMEA is the chip's, not a port's: it reports the version the first
+  // output is configured with (a host polling it sees what that port prints).
+  if (const StoredBlock* b = current_.stored(msg::kCfgNmea); b != nullptr && b->size >= 2 && !setup.outputs.empty()) {
+    StoredBlock nmea = *b;
+    nmea.bytes[1] = cfg_nmea_version(setup.outputs.front().nmea_version);
+    current_.store(msg::kCfgNmea, 0, nmea.payload());
+  }
   save_config();
   apply_nmea(false);
 }
