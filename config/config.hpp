@@ -196,6 +196,8 @@ inline constexpr double kMaxLeverArmM = 100.0;
 struct VehicleConfig {
   std::string id;  ///< a packet's vehicle id (1..64 bytes of letters, digits, '_', '-', '.'); "" = any (single form)
   std::vector<VehicleReceiverConfig> receivers;
+  /// Senders whose packets may drive this vehicle (beside [truth] allow); empty: any.
+  std::vector<AddressBlock> allow;
 };
 
 /// [base]: a static reference receiver sending RTCM 3 (config/base_config.hpp).

@@ -238,20 +238,11 @@ constexpr Section<TimeConfig> kTime{kTimeFields};
 // --- [truth], [demo], [status], [log] --------------------------------------
 
 void read_allow(TableReader& t, const Field<TruthInputConfig>& f, TruthInputConfig& truth) {
-  if (t.find(f.key) != nullptr) truth.allow.clear();
-  t.string_array(f.key, "an array of addresses", "an address string", [&](const toml::node& e, const std::string& s) {
-    std::string why;
-    const std::optional<AddressBlock> b = parse_address_block(s, why);
-    if (!b) t.fail(e, t.full_name(f.key) + ": " + why);
-    truth.allow.push_back(*b);
-  });
+  read_address_blocks(t, f.key, truth.allow);
 }
 
 void write_allow(TomlWriter& w, const Field<TruthInputConfig>& f, const TruthInputConfig& truth) {
-  if (truth.allow.empty()) return;
-  std::string list = "[";
-  for (const AddressBlock& b : truth.allow) list += (list.size() > 1 ? ", " : "") + string_text(b.text());
-  w.key(f.key, list + "]", f.note);
+  if (!truth.allow.empty()) w.key(f.key, address_blocks_text(truth.allow), f.note);
 }
 
 void read_vehicle(TableReader& t, const Field<TruthInputConfig>& f, TruthInputConfig& truth) {
@@ -425,6 +416,23 @@ constexpr Field<Config> kConfigFields[] = {
 }  // namespace
 
 constexpr Section<Config> kConfigKeys{kConfigFields};
+
+void read_address_blocks(TableReader& t, std::string_view key, std::vector<AddressBlock>& out) {
+  if (t.find(key) != nullptr) out.clear();
+  t.string_array(key, "an array of addresses", "an address string", [&](const toml::node& e, const std::string& s) {
+    std::string why;
+    const std::optional<AddressBlock> b = parse_address_block(s, why);
+    if (!b) t.fail(e, t.full_name(key) + ": " + why);
+    out.push_back(*b);
+  });
+}
+
+std::string address_blocks_text(const std::vector<AddressBlock>& blocks) {
+  if (blocks.empty()) return "";
+  std::string list = "[";
+  for (const AddressBlock& b : blocks) list += (list.size() > 1 ? ", " : "") + string_text(b.text());
+  return list + "]";
+}
 
 KeyDocs describe_keys() {
   KeyDocs d;

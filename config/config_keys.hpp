@@ -43,6 +43,11 @@ void check_output_generation(TableReader& t, const Field<Config>& f, Config& c);
 
 /// [[vehicle]] (vehicle_keys.cpp): read after [receiver], [atmosphere] and
 /// [signal], whose settings each receiver starts from.
+/// An `allow` list of addresses and CIDR blocks at key (replacing out when
+/// given; a bad entry fails at its line) and its TOML text ("" when empty).
+void read_address_blocks(TableReader& t, std::string_view key, std::vector<AddressBlock>& out);
+std::string address_blocks_text(const std::vector<AddressBlock>& blocks);
+
 void read_vehicles(TableReader& t, const Field<Config>& f, Config& c);
 void write_vehicles(TomlWriter& w, const Field<Config>& f, const Config& c);
 void describe_vehicles(KeyDocs& d, const Field<Config>& f, const Config& c);

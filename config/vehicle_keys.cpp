@@ -88,7 +88,7 @@ std::string fleet_vehicle_id(int index) { return "v" + std::to_string(index); }
 std::vector<VehicleConfig> resolve_vehicles(const Config& c) {
   if (c.vehicles.empty() && !c.fleet) {
     VehicleReceiverConfig r{std::string(kDefaultReceiverName), Vec3{}, receiver_settings(c), c.outputs};
-    return {VehicleConfig{c.truth.vehicle, {std::move(r)}}};
+    return {VehicleConfig{c.truth.vehicle, {std::move(r)}, {}}};
   }
   std::vector<VehicleConfig> out = c.vehicles;
   if (c.fleet) {
@@ -102,7 +102,7 @@ std::vector<VehicleConfig> resolve_vehicles(const Config& c) {
       r.settings.world.seed = settings.world.seed + static_cast<uint64_t>(i);
       const std::string id = fleet_vehicle_id(i);
       for (const OutputPortConfig& t : c.fleet->outputs) r.outputs.push_back(expand_port(t, id, receiver, i));
-      out.push_back(VehicleConfig{id, {std::move(r)}});
+      out.push_back(VehicleConfig{id, {std::move(r)}, {}});
     }
   }
   return out;
@@ -142,12 +142,25 @@ void write_vehicle_id(TomlWriter& w, const Field<VehicleConfig>& f, const Vehicl
   w.key(f.key, string_text(v.id));
 }
 
+void read_vehicle_allow(TableReader& t, const Field<VehicleConfig>& f, VehicleConfig& v) {
+  read_address_blocks(t, f.key, v.allow);
+}
+void write_vehicle_allow(TomlWriter& w, const Field<VehicleConfig>& f, const VehicleConfig& v) {
+  if (!v.allow.empty()) w.key(f.key, address_blocks_text(v.allow), f.note);
+}
+
 constexpr Field<VehicleConfig> kVehicleFields[] = {
     custom<VehicleConfig>("id", "", kNameRange,
                           "the `vehicle` of its truth packets (docs/truth-protocol.md); unique among `[[vehicle]]` "
                           "and the fleet's `v0` ..",
                           read_vehicle_id, write_vehicle_id)
         .needed(),
+    custom<VehicleConfig>("allow", "", "addresses, CIDR blocks",
+                          "senders whose packets may drive this vehicle, e.g. `[\"10.0.0.7\"]` (its simulator), "
+                          "checked after `[truth] allow`; packets for it from others are dropped and counted as "
+                          "`not_allowed` in its drops. Unset: any sender `[truth] allow` accepts",
+                          read_vehicle_allow, write_vehicle_allow)
+        .default_doc("unset"),
 };
 constexpr Section<VehicleConfig> kVehicle{kVehicleFields};
 

@@ -103,6 +103,7 @@ Daemon::Daemon(asio::io_context& io, const config::Config& cfg, const orbit::Nav
     }
   }
   vehicles_.resize(router_.size());
+  refresh_vehicle_allows();
   antennas_.reserve(rigs_.size());
   if (store_.size() == 0) throw Error(nav.source, 0, "no GPS ephemerides in the nav file");
   check_range(output_delay_s_, config::TimeRanges::output_delay_s, cfg.source, "time.output_delay_s");
@@ -664,6 +665,18 @@ void Daemon::drain_truth() {
   }
 }
 
+void Daemon::refresh_vehicle_allows() {
+  for (std::size_t v = 0; v < vehicles_.size(); ++v) {
+    VehicleState& vs = vehicles_[v];
+    vs.allow = TruthAllowList{};
+    for (const config::VehicleConfig& vc : cfg_.vehicles) {
+      if (vc.id != router_.id(v) || vc.allow.empty()) continue;
+      vs.allow = TruthAllowList(vc.allow);
+      spdlog::info("truth: vehicle '{}' accepts packets from {} only", vc.id, vs.allow.describe());
+    }
+  }
+}
+
 void Daemon::on_datagram(std::size_t n) {
   const double now = now_s();
   const std::string_view data(rx_buf_.data(), n);
@@ -691,6 +704,11 @@ void Daemon::on_datagram(std::size_t n) {
   }
   const std::size_t v = *vi;
   VehicleState& vs = vehicles_[v];
+  if (!vs.allow.allows(peer_.address())) {
+    vs.drops.record(DropReason::kNotAllowed, now);
+    report(DropReason::kNotAllowed, "sender not in vehicle '" + parsed.sample.vehicle + "' allow");
+    return;
+  }
   const TruthRouter& vr = router_.router(v);
   const bool had_driver = vr.has_driver();
   const bool was_fresh = vr.driver_fresh(now);

@@ -101,6 +101,7 @@ private:
   /// Per vehicle: its routing state beyond the truth router's.
   struct VehicleState {
     DropStats drops;              ///< drops of its packets the router refused
+    TruthAllowList allow;         ///< its [[vehicle]] allow (empty: any sender)
     uint64_t packets_ok = 0;
     uint64_t jumps = 0;           ///< accepted packets that jumped (VehicleTrack::Step::jump)
     uint64_t jumps_logged = 0;    ///< of which logged (one line per vehicle per kJumpLogPeriodS)
@@ -109,6 +110,8 @@ private:
     world::Truth truth;           ///< its reference point, this epoch
     StatusLine line;              ///< its status line (rates since the last one)
   };
+  /// Each vehicle's allow list from cfg_.vehicles (start-up and reload).
+  void refresh_vehicle_allows();
   /// A fresh receiver in a fresh world (start-up, or GPS time going back),
   /// started as start says, with the device's CFG-NAV5 applied.
   void restart_receiver(Rig& rig, receiver::StartMode start);

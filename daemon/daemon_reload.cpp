@@ -300,7 +300,10 @@ std::string Daemon::reload_fleet(const config::Config& loaded, ReloadPlan& top) 
   // The vehicles as they run now: the next reload compares with them.
   std::vector<config::VehicleConfig> running;
   for (const std::string& id : ids) {
-    config::VehicleConfig v{id, {}};
+    config::VehicleConfig v{id, {}, {}};
+    for (const config::VehicleConfig& lv : loaded.vehicles) {
+      if (lv.id == id) v.allow = lv.allow;  // applied live
+    }
     for (const auto& rp : rigs_) {
       if (rp->vehicle != id) continue;
       v.receivers.push_back(config::VehicleReceiverConfig{rp->name, rp->lever_arm_m, config::receiver_settings(rp->cfg),
@@ -310,6 +313,7 @@ std::string Daemon::reload_fleet(const config::Config& loaded, ReloadPlan& top) 
   }
   cfg_.vehicles = std::move(running);
   cfg_.fleet.reset();
+  refresh_vehicle_allows();
   return "vehicles added: " + FleetReloadPlan::ids(fp.added) + "; removed: " + FleetReloadPlan::ids(fp.removed) +
          "; changed: " + FleetReloadPlan::ids(fp.changed) + "; unchanged: " + FleetReloadPlan::ids(fp.kept);
 }

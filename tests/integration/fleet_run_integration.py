@@ -107,6 +107,7 @@ type = "pty"
 path = "{self.pty('a', 'gps2')}"
 [[vehicle]]
 id = "b"
+allow = ["127.0.0.1"]
 [[vehicle.receiver]]
 name = "gps1"
 [[vehicle.receiver.output]]
@@ -248,6 +249,24 @@ def body(rig):
     print(f"  truth per receiver as sent; a/gps2 is {lever:.3f} m right of a/gps1 ({want:.3f} sent)")
     vehicle_b = rig.ctl("--vehicle", "b", "status")["status"]["receivers"]
     assert [x["receiver"] for x in vehicle_b] == ["gps1"], vehicle_b
+
+    # b's [[vehicle]] allow: its packets from another sender (127.0.0.2) are
+    # dropped as not_allowed and counted in b's drops, not in a's.
+    def drops(v):
+        return rig.ctl("--vehicle", v, "--receiver", "gps1", "status")["status"]["truth"]["drops"] or {}
+    before_b, before_a = drops("b").get("not_allowed", 0), drops("a").get("not_allowed", 0)
+    other = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    other.bind(("127.0.0.2", 0))
+    lat, lon = EXPECTED[("b", "gps1")]
+    for k in range(20):
+        msg = {"version": 1, "vehicle": "b", "sim_time_s": 1000.0 + k,
+               "lla": {"lat_deg": lat + 0.01, "lon_deg": lon, "height_m": ORIGIN[2]}}
+        other.sendto(json.dumps(msg).encode(), ("127.0.0.1", rig.udp_port))
+    other.close()
+    time.sleep(1.0)
+    got_b, got_a = drops("b").get("not_allowed", 0) - before_b, drops("a").get("not_allowed", 0) - before_a
+    assert got_b == 20 and got_a == 0, f"not_allowed: b {got_b} (want 20), a {got_a} (want 0)"
+    print(f"  b's allow: {got_b} packets for b from 127.0.0.2 dropped as not_allowed in b's drops, a's none")
 
     # Faults on the receivers named only.
     scen = os.path.join(rig.tmp, "outage.toml")

@@ -390,6 +390,7 @@ environment = "urban"
 
 [[vehicle]]
 id = "ego"
+allow = ["127.0.0.1", "10.1.0.0/16"]
 
 [[vehicle.receiver]]
 name = "gps1"

@@ -170,6 +170,19 @@ TEST(VehicleKeys, BadCountsKeysAndForms) {
   EXPECT_EQ(error_of(kTop + "[truth]\nvehicle = \"ego\"\n[fleet]\ncount = 2\n"),
             "t.toml:10: truth.vehicle: picks the vehicle of the single-vehicle form; [[vehicle]] and [fleet] name their "
             "own");
+  const std::string bad_allow = error_of(kTop + "[[vehicle]]\nid = \"e\"\nallow = [\"10.0.0.1\", \"10.0.0.300\"]\n"
+                                                "[[vehicle.receiver]]\nname = \"g\"\n");
+  EXPECT_EQ(bad_allow.rfind("t.toml:11: vehicle[0].allow: ", 0), 0u) << bad_allow;
+}
+
+TEST(VehicleKeys, AllowIsPerVehicle) {
+  const Config c = parse(kTop + "[[vehicle]]\nid = \"a\"\nallow = [\"127.0.0.1\", \"10.0.0.0/8\"]\n"
+                                "[[vehicle.receiver]]\nname = \"g\"\n[[vehicle]]\nid = \"b\"\n"
+                                "[[vehicle.receiver]]\nname = \"g\"\n");
+  ASSERT_EQ(c.vehicles.size(), 2u);
+  ASSERT_EQ(c.vehicles[0].allow.size(), 2u);
+  EXPECT_EQ(c.vehicles[0].allow[1].text(), "10.0.0.0/8");
+  EXPECT_TRUE(c.vehicles[1].allow.empty());
 }
 
 }  // namespace

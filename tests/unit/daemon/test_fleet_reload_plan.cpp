@@ -27,8 +27,8 @@ config::VehicleReceiverConfig receiver(const config::Config& top, const std::str
 // Vehicles a (gps1, gps2) and b (gps1).
 config::Config fleet() {
   config::Config c = config::default_config();
-  c.vehicles.push_back(config::VehicleConfig{"a", {receiver(c, "a", "gps1"), receiver(c, "a", "gps2")}});
-  c.vehicles.push_back(config::VehicleConfig{"b", {receiver(c, "b", "gps1")}});
+  c.vehicles.push_back(config::VehicleConfig{"a", {receiver(c, "a", "gps1"), receiver(c, "a", "gps2")}, {}});
+  c.vehicles.push_back(config::VehicleConfig{"b", {receiver(c, "b", "gps1")}, {}});
   return c;
 }
 
@@ -52,8 +52,8 @@ TEST(FleetReloadPlan, SameFleetKeepsEveryVehicle) {
 TEST(FleetReloadPlan, DropOneAddOneKeepsTheOther) {
   config::Config loaded = fleet();
   loaded.vehicles.erase(loaded.vehicles.begin() + 1);  // b goes
-  loaded.vehicles.push_back(config::VehicleConfig{"c", {receiver(loaded, "c", "gps1")}});
-  loaded.vehicles.insert(loaded.vehicles.begin(), config::VehicleConfig{"d", {receiver(loaded, "d", "gps1")}});
+  loaded.vehicles.push_back(config::VehicleConfig{"c", {receiver(loaded, "c", "gps1")}, {}});
+  loaded.vehicles.insert(loaded.vehicles.begin(), config::VehicleConfig{"d", {receiver(loaded, "d", "gps1")}, {}});
   const FleetReloadPlan p = plan_fleet_reload(fleet(), loaded, {});
   EXPECT_EQ(FleetReloadPlan::ids(p.kept), "a");
   EXPECT_EQ(FleetReloadPlan::ids(p.removed), "b");
