@@ -38,7 +38,7 @@ import threading
 import time
 import urllib.request
 
-from itlib import RigBase, enu_to_latlon, free_port, parse_gga, run_rig
+from itlib import RigBase, enu_to_latlon, free_port, parse_gga, run_rig, daemon_toml
 
 ORIGIN = (48.8738, 2.2950, 100.0)
 RATE_HZ = 2.0
@@ -108,24 +108,7 @@ class Rig(RigBase):
     def config(self):
         cfg = os.path.join(self.tmp, "fleet.toml")
         with open(cfg, "w") as f:
-            f.write(f"""
-[origin]
-lat_deg = {ORIGIN[0]}
-lon_deg = {ORIGIN[1]}
-height_m = {ORIGIN[2]}
-[nav]
-file = "{os.path.abspath(self.args.nav)}"
-[time]
-start = "2022-01-01T01:00:00"
-[receiver]
-rate_hz = {RATE_HZ}
-[truth]
-bind = "127.0.0.1"
-port = {self.udp_port}
-timeout_s = 2.0
-[demo]
-enabled = false
-[status]
+            f.write(f"""{daemon_toml(ORIGIN, self.args.nav, "2022-01-01T01:00:00", RATE_HZ, self.udp_port)}[status]
 bind = "127.0.0.1"
 port = {self.http_port}
 [fleet]

@@ -26,7 +26,7 @@ import sys
 import threading
 import time
 
-from itlib import RigBase, enu_to_latlon, free_port, run_rig
+from itlib import RigBase, enu_to_latlon, free_port, run_rig, daemon_toml
 
 ORIGIN = (48.8738, 2.2950, 100.0)
 RATE_HZ = 5.0
@@ -148,24 +148,7 @@ class Rig(RigBase):
     def start(self):
         cfg = os.path.join(self.tmp, "fleet.toml")
         with open(cfg, "w") as f:
-            f.write(f"""
-[origin]
-lat_deg = {ORIGIN[0]}
-lon_deg = {ORIGIN[1]}
-height_m = {ORIGIN[2]}
-[nav]
-file = "{os.path.abspath(self.args.nav)}"
-[time]
-start = "2022-01-01T01:00:00"
-[receiver]
-rate_hz = {RATE_HZ}
-[truth]
-bind = "127.0.0.1"
-port = {self.udp_port}
-timeout_s = 2.0
-[demo]
-enabled = false
-[fleet]
+            f.write(f"""{daemon_toml(ORIGIN, self.args.nav, "2022-01-01T01:00:00", RATE_HZ, self.udp_port)}[fleet]
 count = {self.args.count}
 [[fleet.output]]
 type = "tcp"

@@ -25,7 +25,7 @@ import sys
 import threading
 import time
 
-from itlib import RigBase, free_port, run_rig, enu_to_latlon as itlib_enu_to_latlon
+from itlib import RigBase, free_port, run_rig, enu_to_latlon as itlib_enu_to_latlon, daemon_toml
 from ubx_host import frame
 
 ORIGIN = (48.8738, 2.2950, 100.0)
@@ -117,24 +117,7 @@ class Rig(RigBase):
         return os.path.join(self.tmp, f"{v}-gps1")
 
     def write_config(self, vehicles, extra="", receiver_keys=None):
-        text = f"""
-[origin]
-lat_deg = {ORIGIN[0]}
-lon_deg = {ORIGIN[1]}
-height_m = {ORIGIN[2]}
-[nav]
-file = "{os.path.abspath(self.args.nav)}"
-[time]
-start = "2022-01-01T01:00:00"
-[receiver]
-rate_hz = {RATE_HZ}
-[truth]
-bind = "127.0.0.1"
-port = {self.udp_port}
-timeout_s = 2.0
-[demo]
-enabled = false
-[status]
+        text = f"""{daemon_toml(ORIGIN, self.args.nav, "2022-01-01T01:00:00", RATE_HZ, self.udp_port)}[status]
 port = 0
 """
         for v in vehicles:

@@ -23,7 +23,7 @@ import time
 import urllib.error
 import urllib.request
 
-from itlib import RigBase, free_port, gpsd_daemon_main, enu_to_latlon as itlib_enu_to_latlon
+from itlib import RigBase, free_port, gpsd_daemon_main, enu_to_latlon as itlib_enu_to_latlon, daemon_toml
 
 ORIGIN = (48.8738, 2.2950, 100.0)
 A_ENU = (120.0, -80.0)    # vehicle a, m east/north of the origin
@@ -67,24 +67,7 @@ class Rig(RigBase):
     def start(self):
         cfg = os.path.join(self.tmp, "fleet.toml")
         with open(cfg, "w") as f:
-            f.write(f"""
-[origin]
-lat_deg = {ORIGIN[0]}
-lon_deg = {ORIGIN[1]}
-height_m = {ORIGIN[2]}
-[nav]
-file = "{os.path.abspath(self.args.nav)}"
-[time]
-start = "2022-01-01T01:00:00"
-[receiver]
-rate_hz = 2.0
-[truth]
-bind = "127.0.0.1"
-port = {self.udp_port}
-timeout_s = 2.0
-[demo]
-enabled = false
-[status]
+            f.write(f"""{daemon_toml(ORIGIN, self.args.nav, "2022-01-01T01:00:00", 2.0, self.udp_port)}[status]
 bind = "127.0.0.1"
 port = {self.http_port}
 [control]

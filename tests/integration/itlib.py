@@ -48,6 +48,30 @@ def free_port(kind):
     return port
 
 
+def daemon_toml(origin, nav, start, rate_hz, udp_port, timeout_s=2.0, truth_extra="", demo=False):
+    """The tables a daemon test starts from: [origin], [nav], [time] start,
+    [receiver] rate_hz, [truth] on loopback at udp_port and [demo] (off, or
+    on with its defaults); the test appends its own tables."""
+    return f"""
+[origin]
+lat_deg = {origin[0]}
+lon_deg = {origin[1]}
+height_m = {origin[2]}
+[nav]
+file = "{os.path.abspath(nav)}"
+[time]
+start = "{start}"
+[receiver]
+rate_hz = {rate_hz}
+[truth]
+bind = "127.0.0.1"
+port = {udp_port}
+timeout_s = {timeout_s}
+{truth_extra}[demo]
+enabled = {"true" if demo else "false"}
+"""
+
+
 class RigBase:
     """Processes in their own sessions plus a temp dir. Subclasses set
     self.daemon to the gnssemud process so stop_all() reports its exit code."""

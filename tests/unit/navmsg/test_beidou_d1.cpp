@@ -10,6 +10,7 @@
 #include "core/orbit/rinex_nav.hpp"
 #include "core/protocol/navmsg/beidou_d1.hpp"
 #include "core/protocol/navmsg/nav_bits.hpp"
+#include "beidou_test_util.hpp"
 
 namespace gnssemu::protocol::navmsg {
 namespace {
@@ -42,7 +43,6 @@ TEST(D1Subframe, IdsFollowTheBdtWeek) {
 
 TEST(D1Subframe, EveryFieldDecodesToTheEphemerisWithinOneLsb) {
   const orbit::NavData& nav = igs_d1();
-  constexpr double kPi = kSemicircle_rad;
   int checked = 0;
   for (const orbit::Ephemeris& eph : nav.ephemerides) {
     if (eph.sat.system != GnssSystem::kBeiDou || is_beidou_geo(eph.sat)) continue;
@@ -59,37 +59,8 @@ TEST(D1Subframe, EveryFieldDecodesToTheEphemerisWithinOneLsb) {
     EXPECT_EQ(sf[0][0] >> 19, 0x712u);  // preamble
     const std::optional<BeidouDecoded> d = decode_beidou_d1(sf, eph.sat.number);
     ASSERT_TRUE(d.has_value());
-    const orbit::Ephemeris& e = d->eph;
-    EXPECT_EQ(e.toe, eph.toe);
-    EXPECT_EQ(e.toc, eph.toc);
-    EXPECT_EQ(e.iode, eph.iode & 0x1F);
-    EXPECT_EQ(e.iodc, eph.iodc & 0x1F);
-    EXPECT_EQ(e.health, eph.health & 1);
+    test::expect_beidou_set(*d, eph, nav.beidou_klobuchar);
     EXPECT_EQ(d->week, eph.toe.week() - 1356 - (eph.toe.tow_s() < 14.0 ? 1 : 0));
-    EXPECT_NEAR(e.m0_rad, eph.m0_rad, std::ldexp(kPi, -31));
-    EXPECT_NEAR(e.e, eph.e, std::ldexp(1.0, -33));
-    EXPECT_NEAR(e.sqrt_a_sqrtm, eph.sqrt_a_sqrtm, std::ldexp(1.0, -19));
-    EXPECT_NEAR(e.omega0_rad, eph.omega0_rad, std::ldexp(kPi, -31));
-    EXPECT_NEAR(e.i0_rad, eph.i0_rad, std::ldexp(kPi, -31));
-    EXPECT_NEAR(e.omega_rad, eph.omega_rad, std::ldexp(kPi, -31));
-    EXPECT_NEAR(e.idot_rad_s, eph.idot_rad_s, std::ldexp(kPi, -43));
-    EXPECT_NEAR(e.omega_dot_rad_s, eph.omega_dot_rad_s, std::ldexp(kPi, -43));
-    EXPECT_NEAR(e.delta_n_rad_s, eph.delta_n_rad_s, std::ldexp(kPi, -43));
-    EXPECT_NEAR(e.cuc_rad, eph.cuc_rad, std::ldexp(1.0, -31));
-    EXPECT_NEAR(e.cus_rad, eph.cus_rad, std::ldexp(1.0, -31));
-    EXPECT_NEAR(e.cic_rad, eph.cic_rad, std::ldexp(1.0, -31));
-    EXPECT_NEAR(e.cis_rad, eph.cis_rad, std::ldexp(1.0, -31));
-    EXPECT_NEAR(e.crc_m, eph.crc_m, std::ldexp(1.0, -6));
-    EXPECT_NEAR(e.crs_m, eph.crs_m, std::ldexp(1.0, -6));
-    EXPECT_NEAR(e.af0_s, eph.af0_s, std::ldexp(1.0, -33));
-    EXPECT_NEAR(e.af1_s_s, eph.af1_s_s, std::ldexp(1.0, -50));
-    EXPECT_NEAR(e.af2_s_s2, eph.af2_s_s2, std::ldexp(1.0, -66));
-    EXPECT_NEAR(e.tgd_s, eph.tgd_s, 0.1e-9);
-    EXPECT_NEAR(e.tgd2_s, eph.tgd2_s, 0.1e-9);
-    for (std::size_t i = 0; i < 4; ++i) {
-      EXPECT_NEAR(d->alpha[i], nav.beidou_klobuchar.alpha[i], std::ldexp(1.0, i == 0 ? -30 : i == 1 ? -27 : -24));
-      EXPECT_NEAR(d->beta[i], nav.beidou_klobuchar.beta[i], std::ldexp(1.0, i == 0 ? 11 : i == 1 ? 14 : 16));
-    }
     std::array<D1Subframe, 3> bad = sf;
     bad[1][4] ^= 1u << 12;  // a data bit: its half's parity fails
     EXPECT_FALSE(decode_beidou_d1(bad, eph.sat.number).has_value());
