@@ -12,16 +12,16 @@
 #include <cstdint>
 
 #include "core/orbit/nav_data.hpp"
-#include "core/receiver/acquisition.hpp"
+#include "core/receiver/tracking/acquisition.hpp"
 #include "core/receiver/corrections.hpp"
 #include "core/receiver/fix.hpp"
-#include "core/receiver/hatch_filter.hpp"
-#include "core/receiver/navigator.hpp"
+#include "core/receiver/tracking/hatch_filter.hpp"
+#include "core/receiver/solution/navigator.hpp"
 #include "core/receiver/raw_measurements.hpp"
 #include "core/receiver/receiver_config.hpp"
 #include "core/receiver/rtk/rtk_engine.hpp"
-#include "core/receiver/sbas_reception.hpp"
-#include "core/receiver/solver.hpp"
+#include "core/receiver/tracking/sbas_reception.hpp"
+#include "core/receiver/solution/solver.hpp"
 #include "core/world/observables.hpp"
 
 namespace gnssemu::receiver {

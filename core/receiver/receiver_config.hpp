@@ -13,9 +13,9 @@
 #include "core/common/range.hpp"
 #include "core/common/sat_id.hpp"
 #include "core/common/violation.hpp"
-#include "core/receiver/acquisition.hpp"
-#include "core/receiver/nav_filter.hpp"
-#include "core/receiver/spoof_monitor.hpp"
+#include "core/receiver/tracking/acquisition.hpp"
+#include "core/receiver/solution/nav_filter.hpp"
+#include "core/receiver/tracking/spoof_monitor.hpp"
 #include "core/signal/tracking.hpp"
 
 namespace gnssemu::receiver {

@@ -8,7 +8,7 @@
 #include "core/atmosphere/troposphere.hpp"
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
-#include "core/receiver/transmit_state.hpp"
+#include "core/receiver/solution/transmit_state.hpp"
 #include "core/world/sky.hpp"
 #include "tools/gnssemu/spp.hpp"
 

@@ -14,7 +14,7 @@
 #include "core/common/gnss_systems.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/geo/local_frame.hpp"
-#include "core/receiver/weight_model.hpp"
+#include "core/receiver/solution/weight_model.hpp"
 #include "core/world/sky.hpp"
 
 namespace gnssemu::cli {

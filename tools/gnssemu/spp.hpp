@@ -18,7 +18,7 @@
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/nav_data.hpp"
 #include "core/receiver/receiver_config.hpp"
-#include "core/receiver/solver.hpp"
+#include "core/receiver/solution/solver.hpp"
 
 namespace gnssemu::cli {
 

@@ -6,7 +6,7 @@
 
 #include "core/common/constants.hpp"
 #include "core/geo/geodesy.hpp"
-#include "core/receiver/transmit_state.hpp"
+#include "core/receiver/solution/transmit_state.hpp"
 #include "core/world/sky.hpp"
 
 namespace gnssemu::receiver::rtk {

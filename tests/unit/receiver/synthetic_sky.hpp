@@ -14,7 +14,7 @@
 #include "core/receiver/fix.hpp"
 #include "core/world/truth.hpp"
 #include "core/pipeline/pipeline.hpp"
-#include "core/receiver/solver.hpp"
+#include "core/receiver/solution/solver.hpp"
 
 namespace gnssemu::receiver::test {
 

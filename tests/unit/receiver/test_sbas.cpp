@@ -13,7 +13,7 @@
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
 #include "core/pipeline/pipeline.hpp"
-#include "core/receiver/sbas_reception.hpp"
+#include "core/receiver/tracking/sbas_reception.hpp"
 #include "core/world/sbas_service.hpp"
 
 namespace gnssemu::receiver {

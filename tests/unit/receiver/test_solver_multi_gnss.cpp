@@ -10,7 +10,7 @@
 
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris.hpp"
-#include "core/receiver/solver.hpp"
+#include "core/receiver/solution/solver.hpp"
 #include "core/world/sky.hpp"
 #include "synthetic_sky.hpp"
 #include "tests/support/alloc_counter.hpp"

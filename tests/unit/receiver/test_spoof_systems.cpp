@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "core/receiver/spoof_monitor.hpp"
+#include "core/receiver/tracking/spoof_monitor.hpp"
 
 namespace gnssemu::receiver {
 namespace {

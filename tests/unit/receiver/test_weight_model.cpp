@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "core/geo/geodesy.hpp"
-#include "core/receiver/solver.hpp"
-#include "core/receiver/weight_model.hpp"
+#include "core/receiver/solution/solver.hpp"
+#include "core/receiver/solution/weight_model.hpp"
 #include "core/world/sky.hpp"
 #include "synthetic_sky.hpp"
 #include "tests/support/alloc_counter.hpp"

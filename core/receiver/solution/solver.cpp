@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/receiver/solver.hpp"
+#include "core/receiver/solution/solver.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,10 +7,10 @@
 #include "core/atmosphere/receiver_corrections.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/world/sky.hpp"
-#include "core/receiver/enu_rotation.hpp"
-#include "core/receiver/small_matrix.hpp"
-#include "core/receiver/transmit_state.hpp"
-#include "core/receiver/weight_model.hpp"
+#include "core/receiver/solution/enu_rotation.hpp"
+#include "core/receiver/solution/small_matrix.hpp"
+#include "core/receiver/solution/transmit_state.hpp"
+#include "core/receiver/solution/weight_model.hpp"
 
 namespace gnssemu::receiver {
 

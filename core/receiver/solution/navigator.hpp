@@ -10,9 +10,9 @@
 // static hold. Its output has the snapshot solver's form. No allocation.
 #include <array>
 
-#include "core/receiver/dynamic_model.hpp"
-#include "core/receiver/nav_filter.hpp"
-#include "core/receiver/solver.hpp"
+#include "core/receiver/solution/dynamic_model.hpp"
+#include "core/receiver/solution/nav_filter.hpp"
+#include "core/receiver/solution/solver.hpp"
 
 namespace gnssemu::receiver {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/receiver/sbas_reception.hpp"
+#include "core/receiver/tracking/sbas_reception.hpp"
 
 namespace gnssemu::receiver {
 

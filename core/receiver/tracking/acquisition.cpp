@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/receiver/acquisition.hpp"
+#include "core/receiver/tracking/acquisition.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/receiver/transmit_state.hpp"
+#include "core/receiver/solution/transmit_state.hpp"
 
 #include "core/common/constants.hpp"
 

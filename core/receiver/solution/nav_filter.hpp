@@ -12,7 +12,7 @@
 
 #include "core/common/range.hpp"
 #include "core/common/vec3.hpp"
-#include "core/receiver/dynamic_model.hpp"
+#include "core/receiver/solution/dynamic_model.hpp"
 
 namespace gnssemu::receiver {
 

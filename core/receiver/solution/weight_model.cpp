@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/receiver/weight_model.hpp"
+#include "core/receiver/solution/weight_model.hpp"
 
 #include <algorithm>
 #include <array>

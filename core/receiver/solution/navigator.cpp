@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/receiver/navigator.hpp"
+#include "core/receiver/solution/navigator.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include "core/geo/geodesy.hpp"
-#include "core/receiver/enu_rotation.hpp"
-#include "core/receiver/small_matrix.hpp"
+#include "core/receiver/solution/enu_rotation.hpp"
+#include "core/receiver/solution/small_matrix.hpp"
 
 namespace gnssemu::receiver {
 

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/receiver/spoof_monitor.hpp"
+#include "core/receiver/tracking/spoof_monitor.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/receiver/small_matrix.hpp"
+#include "core/receiver/solution/small_matrix.hpp"
 
 namespace gnssemu::receiver {
 

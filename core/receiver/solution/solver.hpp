@@ -16,7 +16,7 @@
 #include "core/orbit/nav_data.hpp"
 #include "core/receiver/fix.hpp"
 #include "core/receiver/receiver_config.hpp"
-#include "core/receiver/small_matrix.hpp"
+#include "core/receiver/solution/small_matrix.hpp"
 #include "core/time/gps_time.hpp"
 #include "core/world/shared_sky.hpp"
 

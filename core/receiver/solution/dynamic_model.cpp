@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/receiver/dynamic_model.hpp"
+#include "core/receiver/solution/dynamic_model.hpp"
 
 #include <array>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/receiver/nav_filter.hpp"
+#include "core/receiver/solution/nav_filter.hpp"
 
 #include <cmath>
 
