@@ -199,6 +199,12 @@ void Daemon::apply_chip_settings(Rig& rig) { config::apply_chip_settings(rig.dev
 
 void Daemon::on_host_input(Rig& rig, std::size_t src, const protocol::ubx::InputResult& result) {
   const std::vector<config::OutputPortConfig>& outputs = rig.cfg.outputs;
+  // A moving base's epoch that arrived within the rover's epoch: the F9P
+  // sends the time-matched RELPOSNED now, not with its next epoch.
+  if (result.corrections_changed && rig.receiver && rig.receiver->on_corrections()) {
+    rig.device.on_relative_position(rig.receiver->last_fix().rel_pos);
+    for (const auto& c : rig.channels) c->send_relative_position();
+  }
   if (result.nav_rate_changed || result.reset) on_nav_period(rig, src);
   if (result.saved_changed && !rig.cfg.state_file.empty()) {
     if (const std::string err = save_state_file(rig.cfg.state_file, rig.device); !err.empty()) {

@@ -71,6 +71,9 @@ public:
   const faults::FaultStage* faults() const noexcept { return faults_.get(); }
 
   const receiver::Fix& last_fix() const noexcept { return receiver_.last_fix(); }
+  /// The receiver's corrections changed between epochs: Receiver::on_corrections
+  /// with the observables of the last epoch. Never allocates.
+  bool on_corrections() noexcept { return receiver_.on_corrections(faults_ ? obs_ : world_.observables()); }
   world::World& world() noexcept { return world_; }
   const world::World& world() const noexcept { return world_; }
   receiver::Receiver& receiver() noexcept { return receiver_; }

@@ -63,6 +63,10 @@ struct RelativePosition {
   /// has arrived: late set, t earlier than the Fix's own epoch.
   time::GpsTime t;
   bool late = false;
+  /// No NAV-RELPOSNED with this epoch's output: the moving base's epoch of
+  /// this time is expected within the epoch period, and the RELPOSNED goes
+  /// out when it arrives (the daemon's on-arrival path).
+  bool held = false;
 };
 
 /// The antenna supervisor's state (MON-HW aStatus).

@@ -38,6 +38,11 @@ public:
   const Fix& step(const time::GpsTime& t, const world::Observables& obs) noexcept;
 
   const Fix& last_fix() const noexcept { return fix_; }
+  /// The corrections changed between epochs (a host's RTCM arrived): a
+  /// moving base's epoch of the last epoch's time is solved now
+  /// (RtkEngine::on_base_epoch); obs: the observables of the last step.
+  /// true: last_fix().rel_pos is that epoch's, to be sent now.
+  bool on_corrections(const world::Observables& obs) noexcept { return rtk_.on_base_epoch(obs, corrections_, fix_); }
   /// The raw measurements of the last step (RXM-RAWX, RINEX, RTCM MSM):
   /// every tracked signal of an enabled system, on the receiver's clock.
   const RawEpoch& raw() const noexcept { return raw_; }

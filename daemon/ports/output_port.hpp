@@ -52,6 +52,8 @@ public:
   /// Deliver bytes outside the epoch schedule (a reply, sent whole) to
   /// source (a tcp client) or, for other ports, the port.
   void write_reply(int source, std::string_view data) noexcept { deliver(source, data, {}, false); }
+  /// Source of write_reply for every reader (a message between epochs).
+  static constexpr int kEveryReader = -1;
   /// Switch the line rate once everything queued so far has been
   /// transmitted (tcdrain), as a u-blox does after CFG-PRT / $PUBX,41.
   /// Serial: applied; pty: recorded in the termios only; others: ignored.
@@ -67,7 +69,7 @@ public:
   const PortStats& stats() const noexcept { return stats_; }
 
 protected:
-  static constexpr int kAllSources = -1;
+  static constexpr int kAllSources = kEveryReader;
   explicit OutputPort(config::OutputPortConfig config) : config_(std::move(config)) {}
   /// Write data to source (kAllSources: everyone); ends: message ends as
   /// write_epoch's; epoch: count as an epoch, else as a reply. Never blocks

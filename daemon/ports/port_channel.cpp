@@ -53,6 +53,7 @@ PortChannel::PortChannel(std::unique_ptr<OutputPort> port, ubx::Device& device, 
   wire_.reserve(std::max<std::size_t>(ubx::MessageList::kMaxBytes, 4096));
   wire_ends_.reserve(ubx::MessageList::kMaxMessages);
   reply_.reserve(4096);
+  between_bytes_.reserve(256);
   epoch_dropped_.reserve(512);
 }
 
@@ -333,6 +334,47 @@ void PortChannel::send_composed(double now) noexcept {
     return;
   }
   if (!bytes.empty()) port_->write_epoch(bytes, ends);
+}
+
+void PortChannel::send_relative_position() noexcept {
+  device_.compose_relposned(link(), between_);
+  const auto& messages = between_.messages();
+  if (messages.empty()) return;
+  const LinkFaultSet& faults = link_.active();
+  if (faults.stop || faults.freeze || faults.rate_hz > 0.0) return;
+  const std::uint64_t epoch = device_.epoch_count();
+  const double line_s = line_clock_();
+  between_bytes_.clear();
+  for (std::size_t i = 0; i < messages.size(); ++i) {
+    const ubx::MessageList::Message& m = messages[i];
+    const std::size_t index = epoch_.messages().size() + i;  // after the epoch's own messages
+    if (link_.drops(epoch, index)) continue;
+    const std::string_view bytes = between_.bytes(m);
+    stats_.bytes_offered += bytes.size();
+    if (!budget_.admit(bytes.size(), line_s)) {
+      count_drop(m.label);
+      continue;
+    }
+    const std::size_t begin = between_bytes_.size();
+    between_bytes_.append(bytes);
+    ++stats_.messages_sent;
+    if (link_.corrupts(epoch, index)) {
+      break_checksum(std::span<char>(between_bytes_.data() + begin, between_bytes_.size() - begin));
+    }
+  }
+  std::string_view out = between_bytes_;
+  if (faults.byte_loss > 0.0) {
+    link_.lose_bytes(0, true, between_bytes_, {}, wire_, wire_ends_);
+    out = wire_;
+  }
+  stats_.link_faults = link_.stats();
+  if (out.empty()) return;
+  if (faults.latency_s > 0.0 || !delay_.empty()) {
+    delay_.push_reply(clock_() + faults.latency_s, OutputPort::kEveryReader, out);
+    check_delayed();
+    return;
+  }
+  port_->write_reply(OutputPort::kEveryReader, out);
 }
 
 void PortChannel::warn_drops() {

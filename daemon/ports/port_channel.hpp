@@ -92,6 +92,12 @@ public:
   /// block. No allocation after the first epochs (a latency fault: after
   /// the most epochs it ever held at once).
   void send_epoch() noexcept;
+  /// Send the device's NAV-RELPOSNED of this epoch that came after the
+  /// epoch's output (Device::compose_relposned; a moving-base rover), between
+  /// epochs: through the TX budget and the link faults (a stopped, frozen or
+  /// slowed output sends none; drops and corruption draw after the epoch's
+  /// messages; byte loss as for a reply; a latency holds it behind the epoch).
+  void send_relative_position() noexcept;
   /// Send the epochs and replies a latency fault held that are due now. Returns true
   /// while some are still held.
   bool check_delayed() noexcept;
@@ -155,6 +161,8 @@ private:
   bool drop_after_feed_ = false;   ///< the source went away
 
   protocol::ubx::MessageList epoch_;
+  protocol::ubx::MessageList between_;  ///< a NAV-RELPOSNED between epochs
+  std::string between_bytes_;           ///< of it, admitted
   std::string reply_;
   ChannelStats stats_;
   std::map<std::string, uint64_t, std::less<>> drops_by_name_;

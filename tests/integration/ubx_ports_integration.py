@@ -455,9 +455,12 @@ def case_ardupilot_f9p_heading(rig):
     (level vehicle); its heading minus the arms' bearing is the vehicle's
     yaw within 3 accHeading + 1 deg; and at least 90 % of them after the
     first pass. The vehicle stands (demo speed 0: yaw north), as before
-    take-off. The rover time-matches the base's epochs (docs/ubx.md
-    "ArduPilot F9P"): a RELPOSNED comes out one epoch after its NAV-PVT,
-    with that NAV-PVT's iTOW."""
+    take-off. The rover time-matches the base's epochs (docs/rtk.md
+    "Relative position"): each RELPOSNED comes after the NAV-PVT of equal
+    iTOW, once the base's RTCM of that epoch is in, and before the next
+    epoch's NAV-PVT (ArduPilot holds a NAV-PVT until the RELPOSNED of its
+    iTOW): the delay from that NAV-PVT, p50/p95, must stay under one epoch
+    period."""
     rig.nav = rig.args.nav_mgnss
     base_path, rover_path = os.path.join(rig.tmp, "base"), os.path.join(rig.tmp, "rover")
     arm = lambda a: "[" + ", ".join(f"{x:.3f}" for x in a) + "]"
@@ -494,6 +497,8 @@ path = "{rover_path}"
     pvt_itow = {}
     first_fixed = None
     good, checked, errs, accs, lags = 0, 0, [], [], []
+    last_pvt = None
+    before_next, after_next = 0, 0  # RELPOSNEDs before / after the next epoch's NAV-PVT
     seen_flags = {}  # flags -> (count, last length m, last relPosD m)
     rejected = {}    # which of ArduPilot's checks a RELPOSNED failed
     end = t0 + 45.0
@@ -511,6 +516,7 @@ path = "{rover_path}"
             if m[2:4] == b"\x01\x07":
                 itow = struct.unpack_from("<I", m, 6)[0]
                 pvt_itow[itow] = t
+                last_pvt = itow
             elif m[2:4] == b"\x01\x3c":
                 itow, d_m, length_m, heading, acc, flags = relposned(m)
                 seen_flags[flags] = (seen_flags.get(flags, (0,))[0] + 1, round(length_m, 3), round(d_m, 3))
@@ -522,8 +528,13 @@ path = "{rover_path}"
                 ok = not why
                 for w in why:
                     rejected[w] = rejected.get(w, 0) + 1
-                if itow in pvt_itow:
+                if first_fixed is not None:
+                    assert itow in pvt_itow, f"RELPOSNED iTOW {itow} before any NAV-PVT of that iTOW"
                     lags.append(t - pvt_itow[itow])  # after its epoch's NAV-PVT
+                    if itow == last_pvt:
+                        before_next += 1
+                    else:
+                        after_next += 1
                 if first_fixed is None:
                     if ok:
                         first_fixed = t
@@ -546,15 +557,22 @@ path = "{rover_path}"
     assert checked >= 30 and errs, f"{good}/{checked} NAV-RELPOSNED usable after the first; rejected by {rejected}"
     rms = math.sqrt(sum(e * e for e in errs) / len(errs))
     accs.sort()
+    lags.sort()
+    itows = sorted(pvt_itow)
+    period_ms = sorted(b - a for a, b in zip(itows, itows[1:]))[(len(itows) - 1) // 2]
+    p50_ms, p95_ms = lags[len(lags) // 2] * 1000, lags[min(len(lags) - 1, int(0.95 * len(lags)))] * 1000
     report = (f"base set {sum(len(v) for v in set_b.values())} keys, rover "
               f"{sum(len(v) for v in set_r.values())} (slowest replies {rb.worst()[1] * 1000:.1f} / "
               f"{rr.worst()[1] * 1000:.1f} ms); RTCM forwarded {dict(sorted(forwarded.items()))}; first RELPOSNED "
               f"passing ArduPilot's checks {first_fixed - t0:.1f} s after the feed; then {good}/{checked} usable "
               f"(rejected by {rejected}; flags seen {dict((hex(f), v[0]) for f, v in seen_flags.items())}); "
               f"heading error vs yaw + {bearing:.2f} deg: RMS {rms:.2f} deg, max {max(abs(e) for e in errs):.2f} deg, "
-              f"accHeading median {accs[len(accs) // 2]:.2f} deg; separation {sep:.3f} m; RELPOSNED after its "
-              f"NAV-PVT: median {sorted(lags)[len(lags) // 2] * 1000:.0f} ms, max {max(lags) * 1000:.0f} ms")
+              f"accHeading median {accs[len(accs) // 2]:.2f} deg; separation {sep:.3f} m; RELPOSNED after the "
+              f"NAV-PVT of its iTOW: p50 {p50_ms:.0f} ms, p95 {p95_ms:.0f} ms, max {lags[-1] * 1000:.0f} ms "
+              f"(epoch period {period_ms} ms); {before_next} before the next epoch's NAV-PVT, {after_next} after")
     print(f"  ardupilot_f9p_heading: {report}")
+    assert p95_ms < period_ms, f"RELPOSNED p95 {p95_ms:.0f} ms after its NAV-PVT, not within the {period_ms} ms epoch: {report}"
+    assert before_next >= 0.95 * (before_next + after_next), f"RELPOSNED after the next epoch's NAV-PVT: {report}"
     assert good >= 0.9 * checked, f"RTK fixed and usable in {good}/{checked} epochs after the first, want 90 %: {report}"
 
 

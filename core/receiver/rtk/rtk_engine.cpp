@@ -242,6 +242,9 @@ void RtkEngine::step(const RawEpoch& rover, const world::Observables& obs, const
                      Fix& fix) noexcept {
   if (!slot_map_ready_) reset();
   ++epoch_;
+  const bool prev_early = last_early_;
+  held_last_ = -1;
+  last_early_ = false;
   clear_link_fields(fix);
   status_.num_code_sd = status_.num_phase_sd = status_.num_fixed_dd = 0;
   if (!is_gnss_fix(fix.type) || corr == nullptr || !corr->obs_valid || !corr->station.position_valid ||
@@ -267,7 +270,7 @@ void RtkEngine::step(const RawEpoch& rover, const world::Observables& obs, const
   }
   for (int i = 0; i < fix.num_sats; ++i) el_rad_[static_cast<std::size_t>(fix.sats[i].sat.index())] = fix.sats[i].el_rad;
   if (c.station.moving) {
-    step_moving(rover, obs, c, fix);
+    step_moving(rover, obs, c, prev_early, fix);
     return;
   }
   // A fixed base: its newest epoch with its age (the base does not move in between).
@@ -276,14 +279,16 @@ void RtkEngine::step(const RawEpoch& rover, const world::Observables& obs, const
 }
 
 void RtkEngine::step_moving(const RawEpoch& rover, const world::Observables& obs, const Corrections& c,
-                            Fix& fix) noexcept {
+                            bool prev_early, Fix& fix) noexcept {
   // The rover solves the baseline only with the base's observations of the
   // same epoch (ZED-F9P integration manual UBX-18010802 §3.1.5.6: relPosValid
   // "if the rover managed to get the time-matched observations in time"):
   // it holds its own epoch until the base's arrives.
+  held_last_ = held_next_;
   HeldEpoch& now = held_[static_cast<std::size_t>(held_next_)];
   held_next_ = (held_next_ + 1) % kMovingBaseHeldEpochs;
   now.pending = true;
+  now.reported = false;
   now.raw = rover;
   now.nav = NavSnapshot{fix.t, fix.pos_m, fix.vel_m_s, fix.speed_acc_m_s};
 
@@ -307,11 +312,18 @@ void RtkEngine::step_moving(const RawEpoch& rover, const world::Observables& obs
     }
   }
   if (match == nullptr) {
-    // Nothing to solve this epoch: RELPOSNED without a baseline (refObsMiss).
     fix.rel_pos.moving_base = true;
-    fix.rel_pos.ref_obs_miss = true;
     fix.rel_pos.ref_station_id = c.station.station_id;
     fix.rel_pos.t = fix.t;
+    if (prev_early) {
+      // The base's last epoch came within its period: this one's RELPOSNED
+      // goes out when its base epoch arrives (on_base_epoch), not now.
+      fix.rel_pos.held = true;
+      return;
+    }
+    // Nothing to solve this epoch: RELPOSNED without a baseline (refObsMiss).
+    fix.rel_pos.ref_obs_miss = true;
+    now.reported = true;
     return;
   }
   match->pending = false;
@@ -323,6 +335,37 @@ void RtkEngine::step_moving(const RawEpoch& rover, const world::Observables& obs
   fix.rel_pos.ref_station_id = c.station.station_id;
   fix.rel_pos.t = match->nav.t;
   fix.rel_pos.late = fix.t - match->nav.t > 1e-6;
+}
+
+bool RtkEngine::on_base_epoch(const world::Observables& obs, const Corrections* corr, Fix& fix) noexcept {
+  if (held_last_ < 0 || corr == nullptr) return false;
+  const Corrections& c = *corr;
+  HeldEpoch& h = held_[static_cast<std::size_t>(held_last_)];
+  if (!c.station.moving || !c.obs_valid || !c.station.position_valid || !h.pending ||
+      (base_seen_ && c.revision == base_revision_) || std::fabs(h.raw.t_rx - c.obs.t_rx) >= kEpochMatch_s) {
+    return false;
+  }
+  // Only the last step's epoch: its ephemerides, elevations and sky are the
+  // ones this engine holds; an older epoch waits for the next step.
+  h.pending = false;
+  held_last_ = -1;
+  last_early_ = true;
+  ++status_.moving_base_matched;
+  ++status_.moving_base_early;
+  status_.moving_base_delay_s = 0.0;
+  status_.num_code_sd = status_.num_phase_sd = status_.num_fixed_dd = 0;
+  const RelativePosition before = fix.rel_pos;
+  fix.rel_pos = RelativePosition{};
+  process_base(c, obs.sky);
+  solve(h.raw, h.nav, c, obs, fix);
+  fix.rel_pos.moving_base = true;
+  fix.rel_pos.ref_station_id = c.station.station_id;
+  fix.rel_pos.t = h.nav.t;
+  if (h.reported) {
+    fix.rel_pos = before;  // its refObsMiss already went out
+    return false;
+  }
+  return true;
 }
 
 void RtkEngine::solve(const RawEpoch& rover, const NavSnapshot& nav, const Corrections& c,

@@ -12,7 +12,8 @@
 // older by the link latency needs no extrapolation; RTKLIB manual 2.4.2
 // §E.7 "time-mismatch"). A moving base is time-matched instead: the rover
 // holds its last epochs and solves the one whose time the base's newest
-// epoch has, so the baseline comes out late by the link's latency. A Kalman filter over the rover position, one
+// epoch has: at once when that epoch arrives before the rover's next one
+// (on_base_epoch), else with the rover's next epoch. A Kalman filter over the rover position, one
 // single-difference clock per system (white, re-initialised every epoch) and
 // one single-difference ambiguity per satellite and band (cycles; reset on a
 // lock-time restart, a half-cycle state change or a rejected innovation).
@@ -67,6 +68,7 @@ struct RtkStatus {
   std::uint32_t moving_base_matched = 0;  ///< rover epochs solved with the moving base's epoch of the same time
   std::uint32_t moving_base_missed = 0;   ///< rover epochs whose base epoch never came (refObsMiss)
   double moving_base_delay_s = 0.0;       ///< last matched epoch: rover epochs it waited for its base epoch, s
+  std::uint32_t moving_base_early = 0;    ///< of the matched: solved when the base's epoch arrived (on_base_epoch)
 };
 
 class RtkEngine {
@@ -87,6 +89,13 @@ public:
   /// came from (ephemerides of the satellites in view), corr the link
   /// (nullptr: none), fix the standalone solution, updated in place.
   void step(const RawEpoch& rover, const world::Observables& obs, const Corrections* corr, Fix& fix) noexcept;
+  /// The link changed between rover epochs (corr: as for step, obs: the
+  /// observables of the last step, fix: its solution). A moving base's epoch
+  /// of the time of the rover's last epoch is solved now, as the F9P does
+  /// once the time-matched observations are in; true: fix.rel_pos is that
+  /// epoch's (send NAV-RELPOSNED now). An epoch whose RELPOSNED already went
+  /// out (refObsMiss) is solved but not reported again (false).
+  bool on_base_epoch(const world::Observables& obs, const Corrections* corr, Fix& fix) noexcept;
 
   const RtkStatus& status() const noexcept { return status_; }
 
@@ -133,13 +142,17 @@ private:
   /// A rover epoch waiting for the moving base's epoch of the same time.
   struct HeldEpoch {
     bool pending = false;
+    bool reported = false;  ///< its RELPOSNED went out already (refObsMiss)
     RawEpoch raw;
     NavSnapshot nav;
   };
 
   /// The moving-base path: hold this epoch, solve the held one the base's
   /// newest epoch matches, give up on those it can no longer match.
-  void step_moving(const RawEpoch& rover, const world::Observables& obs, const Corrections& c, Fix& fix) noexcept;
+  /// prev_early: the previous epoch was solved by on_base_epoch (this one's
+  /// RELPOSNED then waits for its base epoch too).
+  void step_moving(const RawEpoch& rover, const world::Observables& obs, const Corrections& c, bool prev_early,
+                   Fix& fix) noexcept;
   /// One filter epoch: rover's measurements with nav its solution, against the processed base epoch.
   void solve(const RawEpoch& rover, const NavSnapshot& nav, const Corrections& c, const world::Observables& obs,
              Fix& fix) noexcept;
@@ -202,6 +215,8 @@ private:
   // Moving base: the last rover epochs (a ring, oldest overwritten).
   std::array<HeldEpoch, kMovingBaseHeldEpochs> held_{};
   int held_next_ = 0;
+  int held_last_ = -1;        ///< the last step's epoch in held_ (on_base_epoch may solve it); -1 none
+  bool last_early_ = false;   ///< the last step's epoch was solved by on_base_epoch
 
   // Integer resolution.
   bool fixed_ = false;

@@ -48,6 +48,12 @@ Enu error_enu(const Ecef& pos, const Ecef& truth) {
 }
 
 /// Base and rover on one sky; corrections delayed by latency epochs.
+// Squared heading error of a relative position against truth_rad, deg^2.
+double heading_error_deg2(const RelativePosition& r, double truth_rad) {
+  const double d = std::remainder(r.heading_rad - truth_rad, 2.0 * kPi) / kDegToRad;
+  return d * d;
+}
+
 class RtkRig {
 public:
   /// latency: epochs between the base's measurement and its use (0: time-matched).
@@ -73,15 +79,7 @@ public:
     sky_.update(t, ants);
     base_.step(sky_, test::truth_at(base_m_, t, base_vel_));
     queue_.push_back({base_.receiver().raw(), base_.last_fix().pos_m});
-    if (link_ && static_cast<int>(queue_.size()) > latency_) {
-      corr_.obs = queue_.front().raw;
-      // A moving base's 4072.0 carries its position of the same epoch.
-      if (moving_base_) corr_.station.arp_ecef_m = queue_.front().pos_m;
-      corr_.obs.num_meas = std::min(corr_.obs.num_meas, base_meas_limit_);
-      corr_.obs_valid = corr_.obs.time_valid && corr_.obs.num_meas > 0;
-      ++corr_.revision;
-    }
-    while (static_cast<int>(queue_.size()) > latency_) queue_.pop_front();
+    if (!between_) deliver_due();
     const world::Observables& o = rover_.world().step(sky_, test::truth_at(rover_m_, t, rover_vel_),
                                                       rover_.receiver().config().elevation_mask_rad);
     obs_ = o;
@@ -90,8 +88,22 @@ public:
       s.carrier_phase_cycles += slip_cycles_;
       s.carrier_discontinuities += slips_;
     }
-    return rover_.receiver().step(t, obs_);
+    const Fix& f = rover_.receiver().step(t, obs_);
+    at_epoch_ = f.rel_pos;
+    arrived_ = false;
+    if (between_ && deliver_due()) arrived_ = rover_.receiver().on_corrections(obs_);
+    return f;
   }
+  /// Base epochs arrive between rover epochs: base epoch k after rover
+  /// epoch k + lag, then Receiver::on_corrections (step's Fix is updated).
+  void arrive_between(int lag) {
+    between_ = true;
+    latency_ = lag;
+  }
+  /// In arrive_between mode: the last step's rel_pos as its epoch's output
+  /// had it, and whether the arrival after it gave a new one.
+  const RelativePosition& at_epoch() const { return at_epoch_; }
+  bool arrived() const { return arrived_; }
   /// Every satellite's carrier jumps by cycles from now on, flagged as a discontinuity.
   void slip_all(double cycles) {
     slip_cycles_ += cycles;
@@ -110,6 +122,21 @@ public:
     corr_.station.moving = true;
   }
   Corrections& corrections() { return corr_; }
+  /// The base epoch latency_ epochs old becomes the link's newest; false: none.
+  bool deliver_due() {
+    bool delivered = false;
+    if (link_ && static_cast<int>(queue_.size()) > latency_) {
+      corr_.obs = queue_.front().raw;
+      // A moving base's 4072.0 carries its position of the same epoch.
+      if (moving_base_) corr_.station.arp_ecef_m = queue_.front().pos_m;
+      corr_.obs.num_meas = std::min(corr_.obs.num_meas, base_meas_limit_);
+      corr_.obs_valid = corr_.obs.time_valid && corr_.obs.num_meas > 0;
+      ++corr_.revision;
+      delivered = true;
+    }
+    while (static_cast<int>(queue_.size()) > latency_) queue_.pop_front();
+    return delivered;
+  }
   const Ecef& rover_truth() const { return rover_m_; }
   const Ecef& base_truth() const { return base_m_; }
   const rtk::RtkStatus& status() { return rover_.receiver().rtk().status(); }
@@ -133,6 +160,9 @@ private:
   std::uint32_t slips_ = 0;
   bool link_ = true;
   bool moving_base_ = false;
+  bool between_ = false;
+  bool arrived_ = false;
+  RelativePosition at_epoch_;
   int base_meas_limit_ = kMaxRawMeasurements;
 };
 
@@ -333,7 +363,7 @@ TEST(Rtk, MovingBaseAtSpeedTimeMatchesALateBase) {
   const Vec3 vel = geo::enu_to_ecef_vector(Enu(5.0, 0.0, 0.0), at.lat_rad, at.lon_rad);
   rig.set_velocity(Ecef(vel));
   int late = 0, fixed = 0;
-  double worst_length_m = 0.0;
+  double worst_length_m = 0.0, sum_heading2 = 0.0;
   for (int i = 0; i < 300; ++i) {
     const double t_s = static_cast<double>(i);
     rig.move(Ecef(base + vel * t_s), Ecef(rover + vel * t_s));
@@ -347,14 +377,91 @@ TEST(Rtk, MovingBaseAtSpeedTimeMatchesALateBase) {
     if (f.rel_pos.carr_soln != CarrierSolution::kFixed) continue;
     ++fixed;
     worst_length_m = std::max(worst_length_m, std::fabs(f.rel_pos.length_m - 1.0));
+    sum_heading2 += heading_error_deg2(f.rel_pos, heading);
   }
   const rtk::RtkStatus& st = rig.status();
   std::printf("moving base 1 m at 5 m/s, base 1 epoch late: %d baselines, %d fixed of 300 epochs, worst length error "
-              "%.3f m; matched %u, missed %u, delay %.1f s\n", late, fixed, worst_length_m, st.moving_base_matched,
-              st.moving_base_missed, st.moving_base_delay_s);
+              "%.3f m, heading error RMS %.3f deg; matched %u, missed %u, delay %.1f s\n", late, fixed, worst_length_m,
+              std::sqrt(sum_heading2 / fixed), st.moving_base_matched, st.moving_base_missed, st.moving_base_delay_s);
   ASSERT_GT(fixed, 100);
   EXPECT_LT(worst_length_m, 0.03);  // pairing with the previous base epoch would read 5 m off
   EXPECT_DOUBLE_EQ(st.moving_base_delay_s, 1.0);
+}
+
+TEST(Rtk, MovingBaseEpochSolvedWhenItArrivesWithinTheEpoch) {
+  // The base's epoch k arrives after the rover's epoch k and before k + 1:
+  // the rover's output of epoch k leaves RELPOSNED out (held), and the
+  // arrival solves epoch k at once (on_corrections), as the F9P sends it.
+  // The data of MovingBaseAtSpeedTimeMatchesALateBase: the same baselines.
+  const Ecef base = geo::ecef_from_lla(kSite);
+  const double heading = 30.0 * kDegToRad;
+  const Ecef rover = offset_enu(base, std::sin(heading), std::cos(heading), 0.0);
+  RtkRig rig(base, rover);
+  rig.set_moving_base();
+  rig.arrive_between(0);
+  const Lla at = geo::lla_from_ecef(base);
+  const Vec3 vel = geo::enu_to_ecef_vector(Enu(5.0, 0.0, 0.0), at.lat_rad, at.lon_rad);
+  rig.set_velocity(Ecef(vel));
+  int early = 0, fixed = 0, held = 0;
+  double worst_length_m = 0.0, sum_heading2 = 0.0;
+  for (int i = 0; i < 300; ++i) {
+    const double t_s = static_cast<double>(i);
+    rig.move(Ecef(base + vel * t_s), Ecef(rover + vel * t_s));
+    const time::GpsTime t = kToe + t_s;
+    const Fix& f = rig.step(t);
+    ASSERT_TRUE(test::all_finite(f));
+    EXPECT_FALSE(rig.at_epoch().late) << i;
+    if (i >= 3) {
+      // From the second early solution on, every epoch's output waits for its base epoch.
+      EXPECT_TRUE(rig.at_epoch().held) << i;
+      EXPECT_FALSE(rig.at_epoch().valid) << i;
+      ASSERT_TRUE(rig.arrived()) << i;
+    }
+    held += rig.at_epoch().held ? 1 : 0;
+    if (!rig.arrived()) continue;
+    ++early;
+    EXPECT_FALSE(f.rel_pos.held) << i;
+    EXPECT_FALSE(f.rel_pos.late) << i;
+    EXPECT_NEAR(f.rel_pos.t - t, 0.0, 1e-9) << i;  // the epoch just output: RELPOSNED's iTOW = its NAV-PVT's
+    if (f.rel_pos.carr_soln != CarrierSolution::kFixed) continue;
+    ++fixed;
+    worst_length_m = std::max(worst_length_m, std::fabs(f.rel_pos.length_m - 1.0));
+    sum_heading2 += heading_error_deg2(f.rel_pos, heading);
+  }
+  const rtk::RtkStatus& st = rig.status();
+  std::printf("moving base 1 m at 5 m/s, base epoch arriving within the epoch: %d solved on arrival (%d outputs "
+              "held for it), %d fixed of 300 epochs, worst length error %.3f m, heading error RMS %.3f deg; matched "
+              "%u (early %u), missed %u\n", early, held, fixed, worst_length_m, std::sqrt(sum_heading2 / fixed),
+              st.moving_base_matched, st.moving_base_early, st.moving_base_missed);
+  EXPECT_GE(early, 297);
+  // The first arrival solves an epoch whose refObsMiss already went out: solved, not sent again.
+  EXPECT_EQ(st.moving_base_early, static_cast<std::uint32_t>(early + 1));
+  ASSERT_GT(fixed, 250);
+  EXPECT_LT(worst_length_m, 0.03);  // pairing with another epoch's base would read 1 m off
+  EXPECT_DOUBLE_EQ(st.moving_base_delay_s, 0.0);
+}
+
+TEST(Rtk, MovingBaseEpochArrivingAfterTheNextFallsBackToLate) {
+  // A slow link: base epoch k arrives after the rover's epoch k + 1. It is
+  // not solved on arrival (the rover has moved on) but with the rover's
+  // next epoch, late, with its own epoch's time.
+  const Ecef base = geo::ecef_from_lla(kSite);
+  RtkRig rig(base, offset_enu(base, 0.0, 1.0, 0.0));
+  rig.set_moving_base();
+  rig.arrive_between(1);
+  int late = 0;
+  for (int i = 0; i < 60; ++i) {
+    const time::GpsTime t = kToe + static_cast<double>(i);
+    const Fix& f = rig.step(t);
+    EXPECT_FALSE(rig.arrived()) << i;
+    EXPECT_FALSE(rig.at_epoch().held) << i;
+    if (!f.rel_pos.valid) continue;
+    ASSERT_TRUE(f.rel_pos.late) << i;
+    EXPECT_NEAR(t - f.rel_pos.t, 2.0, 1e-9) << i;  // arrived after epoch k + 1, solved at k + 2
+    ++late;
+  }
+  EXPECT_GE(late, 55);
+  EXPECT_EQ(rig.status().moving_base_early, 0u);
 }
 
 TEST(Rtk, MovingBaseGivesUpOnEpochsTheBaseNeverSends) {

@@ -380,6 +380,60 @@ TEST(UbxF9p, HpMessagesGoOutWhereEnabledAndOnlyOnTheF9p) {
   EXPECT_FALSE(hm9.acked(msg::kCfgValset, valset({{kHpposllhUart1, 1}})));
 }
 
+// A moving-base rover whose base epoch comes within the epoch period
+// (docs/rtk.md "Relative position"): epoch k's output carries no
+// RELPOSNED (held), the arrival sends it alone with epoch k's iTOW, and the
+// next epoch's NAV-PVT follows: PVT(k), RELPOSNED(k), PVT(k + 1) on the wire.
+TEST(UbxF9p, HeldRelposnedGoesOutWhenItsBaseEpochArrives) {
+  Device d(setup_of(Generation::kF9P));
+  Host h(d);
+  ASSERT_TRUE(h.acked(msg::kCfgValset, valset({{kRelposnedUart1, 1}, {0x20910007, 1}})));
+  const auto itow_of = [](const test::Frame& f, std::size_t at) {
+    std::uint32_t v = 0;
+    std::memcpy(&v, f.payload.data() + at, 4);
+    return v;
+  };
+  const auto frames_of = [](const MessageList& list) {
+    std::string bytes;
+    for (const auto& m : list.messages()) bytes += list.bytes(m);
+    return test::split_frames(bytes);
+  };
+  receiver::Fix fix = test::sample_fix();
+  fix.rel_pos.moving_base = true;
+  fix.rel_pos.held = true;
+  fix.rel_pos.t = fix.t;
+  std::vector<std::uint32_t> pvt_itow;
+  MessageList list;
+  for (int k = 0; k < 2; ++k) {
+    d.on_epoch(fix, 1.0 + 0.2 * k);
+    d.compose(Link{}, list);
+    int relposned = 0;
+    for (const auto& f : frames_of(list)) {
+      if (f.id == msg::kNavPvt) pvt_itow.push_back(itow_of(f, 0));
+      relposned += f.id == msg::kNavRelposned ? 1 : 0;
+    }
+    EXPECT_EQ(relposned, 0) << k;  // held for its base epoch
+    ASSERT_EQ(pvt_itow.size(), static_cast<std::size_t>(k + 1));
+    d.compose_relposned(Link{}, list);
+    EXPECT_TRUE(list.messages().empty()) << k;  // nothing until it arrives
+    if (k == 1) break;
+    receiver::RelativePosition rp;
+    rp.valid = rp.moving_base = rp.heading_valid = true;
+    rp.carr_soln = receiver::CarrierSolution::kFixed;
+    rp.n_m = rp.length_m = 1.0;
+    rp.t = fix.t;
+    d.on_relative_position(rp);
+    d.compose_relposned(Link{}, list);
+    const auto got = frames_of(list);
+    ASSERT_EQ(got.size(), 1u);
+    EXPECT_EQ(got[0].id, msg::kNavRelposned);
+    EXPECT_EQ(itow_of(got[0], 4), pvt_itow[0]);  // the epoch's own NAV-PVT iTOW
+    fix.t = fix.t + 0.2;
+    fix.rel_pos.t = fix.t;
+  }
+  EXPECT_EQ(pvt_itow[1], pvt_itow[0] + 200);  // the next epoch's NAV-PVT comes after it
+}
+
 // ArduPilot's GPS_TYPE 17 list (docs/ubx.md "ArduPilot F9P"): RTCM 3 out on
 // UART1 and CFG-MSGOUT-RTCM_3X 4072.0 and 1077 there; each epoch then
 // carries them, framed, the 4072.0 with the fix's position. Off again

@@ -331,9 +331,11 @@ void Device::compose(Link at, MessageList& out, Layout layout, FixOverride repor
   EpochInfo info = info_;
   info.reported_fix = reported;
   const bool ubx_on = current_.port(col).outputs_ubx();
-  // A moving-base rover's time-matched RELPOSNED belongs to the previous
-  // epoch: it leads, after that epoch's NAV-PVT and before this one's (a host
-  // pairing them by iTOW, as ArduPilot does, sees them in that order).
+  // A moving-base rover's time-matched RELPOSNED of an earlier epoch (its
+  // base epoch came after that epoch's period): it leads, after that epoch's
+  // NAV-PVT and before this one's (a host pairing them by iTOW, as ArduPilot
+  // does, sees them in that order). One whose base epoch is expected within
+  // this period (held) goes out on its own when it arrives (compose_relposned).
   const bool late_relposned = last_fix_.rel_pos.late;
   if (ubx_on && late_relposned && due(col, msg::kNavRelposned) &&
       encoder_.encode(msg::kNavRelposned, last_fix_, info, out.buffer()) > 0) {
@@ -343,7 +345,7 @@ void Device::compose(Link at, MessageList& out, Layout layout, FixOverride repor
     if (!ubx_on) return;
     for (const std::size_t i : kEpochOrder) {
       const PeriodicMessage& m = kPeriodicMessages[i];
-      if (late_relposned && m.id == msg::kNavRelposned) continue;
+      if ((late_relposned || last_fix_.rel_pos.held) && m.id == msg::kNavRelposned) continue;
       if (layout == Layout::kLine && (m.group == EpochGroup::kBeforeNmea) != before_nmea) continue;
       if (!due(col, m.id)) continue;
       if (m.raw) {
@@ -367,6 +369,14 @@ void Device::compose(Link at, MessageList& out, Layout layout, FixOverride repor
       out.close(rtcm_out_.label(i), Protocol::kRtcm3);
     }
   }
+}
+
+void Device::compose_relposned(Link at, MessageList& out) const noexcept {
+  out.clear();
+  if (!valid(at) || epochs_ == 0 || last_fix_.rel_pos.held) return;
+  const std::size_t col = column(at);
+  if (!current_.port(col).outputs_ubx() || !due(col, msg::kNavRelposned)) return;
+  if (encoder_.encode(msg::kNavRelposned, last_fix_, info_, out.buffer()) > 0) out.close("NAV-RELPOSNED", Protocol::kUbx);
 }
 
 void Device::raw_message(const PeriodicMessage& m, MessageList& out) const noexcept {

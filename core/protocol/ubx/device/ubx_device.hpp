@@ -126,6 +126,9 @@ struct InputResult {
   bool nav_rate_changed = false;  ///< CFG-RATE changed, see Device::epoch_period_s()
   bool ports_changed = false;   ///< some port's protocol masks, mode or baud changed (any output's UART1)
   bool nav_config_changed = false;  ///< CFG-NAV5 changed
+  /// RTCM 3 changed the corrections (Corrections::revision): a moving-base
+  /// rover may have its epoch's baseline now (pipeline::Pipeline::on_corrections).
+  bool corrections_changed = false;
   /// The GNSS selection changed (CFG-GNSS, CFG-SIGNAL-* or a load of the
   /// saved configuration): a real chip restarts its GNSS engine; the
   /// receiver restarts tracking with Device::enabled_systems().
@@ -209,6 +212,12 @@ public:
   /// receiver's (a wrong_fix link fault, docs/faults.md); nothing: the receiver's.
   void compose(Link at, MessageList& out, Layout layout = Layout::kLine,
                FixOverride reported = std::nullopt) const noexcept;
+  /// A moving-base rover's NAV-RELPOSNED of this epoch, solved when the
+  /// base's epoch arrived after the epoch's output (the F9P sends it then,
+  /// docs/rtk.md "Relative position"): rp replaces the epoch's.
+  void on_relative_position(const receiver::RelativePosition& rp) noexcept { last_fix_.rel_pos = rp; }
+  /// That NAV-RELPOSNED on at, where this epoch has it due; out empty otherwise.
+  void compose_relposned(Link at, MessageList& out) const noexcept;
   /// NMEA sentences due at at this epoch (CFG-MSG class 0xF0 rates).
   nmea::SentenceSet nmea_due(Link at) const noexcept;
   /// outProtoMask bits of the protocols at at that have a message at a

@@ -13,7 +13,9 @@ InputResult Device::handle_rtcm(Link at, std::span<const std::uint8_t> payload, 
     return r;
   }
   const bool lost = rtcm_.outage();
+  const std::uint32_t revision = rtcm_.corrections().revision;
   const rtcm::DecodeResult res = rtcm_.take(payload, crc_ok);
+  r.corrections_changed = rtcm_.corrections().revision != revision;
   // A lost frame never reached the chip: nothing to report.
   if (lost || !current_.port(column(at)).outputs_ubx()) return r;
   if (message_rate(at, msg::kRxmRtcm) != 0) {
