@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 // The scene stage in the receiver: empty scene == no scene, NLOS delay and
 // loss enter pseudorange and C/N0 exactly, blocked satellites take no
-// channel, a receiver inside a building has no fix.
+// channel, a receiver inside a building has no fix, a LOS <-> NLOS switch or
+// a blockage restarts the carrier lock of the raw measurements.
 #include <gtest/gtest.h>
+
+#include <array>
 
 #include "core/geo/geodesy.hpp"
 #include "core/geo/local_frame.hpp"
@@ -173,6 +176,65 @@ TEST_F(ReceiverScene, InsideClosedBuildingNoSatelliteNoFix) {
   // Walking out of the door: satellites come back.
   const Truth out = truth_at(Enu(40.0, 0.0, 1.5), 10.0);
   EXPECT_EQ(rx.step(out.t, out).type, FixType::k3D);
+}
+
+// Driving through the canyon and back at 2 m/s, 1 Hz: a satellite whose
+// path switches between LOS and NLOS while it stays tracked, or that comes
+// back after a blockage, starts a new carrier lock (lock time 0, so RAWX
+// locktime 0 and RINEX LLI bit 0; half-cycle unresolved until the next
+// subframe preamble, LLI bit 1), as a real loop re-locks on another path;
+// between switches the lock time grows by the epoch interval.
+TEST_F(ReceiverScene, LosNlosSwitchesAndBlockageRestartTheCarrierLock) {
+  const scene::Scene canyon(street_canyon());
+  Pipeline rx(store, test::snapshot());
+  rx.world().attach_scene({&canyon, kOrigin, scene::SearchConfig{}});
+  enum class Path { kUntracked, kLos, kNlos };
+  std::array<Path, kNumSats> prev{};
+  std::array<double, kNumSats> prev_lock_s{};
+  std::array<bool, kNumSats> seen{};
+  int to_nlos = 0, to_los = 0, after_blockage = 0, continuous = 0, slips = 0;
+  for (int k = 0; k < 480; ++k) {
+    const Truth tr = truth_at(k < 240 ? Enu(3.0, -230.0 + 2.0 * k, 1.5) : Enu(-5.0, 250.0 - 2.0 * (k - 240), 1.5), k);
+    const Fix& f = rx.step(tr.t, tr);
+    const RawEpoch& raw = rx.receiver().raw();
+    std::array<Path, kNumSats> now{};
+    for (int i = 0; i < f.num_sats; ++i) {
+      const SatInfo& si = f.sats[i];
+      const std::size_t s = static_cast<std::size_t>(si.sat.index());
+      if (!si.tracked) continue;
+      const RawMeasurement* m = nullptr;
+      for (int j = 0; j < raw.num_meas; ++j)
+        if (raw.meas[static_cast<std::size_t>(j)].sat == si.sat) m = &raw.meas[static_cast<std::size_t>(j)];
+      ASSERT_NE(m, nullptr) << k << " " << si.sat.prn();
+      ASSERT_TRUE(m->carrier_valid);
+      now[s] = si.nlos ? Path::kNlos : Path::kLos;
+      if (k > 0 && prev[s] != Path::kUntracked && prev[s] != now[s]) {
+        EXPECT_EQ(m->lock_time_s, 0.0) << k << " G" << si.sat.prn();
+        EXPECT_FALSE(m->half_cycle_resolved) << k << " G" << si.sat.prn();
+        ++(now[s] == Path::kNlos ? to_nlos : to_los);
+      } else if (prev[s] == Path::kUntracked && seen[s]) {
+        EXPECT_EQ(m->lock_time_s, 0.0) << k << " G" << si.sat.prn();
+        EXPECT_FALSE(m->half_cycle_resolved) << k << " G" << si.sat.prn();
+        ++after_blockage;
+      } else if (prev[s] == now[s]) {
+        // The same path: continuous, but for a rare Costas slip of a weak reflection.
+        if (m->lock_time_s == 0.0) {
+          ++slips;
+        } else {
+          EXPECT_NEAR(m->lock_time_s, prev_lock_s[s] + 1.0, 1e-9) << k << " G" << si.sat.prn();
+          ++continuous;
+        }
+      }
+      prev_lock_s[s] = m->lock_time_s;
+      seen[s] = true;
+    }
+    prev = now;
+  }
+  EXPECT_GE(to_nlos, 2);
+  EXPECT_GE(to_los, 2);
+  EXPECT_GE(after_blockage, 2);
+  EXPECT_GT(continuous, 500);
+  EXPECT_LE(slips, continuous / 100);
 }
 
 TEST_F(ReceiverScene, StepWithSceneDoesNotAllocate) {
