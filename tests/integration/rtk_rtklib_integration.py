@@ -76,7 +76,8 @@ def solve(tmp, freq, base_xyz, rover_obs, base_obs, nav, first, systems, gloarmo
     """rnx2rtkp kinematic on freq ("l1", "l1+l2") of systems with RTKLIB's default AR settings
     (continuous, ratio 3, no lock count) and GLONASS AR gloarmode: (epochs the base covers, fixed
     fraction, median horizontal error of the fixes, median satellites in the solution)."""
-    conf = os.path.join(tmp, f"rtk_{freq}.conf")
+    tag = f"{freq}_{''.join(systems)}"
+    conf = os.path.join(tmp, f"rtk_{tag}.conf")
     with open(conf, "w") as f:
         f.write(f"""pos1-posmode=kinematic
 pos1-frequency={freq}
@@ -91,7 +92,7 @@ pos2-arthres=3
 pos2-elmaskar=15
 out-solformat=llh
 """)
-    pos = os.path.join(tmp, f"rover_{freq}.pos")
+    pos = os.path.join(tmp, f"rover_{tag}.pos")
     rtk = ["rnx2rtkp", "-k", conf, "-r"] + [f"{v:.4f}" for v in base_xyz] + ["-o", pos, rover_obs, base_obs, nav]
     print(" ".join(rtk))
     subprocess.run(rtk, capture_output=True, text=True, timeout=300)
@@ -230,7 +231,15 @@ mountpoint = "RTK"
                   f"fixed horizontal error median {100 * median:.2f} cm, median {sats} satellites"
                   f"{'' if k == 0 else ' (same data, L1 only: reported)'}")
             if k == 0:
+                sats_with_all = sats
                 ok &= n >= a.seconds // 2 and fix_rate >= a.min_fix and median <= a.max_median_m
+        if "R" in systems:
+            # GLONASS is used: the solution without it has fewer satellites.
+            others = [x for x in systems if x != "R"]
+            _, _, _, sats_without = solve(rig.tmp, freqs[0], (bx, by, bz), rover_obs, base_obs, rover_nav, first,
+                                          others, a.gloarmode)
+            print(f"rnx2rtkp ({freqs[0]}, {','.join(others)}): median {sats_without} satellites")
+            ok &= sats_with_all >= sats_without + 4
     except AssertionError as e:
         print(e)
         ok = False
