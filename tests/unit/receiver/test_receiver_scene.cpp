@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // The scene stage in the receiver: empty scene == no scene, NLOS delay and
-// loss enter pseudorange and C/N0 exactly, blocked satellites take no
+// loss enter pseudorange, phase and C/N0 exactly, blocked satellites take no
 // channel, a receiver inside a building has no fix, a LOS <-> NLOS switch or
 // a blockage restarts the carrier lock of the raw measurements.
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 
 #include "core/geo/geodesy.hpp"
 #include "core/geo/local_frame.hpp"
@@ -84,12 +85,23 @@ TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
   Pipeline plain(store, cfg);
   Pipeline with(store, cfg);
   with.world().attach_scene({&canyon, kOrigin, scene::SearchConfig{}});
-  int nlos = 0, blocked = 0, weak = 0;
+  const auto phase_of = [](const RawEpoch& raw, SatId sat) {
+    for (int j = 0; j < raw.num_meas; ++j) {
+      const RawMeasurement& m = raw.meas[static_cast<std::size_t>(j)];
+      if (m.sat == sat && m.carrier_valid) return m.carrier_phase_cycles;
+    }
+    return std::nan("");
+  };
+  // Fractional cycles of x, in [-0.5, 0.5): a new lock's ambiguity is a whole number.
+  const auto frac = [](double x) { return x - std::round(x); };
+  int nlos = 0, blocked = 0, weak = 0, los_phases = 0, nlos_phases = 0, nlos_phases_whole = 0;
   for (int k = 0; k < 60; ++k) {
     const Truth tr = truth_at(Enu(3.0, -100.0 + 3.0 * k, 1.5), 30.0 * k);
     const Fix a = plain.step(tr.t, tr);
     const Fix& b = with.step(tr.t, tr);
     ASSERT_EQ(a.num_sats, b.num_sats);
+    const RawEpoch& raw_a = plain.receiver().raw();
+    const RawEpoch& raw_b = with.receiver().raw();
     for (int i = 0; i < a.num_sats; ++i) {
       const SatInfo& sa = a.sats[i];
       const SatInfo& sb = b.sats[i];
@@ -108,12 +120,31 @@ TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
         EXPECT_NEAR(sb.pseudorange_m - sa.pseudorange_m, sb.nlos_delay_m, 1e-6);
         // Link budget: the loss comes off C/N0 dB for dB (glass and concrete 3 dB each).
         EXPECT_NEAR(sa.cn0_dbhz - sb.cn0_dbhz, 3.0 * sb.bounces, 1e-9);
+        // The phase follows the reflected path too (metres, no quarter-wave
+        // bound: there is no direct signal), up to its own lock's whole
+        // cycles and the PLL jitter of the weaker signal.
+        const double d = phase_of(raw_b, sb.sat) - phase_of(raw_a, sa.sat) - sb.nlos_delay_m / kL1Wavelength_m;
+        if (std::isfinite(d)) {
+          ++nlos_phases;
+          nlos_phases_whole += std::fabs(frac(d)) < 0.06;
+        }
         ++nlos;
       } else {
         EXPECT_EQ(sb.pseudorange_m, sa.pseudorange_m);
+        // A direct signal's phase is the scene-free one, up to whole cycles
+        // when an NLOS spell gave it a new lock.
+        const double d = phase_of(raw_b, sb.sat) - phase_of(raw_a, sa.sat);
+        if (std::isfinite(d)) {
+          EXPECT_NEAR(frac(d), 0.0, 1e-6) << k << " G" << sa.sat.prn();
+          ++los_phases;
+        }
       }
     }
   }
+  EXPECT_GT(los_phases, 50);
+  EXPECT_GT(nlos_phases, 10);
+  // Half-cycle slips of weak reflections aside.
+  EXPECT_GE(nlos_phases_whole, nlos_phases * 9 / 10);
   EXPECT_GT(nlos, 10);
   EXPECT_GT(blocked, 10);
   EXPECT_GT(weak, 0);  // deep reflections (up to 7 x 3 dB) do fall below the thresholds here
