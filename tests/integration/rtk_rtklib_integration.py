@@ -8,7 +8,9 @@ batch` runs the rover over the same span under the same sky (same top-level
 seed and start: the shared orbit, clock and atmosphere errors are the base's)
 and writes its RINEX. rnx2rtkp in kinematic RTK mode on the two must fix
 ambiguities on >= --min-fix of the rover's epochs, and the fixed positions
-must lie within --max-median-m (horizontal median) of the truth.
+must lie within --max-median-m (horizontal median) of the truth. --systems
+chooses the constellations (with GLONASS the base adds 1087, 1020 and 1230),
+--gloarmode rnx2rtkp's GLONASS ambiguity resolution.
 
 Exit 77 (CTest skip) when str2str, convbin or rnx2rtkp is not installed.
 """
@@ -67,25 +69,30 @@ def obs_types(path):
     return types
 
 
-def solve(tmp, freq, base_xyz, rover_obs, base_obs, nav, first):
-    """rnx2rtkp kinematic on freq ("l1", "l1+l2") with RTKLIB's default AR settings (continuous,
-    ratio 3, no lock count): (epochs the base covers, fixed fraction, median horizontal error of the fixes)."""
-    conf = os.path.join(tmp, f"rtk_{freq}.conf")
+NAVSYS = {"G": 1, "R": 4, "E": 8, "C": 32}  # rnx2rtkp pos1-navsys bits
+
+
+def solve(tmp, freq, base_xyz, rover_obs, base_obs, nav, first, systems, gloarmode):
+    """rnx2rtkp kinematic on freq ("l1", "l1+l2") of systems with RTKLIB's default AR settings
+    (continuous, ratio 3, no lock count) and GLONASS AR gloarmode: (epochs the base covers, fixed
+    fraction, median horizontal error of the fixes, median satellites in the solution)."""
+    tag = f"{freq}_{''.join(systems)}"
+    conf = os.path.join(tmp, f"rtk_{tag}.conf")
     with open(conf, "w") as f:
         f.write(f"""pos1-posmode=kinematic
 pos1-frequency={freq}
 pos1-soltype=forward
 pos1-elmask=15
-pos1-navsys=41
+pos1-navsys={sum(NAVSYS[x] for x in systems)}
 pos1-ionoopt=brdc
 pos1-tropopt=saas
 pos2-armode=continuous
-pos2-gloarmode=off
+pos2-gloarmode={gloarmode}
 pos2-arthres=3
 pos2-elmaskar=15
 out-solformat=llh
 """)
-    pos = os.path.join(tmp, f"rover_{freq}.pos")
+    pos = os.path.join(tmp, f"rover_{tag}.pos")
     rtk = ["rnx2rtkp", "-k", conf, "-r"] + [f"{v:.4f}" for v in base_xyz] + ["-o", pos, rover_obs, base_obs, nav]
     print(" ".join(rtk))
     subprocess.run(rtk, capture_output=True, text=True, timeout=300)
@@ -98,17 +105,18 @@ out-solformat=llh
             h, mi, sec = v[1].split(":")
             tow = 3 * 86400 + int(h) * 3600 + int(mi) * 60 + float(sec)
             if tow >= first - 0.5:  # the epochs the base covers
-                rows.append((float(v[2]), float(v[3]), int(v[5])))
+                rows.append((float(v[2]), float(v[3]), int(v[5]), int(v[6])))
     lat0 = math.radians(ROVER[0])
     horiz = []
-    for lat, lon, q in rows:
+    for lat, lon, q, _ in rows:
         if q != 1:
             continue
         dn = math.radians(lat - ROVER[0]) * 6378137.0
         de = math.radians(lon - ROVER[1]) * 6378137.0 * math.cos(lat0)
         horiz.append(math.hypot(dn, de))
     n = len(rows)
-    return n, (len(horiz) / n if n else 0.0), (statistics.median(horiz) if horiz else float("inf"))
+    sats = statistics.median(r[3] for r in rows) if rows else 0
+    return n, (len(horiz) / n if n else 0.0), (statistics.median(horiz) if horiz else float("inf")), sats
 
 
 def main():
@@ -119,9 +127,17 @@ def main():
     ap.add_argument("--bands", type=int, default=2, help="signals per satellite of base and rover (1 or 2)")
     ap.add_argument("--seconds", type=int, default=90, help="how long str2str pulls the base's RTCM")
     ap.add_argument("--profile", help="[receiver] profile of base and rover (docs/models.md \"Receiver profiles\")")
+    ap.add_argument("--systems", default="G,E,C", help="constellations of base, rover and rnx2rtkp (of G, R, E, C)")
+    ap.add_argument("--gloarmode", default="off", choices=("off", "on", "autocal", "fix-and-hold"),
+                    help="rnx2rtkp pos2-gloarmode: GLONASS ambiguity resolution")
     ap.add_argument("--min-fix", type=float, default=0.95)
     ap.add_argument("--max-median-m", type=float, default=0.02)
     a = ap.parse_args()
+    systems = a.systems.split(",")
+    if not systems or any(x not in NAVSYS for x in systems):
+        ap.error(f"--systems {a.systems}: a comma-separated list of G, R, E, C")
+    # GLONASS: its observations (MSM7 1087), ephemerides (1020) and code-phase biases (1230).
+    glonass_msgs = ",1087(1),1020(10),1230(5)" if "R" in systems else ""
     for tool in ("str2str", "convbin", "rnx2rtkp"):
         if shutil.which(tool) is None:
             print(f"{tool} not installed (Debian rtklib)")
@@ -141,7 +157,7 @@ file = "{os.path.abspath(a.nav)}"
 start = "{START}"
 [receiver]
 {f'profile = "{a.profile}"' if a.profile else ""}
-constellations = ["G", "E", "C"]
+constellations = [{", ".join(f'"{x}"' for x in systems)}]
 generation = "m9"
 raw_data = true
 bands = {a.bands}
@@ -155,7 +171,7 @@ lat_deg = {BASE[0]}
 lon_deg = {BASE[1]}
 height_m = {BASE[2]}
 station_id = 7
-messages = "1006(5),1077(1),1097(1),1127(1),1019(10),1042(10),1046(10)"
+messages = "1006(5),1077(1),1097(1),1127(1),1019(10),1042(10),1046(10){glonass_msgs}"
 seed = 11
 [base.ntrip]
 port = {port}
@@ -209,11 +225,21 @@ mountpoint = "RTK"
         bx, by, bz = ecef(*BASE)
         freqs = ["l1+l2", "l1"] if a.bands > 1 else ["l1"]
         for k, freq in enumerate(freqs):
-            n, fix_rate, median = solve(rig.tmp, freq, (bx, by, bz), rover_obs, base_obs, rover_nav, first)
-            print(f"rnx2rtkp ({freq}): {n} epochs, fixed {100 * fix_rate:.1f} %, fixed horizontal error median "
-                  f"{100 * median:.2f} cm{'' if k == 0 else ' (same data, L1 only: reported)'}")
+            n, fix_rate, median, sats = solve(rig.tmp, freq, (bx, by, bz), rover_obs, base_obs, rover_nav, first,
+                                              systems, a.gloarmode)
+            print(f"rnx2rtkp ({freq}, {a.systems}, gloarmode {a.gloarmode}): {n} epochs, fixed {100 * fix_rate:.1f} %, "
+                  f"fixed horizontal error median {100 * median:.2f} cm, median {sats} satellites"
+                  f"{'' if k == 0 else ' (same data, L1 only: reported)'}")
             if k == 0:
+                sats_with_all = sats
                 ok &= n >= a.seconds // 2 and fix_rate >= a.min_fix and median <= a.max_median_m
+        if "R" in systems:
+            # GLONASS is used: the solution without it has fewer satellites.
+            others = [x for x in systems if x != "R"]
+            _, _, _, sats_without = solve(rig.tmp, freqs[0], (bx, by, bz), rover_obs, base_obs, rover_nav, first,
+                                          others, a.gloarmode)
+            print(f"rnx2rtkp ({freqs[0]}, {','.join(others)}): median {sats_without} satellites")
+            ok &= sats_with_all >= sats_without + 4
     except AssertionError as e:
         print(e)
         ok = False

@@ -1,8 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // The scene stage in the receiver: empty scene == no scene, NLOS delay and
-// loss enter pseudorange and C/N0 exactly, blocked satellites take no
-// channel, a receiver inside a building has no fix.
+// loss enter pseudorange, phase and C/N0 exactly, blocked satellites take no
+// channel, a receiver inside a building has no fix, a LOS <-> NLOS switch or
+// a blockage restarts the carrier lock of the raw measurements.
 #include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
 
 #include "core/geo/geodesy.hpp"
 #include "core/geo/local_frame.hpp"
@@ -81,12 +85,23 @@ TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
   Pipeline plain(store, cfg);
   Pipeline with(store, cfg);
   with.world().attach_scene({&canyon, kOrigin, scene::SearchConfig{}});
-  int nlos = 0, blocked = 0, weak = 0;
+  const auto phase_of = [](const RawEpoch& raw, SatId sat) {
+    for (int j = 0; j < raw.num_meas; ++j) {
+      const RawMeasurement& m = raw.meas[static_cast<std::size_t>(j)];
+      if (m.sat == sat && m.carrier_valid) return m.carrier_phase_cycles;
+    }
+    return std::nan("");
+  };
+  // Fractional cycles of x, in [-0.5, 0.5): a new lock's ambiguity is a whole number.
+  const auto frac = [](double x) { return x - std::round(x); };
+  int nlos = 0, blocked = 0, weak = 0, los_phases = 0, nlos_phases = 0, nlos_phases_whole = 0;
   for (int k = 0; k < 60; ++k) {
     const Truth tr = truth_at(Enu(3.0, -100.0 + 3.0 * k, 1.5), 30.0 * k);
     const Fix a = plain.step(tr.t, tr);
     const Fix& b = with.step(tr.t, tr);
     ASSERT_EQ(a.num_sats, b.num_sats);
+    const RawEpoch& raw_a = plain.receiver().raw();
+    const RawEpoch& raw_b = with.receiver().raw();
     for (int i = 0; i < a.num_sats; ++i) {
       const SatInfo& sa = a.sats[i];
       const SatInfo& sb = b.sats[i];
@@ -105,12 +120,31 @@ TEST_F(ReceiverScene, NlosDelayAndLossEnterTheMeasurements) {
         EXPECT_NEAR(sb.pseudorange_m - sa.pseudorange_m, sb.nlos_delay_m, 1e-6);
         // Link budget: the loss comes off C/N0 dB for dB (glass and concrete 3 dB each).
         EXPECT_NEAR(sa.cn0_dbhz - sb.cn0_dbhz, 3.0 * sb.bounces, 1e-9);
+        // The phase follows the reflected path too (metres, no quarter-wave
+        // bound: there is no direct signal), up to its own lock's whole
+        // cycles and the PLL jitter of the weaker signal.
+        const double d = phase_of(raw_b, sb.sat) - phase_of(raw_a, sa.sat) - sb.nlos_delay_m / kL1Wavelength_m;
+        if (std::isfinite(d)) {
+          ++nlos_phases;
+          nlos_phases_whole += std::fabs(frac(d)) < 0.06;
+        }
         ++nlos;
       } else {
         EXPECT_EQ(sb.pseudorange_m, sa.pseudorange_m);
+        // A direct signal's phase is the scene-free one, up to whole cycles
+        // when an NLOS spell gave it a new lock.
+        const double d = phase_of(raw_b, sb.sat) - phase_of(raw_a, sa.sat);
+        if (std::isfinite(d)) {
+          EXPECT_NEAR(frac(d), 0.0, 1e-6) << k << " G" << sa.sat.prn();
+          ++los_phases;
+        }
       }
     }
   }
+  EXPECT_GT(los_phases, 50);
+  EXPECT_GT(nlos_phases, 10);
+  // Half-cycle slips of weak reflections aside.
+  EXPECT_GE(nlos_phases_whole, nlos_phases * 9 / 10);
   EXPECT_GT(nlos, 10);
   EXPECT_GT(blocked, 10);
   EXPECT_GT(weak, 0);  // deep reflections (up to 7 x 3 dB) do fall below the thresholds here
@@ -173,6 +207,65 @@ TEST_F(ReceiverScene, InsideClosedBuildingNoSatelliteNoFix) {
   // Walking out of the door: satellites come back.
   const Truth out = truth_at(Enu(40.0, 0.0, 1.5), 10.0);
   EXPECT_EQ(rx.step(out.t, out).type, FixType::k3D);
+}
+
+// Driving through the canyon and back at 2 m/s, 1 Hz: a satellite whose
+// path switches between LOS and NLOS while it stays tracked, or that comes
+// back after a blockage, starts a new carrier lock (lock time 0, so RAWX
+// locktime 0 and RINEX LLI bit 0; half-cycle unresolved until the next
+// subframe preamble, LLI bit 1), as a real loop re-locks on another path;
+// between switches the lock time grows by the epoch interval.
+TEST_F(ReceiverScene, LosNlosSwitchesAndBlockageRestartTheCarrierLock) {
+  const scene::Scene canyon(street_canyon());
+  Pipeline rx(store, test::snapshot());
+  rx.world().attach_scene({&canyon, kOrigin, scene::SearchConfig{}});
+  enum class Path { kUntracked, kLos, kNlos };
+  std::array<Path, kNumSats> prev{};
+  std::array<double, kNumSats> prev_lock_s{};
+  std::array<bool, kNumSats> seen{};
+  int to_nlos = 0, to_los = 0, after_blockage = 0, continuous = 0, slips = 0;
+  for (int k = 0; k < 480; ++k) {
+    const Truth tr = truth_at(k < 240 ? Enu(3.0, -230.0 + 2.0 * k, 1.5) : Enu(-5.0, 250.0 - 2.0 * (k - 240), 1.5), k);
+    const Fix& f = rx.step(tr.t, tr);
+    const RawEpoch& raw = rx.receiver().raw();
+    std::array<Path, kNumSats> now{};
+    for (int i = 0; i < f.num_sats; ++i) {
+      const SatInfo& si = f.sats[i];
+      const std::size_t s = static_cast<std::size_t>(si.sat.index());
+      if (!si.tracked) continue;
+      const RawMeasurement* m = nullptr;
+      for (int j = 0; j < raw.num_meas; ++j)
+        if (raw.meas[static_cast<std::size_t>(j)].sat == si.sat) m = &raw.meas[static_cast<std::size_t>(j)];
+      ASSERT_NE(m, nullptr) << k << " " << si.sat.prn();
+      ASSERT_TRUE(m->carrier_valid);
+      now[s] = si.nlos ? Path::kNlos : Path::kLos;
+      if (k > 0 && prev[s] != Path::kUntracked && prev[s] != now[s]) {
+        EXPECT_EQ(m->lock_time_s, 0.0) << k << " G" << si.sat.prn();
+        EXPECT_FALSE(m->half_cycle_resolved) << k << " G" << si.sat.prn();
+        ++(now[s] == Path::kNlos ? to_nlos : to_los);
+      } else if (prev[s] == Path::kUntracked && seen[s]) {
+        EXPECT_EQ(m->lock_time_s, 0.0) << k << " G" << si.sat.prn();
+        EXPECT_FALSE(m->half_cycle_resolved) << k << " G" << si.sat.prn();
+        ++after_blockage;
+      } else if (prev[s] == now[s]) {
+        // The same path: continuous, but for a rare Costas slip of a weak reflection.
+        if (m->lock_time_s == 0.0) {
+          ++slips;
+        } else {
+          EXPECT_NEAR(m->lock_time_s, prev_lock_s[s] + 1.0, 1e-9) << k << " G" << si.sat.prn();
+          ++continuous;
+        }
+      }
+      prev_lock_s[s] = m->lock_time_s;
+      seen[s] = true;
+    }
+    prev = now;
+  }
+  EXPECT_GE(to_nlos, 2);
+  EXPECT_GE(to_los, 2);
+  EXPECT_GE(after_blockage, 2);
+  EXPECT_GT(continuous, 500);
+  EXPECT_LE(slips, continuous / 100);
 }
 
 TEST_F(ReceiverScene, StepWithSceneDoesNotAllocate) {

@@ -1,14 +1,18 @@
 // SPDX-License-Identifier: Apache-2.0
 // The world's carrier phase and Doppler as the receiver receives them:
 // consistent with the range, the ionosphere advancing the phase, continuity
-// broken by new locks, LOS/NLOS switches and jumps of the truth.
+// broken by new locks, LOS/NLOS switches and jumps of the truth, carrier
+// multipath of millimetres where the code's is metres.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/pipeline/pipeline.hpp"
+#include "core/world/world.hpp"
 #include "synthetic_sky.hpp"
 
 namespace gnssemu::receiver {
@@ -100,6 +104,65 @@ TEST(WorldCarrier, NewLockAfterLossAndLockBreakOnAJump) {
   }
   EXPECT_GE(checked, 6);
   EXPECT_GE(2 * breaks, checked);
+}
+
+TEST(WorldCarrier, MultipathTurnsThePhaseByMillimetresWhereTheCodeHasMetres) {
+  // Two worlds alike but for the multipath process (2 m / sin el): its draws
+  // have their own purposes, so every other term, the ambiguities and the
+  // slips are the same and the differences are the multipath alone.
+  const orbit::EphemerisStore store(test::nominal_constellation(kToe, 5));
+  world::WorldConfig clean = test::snapshot().world;
+  clean.bands = 2;
+  world::WorldConfig with = clean;
+  with.errors.multipath = {2.0, 60.0};
+  world::World a(store, with), b(store, clean);
+  const Ecef pos = geo::ecef_from_lla(kSite);
+  // One reflection of amplitude a turns the phase by at most asin(a) lambda / (2 pi).
+  const auto bound_m = [](double lambda_m) {
+    return std::asin(world::kCarrierReflectionAmplitude) * lambda_m / (2.0 * kPi);
+  };
+  std::array<double, 2> max_code_m{}, max_phase_m{}, max_ratio{};
+  int checked = 0;
+  for (int k = 0; k < 300; ++k) {
+    const time::GpsTime t = kToe + 1.0 * k;
+    const world::Observables& oa = a.step(t, truth_at(pos, t), 5.0 * kDegToRad);
+    const world::Observables& ob = b.step(t, truth_at(pos, t), 5.0 * kDegToRad);
+    ASSERT_EQ(oa.num_sats, ob.num_sats);
+    for (int i = 0; i < oa.num_sats; ++i) {
+      const world::SatObservable& x = oa.sats[i];
+      const world::SatObservable& y = ob.sats[i];
+      if (!x.received) continue;
+      ASSERT_TRUE(x.carrier_valid && y.carrier_valid && x.band1.carrier_valid && y.band1.carrier_valid);
+      ASSERT_EQ(x.carrier_discontinuities, y.carrier_discontinuities);
+      ASSERT_EQ(x.band1.carrier_discontinuities, y.band1.carrier_discontinuities);
+      const double code_m[2] = {x.pseudorange_m - y.pseudorange_m, x.band1.pseudorange_m - y.band1.pseudorange_m};
+      const double lambda_m[2] = {x.wavelength_m, x.band1.wavelength_m};
+      const double phase_m[2] = {(x.carrier_phase_cycles - y.carrier_phase_cycles) * lambda_m[0],
+                                 (x.band1.carrier_phase_cycles - y.band1.carrier_phase_cycles) * lambda_m[1]};
+      for (std::size_t band = 0; band < 2; ++band) {
+        // The model's own formula of the phase turned by the code's reflection.
+        EXPECT_NEAR(phase_m[band], world::carrier_multipath_m(code_m[band], lambda_m[band]), 1e-6)
+            << x.sat.prn() << " band " << band << " code " << code_m[band];
+        EXPECT_LE(std::fabs(phase_m[band]), bound_m(lambda_m[band]) + 1e-6);
+        EXPECT_LT(std::fabs(phase_m[band]), lambda_m[band] / 4.0);
+        max_code_m[band] = std::max(max_code_m[band], std::fabs(code_m[band]));
+        max_phase_m[band] = std::max(max_phase_m[band], std::fabs(phase_m[band]));
+        if (std::fabs(code_m[band]) > 0.5) {
+          max_ratio[band] = std::max(max_ratio[band], std::fabs(phase_m[band] / code_m[band]));
+        }
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 2000);
+  for (std::size_t band = 0; band < 2; ++band) {
+    // Metres of code multipath; its phase reaches the bound (6.1 mm on L1, 7.8
+    // mm on L2), which is below the quarter wavelength (4.8 and 6.1 cm).
+    EXPECT_GT(max_code_m[band], 3.0) << band;
+    EXPECT_GT(max_phase_m[band], 0.9 * bound_m(band == 0 ? kL1Wavelength_m : kSpeedOfLight_m_s / 1227.60e6)) << band;
+    EXPECT_LT(max_ratio[band], 0.02) << band;
+  }
+  EXPECT_NEAR(bound_m(kL1Wavelength_m), 0.0061, 0.00005);
 }
 
 TEST(WorldCarrier, DeterministicForASeed) {

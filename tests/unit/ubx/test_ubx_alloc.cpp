@@ -1,14 +1,19 @@
 // SPDX-License-Identifier: Apache-2.0
 // The per-epoch path never allocates once buffers have capacity: encoding an
-// epoch, answering configuration input, decoding input. This executable's
+// epoch (RXM-RAWX and RXM-SFRBX of raw firmware too), answering configuration
+// input, decoding input. This executable's
 // global operator new counts calls (tests/support/alloc_counter).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <string>
 #include <vector>
 
 #include "core/protocol/ubx/wire/ubx_decoder.hpp"
 #include "core/protocol/ubx/device/ubx_device.hpp"
+#include "core/orbit/ephemeris_store.hpp"
+#include "core/orbit/rinex_nav.hpp"
 #include "core/protocol/ubx/wire/ubx_message_table.hpp"
 #include "tests/support/alloc_counter.hpp"
 #include "ubx_test_util.hpp"
@@ -81,6 +86,100 @@ TEST_P(UbxAlloc, EpochEncodeConfigAndDecodeDoNotAllocate) {
   // Every message with 32 satellites was really encoded (the M9 has no NAV-SVINFO).
   EXPECT_GT(bytes, 50u * (GetParam() == Generation::kM8 ? 1200u : 850u));
   EXPECT_EQ(sink.frames, 51u * 7u);
+}
+
+// Raw-data firmware at 10 Hz with RXM-RAWX and RXM-SFRBX on: GPS, GLONASS,
+// Galileo and BeiDou (GEOs with their D2 pages among them), every
+// measurement slot filled, one minute after a minute's warm-up (every
+// subframe, string, page and D2 page cycle sent at least once before).
+TEST_P(UbxAlloc, RawxAndSfrbxAtTenHertzDoNotAllocate) {
+  const orbit::NavData nav =
+      orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/BRDC00IGS_R_20240100000_01D_MN_cut.rnx.gz");
+  const orbit::EphemerisStore store(nav.ephemerides);
+  const time::GpsTime t0 = time::GpsTime::from_calendar({2024, 1, 10, 2, 5, 0.0}) + 0.05;
+  // Up to a quarter of the slots per system, in SatId order as RawEpoch has them.
+  std::vector<const orbit::Ephemeris*> sats;
+  std::array<int, 4> per_system{};
+  const GnssSystem systems[4] = {GnssSystem::kGps, GnssSystem::kGlonass, GnssSystem::kGalileo, GnssSystem::kBeiDou};
+  for (int i = 0; i < kNumSats; ++i) {
+    const SatId sat = SatId::from_index(i);
+    const auto sys = std::find(std::begin(systems), std::end(systems), sat.system) - std::begin(systems);
+    if (sys == 4 || per_system[static_cast<std::size_t>(sys)] >= kMaxSatsInView / 4) continue;
+    const orbit::Ephemeris* e = store.select(sat, t0);
+    if (e == nullptr) continue;
+    sats.push_back(e);
+    ++per_system[static_cast<std::size_t>(sys)];
+  }
+  int geos = 0;
+  for (const orbit::Ephemeris* e : sats) geos += is_beidou_geo(e->sat);
+  ASSERT_GE(geos, 3);
+  for (int n : per_system) ASSERT_GE(n, 20);
+
+  DeviceSetup setup;
+  setup.mon_ver = mon_ver_of(GetParam());
+  setup.raw_firmware = true;
+  Device r(setup);
+  std::string out;
+  for (const MsgId id : {msg::kRxmRawx, msg::kRxmSfrbx}) {
+    const std::uint8_t p[3] = {id.cls, id.id, 1};
+    ASSERT_EQ(r.handle_ubx({}, FrameView{msg::kCfgMsg, p}, 0.0, out).reply, Reply::kAck);
+  }
+  const std::uint8_t rate[6] = {100, 0, 1, 0, 0, 0};  // measRate 100 ms, navRate 1, GPS time
+  ASSERT_EQ(r.handle_ubx({}, FrameView{msg::kCfgRate, rate}, 0.0, out).reply, Reply::kAck);
+
+  receiver::RawEpoch raw;
+  raw.time_valid = true;
+  raw.leap_seconds_valid = true;
+  raw.num_meas = static_cast<int>(sats.size());
+  for (std::size_t i = 0; i < sats.size(); ++i) {
+    receiver::RawMeasurement& m = raw.meas[i];
+    m.sat = sats[i]->sat;
+    m.signal = *signal_of(m.sat.system, 0);
+    m.glonass_channel = sats[i]->glo_channel;
+    // GEO and IGSO about 120 ms away, the others about 70 ms.
+    m.pseudorange_m = m.sat.system == GnssSystem::kBeiDou && m.sat.number <= 18 ? 3.7e7 : 2.2e7;
+    m.carrier_phase_cycles = m.pseudorange_m / kL1Wavelength_m;
+    m.cn0_dbhz = 40.0;
+    m.pseudorange_valid = m.carrier_valid = m.half_cycle_resolved = true;
+  }
+  receiver::Fix fix = test::sample_fix();
+  MessageList epoch;
+  std::array<int, 8> sfrbx{};  // per gnssId
+  int rawx = 0, geo_pages = 0;
+  const auto run = [&](int first, int epochs) {
+    for (int e = first; e < first + epochs; ++e) {
+      raw.t_rx = t0 + 0.1 * e;
+      for (int i = 0; i < raw.num_meas; ++i) raw.meas[static_cast<std::size_t>(i)].lock_time_s = 100.0 + 0.1 * e;
+      fix.t = raw.t_rx;
+      r.on_epoch(fix, 0.1 * e, RawSource{&raw, &store, {}});
+      r.compose({}, epoch);
+      for (const MessageList::Message& m : epoch.messages()) {
+        const std::string_view f = epoch.bytes(m);
+        if (m.protocol != Protocol::kUbx || f.size() < 8 || f[2] != 0x02) continue;
+        rawx += f[3] == 0x15;
+        if (f[3] != 0x13) continue;
+        ++sfrbx[static_cast<std::size_t>(f[6]) & 7];
+        geo_pages += f[6] == 3 && is_beidou_geo(SatId(GnssSystem::kBeiDou, static_cast<std::uint8_t>(f[7])));
+      }
+    }
+  };
+  run(0, 600);  // warm-up
+  sfrbx = {};
+  rawx = geo_pages = 0;
+  const long before = support::allocation_count();
+  run(600, 600);
+  EXPECT_EQ(support::allocation_count(), before);
+  EXPECT_EQ(rawx, 600);
+  // A minute of each system's navigation data, per satellite: GPS subframes
+  // 1-3 of two 30-s frames, GLONASS strings 1-5 of two 30-s frames (one
+  // string may fall across the minute's ends), Galileo word types 0-6 of two
+  // 30-s subframes, BeiDou D1 subframes 1-3 of two 30-s frames and a D2 page
+  // of every 3-s frame of a GEO.
+  EXPECT_GE(sfrbx[0], 6 * per_system[0]);  // gnssId 0 GPS
+  EXPECT_GE(sfrbx[6], 9 * per_system[1]);  // 6 GLONASS
+  EXPECT_GE(sfrbx[2], 14 * per_system[2]);  // 2 Galileo
+  EXPECT_GE(geo_pages, 20 * geos);         // 3 BeiDou GEO (D2)
+  EXPECT_GE(sfrbx[3] - geo_pages, 6 * (per_system[3] - geos));  // 3 BeiDou MEO and IGSO (D1)
 }
 
 INSTANTIATE_TEST_SUITE_P(Generations, UbxAlloc, ::testing::Values(Generation::kM8, Generation::kM9),
