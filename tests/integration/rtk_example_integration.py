@@ -5,6 +5,8 @@ RTCM on the tcp output "base", the rover's NMEA/UBX on the pty output
 "rover", which takes RTCM 3 in).
 
 tools/senders/rtcm_forward.py copies the base's bytes into the rover's pty;
+a second port of the rover's chip feeds a read-only gpsd, whose TPV status
+goes RTK float, then RTK fixed (when gpsd is installed);
 the rover counts them (RXM-RTCM per message once a host enables it with
 CFG-MSG; corrections in /api/status), the correction age stays near one
 epoch while the feed runs and grows once it stops.
@@ -17,6 +19,7 @@ import json
 import os
 import re
 import select
+import shutil
 import socket
 import subprocess
 import sys
@@ -70,6 +73,9 @@ def local_example(source, tmp):
     text = re.sub(r"(\[\[base\.output\]\][^\[]*port = )2102", rf"\g<1>{ports['base']}", text)
     text = re.sub(r"(\[truth\][^\[]*port = )5500", rf"\g<1>{ports['truth']}", text)
     text += f"\n[status]\nport = {ports['status']}\n"
+    # A second port of the rover's chip for gpsd (read-only), NMEA as the first sends it.
+    text += (f'\n[[output]]\nname = "rover-gpsd"\ntype = "pty"\npath = "{tmp}/rover-gpsd"\nbaud = 115200\n'
+             'sentences = ["GGA", "RMC", "GSA", "GSV", "GST"]\n')
     path = os.path.join(tmp, "rtk.toml")
     open(path, "w").write(text)
     return path, ports, ("generation = \"f9p\"" in text)
@@ -109,6 +115,10 @@ def body(rig):
     wait_for(lambda: status(ports["status"]), 20, "status page")
     fd = os.open(pty, os.O_RDWR | os.O_NOCTTY | os.O_NONBLOCK)
     os.write(fd, ubx(0x06, 0x01, [0x02, 0x32, 1]))  # CFG-MSG: RXM-RTCM on this port
+    gpsd = shutil.which("gpsd") is not None and shutil.which("gpspipe") is not None
+    if gpsd:
+        wait_for(lambda: os.path.exists(os.path.join(rig.tmp, "rover-gpsd")), 10, "rover-gpsd pty")
+        rig.watch_gpsd(rig.spawn_gpsd(os.path.join(rig.tmp, "rover-gpsd")).stdout)
     fwd_log = open(os.path.join(rig.tmp, "forward.log"), "w")
     fwd = rig.spawn([sys.executable, os.path.join(a.source, "tools/senders/rtcm_forward.py"),
                      "--from", f"127.0.0.1:{ports['base']}", "--to", pty, "--report", "2"],
@@ -139,6 +149,16 @@ def body(rig):
     assert s["station_id"] == 42, s
     assert s["age_s"] is not None and s["age_s"] <= 2.5, s
     check_rtk_quality(received, t_first_fixed, is_f9p)
+    if gpsd and is_f9p:
+        # gpsd 3.22 (gps.h): TPV status 4 RTK float, 3 RTK fixed, from the GGA quality.
+        statuses = []
+        while not rig.tpvs.empty():
+            statuses.append(rig.tpvs.get()[1].get("status", 1))
+        seen = list(dict.fromkeys(statuses))
+        print(f"gpsd on the rover's second port: TPV statuses in order of first sight {seen}, "
+              f"{statuses.count(3)} of {len(statuses)} TPVs RTK fixed")
+        assert 3 in statuses and 4 in statuses[:statuses.index(3)], f"gpsd TPV statuses {seen}: no float then fixed"
+        assert statuses[-1] == 3, f"gpsd's last TPV status {statuses[-1]}, not RTK fixed"
 
     if is_f9p:
         # As a host does: corrections older than 10 s are not used (CFG-NAVSPG-CONSTR_DGNSSTO, RAM).
