@@ -384,7 +384,12 @@ void RtkEngine::solve(const RawEpoch& rover, const NavSnapshot& nav, const Corre
     // rover's state follows the base's reported position, whose own
     // standalone noise then cancels (the double differences fix rover - base).
     const Vec3 shift = init_arp_ ? Vec3(c.station.arp_ecef_m - last_arp_m_) : Vec3{};
-    predict(dt_s, shift, 0.0);
+    // A turning vehicle swings the baseline about the base: as far as the
+    // rover moved against the base since the last epoch (its own velocity
+    // against the base's displacement), in a direction the turn decides, so
+    // as variance (30 deg/s at 1 m and 1 Hz: 0.5 m).
+    const double swing_m = init_arp_ ? (nav.vel_m_s * dt_s - shift).norm() : 0.0;
+    predict(dt_s, shift, std::hypot(swing_m, nav.speed_acc_m_s * dt_s));
   } else {
     predict(dt_s, nav.vel_m_s * dt_s, nav.speed_acc_m_s * dt_s);
   }

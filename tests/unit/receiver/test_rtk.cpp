@@ -114,6 +114,7 @@ public:
     rover_m_ = rover_m;
   }
   void set_velocity(const Ecef& v) { base_vel_ = rover_vel_ = v; }
+  void set_rover_velocity(const Ecef& v) { rover_vel_ = v; }
   void stop_link() { link_ = false; }
   /// The base antenna sees only its first n signals (a blocked antenna).
   void limit_base(int n) { base_meas_limit_ = n; }
@@ -386,6 +387,47 @@ TEST(Rtk, MovingBaseAtSpeedTimeMatchesALateBase) {
   ASSERT_GT(fixed, 100);
   EXPECT_LT(worst_length_m, 0.03);  // pairing with the previous base epoch would read 5 m off
   EXPECT_DOUBLE_EQ(st.moving_base_delay_s, 1.0);
+}
+
+TEST(Rtk, MovingBaselineHeadingFollowsFastTurns) {
+  // The vehicle turns in place with the base antenna on the turning axis and
+  // the rover's 1 m away: 30 deg/s (a car's hard turn) and 90 deg/s (a
+  // multicopter's yaw), the base's epoch arriving one epoch late. Each
+  // baseline is the antennas' at its own time (time-matched), so its heading
+  // is the turn's heading at that time, every epoch of the sweep.
+  for (const double rate_deg_s : {3.0, 30.0, 90.0}) {
+    SCOPED_TRACE(rate_deg_s);
+    const Ecef base = geo::ecef_from_lla(kSite);
+    const Lla at = geo::lla_from_ecef(base);
+    const double w_rad_s = rate_deg_s * kDegToRad;
+    RtkRig rig(base, offset_enu(base, 0.0, 1.0, 0.0), 1);
+    rig.set_moving_base();
+    int baselines = 0, fixed = 0;
+    double sum_heading2 = 0.0, worst_length_m = 0.0;
+    for (int i = 0; i < 300; ++i) {
+      const double t_s = static_cast<double>(i);
+      const double h = w_rad_s * t_s;
+      rig.move(base, offset_enu(base, std::sin(h), std::cos(h), 0.0));
+      rig.set_rover_velocity(
+          Ecef(geo::enu_to_ecef_vector(Enu(w_rad_s * std::cos(h), -w_rad_s * std::sin(h), 0.0), at.lat_rad, at.lon_rad)));
+      const Fix& f = rig.step(kToe + t_s);
+      ASSERT_TRUE(test::all_finite(f));
+      if (!f.rel_pos.valid) continue;
+      ++baselines;
+      if (f.rel_pos.carr_soln != CarrierSolution::kFixed) continue;
+      ++fixed;
+      const double h_then = w_rad_s * (f.rel_pos.t - kToe);
+      sum_heading2 += heading_error_deg2(f.rel_pos, h_then);
+      worst_length_m = std::max(worst_length_m, std::fabs(f.rel_pos.length_m - 1.0));
+    }
+    const double rms = fixed > 0 ? std::sqrt(sum_heading2 / fixed) : NAN;
+    std::printf("turning in place at %.0f deg/s, 1 m baseline, base 1 epoch late: %d baselines, %d fixed of 300, "
+                "heading error RMS %.3f deg, worst length error %.3f m\n",
+                rate_deg_s, baselines, fixed, rms, worst_length_m);
+    ASSERT_GT(fixed, 100);
+    EXPECT_LT(rms, 1.5);
+    EXPECT_LT(worst_length_m, 0.03);
+  }
 }
 
 TEST(Rtk, MovingBaseEpochSolvedWhenItArrivesWithinTheEpoch) {
