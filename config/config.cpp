@@ -9,9 +9,9 @@
 
 #include <toml++/toml.h>
 
-#include "config/config_keys.hpp"
+#include "config/keys/config_keys.hpp"
 #include "config/config_text.hpp"
-#include "config/device_setup.hpp"
+#include "config/setup/device_setup.hpp"
 #include "config/message_names.hpp"
 #include "core/common/error.hpp"
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "config/config.hpp"
-#include "config/toml_reader.hpp"
+#include "config/toml/toml_reader.hpp"
 
 namespace gnssemu::config::detail {
 

@@ -7,7 +7,7 @@
 
 #include <toml++/toml.h>
 
-#include "config/toml_reader.hpp"
+#include "config/toml/toml_reader.hpp"
 #include "core/common/error.hpp"
 #include "core/common/sat_id.hpp"
 

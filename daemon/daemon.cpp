@@ -8,11 +8,11 @@
 
 #include <spdlog/spdlog.h>
 
-#include "config/device_setup.hpp"
-#include "config/nav_setup.hpp"
-#include "config/pipeline_setup.hpp"
+#include "config/setup/device_setup.hpp"
+#include "config/setup/nav_setup.hpp"
+#include "config/setup/pipeline_setup.hpp"
 #include "config/receiver_config.hpp"
-#include "config/scene_loader.hpp"
+#include "config/setup/scene_loader.hpp"
 #include "core/common/error.hpp"
 #include "daemon/epoch_schedule.hpp"
 #include "daemon/scene_setup.hpp"

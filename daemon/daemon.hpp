@@ -32,7 +32,7 @@
 #include "daemon/truth/demo_trajectory.hpp"
 #include "daemon/truth/drop_stats.hpp"
 #include "daemon/fault_log.hpp"
-#include "config/base_station.hpp"
+#include "config/setup/base_station.hpp"
 #include "daemon/ports/ntrip_caster.hpp"
 #include "daemon/ports/output_port.hpp"
 #include "daemon/ports/port_channel.hpp"

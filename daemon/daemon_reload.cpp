@@ -8,8 +8,8 @@
 
 #include <spdlog/spdlog.h>
 
-#include "config/device_setup.hpp"
-#include "config/pipeline_setup.hpp"
+#include "config/setup/device_setup.hpp"
+#include "config/setup/pipeline_setup.hpp"
 #include "config/receiver_config.hpp"
 #include "core/common/error.hpp"
 #include "daemon/daemon.hpp"

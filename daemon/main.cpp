@@ -14,7 +14,7 @@
 
 #include "config/config.hpp"
 #include "config/scenario_file.hpp"
-#include "config/nav_setup.hpp"
+#include "config/setup/nav_setup.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
 #include "daemon/service/build_info.hpp"

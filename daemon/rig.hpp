@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "config/config.hpp"
-#include "config/device_setup.hpp"
+#include "config/setup/device_setup.hpp"
 #include "core/common/vec3.hpp"
 #include "core/pipeline/pipeline.hpp"
 #include "core/protocol/ubx/device/ubx_device.hpp"

@@ -3,7 +3,7 @@
 
 #include <chrono>
 
-#include "config/nav_setup.hpp"
+#include "config/setup/nav_setup.hpp"
 #include "core/time/unix_time.hpp"
 #include "daemon/truth/time_mapping.hpp"
 

@@ -3,7 +3,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "config/scene_loader.hpp"
+#include "config/setup/scene_loader.hpp"
 #include "core/scene/mesh.hpp"
 
 namespace gnssemu::daemon {

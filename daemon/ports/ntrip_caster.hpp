@@ -19,7 +19,7 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 
-#include "config/base_station.hpp"
+#include "config/setup/base_station.hpp"
 
 namespace gnssemu::daemon {
 

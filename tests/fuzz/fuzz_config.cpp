@@ -11,8 +11,8 @@
 #include <string>
 
 #include "config/config.hpp"
-#include "config/device_setup.hpp"
-#include "config/pipeline_setup.hpp"
+#include "config/setup/device_setup.hpp"
+#include "config/setup/pipeline_setup.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Building footprint files (TOML, docs/scene.md) through config::load_mesh:
 // config parses the text, core/scene extrudes it; oracles in mesh_checks.hpp.
-#include "config/footprint_file.hpp"
+#include "config/setup/footprint_file.hpp"
 #include "fuzz_support.hpp"
 #include "mesh_checks.hpp"
 

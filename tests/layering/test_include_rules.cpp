@@ -187,5 +187,5 @@ TEST(ProjectLayers, DocumentedEdgesPass) {
   EXPECT_TRUE(good("tools/gnssemu/sky.cpp", "\"daemon/truth_track.hpp\""));
   EXPECT_TRUE(good("tests/unit/nmea/test_nmea_alloc.cpp", "\"tests/support/alloc_counter.hpp\""));
   EXPECT_TRUE(good("tests/unit/cli/test_batch.cpp", "\"config/config.hpp\""));
-  EXPECT_TRUE(good("config/footprint_file.cpp", "<toml++/toml.h>"));
+  EXPECT_TRUE(good("config/setup/footprint_file.cpp", "<toml++/toml.h>"));
 }

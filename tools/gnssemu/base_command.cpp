@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-#include "config/base_station.hpp"
-#include "config/nav_setup.hpp"
+#include "config/setup/base_station.hpp"
+#include "config/setup/nav_setup.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
 #include "core/protocol/rtcm/rtcm_ephemeris.hpp"

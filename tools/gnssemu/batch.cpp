@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "config/device_setup.hpp"
-#include "config/pipeline_setup.hpp"
-#include "config/scene_loader.hpp"
+#include "config/setup/device_setup.hpp"
+#include "config/setup/pipeline_setup.hpp"
+#include "config/setup/scene_loader.hpp"
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"

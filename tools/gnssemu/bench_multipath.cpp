@@ -12,7 +12,7 @@
 
 #include <time.h>
 
-#include "config/footprint_file.hpp"
+#include "config/setup/footprint_file.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"

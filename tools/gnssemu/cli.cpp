@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "config/config.hpp"
-#include "config/footprint_file.hpp"
-#include "config/nav_setup.hpp"
+#include "config/setup/footprint_file.hpp"
+#include "config/setup/nav_setup.hpp"
 #include "config/receiver_config.hpp"
 #include "config/scenario_file.hpp"
 #include "core/common/constants.hpp"

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_test_util.hpp"
-#include "config/nav_setup.hpp"
+#include "config/setup/nav_setup.hpp"
 #include "core/common/error.hpp"
 
 using namespace gnssemu;

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "config/base_station.hpp"
+#include "config/setup/base_station.hpp"
 #include "config/config.hpp"
 #include "core/common/error.hpp"
 

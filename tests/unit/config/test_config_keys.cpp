@@ -12,7 +12,7 @@
 #include <set>
 #include <sstream>
 
-#include "config/config_keys.hpp"
+#include "config/keys/config_keys.hpp"
 #include "config/config_text.hpp"
 #include "every_key.hpp"
 #include "test_helpers.hpp"

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "config/footprint_file.hpp"
+#include "config/setup/footprint_file.hpp"
 #include "core/common/error.hpp"
 #include "core/scene/scene.hpp"
 #include "test_helpers.hpp"

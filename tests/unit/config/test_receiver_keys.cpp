@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "config/device_setup.hpp"
+#include "config/setup/device_setup.hpp"
 #include "core/protocol/ubx/device/ubx_device.hpp"
 #include "test_helpers.hpp"
 

@@ -4,7 +4,7 @@
 // does not have names the config file and line.
 #include <gtest/gtest.h>
 
-#include "config/scene_loader.hpp"
+#include "config/setup/scene_loader.hpp"
 #include "test_helpers.hpp"
 
 namespace gnssemu::config::scene_loader_test {

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "config/device_setup.hpp"
+#include "config/setup/device_setup.hpp"
 #include "core/common/constants.hpp"
 #include "core/protocol/ubx/wire/ubx_frame.hpp"
 #include "core/protocol/ubx/wire/ubx_message_table.hpp"

@@ -13,7 +13,7 @@
 #include <spdlog/sinks/ostream_sink.h>
 #include <spdlog/spdlog.h>
 
-#include "config/device_setup.hpp"
+#include "config/setup/device_setup.hpp"
 #include "core/protocol/ubx/wire/ubx_frame.hpp"
 #include "core/protocol/ubx/wire/ubx_message_table.hpp"
 #include "daemon/ports/port_channel.hpp"

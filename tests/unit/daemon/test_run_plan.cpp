@@ -6,7 +6,7 @@
 #include <algorithm>
 
 #include "config/config.hpp"
-#include "config/nav_setup.hpp"
+#include "config/setup/nav_setup.hpp"
 #include "core/common/error.hpp"
 #include "daemon/run_plan.hpp"
 

@@ -8,7 +8,7 @@
 #include <map>
 #include <sstream>
 
-#include "config/nav_setup.hpp"
+#include "config/setup/nav_setup.hpp"
 #include "core/common/error.hpp"
 #include "tools/gnssemu/sweep/csv_row.hpp"
 #include "tools/gnssemu/sweep/input_hash.hpp"

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "config/nav_setup.hpp"
+#include "config/setup/nav_setup.hpp"
 #include "config/scenario_file.hpp"
 #include "core/common/error.hpp"
 #include "core/orbit/constellation.hpp"

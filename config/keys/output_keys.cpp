@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "config/config_keys.hpp"
+#include "config/keys/config_keys.hpp"
 #include "config/message_names.hpp"
 #include "core/common/error.hpp"
 #include "core/protocol/ubx/config/ubx_device_config.hpp"

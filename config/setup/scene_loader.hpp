@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 // Load the configured scene (the pipeline's world takes it through
-// make_pipeline, config/pipeline_setup.hpp).
+// make_pipeline, config/setup/pipeline_setup.hpp).
 #include <memory>
 
 #include "config/config.hpp"

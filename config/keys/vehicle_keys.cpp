@@ -10,8 +10,8 @@
 #include <string>
 #include <variant>
 
-#include "config/config_keys.hpp"
-#include "config/device_setup.hpp"
+#include "config/keys/config_keys.hpp"
+#include "config/setup/device_setup.hpp"
 #include "config/receiver_config.hpp"
 
 namespace gnssemu::config {

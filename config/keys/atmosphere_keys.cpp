@@ -3,7 +3,7 @@
 // Ranges and cross-field rules: the core atmosphere models'.
 #include <limits>
 
-#include "config/config_keys.hpp"
+#include "config/keys/config_keys.hpp"
 #include "core/atmosphere/clouds_rain.hpp"
 
 namespace gnssemu::config::detail {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "config/toml_reader.hpp"
+#include "config/toml/toml_reader.hpp"
 
 #include <algorithm>
 #include <charconv>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "config/pipeline_setup.hpp"
+#include "config/setup/pipeline_setup.hpp"
 
 namespace gnssemu::config {
 

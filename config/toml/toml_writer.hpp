@@ -8,7 +8,7 @@
 #include <string_view>
 #include <utility>
 
-#include "config/toml_reader.hpp"
+#include "config/toml/toml_reader.hpp"
 #include "core/time/gps_time.hpp"
 
 namespace gnssemu::config::detail {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "config/toml_writer.hpp"
+#include "config/toml/toml_writer.hpp"
 
 #include <charconv>
 #include <cmath>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "config/base_station.hpp"
+#include "config/setup/base_station.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "config/pipeline_setup.hpp"
+#include "config/setup/pipeline_setup.hpp"
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/protocol/rtcm/rtcm_ephemeris.hpp"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "config/fields.hpp"
+#include "config/keys/fields.hpp"
 
 #include <arpa/inet.h>
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "config/scene_loader.hpp"
+#include "config/setup/scene_loader.hpp"
 
-#include "config/footprint_file.hpp"
+#include "config/setup/footprint_file.hpp"
 #include "core/common/error.hpp"
 
 namespace gnssemu::config {

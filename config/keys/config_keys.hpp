@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "config/config.hpp"
-#include "config/fields.hpp"
+#include "config/keys/fields.hpp"
 
 namespace gnssemu::config::detail {
 

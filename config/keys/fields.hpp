@@ -19,8 +19,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "config/toml_reader.hpp"
-#include "config/toml_writer.hpp"
+#include "config/toml/toml_reader.hpp"
+#include "config/toml/toml_writer.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
 #include "core/common/violation.hpp"

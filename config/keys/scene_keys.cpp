@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // [scene]: the buildings' mesh, its placement, the search effort and the
 // reflection losses (docs/scene.md). Ranges: core/scene's.
-#include "config/config_keys.hpp"
+#include "config/keys/config_keys.hpp"
 
 namespace gnssemu::config::detail {
 

@@ -2,8 +2,8 @@
 // [base]: the RTCM reference station (docs/base-station.md). Its position,
 // station id, messages, [base.ntrip] caster endpoint and [[base.output]] ports; any key of [receiver] on it overrides the top level's for the base
 // alone (its own seed, profile, errors), as on a [[vehicle.receiver]].
-#include "config/base_station.hpp"
-#include "config/config_keys.hpp"
+#include "config/setup/base_station.hpp"
+#include "config/keys/config_keys.hpp"
 
 namespace gnssemu::config::detail {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "config/footprint_file.hpp"
+#include "config/setup/footprint_file.hpp"
 
 #include <cmath>
 #include <initializer_list>
@@ -8,7 +8,7 @@
 
 #include <toml++/toml.h>
 
-#include "config/toml_reader.hpp"
+#include "config/toml/toml_reader.hpp"
 #include "core/common/error.hpp"
 #include "core/scene/footprints.hpp"
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "config/nav_setup.hpp"
+#include "config/setup/nav_setup.hpp"
 
 #include <algorithm>
 #include <cctype>

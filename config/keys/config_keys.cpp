@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The whole file: the root table, and [origin], [nav], [time], [truth],
 // [demo] and [log], whose settings are the configuration's own.
-#include "config/config_keys.hpp"
+#include "config/keys/config_keys.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // [signal] and its sub-tables: link budget, C/N0, tracking thresholds, the
 // DLL. Ranges and cross-field rules: the core signal models'.
-#include "config/config_keys.hpp"
+#include "config/keys/config_keys.hpp"
 
 namespace gnssemu::config::detail {
 

@@ -4,8 +4,8 @@
 #include <array>
 #include <limits>
 
-#include "config/config_keys.hpp"
-#include "config/device_setup.hpp"
+#include "config/keys/config_keys.hpp"
+#include "config/setup/device_setup.hpp"
 
 namespace gnssemu::config::detail {
 

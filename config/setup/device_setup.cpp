@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "config/device_setup.hpp"
+#include "config/setup/device_setup.hpp"
 
 #include <cmath>
 
