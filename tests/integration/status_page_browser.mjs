@@ -345,6 +345,10 @@ async function checkFleet() {
     const tr = document.querySelector(`#overview-table tbody tr[data-vehicle="${v}"]`);
     return tr && tr.dataset.faults === '1' && tr.dataset.fixType !== '3';  // an outage: no fix or dead reckoning
   }, FAULTY, { timeout: 15000 });
+  // The others keep (or, on a loaded machine whose sender stalled, regain) their 3D fix.
+  await page.waitForFunction((v) => [...document.querySelectorAll('#overview-table tbody tr')]
+    .every((tr) => tr.dataset.vehicle === v || tr.dataset.fixType === '3'), FAULTY, { timeout: 15000 })
+    .catch(() => {});
   rows = await overviewDom(page);
   for (const x of rows) {
     const faulty = x.vehicle === FAULTY;
