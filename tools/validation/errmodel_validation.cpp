@@ -36,9 +36,9 @@
 #include "core/pipeline/pipeline.hpp"
 #include "core/pipeline/receiver_profile.hpp"
 #include "core/statistics/statistics.hpp"
-#include "tools/gnssemu/calibrate.hpp"
-#include "tools/gnssemu/spp.hpp"
-#include "tools/gnssemu/simulated_station.hpp"
+#include "tools/gnssemu/stations/calibrate.hpp"
+#include "tools/gnssemu/stations/spp.hpp"
+#include "tools/gnssemu/stations/simulated_station.hpp"
 
 namespace gnssemu::validation {
 namespace {

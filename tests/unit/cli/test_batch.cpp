@@ -16,8 +16,8 @@
 #include "core/common/constants.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/rinex_nav.hpp"
-#include "tools/gnssemu/batch.hpp"
-#include "tools/gnssemu/truth_csv.hpp"
+#include "tools/gnssemu/batch/batch.hpp"
+#include "tools/gnssemu/batch/truth_csv.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::cli::test;

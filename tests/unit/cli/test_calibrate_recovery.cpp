@@ -13,8 +13,8 @@
 #include "core/observation/rinex_obs.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
-#include "tools/gnssemu/calibrate.hpp"
-#include "tools/gnssemu/simulated_station.hpp"
+#include "tools/gnssemu/stations/calibrate.hpp"
+#include "tools/gnssemu/stations/simulated_station.hpp"
 
 namespace gnssemu::cli {
 namespace {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "config/config.hpp"
-#include "tools/gnssemu/calibrate.hpp"
+#include "tools/gnssemu/stations/calibrate.hpp"
 
 using namespace gnssemu;
 

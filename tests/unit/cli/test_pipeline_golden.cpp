@@ -19,8 +19,8 @@
 
 #include "config/config.hpp"
 #include "core/orbit/rinex_nav.hpp"
-#include "tools/gnssemu/batch.hpp"
-#include "tools/gnssemu/truth_csv.hpp"
+#include "tools/gnssemu/batch/batch.hpp"
+#include "tools/gnssemu/batch/truth_csv.hpp"
 
 namespace gnssemu::cli {
 namespace {

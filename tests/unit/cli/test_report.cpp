@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_test_util.hpp"
-#include "tools/gnssemu/plot.hpp"
+#include "tools/gnssemu/report/plot.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::cli::test;

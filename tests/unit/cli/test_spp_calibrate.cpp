@@ -10,7 +10,7 @@
 
 #include "cli_test_util.hpp"
 #include "config/config.hpp"
-#include "tools/gnssemu/calibrate.hpp"
+#include "tools/gnssemu/stations/calibrate.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::cli::test;

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cli_test_util.hpp"
-#include "tools/gnssemu/spp.hpp"
+#include "tools/gnssemu/stations/spp.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::cli::test;

@@ -17,7 +17,7 @@
 #include "tools/gnssemu/sweep/sweep_task.hpp"
 #include "tools/gnssemu/sweep/task_state.hpp"
 #include "tools/gnssemu/sweep/truth_generator.hpp"
-#include "tools/gnssemu/truth_csv.hpp"
+#include "tools/gnssemu/batch/truth_csv.hpp"
 
 namespace gnssemu::cli::sweep {
 namespace {

@@ -8,7 +8,7 @@
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/world/truth_track.hpp"
-#include "tools/gnssemu/truth_csv.hpp"
+#include "tools/gnssemu/batch/truth_csv.hpp"
 
 using namespace gnssemu;
 using namespace gnssemu::cli;

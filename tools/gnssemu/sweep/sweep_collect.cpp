@@ -9,7 +9,7 @@
 
 #include "core/common/error.hpp"
 #include "daemon/status/json_writer.hpp"
-#include "tools/gnssemu/report.hpp"
+#include "tools/gnssemu/report/report.hpp"
 #include "tools/gnssemu/sweep/csv_row.hpp"
 #include "tools/gnssemu/sweep/input_hash.hpp"
 #include "tools/gnssemu/sweep/sweep_plan.hpp"

@@ -13,7 +13,7 @@
 #include "core/orbit/constellation.hpp"
 #include "tools/gnssemu/sweep/input_hash.hpp"
 #include "tools/gnssemu/sweep/truth_generator.hpp"
-#include "tools/gnssemu/truth_csv.hpp"
+#include "tools/gnssemu/batch/truth_csv.hpp"
 
 namespace gnssemu::cli::sweep {
 

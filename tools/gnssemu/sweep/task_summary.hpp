@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/faults/fault_event.hpp"
-#include "tools/gnssemu/batch.hpp"
+#include "tools/gnssemu/batch/batch.hpp"
 
 namespace gnssemu::cli::sweep {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/gnssemu/truth_csv.hpp"
+#include "tools/gnssemu/batch/truth_csv.hpp"
 
 #include <charconv>
 #include <cmath>

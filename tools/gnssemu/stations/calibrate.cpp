@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/gnssemu/calibrate.hpp"
+#include "tools/gnssemu/stations/calibrate.hpp"
 
 #include <fmt/format.h>
 
@@ -13,7 +13,7 @@
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
-#include "tools/gnssemu/spp.hpp"
+#include "tools/gnssemu/stations/spp.hpp"
 
 namespace gnssemu::cli {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/gnssemu/batch.hpp"
+#include "tools/gnssemu/batch/batch.hpp"
 
 #include <fmt/format.h>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/gnssemu/calibration_residuals.hpp"
+#include "tools/gnssemu/stations/calibration_residuals.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "core/geo/geodesy.hpp"
 #include "core/receiver/solution/transmit_state.hpp"
 #include "core/world/sky.hpp"
-#include "tools/gnssemu/spp.hpp"
+#include "tools/gnssemu/stations/spp.hpp"
 
 namespace gnssemu::cli {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/gnssemu/report.hpp"
+#include "tools/gnssemu/report/report.hpp"
 
 #include <fmt/format.h>
 

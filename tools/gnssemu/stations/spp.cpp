@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/gnssemu/spp.hpp"
+#include "tools/gnssemu/stations/spp.hpp"
 
 #include <fmt/format.h>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/gnssemu/rinex_output.hpp"
+#include "tools/gnssemu/batch/rinex_output.hpp"
 
 #include <algorithm>
 #include <map>

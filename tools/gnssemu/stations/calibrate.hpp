@@ -14,8 +14,8 @@
 #include "config/config.hpp"
 #include "core/common/vec3.hpp"
 #include "core/statistics/statistics.hpp"
-#include "tools/gnssemu/calibration_fit.hpp"
-#include "tools/gnssemu/calibration_residuals.hpp"
+#include "tools/gnssemu/stations/calibration_fit.hpp"
+#include "tools/gnssemu/stations/calibration_residuals.hpp"
 
 namespace gnssemu::cli {
 

@@ -6,7 +6,7 @@
 // tracked, used 1/0.
 #include <ostream>
 
-#include "tools/gnssemu/batch.hpp"
+#include "tools/gnssemu/batch/batch.hpp"
 
 namespace gnssemu::cli {
 

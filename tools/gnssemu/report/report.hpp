@@ -16,7 +16,7 @@
 #include "core/receiver/fix.hpp"
 #include "core/time/gps_time.hpp"
 #include "core/world/truth.hpp"
-#include "tools/gnssemu/batch.hpp"
+#include "tools/gnssemu/batch/batch.hpp"
 
 namespace gnssemu::cli {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/gnssemu/plot.hpp"
+#include "tools/gnssemu/report/plot.hpp"
 
 #include <fmt/format.h>
 

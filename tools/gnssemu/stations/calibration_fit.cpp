@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/gnssemu/calibration_fit.hpp"
+#include "tools/gnssemu/stations/calibration_fit.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 #include <ostream>
 #include <string>
 
-#include "tools/gnssemu/report.hpp"
+#include "tools/gnssemu/report/report.hpp"
 
 namespace gnssemu::cli {
 

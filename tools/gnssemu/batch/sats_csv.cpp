@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/gnssemu/sats_csv.hpp"
+#include "tools/gnssemu/batch/sats_csv.hpp"
 
 #include <fmt/format.h>
 

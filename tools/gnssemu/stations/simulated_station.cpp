@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/gnssemu/simulated_station.hpp"
+#include "tools/gnssemu/stations/simulated_station.hpp"
 
 #include <optional>
 #include <string>

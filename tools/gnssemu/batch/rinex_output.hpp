@@ -12,7 +12,7 @@
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/nav_data.hpp"
 #include "core/rinex/rinex_obs_writer.hpp"
-#include "tools/gnssemu/batch.hpp"
+#include "tools/gnssemu/batch/batch.hpp"
 
 namespace gnssemu::cli {
 

@@ -11,7 +11,7 @@
 
 #include "core/signal/dll_jitter.hpp"
 #include "core/signal/link_budget.hpp"
-#include "tools/gnssemu/calibration_residuals.hpp"
+#include "tools/gnssemu/stations/calibration_residuals.hpp"
 
 namespace gnssemu::cli {
 
