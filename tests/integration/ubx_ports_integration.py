@@ -1139,26 +1139,44 @@ def case_px4_m8_gnss(rig):
     s.wait_for(pvt_fix_ok, 6.0, "the first gnssFixOK")
     before = svinfo_systems(s.wait_for(is_ubx(0x01, 0x30), 3.0, "NAV-SVINFO (PX4 sets rate 5)")[1])[0]
     assert 6 in before and not {2, 3} & before, f"factory M8 NAV-SVINFO lists {names(before)}"
-    t_set = time.monotonic()
-    set_cfg(s, fd, 0x3E, px4_cfg_gnss(1 | 4 | 8))
-    t_fix, _ = s.wait_for(pvt_fix_ok, 8.0, "gnssFixOK after the GNSS restart")
-    lost = pvt_lost_after(s, t_set, t_fix)
-    assert lost > 0, "no NAV-PVT without gnssFixOK after CFG-GNSS: the M8 did not restart its GNSS engine"
-    t0 = time.monotonic()
-    while True:
-        after, used = svinfo_systems(s.wait_for(is_ubx(0x01, 0x30), 3.0, "NAV-SVINFO")[1])
-        assert after <= {0, 2, 3, 5}, f"NAV-SVINFO after GPS_1_GNSS = GPS + Galileo + BeiDou lists {names(after)}"
-        if {0, 2, 3} <= used or time.monotonic() - t0 > 60:
-            break
-    assert {0, 2, 3} <= used, f"satellites used {time.monotonic() - t0:.0f} s after the change: {names(used)}"
+    lost = gnss_change_restarts(s, fd, px4_cfg_gnss(1 | 4 | 8), "M8")
+    after, used, dt = systems_used_by_poll(s, fd, 0x30, svinfo_systems, {0, 2, 3, 5}, {0, 2, 3}, "NAV-SVINFO")
     send(fd, frame(0x06, 0x3E, px4_cfg_gnss(31)))
     m = s.wait_for(is_ack_for(0x06, 0x3E), 1.0, "reply to CFG-GNSS with four major systems")[1]
     assert m == ack(0x06, 0x3E, False), f"CFG-GNSS with GPS, Galileo, BeiDou and GLONASS: want NAK, got {m.hex()}"
     still = svinfo_systems(s.wait_for(is_ubx(0x01, 0x30), 3.0, "NAV-SVINFO after the NAK")[1])[0]
     assert still <= {0, 2, 3, 5}, f"after the NAK NAV-SVINFO lists {names(still)}"
     print(f"  px4_m8_gnss: NAV-SVINFO {names(before)} -> {names(after)} after PX4's CFG-GNSS for mask 13 (ACKed; "
-          f"the restart: {lost} NAV-PVT without a fix); all used {time.monotonic() - t0:.0f} s after it; mask 31 "
+          f"the restart: {lost} NAV-PVT without a fix); all used {dt:.0f} s after it; mask 31 "
           f"NAKed, set kept")
+
+
+def gnss_change_restarts(s, fd, payload, chip):
+    """CFG-GNSS payload set (ACKed); the chip restarts its GNSS engine on the
+    change: a NAV-PVT without gnssFixOK, then the fix again. The number of
+    NAV-PVT without fix."""
+    t_set = time.monotonic()
+    set_cfg(s, fd, 0x3E, payload)
+    t_fix, _ = s.wait_for(pvt_fix_ok, 8.0, "gnssFixOK after the GNSS restart")
+    lost = pvt_lost_after(s, t_set, t_fix)
+    assert lost > 0, f"no NAV-PVT without gnssFixOK after CFG-GNSS: the {chip} did not restart its GNSS engine"
+    return lost
+
+
+def systems_used_by_poll(s, fd, mid, decode, allowed, wanted, what):
+    """Poll NAV-<mid> every second until the wanted systems are used (the
+    acquisition model decides when a newly enabled one is), at most 60 s;
+    every poll lists only allowed systems. (listed, used, seconds)."""
+    t0 = time.monotonic()
+    while True:
+        time.sleep(1.0)
+        send(fd, frame(0x01, mid))
+        listed, used = decode(s.wait_for(is_ubx(0x01, mid), 2.0, f"{what} poll")[1])
+        assert listed <= allowed, f"{what} after the change lists {names(listed)}"
+        if wanted <= used or time.monotonic() - t0 > 60:
+            break
+    assert wanted <= used, f"satellites used {time.monotonic() - t0:.0f} s after the change: {names(used)}"
+    return listed, used, time.monotonic() - t0
 
 
 def svinfo_systems(m):
@@ -1191,25 +1209,10 @@ def case_ardupilot_gnss(rig):
     before = svinfo_systems(sv)[0]
     assert 6 in before and 2 not in before, f"factory M8 NAV-SVINFO lists {names(before)}"
     gnss = poll_cfg(s, fd, 0x3E, b"")
-    t_set = time.monotonic()
-    set_cfg(s, fd, 0x3E, ardupilot_cfg_gnss(gnss, 5))
-    t_fix, _ = s.wait_for(pvt_fix_ok, 8.0, "gnssFixOK after the GNSS restart")
-    lost = pvt_lost_after(s, t_set, t_fix)
-    assert lost > 0, "no NAV-PVT without gnssFixOK after CFG-GNSS: the M8 did not restart its GNSS engine"
-    t0 = time.monotonic()
-    # Galileo was off: it is acquired after the restart (the acquisition
-    # model decides when it is used).
-    while True:
-        time.sleep(1.0)
-        send(fd, frame(0x01, 0x30))
-        sv = s.wait_for(is_ubx(0x01, 0x30), 2.0, "NAV-SVINFO poll")[1]
-        after, used = svinfo_systems(sv)
-        assert after <= {0, 2}, f"NAV-SVINFO after GPS_GNSS_MODE 5 lists {names(after)}"
-        if {0, 2} <= used or time.monotonic() - t0 > 60:
-            break
-    assert {0, 2} <= used, f"satellites used {time.monotonic() - t0:.0f} s after the restriction: {names(used)}"
+    lost = gnss_change_restarts(s, fd, ardupilot_cfg_gnss(gnss, 5), "M8")
+    after, used, dt = systems_used_by_poll(s, fd, 0x30, svinfo_systems, {0, 2}, {0, 2}, "NAV-SVINFO")
     print(f"  ardupilot_gnss: NAV-SVINFO {names(before)} -> {names(after)} after ArduPilot's CFG-GNSS for mode 5 "
-          f"(ACKed); the restart: {lost} NAV-PVT without a fix; Galileo used {time.monotonic() - t0:.0f} s after it")
+          f"(ACKed); the restart: {lost} NAV-PVT without a fix; Galileo used {dt:.0f} s after it")
 
 
 # gpsd's satellite numbers per gnssid (gpsd.h: GPS, SBAS PRN, Galileo, BeiDou, QZSS, GLONASS slot).
@@ -1273,23 +1276,10 @@ def case_ardupilot_m9_gnss(rig):
     before = nav_sat_systems(s.wait_for(is_ubx(0x01, 0x35), 2.0, "NAV-SAT poll")[1])[0]
     assert {0, 2, 3, 6} <= before, f"factory M9 NAV-SAT lists {names(before)}"
     gnss = poll_cfg(s, fd, 0x3E, b"")
-    t_set = time.monotonic()
-    set_cfg(s, fd, 0x3E, ardupilot_cfg_gnss(gnss, 5))
-    t_fix, _ = s.wait_for(pvt_fix_ok, 8.0, "gnssFixOK after the GNSS restart")
-    lost = pvt_lost_after(s, t_set, t_fix)
-    assert lost > 0, "no NAV-PVT without gnssFixOK after CFG-GNSS: the M9 did not restart its GNSS engine"
-    t0 = time.monotonic()
-    while True:
-        time.sleep(1.0)
-        send(fd, frame(0x01, 0x35))
-        after, used = nav_sat_systems(s.wait_for(is_ubx(0x01, 0x35), 2.0, "NAV-SAT poll")[1])
-        assert after <= {0, 2}, f"NAV-SAT after GPS_GNSS_MODE 5 lists {names(after)}"
-        if {0, 2} <= used or time.monotonic() - t0 > 60:
-            break
-    assert {0, 2} <= used, f"satellites used {time.monotonic() - t0:.0f} s after the change: {names(used)}"
+    lost = gnss_change_restarts(s, fd, ardupilot_cfg_gnss(gnss, 5), "M9")
+    after, used, dt = systems_used_by_poll(s, fd, 0x35, nav_sat_systems, {0, 2}, {0, 2}, "NAV-SAT")
     print(f"  ardupilot_m9_gnss: NAV-SAT {names(before)} -> {names(after)} after ArduPilot's CFG-GNSS for mode 5 "
-          f"(ACKed; the restart: {lost} NAV-PVT without a fix); GPS and Galileo used {time.monotonic() - t0:.0f} s "
-          f"after it")
+          f"(ACKed; the restart: {lost} NAV-PVT without a fix); GPS and Galileo used {dt:.0f} s after it")
 
 
 def case_gpsd_m9_sky(rig):
