@@ -70,6 +70,22 @@ std::string_view query_param(std::string_view query, std::string_view key) {
   return {};
 }
 
+/// The first key of query /api/status does not take, as an error text; "" when none.
+std::string unknown_status_param(std::string_view query) {
+  std::size_t pos = 0;
+  while (pos < query.size()) {
+    std::size_t end = query.find('&', pos);
+    if (end == std::string_view::npos) end = query.size();
+    const std::string_view item = query.substr(pos, end - pos);
+    pos = end + 1;
+    const std::string_view key = item.substr(0, item.find('='));
+    if (item.empty() || key == "history" || key == "vehicle" || key == "receiver") continue;
+    return "unknown query parameter '" + std::string(key.substr(0, 64)) +
+           "' (/api/status takes history, vehicle, receiver)";
+  }
+  return {};
+}
+
 }  // namespace
 
 class Session;
@@ -182,6 +198,11 @@ private:
     if (path == "/api/status") {
       if (shared_->producer == nullptr) {
         respond_error(http::status::service_unavailable, "shutting down");
+        return;
+      }
+      if (const std::string why = unknown_status_param(query); !why.empty()) {
+        ++shared_->stats.bad_requests;
+        respond_error(http::status::bad_request, why);
         return;
       }
       const StatusProducer* producer = shared_->producer;

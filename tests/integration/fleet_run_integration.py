@@ -203,6 +203,9 @@ def check_overview(rig):
                         ("vehicle=a", "unknown query parameter 'vehicle' (/api/overview takes limit, offset)")]:
         code, text = http_get(rig, f"/api/overview?{query}")
         assert code == 400 and want in text, (query, code, text)
+    code, text = http_get(rig, "/api/status?vehicle=a&histroy=5")
+    assert code == 400 and "unknown query parameter 'histroy' (/api/status takes history, vehicle, receiver)" in text, \
+        (code, text)
     print("  /api/overview: a row per receiver = /api/status, b's outage scheduled, limit/offset, bad queries 400")
 
 
