@@ -30,7 +30,7 @@ import sys
 import threading
 import time
 
-from itlib import RigBase, free_port, enu_to_latlon as itlib_enu_to_latlon
+from itlib import RigBase, daemon_toml, free_port, enu_to_latlon as itlib_enu_to_latlon
 
 ORIGIN = (48.8738, 2.2950, 100.0)  # lat deg, lon deg, height m
 RADIUS_M = 50.0
@@ -43,6 +43,7 @@ DEMO_SPEED_M_S = 5.0
 # Fixed epoch clock start (GPS time) so the demo truth at any TPV time is known.
 START_GPS = "2022-01-01T01:00:00"
 START_GPS_EPOCH_S = 1640998800.0  # the same instant as Unix seconds of the GPS calendar
+MAX_EXTRAPOLATION = "max_extrapolation_s = 0.5\n"  # [truth] line of these cases
 GPS_MINUS_UTC_S = 18.0            # LEAP SECONDS in brdc0010.22n
 
 
@@ -71,25 +72,8 @@ class Rig(RigBase):
     def start(self, default_config=False):
         cfg = os.path.join(self.tmp, "it.toml")
         with open(cfg, "w") as f:
-            f.write(f"""
-[origin]
-lat_deg = {ORIGIN[0]}
-lon_deg = {ORIGIN[1]}
-height_m = {ORIGIN[2]}
-[nav]
-file = "{os.path.abspath(self.args.nav)}"
-[time]
-start = "{START_GPS}"
-[receiver]
-rate_hz = {RATE_HZ}
-[truth]
-bind = "127.0.0.1"
-port = {self.udp_port}
-timeout_s = {TIMEOUT_S}
-max_extrapolation_s = 0.5
-[demo]
-enabled = true
-radius_m = {RADIUS_M}
+            f.write(f"""{daemon_toml(ORIGIN, self.args.nav, START_GPS, RATE_HZ, self.udp_port, timeout_s=TIMEOUT_S,
+                                   truth_extra=MAX_EXTRAPOLATION, demo=True)}radius_m = {RADIUS_M}
 speed_m_s = {DEMO_SPEED_M_S}
 [[output]]
 name = "gps0"
