@@ -112,6 +112,32 @@ def satpos(gnssemu, nav, week, tow):
     return {row.split(",")[0]: dict(zip(head, row.split(","))) for row in rows[1:]}
 
 
+def is_beidou_geo(sat):
+    return sat[0] == "C" and (int(sat[1:]) <= 5 or int(sat[1:]) >= 59)
+
+
+def compare_navs(gnssemu, decoded, reference, week, tows):
+    """Satellite states of the decoded nav file against the reference's at
+    each tow (same toe and IODE only): {"matched", "worst_m", "worst_clk_s",
+    "geo" (BeiDou GEO states), "per_system" {letter: (states, worst m)}}."""
+    out = {"matched": 0, "worst_m": 0.0, "worst_clk_s": 0.0, "geo": 0, "per_system": {}}
+    for tow in tows:
+        a = satpos(gnssemu, decoded, week, tow)
+        b = satpos(gnssemu, reference, week, tow)
+        for sat, row in a.items():
+            ref = b.get(sat)
+            if ref is None or ref["toe_tow_s"] != row["toe_tow_s"] or ref["iode"] != row["iode"]:
+                continue
+            d = max(abs(float(row[c]) - float(ref[c])) for c in ("x_m", "y_m", "z_m"))
+            out["worst_m"] = max(out["worst_m"], d)
+            out["worst_clk_s"] = max(out["worst_clk_s"], abs(float(row["clk_bias_s"]) - float(ref["clk_bias_s"])))
+            out["geo"] += is_beidou_geo(sat)
+            n, w = out["per_system"].get(sat[0], (0, 0.0))
+            out["per_system"][sat[0]] = (n + 1, max(w, d))
+            out["matched"] += 1
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--gnssemu", required=True)
@@ -178,7 +204,7 @@ def main():
                         failures.append("%s band %d at %.7f not in RAWX" % (sat, band, t))
                         continue
                     pr, cp, do, cno, trk = meas[(sat, band)]
-                    if sat[0] == "C" and (int(sat[1:]) <= 5 or int(sat[1:]) >= 59) and trk & 2:
+                    if is_beidou_geo(sat) and trk & 2:
                         cp += 0.5  # RTKLIB's "half-cycle shift correction for BDS GEO" (u-blox cpMes)
                         geo_phases += 1
                     want = {"C": pr if trk & 1 else None, "L": cp if trk & 2 else None, "D": do, "S": cno}
@@ -222,27 +248,11 @@ def main():
             failures.append("only %d satellite epochs decoded" % compared)
 
         # Navigation: convbin's ephemerides against the input's.
-        matched, worst_m, worst_clk = 0, 0.0, 0.0
-        systems = set()
-        geo_states = 0  # BeiDou GEO states from convbin's D2 decode
-        per_system = {}  # letter: (states compared, largest position difference m)
-        for dt in range(0, args.seconds + 1, 30):
-            tow = args.tow + dt
-            a = satpos(args.gnssemu, nav, args.week, tow)
-            b = satpos(args.gnssemu, os.path.abspath(args.nav), args.week, tow)
-            for sat, row in a.items():
-                ref = b.get(sat)
-                if ref is None or ref["toe_tow_s"] != row["toe_tow_s"] or ref["iode"] != row["iode"]:
-                    continue
-                d = max(abs(float(row[c]) - float(ref[c])) for c in ("x_m", "y_m", "z_m"))
-                worst_m = max(worst_m, d)
-                worst_clk = max(worst_clk, abs(float(row["clk_bias_s"]) - float(ref["clk_bias_s"])))
-                systems.add(sat[0])
-                if sat[0] == "C" and (int(sat[1:]) <= 5 or int(sat[1:]) >= 59):
-                    geo_states += 1
-                n, w = per_system.get(sat[0], (0, 0.0))
-                per_system[sat[0]] = (n + 1, max(w, d))
-                matched += 1
+        nc = compare_navs(args.gnssemu, nav, os.path.abspath(args.nav), args.week,
+                          [args.tow + dt for dt in range(0, args.seconds + 1, 30)])
+        matched, worst_m, worst_clk, geo_states = nc["matched"], nc["worst_m"], nc["worst_clk_s"], nc["geo"]
+        per_system = nc["per_system"]
+        systems = set(per_system)
         print("navigation: %d satellite states compared (systems %s; %d BeiDou GEO states), largest position "
               "difference %.4f m, clock %.3g s" % (matched, ",".join(sorted(systems)), geo_states, worst_m, worst_clk))
         print("navigation by system: " + ", ".join("%s %d states, %.4f m" % (k, n, w)

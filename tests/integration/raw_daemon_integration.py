@@ -25,7 +25,7 @@ import sys
 import time
 
 from itlib import RigBase, free_port, run_rig
-from raw_convbin_integration import rawx_epochs, rinex_obs, satpos
+from raw_convbin_integration import compare_navs, rawx_epochs, rinex_obs
 from ubx_host import split_stream
 
 ORIGIN = (35.6812, 139.7671, 40.0)  # Tokyo: BeiDou GEOs in view
@@ -117,19 +117,9 @@ def body(rig):
     if len(epochs) != len(raw) or len(raw) < RUN_S or mismatched:
         failures.append(f"convbin: {len(epochs)} epochs for {len(raw)} RAWX, {mismatched} mismatched")
     t_first = min(raw)  # (week, tow) of the first RAWX
-    matched, worst, geo, systems = 0, 0.0, 0, set()
-    for dt in range(10, RUN_S + 10, 10):
-        tow = t_first[1] + dt
-        a = satpos(rig.args.gnssemu, nav, t_first[0], tow)
-        b = satpos(rig.args.gnssemu, os.path.abspath(rig.args.nav), t_first[0], tow)
-        for sat, row in a.items():
-            ref = b.get(sat)
-            if ref is None or ref["toe_tow_s"] != row["toe_tow_s"] or ref["iode"] != row["iode"]:
-                continue
-            worst = max(worst, max(abs(float(row[c]) - float(ref[c])) for c in ("x_m", "y_m", "z_m")))
-            systems.add(sat[0])
-            geo += sat[0] == "C" and (int(sat[1:]) <= 5 or int(sat[1:]) >= 59)
-            matched += 1
+    nc = compare_navs(rig.args.gnssemu, nav, os.path.abspath(rig.args.nav), t_first[0],
+                      [t_first[1] + dt for dt in range(10, RUN_S + 10, 10)])
+    matched, worst, geo, systems = nc["matched"], nc["worst_m"], nc["geo"], set(nc["per_system"])
     print(f"navigation: {matched} states compared (systems {','.join(sorted(systems))}; {geo} BeiDou GEO), "
           f"largest position difference {worst:.4f} m")
     if worst > 0.001 or matched == 0:
