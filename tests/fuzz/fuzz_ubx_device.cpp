@@ -75,7 +75,9 @@ void expect_frames(std::string_view bytes, const char* what) {
 receiver::Fix make_fix(gnssemu::fuzz::InputSplitter& in, int epoch) {
   receiver::Fix f;
   const int kind = in.control_in(0, 3);
-  f.t = time::GpsTime(in.control_in(0, 4000), in.control_in(0, 604799) + 0.1 * (epoch % 10));
+  const int week = in.control_in(0, 4000);  // week, then tow: named so the order is the language's, not the compiler's
+  const int tow_s = in.control_in(0, 604799);
+  f.t = time::GpsTime(week, tow_s + 0.1 * (epoch % 10));
   f.leap_seconds = in.control_in(0, 40);
   f.in_leap_second = in.control_in(0, 15) == 0;
   f.time_valid = kind != 0;
@@ -141,18 +143,52 @@ void make_raw(gnssemu::fuzz::InputSplitter& in, const receiver::Fix& fix, receiv
   }
 }
 
-/// One ephemeris per GPS and QZSS satellite (kept in use after its toe): the sets SFRBX re-encodes.
+/// One ephemeris per GPS, QZSS, Galileo, BeiDou (GEOs included) and GLONASS
+/// satellite, with orbits of each system's size (kept in use after toe): the
+/// sets SFRBX re-encodes as LNAV subframes, I/NAV pages, D1/D2 subframes and
+/// GLONASS strings.
 const orbit::EphemerisStore& fuzz_store() {
   static const orbit::EphemerisStore store = [] {
+    const time::GpsTime toe(2190, 7200.0);  // the raw_epochs seed's time
     std::vector<orbit::Ephemeris> sets;
-    for (const GnssSystem sys : {GnssSystem::kGps, GnssSystem::kQzss}) {
+    for (const GnssSystem sys : {GnssSystem::kGps, GnssSystem::kQzss, GnssSystem::kGalileo, GnssSystem::kBeiDou,
+                                 GnssSystem::kGlonass}) {
       for (int n = numbering(sys).first; n <= numbering(sys).last; ++n) {
         orbit::Ephemeris e;
         e.sat = SatId(sys, n);
-        e.toe = e.toc = time::GpsTime(2190, 7200.0);  // the raw_epochs seed's time
-        e.sqrt_a_sqrtm = 5153.7;
+        e.toe = e.toc = toe;
+        e.iode = e.iodc = n % 256;
         e.e = 0.01;
-        e.iode = e.iodc = n;
+        e.m0_rad = 0.1 * n;
+        e.i0_rad = 0.96;
+        e.af0_s = 1e-5 * (n % 7 - 3);
+        e.tgd_s = e.tgd2_s = -2e-9;
+        switch (sys) {
+          case GnssSystem::kGalileo:
+            e.sqrt_a_sqrtm = 5440.6;
+            e.gal_data_sources = orbit::kGalInavE1b | orbit::kGalClockE5b;
+            break;
+          case GnssSystem::kBeiDou:  // C01-C05 and C59-C63 geostationary
+            e.sqrt_a_sqrtm = (n <= 5 || n >= 59) ? 6493.4 : 5282.6;
+            e.i0_rad = (n <= 5 || n >= 59) ? 0.01 : 0.96;
+            e.e = 0.0005;
+            break;
+          case GnssSystem::kGlonass: {
+            const double a = 0.3 * n;
+            e.pos_m = Ecef{2.55e7 * std::cos(a), 2.55e7 * std::sin(a), 1.0e6};
+            e.vel_m_s = Ecef{-2.9e3 * std::sin(a), 2.9e3 * std::cos(a), 1.0e3};
+            e.acc_m_s2 = Ecef{1e-6, -1e-6, 2e-6};
+            e.tau_n_s = 1e-5 * (n % 5 - 2);
+            e.gamma_n = 1e-12;
+            e.glo_channel = n % 14 - 7;
+            e.toe = e.toc = toe + 18.0;  // 05:00 Moscow time (UTC + 3 h, 18 leap seconds): tb index 20
+            e.iode = 20;
+            break;
+          }
+          default:
+            e.sqrt_a_sqrtm = 5153.7;
+            break;
+        }
         sets.push_back(e);
       }
     }

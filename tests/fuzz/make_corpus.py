@@ -170,25 +170,45 @@ def ubx_corpus():
     raw += ubx(0x06, 0x8A, bytes([0, 1, 0, 0]) + struct.pack("<IBIB", 0x209102A5, 1, 0x20910232, 1))
     raw += ubx(0x06, 0x8B, struct.pack("<BBHII", 0, 0, 0, 0x209102A5, 0x20910232))
     write("ubx_device", "raw_rawx_sfrbx.bin", raw + b"\x06")
-    # The same input, then eight 1 Hz epochs with eight tracked GPS satellites,
-    # so RXM-RAWX and an RXM-SFRBX subframe are composed. Control bytes in the
-    # order fuzz_ubx_device.cpp reads them (from the file's end backwards):
-    # identity (M9, raw firmware), 1 Hz, one output at 115200 with UBX out and
-    # only RAWX and SFRBX rated, the feed of the whole payload, then the epochs
-    # (make_fix, make_raw).
-    ctl = [6, 0, 0, 3, 3, 1] + [0] * 8 + [1, 1] + [0]
-    ctl += [0, 0, 0, (len(raw) - 1) >> 8, (len(raw) - 1) & 0xFF]
-    for i in range(8):
-        tow = 6000 + i
+    # The same input, then epochs of 96 satellites of every system (make_fix
+    # spreads them over the SatId order), 16 tracked: GPS, GLONASS (with its
+    # channel byte), Galileo, BeiDou MEO/IGSO and GEO (C02, C04: D2), QZSS,
+    # SBAS; at tows on which every system finishes an ephemeris unit the fuzz
+    # store's sets fill (GPS subframes, GLONASS strings 1-5, Galileo I/NAV
+    # words, BeiDou D1 subframes 1-3 and D2 pages), so RXM-RAWX and RXM-SFRBX
+    # of each system are composed. Control bytes in the order
+    # fuzz_ubx_device.cpp reads them (from the file's end backwards): identity
+    # (M9, raw firmware), 1 Hz, one output at 115200 with UBX out and only RAWX
+    # and SFRBX of the 14 rated messages on, NMEA version, the feed of the
+    # whole payload, then the epochs (make_fix, make_raw).
+    write("ubx_device", "raw_epochs.bin", raw + raw_epoch_controls(len(raw), RAW_EPOCH_TOWS))
+
+
+# Tows (s of GPS week 2190) of raw_epochs.bin's epochs, each + 0.1 s x its
+# index (make_fix), 2 s apart from 36 s after the store's toe: over them the
+# replay composes 14 RXM-RAWX and RXM-SFRBX of GPS 6, GLONASS 12, Galileo 30,
+# BeiDou 14 (GEO D2 pages included), QZSS 4 (counted once, 2026-11-29).
+RAW_EPOCH_TOWS = [7236 + 2 * i for i in range(14)]
+RAW_EPOCH_TRACKED = {0, 1, 2, 16, 17, 18, 30, 31, 32, 48, 49, 50, 55, 79, 80, 84}
+
+
+def raw_epoch_controls(feed_len, tows):
+    ctl = [6, 0, 0, 3, 3, 1] + [0] * 8 + [1, 1] + [0] * 4 + [0]
+    ctl += [0, 0, 0, (feed_len - 1) >> 8, (feed_len - 1) & 0xFF]
+    sizes = [("G", 32), ("R", 27), ("E", 36), ("C", 63), ("J", 10), ("S", 39)]  # core/common/sat_id.hpp
+    system_of = [sys for sys, n in sizes for _ in range(n)]
+    step = len(system_of) // 96
+    for tow in tows:
         ctl += [15, 0, 100]  # epoch, host 0, 1 s
-        # kind 3D, tow then week (GCC evaluates GpsTime's arguments right to left),
-        # leap 18, no leap second, lat, lon, height (2 each), geoid, speed, course
-        # (2 each), climb, h_acc (2), noise, eight satellites.
-        ctl += [3, tow >> 8, tow & 0xFF, 2190 >> 8, 2190 & 0xFF, 18, 1] + [0] * 6 + [0] + [0] * 4 + [0]
-        ctl += [0, 10, 0, 8]
-        ctl += [150, 0, 90, 45] * 8
-        ctl += [0, 0, 0, 0, 60, 0, 30, 3, 5, 15] * 8
-    write("ubx_device", "raw_epochs.bin", raw + bytes(reversed(ctl)))
+        # kind 3D, week then tow, leap 18, no leap second, lat, lon, height (2
+        # each), geoid, speed, course (2 each), climb, h_acc (2), noise, 96 satellites.
+        ctl += [3, 2190 >> 8, 2190 & 0xFF, tow >> 8, tow & 0xFF, 18, 1] + [0] * 6 + [0] + [0] * 4 + [0]
+        ctl += [0, 10, 0, 96]
+        for k in range(96):
+            glonass = [k % 14] if system_of[k * step] == "R" else []  # channel k - 7
+            ctl += glonass + ([150, 0, 90, 45] if k in RAW_EPOCH_TRACKED else [0, 0, 0])  # el 60 / -90 deg
+        ctl += [0, 0, 0, 0, 60, 0, 30, 3, 5, 15] * len(RAW_EPOCH_TRACKED)
+    return bytes(reversed(ctl))
 
 
 # --- RINEX observation files, gzip (as spp / calibrate read them) -----------
