@@ -167,8 +167,16 @@ private:
   void free_slot(int s) noexcept;
   void zero_cross(int i) noexcept;
   /// Scalar update with sparse h (idx/h, nh entries), innovation v, noise r;
-  /// returns false (nothing changed) when v^2 / S exceeds gate2.
-  bool update(const int* idx, const double* h, int nh, double v, double r, double gate2) noexcept;
+  /// returns false (nothing changed) when v^2 / S exceeds gate2. n_active > 0:
+  /// on the first n_active states only (their marginal; see carry_code_block).
+  bool update(const int* idx, const double* h, int nh, double v, double r, double gate2,
+              int n_active = 0) noexcept;
+  /// After updates of the position-and-clock block alone (states below
+  /// kAmbState0; the clocks fresh, uncorrelated with the rest): the
+  /// ambiguities' mean and covariance conditioned on the new block, from the
+  /// position's prior mean xp0 and covariance (inverse ppp0_inv).
+  void carry_code_block(const std::array<double, 3>& xp0, const std::array<std::array<double, 3>, 3>& ppp0,
+                        const std::array<std::array<double, 3>, 3>& ppp0_inv) noexcept;
   int n_states() const noexcept { return kAmbState0 + n_slots_; }
   bool try_fix(double t_s) noexcept;
   /// Position from the held integers (carrier only); false: too few or the residual test failed.
