@@ -122,6 +122,7 @@ void RtkEngine::clear_link_fields(Fix& fix) const noexcept {
 }
 
 void RtkEngine::zero_cross(int i) noexcept {
+  flush();
   const int n = n_states();
   for (int j = 0; j < n; ++j) p_[i][j] = p_[j][i] = 0.0;
 }
@@ -140,6 +141,7 @@ int RtkEngine::slot_for(int key, GnssSystem sys, int band, double wavelength_m) 
   const int s = slot_of_[static_cast<std::size_t>(key)];
   if (s >= 0) return s;
   if (n_slots_ >= kMaxSlots) return -1;
+  flush();  // before the state grows: the pending terms span the old states
   const int ns = n_slots_++;
   Slot& sl = slots_[static_cast<std::size_t>(ns)];
   const std::uint32_t arc = sl.arc;
@@ -158,6 +160,7 @@ int RtkEngine::slot_for(int key, GnssSystem sys, int band, double wavelength_m) 
 
 // Move the last slot into s: the state vector stays dense.
 void RtkEngine::free_slot(int s) noexcept {
+  flush();
   const int last = n_slots_ - 1;
   slot_of_[static_cast<std::size_t>(slots_[static_cast<std::size_t>(s)].key)] = -1;
   if (s != last) {
@@ -175,27 +178,68 @@ void RtkEngine::free_slot(int s) noexcept {
 
 bool RtkEngine::update(const int* idx, const double* h, int nh, double v, double r, double gate2,
                        int n_active) noexcept {
-  // P is symmetric: P h from the rows of h's states, and the whole of P
-  // updated row by row (contiguous, vectorised) rather than one triangle.
-  const int n = n_active > 0 ? n_active : n_states();
+  // P h from the rows of h's states (P symmetric) of p_, less the pending
+  // terms' share: (p_ - sum_c ph_c ph_c' inv_c) h.
+  const bool block = n_active > 0;
+  if (block) flush();
+  const int n = block ? n_active : n_states();
   for (int i = 0; i < n; ++i) ph_[i] = 0.0;
   for (int k = 0; k < nh; ++k) {
     const double hk = h[k];
     const auto& row = p_[static_cast<std::size_t>(idx[k])];
     for (int i = 0; i < n; ++i) ph_[i] += hk * row[i];
   }
+  for (int c = 0; c < n_pend_; ++c) {
+    const auto& pc = pend_ph_[static_cast<std::size_t>(c)];
+    double w = 0.0;
+    for (int k = 0; k < nh; ++k) w += h[k] * pc[idx[k]];
+    w *= pend_inv_[static_cast<std::size_t>(c)];
+    if (w == 0.0) continue;
+    for (int i = 0; i < n; ++i) ph_[i] -= w * pc[i];
+  }
   double s = r;
   for (int k = 0; k < nh; ++k) s += h[k] * ph_[idx[k]];
   if (!(s > 0.0) || !std::isfinite(v) || v * v > gate2 * s) return false;
   const double inv = 1.0 / s;
   for (int i = 0; i < n; ++i) x_[i] += ph_[i] * inv * v;
-  for (int i = 0; i < n; ++i) {
-    const double ki = ph_[i] * inv;
-    if (ki == 0.0) continue;
-    auto& row = p_[static_cast<std::size_t>(i)];
-    for (int j = 0; j < n; ++j) row[j] -= ki * ph_[j];
+  if (block) {
+    for (int i = 0; i < n; ++i) {
+      const double ki = ph_[i] * inv;
+      if (ki == 0.0) continue;
+      auto& row = p_[static_cast<std::size_t>(i)];
+      for (int j = 0; j < n; ++j) row[j] -= ki * ph_[j];
+    }
+    return true;
   }
+  pend_ph_[static_cast<std::size_t>(n_pend_)] = ph_;
+  pend_inv_[static_cast<std::size_t>(n_pend_)] = inv;
+  if (++n_pend_ == kPendingUpdates) flush();
   return true;
+}
+
+void RtkEngine::flush() noexcept {
+  if (n_pend_ == 0) return;
+  const int n = n_states();
+  const int np = n_pend_;
+  n_pend_ = 0;
+  for (int i = 0; i < n; ++i) {
+    double a[kPendingUpdates] = {};
+    bool any = false;
+    for (int c = 0; c < np; ++c) {
+      a[c] = pend_ph_[static_cast<std::size_t>(c)][i] * pend_inv_[static_cast<std::size_t>(c)];
+      any |= a[c] != 0.0;
+    }
+    if (!any) continue;
+    auto& row = p_[static_cast<std::size_t>(i)];
+    // Terms beyond np: a = 0 and a zero vector (cleared below after each flush).
+    static_assert(kPendingUpdates == 8, "the sum below spells out eight terms");
+    const auto& q = pend_ph_;
+    for (int j = 0; j < n; ++j) {
+      row[j] -= ((a[0] * q[0][j] + a[1] * q[1][j]) + (a[2] * q[2][j] + a[3] * q[3][j])) +
+                ((a[4] * q[4][j] + a[5] * q[5][j]) + (a[6] * q[6][j] + a[7] * q[7][j]));
+    }
+  }
+  for (int c = 0; c < np; ++c) pend_ph_[static_cast<std::size_t>(c)].fill(0.0);
 }
 
 void RtkEngine::carry_code_block(const std::array<double, 3>& xp0, const Mat3& ppp0, const Mat3& ppp0_inv) noexcept {
@@ -547,6 +591,7 @@ void RtkEngine::solve(const RawEpoch& rover, const NavSnapshot& nav, const Corre
       ++status_.num_phase_sd;
     }
   }
+  flush();
   for (int s = n_slots_ - 1; s >= 0; --s)
     if (!slots_[static_cast<std::size_t>(s)].in_use) free_slot(s);
 

@@ -177,6 +177,8 @@ private:
   /// position's prior mean xp0 and covariance (inverse ppp0_inv).
   void carry_code_block(const std::array<double, 3>& xp0, const std::array<std::array<double, 3>, 3>& ppp0,
                         const std::array<std::array<double, 3>, 3>& ppp0_inv) noexcept;
+  /// Applies the pending rank-one terms of update() to P in one pass.
+  void flush() noexcept;
   int n_states() const noexcept { return kAmbState0 + n_slots_; }
   bool try_fix(double t_s) noexcept;
   /// Position from the held integers (carrier only); false: too few or the residual test failed.
@@ -215,6 +217,14 @@ private:
   std::array<double, kMaxRtkStates> x_{};
   std::array<std::array<double, kMaxRtkStates>, kMaxRtkStates> p_{};
   std::array<double, kMaxRtkStates> ph_{};
+  /// Whole-state updates not yet applied to p_ (P = p_ - sum ph ph' inv):
+  /// the covariance's update is memory-bound, so kPendingUpdates of them go
+  /// in one pass over it. Only update() and flush() see them; whatever else
+  /// writes or resizes p_ flushes first, and solve() before anything reads it.
+  static constexpr int kPendingUpdates = 8;
+  std::array<std::array<double, kMaxRtkStates>, kPendingUpdates> pend_ph_{};
+  std::array<double, kPendingUpdates> pend_inv_{};
+  int n_pend_ = 0;
   std::array<Slot, kMaxSlots> slots_{};
   std::array<std::int8_t, kNumKeys> slot_of_{};  ///< -1 none (set in reset)
   int n_slots_ = 0;
