@@ -91,8 +91,8 @@ void BaseStation::encode(const time::GpsTime& t, std::string& out) noexcept {
         protocol::rtcm::append_station(station_, m.number == 1006, out);
         ++stats_.messages;
       } else if (m.number == 1230) {
-        // The world gives GLONASS no inter-frequency code-phase bias: zero, aligned.
-        protocol::rtcm::append_glonass_biases(base_.station_id, true, {0.0, std::nullopt, 0.0, std::nullopt}, out);
+        // As a u-blox F9 base: phase ranges aligned, no bias fields (docs/base-station.md).
+        protocol::rtcm::append_glonass_biases(base_.station_id, true, {}, out);
         ++stats_.messages;
       } else if (msm_of(m.number)) {
         continue;  // below, all systems in one go

@@ -36,8 +36,13 @@ struct Corrections {
   bool obs_valid = false;
   int obs_station_id = 0;             ///< DF003 of obs's MSMs (a rover pairs it with station.station_id)
   time::GpsTime obs_received;         ///< rover time the epoch became complete (GPS)
-  /// 1230 GLONASS code-phase biases, m: L1 C/A, L1 P, L2 C/A, L2 P (DF423-DF426).
+  /// 1230 GLONASS code-phase biases, m: L1 C/A, L1 P, L2 C/A, L2 P (DF423-DF426);
+  /// 0 when not sent.
   std::array<double, 4> glonass_cpb_m{};
+  /// DF421: the base's GLONASS phase ranges are code-phase aligned already
+  /// (u-blox F9 bases: aligned, no bias fields; docs/base-station.md).
+  bool glonass_cpb_aligned = false;
+  /// 1230 received and usable: aligned, or its biases align it.
   bool glonass_cpb_valid = false;
   /// Incremented whenever obs or station changes: the RTK stage processes a
   /// base epoch once.

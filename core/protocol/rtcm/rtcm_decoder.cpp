@@ -102,7 +102,8 @@ bool Decoder::decode_station(std::span<const std::uint8_t> payload, int number, 
 bool Decoder::decode_biases(std::span<const std::uint8_t> payload, DecodeResult& res) noexcept {
   BitReader r(payload);
   r.u(24);
-  r.u(1 + 3);  // DF421, reserved
+  const bool aligned = r.u(1) != 0;  // DF421
+  r.u(3);                            // reserved
   const auto mask = static_cast<unsigned>(r.u(4));
   const std::size_t need = k1230HeadBits + 16u * static_cast<std::size_t>(std::popcount(mask));
   if (payload.size() * 8 < need) {
@@ -118,7 +119,9 @@ bool Decoder::decode_biases(std::span<const std::uint8_t> payload, DecodeResult&
     const std::int64_t v = r.s(16);
     out_->glonass_cpb_m[i] = v == -32768 ? 0.0 : static_cast<double>(v) * 0.02;
   }
-  out_->glonass_cpb_valid = mask != 0;
+  out_->glonass_cpb_aligned = aligned;
+  // Aligned phase ranges need no bias; unaligned ones without biases cannot be aligned.
+  out_->glonass_cpb_valid = aligned || mask != 0;
   ++stats_.glonass_biases;
   return true;
 }

@@ -305,6 +305,10 @@ void RtkEngine::process_base(const Corrections& c, const world::SharedSky* sky) 
     bs.code_omc_m = m.pseudorange_m - g.range_m + sat_clock_m;
     bs.phase = m.carrier_valid;
     bs.phase_omc_m = m.carrier_phase_cycles * wavelength_of(m) - g.range_m + sat_clock_m;
+    // An unaligned base's GLONASS phase range plus its code-phase bias is an
+    // aligned one, as the rover's own (RTCM 10403.3 DF421, DF423/DF425).
+    if (m.sat.system == GnssSystem::kGlonass && !c.glonass_cpb_aligned)
+      bs.phase_omc_m += c.glonass_cpb_m[signal_info(m.signal).band == 0 ? 0 : 2];
     bs.half_cycle = m.half_cycle_resolved;
     bs.lock_s = m.lock_time_s;
     bs.code_sigma_m = m.pseudorange_sigma_m;

@@ -3,9 +3,12 @@
 // line, receiver keys overriding the top level's, the distance warning.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <string>
 
 #include "config/setup/base_station.hpp"
+#include "config/setup/nav_setup.hpp"
+#include "core/pipeline/pipeline.hpp"
 #include "config/config.hpp"
 #include "core/common/error.hpp"
 
@@ -54,6 +57,29 @@ mountpoint = "M1"
   EXPECT_TRUE(c.base->ntrip.enabled);
   EXPECT_EQ(c.base->ntrip.mountpoint, "M1");
   EXPECT_TRUE(base_distance_warning(c).empty());
+}
+
+// 1230 as a u-blox F9 base sends it (docs/base-station.md): DF421 = 1, the
+// phase ranges aligned, and an empty mask, no bias field.
+TEST(BaseStation, Sends1230AlignedWithoutBiases) {
+  const Config c = parse_config(kTop + R"toml([base]
+lat_deg = 48.9
+lon_deg = 2.4
+height_m = 80.0
+station_id = 12
+messages = "1230(1)"
+)toml",
+                                "base.toml", GNSSEMU_TEST_DATA);
+  const time::GpsTime start(2190, 518400.0 + 3600.0);
+  const orbit::Constellation con = make_constellation(c, load_nav(c), start);
+  const orbit::EphemerisStore store(con.nav.ephemerides, con.store_options());
+  BaseStation base(c, store, pipeline::broadcast_of(con.nav), nullptr);
+  std::string out;
+  base.step(start, out);
+  // Frame D3, length 4; payload 1230 (12 bits), station 12 (12), DF421 1, reserved 000, DF422 0000.
+  ASSERT_EQ(out.size(), 3u + 4u + 3u);
+  const std::string head = out.substr(0, 7);
+  EXPECT_EQ(head, std::string("\xD3\x00\x04\x4C\xE0\x0C\x80", 7));
 }
 
 TEST(BaseKeys, UnknownMessageIsAnErrorAtItsLine) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <deque>
@@ -57,10 +58,13 @@ double heading_error_deg2(const RelativePosition& r, double truth_rad) {
 class RtkRig {
 public:
   /// latency: epochs between the base's measurement and its use (0: time-matched).
-  RtkRig(const Ecef& base_m, const Ecef& rover_m, int latency = 0, bool smooth_sky = false)
-      : store_(test::nominal_constellation(kToe, 5)),
-        base_cfg_(rig_config(7, smooth_sky)),
-        rover_cfg_(rig_config(11, smooth_sky)),
+  /// sky: the satellites; systems and bands: what base and rover track.
+  RtkRig(const Ecef& base_m, const Ecef& rover_m, int latency = 0, bool smooth_sky = false,
+         const std::vector<orbit::Ephemeris>& sky = test::nominal_constellation(kToe, 5),
+         SystemSet systems = SystemSet::only(GnssSystem::kGps), int bands = 1)
+      : store_(sky),
+        base_cfg_(tracking(rig_config(7, smooth_sky), systems, bands)),
+        rover_cfg_(tracking(rig_config(11, smooth_sky), systems, bands)),
         sky_(store_, SystemSet::all(), world::sky_errors_config(base_cfg_.world)),
         base_(store_, base_cfg_),
         rover_(store_, rover_cfg_),
@@ -123,6 +127,9 @@ public:
     corr_.station.moving = true;
   }
   Corrections& corrections() { return corr_; }
+  /// The base's GLONASS phase ranges as an unaligned receiver's: its code-phase
+  /// biases (L1, L2; m) short of the aligned ones (RTCM 10403.3 DF421 = 0).
+  void unalign_base_glonass(double l1_m, double l2_m) { unaligned_m_ = {l1_m, l2_m}; }
   /// The base epoch latency_ epochs old becomes the link's newest; false: none.
   bool deliver_due() {
     bool delivered = false;
@@ -131,6 +138,12 @@ public:
       // A moving base's 4072.0 carries its position of the same epoch.
       if (moving_base_) corr_.station.arp_ecef_m = queue_.front().pos_m;
       corr_.obs.num_meas = std::min(corr_.obs.num_meas, base_meas_limit_);
+      for (int i = 0; i < corr_.obs.num_meas; ++i) {
+        RawMeasurement& m = corr_.obs.meas[static_cast<std::size_t>(i)];
+        if (m.sat.system != GnssSystem::kGlonass) continue;
+        const double lam = kSpeedOfLight_m_s / signal_carrier_hz(m.signal, m.glonass_channel);
+        m.carrier_phase_cycles -= unaligned_m_[static_cast<std::size_t>(signal_info(m.signal).band)] / lam;
+      }
       corr_.obs_valid = corr_.obs.time_valid && corr_.obs.num_meas > 0;
       ++corr_.revision;
       delivered = true;
@@ -165,6 +178,13 @@ private:
   bool arrived_ = false;
   RelativePosition at_epoch_;
   int base_meas_limit_ = kMaxRawMeasurements;
+  std::array<double, 2> unaligned_m_{};
+
+  static pipeline::PipelineConfig tracking(pipeline::PipelineConfig c, SystemSet systems, int bands) {
+    c.world.systems = systems;
+    c.receiver.bands = bands;
+    return c;
+  }
 };
 
 double rtk_median(std::vector<double> v) {
@@ -559,6 +579,79 @@ TEST(Rtk, BaseFarAwayStaysFloatAndCounts) {
   EXPECT_GT(floats, 0);
   EXPECT_GT(rig.status().long_baseline, 0u);
   EXPECT_GT(rig.status().baseline_big, 0u);
+}
+
+// GPS and, on every GPS satellite, a GLONASS one (from its state at toe) on
+// channel prn % 14 - 7: all channels, negative ones among them.
+std::vector<orbit::Ephemeris> gps_glonass_sky() {
+  std::vector<orbit::Ephemeris> v = test::nominal_constellation(kToe, 5);
+  const std::size_t n = v.size();
+  for (std::size_t i = 0; i < n && v[i].sat.number <= 24; ++i) {
+    const orbit::SatState st = orbit::sat_state(v[i], kToe);
+    orbit::Ephemeris r;
+    r.sat = SatId(GnssSystem::kGlonass, v[i].sat.number);
+    r.toe = r.toc = kToe;
+    r.pos_m = st.pos_m;
+    r.vel_m_s = st.vel_m_s;
+    r.glo_channel = v[i].sat.number % 14 - 7;
+    v.push_back(r);
+  }
+  return v;
+}
+
+// GLONASS ambiguities are fixed with the base's 1230: at once when it says
+// the phase ranges are aligned (as a u-blox F9 base does), after adding its
+// biases when they are not; never without it or with unaligned ranges and no
+// biases (then GPS alone is fixed).
+TEST(Rtk, GlonassFixedWithAlignedOrBiasCorrectedBasePhase) {
+  struct Outcome {
+    long fixed_dd = 0;
+    int fixed_epochs = 0;
+    double h_err_m = NAN;
+  };
+  const Ecef base = geo::ecef_from_lla(kSite);
+  const std::vector<orbit::Ephemeris> sky = gps_glonass_sky();
+  const SystemSet systems = SystemSet::only(GnssSystem::kGps).with(GnssSystem::kGlonass);
+  constexpr double kL1Cpb_m = 20.0, kL2Cpb_m = -12.0;
+  auto run = [&](bool sent, bool aligned, bool biases, bool unaligned_phase) {
+    RtkRig rig(base, offset_enu(base, 300.0, 400.0, 2.0), 0, true, sky, systems, 2);
+    Corrections& c = rig.corrections();
+    c.glonass_cpb_aligned = aligned;
+    c.glonass_cpb_m = biases ? std::array<double, 4>{kL1Cpb_m, 0.0, kL2Cpb_m, 0.0} : std::array<double, 4>{};
+    c.glonass_cpb_valid = sent && (aligned || biases);  // as the decoder has it
+    if (unaligned_phase) rig.unalign_base_glonass(kL1Cpb_m, kL2Cpb_m);
+    Outcome o;
+    std::vector<double> h;
+    for (int i = 0; i < 240; ++i) {
+      const Fix& f = rig.step(kToe + static_cast<double>(i));
+      if (f.carr_soln != CarrierSolution::kFixed) continue;
+      ++o.fixed_epochs;
+      o.fixed_dd += rig.status().num_fixed_dd;
+      const Enu e = error_enu(f.pos_m, rig.rover_truth());
+      h.push_back(std::hypot(e.x, e.y));
+    }
+    o.h_err_m = rtk_median(h);
+    return o;
+  };
+  const Outcome none = run(false, false, false, false);
+  const Outcome f9 = run(true, true, false, false);
+  const Outcome corrected = run(true, false, true, true);
+  const Outcome no_biases = run(true, false, false, true);
+  std::printf("GLONASS AR: fixed DDs (epochs) without 1230 %ld (%d), aligned base %ld (%d), unaligned + biases %ld (%d), "
+              "unaligned without biases %ld (%d); h error median %.4f / %.4f / %.4f / %.4f m\n",
+              none.fixed_dd, none.fixed_epochs, f9.fixed_dd, f9.fixed_epochs, corrected.fixed_dd,
+              corrected.fixed_epochs, no_biases.fixed_dd, no_biases.fixed_epochs, none.h_err_m, f9.h_err_m,
+              corrected.h_err_m, no_biases.h_err_m);
+  EXPECT_GT(none.fixed_epochs, 100);
+  // GLONASS double differences held on top of GPS's.
+  EXPECT_GT(f9.fixed_dd, none.fixed_dd + 10 * f9.fixed_epochs);
+  EXPECT_LE(f9.h_err_m, 0.02);
+  // The biases restore the aligned ranges: the same solution.
+  EXPECT_EQ(corrected.fixed_epochs, f9.fixed_epochs);
+  EXPECT_EQ(corrected.fixed_dd, f9.fixed_dd);
+  EXPECT_NEAR(corrected.h_err_m, f9.h_err_m, 1e-4);
+  // Unaligned without biases: GPS alone, as without 1230.
+  EXPECT_EQ(no_biases.fixed_dd, none.fixed_dd);
 }
 
 }  // namespace

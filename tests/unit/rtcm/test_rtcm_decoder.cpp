@@ -205,6 +205,7 @@ TEST(RtcmDecoder, StationBiasesAnd4072) {
   EXPECT_NEAR(c.station.arp_ecef_m.z, 3975521.4643, 1e-6);
   EXPECT_NEAR(c.station.antenna_height_m, 1.2345, 1e-6);
   EXPECT_TRUE(c.glonass_cpb_valid);
+  EXPECT_TRUE(c.glonass_cpb_aligned);
   EXPECT_NEAR(c.glonass_cpb_m[0], 0.5, 1e-9);
   EXPECT_EQ(c.glonass_cpb_m[1], 0.0);
   EXPECT_NEAR(c.glonass_cpb_m[2], -1.24, 1e-9);
@@ -235,6 +236,38 @@ std::vector<std::uint8_t> gps_msm7_payload() {
   std::string out;
   enc.append_epoch(e, SystemSet::all(), out);
   return {out.begin() + 3, out.end() - 3};
+}
+
+// DF421 decides what a rover may do with GLONASS phase: aligned ranges need
+// no bias (what a u-blox F9 base sends: no bias fields), unaligned ones need
+// the biases, and without them cannot be used for GLONASS ambiguities.
+TEST(RtcmDecoder, GlonassBiasIndicatorDecidesUsability) {
+  struct Case {
+    bool aligned;
+    GlonassBiases biases;
+    bool valid;
+  };
+  const Case cases[] = {
+      {true, {}, true},
+      {false, {}, false},
+      {false, {2.5, std::nullopt, -3.0, std::nullopt}, true},
+  };
+  for (const Case& k : cases) {
+    std::string out;
+    append_glonass_biases(7, k.aligned, k.biases, out);
+    Corrections c;
+    c.glonass_cpb_m = {9.0, 9.0, 9.0, 9.0};
+    Decoder dec;
+    Feed feed(dec, c);
+    feed.run(out);
+    ASSERT_EQ(feed.results.size(), 1u);
+    EXPECT_EQ(out.size(), 6u + 4u + (k.biases[0] ? 4u : 0u));  // frame + 32-bit head + 16 bits per bias
+    EXPECT_EQ(c.glonass_cpb_aligned, k.aligned);
+    EXPECT_EQ(c.glonass_cpb_valid, k.valid);
+    EXPECT_EQ(c.glonass_cpb_m[0], k.biases[0].value_or(0.0));
+    EXPECT_EQ(c.glonass_cpb_m[1], 0.0);
+    EXPECT_EQ(c.glonass_cpb_m[2], k.biases[2].value_or(0.0));
+  }
 }
 
 TEST(RtcmDecoder, BadInputIsCountedNeverUsed) {

@@ -61,8 +61,8 @@ void RtcmOutput::encode_kind(std::size_t kind, const receiver::Fix& fix, const r
     st.glonass = st.galileo = true;
     rtcm::append_station(st, false, buf);
   } else if (number == 1230) {
-    // The world gives GLONASS no inter-frequency code-phase bias: zero, aligned.
-    rtcm::append_glonass_biases(0, true, {0.0, std::nullopt, 0.0, std::nullopt}, buf);
+    // As a u-blox F9 base: phase ranges aligned, no bias fields (docs/base-station.md).
+    rtcm::append_glonass_biases(0, true, {}, buf);
   } else {
     rtcm::MsmEncoder& enc = number % 10 == 7 ? state_->msm7 : state_->msm4;
     enc.append_epoch(raw, SystemSet::only(msm_system(number)), buf);
