@@ -81,7 +81,7 @@ void FaultStage::clear() noexcept {
     releasing_ = true;
   }
   // Satellite offsets vanish with their events: a step the loops see next epoch.
-  for (const double m : prev_shift_m_) releasing_ = releasing_ || m != 0.0;
+  for (const Shift& sh : shift_) releasing_ = releasing_ || sh.prev_m != 0.0;
   events_.clear();
   spoof_.clear();
   status_.clear();
@@ -214,8 +214,8 @@ void FaultStage::satellite_fault(const FaultEvent& e, double f, double since_s, 
     const double offset_m = e.value(Param::kBiasM, f) + rate_m_s * since_s +
                             kSpeedOfLight_m_s * 1e-6 * e.value(Param::kClockJumpUs, f);
     const std::size_t k = static_cast<std::size_t>(sat->index());
-    sat_shift_m_[k] += offset_m;
-    sat_shift_rate_m_s_[k] += rate_m_s + bias_rate_m_s;
+    shift_[k].m += offset_m;
+    shift_[k].rate_m_s += rate_m_s + bias_rate_m_s;
     if (!o.received) continue;
     shift(o, offset_m, rate_m_s + bias_rate_m_s);
   }
@@ -229,12 +229,12 @@ void FaultStage::satellite_steps(world::Observables& obs) noexcept {
   for (int i = 0; i < obs.num_sats; ++i) {
     world::SatObservable& o = obs.sats[i];
     const std::size_t k = static_cast<std::size_t>(o.sat.index());
-    const double jump_m = sat_shift_m_[k] - prev_shift_m_[k] -
-                          0.5 * (sat_shift_rate_m_s_[k] + prev_shift_rate_m_s_[k]) * dt_s_;
+    Shift& sh = shift_[k];
+    const double jump_m = sh.m - sh.prev_m - 0.5 * (sh.rate_m_s + sh.prev_rate_m_s) * dt_s_;
     if (epoch_ > 1 && o.received && std::fabs(jump_m) > limit_m) break_lock(o);
+    sh.prev_m = sh.m;
+    sh.prev_rate_m_s = sh.rate_m_s;
   }
-  prev_shift_m_ = sat_shift_m_;
-  prev_shift_rate_m_s_ = sat_shift_rate_m_s_;
 }
 
 void FaultStage::sky_block(const FaultEvent& e, double f, world::Observables& obs) noexcept {
@@ -391,11 +391,19 @@ void FaultStage::apply(const time::GpsTime& t, const world::Truth& truth, world:
   // Order of the physics: the satellites transmit (satellite faults), the
   // sky and the antenna pass or stop the signals (sky_block, outage), a
   // ground spoofer adds its own, and interference degrades everything received.
-  sat_shift_m_.fill(0.0);
-  sat_shift_rate_m_s_.fill(0.0);
-  for (const FaultEvent& e : events_)
-    if (e.type == FaultType::kSatellite && e.active_at(now)) satellite_fault(e, e.fraction_at(now), now - e.start_s, obs);
-  satellite_steps(obs);
+  bool sat_faults = false;
+  for (const FaultEvent& e : events_) sat_faults = sat_faults || (e.type == FaultType::kSatellite && e.active_at(now));
+  // The shifts are tracked while a satellite fault acts and one epoch after (its end is a step too).
+  if (sat_faults || shifted_) {
+    for (int i = 0; i < obs.num_sats; ++i) {
+      Shift& sh = shift_[static_cast<std::size_t>(obs.sats[i].sat.index())];
+      sh.m = sh.rate_m_s = 0.0;
+    }
+    for (const FaultEvent& e : events_)
+      if (e.type == FaultType::kSatellite && e.active_at(now)) satellite_fault(e, e.fraction_at(now), now - e.start_s, obs);
+    satellite_steps(obs);
+  }
+  shifted_ = sat_faults;
   for (const FaultEvent& e : events_)
     if (e.type == FaultType::kSkyBlock && e.active_at(now)) sky_block(e, e.fraction_at(now), obs);
   for (const FaultEvent& e : events_)

@@ -141,9 +141,14 @@ private:
   std::vector<SpoofState> spoof_;           ///< one per event, reserved kMaxEvents
   std::array<bool, kNumSats> released_{};  ///< loops cleared spoofers held: they let go next epoch
   bool releasing_ = false;
-  /// Total shift of each satellite's signal by satellite faults (m) and its
-  /// rate (m/s), this epoch and the last.
-  std::array<double, kNumSats> sat_shift_m_{}, sat_shift_rate_m_s_{}, prev_shift_m_{}, prev_shift_rate_m_s_{};
+  /// Total shift of a satellite's signal by satellite faults (m) and its
+  /// rate (m/s), this epoch and the last epoch it was in view (one line per
+  /// satellite: the stage touches a few per epoch).
+  struct Shift {
+    double m = 0.0, rate_m_s = 0.0, prev_m = 0.0, prev_rate_m_s = 0.0;
+  };
+  std::array<Shift, kNumSats> shift_{};
+  bool shifted_ = false;                    ///< a satellite fault acted at the last epoch
   std::array<orbit::Ephemeris, kNumSats> eph_copy_{};  ///< broadcast sets a fault falsified, per satellite
   FaultEffects effects_;
   bool started_ = false;
