@@ -260,7 +260,8 @@ TEST(FaultCarrier, SatelliteClockRampMovesCodeAndCarrierAlikeWithoutABreak) {
 
 // A step: 100 m (under the half chip the loops follow) moves code and
 // carrier and keeps the lock; 300 m (a 1 us clock jump) breaks it, and the
-// carrier comes back on the stepped signal with a new ambiguity.
+// carrier comes back on the stepped signal with a new ambiguity; the end of
+// the 300 m bias, 30 s on, is a step back that breaks it again.
 TEST(FaultCarrier, SatelliteStepBeyondHalfAChipBreaksLock) {
   ASSERT_LT(100.0, world::CarrierConfig{}.lock_break_m);
   ASSERT_GT(300.0, world::CarrierConfig{}.lock_break_m);
@@ -269,7 +270,7 @@ TEST(FaultCarrier, SatelliteStepBeyondHalfAChipBreaksLock) {
   const SatId sat = first_carrier_sat(probe);
   ASSERT_NE(sat.prn(), 0);
   for (const double bias_m : {100.0, 300.0}) {
-    FaultEvent e = make_event(FaultType::kSatellite, 5.0);
+    FaultEvent e = make_event(FaultType::kSatellite, 5.0, 30.0);
     e.put(Param::kPrn, sat.prn());
     e.put(Param::kBiasM, bias_m);
     Rig r(std::vector<FaultEvent>{e});
@@ -298,6 +299,25 @@ TEST(FaultCarrier, SatelliteStepBeyondHalfAChipBreaksLock) {
       EXPECT_GE(std::fabs(cycles), 1.0);  // a new ambiguity
     }
     EXPECT_GT(back_at, 5);
+    for (int t = back_at + 1; t < 35; ++t) {
+      r.step(t);
+      EXPECT_NE(raw_of(r, sat), nullptr) << t;
+    }
+    r.step(35.0);
+    EXPECT_EQ(raw_of(r, sat), nullptr);  // the bias ends: lost again
+    back_at = -1;
+    for (int t = 36; t < 90 && back_at < 0; ++t) {
+      r.step(t);
+      m = raw_of(r, sat);
+      if (m == nullptr) continue;
+      back_at = t;
+      EXPECT_EQ(m->lock_time_s, 0.0);
+      EXPECT_EQ(m->pseudorange_m, world_sat(r, sat)->pseudorange_m);
+      const double cycles = phase_diff(r, sat) - d0;
+      EXPECT_NEAR(cycles, std::round(cycles), 1e-6);
+      EXPECT_GE(std::fabs(cycles), 1.0);
+    }
+    EXPECT_GT(back_at, 35);
   }
 }
 
