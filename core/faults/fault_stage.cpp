@@ -3,9 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "core/common/error.hpp"
+#include "core/common/gnss_signals.hpp"
 #include "core/faults/interference.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/signal/system_signal.hpp"
@@ -78,6 +80,8 @@ void FaultStage::clear() noexcept {
     for (std::size_t p = 0; p < released_.size(); ++p) released_[p] = released_[p] || sp.captured[p];
     releasing_ = true;
   }
+  // Satellite offsets vanish with their events: a step the loops see next epoch.
+  for (const Shift& sh : shift_) releasing_ = releasing_ || sh.prev_m != 0.0;
   events_.clear();
   spoof_.clear();
   status_.clear();
@@ -105,7 +109,6 @@ void FaultStage::degrade(world::SatObservable& o, double cn0_dbhz) noexcept {
     o.cn0_dbhz = 0.0;
     return;
   }
-  // The world drew the code noise at the old C/N0; add the difference in variance.
   // The world drew its noise at the old C/N0: add the difference in variance
   // (none where the configured model does not depend on C/N0).
   const world::MeasurementNoise& n = ctx_.noise;
@@ -118,29 +121,49 @@ void FaultStage::degrade(world::SatObservable& o, double cn0_dbhz) noexcept {
   if (extra_m > 0.0) o.pseudorange_m += extra_m * rng_.normal(stream, epoch_, world::Purpose::kThermal);
   const double extra_rr = extra_sigma([&](double c) { return n.range_rate_sigma_m_s(c, o.wavelength_m); });
   if (extra_rr > 0.0) o.doppler_hz -= extra_rr * rng_.normal(stream, epoch_, world::Purpose::kDoppler) / o.wavelength_m;
-  const world::CarrierConfig& cc = n.carrier;
-  if (cc.enabled && o.carrier_valid && dt_s_ > 0.0) {
-    // Slips the weaker signal adds to those the world drew at the old C/N0.
-    const auto slip_p = [&](double cn0) {
-      const double j = world::pll_jitter_rad(cn0, cc.pll_bandwidth_hz, cc.integration_s);
-      return world::cycle_slip_probability(std::sqrt(j * j + cc.oscillator_sigma_rad * cc.oscillator_sigma_rad),
-                                           cc.pll_bandwidth_hz, dt_s_);
-    };
-    const double p_extra = slip_p(cn0_dbhz) - slip_p(o.cn0_dbhz);
-    if (p_extra > 0.0 && rng_.uniform(stream, epoch_, world::Purpose::kCycleSlip, 0) < p_extra) {
-      o.carrier_phase_cycles += 0.5;  // a Costas loop slips by half a cycle
-      ++o.carrier_discontinuities;
-    }
+  if (o.carrier_valid) {
+    const std::optional<SignalId> sig = signal_of(o.sat.system, 0);
+    degrade_carrier(o.carrier_phase_cycles, o.carrier_discontinuities, o.cn0_dbhz, cn0_dbhz,
+                    sig && signal_info(*sig).pilot, stream);
   }
   o.cn0_dbhz = cn0_dbhz;
 }
 
 void FaultStage::degrade_band1(world::SatObservable& o, double cn0_dbhz) noexcept {
-  // Its C/N0 only: the receiver tracks it by that; its noise stays the world's.
+  // Its C/N0 and carrier loop; its code and Doppler noise stay the world's.
   world::SecondSignal& b = o.band1;
   if (!b.received || !(cn0_dbhz < b.cn0_dbhz)) return;
   b.received = cn0_dbhz > kNoSignal_dbhz;
+  if (b.received && b.carrier_valid) {
+    const std::optional<SignalId> sig = signal_of(o.sat.system, 1);
+    degrade_carrier(b.carrier_phase_cycles, b.carrier_discontinuities, b.cn0_dbhz, cn0_dbhz,
+                    sig && signal_info(*sig).pilot, world::band_stream(o.sat, 1));
+  }
   b.cn0_dbhz = b.received ? cn0_dbhz : 0.0;
+}
+
+void FaultStage::degrade_carrier(double& phase_cycles, std::uint32_t& discontinuities, double cn0_from_dbhz,
+                                 double cn0_to_dbhz, bool pilot, std::uint64_t stream) noexcept {
+  const world::CarrierConfig& cc = ctx_.noise.carrier;
+  if (!cc.enabled) return;
+  // Total loop jitter (thermal PLL jitter and the oscillator's), rad.
+  const auto sigma_rad = [&](double cn0) {
+    return std::hypot(world::pll_jitter_rad(cn0, cc.pll_bandwidth_hz, cc.integration_s), cc.oscillator_sigma_rad);
+  };
+  const double s0 = sigma_rad(cn0_from_dbhz), s1 = sigma_rad(cn0_to_dbhz);
+  // The world drew the phase noise at the old C/N0: add the difference in variance.
+  phase_cycles += std::sqrt(std::max(s1 * s1 - s0 * s0, 0.0)) / (2.0 * kPi) *
+                  rng_.normal(stream, epoch_, world::Purpose::kCarrierNoise);
+  if (!(dt_s_ > 0.0)) return;
+  // Slips the weaker signal adds to those the world drew at the old C/N0
+  // (Viterbi's mean time to slip, world/carrier.hpp).
+  const double p_extra = world::cycle_slip_probability(s1, cc.pll_bandwidth_hz, dt_s_) -
+                         world::cycle_slip_probability(s0, cc.pll_bandwidth_hz, dt_s_);
+  if (!(p_extra > 0.0) || !(rng_.uniform(stream, epoch_, world::Purpose::kCycleSlip, 0) < p_extra)) return;
+  // A Costas loop slips by half a cycle, a pilot's pure PLL by a whole one, either way.
+  const double size = pilot ? 1.0 : 0.5;
+  phase_cycles += rng_.uniform(stream, epoch_, world::Purpose::kCycleSlip, 1) < 0.5 ? -size : size;
+  ++discontinuities;
 }
 
 void FaultStage::shift(world::SatObservable& o, double delta_m, double rate_m_s) noexcept {
@@ -190,8 +213,27 @@ void FaultStage::satellite_fault(const FaultEvent& e, double f, double since_s, 
     const double rate_m_s = e.value(Param::kRateMS, f);
     const double offset_m = e.value(Param::kBiasM, f) + rate_m_s * since_s +
                             kSpeedOfLight_m_s * 1e-6 * e.value(Param::kClockJumpUs, f);
+    const std::size_t k = static_cast<std::size_t>(sat->index());
+    shift_[k].m += offset_m;
+    shift_[k].rate_m_s += rate_m_s + bias_rate_m_s;
     if (!o.received) continue;
     shift(o, offset_m, rate_m_s + bias_rate_m_s);
+  }
+}
+
+void FaultStage::satellite_steps(world::Observables& obs) noexcept {
+  // A transmitted signal that jumps by more than its rate explains (a clock
+  // step, a bias switched on or off) pulls the code loop off its chip and the
+  // PLL off its cycle: the receiver loses lock, as the world's lock_break.
+  const double limit_m = ctx_.noise.carrier.lock_break_m;
+  for (int i = 0; i < obs.num_sats; ++i) {
+    world::SatObservable& o = obs.sats[i];
+    const std::size_t k = static_cast<std::size_t>(o.sat.index());
+    Shift& sh = shift_[k];
+    const double jump_m = sh.m - sh.prev_m - 0.5 * (sh.rate_m_s + sh.prev_rate_m_s) * dt_s_;
+    if (epoch_ > 1 && o.received && std::fabs(jump_m) > limit_m) break_lock(o);
+    sh.prev_m = sh.m;
+    sh.prev_rate_m_s = sh.rate_m_s;
   }
 }
 
@@ -349,8 +391,19 @@ void FaultStage::apply(const time::GpsTime& t, const world::Truth& truth, world:
   // Order of the physics: the satellites transmit (satellite faults), the
   // sky and the antenna pass or stop the signals (sky_block, outage), a
   // ground spoofer adds its own, and interference degrades everything received.
-  for (const FaultEvent& e : events_)
-    if (e.type == FaultType::kSatellite && e.active_at(now)) satellite_fault(e, e.fraction_at(now), now - e.start_s, obs);
+  bool sat_faults = false;
+  for (const FaultEvent& e : events_) sat_faults = sat_faults || (e.type == FaultType::kSatellite && e.active_at(now));
+  // The shifts are tracked while a satellite fault acts and one epoch after (its end is a step too).
+  if (sat_faults || shifted_) {
+    for (int i = 0; i < obs.num_sats; ++i) {
+      Shift& sh = shift_[static_cast<std::size_t>(obs.sats[i].sat.index())];
+      sh.m = sh.rate_m_s = 0.0;
+    }
+    for (const FaultEvent& e : events_)
+      if (e.type == FaultType::kSatellite && e.active_at(now)) satellite_fault(e, e.fraction_at(now), now - e.start_s, obs);
+    satellite_steps(obs);
+  }
+  shifted_ = sat_faults;
   for (const FaultEvent& e : events_)
     if (e.type == FaultType::kSkyBlock && e.active_at(now)) sky_block(e, e.fraction_at(now), obs);
   for (const FaultEvent& e : events_)

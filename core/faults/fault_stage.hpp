@@ -98,6 +98,8 @@ private:
   };
 
   void satellite_fault(const FaultEvent& e, double f, double since_s, world::Observables& obs) noexcept;
+  /// Lock breaks where the satellite faults' total shift jumped since the last epoch.
+  void satellite_steps(world::Observables& obs) noexcept;
   void sky_block(const FaultEvent& e, double f, world::Observables& obs) noexcept;
   void outage(const FaultEvent& e, world::Observables& obs) noexcept;
   void spoofer(const FaultEvent& e, SpoofState& s, double f, double dt_s, world::Observables& obs) noexcept;
@@ -106,8 +108,13 @@ private:
   /// and the carrier slips the lower C/N0 brings (the loops' jitter
   /// difference), and drop it below 0 dB-Hz.
   void degrade(world::SatObservable& o, double cn0_dbhz) noexcept;
-  /// The same for the second signal's C/N0 alone (dual-band worlds).
+  /// The same for the second signal's C/N0 and carrier (dual-band worlds).
   void degrade_band1(world::SatObservable& o, double cn0_dbhz) noexcept;
+  /// A carrier loop whose C/N0 falls from cn0_from to cn0_to (dB-Hz): the
+  /// phase noise and the slips (pilot: whole cycles, else half) the larger
+  /// jitter adds; stream: the signal's random stream.
+  void degrade_carrier(double& phase_cycles, std::uint32_t& discontinuities, double cn0_from_dbhz,
+                       double cn0_to_dbhz, bool pilot, std::uint64_t stream) noexcept;
   /// Shift a satellite's signal by delta_m (code and carrier alike) and its
   /// range rate by rate_m_s.
   static void shift(world::SatObservable& o, double delta_m, double rate_m_s) noexcept;
@@ -134,6 +141,14 @@ private:
   std::vector<SpoofState> spoof_;           ///< one per event, reserved kMaxEvents
   std::array<bool, kNumSats> released_{};  ///< loops cleared spoofers held: they let go next epoch
   bool releasing_ = false;
+  /// Total shift of a satellite's signal by satellite faults (m) and its
+  /// rate (m/s), this epoch and the last epoch it was in view (one line per
+  /// satellite: the stage touches a few per epoch).
+  struct Shift {
+    double m = 0.0, rate_m_s = 0.0, prev_m = 0.0, prev_rate_m_s = 0.0;
+  };
+  std::array<Shift, kNumSats> shift_{};
+  bool shifted_ = false;                    ///< a satellite fault acted at the last epoch
   std::array<orbit::Ephemeris, kNumSats> eph_copy_{};  ///< broadcast sets a fault falsified, per satellite
   FaultEffects effects_;
   bool started_ = false;

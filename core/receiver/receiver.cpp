@@ -10,6 +10,7 @@
 #include "core/geo/geoid.hpp"
 #include "core/signal/dll_jitter.hpp"
 #include "core/world/carrier.hpp"
+#include "core/world/random.hpp"
 #include "core/time/utc.hpp"
 
 namespace gnssemu::receiver {
@@ -92,6 +93,7 @@ Receiver::Receiver(const ReceiverConfig& config, std::uint64_t seed)
       spoof_(config.spoof_detection),
       solver_(config.solver, config.max_pdop),
       nav_(config.filter, config.solver) {
+  seed_ = seed;
   no_fix_epoch();
 }
 
@@ -354,7 +356,17 @@ void Receiver::raw_measurement(SatId sat, int glonass_channel, int band, const R
   lock_s = continuous ? lock_s + dt_s : 0.0;
   raw_discontinuities_[ub][k] = sig.discontinuities;
   locked = true;
-  m.carrier_phase_cycles = sig.carrier_phase_cycles;
+  // A re-acquisition after a loss the world's carrier did not see (C/N0
+  // below the loop's threshold, a fault's jammer, outage or spoofer) starts
+  // the carrier accumulator over: a new arbitrary whole number of cycles.
+  // The first lock keeps the world's own.
+  if (new_lock && locks_[ub][k]++ > 0) {
+    const world::CounterRng rng(seed_);
+    const double u = rng.uniform(world::kAcquisitionStream + world::band_stream(sat, band), locks_[ub][k],
+                                 world::Purpose::kRelockAmbiguity, 0);
+    relock_cycles_[ub][k] = std::floor(2.0e5 * u) - 1.0e5;
+  }
+  m.carrier_phase_cycles = sig.carrier_phase_cycles + relock_cycles_[ub][k];
   m.lock_time_s = lock_s;
   m.carrier_valid = true;
   // A Costas loop's half-cycle ambiguity is resolved by the next frame

@@ -174,6 +174,11 @@ private:
   template <class T> using PerBand = std::array<std::array<T, kNumSats>, kNumBands>;
   PerBand<double> lock_time_s_{};  ///< carrier tracked without a discontinuity, s
   PerBand<std::uint32_t> raw_discontinuities_{};  ///< the world's count at the last raw epoch
+  /// Whole cycles the receiver's own re-acquisitions added to the world's
+  /// phase (its carrier accumulator restarts at each), and their count.
+  PerBand<double> relock_cycles_{};
+  PerBand<std::uint32_t> locks_{};
+  std::uint64_t seed_ = 1;
   /// The second signal: tracked at the last epoch; time its C/N0 has been
   /// enough while the first signal was tracked (its aided pull-in), s.
   std::array<bool, kNumSats> band1_tracked_{};

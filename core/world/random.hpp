@@ -41,6 +41,7 @@ enum class Purpose : uint64_t {
   kSbasOrbitClockStep = 24,
   kSbasIonoInit = 25,        ///< residual of an SBAS's ionospheric correction per satellite
   kSbasIonoStep = 26,
+  kRelockAmbiguity = 27,     ///< the receiver's ambiguity of a re-acquired carrier (streams kAcquisitionStream + band_stream)
 };
 
 /// Random stream of a satellite: (system << 8) | RINEX number. GPS is system
