@@ -3,7 +3,7 @@
 // Encoder of the binary truth record, version 1 (docs/truth-protocol.md
 // §Binary record). Standard library only, so a simulator can copy this one
 // header. Independent of the daemon's parser on purpose: a round-trip test
-// and a pinned golden record (tests/unit/daemon/test_truth_packet_binary.cpp)
+// and a pinned golden record (tests/unit/senders/test_truth_record.cpp)
 // hold the two to the same bytes.
 #include <array>
 #include <bit>

@@ -14,7 +14,6 @@
 using namespace gnssemu;
 using namespace gnssemu::daemon;
 using faults::FaultEvent;
-using faults::FaultStatus;
 using faults::FaultType;
 using faults::LinkFault;
 using faults::Param;
@@ -22,8 +21,8 @@ using faults::Param;
 namespace {
 
 /// The stage's status of events at elapsed time s (as FaultStage::status()).
-std::vector<FaultStatus> status_at(const std::vector<FaultEvent>& events, double s) {
-  std::vector<FaultStatus> out;
+std::vector<faults::FaultStatus> status_at(const std::vector<FaultEvent>& events, double s) {
+  std::vector<faults::FaultStatus> out;
   for (const FaultEvent& e : events) out.push_back({&e, e.active_at(s), s - e.start_s});
   return out;
 }
@@ -70,7 +69,7 @@ TEST(FaultLog, ActiveEventsEndOnceWhenClearedAndNewOnesStartAfresh) {
   EXPECT_EQ(ended[0].index, 0u);
   EXPECT_FALSE(ended[0].started);
   EXPECT_TRUE(log.end_all().empty());                     // only once
-  EXPECT_TRUE(log.update(std::vector<FaultStatus>{}).empty());  // the cleared stage
+  EXPECT_TRUE(log.update(std::vector<faults::FaultStatus>{}).empty());  // the cleared stage
   // An event injected after the clear at the same index is a new event.
   const std::vector<FaultEvent> injected{byte_loss(0)};
   const auto st = status_at(injected, 3.0);
@@ -94,7 +93,7 @@ TEST(FaultLog, UpdateAllocatesNothing) {
   for (int i = 0; i < 64; ++i) events.push_back(byte_loss(i % 2));
   events.push_back(byte_loss(0));  // past kMaxEvents: ignored
   FaultLog log;
-  std::vector<std::vector<FaultStatus>> st;
+  std::vector<std::vector<faults::FaultStatus>> st;
   for (int k = 0; k < 10; ++k) st.push_back(status_at(events, k));
   const long before = support::allocation_count();
   std::size_t changes = 0;

@@ -19,7 +19,7 @@
 #include "core/common/constants.hpp"
 #include "core/geo/geodesy.hpp"
 #include "daemon/status/status_server.hpp"
-#include "io_thread_test.hpp"
+#include "tests/unit/daemon/io_thread_test.hpp"
 
 namespace gnssemu::daemon {
 namespace {

@@ -23,7 +23,7 @@
 
 #include "core/common/error.hpp"
 #include "daemon/control/control_server.hpp"
-#include "io_thread_test.hpp"
+#include "tests/unit/daemon/io_thread_test.hpp"
 
 namespace gnssemu::daemon {
 namespace {
