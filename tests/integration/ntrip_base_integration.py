@@ -4,10 +4,11 @@
 
 RTKLIB's str2str pulls the base's RTCM from ntrip://user:pass@127.0.0.1:PORT/MOUNT
 for a few seconds; convbin decodes it into RINEX observations of GPS,
-GLONASS, Galileo and BeiDou (MSM7) and the ephemerides. An NTRIP v2 client
+GLONASS, Galileo and BeiDou (MSM7) and the ephemerides, and its header
+holds 1006's antenna reference point, antenna height and station id. An NTRIP v2 client
 (HTTP/1.1, chunked) pulls it too: every chunk well formed, every frame
 CRC-clean, one bundle a second, MSMs of all four systems each epoch at 1 s
-steps and 1005/1230/ephemerides exactly on the epochs of their 5 s interval;
+steps and 1006/1230/ephemerides exactly on the epochs of their 5 s interval;
 convbin decodes that pull as well. Then the caster's answers to a wrong
 mountpoint (v1: the sourcetable; v2: 404) and wrong credentials (401).
 
@@ -15,6 +16,7 @@ Exit 77 (CTest skip) when str2str or convbin is not installed.
 """
 import argparse
 import base64
+import math
 import os
 import shutil
 import socket
@@ -27,7 +29,7 @@ from itlib import RigBase, free_port  # noqa: E402
 from ubx_host import crc24q, rtcm_number  # noqa: E402
 
 MSM7 = {1077: "G", 1087: "R", 1097: "E", 1127: "C"}
-STATION_5S = {1005, 1230}
+STATION_5S = {1006, 1230}
 EPHEMERIS_5S = {1019: "G", 1020: "R", 1042: "C", 1046: "E"}
 
 
@@ -125,7 +127,7 @@ def msm_epoch_ms(m):
 def check_schedule(frames, interval_s):
     """Epoch bundles from the frame order (each epoch's station and ephemeris
     messages come before its MSMs): every MSM system once per epoch, epochs
-    interval_s apart, 1005/1230 and the ephemerides exactly on the epochs whose
+    interval_s apart, 1006/1230 and the ephemerides exactly on the epochs whose
     GPS time is a multiple of 5 s. Returns (ok, summary)."""
     epochs, pending = [], []
     for m in frames:
@@ -172,11 +174,32 @@ def convbin_summary(path):
                     epochs += 1
                 elif body and line[:1] in "GRECJ":
                     systems.add(line[0])
+    header = {}
+    if os.path.exists(path + ".obs"):
+        with open(path + ".obs") as f:
+            for line in f:
+                if line[60:].startswith("APPROX POSITION XYZ"):
+                    header["xyz"] = [float(v) for v in line[:42].split()]
+                elif line[60:].startswith("ANTENNA: DELTA H/E/N"):
+                    header["delta_h"] = float(line[:14])
+                elif line[60:].startswith("MARKER NAME"):
+                    header["marker"] = line[:60].strip()
+                elif "END OF HEADER" in line:
+                    break
     navs = 0
     if os.path.exists(path + ".nav"):
         with open(path + ".nav") as f:
             navs = sum(1 for line in f if line[:1] in "GREC" and line[1:3].isdigit())
-    return epochs, systems, navs
+    return epochs, systems, navs, header
+
+
+def ecef(lat_deg, lon_deg, h_m):
+    a, f = 6378137.0, 1 / 298.257223563
+    e2 = f * (2 - f)
+    lat, lon = math.radians(lat_deg), math.radians(lon_deg)
+    n = a / math.sqrt(1 - e2 * math.sin(lat) ** 2)
+    return [(n + h_m) * math.cos(lat) * math.cos(lon), (n + h_m) * math.cos(lat) * math.sin(lon),
+            (n * (1 - e2) + h_m) * math.sin(lat)]
 
 
 def main():
@@ -209,7 +232,8 @@ lat_deg = 48.88
 lon_deg = 2.30
 height_m = 95.0
 station_id = 42
-messages = "1005(5),1077(1),1087(1),1097(1),1127(1),1230(5),1019(5),1020(5),1042(5),1046(5)"
+antenna_height_m = 1.5
+messages = "1006(5),1077(1),1087(1),1097(1),1127(1),1230(5),1019(5),1020(5),1042(5),1046(5)"
 seed = 7
 [base.ntrip]
 port = {port}
@@ -238,8 +262,14 @@ password = "s3cret"
         rig.stop(p)
         size = os.path.getsize(out) if os.path.exists(out) else 0
         print(f"str2str: {size} bytes")
-        epochs, systems, navs = convbin_summary(out)
+        epochs, systems, navs, header = convbin_summary(out)
         print(f"convbin: {epochs} epochs of {sorted(systems)}, {navs} ephemerides")
+        # 1006 through RTKLIB: the antenna reference point (0.1 mm resolution), its height, the station id.
+        arp = ecef(48.88, 2.30, 95.0)
+        off_mm = 1000 * math.dist(header.get("xyz", [0, 0, 0]), arp)
+        print(f"convbin header: APPROX POSITION {off_mm:.2f} mm from [base], DELTA H {header.get('delta_h')}, "
+              f"MARKER NAME {header.get('marker')!r}")
+        ok &= off_mm < 1.0 and header.get("delta_h") == 1.5 and header.get("marker") == "0042"
         ok &= size > 0 and epochs >= 5 and {"G", "R", "E", "C"} <= systems and navs > 0
 
         good = "Authorization: Basic " + base64.b64encode(b"rover:s3cret").decode() + "\r\n"
@@ -261,7 +291,7 @@ password = "s3cret"
         v2_file = os.path.join(rig.tmp, "v2.rtcm3")
         with open(v2_file, "wb") as f:
             f.write(body)
-        v2_epochs, v2_systems, v2_navs = convbin_summary(v2_file)
+        v2_epochs, v2_systems, v2_navs, _ = convbin_summary(v2_file)
         print(f"v2 pull, convbin: {v2_epochs} epochs of {sorted(v2_systems)}, {v2_navs} ephemerides")
         ok &= v2_epochs >= 8 and {"G", "R", "E", "C"} <= v2_systems and v2_navs > 0
         for name, text, want in [("v1 wrong mountpoint", v1_wrong_mount, "SOURCETABLE 200 OK"),
