@@ -28,6 +28,7 @@ import urllib.request
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from itlib import RigBase, free_port, run_rig  # noqa: E402
+from ubx_host import crc24q  # noqa: E402
 
 RXM_RTCM = b"\xb5\x62\x02\x32\x08\x00"
 DGNSSTO_KEY = 0x201100C4  # CFG-NAVSPG-CONSTR_DGNSSTO, U1 s
@@ -196,6 +197,33 @@ def body(rig):
               f"(DGNSS timeout {DGNSS_TIMEOUT_S} s)")
         assert t_standalone is not None, f"still RTK/DGNSS {DGNSS_TIMEOUT_S + 20} s after the feed stopped: {seen}"
         assert t_standalone >= DGNSS_TIMEOUT_S - 3, f"standalone after {t_standalone:.1f} s, before the timeout"
+    # Bad RTCM from the host (rtk-raw.md §2.1): a 1005 frame with a broken
+    # CRC-24Q, then one cut short by a UBX poll. Counted as CRC failures; the
+    # chip still answers the poll and its status page still serves.
+    payload = bytes([0x3E, 0xD0, 0x2A]) + bytes(16)
+    frame = bytes([0xD3, 0x00, len(payload)]) + payload
+    frame += crc24q(frame).to_bytes(3, "big")
+    broken = frame[:-1] + bytes([frame[-1] ^ 0xFF])
+    mon_ver = b"\xb5\x62\x0a\x04"
+    before_bad = status(ports["status"])["corrections"]["crc_failed"]
+    os.write(fd, broken + frame[:8] + ubx(0x0A, 0x04, []))
+    answer = b""
+    t_bad = time.monotonic()
+    while time.monotonic() - t_bad < 3 and mon_ver not in answer:
+        r, _, _ = select.select([fd], [], [], 0.5)
+        if r:
+            try:
+                answer += os.read(fd, 65536)
+            except BlockingIOError:
+                pass
+    after_bad = before_bad
+    while time.monotonic() - t_bad < 5 and after_bad == before_bad:  # the page takes the chip's counts each epoch
+        time.sleep(0.5)
+        after_bad = status(ports["status"])["corrections"]["crc_failed"]
+    print(f"bad RTCM from the host: crc_failed {before_bad} -> {after_bad}, "
+          f"MON-VER answered: {mon_ver in answer}")
+    assert after_bad >= before_bad + 1, (before_bad, after_bad)
+    assert mon_ver in answer, "no MON-VER after a truncated RTCM frame"
     os.close(fd)
 
 
