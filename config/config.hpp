@@ -205,6 +205,10 @@ struct BaseConfig {
   Lla position;                   ///< antenna reference point (lat/lon rad, ellipsoidal height m)
   int station_id = 0;             ///< RTCM DF003, 0..4095
   double antenna_height_m = 0.0;  ///< 1006 DF028, 0..6.5535 m (the ARP is the position above)
+  /// true: the base sees none of [scene]'s buildings (an antenna on a mast
+  /// or a surveyed open site); false: it stands in the world's scene at its
+  /// position, as the rover does.
+  bool open_sky = false;
   ReceiverSettings settings;      ///< merged: top level + [base]'s own receiver keys
   std::vector<BaseMessage> messages;      ///< in the order given
   NtripCasterConfig ntrip;        ///< [base.ntrip]

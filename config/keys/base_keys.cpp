@@ -65,6 +65,9 @@ constexpr Field<BaseConfig> kBaseFields[] = {
     integer<&BaseConfig::station_id>("station_id", 0, 4095, "RTCM reference station id (DF003)"),
     number<&BaseConfig::antenna_height_m>("antenna_height_m", Range{0.0, 6.5535, "m"},
                                           "antenna height above the marker, sent in 1006"),
+    boolean<&BaseConfig::open_sky>("open_sky",
+                                   "`true`: the base sees none of [scene]'s buildings (an antenna on a mast, a "
+                                   "surveyed open site); `false`: it stands in the world's scene at its position"),
     custom<BaseConfig>("messages", "", "str2str `-msg` syntax",
                        "messages and intervals in s (default 1): `1005`/`1006`, `1230`, MSM4 or MSM7 of GPS, GLONASS, "
                        "Galileo, QZSS, BeiDou (`1074`/`1077` ... `1124`/`1127`: one type, one interval), ephemerides "
@@ -75,7 +78,7 @@ constexpr Field<BaseConfig> kBaseFields[] = {
 constexpr Section<BaseConfig> kBase{kBaseFields};
 
 constexpr std::string_view kBaseTakes =
-    "[base] takes lat_deg, lon_deg, height_m, station_id, antenna_height_m, messages, [base.ntrip], "
+    "[base] takes lat_deg, lon_deg, height_m, station_id, antenna_height_m, open_sky, messages, [base.ntrip], "
     "[[base.output]] and the keys of [receiver]";
 
 }  // namespace

@@ -42,7 +42,7 @@ BaseStation::BaseStation(const Config& c, const orbit::EphemerisStore& store, co
       store_(store),
       pos_m_(geo::ecef_from_lla(base_.position)),
       msm_(base_.station_id, msm_kind_of(base_)) {
-  rx_ = make_pipeline(with_receiver_settings(c, base_.settings), store, broadcast, scene);
+  rx_ = make_pipeline(with_receiver_settings(c, base_.settings), store, broadcast, base_.open_sky ? nullptr : scene);
   for (const BaseMessage& m : base_.messages) {
     if (auto msm = msm_of(m.number)) {
       msm_systems_ = msm_systems_.with(msm->first);

@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <memory>
 
 #include <fmt/format.h>
 
 #include "config/setup/base_station.hpp"
 #include "config/setup/nav_setup.hpp"
+#include "config/setup/scene_loader.hpp"
 #include "core/common/constants.hpp"
 #include "core/common/error.hpp"
 #include "core/protocol/rtcm/rtcm_ephemeris.hpp"
@@ -25,6 +27,9 @@ BaseCommand::BaseCommand(CLI::App& app) {
   cmd_->add_option("--messages", messages_, "messages and intervals, str2str -msg syntax: 1005(10),1077(1),1019(60)")
       ->required();
   cmd_->add_option("--seed", seed_, "the base's own seed (default: the configuration's)");
+  cmd_->add_flag("--open-sky", open_sky_,
+                 "the base sees none of the configuration's [scene] buildings (default: it stands in them at its "
+                 "position, as gnssemud's [base] does)");
   cmd_->add_option("--week", week_, "GPS week of the first epoch")->required();
   cmd_->add_option("--tow", tow_s_, "GPS time of week of the first epoch, s")->required();
   cmd_->add_option("--duration", duration_s_, "seconds to run (> 0)")->capture_default_str();
@@ -43,6 +48,7 @@ int BaseCommand::run(std::ostream& out, std::ostream& err) {
   b.station_id = station_id_;
   b.settings = config::receiver_settings(cfg);
   if (seed_ >= 0) b.settings.world.seed = static_cast<std::uint64_t>(seed_);
+  b.open_sky = open_sky_;
   b.messages = config::parse_base_messages(messages_, "--messages", 0);
   cfg.base = b;
   if (const std::string w = config::base_distance_warning(cfg); !w.empty()) err << "gnssemu base: " << w << '\n';
@@ -50,7 +56,10 @@ int BaseCommand::run(std::ostream& out, std::ostream& err) {
   const time::GpsTime start(week_, tow_s_);
   const orbit::Constellation c = config::make_constellation(cfg, config::load_nav(cfg), start);
   const orbit::EphemerisStore store(c.nav.ephemerides, c.store_options());
-  config::BaseStation base(cfg, store, pipeline::broadcast_of(c.nav), nullptr);
+  scene::MeshStats mesh_stats;
+  const std::unique_ptr<scene::Scene> buildings = open_sky_ ? nullptr : config::load_scene(cfg, &mesh_stats);
+  if (const std::string skipped = scene::skip_report(mesh_stats); !skipped.empty()) err << "gnssemu base: scene " << skipped << '\n';
+  config::BaseStation base(cfg, store, pipeline::broadcast_of(c.nav), buildings.get());
 
   std::ofstream rtcm(out_path_, std::ios::binary);
   if (!rtcm) throw Error("cannot write " + out_path_);

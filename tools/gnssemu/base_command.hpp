@@ -27,6 +27,7 @@ private:
   double lat_deg_ = 0.0, lon_deg_ = 0.0, height_m_ = 0.0, tow_s_ = 0.0, duration_s_ = 60.0;
   int week_ = -1, station_id_ = 0;
   long long seed_ = -1;
+  bool open_sky_ = false;
 };
 
 }  // namespace gnssemu::cli

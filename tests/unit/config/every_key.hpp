@@ -302,6 +302,7 @@ lon_deg = 151.1
 height_m = 45.5
 station_id = 2003
 antenna_height_m = 1.25
+open_sky = true
 messages = "1006(10),1077(1),1087(1),1230(5),1019(60),1020"
 seed = 99
 

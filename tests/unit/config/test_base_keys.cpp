@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <string>
 
 #include "config/setup/base_station.hpp"
@@ -11,6 +12,8 @@
 #include "core/pipeline/pipeline.hpp"
 #include "config/config.hpp"
 #include "core/common/error.hpp"
+#include "core/scene/mesh.hpp"
+#include "core/scene/scene.hpp"
 
 namespace gnssemu::config {
 namespace {
@@ -80,6 +83,34 @@ messages = "1230(1)"
   ASSERT_EQ(out.size(), 3u + 4u + 3u);
   const std::string head = out.substr(0, 7);
   EXPECT_EQ(head, std::string("\xD3\x00\x04\x4C\xE0\x0C\x80", 7));
+}
+
+// [base] open_sky: by default the base stands in the world's scene where it
+// is (here inside a closed building, so it tracks nothing); open_sky sees the
+// whole sky whatever the scene.
+TEST(BaseStation, StandsInTheSceneUnlessOpenSky) {
+  const scene::Scene box(scene::load_mesh(std::string(GNSSEMU_TEST_DATA) + "/scenes/closed_box.obj"));
+  const time::GpsTime start(2190, 518400.0 + 3600.0);
+  auto tracked = [&](bool open_sky) {
+    const Config c = parse_config(kTop + "[scene]\nmesh = \"scenes/closed_box.obj\"\n[base]\nlat_deg = 48.8738\nlon_deg = 2.2950\nheight_m = 101.5\n"
+                                         "messages = \"1077(1)\"\nopen_sky = " + (open_sky ? "true" : "false") + "\n",
+                                  "base.toml", GNSSEMU_TEST_DATA);
+    EXPECT_EQ(c.base->open_sky, open_sky);
+    const orbit::Constellation con = make_constellation(c, load_nav(c), start);
+    const orbit::EphemerisStore store(con.nav.ephemerides, con.store_options());
+    BaseStation base(c, store, pipeline::broadcast_of(con.nav), &box);
+    std::string out;
+    for (int k = 0; k < 90; ++k) {
+      out.clear();
+      base.step(start + k, out);
+    }
+    return base.raw().num_meas;
+  };
+  const int in_building = tracked(false);
+  const int open = tracked(true);
+  EXPECT_EQ(in_building, 0);
+  EXPECT_GE(open, 6);
+  std::printf("base inside a closed building: %d signals; open_sky: %d\n", in_building, open);
 }
 
 TEST(BaseKeys, UnknownMessageIsAnErrorAtItsLine) {
