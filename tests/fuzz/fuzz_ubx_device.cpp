@@ -10,6 +10,10 @@
 // the epoch period stays within what the emulator runs; an epoch fits the
 // MessageList reservation.
 #include <array>
+#include <string_view>
+#include <optional>
+#include <cstdlib>
+#include <cstdio>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -140,8 +144,58 @@ void make_raw(gnssemu::fuzz::InputSplitter& in, const receiver::Fix& fix, receiv
     m.carrier_valid = (flags & 2) != 0;
     m.half_cycle_resolved = (flags & 4) != 0;
     m.half_cycle_subtracted = (flags & 8) != 0;
+    // The second band (an F9P's L2/E5b/B2I/G2) beside it, as the receiver lists it: right after band 0.
+    const std::optional<SignalId> second = signal_of(s.sat.system, 1);
+    if (in.control_in(1, 2) == 2 && second && raw.num_meas < receiver::kMaxRawMeasurements) {
+      receiver::RawMeasurement& m2 = raw.meas[static_cast<std::size_t>(raw.num_meas++)];
+      m2 = m;
+      m2.signal = *second;
+      m2.pseudorange_m += in.control_in(0, 255) * 0.01;
+      m2.carrier_phase_cycles = m2.pseudorange_m * signal_carrier_hz(*second, m.glonass_channel) / kSpeedOfLight_m_s;
+      m2.doppler_hz = m.doppler_hz * signal_carrier_hz(*second, m.glonass_channel) /
+                      signal_carrier_hz(m.signal, m.glonass_channel);
+    }
   }
 }
+
+/// With GNSSEMU_FUZZ_STATS set (a replay, not a fuzzing run): what the epochs
+/// composed, printed at exit, so a seed that stopped reaching the raw
+/// messages fails its replay test (fuzz_replay.ubx_device_raw_seed).
+struct RawStats {
+  bool on = std::getenv("GNSSEMU_FUZZ_STATS") != nullptr;
+  int rawx = 0, rawx_band1 = 0;
+  std::array<int, 8> sfrbx_by_gnss{};  // UBX gnssId
+  void count(std::string_view b) {
+    for (std::size_t i = 0; i + 8 <= b.size();) {
+      if (static_cast<std::uint8_t>(b[i]) != kSync1 || static_cast<std::uint8_t>(b[i + 1]) != kSync2) {
+        ++i;
+        continue;
+      }
+      const std::size_t len = static_cast<std::uint8_t>(b[i + 4]) | static_cast<std::size_t>(static_cast<std::uint8_t>(b[i + 5])) << 8;
+      if (i + 8 + len > b.size()) break;
+      const std::string_view p = b.substr(i + 6, len);
+      if (b[i + 2] == 0x02 && b[i + 3] == 0x15 && len >= 16) {
+        ++rawx;
+        // sigId (IDF9 §5.15.3 signal table): 2 and up are second-band signals (L2, E5b, B2I, L2OF).
+        for (std::size_t k = 16; k + 32 <= len; k += 32) rawx_band1 += static_cast<std::uint8_t>(p[k + 22]) >= 2;
+      } else if (b[i + 2] == 0x02 && b[i + 3] == 0x13 && len >= 8) {
+        ++sfrbx_by_gnss[static_cast<std::uint8_t>(p[0]) & 7];
+      }
+      i += 8 + len;
+    }
+  }
+  ~RawStats() {
+    if (!on) return;
+    static constexpr char kLetter[8] = {'G', 'S', 'E', 'C', '?', 'J', 'R', '?'};
+    std::string systems;
+    for (int g = 0; g < 8; ++g)
+      if (sfrbx_by_gnss[static_cast<std::size_t>(g)] > 0) systems += kLetter[g];
+    std::fprintf(stderr, "raw stats: RAWX %d, second-band entries %d, SFRBX systems %s (G %d R %d E %d C %d J %d)\n", rawx,
+                 rawx_band1, systems.c_str(), sfrbx_by_gnss[0], sfrbx_by_gnss[6], sfrbx_by_gnss[2], sfrbx_by_gnss[3],
+                 sfrbx_by_gnss[5]);
+  }
+};
+RawStats g_raw_stats;
 
 /// One ephemeris per GPS, QZSS, Galileo, BeiDou (GEOs included) and GLONASS
 /// satellite, with orbits of each system's size (kept in use after toe): the
@@ -305,6 +359,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         for (const auto& m : list.messages()) {
           gnssemu::fuzz::expect(!m.label.empty() && m.end > m.begin, "epoch message labelled and not empty");
           expect_frames(list.bytes(m), "epoch message is whole valid frames");
+          if (g_raw_stats.on) g_raw_stats.count(list.bytes(m));
         }
       }
     }

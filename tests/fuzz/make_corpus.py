@@ -186,8 +186,9 @@ def ubx_corpus():
 
 # Tows (s of GPS week 2190) of raw_epochs.bin's epochs, each + 0.1 s x its
 # index (make_fix), 2 s apart from 36 s after the store's toe: over them the
-# replay composes 14 RXM-RAWX and RXM-SFRBX of GPS 6, GLONASS 12, Galileo 30,
-# BeiDou 14 (GEO D2 pages included), QZSS 4 (counted once, 2026-11-29).
+# replay composes 14 RXM-RAWX (210 second-band entries) and RXM-SFRBX of GPS
+# 6, GLONASS 12, Galileo 30, BeiDou 14 (GEO D2 pages included), QZSS 4; the
+# test fuzz_replay.ubx_device_raw_seed requires every system of them.
 RAW_EPOCH_TOWS = [7236 + 2 * i for i in range(14)]
 RAW_EPOCH_TRACKED = {0, 1, 2, 16, 17, 18, 30, 31, 32, 48, 49, 50, 55, 79, 80, 84}
 
@@ -207,7 +208,10 @@ def raw_epoch_controls(feed_len, tows):
         for k in range(96):
             glonass = [k % 14] if system_of[k * step] == "R" else []  # channel k - 7
             ctl += glonass + ([150, 0, 90, 45] if k in RAW_EPOCH_TRACKED else [0, 0, 0])  # el 60 / -90 deg
-        ctl += [0, 0, 0, 0, 60, 0, 30, 3, 5, 15] * len(RAW_EPOCH_TRACKED)
+        # Per tracked satellite: make_raw's fields, then its second band (control 1: two bands) with a
+        # 0.5 m code offset; SBAS has none and reads no more.
+        for k in sorted(RAW_EPOCH_TRACKED):
+            ctl += [0, 0, 0, 0, 60, 0, 30, 3, 5, 15] + ([1, 50] if system_of[k * step] != "S" else [1])
     return bytes(reversed(ctl))
 
 
