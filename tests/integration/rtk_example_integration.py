@@ -44,6 +44,17 @@ def ubx(cls, mid, payload):
     return b"\xb5\x62" + body + bytes([a, b])
 
 
+def read_some(fd):
+    """What the pty has within 0.5 s (b"" if nothing)."""
+    r, _, _ = select.select([fd], [], [], 0.5)
+    if not r:
+        return b""
+    try:
+        return os.read(fd, 65536)
+    except BlockingIOError:
+        return b""
+
+
 def status(port):
     with urllib.request.urlopen(f"http://127.0.0.1:{port}/api/status?history=0", timeout=5) as r:
         return json.loads(r.read())
@@ -133,12 +144,7 @@ def body(rig):
         if now - t_feed >= 12 and (not is_f9p or now - t_feed >= 90 or
                                    (t_first_fixed is not None and now - t_feed >= t_first_fixed + 3)):
             break
-        r, _, _ = select.select([fd], [], [], 0.5)
-        if r:
-            try:
-                received += os.read(fd, 65536)
-            except BlockingIOError:
-                pass
+        received += read_some(fd)
         if t_first_fixed is None and any(m.group(1) == b"4" for m in GGA_QUALITY.finditer(received)):
             t_first_fixed = time.monotonic() - t_feed
     reports = received.count(RXM_RTCM)
@@ -169,12 +175,7 @@ def body(rig):
     t_stop = time.monotonic()
     after_stop = b""
     while time.monotonic() - t_stop < 6:
-        r, _, _ = select.select([fd], [], [], 0.5)
-        if r:
-            try:
-                after_stop += os.read(fd, 65536)
-            except BlockingIOError:
-                pass
+        after_stop += read_some(fd)
     after = status(ports["status"])["corrections"]
     print(f"feed stopped 6 s: status corrections {after}")
     assert after["age_s"] >= s["age_s"] + 4.0, (s, after)
@@ -183,12 +184,7 @@ def body(rig):
         # Back to a standalone (1) or differential (2) fix once the corrections time out.
         t_standalone = None
         while time.monotonic() - t_stop < DGNSS_TIMEOUT_S + 20 and t_standalone is None:
-            r, _, _ = select.select([fd], [], [], 0.5)
-            if r:
-                try:
-                    after_stop += os.read(fd, 65536)
-                except BlockingIOError:
-                    pass
+            after_stop += read_some(fd)
             tail = [int(m.group(1)) for m in GGA_QUALITY.finditer(after_stop)][-2:]
             if tail and all(q in (1, 2) for q in tail) and 1 in tail:
                 t_standalone = time.monotonic() - t_stop
@@ -210,12 +206,7 @@ def body(rig):
     answer = b""
     t_bad = time.monotonic()
     while time.monotonic() - t_bad < 3 and mon_ver not in answer:
-        r, _, _ = select.select([fd], [], [], 0.5)
-        if r:
-            try:
-                answer += os.read(fd, 65536)
-            except BlockingIOError:
-                pass
+        answer += read_some(fd)
     after_bad = before_bad
     while time.monotonic() - t_bad < 5 and after_bad == before_bad:  # the page takes the chip's counts each epoch
         time.sleep(0.5)
