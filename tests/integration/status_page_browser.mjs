@@ -409,6 +409,30 @@ async function checkFleet() {
   }
   console.log(`summary: v0/gps1 fix ${before.fixType} -> row click ${FAULTY}/gps1 fix ${faulty.fixType}` +
               ` -> selector v2/gps1 fix ${v2.fixType}, ${apartM.toFixed(1)} m from v0/gps1's position`);
+
+  // Paging (?rows=3): 1–3 of 4 with previous disabled, next shows the fourth, previous goes back.
+  const rowIds = async () => (await overviewDom(page)).map((x) => `${x.vehicle}/${x.receiver}`);
+  const rowsShown = (n) => page.waitForFunction((k) => document.querySelectorAll('#overview-table tbody tr').length === k,
+                                                n, { timeout: 10000 });
+  await page.goto(`${url}?rows=3`, { waitUntil: 'load' });
+  await page.waitForSelector('#overview-pages', { state: 'visible', timeout: 10000 });
+  await rowsShown(3);
+  const page1 = await rowIds();
+  const count1 = (await page.textContent('#overview-count')).trim();
+  if (count1 !== `(1–3 of ${FLEET.length})` || !(await page.isDisabled('#overview-prev')) ||
+      (await page.isDisabled('#overview-next'))) fail(`first page: ${count1}, rows ${page1}`);
+  await page.click('#overview-next');
+  await rowsShown(1);
+  const page2 = await rowIds();
+  const count2 = (await page.textContent('#overview-count')).trim();
+  const want = FLEET.map(([v, r]) => `${v}/${r}`);
+  if (count2 !== `(4–4 of ${FLEET.length})` || !(await page.isDisabled('#overview-next')) ||
+      JSON.stringify([...page1, ...page2]) !== JSON.stringify(want)) {
+    fail(`second page: ${count2}, rows ${page2} after ${page1}`);
+  }
+  await page.click('#overview-prev');
+  await rowsShown(3);
+  console.log(`paging, 3 rows a page: ${count1} ${page1.join(', ')} | next ${count2} ${page2.join(', ')} | previous back`);
   if (errors.length) fail(`page errors: ${errors.join('; ')}`);
   const shot = path.join(artifacts, 'status_fleet.png');
   await page.screenshot({ path: shot, fullPage: true });

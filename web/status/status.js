@@ -190,12 +190,16 @@
     ? '&vehicle=' + encodeURIComponent(vehicle) + '&receiver=' + encodeURIComponent(params.get('receiver') || '')
     : '';
 
-  const pickSearch = (v, r) => '?vehicle=' + encodeURIComponent(v) + '&receiver=' + encodeURIComponent(r);
+  // ?rows=N: overview rows per page (/api/overview's limit, 1..1000).
+  const pageRows = Math.min(1000, Math.max(1, parseInt(params.get('rows'), 10) || 1000));
+  const pickSearch = (v, r) => '?vehicle=' + encodeURIComponent(v) + '&receiver=' + encodeURIComponent(r)
+    + (params.has('rows') ? '&rows=' + pageRows : '');
 
   // The fleet overview (/api/overview): one row per receiver, refreshed every
   // second, ordered by the clicked column (vehicle, receiver at first); a
   // click on a row picks that receiver as the selector does.
-  const overview = { key: 'name', dir: 1, rows: [], shown: null };
+  // A fleet larger than a page is paged (previous / next); sorting orders the page shown.
+  const overview = { key: 'name', dir: 1, rows: [], shown: null, offset: 0, total: 0 };
   const natural = new Intl.Collator(undefined, { numeric: true });
   const fixText = (r) => (r.fix_type === 0 ? 'no fix' : r.fix_name === 'DR' ? 'dead reckoning'
     : r.fix_name + (r.carrier === 'fixed' ? ' RTK fixed' : r.carrier === 'float' ? ' RTK float' : r.diff ? ' DGNSS' : ''));
@@ -240,16 +244,35 @@
     }
   }
 
-  function pollOverview() {
-    fetch('/api/overview')
+  function loadOverview() {
+    return fetch(`/api/overview?limit=${pageRows}&offset=${overview.offset}`)
       .then((r) => (r.ok ? r.json() : Promise.reject(new Error(`/api/overview: ${r.status}`))))
       .then((o) => {
+        overview.total = o.total;
+        if (o.rows.length === 0 && o.total > 0 && overview.offset > 0) {  // the fleet shrank under this page
+          overview.offset = Math.floor((o.total - 1) / pageRows) * pageRows;
+          return loadOverview();
+        }
         overview.rows = o.rows;
-        text('overview-count', o.total > o.rows.length ? `(first ${o.rows.length} of ${o.total})` : `(${o.total})`);
+        text('overview-count', o.total > o.rows.length
+          ? `(${overview.offset + 1}–${overview.offset + o.rows.length} of ${o.total})` : `(${o.total})`);
+        $('overview-pages').hidden = o.total <= pageRows;
+        $('overview-prev').disabled = overview.offset === 0;
+        $('overview-next').disabled = overview.offset + pageRows >= o.total;
         renderOverview();
-      })
+        return undefined;
+      });
+  }
+
+  function pollOverview() {
+    loadOverview()
       .catch((err) => console.warn('overview', err))
       .finally(() => setTimeout(pollOverview, 1000));
+  }
+
+  function turnOverviewPage(step) {
+    overview.offset = Math.max(0, overview.offset + step * pageRows);
+    loadOverview().catch((err) => console.warn('overview', err));
   }
 
   // The receiver selector and the overview: shown when the daemon runs more than one.
@@ -277,6 +300,8 @@
           renderOverview();
         };
       }
+      $('overview-prev').onclick = () => turnOverviewPage(-1);
+      $('overview-next').onclick = () => turnOverviewPage(1);
       $('panel-overview').hidden = false;
       pollOverview();
     })
