@@ -21,7 +21,7 @@
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
 #include "core/pipeline/pipeline.hpp"
-#include "core/world/shared_sky.hpp"
+#include "core/world/sky/shared_sky.hpp"
 #include "tests/support/alloc_counter.hpp"
 
 namespace {

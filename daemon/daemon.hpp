@@ -28,7 +28,7 @@
 #include "core/scene/scene.hpp"
 #include "daemon/control/control_commands.hpp"
 #include "daemon/control/control_server.hpp"
-#include "core/world/shared_sky.hpp"
+#include "core/world/sky/shared_sky.hpp"
 #include "daemon/truth/demo_trajectory.hpp"
 #include "daemon/truth/drop_stats.hpp"
 #include "daemon/fault_log.hpp"

@@ -12,7 +12,7 @@
 #include "core/pipeline/pipeline.hpp"
 #include "core/protocol/rtcm/rtcm_msm.hpp"
 #include "core/protocol/rtcm/rtcm_station.hpp"
-#include "core/world/shared_sky.hpp"
+#include "core/world/sky/shared_sky.hpp"
 
 namespace gnssemu::config {
 

@@ -9,7 +9,7 @@
 #include "core/common/error.hpp"
 #include "core/geo/geoid.hpp"
 #include "core/signal/dll_jitter.hpp"
-#include "core/world/carrier.hpp"
+#include "core/world/measurement/carrier.hpp"
 #include "core/world/random.hpp"
 #include "core/time/utc.hpp"
 

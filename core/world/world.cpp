@@ -9,7 +9,7 @@
 #include "core/geo/geodesy.hpp"
 #include "core/signal/dll_jitter.hpp"
 #include "core/signal/system_signal.hpp"
-#include "core/world/error_processes.hpp"
+#include "core/world/measurement/error_processes.hpp"
 
 namespace gnssemu::world {
 

@@ -16,7 +16,7 @@
 #include "core/common/sat_id.hpp"
 #include "core/signal/dll_jitter.hpp"
 #include "core/signal/link_budget.hpp"
-#include "core/world/carrier.hpp"
+#include "core/world/measurement/carrier.hpp"
 
 namespace gnssemu::world {
 

@@ -20,7 +20,7 @@
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
 #include "core/pipeline/pipeline.hpp"
-#include "core/world/sky.hpp"
+#include "core/world/sky/sky.hpp"
 #include "core/scene/procedural_city.hpp"
 #include "core/scene/propagator.hpp"
 #include "core/scene/scene.hpp"

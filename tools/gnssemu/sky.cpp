@@ -15,8 +15,8 @@
 #include "core/atmosphere/troposphere.hpp"
 #include "core/pipeline/pipeline.hpp"
 #include "core/signal/link_budget.hpp"
-#include "core/world/propagation.hpp"
-#include "core/world/sky.hpp"
+#include "core/world/measurement/propagation.hpp"
+#include "core/world/sky/sky.hpp"
 
 namespace gnssemu::cli {
 

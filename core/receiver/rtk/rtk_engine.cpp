@@ -7,7 +7,7 @@
 #include "core/common/constants.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/receiver/solution/transmit_state.hpp"
-#include "core/world/sky.hpp"
+#include "core/world/sky/sky.hpp"
 
 namespace gnssemu::receiver::rtk {
 namespace {

@@ -6,7 +6,7 @@
 
 #include "core/atmosphere/receiver_corrections.hpp"
 #include "core/geo/geodesy.hpp"
-#include "core/world/sky.hpp"
+#include "core/world/sky/sky.hpp"
 #include "core/receiver/solution/enu_rotation.hpp"
 #include "core/receiver/solution/small_matrix.hpp"
 #include "core/receiver/solution/transmit_state.hpp"

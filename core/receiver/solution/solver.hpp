@@ -18,7 +18,7 @@
 #include "core/receiver/receiver_config.hpp"
 #include "core/receiver/solution/small_matrix.hpp"
 #include "core/time/gps_time.hpp"
-#include "core/world/shared_sky.hpp"
+#include "core/world/sky/shared_sky.hpp"
 
 namespace gnssemu::receiver {
 

@@ -5,7 +5,7 @@
 // solver and `gnssemu calibrate` on real observations use this one derivation.
 #include "core/orbit/ephemeris.hpp"
 #include "core/time/gps_time.hpp"
-#include "core/world/shared_sky.hpp"
+#include "core/world/sky/shared_sky.hpp"
 
 namespace gnssemu::receiver {
 

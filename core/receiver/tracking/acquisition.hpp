@@ -18,7 +18,7 @@
 #include "core/signal/tracking.hpp"
 #include "core/time/gps_time.hpp"
 #include "core/world/observables.hpp"
-#include "core/world/shared_sky.hpp"
+#include "core/world/sky/shared_sky.hpp"
 
 namespace gnssemu::receiver {
 

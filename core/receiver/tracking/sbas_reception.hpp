@@ -12,7 +12,7 @@
 
 #include "core/common/vec3.hpp"
 #include "core/receiver/fix.hpp"
-#include "core/world/sbas_service.hpp"
+#include "core/world/sky/sbas_service.hpp"
 
 namespace gnssemu::receiver {
 

@@ -11,7 +11,7 @@
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/constellation.hpp"
 #include "core/orbit/rinex_nav.hpp"
-#include "core/world/sky.hpp"
+#include "core/world/sky/sky.hpp"
 #include "tools/gnssemu/sky.hpp"
 
 using namespace gnssemu;

@@ -15,7 +15,7 @@
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/pipeline/pipeline.hpp"
 #include "core/receiver/rtk/lambda.hpp"
-#include "core/world/shared_sky.hpp"
+#include "core/world/sky/shared_sky.hpp"
 #include "synthetic_sky.hpp"
 
 namespace gnssemu::receiver {

@@ -20,7 +20,7 @@
 #include "core/pipeline/pipeline.hpp"
 #include "core/scene/footprints.hpp"
 #include "core/scene/scene.hpp"
-#include "core/world/shared_sky.hpp"
+#include "core/world/sky/shared_sky.hpp"
 
 namespace gnssemu::receiver {
 namespace {

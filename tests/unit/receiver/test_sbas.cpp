@@ -14,7 +14,7 @@
 #include "core/orbit/rinex_nav.hpp"
 #include "core/pipeline/pipeline.hpp"
 #include "core/receiver/tracking/sbas_reception.hpp"
-#include "core/world/sbas_service.hpp"
+#include "core/world/sky/sbas_service.hpp"
 
 namespace gnssemu::receiver {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris.hpp"
-#include "core/world/sky.hpp"
+#include "core/world/sky/sky.hpp"
 #include "core/receiver/solution/solver.hpp"
 #include "synthetic_sky.hpp"
 #include "tests/support/alloc_counter.hpp"

@@ -11,7 +11,7 @@
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris.hpp"
 #include "core/receiver/solution/solver.hpp"
-#include "core/world/sky.hpp"
+#include "core/world/sky/sky.hpp"
 #include "synthetic_sky.hpp"
 #include "tests/support/alloc_counter.hpp"
 

@@ -12,7 +12,7 @@
 #include "core/geo/geodesy.hpp"
 #include "core/receiver/solution/solver.hpp"
 #include "core/receiver/solution/weight_model.hpp"
-#include "core/world/sky.hpp"
+#include "core/world/sky/sky.hpp"
 #include "synthetic_sky.hpp"
 #include "tests/support/alloc_counter.hpp"
 

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
-// Carrier loop noise and slips as pure functions of C/N0 (core/world/carrier.hpp).
+// Carrier loop noise and slips as pure functions of C/N0 (core/world/measurement/carrier.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "core/common/error.hpp"
-#include "core/world/carrier.hpp"
+#include "core/world/measurement/carrier.hpp"
 
 namespace gnssemu::world {
 namespace {

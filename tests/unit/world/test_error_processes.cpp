@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "core/world/error_processes.hpp"
+#include "core/world/measurement/error_processes.hpp"
 #include "core/world/random.hpp"
 
 namespace gnssemu::world {

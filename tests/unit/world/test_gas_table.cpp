@@ -5,7 +5,7 @@
 
 #include "core/atmosphere/shells.hpp"
 #include "core/common/constants.hpp"
-#include "core/world/gas_table.hpp"
+#include "core/world/measurement/gas_table.hpp"
 
 using namespace gnssemu;
 using gnssemu::atmosphere::AtmosphereShells;

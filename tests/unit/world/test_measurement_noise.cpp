@@ -3,7 +3,7 @@
 // versus C/N0 is decided (the fault stage adds the difference it makes).
 #include <gtest/gtest.h>
 
-#include "core/world/measurement_noise.hpp"
+#include "core/world/measurement/measurement_noise.hpp"
 
 namespace gnssemu::world {
 namespace {

@@ -14,8 +14,8 @@
 #include "core/geo/geodesy.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/orbit/rinex_nav.hpp"
-#include "core/world/shared_sky.hpp"
-#include "core/world/sky.hpp"
+#include "core/world/sky/shared_sky.hpp"
+#include "core/world/sky/sky.hpp"
 #include "core/world/world.hpp"
 #include "tests/support/alloc_counter.hpp"
 

@@ -8,7 +8,7 @@
 
 #include "core/atmosphere/ionosphere.hpp"
 #include "core/common/constants.hpp"
-#include "core/world/error_processes.hpp"
+#include "core/world/measurement/error_processes.hpp"
 
 namespace gnssemu::cli {
 

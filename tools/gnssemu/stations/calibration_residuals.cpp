@@ -9,7 +9,7 @@
 #include "core/common/error.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/receiver/solution/transmit_state.hpp"
-#include "core/world/sky.hpp"
+#include "core/world/sky/sky.hpp"
 #include "tools/gnssemu/stations/spp.hpp"
 
 namespace gnssemu::cli {

@@ -15,7 +15,7 @@
 #include "core/geo/geodesy.hpp"
 #include "core/geo/local_frame.hpp"
 #include "core/receiver/solution/weight_model.hpp"
-#include "core/world/sky.hpp"
+#include "core/world/sky/sky.hpp"
 
 namespace gnssemu::cli {
 

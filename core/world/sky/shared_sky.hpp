@@ -21,7 +21,7 @@
 #include "core/orbit/ephemeris.hpp"
 #include "core/orbit/ephemeris_store.hpp"
 #include "core/time/gps_time.hpp"
-#include "core/world/sky_errors.hpp"
+#include "core/world/sky/sky_errors.hpp"
 
 namespace gnssemu::world {
 

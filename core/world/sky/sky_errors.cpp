@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/world/sky_errors.hpp"
+#include "core/world/sky/sky_errors.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/world/measurement_noise.hpp"
+#include "core/world/measurement/measurement_noise.hpp"
 
 namespace gnssemu::world {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/world/propagation.hpp"
+#include "core/world/measurement/propagation.hpp"
 
 #include <cmath>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/world/gas_table.hpp"
+#include "core/world/measurement/gas_table.hpp"
 
 #include <cmath>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/world/sbas_service.hpp"
+#include "core/world/sky/sbas_service.hpp"
 
 #include <cmath>
 

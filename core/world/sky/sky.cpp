@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/world/sky.hpp"
+#include "core/world/sky/sky.hpp"
 
 #include <cmath>
 

@@ -5,7 +5,7 @@
 // carrier.doppler_model). One owner, so the world and the fault stage —
 // which adds the difference when a jammer lowers C/N0 — never disagree.
 #include "core/signal/dll_jitter.hpp"
-#include "core/world/carrier.hpp"
+#include "core/world/measurement/carrier.hpp"
 #include "core/world/world_config.hpp"
 
 namespace gnssemu::world {

@@ -13,7 +13,7 @@
 #include "core/atmosphere/troposphere.hpp"
 #include "core/common/vec3.hpp"
 #include "core/orbit/nav_data.hpp"
-#include "core/world/gas_table.hpp"
+#include "core/world/measurement/gas_table.hpp"
 #include "core/world/world_config.hpp"
 
 namespace gnssemu::world {

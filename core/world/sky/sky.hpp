@@ -6,7 +6,7 @@
 #include "core/common/vec3.hpp"
 #include "core/orbit/ephemeris.hpp"
 #include "core/time/gps_time.hpp"
-#include "core/world/shared_sky.hpp"
+#include "core/world/sky/shared_sky.hpp"
 
 namespace gnssemu::world {
 

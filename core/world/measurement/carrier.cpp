@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/world/carrier.hpp"
+#include "core/world/measurement/carrier.hpp"
 
 #include <algorithm>
 #include <cmath>
