@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "config/config.hpp"
+#include "config/setup/device_setup.hpp"
 #include "config/setup/footprint_file.hpp"
 #include "config/setup/nav_setup.hpp"
 #include "config/receiver_config.hpp"
@@ -256,7 +257,12 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
   config::Config cfg = config::load_config(a.config_path);
   if (!a.vehicle.empty()) cfg = fleet_receiver(cfg, a.vehicle, a.receiver);
   cfg.world.systems = checked_systems(a.systems, cfg.world.systems);
-  if (a.bands) cfg.receiver.bands = *a.bands;
+  if (a.bands) {
+    if (*a.bands > config::default_bands(cfg.generation)) {
+      throw Error(a.config_path, 0, "--bands " + std::to_string(*a.bands) + ": " + config::single_band_reason(cfg.generation));
+    }
+    cfg.receiver.bands = *a.bands;
+  }
   if (a.preset == "rtklib") {
     // rnx2rtkp's single point on the receiver's own code: its models and
     // weights, a snapshot fix each epoch, no carrier smoothing.
