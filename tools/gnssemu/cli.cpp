@@ -575,7 +575,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   batch_cmd->add_option("--report", batch.report_dir, "write an HTML report with plots to DIR/report.html");
   batch_cmd->add_option("--systems", batch.systems,
                         std::string(kSystemsHelp) + "; default: the config's [receiver] constellations");
-  batch_cmd->add_option("--bands", batch.bands, "signals tracked per satellite, 1 or 2; default: the config's [receiver] bands")
+  batch_cmd->add_option("--bands", batch.bands, "signals tracked per satellite, 1 or 2 (2: a generation = \"f9p\" config); default: the config's [receiver] bands")
       ->check(CLI::Range(1, 2));
   batch_cmd->add_option("--cn0-reference", batch.reference_path,
                         "a real receiver's C/N0 for the report: NMEA log (GSV) or CSV with el_deg,cn0_dbhz");
