@@ -14,7 +14,8 @@ namespace gnssemu::daemon {
 
 namespace {
 
-CorrectionCounters correction_counters(const protocol::ubx::Device& d, const receiver::Fix& fix) noexcept {
+CorrectionCounters correction_counters(const protocol::ubx::Device& d, const receiver::rtk::RtkStatus& rtk,
+                                       const receiver::Fix& fix) noexcept {
   const protocol::ubx::RtcmInputStats& in = d.rtcm_input().stats();
   const receiver::Corrections& c = d.corrections();
   CorrectionCounters out;
@@ -26,6 +27,9 @@ CorrectionCounters correction_counters(const protocol::ubx::Device& d, const rec
   out.epochs = d.rtcm_input().decoder_stats().epochs;
   if (c.station.position_valid || c.station.moving) out.station_id = c.station.station_id;
   if (c.obs_valid && fix.time_valid) out.age_s = fix.t - c.obs_received;
+  if (fix.diff_soln && !fix.sbas_soln) out.baseline_m = rtk.baseline_m;
+  out.baseline_big = rtk.baseline_big;
+  out.long_baseline = rtk.long_baseline;
   return out;
 }
 
@@ -118,7 +122,7 @@ void Daemon::record_status(Rig& rig, double run_s, const receiver::Fix& fix) noe
   tc.age_s = router_.router(v).driver_age_s(now);
   tc.demo = demo_drives(v);
   rig.status.set_truth(tc);
-  rig.status.set_corrections(correction_counters(rig.device, fix));
+  rig.status.set_corrections(correction_counters(rig.device, rig.receiver->receiver().rtk().status(), fix));
 }
 
 void Daemon::publish_status() noexcept {

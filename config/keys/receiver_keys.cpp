@@ -374,6 +374,10 @@ void read_bands(TableReader& t, const Field<Config>& f, Config& c) {
     return;
   }
   c.receiver.bands = static_cast<int>(t.integer(f.key, std::nullopt, 1, kNumBands));
+  if (c.receiver.bands > default_bands(c.generation)) {
+    t.fail(*t.find(f.key), t.full_name(f.key) + " = " + std::to_string(c.receiver.bands) + ": " +
+                               single_band_reason(c.generation));
+  }
 }
 
 void write_bands(TomlWriter& w, const Field<Config>& f, const Config& c) {
@@ -386,6 +390,10 @@ void read_raw_data(TableReader& t, const Field<Config>& f, Config& c) {
     return;
   }
   c.raw_data = t.boolean(f.key, std::nullopt);
+  if (!c.raw_data && default_raw_data(c.generation)) {
+    t.fail(*t.find(f.key), t.full_name(f.key) +
+                               " = false: every ZED-F9P firmware (HPG) has RXM-RAWX and RXM-SFRBX; leave it out");
+  }
 }
 
 void write_raw_data(TomlWriter& w, const Field<Config>& f, const Config& c) {
@@ -440,13 +448,15 @@ constexpr Field<Config> kReceiverFields[] = {
                    "signals tracked per satellite: 1 the L1-band signal (GPS/QZSS L1 C/A, GLONASS L1OF, Galileo "
                    "E1C, BeiDou B1I, SBAS L1); 2 also the second frequency (GPS/QZSS L2CL, GLONASS L2OF, Galileo "
                    "E5bQ, BeiDou B2I) in RXM-RAWX, RINEX and RTCM MSM, with its own ionosphere, group delays, C/N0, "
-                   "noise and lock (docs/models.md \"Second frequency\"). The position fix uses the L1 band",
+                   "noise and lock (docs/models.md \"Second frequency\"). The position fix uses the L1 band. 2 only "
+                   "with `generation = \"f9p\"`: the NEO-M8N and NEO-M9N track L1 only (an error there)",
                    read_bands, write_bands)
         .default_doc("the generation's: 1 for `m8` and `m9`, 2 for `f9p`"),
     custom<Config>("raw_data", "bool", "—",
                    "the chip's firmware has raw data output, as an M8T/M8P-class timing or the F9P's high-precision "
                    "firmware (docs/raw-output.md \"Availability\"): RXM-RAWX and RXM-SFRBX go out where a port or a "
-                   "host enables them; false (a NEO-M8N's or NEO-M9N's standard firmware): they stay silent",
+                   "host enables them; false (a NEO-M8N's or NEO-M9N's standard firmware): they stay silent. Every "
+                   "ZED-F9P firmware has them: false with `f9p` is an error",
                    read_raw_data, write_raw_data)
         .default_doc("the generation's: false for `m8` and `m9`, true for `f9p`"),
     boolean<&Config::receiver, &ReceiverConfig::sbas>(

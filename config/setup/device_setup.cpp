@@ -28,6 +28,16 @@ int default_bands(protocol::ubx::Generation g) noexcept {
   return 1;
 }
 
+std::string single_band_reason(protocol::ubx::Generation g) {
+  // Neither family has an L2 variant: the M8 and M9 product summaries list L1 signals only.
+  switch (g) {
+    case protocol::ubx::Generation::kM8: return "the NEO-M8N tracks L1 only; generation = \"f9p\" tracks two bands";
+    case protocol::ubx::Generation::kM9: return "the NEO-M9N tracks L1 only; generation = \"f9p\" tracks two bands";
+    case protocol::ubx::Generation::kF9P: return "";
+  }
+  return "";
+}
+
 bool default_raw_data(protocol::ubx::Generation g) noexcept {
   return g == protocol::ubx::Generation::kF9P;  // HPG firmware outputs RXM-RAWX/SFRBX (ZED-F9P Integration Manual)
 }

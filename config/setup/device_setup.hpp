@@ -3,6 +3,8 @@
 // The emulated u-blox's start-up settings from a configuration: every
 // [[output]] is one UART1 of one chip (docs/ports.md), set up as its
 // section says and saved as the chip's stored configuration.
+#include <string>
+
 #include "config/config.hpp"
 #include "core/protocol/ubx/device/ubx_device.hpp"
 #include "core/receiver/receiver.hpp"
@@ -25,6 +27,9 @@ SystemSet chip_systems(const Config& config);
 /// Signals the chip tracks per satellite by default ([receiver] bands when
 /// not given): 1 for the single-band M8 and M9, 2 for the F9P.
 int default_bands(protocol::ubx::Generation g) noexcept;
+/// Why a chip that tracks one band cannot take bands = 2 (config errors);
+/// empty for the F9P.
+std::string single_band_reason(protocol::ubx::Generation g);
 
 /// Whether the chip's standard firmware outputs raw data ([receiver] raw_data
 /// when not given): the F9P's does, the NEO-M8N's and NEO-M9N's do not.

@@ -254,6 +254,9 @@ void StatusProducer::write_json(std::string& out, std::size_t history_max) const
   w.field_int("epochs", static_cast<int64_t>(corrections_.epochs));
   w.field_int("station_id", corrections_.station_id);
   w.field("age_s", corrections_.age_s, 2);
+  w.field("baseline_m", corrections_.baseline_m, 3);
+  w.field_int("baseline_big", static_cast<int64_t>(corrections_.baseline_big));
+  w.field_int("long_baseline", static_cast<int64_t>(corrections_.long_baseline));
   w.end_object();
 
   w.key("error");

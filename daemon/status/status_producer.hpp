@@ -72,6 +72,10 @@ struct CorrectionCounters {
   uint64_t epochs = 0;      ///< complete base epochs
   int station_id = -1;      ///< reference station (1005/1006/4072.0); -1 none yet
   double age_s = std::numeric_limits<double>::quiet_NaN();  ///< rover time - last base epoch's arrival, s; NaN none
+  /// Rover - base distance the RTK filter solved this epoch, m; NaN: no differential solution.
+  double baseline_m = std::numeric_limits<double>::quiet_NaN();
+  uint64_t baseline_big = 0;   ///< epochs beyond 50 km (the F9P's INF-WARNING "DGNSS baseline big")
+  uint64_t long_baseline = 0;  ///< epochs beyond the longest baseline fixed (float only, docs/rtk.md)
 };
 
 /// One fault of the fault stage, as the timeline shows it.

@@ -13,6 +13,7 @@ Exit 77 (CTest skip) when rnx2rtkp is not installed.
 import argparse
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -67,6 +68,7 @@ def main():
                     help="smallest allowed fraction of gnssemu's fixes rnx2rtkp also solves")
     ap.add_argument("--bands", type=int, default=1,
                     help="signals per satellite (batch --bands); 2: rnx2rtkp reads both and solves on L1 alike")
+    ap.add_argument("--generation", help="run the config as this [receiver] generation (f9p: two bands)")
     a = ap.parse_args()
     rnx2rtkp = shutil.which("rnx2rtkp")
     if rnx2rtkp is None:
@@ -74,7 +76,23 @@ def main():
         return 77
     with tempfile.TemporaryDirectory() as tmp:
         obs, nav, errors = (os.path.join(tmp, n) for n in ("run.obs", "run.nav", "errors.csv"))
-        subprocess.run([a.gnssemu, "batch", "--config", a.config, "--truth", a.truth, "--systems", a.systems,
+        config = a.config
+        if a.generation:
+            # The same file as another chip: its generation line replaced, its
+            # nav file by absolute path (the copy lives elsewhere).
+            config = os.path.join(tmp, "config.toml")
+            base = os.path.dirname(os.path.abspath(a.config))
+            with open(a.config) as f:
+                text = f.read()
+            text, n = re.subn(r'^generation = "[a-z0-9]+"', f'generation = "{a.generation}"', text, count=1,
+                              flags=re.M)
+            if n == 0:
+                text = text.replace("[receiver]\n", f'[receiver]\ngeneration = "{a.generation}"\n', 1)
+            text = re.sub(r'^file = "([^/"][^"]*)"', lambda m: f'file = "{os.path.join(base, m.group(1))}"', text,
+                          flags=re.M)
+            with open(config, "w") as f:
+                f.write(text)
+        subprocess.run([a.gnssemu, "batch", "--config", config, "--truth", a.truth, "--systems", a.systems,
                         "--preset", "rtklib", "--rinex-obs", obs, "--rinex-nav", nav, "--errors", errors,
                         "--bands", str(a.bands)],
                        check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)

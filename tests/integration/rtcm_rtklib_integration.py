@@ -93,12 +93,14 @@ def main():
     d = a.keep or tempfile.mkdtemp()
     os.makedirs(d, exist_ok=True)
     m = a.msm
-    # The configuration with every system the MSMs carry (an M8 tracks GPS and GLONASS by default).
+    # The configuration with every system the MSMs carry (an M8 tracks GPS and GLONASS by default);
+    # two bands: a ZED-F9P (the M8 and M9 track L1 only).
     with open(a.config) as f:
         text = f.read()
     cfg = f"{d}/base.toml"
+    chip = 'generation = "f9p"\n' if a.bands > 1 else ""
     with open(cfg, "w") as f:
-        f.write(text.replace("[receiver]\n", f'[receiver]\nconstellations = ["G", "R", "E", "C"]\nbands = {a.bands}\n', 1)
+        f.write(text.replace("[receiver]\n", f'[receiver]\nconstellations = ["G", "R", "E", "C"]\n{chip}bands = {a.bands}\n', 1)
                 .replace('file = "nav/', f'file = "{os.path.dirname(os.path.abspath(a.config))}/nav/'))
     msgs = f"1005(10),107{m}(1),108{m}(1),109{m}(1),112{m}(1),1230(10),1019(30),1020(30),1042(30),1046(30)"
     run = [a.gnssemu, "base", "--config", cfg, "--lat", "48.88", "--lon", "2.30", "--height", "100",

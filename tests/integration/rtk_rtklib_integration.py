@@ -158,7 +158,7 @@ start = "{START}"
 [receiver]
 {f'profile = "{a.profile}"' if a.profile else ""}
 constellations = [{", ".join(f'"{x}"' for x in systems)}]
-generation = "m9"
+generation = "{"f9p" if a.bands > 1 else "m9"}"
 raw_data = true
 bands = {a.bands}
 seed = 3

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "config/config.hpp"
+#include "config/setup/device_setup.hpp"
 #include "config/setup/footprint_file.hpp"
 #include "config/setup/nav_setup.hpp"
 #include "config/receiver_config.hpp"
@@ -256,7 +257,12 @@ int run_batch_command(const BatchArgs& a, std::ostream& out, std::ostream& err) 
   config::Config cfg = config::load_config(a.config_path);
   if (!a.vehicle.empty()) cfg = fleet_receiver(cfg, a.vehicle, a.receiver);
   cfg.world.systems = checked_systems(a.systems, cfg.world.systems);
-  if (a.bands) cfg.receiver.bands = *a.bands;
+  if (a.bands) {
+    if (*a.bands > config::default_bands(cfg.generation)) {
+      throw Error(a.config_path, 0, "--bands " + std::to_string(*a.bands) + ": " + config::single_band_reason(cfg.generation));
+    }
+    cfg.receiver.bands = *a.bands;
+  }
   if (a.preset == "rtklib") {
     // rnx2rtkp's single point on the receiver's own code: its models and
     // weights, a snapshot fix each epoch, no carrier smoothing.
@@ -569,7 +575,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   batch_cmd->add_option("--report", batch.report_dir, "write an HTML report with plots to DIR/report.html");
   batch_cmd->add_option("--systems", batch.systems,
                         std::string(kSystemsHelp) + "; default: the config's [receiver] constellations");
-  batch_cmd->add_option("--bands", batch.bands, "signals tracked per satellite, 1 or 2; default: the config's [receiver] bands")
+  batch_cmd->add_option("--bands", batch.bands, "signals tracked per satellite, 1 or 2 (2: a generation = \"f9p\" config); default: the config's [receiver] bands")
       ->check(CLI::Range(1, 2));
   batch_cmd->add_option("--cn0-reference", batch.reference_path,
                         "a real receiver's C/N0 for the report: NMEA log (GSV) or CSV with el_deg,cn0_dbhz");

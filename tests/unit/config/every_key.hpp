@@ -34,7 +34,6 @@ nominal_cn0_dbhz = 41.5
 max_pdop = 8.0
 max_channels = 12
 generation = "m9"
-bands = 2
 raw_data = true
 sbas = false
 constellations = ["G", "E", "C"]  # not the m9 factory set, so it is written
@@ -368,12 +367,18 @@ level = "debug"
 
 /// The keys kEveryKey cannot hold: the presets (read as other keys) and
 /// nav.almanac (mode almanac only), use_wall_clock_date (not together with a
-/// start time), [[vehicle]] and [fleet] (not together with [[output]]).
+/// start time), [[vehicle]] and [fleet] (not together with [[output]]),
+/// receiver.bands off its default (an F9P on L1 only: an M9, which
+/// raw_data = true needs, tracks one band).
 inline const std::string kOtherKeys = R"(
 [origin]
 lat_deg = 1
 lon_deg = 2
 height_m = 0
+
+[receiver]
+generation = "f9p"
+bands = 1
 
 [nav]
 file = "nav/brdc0010.22n"

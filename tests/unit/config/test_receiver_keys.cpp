@@ -85,6 +85,21 @@ TEST(ConfigValidation, ReceiverLimits) {
             "t.toml:8: receiver.nominal_cn0_dbhz: 70 is out of range [10, 60] dB-Hz");
 }
 
+TEST(ConfigValidation, TwoBandsOnlyOnTheF9p) {
+  // The M8 and M9 families track L1 only; the ZED-F9P two bands by default
+  // and one when asked (an L1-only F9P), and always has raw data.
+  EXPECT_EQ(error_of(kBase + "[receiver]\nbands = 2\n"),
+            "t.toml:8: receiver.bands = 2: the NEO-M8N tracks L1 only; generation = \"f9p\" tracks two bands");
+  EXPECT_EQ(error_of(kBase + "[receiver]\ngeneration = \"m9\"\nbands = 2\n"),
+            "t.toml:9: receiver.bands = 2: the NEO-M9N tracks L1 only; generation = \"f9p\" tracks two bands");
+  EXPECT_EQ(parse(kBase + "[receiver]\nbands = 2\ngeneration = \"f9p\"\n").receiver.bands, 2);
+  EXPECT_EQ(parse(kBase + "[receiver]\ngeneration = \"f9p\"\n").receiver.bands, 2);
+  EXPECT_EQ(parse(kBase + "[receiver]\ngeneration = \"f9p\"\nbands = 1\n").receiver.bands, 1);
+  EXPECT_EQ(error_of(kBase + "[receiver]\ngeneration = \"f9p\"\nraw_data = false\n"),
+            "t.toml:9: receiver.raw_data = false: every ZED-F9P firmware (HPG) has RXM-RAWX and RXM-SFRBX; leave it out");
+  EXPECT_TRUE(parse(kBase + "[receiver]\ngeneration = \"m9\"\nraw_data = true\n").raw_data);
+}
+
 TEST(ConfigValidation, CoreRangesAreTheConfigRanges) {
   // One range per setting, owned by the core: what the file accepts, the
   // receiver accepts; what the receiver rejects is named at its file:line.

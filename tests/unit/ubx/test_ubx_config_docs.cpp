@@ -54,7 +54,10 @@ std::string where(const ConfigKey& k) {
     case KeyStore::kMsgOut: return "CFG-MSG rate of " + hex(k.msg.cls, 2) + " " + hex(k.msg.id, 2) + " per port";
     case KeyStore::kRate: return "CFG-RATE byte " + std::to_string(k.offset);
     case KeyStore::kNav5: return "CFG-NAV5 byte " + std::to_string(k.offset);
-    case KeyStore::kBlock: return block_name(k.msg) + " byte " + std::to_string(k.offset) + bit;
+    case KeyStore::kBlock:
+      if (k.msg == msg::kCfgInf) return std::string(k.port == 0 ? "CFG-INF UBX" : "CFG-INF NMEA") + " infMsgMask of " +
+                                        std::string(kPortNames[k.offset - 4]);
+      return block_name(k.msg) + " byte " + std::to_string(k.offset) + bit;
     case KeyStore::kGnss: return "CFG-GNSS gnssId " + std::to_string(k.offset) + " flags" + bit;
     case KeyStore::kNmeaProtver: return "CFG-NMEA nmeaVersion (0x41 = 41, 0x4B = 42)";
   }

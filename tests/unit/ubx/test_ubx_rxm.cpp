@@ -415,5 +415,81 @@ TEST(RxmDevice, ValsetKeysOnTheM9) {
   EXPECT_EQ(d.message_rate({}, msg::kRxmSfrbx), 2);
 }
 
+
+// A ZED-F9P (HPG firmware: RAWX on every F9P) as a host enables it with
+// CFG-VALSET: two signals per satellite in one RXM-RAWX, the F9 sigIds of
+// the signal table (IDF9 §5.15.3 table; the F9P log in multi-gnss.md §8 has
+// GPS 0/3, GLONASS 0/2, Galileo 0/6, BeiDou 0), and SFRBX from the L1 band only.
+TEST(RxmDevice, F9pTwoBandRawxAndSfrbxByValset) {
+  const orbit::NavData nav = orbit::read_rinex_nav(std::string(GNSSEMU_TEST_DATA) + "/nav/brdc0010.22n");
+  const orbit::EphemerisStore store{nav.ephemerides};
+  DeviceSetup s;
+  s.mon_ver = mon_ver_of(Generation::kF9P);
+  s.raw_firmware = true;
+  Device d(s);
+  // CFG-VALSET RAM: MSGOUT-UBX_RXM_RAWX_UART1 (0x209102A5) = 1, MSGOUT-UBX_RXM_SFRBX_UART1 (0x20910232) = 1.
+  const std::uint8_t p[] = {0, 1, 0, 0, 0xA5, 0x02, 0x91, 0x20, 1, 0x32, 0x02, 0x91, 0x20, 1};
+  std::string reply;
+  ASSERT_EQ(d.handle_ubx({}, FrameView{msg::kCfgValset, p}, 0.0, reply).reply, Reply::kAck);
+
+  struct Row {
+    SatId sat;
+    SignalId signal;
+    int gnss_id, sig_id;
+  };
+  const Row rows[] = {
+      {SatId::gps(1), SignalId::kGpsL1CA, 0, 0},
+      {SatId::gps(1), SignalId::kGpsL2CL, 0, 3},
+      {SatId(GnssSystem::kGlonass, 5), SignalId::kGloL1OF, 6, 0},
+      {SatId(GnssSystem::kGlonass, 5), SignalId::kGloL2OF, 6, 2},
+      {SatId(GnssSystem::kGalileo, 11), SignalId::kGalE1C, 2, 0},
+      {SatId(GnssSystem::kGalileo, 11), SignalId::kGalE5bQ, 2, 6},
+      {SatId(GnssSystem::kBeiDou, 20), SignalId::kBdsB1I, 3, 0},   // MEO: D1
+      {SatId(GnssSystem::kBeiDou, 20), SignalId::kBdsB2I, 3, 2},
+      {SatId(GnssSystem::kBeiDou, 3), SignalId::kBdsB2I, 3, 3},    // GEO: D2
+  };
+  receiver::RawEpoch raw;
+  raw.time_valid = true;
+  raw.leap_seconds = 18;
+  raw.leap_seconds_valid = true;
+  for (const Row& r : rows) {
+    receiver::RawMeasurement& m = raw.meas[static_cast<std::size_t>(raw.num_meas++)];
+    m.sat = r.sat;
+    m.signal = r.signal;
+    m.glonass_channel = r.sat.system == GnssSystem::kGlonass ? -4 : 0;
+    m.pseudorange_m = 2.1e7;
+    m.pseudorange_valid = m.carrier_valid = true;
+    m.lock_time_s = 60.0;
+  }
+  int rawx = 0, sfrbx = 0;
+  for (int k = 0; k < 30; ++k) {
+    raw.t_rx = time::GpsTime(2190, 518401.05 + k);
+    d.on_epoch(test::sample_fix(), k, RawSource{&raw, &store, {}});
+    std::string out;
+    test::ubx_epoch(d, {}, out);
+    for (const test::Frame& f : split_frames(out)) {
+      if (f.id == msg::kRxmSfrbx) {
+        ++sfrbx;
+        EXPECT_EQ(f.payload[0], 0);  // GPS: the only system with broadcast data in this nav file
+        EXPECT_EQ(f.payload[2], 0);  // sigId L1C/A: LNAV, not the L2 pilot
+        continue;
+      }
+      if (f.id != msg::kRxmRawx) continue;
+      ++rawx;
+      ASSERT_EQ(f.payload[11], std::size(rows));  // numMeas
+      EXPECT_EQ(f.payload[13], 1);               // version
+      for (std::size_t i = 0; i < std::size(rows); ++i) {
+        const std::size_t q = 16 + 32 * i;
+        EXPECT_EQ(f.payload[q + 20], rows[i].gnss_id) << i;
+        EXPECT_EQ(f.payload[q + 22], rows[i].sig_id) << i;
+      }
+      EXPECT_EQ(f.payload[16 + 32 * 2 + 23], 3);  // GLONASS freqId k + 7
+    }
+  }
+  EXPECT_EQ(rawx, 30);
+  // G01 over 30 s: subframes 1-3 of the five that end (as on the M8 above).
+  EXPECT_EQ(sfrbx, 3);
+}
+
 }  // namespace
 }  // namespace gnssemu::protocol::ubx

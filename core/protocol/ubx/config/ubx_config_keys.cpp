@@ -62,6 +62,13 @@ constexpr ConfigKey field(std::uint32_t id, std::string_view name, KeyStore s, M
   return k;
 }
 
+/// A port's infMsgMask in the stored CFG-INF block of protocolID index.
+constexpr ConfigKey inf(std::uint32_t id, std::string_view name, std::uint8_t index, std::uint8_t port_id) {
+  ConfigKey k = field(id, name, KeyStore::kBlock, msg::kCfgInf, static_cast<std::uint8_t>(4 + port_id), 0, 8, 0, 0xFF);
+  k.port = index;
+  return k;
+}
+
 constexpr ConfigKey gnss(std::uint32_t id, std::string_view name, std::uint8_t gnss_id, std::uint8_t bit) {
   return field(id, name, KeyStore::kGnss, msg::kCfgGnss, gnss_id, bit, 1, 0, 1);
 }
@@ -211,6 +218,19 @@ constexpr ConfigKey kFixedKeys[] = {
     field(0x20220022, "CFG-ODO-COGMAXPOSACC", kBlock, msg::kCfgOdo, 13, 0, 8, 0, kU1),
     field(0x20220031, "CFG-ODO-VELLPGAIN", kBlock, msg::kCfgOdo, 16, 0, 8, 0, kU1),
     field(0x20220032, "CFG-ODO-COGLPGAIN", kBlock, msg::kCfgOdo, 17, 0, 8, 0, kU1),
+    // CFG-INFMSG: the infMsgMask byte of each port (4 + port id) in the stored
+    // CFG-INF blocks, protocolID 0 UBX and 1 NMEA; bits ERROR, WARNING, NOTICE,
+    // TEST, DEBUG (UBX-18010854 CFG-INFMSG, UBX-13003221 CFG-INF).
+    inf(0x20920001, "CFG-INFMSG-UBX_I2C", 0, kPortDdc),
+    inf(0x20920002, "CFG-INFMSG-UBX_UART1", 0, kPortUart1),
+    inf(0x20920003, "CFG-INFMSG-UBX_UART2", 0, kPortUart2),
+    inf(0x20920004, "CFG-INFMSG-UBX_USB", 0, kPortUsb),
+    inf(0x20920005, "CFG-INFMSG-UBX_SPI", 0, kPortSpi),
+    inf(0x20920006, "CFG-INFMSG-NMEA_I2C", 1, kPortDdc),
+    inf(0x20920007, "CFG-INFMSG-NMEA_UART1", 1, kPortUart1),
+    inf(0x20920008, "CFG-INFMSG-NMEA_UART2", 1, kPortUart2),
+    inf(0x20920009, "CFG-INFMSG-NMEA_USB", 1, kPortUsb),
+    inf(0x2092000A, "CFG-INFMSG-NMEA_SPI", 1, kPortSpi),
     // CFG-ITFM: config (bbThreshold b0-3, cwThreshold b4-8, enable b31) and config2 (antSetting b12-13).
     field(0x20410001, "CFG-ITFM-BBTHRESHOLD", kBlock, msg::kCfgItfm, 0, 0, 4, 0, 15),
     field(0x20410002, "CFG-ITFM-CWTHRESHOLD", kBlock, msg::kCfgItfm, 0, 4, 5, 0, 31),
@@ -447,7 +467,7 @@ std::uint64_t read_config_key(const ConfigKey& k, const DeviceConfig& c, std::si
     case KeyStore::kRate: return get_bits(bytes_of(c.rate), k);
     case KeyStore::kNav5: return get_bits(bytes_of(c.nav5), k);
     case KeyStore::kBlock: {
-      const StoredBlock* b = c.stored(k.msg);
+      const StoredBlock* b = c.stored(k.msg, k.port);
       return b != nullptr ? get_bits(b->payload(), k) : 0;
     }
     case KeyStore::kGnss: {
@@ -505,7 +525,8 @@ bool write_config_key(const ConfigKey& k, DeviceConfig& c, std::size_t uart, std
     case KeyStore::kBlock:
     case KeyStore::kGnss:
     case KeyStore::kNmeaProtver: {
-      const StoredBlock* b = c.stored(k.msg);
+      const std::uint8_t index = k.store == KeyStore::kBlock ? k.port : 0;
+      const StoredBlock* b = c.stored(k.msg, index);
       if (b == nullptr) return false;
       std::array<std::uint8_t, kMaxStoredBytes> bytes = b->bytes;
       const std::span<std::uint8_t> payload{bytes.data(), b->size};
@@ -522,7 +543,7 @@ bool write_config_key(const ConfigKey& k, DeviceConfig& c, std::size_t uart, std
       } else if (!set_bits(payload, at, value)) {
         return false;
       }
-      return c.store(k.msg, 0, payload);
+      return c.store(k.msg, index, payload);
     }
   }
   return false;

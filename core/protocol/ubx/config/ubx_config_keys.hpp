@@ -33,7 +33,7 @@ enum class KeyStore : std::uint8_t {
   kMsgOut,       ///< CFG-MSG rate of `msg` on port `port`
   kRate,         ///< bits of CFG-RATE at byte `offset`
   kNav5,         ///< bits of CFG-NAV5 at byte `offset`
-  kBlock,        ///< bits of the stored CFG block `msg` at byte `offset`
+  kBlock,        ///< bits of the stored CFG block `msg` (index `port`) at byte `offset`
   kGnss,         ///< bit `shift` of the CFG-GNSS flags of gnssId `offset`
   kNmeaProtver,  ///< CFG-NMEA nmeaVersion (0x41) as the key's decimal (41)
 };
@@ -42,7 +42,7 @@ struct ConfigKey {
   std::uint32_t id = 0;
   std::string_view name;         ///< "CFG-RATE-MEAS"; MSGOUT keys without the port ("CFG-MSGOUT-UBX_NAV_PVT")
   KeyStore store = KeyStore::kPlain;
-  std::uint8_t port = 0;         ///< u-blox port id (< kNumPorts) for port keys
+  std::uint8_t port = 0;         ///< u-blox port id (< kNumPorts) for port keys; kBlock: the block's index (CFG-INF protocolID)
   MsgId msg{};                   ///< kMsgOut: the message; kBlock: the CFG block
   std::uint8_t offset = 0;       ///< byte offset of the field (kGnss: gnssId; kUartFraming: item)
   std::uint8_t shift = 0;        ///< first bit of the value in the little-endian field

@@ -16,6 +16,9 @@ static_assert(MessageList::kMaxBytes >= kMaxEpochBytes + nmea::kMaxEpochBytes);
 
 namespace {
 
+constexpr MsgId kInfWarning{cls::kInf, 0x01};
+constexpr std::uint8_t kInfWarningBit = 0x02;  // infMsgMask: b0 ERROR, b1 WARNING, b2 NOTICE (CFG-INF)
+
 std::vector<nmea::NmeaEncoder> nmea_encoders(const DeviceSetup& setup) {
   std::vector<nmea::NmeaEncoder> out;
   const std::size_t n = std::max<std::size_t>(setup.outputs.size(), 1);
@@ -295,6 +298,18 @@ void Device::on_epoch(const receiver::Fix& fix, double now_s, const RawSource& r
   if (generation() == Generation::kF9P) {
     rtcm_out_.encode(fix, raw.epoch, [this](MsgId id) { return rtcm_wanted(id); });
   }
+  const bool big = generation() == Generation::kF9P && fix.rel_pos.valid &&
+                   fix.rel_pos.length_m > kBaselineBigM;
+  baseline_big_due_ = big && (!baseline_big_ || now_s - baseline_big_sent_s_ >= kBaselineBigRepeatS);
+  if (baseline_big_due_) baseline_big_sent_s_ = now_s;
+  baseline_big_ = big;
+}
+
+bool Device::inf_enabled(std::size_t column, std::uint8_t port_id, std::uint8_t bit) const noexcept {
+  // CFG-INF protocolID 0 (UBX): infMsgMask of port port_id at byte 4 + port_id.
+  const StoredBlock* b = current_.stored(msg::kCfgInf, 0);
+  const std::size_t at = 4u + port_id;
+  return current_.port(column).outputs_ubx() && b != nullptr && b->size > at && (b->bytes[at] & bit) != 0;
 }
 
 bool Device::rtcm_wanted(MsgId id) const noexcept {
@@ -362,6 +377,12 @@ void Device::compose(Link at, MessageList& out, Layout layout, FixOverride repor
     nmea_[at.output].encode_epoch(last_fix_, sentences, out.buffer(), &closer, reported);
   }
   if (layout == Layout::kLine) ubx_messages(false);
+  if (baseline_big_due_ && inf_enabled(col, at.port_id, kInfWarningBit)) {
+    static constexpr std::string_view kText = "DGNSS baseline big";
+    append_frame(out.buffer(), kInfWarning,
+                 {reinterpret_cast<const std::uint8_t*>(kText.data()), kText.size()});
+    out.close("INF-WARNING", Protocol::kUbx);
+  }
   if ((current_.port(col).out_proto_mask & proto::kRtcm3) != 0) {
     for (std::size_t i = 0; i < rtcm_out_.size(); ++i) {
       if (!due(col, rtcm_out_.id(i))) continue;

@@ -47,6 +47,13 @@ namespace gnssemu::protocol::ubx {
 inline constexpr double kMinEpochPeriodS = 0.1;
 inline constexpr double kMaxEpochPeriodS = 1.0;
 
+/// Beyond this RTK baseline the ZED-F9P warns INF-WARNING "DGNSS baseline
+/// big" (ZED-F9P Integration Manual R08 §3.1.5.4), m.
+inline constexpr double kBaselineBigM = 50.0e3;
+/// How often the warning repeats while the baseline stays beyond, s. u-blox
+/// does not document it; ours: once when it starts, then at most every 60 s.
+inline constexpr double kBaselineBigRepeatS = 60.0;
+
 /// A CFG-MSG rate: id sent every rate navigation epochs (0 = off).
 struct MessageRate {
   MsgId id;
@@ -178,6 +185,7 @@ public:
     have_fix_once_ = false;
     info_.ttff_ms = 0;
     epochs_ = 0;
+    baseline_big_ = baseline_big_due_ = false;
   }
 
   /// A UBX frame received at at; now_s: the same clock as power_on (a reset
@@ -206,7 +214,9 @@ public:
   /// empty: those messages are not sent.
   void on_epoch(const receiver::Fix& fix, double now_s, const RawSource& raw = {}) noexcept;
   /// The messages due at at this epoch (rates divide the epoch count;
-  /// protocols per outProtoMask) in layout's order. No allocation
+  /// protocols per outProtoMask) in layout's order; an F9P's INF-WARNING
+  /// "DGNSS baseline big" last among the UBX ones where CFG-INF (CFG-INFMSG-UBX_*)
+  /// enables UBX warnings on the port. No allocation
   /// (MessageList reserves for the largest epoch). reported: the fix type
   /// every message that carries one reports on this port instead of the
   /// receiver's (a wrong_fix link fault, docs/faults.md); nothing: the receiver's.
@@ -270,6 +280,8 @@ private:
   bool valid(Link at) const noexcept { return at.output < outputs() && at.port_id < kNumPorts; }
   std::size_t column(Link at) const noexcept { return current_.column(at.output, at.port_id); }
   bool due(std::size_t column, MsgId id) const noexcept;
+  /// The port at column (u-blox port port_id) sends UBX and CFG-INF enables the INF bit on it.
+  bool inf_enabled(std::size_t column, std::uint8_t port_id, std::uint8_t bit) const noexcept;
   /// Some port sends id this epoch with RTCM 3 in its outProtoMask.
   bool rtcm_wanted(MsgId id) const noexcept;
   /// Fill the change flags of r and the host's baud switch from before_ to current_.
@@ -302,6 +314,11 @@ private:
   double raw_period_s_ = 0.0;  ///< time since the previous epoch's raw data, s
   time::GpsTime last_raw_t_;
   DeviceStats stats_;
+  /// INF-WARNING "DGNSS baseline big": the RTK baseline is beyond
+  /// kBaselineBigM now (since the epoch it went beyond), sent this epoch, and when last sent.
+  bool baseline_big_ = false;
+  bool baseline_big_due_ = false;
+  double baseline_big_sent_s_ = 0.0;
   RtcmInput rtcm_;  ///< RTCM 3 from the ports' hosts
   RtcmOutput rtcm_out_;  ///< the F9P's own RTCM 3 of the last epoch (a moving base)
 };
