@@ -123,7 +123,7 @@ void FaultStage::degrade(world::SatObservable& o, double cn0_dbhz) noexcept {
   if (extra_rr > 0.0) o.doppler_hz -= extra_rr * rng_.normal(stream, epoch_, world::Purpose::kDoppler) / o.wavelength_m;
   if (o.carrier_valid) {
     const std::optional<SignalId> sig = signal_of(o.sat.system, 0);
-    degrade_carrier(o.carrier_phase_cycles, o.carrier_discontinuities, o.cn0_dbhz, cn0_dbhz,
+    degrade_carrier(o.carrier_phase_cycles, o.carrier_discontinuities, o.carrier_half_cycle, o.cn0_dbhz, cn0_dbhz,
                     sig && signal_info(*sig).pilot, stream);
   }
   o.cn0_dbhz = cn0_dbhz;
@@ -136,13 +136,14 @@ void FaultStage::degrade_band1(world::SatObservable& o, double cn0_dbhz) noexcep
   b.received = cn0_dbhz > kNoSignal_dbhz;
   if (b.received && b.carrier_valid) {
     const std::optional<SignalId> sig = signal_of(o.sat.system, 1);
-    degrade_carrier(b.carrier_phase_cycles, b.carrier_discontinuities, b.cn0_dbhz, cn0_dbhz,
+    degrade_carrier(b.carrier_phase_cycles, b.carrier_discontinuities, b.carrier_half_cycle, b.cn0_dbhz, cn0_dbhz,
                     sig && signal_info(*sig).pilot, world::band_stream(o.sat, 1));
   }
   b.cn0_dbhz = b.received ? cn0_dbhz : 0.0;
 }
 
-void FaultStage::degrade_carrier(double& phase_cycles, std::uint32_t& discontinuities, double cn0_from_dbhz,
+void FaultStage::degrade_carrier(double& phase_cycles, std::uint32_t& discontinuities, bool& half_cycle,
+                                 double cn0_from_dbhz,
                                  double cn0_to_dbhz, bool pilot, std::uint64_t stream) noexcept {
   const world::CarrierConfig& cc = ctx_.noise.carrier;
   if (!cc.enabled) return;
@@ -160,9 +161,11 @@ void FaultStage::degrade_carrier(double& phase_cycles, std::uint32_t& discontinu
   const double p_extra = world::cycle_slip_probability(s1, cc.pll_bandwidth_hz, dt_s_) -
                          world::cycle_slip_probability(s0, cc.pll_bandwidth_hz, dt_s_);
   if (!(p_extra > 0.0) || !(rng_.uniform(stream, epoch_, world::Purpose::kCycleSlip, 0) < p_extra)) return;
-  // A Costas loop slips by half a cycle, a pilot's pure PLL by a whole one, either way.
+  // A Costas loop slips by half a cycle (onto the other data sign), a
+  // pilot's pure PLL by a whole one, either way.
   const double size = pilot ? 1.0 : 0.5;
   phase_cycles += rng_.uniform(stream, epoch_, world::Purpose::kCycleSlip, 1) < 0.5 ? -size : size;
+  half_cycle = half_cycle != !pilot;
   ++discontinuities;
 }
 

@@ -111,9 +111,9 @@ private:
   /// The same for the second signal's C/N0 and carrier (dual-band worlds).
   void degrade_band1(world::SatObservable& o, double cn0_dbhz) noexcept;
   /// A carrier loop whose C/N0 falls from cn0_from to cn0_to (dB-Hz): the
-  /// phase noise and the slips (pilot: whole cycles, else half) the larger
-  /// jitter adds; stream: the signal's random stream.
-  void degrade_carrier(double& phase_cycles, std::uint32_t& discontinuities, double cn0_from_dbhz,
+  /// phase noise and the slips (pilot: whole cycles, else half, which
+  /// toggle half_cycle) the larger jitter adds; stream: the signal's random stream.
+  void degrade_carrier(double& phase_cycles, std::uint32_t& discontinuities, bool& half_cycle, double cn0_from_dbhz,
                        double cn0_to_dbhz, bool pilot, std::uint64_t stream) noexcept;
   /// Shift a satellite's signal by delta_m (code and carrier alike) and its
   /// range rate by rate_m_s.

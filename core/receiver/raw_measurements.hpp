@@ -24,7 +24,8 @@ struct RawMeasurement {
   int glonass_channel = 0;            ///< FDMA channel k (-7..6); 0 for other systems
   double pseudorange_m = 0.0;         ///< code pseudorange on the receiver's clock, m (RAWX prMes)
   /// Accumulated carrier phase, cycles of the signal's carrier, same sign as
-  /// the pseudorange; an arbitrary integer per lock (RAWX cpMes).
+  /// the pseudorange; an arbitrary integer per lock, plus half a cycle while
+  /// a Costas loop on the inverted data sign is unresolved (RAWX cpMes).
   double carrier_phase_cycles = 0.0;
   double doppler_hz = 0.0;            ///< Hz, positive when approaching (RAWX doMes)
   double cn0_dbhz = 0.0;              ///< dB-Hz

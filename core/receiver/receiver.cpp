@@ -301,12 +301,13 @@ void Receiver::raw_stage(const world::Observables& obs, double dt_s) noexcept {
     const int glonass_channel = o.eph != nullptr ? o.eph->glo_channel : 0;
     const bool new_lock = acq_.new_lock(o.sat);
     const RawSignal first{*sig, o.pseudorange_m, o.doppler_hz, o.cn0_dbhz, o.wavelength_m, o.carrier_valid,
-                          o.carrier_phase_cycles, o.carrier_discontinuities};
+                          o.carrier_phase_cycles, o.carrier_discontinuities, o.carrier_half_cycle};
     raw_measurement(o.sat, glonass_channel, 0, first, new_lock, dt_s, locked[0][k]);
     if (two_bands && band1_tracked(o, dt_s, band1_now[k], pulling[k])) {
       const world::SecondSignal& b = o.band1;
       const RawSignal second{*signal_of(o.sat.system, 1), b.pseudorange_m, b.doppler_hz, b.cn0_dbhz, b.wavelength_m,
-                             b.carrier_valid, b.carrier_phase_cycles, b.carrier_discontinuities};
+                             b.carrier_valid, b.carrier_phase_cycles, b.carrier_discontinuities,
+                             b.carrier_half_cycle};
       raw_measurement(o.sat, glonass_channel, 1, second, new_lock || !band1_tracked_[k], dt_s, locked[1][k]);
     }
   }
@@ -358,20 +359,30 @@ void Receiver::raw_measurement(SatId sat, int glonass_channel, int band, const R
   locked = true;
   // A re-acquisition after a loss the world's carrier did not see (C/N0
   // below the loop's threshold, a fault's jammer, outage or spoofer) starts
-  // the carrier accumulator over: a new arbitrary whole number of cycles.
-  // The first lock keeps the world's own.
+  // the carrier accumulator over: a new arbitrary whole number of cycles,
+  // and a Costas loop may lock on either data sign. The first lock keeps
+  // the world's own.
+  const bool pilot = signal_info(sig.id).pilot;
   if (new_lock && locks_[ub][k]++ > 0) {
     const world::CounterRng rng(seed_);
-    const double u = rng.uniform(world::kAcquisitionStream + world::band_stream(sat, band), locks_[ub][k],
-                                 world::Purpose::kRelockAmbiguity, 0);
+    const std::uint64_t stream = world::kAcquisitionStream + world::band_stream(sat, band);
+    const double u = rng.uniform(stream, locks_[ub][k], world::Purpose::kRelockAmbiguity, 0);
     relock_cycles_[ub][k] = std::floor(2.0e5 * u) - 1.0e5;
+    relock_half_[ub][k] = !pilot && rng.uniform(stream, locks_[ub][k], world::Purpose::kRelockHalfCycle, 0) < 0.5;
   }
-  m.carrier_phase_cycles = sig.carrier_phase_cycles + relock_cycles_[ub][k];
+  const bool half = sig.half_cycle != relock_half_[ub][k];
+  m.carrier_phase_cycles = sig.carrier_phase_cycles + relock_cycles_[ub][k] + (relock_half_[ub][k] ? 0.5 : 0.0);
   m.lock_time_s = lock_s;
   m.carrier_valid = true;
   // A Costas loop's half-cycle ambiguity is resolved by the next frame
-  // preamble; a dataless pilot's PLL has none.
+  // preamble: an inverted preamble says the loop holds the other sign, and
+  // the receiver subtracts the half cycle (RXM-RAWX trkStat halfCyc,
+  // subHalfCyc; docs/raw-output.md). A dataless pilot's PLL has none.
   m.half_cycle_resolved = half_cycle_resolved(sig.id, m.lock_time_s, raw_.t_rx.tow_s());
+  if (m.half_cycle_resolved && half) {
+    m.carrier_phase_cycles -= 0.5;
+    m.half_cycle_subtracted = true;
+  }
 }
 
 const Fix& Receiver::step(const time::GpsTime& t, const world::Observables& obs) noexcept {

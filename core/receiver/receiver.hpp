@@ -125,6 +125,7 @@ private:
     bool carrier_valid;
     double carrier_phase_cycles;
     std::uint32_t discontinuities;
+    bool half_cycle;  ///< the phase is half a cycle off (world::SatObservable::carrier_half_cycle)
   };
   /// Append sig (band 0 or 1) of sat to raw_; new_lock: its loop (re)started
   /// this epoch; locked set when its carrier is tracked.
@@ -177,6 +178,8 @@ private:
   /// Whole cycles the receiver's own re-acquisitions added to the world's
   /// phase (its carrier accumulator restarts at each), and their count.
   PerBand<double> relock_cycles_{};
+  /// A re-acquired Costas loop locked on the other data sign than the world's: half a cycle more.
+  PerBand<bool> relock_half_{};
   PerBand<std::uint32_t> locks_{};
   std::uint64_t seed_ = 1;
   /// The second signal: tracked at the last epoch; time its C/N0 has been

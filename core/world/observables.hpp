@@ -37,6 +37,7 @@ struct SecondSignal {
   bool carrier_valid = false;           ///< as SatObservable::carrier_valid, for this band
   double carrier_phase_cycles = 0.0;    ///< cycles of wavelength_m, an arbitrary integer per lock
   std::uint32_t carrier_discontinuities = 0;  ///< this band's new locks and slips so far
+  bool carrier_half_cycle = false;      ///< as SatObservable::carrier_half_cycle, for this band
 };
 
 /// One satellite above the horizon with a healthy ephemeris.
@@ -59,13 +60,17 @@ struct SatObservable {
   /// The carrier loop is locked (received, with the carrier modelled).
   bool carrier_valid = false;
   /// Accumulated carrier phase, cycles of wavelength_m, with the sign of the pseudorange
-  /// (grows with the range); an arbitrary whole number of cycles per lock.
+  /// (grows with the range); an arbitrary whole number of cycles per lock (and half of one while carrier_half_cycle).
   double carrier_phase_cycles = 0.0;
   /// Carrier discontinuities of this satellite so far (new locks, cycle slips): a
   /// change since the last epoch says the phase is not continuous (as the
   /// loss-of-lock indicator of RINEX), so carrier smoothing must restart.
   /// Counted only while [signal.carrier] is enabled.
   std::uint32_t carrier_discontinuities = 0;
+  /// The Costas loop of a data signal holds the inverted data sign, so
+  /// carrier_phase_cycles is half a cycle off a whole number; the receiver
+  /// learns it from the next frame preamble. Never set for a pilot.
+  bool carrier_half_cycle = false;
   /// The range jumped by more than the code loop follows since the last
   /// epoch (a discontinuous truth): the receiver loses lock on it. Only
   /// while [signal.carrier] is enabled (or set by the fault stage).

@@ -42,6 +42,8 @@ enum class Purpose : uint64_t {
   kSbasIonoInit = 25,        ///< residual of an SBAS's ionospheric correction per satellite
   kSbasIonoStep = 26,
   kRelockAmbiguity = 27,     ///< the receiver's ambiguity of a re-acquired carrier (streams kAcquisitionStream + band_stream)
+  kLockHalfCycle = 28,       ///< the sign a Costas loop locks on at a new carrier lock (half a cycle or none)
+  kRelockHalfCycle = 29,     ///< the same for the receiver's re-acquired carrier (streams kAcquisitionStream + band_stream)
 };
 
 /// Random stream of a satellite: (system << 8) | RINEX number. GPS is system

@@ -330,11 +330,16 @@ double World::carrier_offset_cycles(CarrierTrack& c, uint64_t stream, uint64_t e
     }
   }
   if (restart) {
-    // A new lock starts from an arbitrary whole number of cycles.
+    // A new lock starts from an arbitrary whole number of cycles; a Costas
+    // loop locks on either data sign, so half a cycle off as often as not
+    // (until the frame preamble tells the receiver which).
     c.offset_cycles = std::floor(2.0e5 * rng_.uniform(stream, epoch, Purpose::kCarrierAmbiguity, 0)) - 1.0e5;
+    c.half_cycle = !pilot && rng_.uniform(stream, epoch, Purpose::kLockHalfCycle, 0) < 0.5;
+    if (c.half_cycle) c.offset_cycles += 0.5;
     ++c.discontinuities;
   } else if (slip_cycles != 0.0) {
     c.offset_cycles += slip_cycles;
+    c.half_cycle = c.half_cycle != (std::fabs(slip_cycles) < 1.0);
     ++c.discontinuities;
   }
   c.continuous = true;
@@ -376,6 +381,7 @@ void World::second_signal(SatObservable& o, const SkySat& s, const time::GpsTime
       std::hypot(pll_jitter_rad(b.cn0_dbhz, cc.pll_bandwidth_hz, cc.integration_s), cc.oscillator_sigma_rad);
   const double offset = carrier_offset_cycles(c, stream, epoch, o.lock_break, sigma_rad, signal_info(*sig).pilot, o.nlos);
   b.carrier_discontinuities = c.discontinuities;
+  b.carrier_half_cycle = c.half_cycle;
   const double phase_noise_m =
       sigma_rad / (2.0 * kPi) * b.wavelength_m * rng_.normal(stream, epoch, Purpose::kCarrierNoise);
   const double carrier_m = common_m - iono_m + phase_noise_m + carrier_multipath_m(multipath, b.wavelength_m);
@@ -408,6 +414,7 @@ void World::carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch
   c.range_m = s.range_m;
   c.range_rate_m_s = s.range_rate_m_s;
   o.carrier_discontinuities = c.discontinuities;
+  o.carrier_half_cycle = c.half_cycle;
   const PathEffects& e = path_[k];
   const double phase_noise_m =
       sigma_rad / (2.0 * kPi) * o.wavelength_m * rng_.normal(stream, epoch, Purpose::kCarrierNoise);

@@ -92,6 +92,9 @@ struct CarrierTrack {
   bool continuous = false;      ///< received at the previous epoch
   bool nlos = false;            ///< reflections only at the previous epoch
   double offset_cycles = 0.0;   ///< ambiguity of the current lock plus its slips, cycles
+  /// A Costas loop holds the inverted data sign: offset_cycles is half a
+  /// cycle off a whole number (new locks and half-cycle slips toggle it).
+  bool half_cycle = false;
   std::uint32_t discontinuities = 0;  ///< new locks and slips so far
   double range_m = 0.0;         ///< geometric range at the previous epoch, m
   double range_rate_m_s = 0.0;  ///< its rate, m/s
