@@ -67,7 +67,8 @@ TEST(RawxFaultLock, JammerEpisodeClearsAndRestartsLocktimeAndHalfCycle) {
   for (int s = 0; s < 70; ++s) before = step(s);
   ASSERT_GE(before.size(), 5u);
   for (const Entry& e : before) {
-    EXPECT_EQ(e.trk_stat, 0x07) << e.prn;  // prValid, cpValid, halfCyc
+    // prValid, cpValid, halfCyc; subHalfCyc (0x08) where the loop locked on the inverted sign.
+    EXPECT_EQ(e.trk_stat & 0x07, 0x07) << e.prn;
     EXPECT_GT(e.locktime_ms, 30000) << e.prn;
   }
   for (int s = 70; s < 100; ++s) EXPECT_TRUE(step(s).empty()) << s;
@@ -83,7 +84,7 @@ TEST(RawxFaultLock, JammerEpisodeClearsAndRestartsLocktimeAndHalfCycle) {
           EXPECT_EQ(e.trk_stat, 0x03) << e.prn;  // prValid, cpValid; half cycle not yet known
         } else {
           EXPECT_EQ(e.locktime_ms, (s - back_at[i]) * 1000) << e.prn;
-          if (resolved_at[i] < 0 && e.trk_stat == 0x07) resolved_at[i] = s;
+          if (resolved_at[i] < 0 && (e.trk_stat & 0x07) == 0x07) resolved_at[i] = s;
         }
       }
     }
