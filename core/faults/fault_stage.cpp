@@ -123,7 +123,7 @@ void FaultStage::degrade(world::SatObservable& o, double cn0_dbhz) noexcept {
   if (extra_rr > 0.0) o.doppler_hz -= extra_rr * rng_.normal(stream, epoch_, world::Purpose::kDoppler) / o.wavelength_m;
   if (o.carrier_valid) {
     const std::optional<SignalId> sig = signal_of(o.sat.system, 0);
-    degrade_carrier(o.carrier_phase_cycles, o.carrier_discontinuities, o.carrier_half_cycle, o.cn0_dbhz, cn0_dbhz,
+    degrade_carrier(o.carrier_phase_cycles, slips_[static_cast<std::size_t>(o.sat.index())][0], o.cn0_dbhz, cn0_dbhz,
                     sig && signal_info(*sig).pilot, stream);
   }
   o.cn0_dbhz = cn0_dbhz;
@@ -136,15 +136,14 @@ void FaultStage::degrade_band1(world::SatObservable& o, double cn0_dbhz) noexcep
   b.received = cn0_dbhz > kNoSignal_dbhz;
   if (b.received && b.carrier_valid) {
     const std::optional<SignalId> sig = signal_of(o.sat.system, 1);
-    degrade_carrier(b.carrier_phase_cycles, b.carrier_discontinuities, b.carrier_half_cycle, b.cn0_dbhz, cn0_dbhz,
+    degrade_carrier(b.carrier_phase_cycles, slips_[static_cast<std::size_t>(o.sat.index())][1], b.cn0_dbhz, cn0_dbhz,
                     sig && signal_info(*sig).pilot, world::band_stream(o.sat, 1));
   }
   b.cn0_dbhz = b.received ? cn0_dbhz : 0.0;
 }
 
-void FaultStage::degrade_carrier(double& phase_cycles, std::uint32_t& discontinuities, bool& half_cycle,
-                                 double cn0_from_dbhz,
-                                 double cn0_to_dbhz, bool pilot, std::uint64_t stream) noexcept {
+void FaultStage::degrade_carrier(double& phase_cycles, CarrierSlips& slips, double cn0_from_dbhz, double cn0_to_dbhz,
+                                 bool pilot, std::uint64_t stream) noexcept {
   const world::CarrierConfig& cc = ctx_.noise.carrier;
   if (!cc.enabled) return;
   // Total loop jitter (thermal PLL jitter and the oscillator's), rad.
@@ -164,9 +163,42 @@ void FaultStage::degrade_carrier(double& phase_cycles, std::uint32_t& discontinu
   // A Costas loop slips by half a cycle (onto the other data sign), a
   // pilot's pure PLL by a whole one, either way.
   const double size = pilot ? 1.0 : 0.5;
-  phase_cycles += rng_.uniform(stream, epoch_, world::Purpose::kCycleSlip, 1) < 0.5 ? -size : size;
-  half_cycle = half_cycle != !pilot;
-  ++discontinuities;
+  CarrierSlips& s = current(slips);
+  s.cycles += rng_.uniform(stream, epoch_, world::Purpose::kCycleSlip, 1) < 0.5 ? -size : size;
+  s.half = s.half != !pilot;
+  ++s.count;
+  any_slips_ = true;
+}
+
+FaultStage::CarrierSlips& FaultStage::current(CarrierSlips& s) const noexcept {
+  if (s.last_epoch + 1 < epoch_) s = CarrierSlips{};  // the loop missed an epoch: lost, a new lock since
+  s.last_epoch = epoch_;
+  return s;
+}
+
+void FaultStage::carry_slips(world::Observables& obs) noexcept {
+  if (!any_slips_) return;
+  bool any = false;
+  const auto carry = [&](bool locked, double& phase_cycles, std::uint32_t& discontinuities, bool& half_cycle,
+                         CarrierSlips& slips) {
+    CarrierSlips& s = current(slips);
+    if (!locked) {
+      s = CarrierSlips{};
+      return;
+    }
+    phase_cycles += s.cycles;
+    discontinuities += s.count;
+    half_cycle = half_cycle != s.half;
+    any = any || s.count > 0;
+  };
+  for (int i = 0; i < obs.num_sats; ++i) {
+    world::SatObservable& o = obs.sats[i];
+    auto& s = slips_[static_cast<std::size_t>(o.sat.index())];
+    carry(o.received && o.carrier_valid, o.carrier_phase_cycles, o.carrier_discontinuities, o.carrier_half_cycle, s[0]);
+    world::SecondSignal& b = o.band1;
+    carry(b.received && b.carrier_valid, b.carrier_phase_cycles, b.carrier_discontinuities, b.carrier_half_cycle, s[1]);
+  }
+  any_slips_ = any;
 }
 
 void FaultStage::shift(world::SatObservable& o, double delta_m, double rate_m_s) noexcept {
@@ -389,7 +421,10 @@ void FaultStage::apply(const time::GpsTime& t, const world::Truth& truth, world:
   elapsed_s_ = t - t0_;
   ++epoch_;
   effects_ = FaultEffects{};
-  if (events_.empty() && !releasing_) return;
+  if (events_.empty() && !releasing_) {
+    carry_slips(obs);
+    return;
+  }
   const double now = elapsed_s_;
   // Order of the physics: the satellites transmit (satellite faults), the
   // sky and the antenna pass or stop the signals (sky_block, outage), a
@@ -473,6 +508,7 @@ void FaultStage::apply(const time::GpsTime& t, const world::Truth& truth, world:
       }
     }
   }
+  carry_slips(obs);
 }
 
 }  // namespace gnssemu::faults

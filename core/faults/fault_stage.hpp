@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "core/common/gnss_signals.hpp"
 #include "core/common/vec3.hpp"
 #include "core/faults/fault_event.hpp"
 #include "core/faults/interference.hpp"
@@ -87,6 +88,15 @@ public:
   std::size_t event_count() const noexcept { return events_.size(); }
 
 private:
+  /// Slips the fault stage made a carrier loop take: they stay in its phase
+  /// until the loop loses lock (not received, carrier invalid, or a missed
+  /// epoch), as a real loop's do. Per satellite and band.
+  struct CarrierSlips {
+    double cycles = 0.0;         ///< sum of the slips, cycles
+    std::uint32_t count = 0;     ///< slips (each a carrier discontinuity)
+    bool half = false;           ///< odd number of half-cycle slips: the data sign flipped
+    std::uint64_t last_epoch = 0;///< the stage's epoch it was last carried
+  };
   struct SpoofState {
     bool started = false;
     Enu offset_m;                   ///< false minus true position, ENU
@@ -112,9 +122,10 @@ private:
   void degrade_band1(world::SatObservable& o, double cn0_dbhz) noexcept;
   /// A carrier loop whose C/N0 falls from cn0_from to cn0_to (dB-Hz): the
   /// phase noise and the slips (pilot: whole cycles, else half, which
-  /// toggle half_cycle) the larger jitter adds; stream: the signal's random stream.
-  void degrade_carrier(double& phase_cycles, std::uint32_t& discontinuities, bool& half_cycle, double cn0_from_dbhz,
-                       double cn0_to_dbhz, bool pilot, std::uint64_t stream) noexcept;
+  /// flip the data sign) the larger jitter adds, kept in slips for the loop's
+  /// lifetime (carry_slips applies them); stream: the signal's random stream.
+  void degrade_carrier(double& phase_cycles, CarrierSlips& slips, double cn0_from_dbhz, double cn0_to_dbhz, bool pilot,
+                       std::uint64_t stream) noexcept;
   /// Shift a satellite's signal by delta_m (code and carrier alike) and its
   /// range rate by rate_m_s.
   static void shift(world::SatObservable& o, double delta_m, double rate_m_s) noexcept;
@@ -149,6 +160,12 @@ private:
   };
   std::array<Shift, kNumSats> shift_{};
   bool shifted_ = false;                    ///< a satellite fault acted at the last epoch
+  std::array<std::array<CarrierSlips, kNumBands>, kNumSats> slips_{};
+  bool any_slips_ = false;
+  /// s as of this epoch: reset when the loop missed the last epoch.
+  CarrierSlips& current(CarrierSlips& s) const noexcept;
+  /// Adds the loops' kept slips to this epoch's carriers; drops those of lost loops.
+  void carry_slips(world::Observables& obs) noexcept;
   std::array<orbit::Ephemeris, kNumSats> eph_copy_{};  ///< broadcast sets a fault falsified, per satellite
   FaultEffects effects_;
   bool started_ = false;

@@ -8,6 +8,8 @@
 // is a loss of lock. Numbers in docs/raw-output.md "Faults and the carrier".
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <cmath>
 #include <string>
 #include <vector>
@@ -64,7 +66,8 @@ Slips jam_one_hour(SatId sat, double cn0_dbhz) {
   truth.valid = true;
   truth.pos_m = Ecef(4.2e6, 0.17e6, 4.78e6);
   Slips s;
-  double sum2 = 0.0;
+  double sum2 = 0.0, kept_cycles = 0.0;
+  std::uint32_t kept_count = 0;
   for (int k = 0; k < 3600; ++k) {
     world::Observables obs;
     obs.antenna_connected = true;
@@ -75,9 +78,14 @@ Slips jam_one_hour(SatId sat, double cn0_dbhz) {
     o.carrier_hz = kL1Freq_hz;
     o.wavelength_m = kL1Wavelength_m;
     stage.apply(time::GpsTime(2300, 1000.0 + k), truth, obs);
-    const double slip = std::round(2.0 * o.carrier_phase_cycles) / 2.0;  // the noise is < 0.1 cycle
-    sum2 += (o.carrier_phase_cycles - slip) * (o.carrier_phase_cycles - slip);
-    s.count += static_cast<int>(o.carrier_discontinuities);
+    // The loop keeps its slips: this epoch's is the step in the kept offset.
+    const double kept = std::round(2.0 * o.carrier_phase_cycles) / 2.0;  // the noise is < 0.1 cycle
+    const double slip = kept - kept_cycles;
+    sum2 += (o.carrier_phase_cycles - kept) * (o.carrier_phase_cycles - kept);
+    EXPECT_GE(o.carrier_discontinuities, kept_count);
+    s.count += static_cast<int>(o.carrier_discontinuities - kept_count);
+    kept_cycles = kept;
+    kept_count = o.carrier_discontinuities;
     if (slip > 0.0) ++s.up;
     if (slip < 0.0) ++s.down;
     if (slip != 0.0) s.size = std::fabs(slip);
@@ -120,6 +128,49 @@ TEST(FaultCarrier, JammerSlipsAndJitterFollowTheLoopsAtTheLowerCn0) {
   const Slips mild = jam_one_hour(gps, 35.0);
   EXPECT_EQ(mild.count, 0);
   EXPECT_LT(mild.noise_rms_cycles, 0.02);
+}
+
+// A slip is a step in the loop's phase that stays: after a 10 min jammer at
+// 22 dB-Hz ends, the carrier keeps the offset and the discontinuity count the
+// slips left, epoch after epoch, until the loop loses lock.
+TEST(FaultCarrier, JammerSlipsStayInThePhaseAfterTheJammer) {
+  const SatId sat(GnssSystem::kGps, 5);
+  FaultEvent e = make_event(FaultType::kJammer, 0.0);
+  e.duration_s = 600.0;
+  e.put(Param::kJsDb, js_db_for(22.0, sat.system));
+  FaultStage stage(FaultContext{}, std::vector<FaultEvent>{e});
+  world::Truth truth;
+  truth.valid = true;
+  truth.pos_m = Ecef(4.2e6, 0.17e6, 4.78e6);
+  const auto epoch = [&](int k, bool received) {
+    world::Observables obs;
+    obs.antenna_connected = true;
+    world::SatObservable& o = obs.sats[static_cast<std::size_t>(obs.num_sats++)];
+    o.sat = sat;
+    o.above_mask = o.received = o.carrier_valid = received;
+    o.cn0_dbhz = received ? kClean_dbhz : 0.0;
+    o.carrier_hz = kL1Freq_hz;
+    o.wavelength_m = kL1Wavelength_m;
+    stage.apply(time::GpsTime(2300, 1000.0 + k), truth, obs);
+    return o;
+  };
+  world::SatObservable last;
+  for (int k = 0; k < 600; ++k) last = epoch(k, true);
+  const double kept = std::round(2.0 * last.carrier_phase_cycles) / 2.0;
+  ASSERT_GT(last.carrier_discontinuities, 5u);  // ~100 an hour: ~16 in 10 min
+  for (int k = 600; k < 900; ++k) {
+    const world::SatObservable o = epoch(k, true);
+    ASSERT_EQ(o.carrier_discontinuities, last.carrier_discontinuities) << k;
+    ASSERT_EQ(o.carrier_phase_cycles, kept) << k;  // the jammer's noise is gone, the slips stay
+    ASSERT_EQ(o.carrier_half_cycle, last.carrier_half_cycle) << k;
+  }
+  // The loop loses the signal: a new lock starts without them.
+  epoch(900, false);
+  const world::SatObservable fresh = epoch(901, true);
+  EXPECT_EQ(fresh.carrier_discontinuities, 0u);
+  EXPECT_EQ(fresh.carrier_phase_cycles, 0.0);
+  std::printf("jammer 600 s at 22 dB-Hz: %u slips, %.1f cycles kept for 300 s after it; gone after a loss of lock\n",
+              last.carrier_discontinuities, kept);
 }
 
 const world::SatObservable* world_sat(const Rig& r, SatId sat) {
