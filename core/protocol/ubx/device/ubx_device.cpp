@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+#include "core/protocol/nmea/nmea_format.hpp"
 #include "core/protocol/ubx/device/ubx_device.hpp"
 
 #include <algorithm>
@@ -305,11 +306,13 @@ void Device::on_epoch(const receiver::Fix& fix, double now_s, const RawSource& r
   baseline_big_ = big;
 }
 
-bool Device::inf_enabled(std::size_t column, std::uint8_t port_id, std::uint8_t bit) const noexcept {
-  // CFG-INF protocolID 0 (UBX): infMsgMask of port port_id at byte 4 + port_id.
-  const StoredBlock* b = current_.stored(msg::kCfgInf, 0);
+bool Device::inf_enabled(std::size_t column, std::uint8_t port_id, std::uint8_t bit,
+                         std::uint8_t protocol) const noexcept {
+  // CFG-INF block of protocolID protocol: infMsgMask of port port_id at byte 4 + port_id.
+  const StoredBlock* b = current_.stored(msg::kCfgInf, protocol);
   const std::size_t at = 4u + port_id;
-  return current_.port(column).outputs_ubx() && b != nullptr && b->size > at && (b->bytes[at] & bit) != 0;
+  const bool out = protocol == 0 ? current_.port(column).outputs_ubx() : current_.port(column).outputs_nmea();
+  return out && b != nullptr && b->size > at && (b->bytes[at] & bit) != 0;
 }
 
 bool Device::rtcm_wanted(MsgId id) const noexcept {
@@ -377,11 +380,28 @@ void Device::compose(Link at, MessageList& out, Layout layout, FixOverride repor
     nmea_[at.output].encode_epoch(last_fix_, sentences, out.buffer(), &closer, reported);
   }
   if (layout == Layout::kLine) ubx_messages(false);
-  if (baseline_big_due_ && inf_enabled(col, at.port_id, kInfWarningBit)) {
-    static constexpr std::string_view kText = "DGNSS baseline big";
+  static constexpr std::string_view kBaselineBig = "DGNSS baseline big";
+  if (baseline_big_due_ && inf_enabled(col, at.port_id, kInfWarningBit, 0)) {
     append_frame(out.buffer(), kInfWarning,
-                 {reinterpret_cast<const std::uint8_t*>(kText.data()), kText.size()});
+                 {reinterpret_cast<const std::uint8_t*>(kBaselineBig.data()), kBaselineBig.size()});
     out.close("INF-WARNING", Protocol::kUbx);
+  }
+  if (baseline_big_due_ && inf_enabled(col, at.port_id, kInfWarningBit, 1)) {
+    // The same as NMEA TXT where the port's NMEA info messages carry warnings
+    // (factory: errors, warnings, notices): one sentence, type 01 warning,
+    // talker GN as u-blox 9 logs show ($GNTXT,01,01,00,txbuf alloc in
+    // shared/data/receiver-logs).
+    std::string& b = out.buffer();
+    const std::size_t start = b.size();
+    b += "$GNTXT,01,01,01,";
+    b += kBaselineBig;
+    const std::uint8_t cs = nmea::nmea_checksum(std::string_view(b).substr(start + 1));
+    static constexpr char kHex[] = "0123456789ABCDEF";
+    b += '*';
+    b += kHex[cs >> 4];
+    b += kHex[cs & 0xF];
+    b += "\r\n";
+    out.close("TXT", Protocol::kNmea);
   }
   if ((current_.port(col).out_proto_mask & proto::kRtcm3) != 0) {
     for (std::size_t i = 0; i < rtcm_out_.size(); ++i) {

@@ -281,7 +281,8 @@ private:
   std::size_t column(Link at) const noexcept { return current_.column(at.output, at.port_id); }
   bool due(std::size_t column, MsgId id) const noexcept;
   /// The port at column (u-blox port port_id) sends UBX and CFG-INF enables the INF bit on it.
-  bool inf_enabled(std::size_t column, std::uint8_t port_id, std::uint8_t bit) const noexcept;
+  /// The port's CFG-INF infMsgMask has bit for protocol (0 UBX, 1 NMEA), and the port outputs that protocol.
+  bool inf_enabled(std::size_t column, std::uint8_t port_id, std::uint8_t bit, std::uint8_t protocol) const noexcept;
   /// Some port sends id this epoch with RTCM 3 in its outProtoMask.
   bool rtcm_wanted(MsgId id) const noexcept;
   /// Fill the change flags of r and the host's baud switch from before_ to current_.
