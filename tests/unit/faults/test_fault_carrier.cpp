@@ -56,28 +56,35 @@ struct Slips {
   double cn0_dbhz = 0.0;
 };
 
+// One epoch of the fault stage alone on one satellite's clean L1 signal
+// (received or not) at 1 Hz epoch k: the observable as the stage leaves it.
+world::SatObservable one_sat_epoch(FaultStage& stage, SatId sat, int k, bool received) {
+  world::Truth truth;
+  truth.valid = true;
+  truth.pos_m = Ecef(4.2e6, 0.17e6, 4.78e6);
+  world::Observables obs;
+  obs.antenna_connected = true;
+  world::SatObservable& o = obs.sats[static_cast<std::size_t>(obs.num_sats++)];
+  o.sat = sat;
+  o.above_mask = o.received = o.carrier_valid = received;
+  o.cn0_dbhz = received ? kClean_dbhz : 0.0;
+  o.carrier_hz = kL1Freq_hz;
+  o.wavelength_m = kL1Wavelength_m;
+  stage.apply(time::GpsTime(2300, 1000.0 + k), truth, obs);
+  return o;
+}
+
 // A jammer taking one satellite's C/N0 from kClean_dbhz to cn0_dbhz, one
 // hour at 1 Hz on the fault stage alone: the slips and phase noise it adds.
 Slips jam_one_hour(SatId sat, double cn0_dbhz) {
   FaultEvent e = make_event(FaultType::kJammer, 0.0);
   e.put(Param::kJsDb, js_db_for(cn0_dbhz, sat.system));
   FaultStage stage(FaultContext{}, std::vector<FaultEvent>{e});
-  world::Truth truth;
-  truth.valid = true;
-  truth.pos_m = Ecef(4.2e6, 0.17e6, 4.78e6);
   Slips s;
   double sum2 = 0.0, kept_cycles = 0.0;
   std::uint32_t kept_count = 0;
   for (int k = 0; k < 3600; ++k) {
-    world::Observables obs;
-    obs.antenna_connected = true;
-    world::SatObservable& o = obs.sats[static_cast<std::size_t>(obs.num_sats++)];
-    o.sat = sat;
-    o.above_mask = o.received = o.carrier_valid = true;
-    o.cn0_dbhz = kClean_dbhz;
-    o.carrier_hz = kL1Freq_hz;
-    o.wavelength_m = kL1Wavelength_m;
-    stage.apply(time::GpsTime(2300, 1000.0 + k), truth, obs);
+    const world::SatObservable o = one_sat_epoch(stage, sat, k, true);
     // The loop keeps its slips: this epoch's is the step in the kept offset.
     const double kept = std::round(2.0 * o.carrier_phase_cycles) / 2.0;  // the noise is < 0.1 cycle
     const double slip = kept - kept_cycles;
@@ -139,21 +146,7 @@ TEST(FaultCarrier, JammerSlipsStayInThePhaseAfterTheJammer) {
   e.duration_s = 600.0;
   e.put(Param::kJsDb, js_db_for(22.0, sat.system));
   FaultStage stage(FaultContext{}, std::vector<FaultEvent>{e});
-  world::Truth truth;
-  truth.valid = true;
-  truth.pos_m = Ecef(4.2e6, 0.17e6, 4.78e6);
-  const auto epoch = [&](int k, bool received) {
-    world::Observables obs;
-    obs.antenna_connected = true;
-    world::SatObservable& o = obs.sats[static_cast<std::size_t>(obs.num_sats++)];
-    o.sat = sat;
-    o.above_mask = o.received = o.carrier_valid = received;
-    o.cn0_dbhz = received ? kClean_dbhz : 0.0;
-    o.carrier_hz = kL1Freq_hz;
-    o.wavelength_m = kL1Wavelength_m;
-    stage.apply(time::GpsTime(2300, 1000.0 + k), truth, obs);
-    return o;
-  };
+  const auto epoch = [&](int k, bool received) { return one_sat_epoch(stage, sat, k, received); };
   world::SatObservable last;
   for (int k = 0; k < 600; ++k) last = epoch(k, true);
   const double kept = std::round(2.0 * last.carrier_phase_cycles) / 2.0;
