@@ -57,6 +57,28 @@ void accumulate(MatN& n, VecN& g, const VecN& h, double w, double y, int ns) noe
   }
 }
 
+// A pseudorange's design row (design_row(hx, hy, hz, col)) into the normal
+// matrix (and g += w h y with g non-null): only its non-zero entries, each
+// product formed as the dense loop forms it, so the sums are the same bits.
+void accumulate_range(MatN& n, VecN* g, double hx, double hy, double hz, int col, double w, double y) noexcept {
+  const double h[3] = {hx, hy, hz};
+  const auto c = static_cast<std::size_t>(col);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double wh = w * h[i];
+    if (g) (*g)[i] += wh * y;
+    for (std::size_t k = 0; k < 3; ++k) n[i][k] += wh * h[k];
+    n[i][3] += wh;
+    if (col > 3) n[i][c] += wh;
+  }
+  for (std::size_t r = 3;; r = c) {
+    if (g) (*g)[r] += w * y;
+    for (std::size_t k = 0; k < 3; ++k) n[r][k] += w * h[k];
+    n[r][3] += w;
+    if (col > 3) n[r][c] += w;
+    if (r == c || col <= 3) break;
+  }
+}
+
 bool finite4(const Mat4& m) noexcept {
   for (const auto& r : m)
     for (double v : r)
@@ -191,7 +213,7 @@ bool Solver::iterate(const SolverInput& in, Ecef& pos, double& clock_m, bool two
     VecN g{};
     for (int i = 0; i < n_; ++i) {
       const Sat& s = sats_[i];
-      accumulate(n, g, design_row(-s.los.x, -s.los.y, -s.los.z, s.col), s.weight, s.resid_m, ns);
+      accumulate_range(n, &g, -s.los.x, -s.los.y, -s.los.z, s.col, s.weight, s.resid_m);
     }
     if (two_d) {
       if (!near_surface) return false;
@@ -232,9 +254,8 @@ bool Solver::finish(const SolverInput& in, const Ecef& pos, double clock_m, bool
     const Sat& s = sats_[i];
     const Enu e = to_enu(s.los);
     const Vec4 h{-e.x, -e.y, -e.z, 1.0};
-    const VecN hn = design_row(-e.x, -e.y, -e.z, s.col);
-    accumulate(nu, unused, hn, 1.0, 0.0, ns);
-    accumulate(nw, unused, hn, s.weight, 0.0, ns);
+    accumulate_range(nu, nullptr, -e.x, -e.y, -e.z, s.col, 1.0, 0.0);
+    accumulate_range(nw, nullptr, -e.x, -e.y, -e.z, s.col, s.weight, 0.0);
     // Measured range rate minus the satellite part: -e.v_rx + c * drift.
     const double rr = -in.meas[i].wavelength_m * in.meas[i].doppler_hz;
     accumulate(nv, gv, h, wv, rr - s.los.dot(s.vel_rx_frame_m_s) + s.drift_m_s);
