@@ -128,9 +128,9 @@ void World::sky_stage(const SharedSky& sky, const time::GpsTime& t, const Truth&
     const SatId sat = sats_[static_cast<std::size_t>(i)];
     const orbit::Ephemeris* eph = sky.state(sat).eph;
     if (eph == nullptr) continue;
-    SkySat s;
-    if (!sky_sat(sky, *eph, t, rx, truth.vel_m_s, s)) continue;
     const std::size_t k = static_cast<std::size_t>(sat.index());
+    SkySat s;
+    if (!sky_sat(sky, *eph, t, rx, truth.vel_m_s, s, light_time_guess(sky_[k], t))) continue;
     sky_[k] = s;
     eph_[k] = eph;
     scene_path_[k] = scene::SatPath{};

@@ -94,9 +94,15 @@ bool NavFilter::update(const NavVector& h, double innovation, double r, double g
   double s = r;
   for (int i = 0; i < kNavStates; ++i) s += h[i] * ph[i];
   if (!(s > 0.0) || !std::isfinite(innovation) || !(std::fabs(innovation) <= gate_sigma * std::sqrt(s))) return false;
-  for (int i = 0; i < kNavStates; ++i) x_[i] += ph[i] / s * innovation;
-  for (int i = 0; i < kNavStates; ++i)
-    for (int k = 0; k < kNavStates; ++k) p_[i][k] -= ph[i] * ph[k] / s;
+  // K = P h' / s; P -= K (P h')' on the upper triangle, mirrored: P stays
+  // exactly symmetric, with one division instead of one per element.
+  const double inv_s = 1.0 / s;
+  for (int i = 0; i < kNavStates; ++i) {
+    const double k_i = ph[i] * inv_s;
+    x_[i] += k_i * innovation;
+    for (int k = i; k < kNavStates; ++k) p_[i][k] -= k_i * ph[k];
+    for (int k = i + 1; k < kNavStates; ++k) p_[k][i] = p_[i][k];
+  }
   return true;
 }
 

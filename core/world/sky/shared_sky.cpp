@@ -58,6 +58,8 @@ void SharedSky::rebuild() noexcept {
   // Sets of a replaced store may sit at the addresses of the old ones.
   state_.fill(SkyState{});
   glonass_.fill(orbit::GlonassNode{});
+  node_a_.fill(Node{});
+  node_b_.fill(Node{});
   selected_from_.fill(time::GpsTime{});
   selected_until_.fill(time::GpsTime{});  // empty spans: select again
   fingerprint_ = store_.fingerprint();
@@ -65,26 +67,54 @@ void SharedSky::rebuild() noexcept {
   ++revision_;
 }
 
-void SharedSky::evaluate(SatId sat, const orbit::Ephemeris& eph, const time::GpsTime& t) noexcept {
+SharedSky::Node SharedSky::evaluate(SatId sat, const orbit::Ephemeris& eph, const time::GpsTime& t) noexcept {
+  const orbit::SatState st = orbit::sat_state(eph, t, glonass_[static_cast<std::size_t>(sat.index())]);
+  Node n;
+  n.eph = &eph;
+  n.toe = eph.toe;
+  n.t = t;
+  n.pos_m = st.pos_m;
+  n.vel_m_s = st.vel_m_s;
+  n.acc_m_s2 = orbit::ecef_acceleration_m_s2(eph, st.pos_m, st.vel_m_s);
+  n.clk_bias_s = st.clk_bias_s;
+  n.clk_drift_s_s = st.clk_drift_s_s;
+  ++evaluations_;
+  return n;
+}
+
+void SharedSky::interpolate(SatId sat, const orbit::Ephemeris& eph, const time::GpsTime& t,
+                            const time::GpsTime& ta) noexcept {
   const std::size_t k = static_cast<std::size_t>(sat.index());
-  const orbit::SatState st = orbit::sat_state(eph, t, glonass_[k]);
+  Node& a = node_a_[k];
+  Node& b = node_b_[k];
+  if (!a.of(eph, ta)) {
+    a = b.of(eph, ta) ? b : evaluate(sat, eph, ta);
+    b = evaluate(sat, eph, ta + kSkyNodeSpacing_s);
+  }
+  // Cubic Hermite on [a.t, b.t] in s = (t - a.t) / H; the acceleration
+  // (the force model's, for the Taylor steps) linear between the nodes.
+  constexpr double h = kSkyNodeSpacing_s;
+  const double u = (t - ta) / h, u2 = u * u, u3 = u2 * u;
+  const double h00 = 2.0 * u3 - 3.0 * u2 + 1.0, h10 = (u3 - 2.0 * u2 + u) * h, h01 = 3.0 * u2 - 2.0 * u3,
+               h11 = (u3 - u2) * h;
+  const double d00 = (6.0 * u2 - 6.0 * u) / h, d10 = 3.0 * u2 - 4.0 * u + 1.0, d11 = 3.0 * u2 - 2.0 * u;
   SkyState& s = state_[k];
   s.eph = &eph;
   s.t = t;
-  s.pos_m = st.pos_m;
-  s.vel_m_s = st.vel_m_s;
-  s.acc_m_s2 = orbit::ecef_acceleration_m_s2(eph, st.pos_m, st.vel_m_s);
-  s.clk_bias_s = st.clk_bias_s;
-  s.clk_drift_s_s = st.clk_drift_s_s;
+  s.pos_m = Ecef(a.pos_m * h00 + a.vel_m_s * h10 + b.pos_m * h01 + b.vel_m_s * h11);
+  s.vel_m_s = Ecef((a.pos_m - b.pos_m) * d00 + a.vel_m_s * d10 + b.vel_m_s * d11);
+  s.acc_m_s2 = Ecef(a.acc_m_s2 + (b.acc_m_s2 - a.acc_m_s2) * u);
+  s.clk_bias_s = a.clk_bias_s * h00 + a.clk_drift_s_s * h10 + b.clk_bias_s * h01 + b.clk_drift_s_s * h11;
+  s.clk_drift_s_s = (a.clk_bias_s - b.clk_bias_s) * d00 + a.clk_drift_s_s * d10 + b.clk_drift_s_s * d11;
   s.current = true;
   eval_toe_[k] = eph.toe;
-  ++evaluations_;
 }
 
 void SharedSky::update(const time::GpsTime& t, std::span<const Ecef> antennas_m) noexcept {
   if (!built_ || store_.fingerprint() != fingerprint_) rebuild();
   t_ = t;
   errors_.begin(t, sats(), revision_);
+  const time::GpsTime node = t - std::fmod(t.tow_s(), kSkyNodeSpacing_s);
   for (int i = 0; i < n_sats_; ++i) {
     const SatId sat = sats_[static_cast<std::size_t>(i)];
     const std::size_t k = static_cast<std::size_t>(sat.index());
@@ -107,7 +137,7 @@ void SharedSky::update(const time::GpsTime& t, std::span<const Ecef> antennas_m)
         continue;
       }
     }
-    evaluate(sat, *eph, t);
+    interpolate(sat, *eph, t, node);
     errors_.step(sat);
   }
 }

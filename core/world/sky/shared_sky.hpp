@@ -2,8 +2,14 @@
 #pragma once
 // SharedSky: what every receiver sees the same at one epoch — each
 // satellite's broadcast orbit and clock (position, velocity, acceleration,
-// clock, clock drift) evaluated once at the epoch's time, for the
-// satellites of the configured systems. Light time (~65-90 ms) and a
+// clock, clock drift) at the epoch's time, for the satellites of the
+// configured systems. The broadcast model is evaluated in full only at
+// nodes kSkyNodeSpacing_s apart on the GPS-time grid; an epoch between two
+// nodes takes the cubic Hermite through their positions and velocities
+// (clock: bias and drift): < 0.5 um from the full evaluation for the
+// Keplerian systems and < 7 um for GLONASS (its RK4 output), < 1e-18 s in
+// clock (tests/unit/world/test_shared_sky.cpp), the same whenever the run
+// started. Light time (~65-90 ms) and a
 // receiver's transmit time are short Taylor steps from it (second order in
 // position, first in velocity and clock: < 1e-7 m over 80 ms for every
 // system, tests/unit/world/test_shared_sky.cpp). Owned outside the worlds
@@ -28,6 +34,11 @@ namespace gnssemu::world {
 /// Longest Taylor step from an evaluation, s; farther the orbit is evaluated
 /// in full (jerk dt^3 / 6 at 1 s: ~1.5e-5 m for GPS).
 inline constexpr double kMaxTaylorStep_s = 1.0;
+
+/// Spacing of the sky's full broadcast evaluations, s (divides a week).
+/// The cubic Hermite's error is ~H^4 / 384 |x| with |x| ~ n^4 r
+/// ~1.2e-8 m/s^4 for a GNSS orbit: ~3e-7 m at 10 s.
+inline constexpr double kSkyNodeSpacing_s = 10.0;
 
 /// One satellite's broadcast state at an evaluation time.
 struct SkyState {
@@ -81,12 +92,26 @@ public:
 
   /// Changes whenever the satellite list is rebuilt (a reader's copy of it is stale).
   long revision() const noexcept { return revision_; }
-  /// Full orbit evaluations so far (for benchmarks).
+  /// Full orbit evaluations (nodes) so far (for benchmarks).
   long evaluations() const noexcept { return evaluations_; }
 
 private:
+  /// A full evaluation of one set at a grid time.
+  struct Node {
+    const orbit::Ephemeris* eph = nullptr;
+    time::GpsTime toe;  ///< of eph when evaluated (a set replaced at the same address differs)
+    time::GpsTime t;
+    Ecef pos_m, vel_m_s, acc_m_s2;
+    double clk_bias_s = 0.0, clk_drift_s_s = 0.0;
+    bool of(const orbit::Ephemeris& e, const time::GpsTime& at) const noexcept {
+      return eph == &e && toe == e.toe && t == at;
+    }
+  };
+
   void rebuild() noexcept;
-  void evaluate(SatId sat, const orbit::Ephemeris& eph, const time::GpsTime& t) noexcept;
+  Node evaluate(SatId sat, const orbit::Ephemeris& eph, const time::GpsTime& t) noexcept;
+  /// ta: the grid node at or before t (t - fmod(tow, H), once per epoch).
+  void interpolate(SatId sat, const orbit::Ephemeris& eph, const time::GpsTime& t, const time::GpsTime& ta) noexcept;
 
   const orbit::EphemerisStore& store_;
   SystemSet systems_;
@@ -97,6 +122,7 @@ private:
   int n_sats_ = 0;
   std::array<SkyState, kNumSats> state_{};
   std::array<time::GpsTime, kNumSats> eval_toe_{};
+  std::array<Node, kNumSats> node_a_{}, node_b_{};  ///< the grid interval around the last epoch
   // The store's selection per satellite and the span [from, until) it holds for.
   std::array<const orbit::Ephemeris*, kNumSats> selected_{};
   std::array<time::GpsTime, kNumSats> selected_from_{}, selected_until_{};  ///< toe of the set state_ was evaluated from

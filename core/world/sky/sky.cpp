@@ -14,20 +14,12 @@ namespace {
 // time moves a satellite by < 0.01° as seen from the ground).
 constexpr double kCullSinEl = -0.02;
 
-/// rotate_earth() for the light time's angles (|a| < 1e-5 rad): the series
-/// to a^3 leaves a^4 / 24 < 1e-21, below a double's rounding.
-Ecef rotate_earth_small(const Vec3& v, double a) noexcept {
-  const double a2 = a * a;
-  const double c = 1.0 - 0.5 * a2, s = a * (1.0 - a2 / 6.0);
-  return Ecef(c * v.x + s * v.y, -s * v.x + c * v.y, v.z);
-}
-
 /// Light-time iteration with state_at(t) the satellite's state at GPS time t:
 /// fills t_tx, pos, vel, clock, range and range rate of out.
 template <class StateAt>
 void light_time(StateAt&& state_at, const time::GpsTime& t_rx, const Ecef& rx_pos_m, const Ecef& rx_vel_m_s,
-                SkySat& s) noexcept {
-  double tau_s = 0.075;
+                SkySat& s, double tau_guess_s = 0.075) noexcept {
+  double tau_s = tau_guess_s;
   orbit::SatState st;
   Ecef pos;
   double range_m = 0.0;
@@ -35,7 +27,7 @@ void light_time(StateAt&& state_at, const time::GpsTime& t_rx, const Ecef& rx_po
   for (int pass = 0; pass < 5; ++pass) {
     tau_eval_s = tau_s;
     st = state_at(t_rx - tau_s);
-    pos = rotate_earth_small(st.pos_m, kOmegaEarth_rad_s * tau_s);
+    pos = rotate_earth(st.pos_m, kOmegaEarth_rad_s * tau_s);
     range_m = (pos - rx_pos_m).norm();
     const double tau_new = range_m / kSpeedOfLight_m_s;
     const bool done = std::fabs(tau_new - tau_s) < 1e-9;
@@ -47,7 +39,7 @@ void light_time(StateAt&& state_at, const time::GpsTime& t_rx, const Ecef& rx_po
   tau_s = tau_eval_s;
   s.t_tx = t_rx - tau_s;
   s.pos_m = pos;
-  s.vel_m_s = rotate_earth_small(st.vel_m_s, kOmegaEarth_rad_s * tau_s);
+  s.vel_m_s = rotate_earth(st.vel_m_s, kOmegaEarth_rad_s * tau_s);
   s.clk_bias_s = st.clk_bias_s;
   s.clk_drift_s_s = st.clk_drift_s_s;
   s.range_m = range_m;
@@ -77,8 +69,18 @@ RxPlace RxPlace::of(const Ecef& pos_m, const Lla& lla) noexcept {
   return p;
 }
 
+double light_time_guess(const SkySat& prev, const time::GpsTime& t_rx) noexcept {
+  constexpr double kDefault_s = 0.075;
+  if (!(prev.range_m > 0.0)) return kDefault_s;
+  const double tau_prev_s = prev.range_m / kSpeedOfLight_m_s;
+  const double dt_s = t_rx - (prev.t_tx + tau_prev_s);
+  if (!(dt_s > 0.0 && dt_s <= 2.0)) return kDefault_s;
+  const double tau_s = tau_prev_s + prev.range_rate_m_s * dt_s / kSpeedOfLight_m_s;
+  return tau_s > 0.0 && tau_s < 0.2 ? tau_s : kDefault_s;
+}
+
 bool sky_sat(const SharedSky& sky, const orbit::Ephemeris& eph, const time::GpsTime& t_rx, const RxPlace& rx,
-             const Ecef& rx_vel_m_s, SkySat& s) noexcept {
+             const Ecef& rx_vel_m_s, SkySat& s, double tau_guess_s) noexcept {
   const SkyState& ss = sky.state(eph.sat);
   if (ss.eph == &eph) {
     // A satellite the sky culled has an older evaluation of this set (from
@@ -87,7 +89,8 @@ bool sky_sat(const SharedSky& sky, const orbit::Ephemeris& eph, const time::GpsT
     const double up = rx.up(d);
     if (up < 0.0 && up * up > kCullSinEl * kCullSinEl * d.dot(d)) return false;
   }
-  light_time([&sky, &eph](const time::GpsTime& t) { return sky.state_at(eph, t); }, t_rx, rx.pos_m, rx_vel_m_s, s);
+  light_time([&sky, &eph](const time::GpsTime& t) { return sky.state_at(eph, t); }, t_rx, rx.pos_m, rx_vel_m_s, s,
+             tau_guess_s);
   // geo::look_angles with the axes computed once (the same arithmetic).
   const Vec3 d = s.pos_m - rx.pos_m;
   const double e = -rx.sin_lon * d.x + rx.cos_lon * d.y;

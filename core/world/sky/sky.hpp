@@ -3,6 +3,8 @@
 // World-side geometry of one satellite seen from the true antenna position:
 // light-time iteration, Sagnac rotation, look angles and range rate
 // (shared/reference/gps-orbits.md §4).
+#include <cmath>
+
 #include "core/common/vec3.hpp"
 #include "core/orbit/ephemeris.hpp"
 #include "core/time/gps_time.hpp"
@@ -13,7 +15,18 @@ namespace gnssemu::world {
 /// Rotation of an ECEF vector about Z by angle_rad (Earth rotation during
 /// the signal flight: from the transmit-time frame into the receive-time frame).
 inline Ecef rotate_earth(const Vec3& v, double angle_rad) noexcept {
-  const double c = std::cos(angle_rad), s = std::sin(angle_rad);
+  double c, s;
+  if (std::fabs(angle_rad) < 1e-4) {
+    // Light-time angles (< 2e-5 rad): the series to a^3 leaves a^4 / 24 <
+    // 5e-18 in the cosine and a^5 / 120 < 1e-22 in the sine, below the
+    // rounding of either; libm's sin/cos cost far more.
+    const double a2 = angle_rad * angle_rad;
+    c = 1.0 - 0.5 * a2;
+    s = angle_rad * (1.0 - a2 / 6.0);
+  } else {
+    c = std::cos(angle_rad);
+    s = std::sin(angle_rad);
+  }
   return Ecef(c * v.x + s * v.y, -s * v.x + c * v.y, v.z);
 }
 
@@ -48,8 +61,15 @@ struct RxPlace {
 /// steps across the light time; eph evaluated in full if the sky lacks it).
 /// Returns false, leaving out incomplete, when the satellite is below the
 /// horizon (no look angles computed) or, before any light-time work, more
-/// than ~1° below it.
+/// than ~1° below it. tau_guess_s: where the light-time iteration starts
+/// (lightTimeGuess() from the satellite's previous epoch converges in one
+/// pass; 0.075 s takes three).
 bool sky_sat(const SharedSky& sky, const orbit::Ephemeris& eph, const time::GpsTime& t_rx, const RxPlace& rx,
-             const Ecef& rx_vel_m_s, SkySat& out) noexcept;
+             const Ecef& rx_vel_m_s, SkySat& out, double tau_guess_s = 0.075) noexcept;
+
+/// A light-time start for receive time t_rx from the same satellite's
+/// SkySat of an earlier epoch (range and range rate carried forward: off by
+/// ~1e-11 s after 0.1 s); 0.075 s when prev is older than 2 s or unset.
+double light_time_guess(const SkySat& prev, const time::GpsTime& t_rx) noexcept;
 
 }  // namespace gnssemu::world

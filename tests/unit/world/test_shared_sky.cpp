@@ -83,6 +83,54 @@ TEST(SharedSky, TaylorStepsMatchFullEvaluationForEverySystem) {
   }
 }
 
+// Epochs between the sky's grid nodes (cubic Hermite through two full
+// evaluations kSkyNodeSpacing_s apart) against the ephemeris evaluated in
+// full at the epoch: every system, 10 Hz epochs off the grid.
+TEST(SharedSky, EpochsBetweenNodesMatchFullEvaluationForEverySystem) {
+  const orbit::EphemerisStore store(nav().ephemerides);
+  SharedSky sky(store, every_system());
+  std::array<double, kNumSystems> max_pos_m{}, max_vel_m_s{}, max_acc_m_s2{}, max_clk_s{}, max_drift{};
+  std::array<int, kNumSystems> n{};
+  const long evals0 = sky.evaluations();
+  int epochs = 0;
+  for (const double h : {0.5, 3.0, 6.5}) {
+    for (int e = 0; e < 600; ++e, ++epochs) {
+      sky.update(kDay + h * 3600.0 + 0.1 * e + 0.03);
+      for (const SatId sat : sky.sats()) {
+        const SkyState& s = sky.state(sat);
+        if (s.eph == nullptr) continue;
+        const auto k = static_cast<std::size_t>(sat.system);
+        ++n[k];
+        const orbit::SatState b = orbit::sat_state(*s.eph, sky.t());
+        max_pos_m[k] = std::max(max_pos_m[k], (s.pos_m - b.pos_m).norm());
+        max_vel_m_s[k] = std::max(max_vel_m_s[k], (s.vel_m_s - b.vel_m_s).norm());
+        max_acc_m_s2[k] =
+            std::max(max_acc_m_s2[k], (s.acc_m_s2 - orbit::ecef_acceleration_m_s2(*s.eph, b.pos_m, b.vel_m_s)).norm());
+        max_clk_s[k] = std::max(max_clk_s[k], std::fabs(s.clk_bias_s - b.clk_bias_s));
+        max_drift[k] = std::max(max_drift[k], std::fabs(s.clk_drift_s_s - b.clk_drift_s_s));
+      }
+    }
+  }
+  for (int i = 0; i < kNumSystems; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (static_cast<GnssSystem>(i) == GnssSystem::kSbas) continue;
+    ASSERT_GT(n[k], 0) << system_letter(static_cast<GnssSystem>(i));
+    std::printf("%c: %6d states, max |dpos| %.2e m, |dvel| %.2e m/s, |dacc| %.2e m/s2, |dclk| %.2e s, |ddrift| %.2e\n",
+                system_letter(static_cast<GnssSystem>(i)), n[k], max_pos_m[k], max_vel_m_s[k], max_acc_m_s2[k],
+                max_clk_s[k], max_drift[k]);
+    // Keplerian systems ~0.5 um; GLONASS ~6 um (its RK4 steps' own roughness).
+    EXPECT_LT(max_pos_m[k], 1e-5);      // 10 um: the carrier's noise is ~1 mm
+    EXPECT_LT(max_vel_m_s[k], 1e-5);    // 5e-5 Hz of Doppler
+    EXPECT_LT(max_acc_m_s2[k], 1e-6);   // over an 80 ms light time: 3e-9 m
+    EXPECT_LT(max_clk_s[k], 1e-15);     // 0.3 um
+    EXPECT_LT(max_drift[k], 1e-15);
+  }
+  // About two full evaluations per satellite per node spacing (10 Hz: 1 in 50 epochs).
+  const double per_epoch = static_cast<double>(sky.evaluations() - evals0) / epochs;
+  std::printf("full evaluations per epoch: %.2f for %zu satellites\n", per_epoch, sky.sats().size());
+  EXPECT_LT(per_epoch, 0.05 * static_cast<double>(sky.sats().size()));
+}
+
 // Beyond the Taylor span, or for another set, the ephemeris is evaluated in full.
 TEST(SharedSky, FallsBackToFullEvaluation) {
   const orbit::EphemerisStore store(nav().ephemerides);
@@ -130,13 +178,13 @@ TEST(SharedSky, CullsOnlyFarBelowTheHorizon) {
     const Ecef rx = geo::ecef_from_lla(site);
     for (int k = 0; k < 40; ++k) {
       const time::GpsTime t = kDay + 3600.0 + 30.0 * k;
-      const long before = sky.evaluations();
       sky.update(t, std::span<const Ecef>(&rx, 1));
-      const long evaluated = sky.evaluations() - before;
+      long evaluated = 0;
       int above = 0;
       for (const SatId sat : sky.sats()) {
         const SkyState& s = sky.state(sat);
         if (s.eph == nullptr) continue;
+        evaluated += s.current;
         const SkySat full = sky_sat(*s.eph, t, rx, site, Ecef());
         if (full.el_rad > 0.0) {
           ++above;
