@@ -117,7 +117,9 @@ TEST(WorldSystems, OrbitClockErrorFollowsTheSystemSisre) {
   ASSERT_GT(n_g, 50);
   ASSERT_GT(n_r, 50);
   const double ratio = std::sqrt(sum2_r / n_r) / std::sqrt(sum2_g / n_g);
-  EXPECT_NEAR(ratio, 2.0 / 0.6, 0.8);
+  // GLONASS: sqrt(1.0^2 - 0.6^2 + 2.0^2) = 2.15 m against GPS's 1.0 m
+  // (world::orbit_clock_process; the whole sigma scaled would be 3.33).
+  EXPECT_NEAR(ratio, std::sqrt(1.0 - 0.36 + 4.0), 0.5);
 }
 
 }  // namespace

@@ -54,9 +54,14 @@ TEST(OrbitClockProcess, ScalesTheGpsSigmaBySystemSisre) {
   const GaussMarkovConfig gps{1.2, 1800.0};
   EXPECT_EQ(orbit_clock_process(gps, GnssSystem::kGps).sigma_m, 1.2);  // GPS exactly as configured
   EXPECT_EQ(orbit_clock_process(gps, GnssSystem::kGps).tau_s, 1800.0);
-  EXPECT_NEAR(orbit_clock_process(gps, GnssSystem::kGalileo).sigma_m, 1.2 * 0.2 / 0.6, 1e-12);
-  EXPECT_NEAR(orbit_clock_process(gps, GnssSystem::kGlonass).sigma_m, 1.2 * 2.0 / 0.6, 1e-12);
-  EXPECT_NEAR(orbit_clock_process(gps, GnssSystem::kBeiDou).sigma_m, 1.2 * 1.0 / 0.6, 1e-12);
+  // The SISRE share swapped: sqrt(1.2^2 - 0.6^2 + SISRE^2).
+  EXPECT_NEAR(orbit_clock_process(gps, GnssSystem::kGalileo).sigma_m, std::sqrt(1.44 - 0.36 + 0.04), 1e-12);
+  EXPECT_NEAR(orbit_clock_process(gps, GnssSystem::kGlonass).sigma_m, std::sqrt(1.44 - 0.36 + 4.0), 1e-12);
+  EXPECT_NEAR(orbit_clock_process(gps, GnssSystem::kBeiDou).sigma_m, std::sqrt(1.44 - 0.36 + 1.0), 1e-12);
+  EXPECT_EQ(orbit_clock_process(gps, GnssSystem::kQzss).sigma_m, 1.2);
+  // A fitted sigma below GPS's SISRE is all SISRE: scaled by the ratio.
+  EXPECT_NEAR(orbit_clock_process(GaussMarkovConfig{0.3, 1800.0}, GnssSystem::kGlonass).sigma_m, 0.3 * 2.0 / 0.6,
+              1e-12);
   EXPECT_EQ(orbit_clock_process(gps, GnssSystem::kGalileo).tau_s, 1800.0);
   EXPECT_EQ(orbit_clock_process(GaussMarkovConfig{0.0, 60.0}, GnssSystem::kGlonass).sigma_m, 0.0);
 }
