@@ -3,7 +3,7 @@
 // `gnssemu base`: the [base] reference station run offline over a time span,
 // its RTCM 3 stream written to a file (what gnssemud's base sends live), with
 // the raw observations and the ephemerides it encoded as CSV for checks
-// against a decoder (tests/integration/rtcm_rtklib_integration.py).
+// against a decoder (tests/integration/wire/rtcm_rtklib_integration.py).
 #include <CLI/CLI.hpp>
 #include <ostream>
 #include <string>

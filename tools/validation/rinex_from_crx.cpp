@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Compact RINEX (.crx, .crx.gz) to plain RINEX on stdout with the project's
 // own decoder, for tools that read plain files only (RTKLIB's rnx2rtkp in
-// tests/integration/spp_vs_rtklib.py and docs/validation.md).
+// tests/integration/offline/spp_vs_rtklib.py and docs/validation.md).
 #include <cstdio>
 #include <exception>
 #include <memory>

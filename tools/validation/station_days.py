@@ -12,7 +12,7 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 DEFAULT_DATA = os.path.normpath(os.path.join(ROOT, "..", "shared", "data"))
 # The RTKLIB comparison of one file (and its gzip helper) is the integration test's.
-sys.path.insert(0, os.path.join(ROOT, "tests", "integration"))
+sys.path.insert(0, os.path.join(ROOT, "tests", "integration", "offline"))
 import spp_vs_rtklib  # noqa: E402,F401
 
 # name, station (held-out unit of leave-one-station-out), obs, nav

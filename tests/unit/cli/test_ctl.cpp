@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // gnssemu ctl without a daemon: usage errors exit 2, an absent socket or an
 // unreadable file exit 1 naming it (the live exchange is tested with a real
-// gnssemud in tests/integration/ctl_integration.py).
+// gnssemud in tests/integration/daemon/ctl_integration.py).
 #include <gtest/gtest.h>
 
 #include "cli_test_util.hpp"

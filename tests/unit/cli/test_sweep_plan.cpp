@@ -9,15 +9,15 @@
 #include <sstream>
 
 #include "core/common/error.hpp"
-#include "tools/gnssemu/sweep/csv_row.hpp"
-#include "tools/gnssemu/sweep/input_hash.hpp"
-#include "tools/gnssemu/sweep/slurm_executor.hpp"
-#include "tools/gnssemu/sweep/sweep_file.hpp"
-#include "tools/gnssemu/sweep/sweep_plan.hpp"
-#include "tools/gnssemu/sweep/sweep_task.hpp"
-#include "tools/gnssemu/sweep/task_state.hpp"
-#include "tools/gnssemu/sweep/truth_generator.hpp"
 #include "tools/gnssemu/batch/truth_csv.hpp"
+#include "tools/gnssemu/sweep/collect/csv_row.hpp"
+#include "tools/gnssemu/sweep/plan/input_hash.hpp"
+#include "tools/gnssemu/sweep/plan/sweep_file.hpp"
+#include "tools/gnssemu/sweep/plan/sweep_plan.hpp"
+#include "tools/gnssemu/sweep/plan/truth_generator.hpp"
+#include "tools/gnssemu/sweep/run/slurm_executor.hpp"
+#include "tools/gnssemu/sweep/run/sweep_task.hpp"
+#include "tools/gnssemu/sweep/run/task_state.hpp"
 
 namespace gnssemu::cli::sweep {
 namespace {

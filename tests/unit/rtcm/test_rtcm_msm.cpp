@@ -3,7 +3,7 @@
 // splitting beyond 64 cells, lock indicators (RTCM 10403.3 Tables 3.5-74/76 as
 // rtk-raw.md §2.4 states them), values back within the fields' resolution,
 // and no allocation per epoch. RTKLIB's own decoding is the integration test
-// tests/integration/rtcm_rtklib_integration.py.
+// tests/integration/wire/rtcm_rtklib_integration.py.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -11,12 +11,12 @@
 #include <sstream>
 
 #include "core/common/error.hpp"
-#include "tools/gnssemu/sweep/csv_row.hpp"
-#include "tools/gnssemu/sweep/sweep_collect.hpp"
-#include "tools/gnssemu/sweep/sweep_file.hpp"
-#include "tools/gnssemu/sweep/sweep_plan.hpp"
-#include "tools/gnssemu/sweep/sweep_task.hpp"
-#include "tools/gnssemu/sweep/task_state.hpp"
+#include "tools/gnssemu/sweep/collect/csv_row.hpp"
+#include "tools/gnssemu/sweep/collect/sweep_collect.hpp"
+#include "tools/gnssemu/sweep/plan/sweep_file.hpp"
+#include "tools/gnssemu/sweep/plan/sweep_plan.hpp"
+#include "tools/gnssemu/sweep/run/sweep_task.hpp"
+#include "tools/gnssemu/sweep/run/task_state.hpp"
 
 namespace gnssemu::cli::sweep {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "tools/gnssemu/sweep/local_executor.hpp"
-#include "tools/gnssemu/sweep/slurm_executor.hpp"
+#include "tools/gnssemu/sweep/run/local_executor.hpp"
+#include "tools/gnssemu/sweep/run/slurm_executor.hpp"
 
 namespace gnssemu::cli::sweep {
 
