@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <iterator>
 
 #include "daemon/status/json_writer.hpp"
 #include "daemon/status/status_producer.hpp"
@@ -69,11 +71,113 @@ void write_row(JsonWriter& w, const OverviewEntry& e) noexcept {
   w.end_object();
 }
 
+struct SortKeyName {
+  std::string_view name;
+  OverviewSort sort;
+};
+constexpr SortKeyName kSortKeys[] = {{"name", OverviewSort::kName},   {"fix", OverviewSort::kFix},
+                                     {"sats", OverviewSort::kSats},   {"herr", OverviewSort::kHErr},
+                                     {"hacc", OverviewSort::kHAcc},   {"truth", OverviewSort::kTruth},
+                                     {"faults", OverviewSort::kFaults}, {"bytes", OverviewSort::kBytes},
+                                     {"dropped", OverviewSort::kDropped}};
+
+std::string sort_key_list() {
+  std::string out;
+  for (const SortKeyName& k : kSortKeys) out += (out.empty() ? "" : ", ") + std::string(k.name);
+  return out;
+}
+
+/// Natural order: digit runs compare as numbers ("v9" < "v10"), the rest
+/// byte by byte. <0, 0, >0.
+int natural_compare(std::string_view a, std::string_view b) noexcept {
+  std::size_t i = 0, j = 0;
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  while (i < a.size() && j < b.size()) {
+    if (digit(a[i]) && digit(b[j])) {
+      std::size_t ie = i, je = j;
+      while (ie < a.size() && a[ie] == '0') ++ie;  // leading zeros do not count
+      while (je < b.size() && b[je] == '0') ++je;
+      std::size_t ae = ie, be = je;
+      while (ae < a.size() && digit(a[ae])) ++ae;
+      while (be < b.size() && digit(b[be])) ++be;
+      if (ae - ie != be - je) return ae - ie < be - je ? -1 : 1;
+      if (const int c = a.substr(ie, ae - ie).compare(b.substr(je, be - je)); c != 0) return c;
+      i = ae;
+      j = be;
+      continue;
+    }
+    if (a[i] != b[j]) return static_cast<unsigned char>(a[i]) < static_cast<unsigned char>(b[j]) ? -1 : 1;
+    ++i;
+    ++j;
+  }
+  if (a.size() - i == b.size() - j) return 0;
+  return a.size() - i < b.size() - j ? -1 : 1;
+}
+
+int carrier_rank(const OverviewRow& r) noexcept {
+  switch (r.carrier) {
+    case receiver::CarrierSolution::kFixed: return 3;
+    case receiver::CarrierSolution::kFloat: return 2;
+    case receiver::CarrierSolution::kNone: break;
+  }
+  return r.diff ? 1 : 0;
+}
+
+/// A row's sort value: (missing, primary, secondary); missing rows go last.
+struct SortValue {
+  bool missing = false;
+  double a = 0.0, b = 0.0;
+};
+
+SortValue sort_value(const OverviewRow& r, OverviewSort s) noexcept {
+  switch (s) {
+    case OverviewSort::kFix: return {false, static_cast<double>(r.fix_type), static_cast<double>(carrier_rank(r))};
+    case OverviewSort::kSats: return {false, static_cast<double>(r.num_used), static_cast<double>(r.num_tracked)};
+    case OverviewSort::kHErr: return {!std::isfinite(r.h_err_m), r.h_err_m, 0.0};
+    case OverviewSort::kHAcc: return {!std::isfinite(r.h_acc_m), r.h_acc_m, 0.0};
+    case OverviewSort::kTruth:  // no truth, stopped simulator, fresh; then the oldest packet first
+      return {false, r.truth_valid ? (r.truth_fresh ? 2.0 : 1.0) : 0.0,
+              std::isfinite(r.truth_age_s) ? -r.truth_age_s : 0.0};
+    case OverviewSort::kFaults: {
+      std::size_t active = 0;
+      for (const FaultStatus& f : r.faults) active += f.active ? 1 : 0;
+      return {false, static_cast<double>(active), static_cast<double>(r.faults.size())};
+    }
+    case OverviewSort::kBytes: return {false, static_cast<double>(r.bytes_written), 0.0};
+    case OverviewSort::kDropped:
+      return {false, static_cast<double>(r.epochs_dropped + r.messages_dropped), 0.0};
+    case OverviewSort::kConfig:
+    case OverviewSort::kName: break;
+  }
+  return {};
+}
+
 }  // namespace
+
+void sort_overview(std::span<OverviewEntry> entries, const OverviewQuery& q) {
+  if (q.sort == OverviewSort::kConfig) return;
+  const int sign = q.descending ? -1 : 1;
+  if (q.sort == OverviewSort::kName) {
+    std::stable_sort(entries.begin(), entries.end(), [sign](const OverviewEntry& x, const OverviewEntry& y) {
+      int c = natural_compare(x.vehicle, y.vehicle);
+      if (c == 0) c = natural_compare(x.receiver, y.receiver);
+      return sign * c < 0;
+    });
+    return;
+  }
+  std::stable_sort(entries.begin(), entries.end(), [&q, sign](const OverviewEntry& x, const OverviewEntry& y) {
+    const SortValue a = sort_value(x.status->overview(), q.sort), b = sort_value(y.status->overview(), q.sort);
+    if (a.missing != b.missing) return b.missing;
+    if (a.missing) return false;
+    if (a.a != b.a) return sign * (a.a < b.a ? -1 : 1) < 0;
+    if (a.b != b.b) return sign * (a.b < b.b ? -1 : 1) < 0;
+    return false;
+  });
+}
 
 std::string parse_overview_query(std::string_view query, OverviewQuery& q) {
   OverviewQuery out;
-  bool have_limit = false, have_offset = false;
+  bool have_limit = false, have_offset = false, have_sort = false, have_order = false;
   std::size_t pos = 0;
   while (pos < query.size()) {
     std::size_t end = query.find('&', pos);
@@ -97,8 +201,23 @@ std::string parse_overview_query(std::string_view query, OverviewQuery& q) {
       if (!whole_number(value, out.offset)) {
         return "offset must be a whole number >= 0, not '" + std::string(value) + "'";
       }
+    } else if (key == "sort") {
+      if (have_sort) return "sort given twice";
+      have_sort = true;
+      const auto* k = std::find_if(std::begin(kSortKeys), std::end(kSortKeys),
+                                   [value](const SortKeyName& n) { return n.name == value; });
+      if (k == std::end(kSortKeys)) {
+        return "sort must be one of " + sort_key_list() + ", not '" + std::string(value.substr(0, 64)) + "'";
+      }
+      out.sort = k->sort;
+    } else if (key == "order") {
+      if (have_order) return "order given twice";
+      have_order = true;
+      if (value != "asc" && value != "desc") return "order must be asc or desc, not '" + std::string(value.substr(0, 64)) + "'";
+      out.descending = value == "desc";
     } else {
-      return "unknown query parameter '" + std::string(key.substr(0, 64)) + "' (/api/overview takes limit, offset)";
+      return "unknown query parameter '" + std::string(key.substr(0, 64)) +
+             "' (/api/overview takes limit, offset, sort, order)";
     }
   }
   q = out;

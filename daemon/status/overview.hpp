@@ -51,16 +51,31 @@ struct OverviewEntry {
 inline constexpr std::size_t kOverviewMaxRows = 1000;     ///< default and largest ?limit=
 inline constexpr std::size_t kOverviewMaxFaultIds = 8;    ///< active fault ids listed per row
 
-/// /api/overview's query: limit rows from offset.
+/// The column /api/overview orders the whole fleet by before paging
+/// (?sort=): the status page's column keys.
+enum class OverviewSort { kConfig, kName, kFix, kSats, kHErr, kHAcc, kTruth, kFaults, kBytes, kDropped };
+
+/// /api/overview's query: the fleet ordered by sort (ascending unless
+/// descending; ties and kConfig in the configuration's order), then limit
+/// rows from offset.
 struct OverviewQuery {
   std::size_t offset = 0;
   std::size_t limit = kOverviewMaxRows;
+  OverviewSort sort = OverviewSort::kConfig;
+  bool descending = false;
 };
 
-/// Parse "limit=N&offset=M" (both optional). Returns "" and fills q, or the
-/// reason the query is refused (an unknown or repeated key, a value that is
-/// not a whole number, limit outside [1, kOverviewMaxRows]).
+/// Parse "limit=N&offset=M&sort=KEY&order=asc|desc" (each optional; KEY one
+/// of name, fix, sats, herr, hacc, truth, faults, bytes, dropped). Returns ""
+/// and fills q, or the reason the query is refused (an unknown or repeated
+/// key, a value that is not a whole number, limit outside [1,
+/// kOverviewMaxRows], an unknown sort key or order).
 std::string parse_overview_query(std::string_view query, OverviewQuery& q);
+
+/// Order entries by q.sort (stable: ties keep their order). A missing value
+/// (no fix: no error, no hAcc) sorts last in either order. name is natural
+/// order of vehicle then receiver ("v9" before "v10").
+void sort_overview(std::span<OverviewEntry> entries, const OverviewQuery& q);
 
 /// Append {"version":1,"total":N,"offset":..,"limit":..,"rows":[...]} for
 /// entries [offset, offset + limit), in the order given.

@@ -229,6 +229,7 @@ private:
         return;
       }
       shared_->roster(shared_->entries);
+      sort_overview(shared_->entries, oq);
       res->set(http::field::content_type, "application/json");
       res->body().reserve(512 + 600 * std::min(oq.limit, shared_->entries.size()));
       write_overview(res->body(), shared_->entries, oq);

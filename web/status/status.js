@@ -196,11 +196,12 @@
     + (params.has('rows') ? '&rows=' + pageRows : '');
 
   // The fleet overview (/api/overview): one row per receiver, refreshed every
-  // second, ordered by the clicked column (vehicle, receiver at first); a
-  // click on a row picks that receiver as the selector does.
-  // A fleet larger than a page is paged (previous / next); sorting orders the page shown.
-  const overview = { key: 'name', dir: 1, rows: [], shown: null, offset: 0, total: 0 };
-  const natural = new Intl.Collator(undefined, { numeric: true });
+  // second, in the configuration's order until a column is clicked; a click
+  // on a row picks that receiver as the selector does. The daemon orders the
+  // whole fleet (?sort=, ?order=) before it pages (previous / next), so the
+  // first page of a sorted column holds the fleet's first rows, not the
+  // first page's rows reordered.
+  const overview = { key: null, dir: 1, rows: [], shown: null, offset: 0, total: 0 };
   const fixText = (r) => (r.fix_type === 0 ? 'no fix' : r.fix_name === 'DR' ? 'dead reckoning'
     : r.fix_name + (r.carrier === 'fixed' ? ' RTK fixed' : r.carrier === 'float' ? ' RTK float' : r.diff ? ' DGNSS' : ''));
   const truthText = (r) => (r.truth_source === 'simulator'
@@ -209,21 +210,8 @@
   const faultText = (r) => (r.faults_active === 0 ? '—'
     : r.active_faults.map((f) => `${f.type} ${f.id}`).join(', ')
       + (r.faults_active > r.active_faults.length ? ` +${r.faults_active - r.active_faults.length}` : ''));
-  const SORT = {
-    name: (a, b) => natural.compare(a.vehicle, b.vehicle) || natural.compare(a.receiver, b.receiver),
-    fix: (a, b) => a.fix_type - b.fix_type || fixText(a).localeCompare(fixText(b)),
-    sats: (a, b) => a.num_used - b.num_used,
-    herr: (a, b) => (a.h_err_m ?? Infinity) - (b.h_err_m ?? Infinity),
-    hacc: (a, b) => (a.h_acc_m ?? Infinity) - (b.h_acc_m ?? Infinity),
-    truth: (a, b) => truthText(a).localeCompare(truthText(b)),
-    faults: (a, b) => a.faults_active - b.faults_active,
-    bytes: (a, b) => a.bytes_written - b.bytes_written,
-    dropped: (a, b) => (a.epochs_dropped + a.messages_dropped) - (b.epochs_dropped + b.messages_dropped),
-  };
-
   function renderOverview() {
-    const cmp = SORT[overview.key];
-    const rows = overview.rows.slice().sort((a, b) => overview.dir * cmp(a, b) || SORT.name(a, b));
+    const rows = overview.rows;  // in the daemon's order (?sort=)
     const body = $('overview-table').tBodies[0];
     body.replaceChildren(...rows.map((r) => {
       const tr = document.createElement('tr');
@@ -245,7 +233,8 @@
   }
 
   function loadOverview() {
-    return fetch(`/api/overview?limit=${pageRows}&offset=${overview.offset}`)
+    const sort = overview.key ? `&sort=${overview.key}&order=${overview.dir > 0 ? 'asc' : 'desc'}` : '';
+    return fetch(`/api/overview?limit=${pageRows}&offset=${overview.offset}${sort}`)
       .then((r) => (r.ok ? r.json() : Promise.reject(new Error(`/api/overview: ${r.status}`))))
       .then((o) => {
         overview.total = o.total;
@@ -297,7 +286,8 @@
         th.onclick = () => {
           overview.dir = overview.key === th.dataset.key ? -overview.dir : 1;
           overview.key = th.dataset.key;
-          renderOverview();
+          overview.offset = 0;
+          loadOverview().catch((err) => console.warn('overview', err));
         };
       }
       $('overview-prev').onclick = () => turnOverviewPage(-1);

@@ -304,7 +304,8 @@ async function checkFleet() {
 
   // The HTTP side: bad queries are refused by name.
   for (const [q, want] of [['limit=0', 'limit must be a whole number in [1, 1000]'], ['limit=x', 'limit must be'],
-                           ['sort=fix', "unknown query parameter 'sort'"], ['offset=-1', 'offset must be']]) {
+                           ['sort=speed', 'sort must be one of name, fix'], ['order=up', 'order must be asc or desc'],
+                           ['vehicle=v0', "unknown query parameter 'vehicle'"], ['offset=-1', 'offset must be']]) {
     const r = await fetch(`${url}api/overview?${q}`);
     const body = await r.text();
     if (r.status !== 400 || !body.includes(want)) fail(`/api/overview?${q}: ${r.status} ${body}`);
@@ -432,6 +433,30 @@ async function checkFleet() {
   await page.click('#overview-prev');
   await rowsShown(3);
   console.log(`paging, 3 rows a page: ${count1} ${page1.join(', ')} | next ${count2} ${page2.join(', ')} | previous back`);
+
+  // Sorting orders the whole fleet before paging: the name column twice
+  // (ascending, then descending) puts v2/gps1 first and v0/gps1 on page 2,
+  // where reordering page 1 alone would keep v0/gps1 on it.
+  const firstRow = (id) => page.waitForFunction((k) => {
+    const tr = document.querySelector('#overview-table tbody tr');
+    return tr && `${tr.dataset.vehicle}/${tr.dataset.receiver}` === k;
+  }, id, { timeout: 10000 });
+  await page.click('#overview-table th[data-key="name"]');
+  await firstRow('v0/gps1');
+  await page.click('#overview-table th[data-key="name"]');
+  await firstRow('v2/gps1');
+  await rowsShown(3);
+  const sorted1 = await rowIds();
+  const api = await getJson(`${url}api/overview?sort=name&order=desc&limit=3`);
+  await page.click('#overview-next');
+  await rowsShown(1);
+  const sorted2 = await rowIds();
+  const wantDesc = [...want].reverse();
+  if (JSON.stringify([...sorted1, ...sorted2]) !== JSON.stringify(wantDesc) ||
+      JSON.stringify(api.rows.map((x) => `${x.vehicle}/${x.receiver}`)) !== JSON.stringify(wantDesc.slice(0, 3))) {
+    fail(`name descending: page 1 ${sorted1}, page 2 ${sorted2}, /api/overview ${JSON.stringify(api.rows.map((x) => x.vehicle + '/' + x.receiver))}`);
+  }
+  console.log(`sorted by name, descending, 3 rows a page: ${sorted1.join(', ')} | next ${sorted2.join(', ')}`);
   if (errors.length) fail(`page errors: ${errors.join('; ')}`);
   const shot = path.join(artifacts, 'status_fleet.png');
   await page.screenshot({ path: shot, fullPage: true });

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The fleet overview: each producer's row, the envelope, limit/offset, the
-// query's refusals, and no allocation once the string has capacity.
+// whole fleet sorted before paging, the query's refusals, and no allocation
+// once the string has capacity.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -174,6 +175,73 @@ TEST(Overview, QueryRefusesUnknownKeysAndBadNumbers) {
   }
   EXPECT_NE(parse_overview_query("vehicle=a", q).find("unknown query parameter 'vehicle'"), std::string::npos);
   EXPECT_NE(parse_overview_query("limit=0", q).find("[1, 1000]"), std::string::npos);
+}
+
+TEST(Overview, QueryParsesSortAndOrder) {
+  OverviewQuery q;
+  EXPECT_EQ(parse_overview_query("sort=herr&order=desc&limit=5", q), "");
+  EXPECT_EQ(q.sort, OverviewSort::kHErr);
+  EXPECT_TRUE(q.descending);
+  EXPECT_EQ(q.limit, 5u);
+  EXPECT_EQ(parse_overview_query("sort=name", q), "");
+  EXPECT_EQ(q.sort, OverviewSort::kName);
+  EXPECT_FALSE(q.descending);
+  for (const char* bad : {"sort=speed", "sort=", "sort=herr&sort=name", "order=up", "order=asc&order=desc"}) {
+    EXPECT_FALSE(parse_overview_query(bad, q).empty()) << bad;
+  }
+  EXPECT_NE(parse_overview_query("sort=speed", q).find("sort must be one of name, fix, sats, herr"), std::string::npos);
+  EXPECT_NE(parse_overview_query("order=up", q).find("order must be asc or desc, not 'up'"), std::string::npos);
+}
+
+// The whole fleet is ordered before paging; no-fix rows (no error) go last
+// in either order; names in natural order; ties keep the configuration's.
+TEST(Overview, SortOrdersTheWholeFleetBeforePaging) {
+  StatusProducer fixed(StatusSettings{}), lost(StatusSettings{}), far(StatusSettings{});
+  feed_fix(fixed, receiver::CarrierSolution::kNone);  // 5 m
+  feed_nothing(lost);                                 // no error
+  {
+    receiver::Fix f;  // 3D fix 30 m east of the truth
+    f.t = time::GpsTime(2190, 1000.0);
+    f.time_valid = true;
+    f.type = receiver::FixType::k3D;
+    const Ecef truth_pos = geo::ecef_from_lla(kOverviewSite);
+    f.pos_m = Ecef(truth_pos + geo::enu_to_ecef_vector(Enu(30.0, 0.0, 0.0), kOverviewSite.lat_rad, kOverviewSite.lon_rad));
+    f.lla = geo::lla_from_ecef(f.pos_m);
+    f.h_acc_m = 9.0;
+    f.num_used = 4;
+    world::Truth t;
+    t.t = f.t;
+    t.pos_m = truth_pos;
+    t.valid = true;
+    far.on_epoch(EpochStatus{&f, &t, 1.0, 1.0, 1.0});
+  }
+  const auto ids = [](const std::vector<OverviewEntry>& e) {
+    std::string s;
+    for (const OverviewEntry& x : e) s += std::string(x.vehicle) + "/" + std::string(x.receiver) + " ";
+    return s;
+  };
+  std::vector<OverviewEntry> e{{"v10", "a", &lost}, {"v9", "a", &far}, {"v2", "b", &fixed}, {"v2", "a", &fixed}};
+  OverviewQuery q;
+  ASSERT_EQ(parse_overview_query("sort=herr", q), "");
+  sort_overview(e, q);
+  EXPECT_EQ(ids(e), "v2/b v2/a v9/a v10/a ");  // 5, 5 (configuration order), 30 m, none
+  ASSERT_EQ(parse_overview_query("sort=herr&order=desc", q), "");
+  sort_overview(e, q);
+  EXPECT_EQ(ids(e), "v9/a v2/b v2/a v10/a ");  // no error still last
+  ASSERT_EQ(parse_overview_query("sort=name", q), "");
+  sort_overview(e, q);
+  EXPECT_EQ(ids(e), "v2/a v2/b v9/a v10/a ");  // natural: v9 before v10
+  ASSERT_EQ(parse_overview_query("sort=sats&order=desc&limit=2&offset=1", q), "");
+  sort_overview(e, q);
+  const nlohmann::json j = overview_json(e, q);  // 7, 7, 4, 0 used: rows 2-3 of the sorted fleet
+  ASSERT_EQ(j["rows"].size(), 2u);
+  EXPECT_EQ(j["rows"][0]["vehicle"], "v2");
+  EXPECT_EQ(j["rows"][0]["receiver"], "b");
+  EXPECT_EQ(j["rows"][1]["vehicle"], "v9");
+  OverviewQuery config;
+  std::vector<OverviewEntry> before = e;
+  sort_overview(e, config);  // no sort: as given
+  EXPECT_EQ(ids(e), ids(before));
 }
 
 TEST(Overview, SerialisingAllocatesNothingOnceTheStringHasCapacity) {
