@@ -162,9 +162,15 @@ TEST_F(ServerFixture, OverviewListsTheRosterAndRefusesABadQuery) {
   const std::string bad = exchange("GET /api/overview?limit=0 HTTP/1.1\r\nConnection: close\r\n\r\n");
   EXPECT_EQ(bad.rfind("HTTP/1.1 400", 0), 0u) << bad;
   EXPECT_NE(bad.find("limit must be a whole number in [1, 1000]"), std::string::npos) << bad;
-  const std::string unknown = exchange("GET /api/overview?sort=fix HTTP/1.1\r\nConnection: close\r\n\r\n");
+  const std::string unknown = exchange("GET /api/overview?vehicle=v1 HTTP/1.1\r\nConnection: close\r\n\r\n");
   EXPECT_EQ(unknown.rfind("HTTP/1.1 400", 0), 0u) << unknown;
-  EXPECT_NE(unknown.find("unknown query parameter 'sort'"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("unknown query parameter 'vehicle'"), std::string::npos) << unknown;
+  // The whole roster sorted before paging (name, descending): v1/gps2 first.
+  const nlohmann::json sorted = nlohmann::json::parse(
+      body_of(exchange("GET /api/overview?sort=name&order=desc&limit=1 HTTP/1.1\r\nConnection: close\r\n\r\n")));
+  ASSERT_EQ(sorted["rows"].size(), 1u);
+  EXPECT_EQ(sorted["rows"][0]["vehicle"], "v1");
+  EXPECT_EQ(sorted["rows"][0]["receiver"], "gps2");
 }
 
 TEST_F(ServerFixture, ConnectionsBeyondTheLimitAreRefusedOthersServed) {
