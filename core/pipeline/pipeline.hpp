@@ -45,6 +45,7 @@ public:
   /// One epoch at receive time t (GPS): the world at the receiver's mask,
   /// the faults, then the receiver. Never throws, never allocates.
   const receiver::Fix& step(const time::GpsTime& t, const world::Truth& truth) noexcept {
+    world_.set_tracked_systems(receiver_.systems());
     return finish(t, truth, world_.step(t, truth, receiver_.config().elevation_mask_rad));
   }
 
@@ -52,6 +53,7 @@ public:
   /// several antennas on a vehicle): the caller updates it once for
   /// sky.t() with every antenna, then steps each pipeline with it.
   const receiver::Fix& step(const world::SharedSky& sky, const world::Truth& truth) noexcept {
+    world_.set_tracked_systems(receiver_.systems());
     return finish(sky.t(), truth, world_.step(sky, truth, receiver_.config().elevation_mask_rad));
   }
 

@@ -126,6 +126,7 @@ void World::sky_stage(const SharedSky& sky, const time::GpsTime& t, const Truth&
   const RxPlace rx = RxPlace::of(truth.pos_m, rx_lla);
   for (int i = 0; i < n_sats_ && n_in_sky_ < kMaxSatsInView; ++i) {
     const SatId sat = sats_[static_cast<std::size_t>(i)];
+    if (!tracked_.has(sat.system)) continue;
     const orbit::Ephemeris* eph = sky.state(sat).eph;
     if (eph == nullptr) continue;
     const std::size_t k = static_cast<std::size_t>(sat.index());

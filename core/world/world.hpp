@@ -56,6 +56,14 @@ public:
   /// none) and which outlives the returned observables. Its systems must
   /// include this world's (the others' satellites are skipped).
   const Observables& step(const SharedSky& sky, const Truth& truth, double mask_rad) noexcept;
+  /// The systems the receiver behind this antenna tracks (its CFG-GNSS):
+  /// the others' satellites get no observables at all (a u-blox with a
+  /// system disabled neither tracks nor reports it), which saves their light
+  /// time, atmosphere, signal and noise. Every satellite draws from its own
+  /// counter streams, so the satellites kept see the same draws. Default:
+  /// every system.
+  void set_tracked_systems(SystemSet systems) noexcept { tracked_ = systems; }
+  SystemSet tracked_systems() const noexcept { return tracked_; }
   /// The world's own sky (the one step(t, ...) updates).
   const SharedSky& own_sky() const noexcept { return own_sky_; }
 
@@ -149,6 +157,7 @@ private:
   time::GpsTime t_prev_;
   double dt_s_ = 0.0;           ///< time since the previous step, s (0 at the first)
   // Sky stage.
+  SystemSet tracked_ = SystemSet::all();            ///< set_tracked_systems()
   std::array<SatId, kNumSats> sats_{};              ///< the sky's satellites of this world's systems, in SatId order
   int n_sats_ = 0;
   const SharedSky* sats_of_ = nullptr;              ///< the sky sats_ was taken from, at sats_revision_
