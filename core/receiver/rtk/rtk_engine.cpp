@@ -164,10 +164,10 @@ void RtkEngine::free_slot(int s) noexcept {
   const int last = n_slots_ - 1;
   slot_of_[static_cast<std::size_t>(slots_[static_cast<std::size_t>(s)].key)] = -1;
   if (s != last) {
+    // Lower triangle (i < j): P(i,k) = P(j,k) for k < j.
     const int i = kAmbState0 + s, j = kAmbState0 + last;
-    const int n = n_states();
-    for (int k = 0; k < n; ++k) p_[i][k] = p_[j][k];
-    for (int k = 0; k < n; ++k) p_[k][i] = p_[k][j];
+    for (int k = 0; k < i; ++k) p_[i][k] = p_[j][k];
+    for (int k = i + 1; k < j; ++k) p_[k][i] = p_[j][k];
     p_[i][i] = p_[j][j];
     x_[i] = x_[j];
     slots_[static_cast<std::size_t>(s)] = slots_[static_cast<std::size_t>(last)];
@@ -185,9 +185,13 @@ bool RtkEngine::update(const int* idx, const double* h, int nh, double v, double
   const int n = block ? n_active : n_states();
   for (int i = 0; i < n; ++i) ph_[i] = 0.0;
   for (int k = 0; k < nh; ++k) {
+    // Row idx[k] of P: its lower-triangle row, then down its column.
     const double hk = h[k];
-    const auto& row = p_[static_cast<std::size_t>(idx[k])];
-    for (int i = 0; i < n; ++i) ph_[i] += hk * row[i];
+    const int ik = idx[k];
+    const auto& row = p_[static_cast<std::size_t>(ik)];
+    const int nr = std::min(ik + 1, n);
+    for (int i = 0; i < nr; ++i) ph_[i] += hk * row[i];
+    for (int i = ik + 1; i < n; ++i) ph_[i] += hk * p_[static_cast<std::size_t>(i)][static_cast<std::size_t>(ik)];
   }
   for (int c = 0; c < n_pend_; ++c) {
     const auto& pc = pend_ph_[static_cast<std::size_t>(c)];
@@ -207,7 +211,7 @@ bool RtkEngine::update(const int* idx, const double* h, int nh, double v, double
       const double ki = ph_[i] * inv;
       if (ki == 0.0) continue;
       auto& row = p_[static_cast<std::size_t>(i)];
-      for (int j = 0; j < n; ++j) row[j] -= ki * ph_[j];
+      for (int j = 0; j <= i; ++j) row[j] -= ki * ph_[j];
     }
     return true;
   }
@@ -234,7 +238,7 @@ void RtkEngine::flush() noexcept {
     // Terms beyond np: a = 0 and a zero vector (cleared below after each flush).
     static_assert(kPendingUpdates == 8, "the sum below spells out eight terms");
     const auto& q = pend_ph_;
-    for (int j = 0; j < n; ++j) {
+    for (int j = 0; j <= i; ++j) {
       row[j] -= ((a[0] * q[0][j] + a[1] * q[1][j]) + (a[2] * q[2][j] + a[3] * q[3][j])) +
                 ((a[4] * q[4][j] + a[5] * q[5][j]) + (a[6] * q[6][j] + a[7] * q[7][j]));
     }
@@ -255,7 +259,7 @@ void RtkEngine::carry_code_block(const std::array<double, 3>& xp0, const Mat3& p
   std::array<std::array<double, 3>, kMaxSlots> jd{};
   Mat3 d{};
   for (int a = 0; a < 3; ++a)
-    for (int c = 0; c < 3; ++c) d[a][c] = ppp0[a][c] - p_[a][c];
+    for (int c = 0; c < 3; ++c) d[a][c] = ppp0[a][c] - pv(a, c);
   const double dx[3] = {x_[0] - xp0[0], x_[1] - xp0[1], x_[2] - xp0[2]};
   for (int b = 0; b < nb; ++b) {
     const auto& row = p_[static_cast<std::size_t>(kAmbState0 + b)];
@@ -267,7 +271,7 @@ void RtkEngine::carry_code_block(const std::array<double, 3>& xp0, const Mat3& p
   for (int b = 0; b < nb; ++b) {
     auto& row = p_[static_cast<std::size_t>(kAmbState0 + b)];
     const auto& db = jd[static_cast<std::size_t>(b)];
-    for (int c = 0; c < nb; ++c) {
+    for (int c = 0; c <= b; ++c) {
       const auto& jc = j[static_cast<std::size_t>(c)];
       row[kAmbState0 + c] -= db[0] * jc[0] + db[1] * jc[1] + db[2] * jc[2];
     }
@@ -275,9 +279,7 @@ void RtkEngine::carry_code_block(const std::array<double, 3>& xp0, const Mat3& p
   for (int b = 0; b < nb; ++b) {
     const auto& jb = j[static_cast<std::size_t>(b)];
     for (int a = 0; a < kAmbState0; ++a) {
-      const double v = jb[0] * p_[0][a] + jb[1] * p_[1][a] + jb[2] * p_[2][a];
-      p_[kAmbState0 + b][a] = v;
-      p_[a][kAmbState0 + b] = v;
+      p_[kAmbState0 + b][a] = jb[0] * pv(0, a) + jb[1] * pv(1, a) + jb[2] * pv(2, a);
     }
   }
 }
@@ -506,7 +508,7 @@ void RtkEngine::solve(const RawEpoch& rover, const NavSnapshot& nav, const Corre
   const std::array<double, 3> xp0{x_[0], x_[1], x_[2]};
   Mat3 ppp0{}, ppp0_inv{};
   for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) ppp0[a][b] = p_[a][b];
+    for (int b = 0; b < 3; ++b) ppp0[a][b] = pv(a, b);
   // A singular position covariance (never after predict): every update on the whole state.
   const int code_block = inverse3(ppp0, ppp0_inv) ? kAmbState0 : 0;
   for (int pass = 0; pass < 2; ++pass) {
@@ -614,7 +616,7 @@ void RtkEngine::solve(const RawEpoch& rover, const NavSnapshot& nav, const Corre
   Ecef pos(x_[0], x_[1], x_[2]);
   Mat3 cov{};
   for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) cov[a][b] = p_[a][b];
+    for (int b = 0; b < 3; ++b) cov[a][b] = pv(a, b);
   if (carrier) {
     if (baseline_m > cfg_.max_fix_baseline_m) {
       ++status_.long_baseline;
@@ -692,7 +694,7 @@ bool RtkEngine::try_fix(double t_s) noexcept {
       for (int j = 0; j <= i; ++j) {
         const int b = kAmbState0 + dd_slot_[static_cast<std::size_t>(j)];
         const int rb = kAmbState0 + dd_ref_[static_cast<std::size_t>(j)];
-        q_dd_[i][j] = q_dd_[j][i] = p_[a][b] - p_[a][rb] - p_[ra][b] + p_[ra][rb];
+        q_dd_[i][j] = q_dd_[j][i] = pv(a, b) - pv(a, rb) - pv(ra, b) + pv(ra, rb);
       }
     }
     const LambdaResult& res = lambda_.solve(a_dd_, q_dd_, m);
