@@ -176,22 +176,40 @@ void RtkEngine::free_slot(int s) noexcept {
   --n_slots_;
 }
 
-bool RtkEngine::update(const int* idx, const double* h, int nh, double v, double r, double gate2,
+__attribute__((target_clones("avx2", "default"))) bool RtkEngine::update(const int* idx, const double* h, int nh, double v, double r, double gate2,
                        int n_active) noexcept {
-  // P h from the rows of h's states (P symmetric) of p_, less the pending
-  // terms' share: (p_ - sum_c ph_c ph_c' inv_c) h.
+  // P h from p_'s lower triangle, less the pending terms' share:
+  // (p_ - sum_c ph_c ph_c' inv_c) h. A whole-state update computes it in
+  // its pending slot.
   const bool block = n_active > 0;
   if (block) flush();
   const int n = block ? n_active : n_states();
-  for (int i = 0; i < n; ++i) ph_[i] = 0.0;
+  double* ph = block ? ph_.data() : pend_ph_[static_cast<std::size_t>(n_pend_)].data();
+  // Row i of P h sums h_k P(idx_k, i) in k order: the terms with idx_k < i
+  // from row i (one pass down the rows, at most five terms, the others
+  // weighted zero), then those with idx_k >= i along row idx_k.
+  constexpr int kMaxH = 5;
+  if (nh > kMaxH) return false;
+  int at[kMaxH] = {};
+  for (int k = 0; k < nh; ++k) at[k] = idx[k];
+  int i = 0;
+  for (int q = 0; q <= nh; ++q) {
+    const int end = q < nh ? std::min(idx[q] + 1, n) : n;
+    double hq[kMaxH] = {};
+    for (int k = 0; k < q; ++k) hq[k] = h[k];
+    for (; i < end; ++i) {
+      const auto& row = p_[static_cast<std::size_t>(i)];
+      ph[i] = (((hq[0] * row[static_cast<std::size_t>(at[0])] + hq[1] * row[static_cast<std::size_t>(at[1])]) +
+                hq[2] * row[static_cast<std::size_t>(at[2])]) +
+               hq[3] * row[static_cast<std::size_t>(at[3])]) +
+              hq[4] * row[static_cast<std::size_t>(at[4])];
+    }
+  }
   for (int k = 0; k < nh; ++k) {
-    // Row idx[k] of P: its lower-triangle row, then down its column.
     const double hk = h[k];
-    const int ik = idx[k];
-    const auto& row = p_[static_cast<std::size_t>(ik)];
-    const int nr = std::min(ik + 1, n);
-    for (int i = 0; i < nr; ++i) ph_[i] += hk * row[i];
-    for (int i = ik + 1; i < n; ++i) ph_[i] += hk * p_[static_cast<std::size_t>(i)][static_cast<std::size_t>(ik)];
+    const auto& row = p_[static_cast<std::size_t>(idx[k])];
+    const int e = std::min(idx[k] + 1, n);
+    for (int j = 0; j < e; ++j) ph[j] += hk * row[static_cast<std::size_t>(j)];
   }
   for (int c = 0; c < n_pend_; ++c) {
     const auto& pc = pend_ph_[static_cast<std::size_t>(c)];
@@ -199,29 +217,32 @@ bool RtkEngine::update(const int* idx, const double* h, int nh, double v, double
     for (int k = 0; k < nh; ++k) w += h[k] * pc[idx[k]];
     w *= pend_inv_[static_cast<std::size_t>(c)];
     if (w == 0.0) continue;
-    for (int i = 0; i < n; ++i) ph_[i] -= w * pc[i];
+    for (int j = 0; j < n; ++j) ph[j] -= w * pc[j];
   }
   double s = r;
-  for (int k = 0; k < nh; ++k) s += h[k] * ph_[idx[k]];
-  if (!(s > 0.0) || !std::isfinite(v) || v * v > gate2 * s) return false;
+  for (int k = 0; k < nh; ++k) s += h[k] * ph[idx[k]];
+  if (!(s > 0.0) || !std::isfinite(v) || v * v > gate2 * s) {
+    // flush() adds every slot's terms (zero weight beyond the pending ones): no leftovers.
+    if (!block) std::fill(ph, ph + n, 0.0);
+    return false;
+  }
   const double inv = 1.0 / s;
-  for (int i = 0; i < n; ++i) x_[i] += ph_[i] * inv * v;
+  for (int j = 0; j < n; ++j) x_[j] += ph[j] * inv * v;
   if (block) {
-    for (int i = 0; i < n; ++i) {
-      const double ki = ph_[i] * inv;
-      if (ki == 0.0) continue;
-      auto& row = p_[static_cast<std::size_t>(i)];
-      for (int j = 0; j <= i; ++j) row[j] -= ki * ph_[j];
+    for (int a = 0; a < n; ++a) {
+      const double ka = ph[a] * inv;
+      if (ka == 0.0) continue;
+      auto& row = p_[static_cast<std::size_t>(a)];
+      for (int j = 0; j <= a; ++j) row[j] -= ka * ph[j];
     }
     return true;
   }
-  pend_ph_[static_cast<std::size_t>(n_pend_)] = ph_;
   pend_inv_[static_cast<std::size_t>(n_pend_)] = inv;
   if (++n_pend_ == kPendingUpdates) flush();
   return true;
 }
 
-void RtkEngine::flush() noexcept {
+__attribute__((target_clones("avx2", "default"))) void RtkEngine::flush() noexcept {
   if (n_pend_ == 0) return;
   const int n = n_states();
   const int np = n_pend_;

@@ -166,7 +166,7 @@ private:
   void reset_ambiguity(int s, double value_cyc, double var_cyc2) noexcept;
   void free_slot(int s) noexcept;
   void zero_cross(int i) noexcept;
-  /// Scalar update with sparse h (idx/h, nh entries), innovation v, noise r;
+  /// Scalar update with sparse h (idx ascending, h, nh entries), innovation v, noise r;
   /// returns false (nothing changed) when v^2 / S exceeds gate2. n_active > 0:
   /// on the first n_active states only (their marginal; see carry_code_block).
   bool update(const int* idx, const double* h, int nh, double v, double r, double gate2,
