@@ -7,7 +7,6 @@
 #include "core/common/constants.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/receiver/solution/transmit_state.hpp"
-#include "core/world/sky/sky.hpp"
 
 namespace gnssemu::receiver::rtk {
 namespace {
@@ -36,13 +35,22 @@ struct Range {
   Vec3 e;  // unit line of sight, receiver -> satellite
 };
 
+// The Earth's rotation by a signal's flight angle (< 1e-4 rad): cos and sin
+// to the terms a double resolves (the next, a^4/24 and a^5/120, are below its
+// resolution), std::cos/std::sin's values within an ulp at a fraction of their cost.
+Ecef rotate_earth_small(const Vec3& v, double angle_rad) noexcept {
+  const double a2 = angle_rad * angle_rad;
+  const double c = 1.0 - 0.5 * a2, s = angle_rad * (1.0 - a2 / 6.0);
+  return Ecef(c * v.x + s * v.y, -s * v.x + c * v.y, v.z);
+}
+
 // Geometric range with the Earth's rotation during the signal's flight (from
 // the geometry, not the pseudorange, so the receiver clock does not enter).
 Range geometric_range(const Ecef& sat_m, const Ecef& rx_m) noexcept {
   Vec3 d = sat_m - rx_m;
   double r = d.norm();
   for (int i = 0; i < 2; ++i) {
-    d = world::rotate_earth(sat_m, kOmegaEarth_rad_s * r / kSpeedOfLight_m_s) - rx_m;
+    d = rotate_earth_small(sat_m, kOmegaEarth_rad_s * r / kSpeedOfLight_m_s) - rx_m;
     r = d.norm();
   }
   return {r, d / r};
@@ -311,6 +319,12 @@ void RtkEngine::process_base(const Corrections& c, const world::SharedSky* sky) 
   base_seen_ = true;
   const RawEpoch& b = c.obs;
   const Ecef& arp = c.station.arp_ecef_m;
+  // The geometry once per satellite, as the rover's (solve): its band-1
+  // measurement, which follows its band-0 one, takes that one's geometry.
+  SatId last_sat{};
+  bool last_valid = false;
+  Range g{};
+  double sat_clock_m = 0.0;
   for (int i = 0; i < b.num_meas; ++i) {
     const RawMeasurement& m = b.meas[static_cast<std::size_t>(i)];
     if (!m.pseudorange_valid) continue;
@@ -320,11 +334,15 @@ void RtkEngine::process_base(const Corrections& c, const world::SharedSky* sky) 
       ++status_.unmatched;  // a satellite the rover does not see
       continue;
     }
-    const TransmitState ts = transmit_state(sky, *eph, b.t_rx, m.pseudorange_m);
-    const Range g = geometric_range(ts.state.pos_m, arp);
+    if (!last_valid || m.sat != last_sat) {
+      const TransmitState ts = transmit_state(sky, *eph, b.t_rx, m.pseudorange_m);
+      g = geometric_range(ts.state.pos_m, arp);
+      sat_clock_m = kSpeedOfLight_m_s * ts.state.clk_bias_s;
+      last_sat = m.sat;
+      last_valid = true;
+    }
     BaseSignal& bs = base_[static_cast<std::size_t>(key_of(m))];
     bs.stamp = base_stamp_;
-    const double sat_clock_m = kSpeedOfLight_m_s * ts.state.clk_bias_s;
     bs.code_omc_m = m.pseudorange_m - g.range_m + sat_clock_m;
     bs.phase = m.carrier_valid;
     bs.phase_omc_m = m.carrier_phase_cycles * wavelength_of(m) - g.range_m + sat_clock_m;
