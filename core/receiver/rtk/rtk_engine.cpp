@@ -193,31 +193,37 @@ __attribute__((target_clones("avx2", "default"))) bool RtkEngine::update(const i
   if (block) flush();
   const int n = block ? n_active : n_states();
   double* ph = block ? ph_.data() : pend_ph_[static_cast<std::size_t>(n_pend_)].data();
-  // Row i of P h sums h_k P(idx_k, i) in k order: the terms with idx_k < i
-  // from row i (one pass down the rows, at most five terms, the others
-  // weighted zero), then those with idx_k >= i along row idx_k.
-  constexpr int kMaxH = 5;
-  if (nh > kMaxH) return false;
-  int at[kMaxH] = {};
-  for (int k = 0; k < nh; ++k) at[k] = idx[k];
-  int i = 0;
-  for (int q = 0; q <= nh; ++q) {
-    const int end = q < nh ? std::min(idx[q] + 1, n) : n;
-    double hq[kMaxH] = {};
-    for (int k = 0; k < q; ++k) hq[k] = h[k];
-    for (; i < end; ++i) {
-      const auto& row = p_[static_cast<std::size_t>(i)];
-      ph[i] = (((hq[0] * row[static_cast<std::size_t>(at[0])] + hq[1] * row[static_cast<std::size_t>(at[1])]) +
-                hq[2] * row[static_cast<std::size_t>(at[2])]) +
-               hq[3] * row[static_cast<std::size_t>(at[3])]) +
-              hq[4] * row[static_cast<std::size_t>(at[4])];
-    }
+  // Row i of P h: h_k P(idx_k, i) summed in k order. The position-and-clock
+  // rows from pv(); below them, the position-and-clock columns from cols_
+  // (contiguous) and an ambiguity's along its row, then down its column.
+  const int na = std::min(n, kAmbState0);
+  for (int i = 0; i < na; ++i) {
+    double acc = 0.0;
+    for (int k = 0; k < nh; ++k) acc += h[k] * pv(idx[k], i);
+    ph[i] = acc;
   }
-  for (int k = 0; k < nh; ++k) {
-    const double hk = h[k];
-    const auto& row = p_[static_cast<std::size_t>(idx[k])];
-    const int e = std::min(idx[k] + 1, n);
-    for (int j = 0; j < e; ++j) ph[j] += hk * row[static_cast<std::size_t>(j)];
+  if (n > kAmbState0) {
+    // p_ changes only with no pending terms (flush() or before any update).
+    if (n_pend_ == 0) {
+      for (int a = 0; a < kAmbState0; ++a) {
+        auto& col = cols_[static_cast<std::size_t>(a)];
+        for (int i = kAmbState0; i < n; ++i) col[static_cast<std::size_t>(i)] = p_[static_cast<std::size_t>(i)][static_cast<std::size_t>(a)];
+      }
+    }
+    for (int i = kAmbState0; i < n; ++i) ph[i] = 0.0;
+    for (int k = 0; k < nh; ++k) {
+      const double hk = h[k];
+      const int c = idx[k];
+      if (c < kAmbState0) {
+        const auto& col = cols_[static_cast<std::size_t>(c)];
+        for (int i = kAmbState0; i < n; ++i) ph[i] += hk * col[static_cast<std::size_t>(i)];
+        continue;
+      }
+      const auto& row = p_[static_cast<std::size_t>(c)];
+      const int e = std::min(c + 1, n);
+      for (int i = kAmbState0; i < e; ++i) ph[i] += hk * row[static_cast<std::size_t>(i)];
+      for (int i = c + 1; i < n; ++i) ph[i] += hk * p_[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)];
+    }
   }
   for (int c = 0; c < n_pend_; ++c) {
     const auto& pc = pend_ph_[static_cast<std::size_t>(c)];

@@ -166,7 +166,7 @@ private:
   void reset_ambiguity(int s, double value_cyc, double var_cyc2) noexcept;
   void free_slot(int s) noexcept;
   void zero_cross(int i) noexcept;
-  /// Scalar update with sparse h (idx ascending, h, nh entries), innovation v, noise r;
+  /// Scalar update with sparse h (idx/h, nh entries), innovation v, noise r;
   /// returns false (nothing changed) when v^2 / S exceeds gate2. n_active > 0:
   /// on the first n_active states only (their marginal; see carry_code_block).
   bool update(const int* idx, const double* h, int nh, double v, double r, double gate2,
@@ -223,6 +223,10 @@ private:
                   : p_[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)];
   }
   std::array<double, kMaxRtkStates> ph_{};
+  /// p_'s position-and-clock columns below that block (cols_[a][i] = P(i,a),
+  /// i >= kAmbState0), copied when an update starts without pending terms:
+  /// read along a row instead of down p_'s columns.
+  std::array<std::array<double, kMaxRtkStates>, kAmbState0> cols_{};
   /// Whole-state updates not yet applied to p_ (P = p_ - sum ph ph' inv):
   /// the covariance's update is memory-bound, so kPendingUpdates of them go
   /// in one pass over it. Only update() and flush() see them; whatever else
