@@ -8,6 +8,18 @@
 #include "core/geo/geodesy.hpp"
 #include "core/receiver/solution/transmit_state.hpp"
 
+// update() and flush() are most of the filter's cost: also built for AVX2,
+// picked at load time where the CPU has it. No FMA: the same products and
+// sums in the same order, so the same results on every x86-64.
+#if defined(__x86_64__) && defined(__GLIBC__) && defined(__has_attribute)
+#if __has_attribute(target_clones)
+#define GNSSEMU_RTK_AVX2_CLONE __attribute__((target_clones("avx2", "default")))
+#endif
+#endif
+#ifndef GNSSEMU_RTK_AVX2_CLONE
+#define GNSSEMU_RTK_AVX2_CLONE
+#endif
+
 namespace gnssemu::receiver::rtk {
 namespace {
 
@@ -184,8 +196,8 @@ void RtkEngine::free_slot(int s) noexcept {
   --n_slots_;
 }
 
-__attribute__((target_clones("avx2", "default"))) bool RtkEngine::update(const int* idx, const double* h, int nh, double v, double r, double gate2,
-                       int n_active) noexcept {
+GNSSEMU_RTK_AVX2_CLONE bool RtkEngine::update(const int* idx, const double* h, int nh, double v, double r,
+                                              double gate2, int n_active) noexcept {
   // P h from p_'s lower triangle, less the pending terms' share:
   // (p_ - sum_c ph_c ph_c' inv_c) h. A whole-state update computes it in
   // its pending slot.
@@ -207,7 +219,8 @@ __attribute__((target_clones("avx2", "default"))) bool RtkEngine::update(const i
     if (n_pend_ == 0) {
       for (int a = 0; a < kAmbState0; ++a) {
         auto& col = cols_[static_cast<std::size_t>(a)];
-        for (int i = kAmbState0; i < n; ++i) col[static_cast<std::size_t>(i)] = p_[static_cast<std::size_t>(i)][static_cast<std::size_t>(a)];
+        for (int i = kAmbState0; i < n; ++i)
+          col[static_cast<std::size_t>(i)] = p_[static_cast<std::size_t>(i)][static_cast<std::size_t>(a)];
       }
     }
     for (int i = kAmbState0; i < n; ++i) ph[i] = 0.0;
@@ -256,7 +269,7 @@ __attribute__((target_clones("avx2", "default"))) bool RtkEngine::update(const i
   return true;
 }
 
-__attribute__((target_clones("avx2", "default"))) void RtkEngine::flush() noexcept {
+GNSSEMU_RTK_AVX2_CLONE void RtkEngine::flush() noexcept {
   if (n_pend_ == 0) return;
   const int n = n_states();
   const int np = n_pend_;
