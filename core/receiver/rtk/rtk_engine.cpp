@@ -205,36 +205,37 @@ GNSSEMU_RTK_AVX2_CLONE bool RtkEngine::update(const int* idx, const double* h, i
   if (block) flush();
   const int n = block ? n_active : n_states();
   double* ph = block ? ph_.data() : pend_ph_[static_cast<std::size_t>(n_pend_)].data();
-  // Row i of P h: h_k P(idx_k, i) summed in k order. The position-and-clock
-  // rows from pv(); below them, the position-and-clock columns from cols_
-  // (contiguous) and an ambiguity's along its row, then down its column.
-  const int na = std::min(n, kAmbState0);
-  for (int i = 0; i < na; ++i) {
-    double acc = 0.0;
-    for (int k = 0; k < nh; ++k) acc += h[k] * pv(idx[k], i);
-    ph[i] = acc;
-  }
-  if (n > kAmbState0) {
+  // Row i of P h: h_k P(idx_k, i) summed in k order. The block alone: from
+  // pv(). The whole state: the position-and-clock columns from cols_
+  // (contiguous), an ambiguity's along its row, then down its column.
+  if (block || n <= kAmbState0) {
+    for (int i = 0; i < n; ++i) {
+      double acc = 0.0;
+      for (int k = 0; k < nh; ++k) acc += h[k] * pv(idx[k], i);
+      ph[i] = acc;
+    }
+  } else {
     // p_ changes only with no pending terms (flush() or before any update).
     if (n_pend_ == 0) {
       for (int a = 0; a < kAmbState0; ++a) {
         auto& col = cols_[static_cast<std::size_t>(a)];
+        for (int i = 0; i < kAmbState0; ++i) col[static_cast<std::size_t>(i)] = pv(i, a);
         for (int i = kAmbState0; i < n; ++i)
           col[static_cast<std::size_t>(i)] = p_[static_cast<std::size_t>(i)][static_cast<std::size_t>(a)];
       }
     }
-    for (int i = kAmbState0; i < n; ++i) ph[i] = 0.0;
+    for (int i = 0; i < n; ++i) ph[i] = 0.0;
     for (int k = 0; k < nh; ++k) {
       const double hk = h[k];
       const int c = idx[k];
       if (c < kAmbState0) {
         const auto& col = cols_[static_cast<std::size_t>(c)];
-        for (int i = kAmbState0; i < n; ++i) ph[i] += hk * col[static_cast<std::size_t>(i)];
+        for (int i = 0; i < n; ++i) ph[i] += hk * col[static_cast<std::size_t>(i)];
         continue;
       }
       const auto& row = p_[static_cast<std::size_t>(c)];
       const int e = std::min(c + 1, n);
-      for (int i = kAmbState0; i < e; ++i) ph[i] += hk * row[static_cast<std::size_t>(i)];
+      for (int i = 0; i < e; ++i) ph[i] += hk * row[static_cast<std::size_t>(i)];
       for (int i = c + 1; i < n; ++i) ph[i] += hk * p_[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)];
     }
   }
@@ -294,7 +295,8 @@ GNSSEMU_RTK_AVX2_CLONE void RtkEngine::flush() noexcept {
   for (int c = 0; c < np; ++c) pend_ph_[static_cast<std::size_t>(c)].fill(0.0);
 }
 
-void RtkEngine::carry_code_block(const std::array<double, 3>& xp0, const Mat3& ppp0, const Mat3& ppp0_inv) noexcept {
+GNSSEMU_RTK_AVX2_CLONE void RtkEngine::carry_code_block(const std::array<double, 3>& xp0, const Mat3& ppp0,
+                                                        const Mat3& ppp0_inv) noexcept {
   // Code measurements see the block a = (position, clocks) only, so the
   // ambiguities b follow from b | a (Gaussian conditioning): with K = [J 0],
   // J = P_bp P_pp^-1 (the clocks start uncorrelated), x_b += J dx_p,
@@ -305,6 +307,7 @@ void RtkEngine::carry_code_block(const std::array<double, 3>& xp0, const Mat3& p
   if (nb <= 0) return;
   std::array<std::array<double, 3>, kMaxSlots> j{};
   std::array<std::array<double, 3>, kMaxSlots> jd{};
+  std::array<std::array<double, kMaxSlots>, 3> jt{};  // j transposed: P_bb's rows vectorise
   Mat3 d{};
   for (int a = 0; a < 3; ++a)
     for (int c = 0; c < 3; ++c) d[a][c] = ppp0[a][c] - pv(a, c);
@@ -315,14 +318,13 @@ void RtkEngine::carry_code_block(const std::array<double, 3>& xp0, const Mat3& p
     for (int c = 0; c < 3; ++c) jb[c] = row[0] * ppp0_inv[0][c] + row[1] * ppp0_inv[1][c] + row[2] * ppp0_inv[2][c];
     x_[kAmbState0 + b] += jb[0] * dx[0] + jb[1] * dx[1] + jb[2] * dx[2];
     for (int c = 0; c < 3; ++c) jd[static_cast<std::size_t>(b)][c] = jb[0] * d[0][c] + jb[1] * d[1][c] + jb[2] * d[2][c];
+    for (int c = 0; c < 3; ++c) jt[static_cast<std::size_t>(c)][static_cast<std::size_t>(b)] = jb[c];
   }
   for (int b = 0; b < nb; ++b) {
     auto& row = p_[static_cast<std::size_t>(kAmbState0 + b)];
     const auto& db = jd[static_cast<std::size_t>(b)];
-    for (int c = 0; c <= b; ++c) {
-      const auto& jc = j[static_cast<std::size_t>(c)];
-      row[kAmbState0 + c] -= db[0] * jc[0] + db[1] * jc[1] + db[2] * jc[2];
-    }
+    double* rb = row.data() + kAmbState0;
+    for (int c = 0; c <= b; ++c) rb[c] -= db[0] * jt[0][c] + db[1] * jt[1][c] + db[2] * jt[2][c];
   }
   for (int b = 0; b < nb; ++b) {
     const auto& jb = j[static_cast<std::size_t>(b)];

@@ -223,9 +223,9 @@ private:
                   : p_[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)];
   }
   std::array<double, kMaxRtkStates> ph_{};
-  /// p_'s position-and-clock columns below that block (cols_[a][i] = P(i,a),
-  /// i >= kAmbState0), copied when an update starts without pending terms:
-  /// read along a row instead of down p_'s columns.
+  /// p_'s position-and-clock columns (cols_[a][i] = P(i,a)), copied when a
+  /// whole-state update starts without pending terms: read along a row
+  /// instead of down p_'s columns.
   std::array<std::array<double, kMaxRtkStates>, kAmbState0> cols_{};
   /// Whole-state updates not yet applied to p_ (P = p_ - sum ph ph' inv):
   /// the covariance's update is memory-bound, so kPendingUpdates of them go
