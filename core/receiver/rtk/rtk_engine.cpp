@@ -224,8 +224,22 @@ GNSSEMU_RTK_AVX2_CLONE bool RtkEngine::update(const int* idx, const double* h, i
           col[static_cast<std::size_t>(i)] = p_[static_cast<std::size_t>(i)][static_cast<std::size_t>(a)];
       }
     }
-    for (int i = 0; i < n; ++i) ph[i] = 0.0;
-    for (int k = 0; k < nh; ++k) {
+    // The leading position-and-clock terms (up to four) in one pass, absent
+    // ones weighted zero; the rest one pass each.
+    constexpr int kFused = 4;
+    const double* cp[kFused];
+    double hw[kFused];
+    int k0 = 0;
+    for (; k0 < nh && k0 < kFused && idx[k0] < kAmbState0; ++k0) {
+      cp[k0] = cols_[static_cast<std::size_t>(idx[k0])].data();
+      hw[k0] = h[k0];
+    }
+    for (int z = k0; z < kFused; ++z) {
+      cp[z] = cols_[0].data();
+      hw[z] = 0.0;
+    }
+    for (int i = 0; i < n; ++i) ph[i] = ((hw[0] * cp[0][i] + hw[1] * cp[1][i]) + hw[2] * cp[2][i]) + hw[3] * cp[3][i];
+    for (int k = k0; k < nh; ++k) {
       const double hk = h[k];
       const int c = idx[k];
       if (c < kAmbState0) {
