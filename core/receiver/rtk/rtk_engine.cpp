@@ -8,8 +8,8 @@
 #include "core/geo/geodesy.hpp"
 #include "core/receiver/solution/transmit_state.hpp"
 
-// update() and flush() are most of the filter's cost: also built for AVX2,
-// picked at load time where the CPU has it. No FMA: the same products and
+// update(), flush() and carry_code_block() are most of the filter's cost:
+// also built for AVX2, picked at load time where the CPU has it. No FMA: the same products and
 // sums in the same order, so the same results on every x86-64.
 #if defined(__x86_64__) && defined(__GLIBC__) && defined(__has_attribute)
 #if __has_attribute(target_clones)
@@ -238,7 +238,8 @@ GNSSEMU_RTK_AVX2_CLONE bool RtkEngine::update(const int* idx, const double* h, i
       cp[z] = cols_[0].data();
       hw[z] = 0.0;
     }
-    for (int i = 0; i < n; ++i) ph[i] = ((hw[0] * cp[0][i] + hw[1] * cp[1][i]) + hw[2] * cp[2][i]) + hw[3] * cp[3][i];
+    for (int i = 0; i < n; ++i)
+      ph[i] = ((hw[0] * cp[0][i] + hw[1] * cp[1][i]) + hw[2] * cp[2][i]) + hw[3] * cp[3][i];
     for (int k = k0; k < nh; ++k) {
       const double hk = h[k];
       const int c = idx[k];
@@ -620,6 +621,7 @@ void RtkEngine::solve(const RawEpoch& rover, const NavSnapshot& nav, const Corre
         const double y = (m.pseudorange_m - g.range_m + sat_clock_m) - bs.code_omc_m;
         if (!clock_init[static_cast<std::size_t>(sys)]) {
           clock_init[static_cast<std::size_t>(sys)] = true;
+          flush();  // pending whole-state code updates (a singular position block) and cols_ see the old P
           x_[ic] = y;
           p_[ic][ic] = kClockVar_m2;
         }
