@@ -7,7 +7,18 @@
 #include "core/common/constants.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/receiver/solution/transmit_state.hpp"
-#include "core/world/sky/sky.hpp"
+
+// update(), flush() and carry_code_block() are most of the filter's cost:
+// also built for AVX2, picked at load time where the CPU has it. No FMA: the same products and
+// sums in the same order, so the same results on every x86-64.
+#if defined(__x86_64__) && defined(__GLIBC__) && defined(__has_attribute)
+#if __has_attribute(target_clones)
+#define GNSSEMU_RTK_AVX2_CLONE __attribute__((target_clones("avx2", "default")))
+#endif
+#endif
+#ifndef GNSSEMU_RTK_AVX2_CLONE
+#define GNSSEMU_RTK_AVX2_CLONE
+#endif
 
 namespace gnssemu::receiver::rtk {
 namespace {
@@ -36,13 +47,22 @@ struct Range {
   Vec3 e;  // unit line of sight, receiver -> satellite
 };
 
+// The Earth's rotation by a signal's flight angle (< 1e-4 rad): cos and sin
+// to the terms a double resolves (the next, a^4/24 and a^5/120, are below its
+// resolution), std::cos/std::sin's values within an ulp at a fraction of their cost.
+Ecef rotate_earth_small(const Vec3& v, double angle_rad) noexcept {
+  const double a2 = angle_rad * angle_rad;
+  const double c = 1.0 - 0.5 * a2, s = angle_rad * (1.0 - a2 / 6.0);
+  return Ecef(c * v.x + s * v.y, -s * v.x + c * v.y, v.z);
+}
+
 // Geometric range with the Earth's rotation during the signal's flight (from
 // the geometry, not the pseudorange, so the receiver clock does not enter).
 Range geometric_range(const Ecef& sat_m, const Ecef& rx_m) noexcept {
   Vec3 d = sat_m - rx_m;
   double r = d.norm();
   for (int i = 0; i < 2; ++i) {
-    d = world::rotate_earth(sat_m, kOmegaEarth_rad_s * r / kSpeedOfLight_m_s) - rx_m;
+    d = rotate_earth_small(sat_m, kOmegaEarth_rad_s * r / kSpeedOfLight_m_s) - rx_m;
     r = d.norm();
   }
   return {r, d / r};
@@ -164,10 +184,10 @@ void RtkEngine::free_slot(int s) noexcept {
   const int last = n_slots_ - 1;
   slot_of_[static_cast<std::size_t>(slots_[static_cast<std::size_t>(s)].key)] = -1;
   if (s != last) {
+    // Lower triangle (i < j): P(i,k) = P(j,k) for k < j.
     const int i = kAmbState0 + s, j = kAmbState0 + last;
-    const int n = n_states();
-    for (int k = 0; k < n; ++k) p_[i][k] = p_[j][k];
-    for (int k = 0; k < n; ++k) p_[k][i] = p_[k][j];
+    for (int k = 0; k < i; ++k) p_[i][k] = p_[j][k];
+    for (int k = i + 1; k < j; ++k) p_[k][i] = p_[j][k];
     p_[i][i] = p_[j][j];
     x_[i] = x_[j];
     slots_[static_cast<std::size_t>(s)] = slots_[static_cast<std::size_t>(last)];
@@ -176,18 +196,63 @@ void RtkEngine::free_slot(int s) noexcept {
   --n_slots_;
 }
 
-bool RtkEngine::update(const int* idx, const double* h, int nh, double v, double r, double gate2,
-                       int n_active) noexcept {
-  // P h from the rows of h's states (P symmetric) of p_, less the pending
-  // terms' share: (p_ - sum_c ph_c ph_c' inv_c) h.
+GNSSEMU_RTK_AVX2_CLONE bool RtkEngine::update(const int* idx, const double* h, int nh, double v, double r,
+                                              double gate2, int n_active) noexcept {
+  // P h from p_'s lower triangle, less the pending terms' share:
+  // (p_ - sum_c ph_c ph_c' inv_c) h. A whole-state update computes it in
+  // its pending slot.
   const bool block = n_active > 0;
   if (block) flush();
   const int n = block ? n_active : n_states();
-  for (int i = 0; i < n; ++i) ph_[i] = 0.0;
-  for (int k = 0; k < nh; ++k) {
-    const double hk = h[k];
-    const auto& row = p_[static_cast<std::size_t>(idx[k])];
-    for (int i = 0; i < n; ++i) ph_[i] += hk * row[i];
+  double* ph = block ? ph_.data() : pend_ph_[static_cast<std::size_t>(n_pend_)].data();
+  // Row i of P h: h_k P(idx_k, i) summed in k order. The block alone: from
+  // pv(). The whole state: the position-and-clock columns from cols_
+  // (contiguous), an ambiguity's along its row, then down its column.
+  if (block || n <= kAmbState0) {
+    for (int i = 0; i < n; ++i) {
+      double acc = 0.0;
+      for (int k = 0; k < nh; ++k) acc += h[k] * pv(idx[k], i);
+      ph[i] = acc;
+    }
+  } else {
+    // p_ changes only with no pending terms (flush() or before any update).
+    if (n_pend_ == 0) {
+      for (int a = 0; a < kAmbState0; ++a) {
+        auto& col = cols_[static_cast<std::size_t>(a)];
+        for (int i = 0; i < kAmbState0; ++i) col[static_cast<std::size_t>(i)] = pv(i, a);
+        for (int i = kAmbState0; i < n; ++i)
+          col[static_cast<std::size_t>(i)] = p_[static_cast<std::size_t>(i)][static_cast<std::size_t>(a)];
+      }
+    }
+    // The leading position-and-clock terms (up to four) in one pass, absent
+    // ones weighted zero; the rest one pass each.
+    constexpr int kFused = 4;
+    const double* cp[kFused];
+    double hw[kFused];
+    int k0 = 0;
+    for (; k0 < nh && k0 < kFused && idx[k0] < kAmbState0; ++k0) {
+      cp[k0] = cols_[static_cast<std::size_t>(idx[k0])].data();
+      hw[k0] = h[k0];
+    }
+    for (int z = k0; z < kFused; ++z) {
+      cp[z] = cols_[0].data();
+      hw[z] = 0.0;
+    }
+    for (int i = 0; i < n; ++i)
+      ph[i] = ((hw[0] * cp[0][i] + hw[1] * cp[1][i]) + hw[2] * cp[2][i]) + hw[3] * cp[3][i];
+    for (int k = k0; k < nh; ++k) {
+      const double hk = h[k];
+      const int c = idx[k];
+      if (c < kAmbState0) {
+        const auto& col = cols_[static_cast<std::size_t>(c)];
+        for (int i = 0; i < n; ++i) ph[i] += hk * col[static_cast<std::size_t>(i)];
+        continue;
+      }
+      const auto& row = p_[static_cast<std::size_t>(c)];
+      const int e = std::min(c + 1, n);
+      for (int i = 0; i < e; ++i) ph[i] += hk * row[static_cast<std::size_t>(i)];
+      for (int i = c + 1; i < n; ++i) ph[i] += hk * p_[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)];
+    }
   }
   for (int c = 0; c < n_pend_; ++c) {
     const auto& pc = pend_ph_[static_cast<std::size_t>(c)];
@@ -195,29 +260,32 @@ bool RtkEngine::update(const int* idx, const double* h, int nh, double v, double
     for (int k = 0; k < nh; ++k) w += h[k] * pc[idx[k]];
     w *= pend_inv_[static_cast<std::size_t>(c)];
     if (w == 0.0) continue;
-    for (int i = 0; i < n; ++i) ph_[i] -= w * pc[i];
+    for (int j = 0; j < n; ++j) ph[j] -= w * pc[j];
   }
   double s = r;
-  for (int k = 0; k < nh; ++k) s += h[k] * ph_[idx[k]];
-  if (!(s > 0.0) || !std::isfinite(v) || v * v > gate2 * s) return false;
+  for (int k = 0; k < nh; ++k) s += h[k] * ph[idx[k]];
+  if (!(s > 0.0) || !std::isfinite(v) || v * v > gate2 * s) {
+    // flush() adds every slot's terms (zero weight beyond the pending ones): no leftovers.
+    if (!block) std::fill(ph, ph + n, 0.0);
+    return false;
+  }
   const double inv = 1.0 / s;
-  for (int i = 0; i < n; ++i) x_[i] += ph_[i] * inv * v;
+  for (int j = 0; j < n; ++j) x_[j] += ph[j] * inv * v;
   if (block) {
-    for (int i = 0; i < n; ++i) {
-      const double ki = ph_[i] * inv;
-      if (ki == 0.0) continue;
-      auto& row = p_[static_cast<std::size_t>(i)];
-      for (int j = 0; j < n; ++j) row[j] -= ki * ph_[j];
+    for (int a = 0; a < n; ++a) {
+      const double ka = ph[a] * inv;
+      if (ka == 0.0) continue;
+      auto& row = p_[static_cast<std::size_t>(a)];
+      for (int j = 0; j <= a; ++j) row[j] -= ka * ph[j];
     }
     return true;
   }
-  pend_ph_[static_cast<std::size_t>(n_pend_)] = ph_;
   pend_inv_[static_cast<std::size_t>(n_pend_)] = inv;
   if (++n_pend_ == kPendingUpdates) flush();
   return true;
 }
 
-void RtkEngine::flush() noexcept {
+GNSSEMU_RTK_AVX2_CLONE void RtkEngine::flush() noexcept {
   if (n_pend_ == 0) return;
   const int n = n_states();
   const int np = n_pend_;
@@ -234,7 +302,7 @@ void RtkEngine::flush() noexcept {
     // Terms beyond np: a = 0 and a zero vector (cleared below after each flush).
     static_assert(kPendingUpdates == 8, "the sum below spells out eight terms");
     const auto& q = pend_ph_;
-    for (int j = 0; j < n; ++j) {
+    for (int j = 0; j <= i; ++j) {
       row[j] -= ((a[0] * q[0][j] + a[1] * q[1][j]) + (a[2] * q[2][j] + a[3] * q[3][j])) +
                 ((a[4] * q[4][j] + a[5] * q[5][j]) + (a[6] * q[6][j] + a[7] * q[7][j]));
     }
@@ -242,7 +310,8 @@ void RtkEngine::flush() noexcept {
   for (int c = 0; c < np; ++c) pend_ph_[static_cast<std::size_t>(c)].fill(0.0);
 }
 
-void RtkEngine::carry_code_block(const std::array<double, 3>& xp0, const Mat3& ppp0, const Mat3& ppp0_inv) noexcept {
+GNSSEMU_RTK_AVX2_CLONE void RtkEngine::carry_code_block(const std::array<double, 3>& xp0, const Mat3& ppp0,
+                                                        const Mat3& ppp0_inv) noexcept {
   // Code measurements see the block a = (position, clocks) only, so the
   // ambiguities b follow from b | a (Gaussian conditioning): with K = [J 0],
   // J = P_bp P_pp^-1 (the clocks start uncorrelated), x_b += J dx_p,
@@ -253,9 +322,10 @@ void RtkEngine::carry_code_block(const std::array<double, 3>& xp0, const Mat3& p
   if (nb <= 0) return;
   std::array<std::array<double, 3>, kMaxSlots> j{};
   std::array<std::array<double, 3>, kMaxSlots> jd{};
+  std::array<std::array<double, kMaxSlots>, 3> jt{};  // j transposed: P_bb's rows vectorise
   Mat3 d{};
   for (int a = 0; a < 3; ++a)
-    for (int c = 0; c < 3; ++c) d[a][c] = ppp0[a][c] - p_[a][c];
+    for (int c = 0; c < 3; ++c) d[a][c] = ppp0[a][c] - pv(a, c);
   const double dx[3] = {x_[0] - xp0[0], x_[1] - xp0[1], x_[2] - xp0[2]};
   for (int b = 0; b < nb; ++b) {
     const auto& row = p_[static_cast<std::size_t>(kAmbState0 + b)];
@@ -263,21 +333,18 @@ void RtkEngine::carry_code_block(const std::array<double, 3>& xp0, const Mat3& p
     for (int c = 0; c < 3; ++c) jb[c] = row[0] * ppp0_inv[0][c] + row[1] * ppp0_inv[1][c] + row[2] * ppp0_inv[2][c];
     x_[kAmbState0 + b] += jb[0] * dx[0] + jb[1] * dx[1] + jb[2] * dx[2];
     for (int c = 0; c < 3; ++c) jd[static_cast<std::size_t>(b)][c] = jb[0] * d[0][c] + jb[1] * d[1][c] + jb[2] * d[2][c];
+    for (int c = 0; c < 3; ++c) jt[static_cast<std::size_t>(c)][static_cast<std::size_t>(b)] = jb[c];
   }
   for (int b = 0; b < nb; ++b) {
     auto& row = p_[static_cast<std::size_t>(kAmbState0 + b)];
     const auto& db = jd[static_cast<std::size_t>(b)];
-    for (int c = 0; c < nb; ++c) {
-      const auto& jc = j[static_cast<std::size_t>(c)];
-      row[kAmbState0 + c] -= db[0] * jc[0] + db[1] * jc[1] + db[2] * jc[2];
-    }
+    double* rb = row.data() + kAmbState0;
+    for (int c = 0; c <= b; ++c) rb[c] -= db[0] * jt[0][c] + db[1] * jt[1][c] + db[2] * jt[2][c];
   }
   for (int b = 0; b < nb; ++b) {
     const auto& jb = j[static_cast<std::size_t>(b)];
     for (int a = 0; a < kAmbState0; ++a) {
-      const double v = jb[0] * p_[0][a] + jb[1] * p_[1][a] + jb[2] * p_[2][a];
-      p_[kAmbState0 + b][a] = v;
-      p_[a][kAmbState0 + b] = v;
+      p_[kAmbState0 + b][a] = jb[0] * pv(0, a) + jb[1] * pv(1, a) + jb[2] * pv(2, a);
     }
   }
 }
@@ -288,6 +355,12 @@ void RtkEngine::process_base(const Corrections& c, const world::SharedSky* sky) 
   base_seen_ = true;
   const RawEpoch& b = c.obs;
   const Ecef& arp = c.station.arp_ecef_m;
+  // The geometry once per satellite, as the rover's (solve): its band-1
+  // measurement, which follows its band-0 one, takes that one's geometry.
+  SatId last_sat{};
+  bool last_valid = false;
+  Range g{};
+  double sat_clock_m = 0.0;
   for (int i = 0; i < b.num_meas; ++i) {
     const RawMeasurement& m = b.meas[static_cast<std::size_t>(i)];
     if (!m.pseudorange_valid) continue;
@@ -297,11 +370,15 @@ void RtkEngine::process_base(const Corrections& c, const world::SharedSky* sky) 
       ++status_.unmatched;  // a satellite the rover does not see
       continue;
     }
-    const TransmitState ts = transmit_state(sky, *eph, b.t_rx, m.pseudorange_m);
-    const Range g = geometric_range(ts.state.pos_m, arp);
+    if (!last_valid || m.sat != last_sat) {
+      const TransmitState ts = transmit_state(sky, *eph, b.t_rx, m.pseudorange_m);
+      g = geometric_range(ts.state.pos_m, arp);
+      sat_clock_m = kSpeedOfLight_m_s * ts.state.clk_bias_s;
+      last_sat = m.sat;
+      last_valid = true;
+    }
     BaseSignal& bs = base_[static_cast<std::size_t>(key_of(m))];
     bs.stamp = base_stamp_;
-    const double sat_clock_m = kSpeedOfLight_m_s * ts.state.clk_bias_s;
     bs.code_omc_m = m.pseudorange_m - g.range_m + sat_clock_m;
     bs.phase = m.carrier_valid;
     bs.phase_omc_m = m.carrier_phase_cycles * wavelength_of(m) - g.range_m + sat_clock_m;
@@ -506,7 +583,7 @@ void RtkEngine::solve(const RawEpoch& rover, const NavSnapshot& nav, const Corre
   const std::array<double, 3> xp0{x_[0], x_[1], x_[2]};
   Mat3 ppp0{}, ppp0_inv{};
   for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) ppp0[a][b] = p_[a][b];
+    for (int b = 0; b < 3; ++b) ppp0[a][b] = pv(a, b);
   // A singular position covariance (never after predict): every update on the whole state.
   const int code_block = inverse3(ppp0, ppp0_inv) ? kAmbState0 : 0;
   for (int pass = 0; pass < 2; ++pass) {
@@ -544,6 +621,7 @@ void RtkEngine::solve(const RawEpoch& rover, const NavSnapshot& nav, const Corre
         const double y = (m.pseudorange_m - g.range_m + sat_clock_m) - bs.code_omc_m;
         if (!clock_init[static_cast<std::size_t>(sys)]) {
           clock_init[static_cast<std::size_t>(sys)] = true;
+          flush();  // pending whole-state code updates (a singular position block) and cols_ see the old P
           x_[ic] = y;
           p_[ic][ic] = kClockVar_m2;
         }
@@ -614,7 +692,7 @@ void RtkEngine::solve(const RawEpoch& rover, const NavSnapshot& nav, const Corre
   Ecef pos(x_[0], x_[1], x_[2]);
   Mat3 cov{};
   for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) cov[a][b] = p_[a][b];
+    for (int b = 0; b < 3; ++b) cov[a][b] = pv(a, b);
   if (carrier) {
     if (baseline_m > cfg_.max_fix_baseline_m) {
       ++status_.long_baseline;
@@ -692,7 +770,7 @@ bool RtkEngine::try_fix(double t_s) noexcept {
       for (int j = 0; j <= i; ++j) {
         const int b = kAmbState0 + dd_slot_[static_cast<std::size_t>(j)];
         const int rb = kAmbState0 + dd_ref_[static_cast<std::size_t>(j)];
-        q_dd_[i][j] = q_dd_[j][i] = p_[a][b] - p_[a][rb] - p_[ra][b] + p_[ra][rb];
+        q_dd_[i][j] = q_dd_[j][i] = pv(a, b) - pv(a, rb) - pv(ra, b) + pv(ra, rb);
       }
     }
     const LambdaResult& res = lambda_.solve(a_dd_, q_dd_, m);

@@ -215,8 +215,18 @@ private:
   Ecef last_arp_m_;  ///< the reference position of the filter's last epoch (a moving base's moves)
   bool init_arp_ = false;
   std::array<double, kMaxRtkStates> x_{};
+  /// The covariance: its lower triangle p_[i][j], j <= i (the upper one is
+  /// not kept: the updates and flush() touch half the matrix); pv() reads it.
   std::array<std::array<double, kMaxRtkStates>, kMaxRtkStates> p_{};
+  double pv(int i, int j) const noexcept {
+    return i >= j ? p_[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]
+                  : p_[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)];
+  }
   std::array<double, kMaxRtkStates> ph_{};
+  /// p_'s position-and-clock columns (cols_[a][i] = P(i,a)), copied when a
+  /// whole-state update starts without pending terms: read along a row
+  /// instead of down p_'s columns.
+  std::array<std::array<double, kMaxRtkStates>, kAmbState0> cols_{};
   /// Whole-state updates not yet applied to p_ (P = p_ - sum ph ph' inv):
   /// the covariance's update is memory-bound, so kPendingUpdates of them go
   /// in one pass over it. Only update() and flush() see them; whatever else
