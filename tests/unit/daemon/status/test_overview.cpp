@@ -21,8 +21,10 @@ namespace {
 
 const Lla kOverviewSite{48.8738 * kDegToRad, 2.2950 * kDegToRad, 100.0};
 
-/// A 3D fix 3 m east and 4 m north of a valid truth (h error 5 m).
-void feed_fix(StatusProducer& p, receiver::CarrierSolution carrier) {
+/// A 3D fix off_enu_m from a valid truth (default 3 m east and 4 m north:
+/// h error 5 m), hAcc 1.5 m and 7 satellites used unless given.
+void feed_fix(StatusProducer& p, receiver::CarrierSolution carrier, const Enu& off_enu_m = Enu(3.0, 4.0, 0.0),
+              double h_acc_m = 1.5, int num_used = 7) {
   receiver::Fix f;
   f.t = time::GpsTime(2190, 1000.0);
   f.time_valid = true;
@@ -30,10 +32,10 @@ void feed_fix(StatusProducer& p, receiver::CarrierSolution carrier) {
   f.carr_soln = carrier;
   f.diff_soln = carrier != receiver::CarrierSolution::kNone;
   const Ecef truth_pos = geo::ecef_from_lla(kOverviewSite);
-  f.pos_m = Ecef(truth_pos + geo::enu_to_ecef_vector(Enu(3.0, 4.0, 0.0), kOverviewSite.lat_rad, kOverviewSite.lon_rad));
+  f.pos_m = Ecef(truth_pos + geo::enu_to_ecef_vector(off_enu_m, kOverviewSite.lat_rad, kOverviewSite.lon_rad));
   f.lla = geo::lla_from_ecef(f.pos_m);
-  f.h_acc_m = 1.5;
-  f.num_used = 7;
+  f.h_acc_m = h_acc_m;
+  f.num_used = num_used;
   f.num_tracked = 9;
   f.num_visible = 11;
   world::Truth t;
@@ -199,22 +201,7 @@ TEST(Overview, SortOrdersTheWholeFleetBeforePaging) {
   StatusProducer fixed(StatusSettings{}), lost(StatusSettings{}), far(StatusSettings{});
   feed_fix(fixed, receiver::CarrierSolution::kNone);  // 5 m
   feed_nothing(lost);                                 // no error
-  {
-    receiver::Fix f;  // 3D fix 30 m east of the truth
-    f.t = time::GpsTime(2190, 1000.0);
-    f.time_valid = true;
-    f.type = receiver::FixType::k3D;
-    const Ecef truth_pos = geo::ecef_from_lla(kOverviewSite);
-    f.pos_m = Ecef(truth_pos + geo::enu_to_ecef_vector(Enu(30.0, 0.0, 0.0), kOverviewSite.lat_rad, kOverviewSite.lon_rad));
-    f.lla = geo::lla_from_ecef(f.pos_m);
-    f.h_acc_m = 9.0;
-    f.num_used = 4;
-    world::Truth t;
-    t.t = f.t;
-    t.pos_m = truth_pos;
-    t.valid = true;
-    far.on_epoch(EpochStatus{&f, &t, 1.0, 1.0, 1.0});
-  }
+  feed_fix(far, receiver::CarrierSolution::kNone, Enu(30.0, 0.0, 0.0), 9.0, 4);  // 30 m
   const auto ids = [](const std::vector<OverviewEntry>& e) {
     std::string s;
     for (const OverviewEntry& x : e) s += std::string(x.vehicle) + "/" + std::string(x.receiver) + " ";
