@@ -10,8 +10,10 @@
 
 // update(), flush() and carry_code_block() are most of the filter's cost:
 // also built for AVX2, picked at load time where the CPU has it. No FMA: the same products and
-// sums in the same order, so the same results on every x86-64.
-#if defined(__x86_64__) && defined(__GLIBC__) && defined(__has_attribute)
+// sums in the same order, so the same results on every x86-64. GCC only:
+// clang wants the attribute on a member's first declaration (the header),
+// and its builds here are the fuzz targets, which do not need the speed.
+#if defined(__x86_64__) && defined(__GLIBC__) && defined(__has_attribute) && !defined(__clang__)
 #if __has_attribute(target_clones)
 #define GNSSEMU_RTK_AVX2_CLONE __attribute__((target_clones("avx2", "default")))
 #endif
