@@ -427,7 +427,7 @@ void World::carrier_observable(SatObservable& o, const SkySat& s, uint64_t epoch
 }
 
 const Observables& World::step(const time::GpsTime& t, const Truth& truth, double mask_rad) noexcept {
-  own_sky_.update(t, std::span<const Ecef>(&truth.pos_m, 1));
+  own_sky_.update(t, std::span<const Ecef>(&truth.pos_m, 1), tracked_);
   return step(own_sky_, truth, mask_rad);
 }
 

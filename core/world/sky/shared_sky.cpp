@@ -110,7 +110,7 @@ void SharedSky::interpolate(SatId sat, const orbit::Ephemeris& eph, const time::
   eval_toe_[k] = eph.toe;
 }
 
-void SharedSky::update(const time::GpsTime& t, std::span<const Ecef> antennas_m) noexcept {
+void SharedSky::update(const time::GpsTime& t, std::span<const Ecef> antennas_m, SystemSet needed) noexcept {
   if (!built_ || store_.fingerprint() != fingerprint_) rebuild();
   t_ = t;
   errors_.begin(t, sats(), revision_);
@@ -119,6 +119,10 @@ void SharedSky::update(const time::GpsTime& t, std::span<const Ecef> antennas_m)
     const SatId sat = sats_[static_cast<std::size_t>(i)];
     const std::size_t k = static_cast<std::size_t>(sat.index());
     SkyState& s = state_[k];
+    if (!needed.has(sat.system)) {
+      s.current = false;
+      continue;
+    }
     if (!(t >= selected_from_[k] && t < selected_until_[k])) {
       selected_[k] = store_.select(sat, t, selected_until_[k]);
       selected_from_[k] = t;

@@ -72,8 +72,11 @@ public:
   /// below every one's horizon is not evaluated (its older evaluation,
   /// refreshed every couple of minutes, tells). Empty: every satellite.
   /// The shared error processes move to t, their fine steps for the
-  /// satellites evaluated.
-  void update(const time::GpsTime& t, std::span<const Ecef> antennas_m = {}) noexcept;
+  /// satellites evaluated. needed: the systems some reader tracks (a world's
+  /// own sky: its receiver's CFG-GNSS); the others' satellites are left
+  /// unevaluated as culled ones are.
+  void update(const time::GpsTime& t, std::span<const Ecef> antennas_m = {},
+              SystemSet needed = SystemSet::all()) noexcept;
 
   time::GpsTime t() const noexcept { return t_; }
   SystemSet systems() const noexcept { return systems_; }
