@@ -559,15 +559,22 @@ void Daemon::emit_epoch(const time::GpsTime& t, double demo_elapsed_s, bool fall
   // The sky once for every antenna (a receiver's world would update its own
   // the same way for its one antenna: World::step).
   antennas_.clear();
+  SystemSet tracked;  // what some receiver tracks (CFG-GNSS): the sky evaluates only those
   for (const auto& rp : rigs_) {
     Rig& rig = *rp;
     rig.truth = antenna_truth(vehicles_[rig.vehicle_index].truth, rig.lever_arm_m, router_.attitude(rig.vehicle_index));
     antennas_.push_back(rig.truth.pos_m);
+    const SystemSet s = rig.receiver->receiver().systems();
+    for (int k = 0; k < kNumSystems; ++k)
+      if (s.has(static_cast<GnssSystem>(k))) tracked = tracked.with(static_cast<GnssSystem>(k));
   }
-  if (base_) antennas_.push_back(base_->position_ecef_m());
+  if (base_) {
+    antennas_.push_back(base_->position_ecef_m());
+    tracked = SystemSet::all();
+  }
   // A receiver's observables do not depend on which others read the sky
   // (SkyErrors' grid is GPS time's), so each is gnssemu batch's.
-  sky_.update(t, antennas_);
+  sky_.update(t, antennas_, tracked);
   if (base_ && base_->is_epoch(t)) {
     base_bytes_.clear();
     base_->step(sky_, base_bytes_);

@@ -197,17 +197,23 @@ def check_overview(rig):
         assert row["fix_type"] == st["fix"]["type"] and row["h_err_m"] == st["error"]["h_m"], (row, st["error"])
     page = json.loads(http_get(rig, "/api/overview?limit=2&offset=1")[1])
     assert page["total"] == 3 and [(x["vehicle"], x["receiver"]) for x in page["rows"]] == list(EXPECTED)[1:], page
+    # The whole fleet sorted before paging: name descending, first row b/gps1.
+    page = json.loads(http_get(rig, "/api/overview?sort=name&order=desc&limit=1")[1])
+    assert [(x["vehicle"], x["receiver"]) for x in page["rows"]] == list(reversed(list(EXPECTED)))[:1], page
     for query, want in [("limit=0", "limit must be a whole number in [1, 1000]"),
                         ("limit=1001", "limit must be a whole number in [1, 1000]"),
                         ("limit=ten", "not 'ten'"), ("offset=-1", "offset must be a whole number"),
                         ("limit=1&limit=2", "limit given twice"),
-                        ("vehicle=a", "unknown query parameter 'vehicle' (/api/overview takes limit, offset)")]:
+                        ("sort=speed", "sort must be one of name, fix, sats, herr"),
+                        ("order=up", "order must be asc or desc, not 'up'"),
+                        ("vehicle=a",
+                         "unknown query parameter 'vehicle' (/api/overview takes limit, offset, sort, order)")]:
         code, text = http_get(rig, f"/api/overview?{query}")
         assert code == 400 and want in text, (query, code, text)
     code, text = http_get(rig, "/api/status?vehicle=a&histroy=5")
     assert code == 400 and "unknown query parameter 'histroy' (/api/status takes history, vehicle, receiver)" in text, \
         (code, text)
-    print("  /api/overview: a row per receiver = /api/status, b's outage scheduled, limit/offset, bad queries 400")
+    print("  /api/overview: a row per receiver = /api/status, b's outage scheduled, limit/offset, sorted, bad queries 400")
 
 
 def body(rig):
