@@ -7,6 +7,7 @@
 #include "core/common/constants.hpp"
 #include "core/geo/geodesy.hpp"
 #include "core/receiver/solution/transmit_state.hpp"
+#include "core/world/sky/sky.hpp"
 
 // update(), flush() and carry_code_block() are most of the filter's cost:
 // also built for AVX2, picked at load time where the CPU has it. No FMA: the same products and
@@ -49,22 +50,13 @@ struct Range {
   Vec3 e;  // unit line of sight, receiver -> satellite
 };
 
-// The Earth's rotation by a signal's flight angle (< 1e-4 rad): cos and sin
-// to the terms a double resolves (the next, a^4/24 and a^5/120, are below its
-// resolution), std::cos/std::sin's values within an ulp at a fraction of their cost.
-Ecef rotate_earth_small(const Vec3& v, double angle_rad) noexcept {
-  const double a2 = angle_rad * angle_rad;
-  const double c = 1.0 - 0.5 * a2, s = angle_rad * (1.0 - a2 / 6.0);
-  return Ecef(c * v.x + s * v.y, -s * v.x + c * v.y, v.z);
-}
-
 // Geometric range with the Earth's rotation during the signal's flight (from
 // the geometry, not the pseudorange, so the receiver clock does not enter).
 Range geometric_range(const Ecef& sat_m, const Ecef& rx_m) noexcept {
   Vec3 d = sat_m - rx_m;
   double r = d.norm();
   for (int i = 0; i < 2; ++i) {
-    d = rotate_earth_small(sat_m, kOmegaEarth_rad_s * r / kSpeedOfLight_m_s) - rx_m;
+    d = world::rotate_earth(sat_m, kOmegaEarth_rad_s * r / kSpeedOfLight_m_s) - rx_m;
     r = d.norm();
   }
   return {r, d / r};
