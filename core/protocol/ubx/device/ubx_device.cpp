@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/protocol/nmea/nmea_format.hpp"
 #include "core/protocol/ubx/device/ubx_device.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
+#include "core/protocol/nmea/nmea_format.hpp"
 #include "core/protocol/ubx/config/ubx_cfg_nmea.hpp"
 #include "core/protocol/ubx/config/ubx_config_keys.hpp"
 #include "core/protocol/ubx/wire/ubx_message_table.hpp"
@@ -391,16 +391,12 @@ void Device::compose(Link at, MessageList& out, Layout layout, FixOverride repor
     // (factory: errors, warnings, notices): one sentence, type 01 warning,
     // talker GN as u-blox 9 logs show ($GNTXT,01,01,00,txbuf alloc in
     // shared/data/receiver-logs).
-    std::string& b = out.buffer();
-    const std::size_t start = b.size();
-    b += "$GNTXT,01,01,01,";
-    b += kBaselineBig;
-    const std::uint8_t cs = nmea::nmea_checksum(std::string_view(b).substr(start + 1));
-    static constexpr char kHex[] = "0123456789ABCDEF";
-    b += '*';
-    b += kHex[cs >> 4];
-    b += kHex[cs & 0xF];
-    b += "\r\n";
+    nmea::SentenceWriter txt("GNTXT");
+    txt.text("01");
+    txt.text("01");
+    txt.text("01");
+    txt.text(kBaselineBig);
+    out.buffer() += txt.finish();
     out.close("TXT", Protocol::kNmea);
   }
   if ((current_.port(col).out_proto_mask & proto::kRtcm3) != 0) {
