@@ -107,7 +107,6 @@ void SharedSky::interpolate(SatId sat, const orbit::Ephemeris& eph, const time::
   s.clk_bias_s = a.clk_bias_s * h00 + a.clk_drift_s_s * h10 + b.clk_bias_s * h01 + b.clk_drift_s_s * h11;
   s.clk_drift_s_s = (a.clk_bias_s - b.clk_bias_s) * d00 + a.clk_drift_s_s * d10 + b.clk_drift_s_s * d11;
   s.current = true;
-  eval_toe_[k] = eph.toe;
 }
 
 void SharedSky::update(const time::GpsTime& t, std::span<const Ecef> antennas_m, SystemSet needed) noexcept {
@@ -133,7 +132,9 @@ void SharedSky::update(const time::GpsTime& t, std::span<const Ecef> antennas_m,
       s.current = false;
       continue;
     }
-    if (!antennas_m.empty() && s.eph == eph && eval_toe_[k] == eph->toe) {
+    // node_a_ holds the set state_ was last interpolated from (its toe tells
+    // a set replaced at the same address).
+    if (!antennas_m.empty() && s.eph == eph && node_a_[k].toe == eph->toe) {
       const double age_s = t - s.t;
       if (std::fabs(age_s) <= kCullReuse_s + static_cast<double>(i % 64) &&
           !any_above(taylor_state(s, age_s).pos_m, antennas_m)) {

@@ -124,11 +124,10 @@ private:
   std::array<SatId, kNumSats> sats_{};
   int n_sats_ = 0;
   std::array<SkyState, kNumSats> state_{};
-  std::array<time::GpsTime, kNumSats> eval_toe_{};
   std::array<Node, kNumSats> node_a_{}, node_b_{};  ///< the grid interval around the last epoch
   // The store's selection per satellite and the span [from, until) it holds for.
   std::array<const orbit::Ephemeris*, kNumSats> selected_{};
-  std::array<time::GpsTime, kNumSats> selected_from_{}, selected_until_{};  ///< toe of the set state_ was evaluated from
+  std::array<time::GpsTime, kNumSats> selected_from_{}, selected_until_{};
   std::array<orbit::GlonassNode, kNumSats> glonass_{};
   long evaluations_ = 0;
   long revision_ = 0;
