@@ -564,9 +564,7 @@ void Daemon::emit_epoch(const time::GpsTime& t, double demo_elapsed_s, bool fall
     Rig& rig = *rp;
     rig.truth = antenna_truth(vehicles_[rig.vehicle_index].truth, rig.lever_arm_m, router_.attitude(rig.vehicle_index));
     antennas_.push_back(rig.truth.pos_m);
-    const SystemSet s = rig.receiver->receiver().systems();
-    for (int k = 0; k < kNumSystems; ++k)
-      if (s.has(static_cast<GnssSystem>(k))) tracked = tracked.with(static_cast<GnssSystem>(k));
+    tracked = tracked.unite(rig.receiver->receiver().systems());
   }
   if (base_) {
     antennas_.push_back(base_->position_ecef_m());

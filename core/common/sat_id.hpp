@@ -126,6 +126,7 @@ public:
   constexpr SystemSet without(GnssSystem s) const noexcept { return SystemSet(static_cast<uint8_t>(bits_ & ~(1u << static_cast<int>(s)))); }
   /// The systems in both sets; in this one and not in o.
   constexpr SystemSet intersect(SystemSet o) const noexcept { return SystemSet(static_cast<uint8_t>(bits_ & o.bits_)); }
+  constexpr SystemSet unite(SystemSet o) const noexcept { return SystemSet(static_cast<uint8_t>(bits_ | o.bits_)); }
   constexpr SystemSet minus(SystemSet o) const noexcept { return SystemSet(static_cast<uint8_t>(bits_ & ~o.bits_)); }
   constexpr bool empty() const noexcept { return bits_ == 0; }
   constexpr int count() const noexcept {

@@ -82,6 +82,7 @@ TEST(SystemSet, ParseAndPrint) {
   EXPECT_EQ(SystemSet::all().count(), kNumSystems);
   EXPECT_EQ(parse_systems("G,R,J,S")->intersect(*parse_systems("G,E,J")), *parse_systems("G,J"));
   EXPECT_EQ(parse_systems("G,R,J,S")->minus(*parse_systems("G,E,J")), *parse_systems("R,S"));
+  EXPECT_EQ(parse_systems("G,R,J,S")->unite(*parse_systems("G,E,J")), *parse_systems("G,R,E,J,S"));
 }
 
 TEST(SystemTable, RowsAndCarriers) {
