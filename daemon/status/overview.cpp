@@ -5,6 +5,8 @@
 #include <charconv>
 #include <cmath>
 #include <iterator>
+#include <utility>
+#include <vector>
 
 #include "daemon/status/json_writer.hpp"
 #include "daemon/status/status_producer.hpp"
@@ -28,6 +30,12 @@ bool whole_number(std::string_view v, std::size_t& n) noexcept {
   return r.ec == std::errc() && r.ptr == v.data() + v.size();
 }
 
+std::size_t active_count(std::span<const FaultStatus> faults) noexcept {
+  std::size_t n = 0;
+  for (const FaultStatus& f : faults) n += f.active ? 1 : 0;
+  return n;
+}
+
 void write_row(JsonWriter& w, const OverviewEntry& e) noexcept {
   const OverviewRow r = e.status->overview();
   w.begin_object();
@@ -48,9 +56,7 @@ void write_row(JsonWriter& w, const OverviewEntry& e) noexcept {
   w.field_string("truth_source", r.truth_source);
   w.field_bool("truth_fresh", r.truth_fresh);
   w.field("truth_age_s", r.truth_age_s, 3);
-  std::size_t active = 0;
-  for (const FaultStatus& f : r.faults) active += f.active ? 1 : 0;
-  w.field_int("faults_active", static_cast<int64_t>(active));
+  w.field_int("faults_active", static_cast<int64_t>(active_count(r.faults)));
   w.field_int("faults_scheduled", static_cast<int64_t>(r.faults.size()));
   w.key("active_faults");
   w.begin_array();
@@ -138,11 +144,8 @@ SortValue sort_value(const OverviewRow& r, OverviewSort s) noexcept {
     case OverviewSort::kTruth:  // no truth, stopped simulator, fresh; then the oldest packet first
       return {false, r.truth_valid ? (r.truth_fresh ? 2.0 : 1.0) : 0.0,
               std::isfinite(r.truth_age_s) ? -r.truth_age_s : 0.0};
-    case OverviewSort::kFaults: {
-      std::size_t active = 0;
-      for (const FaultStatus& f : r.faults) active += f.active ? 1 : 0;
-      return {false, static_cast<double>(active), static_cast<double>(r.faults.size())};
-    }
+    case OverviewSort::kFaults:
+      return {false, static_cast<double>(active_count(r.faults)), static_cast<double>(r.faults.size())};
     case OverviewSort::kBytes: return {false, static_cast<double>(r.bytes_written), 0.0};
     case OverviewSort::kDropped:
       return {false, static_cast<double>(r.epochs_dropped + r.messages_dropped), 0.0};
@@ -165,14 +168,20 @@ void sort_overview(std::span<OverviewEntry> entries, const OverviewQuery& q) {
     });
     return;
   }
-  std::stable_sort(entries.begin(), entries.end(), [&q, sign](const OverviewEntry& x, const OverviewEntry& y) {
-    const SortValue a = sort_value(x.status->overview(), q.sort), b = sort_value(y.status->overview(), q.sort);
+  // Each row's value once (overview() sums its ports), not once per comparison.
+  std::vector<std::pair<SortValue, OverviewEntry>> keyed;
+  keyed.reserve(entries.size());
+  for (const OverviewEntry& e : entries) keyed.emplace_back(sort_value(e.status->overview(), q.sort), e);
+  std::stable_sort(keyed.begin(), keyed.end(), [sign](const auto& x, const auto& y) {
+    const SortValue& a = x.first;
+    const SortValue& b = y.first;
     if (a.missing != b.missing) return b.missing;
     if (a.missing) return false;
     if (a.a != b.a) return sign * (a.a < b.a ? -1 : 1) < 0;
     if (a.b != b.b) return sign * (a.b < b.b ? -1 : 1) < 0;
     return false;
   });
+  for (std::size_t i = 0; i < keyed.size(); ++i) entries[i] = keyed[i].second;
 }
 
 std::string parse_overview_query(std::string_view query, OverviewQuery& q) {

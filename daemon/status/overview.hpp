@@ -74,7 +74,8 @@ std::string parse_overview_query(std::string_view query, OverviewQuery& q);
 
 /// Order entries by q.sort (stable: ties keep their order). A missing value
 /// (no fix: no error, no hAcc) sorts last in either order. name is natural
-/// order of vehicle then receiver ("v9" before "v10").
+/// order of vehicle then receiver ("v9" before "v10"). Allocates (a
+/// request's work, not an epoch's).
 void sort_overview(std::span<OverviewEntry> entries, const OverviewQuery& q);
 
 /// Append {"version":1,"total":N,"offset":..,"limit":..,"rows":[...]} for
